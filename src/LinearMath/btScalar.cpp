@@ -1,0 +1,14 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "LinearMath/btScalar.h"
+
+#include <stdio.h>
+
+// Defined only for the precision this library was built with; see btScalar.h.
+int btCaliberPrecisionMarker(btScalar) { return int(sizeof(btScalar)); }
+
+void btAssertFailed(const char* condition, const char* file, int line)
+{
+	fprintf(stderr, "Caliber: assertion failed: %s (%s:%d)\n", condition, file, line);
+	fflush(stderr);
+	abort();
+}
