@@ -37,7 +37,7 @@ caliber_ensure_packages() {
 	for tool in cmake g++ make pkg-config "$@"; do
 		command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 	done
-	for package in libgtest-dev libbenchmark-dev; do
+	for package in libgtest-dev libbenchmark-dev libccd-dev; do
 		caliber_package_installed "$package" || missing+=("$package")
 	done
 	if ((${#missing[@]} == 0)); then

@@ -27,6 +27,8 @@ typedef __m128 btSimdFloat4;
 // Lane selector for _mm_shuffle_ps: result lanes take (a, b, c, d).
 #define CALIBER_SHUFFLE(a, b, c, d) (((d) << 6) | ((c) << 4) | ((b) << 2) | (a))
 #define caliberSplat(v, lane) _mm_shuffle_ps((v), (v), CALIBER_SHUFFLE(lane, lane, lane, lane))
+// Clears the w lane in registers (writing m_floats[3] instead would stall on store forwarding).
+#define caliberClearW(v) _mm_and_ps((v), _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)))
 #endif
 
 struct btVector3FloatData;
@@ -107,8 +109,7 @@ public:
 	{
 		btAssert(s != btScalar(0.0));
 #ifdef BT_USE_SSE
-		mVec128 = _mm_div_ps(mVec128, _mm_set1_ps(s));
-		m_floats[3] = btScalar(0.);
+		mVec128 = caliberClearW(_mm_div_ps(mVec128, _mm_set1_ps(s)));
 #else
 		m_floats[0] /= s;
 		m_floats[1] /= s;
@@ -209,12 +210,12 @@ public:
 	SIMD_FORCE_INLINE btVector3 cross(const btVector3& v) const
 	{
 #ifdef BT_USE_SSE
+		// c = a * b.yzx - a.yzx * b holds (z, x, y) of the cross product, each lane computed as the
+		// scalar formula does; one more shuffle puts it in order. Three shuffles instead of four.
 		const __m128 a_yzx = _mm_shuffle_ps(mVec128, mVec128, CALIBER_SHUFFLE(1, 2, 0, 3));
-		const __m128 b_zxy = _mm_shuffle_ps(v.mVec128, v.mVec128, CALIBER_SHUFFLE(2, 0, 1, 3));
-		const __m128 a_zxy = _mm_shuffle_ps(mVec128, mVec128, CALIBER_SHUFFLE(2, 0, 1, 3));
 		const __m128 b_yzx = _mm_shuffle_ps(v.mVec128, v.mVec128, CALIBER_SHUFFLE(1, 2, 0, 3));
-		btVector3 result(_mm_sub_ps(_mm_mul_ps(a_yzx, b_zxy), _mm_mul_ps(a_zxy, b_yzx)));
-		result.m_floats[3] = btScalar(0.);
+		const __m128 c = _mm_sub_ps(_mm_mul_ps(mVec128, b_yzx), _mm_mul_ps(a_yzx, v.mVec128));
+		const btVector3 result(caliberClearW(_mm_shuffle_ps(c, c, CALIBER_SHUFFLE(1, 2, 0, 3))));
 		return result;
 #else
 		return btVector3(m_floats[1] * v.m_floats[2] - m_floats[2] * v.m_floats[1],
@@ -382,9 +383,7 @@ SIMD_FORCE_INLINE btVector3 operator-(const btVector3& v)
 {
 #ifdef BT_USE_SSE
 	const __m128 signBit = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000u)));
-	btVector3 r(_mm_xor_ps(v.mVec128, signBit));
-	r.m_floats[3] = btScalar(0.);
-	return r;
+	return btVector3(caliberClearW(_mm_xor_ps(v.mVec128, signBit)));
 #else
 	return btVector3(-v.m_floats[0], -v.m_floats[1], -v.m_floats[2]);
 #endif
@@ -405,9 +404,7 @@ SIMD_FORCE_INLINE btVector3 operator/(const btVector3& v, const btScalar& s)
 SIMD_FORCE_INLINE btVector3 operator/(const btVector3& v1, const btVector3& v2)
 {
 #ifdef BT_USE_SSE
-	btVector3 r(_mm_div_ps(v1.mVec128, v2.mVec128));
-	r.m_floats[3] = btScalar(0.);
-	return r;
+	return btVector3(caliberClearW(_mm_div_ps(v1.mVec128, v2.mVec128)));
 #else
 	return btVector3(v1.m_floats[0] / v2.m_floats[0], v1.m_floats[1] / v2.m_floats[1], v1.m_floats[2] / v2.m_floats[2]);
 #endif

@@ -1,0 +1,79 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_SHAPE_GUARDS_H
+#define CALIBER_SHAPE_GUARDS_H
+
+// Internal helpers the shapes share to turn bad input into documented, finite results.
+
+#include "LinearMath/btScalar.h"
+#include "LinearMath/btVector3.h"
+#include "LinearMath/btTransform.h"
+
+/// True when every component of v is finite.
+SIMD_FORCE_INLINE bool caliberIsFinite(const btVector3& v)
+{
+	return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z());
+}
+
+/// True when every entry of the basis and origin of t is finite.
+SIMD_FORCE_INLINE bool caliberIsFinite(const btTransform& t)
+{
+	const btMatrix3x3& b = t.getBasis();
+	return caliberIsFinite(b[0]) && caliberIsFinite(b[1]) && caliberIsFinite(b[2]) && caliberIsFinite(t.getOrigin());
+}
+
+/// The documented AABB of a shape under a non-finite transform: [-BT_LARGE_FLOAT, BT_LARGE_FLOAT]^3.
+SIMD_FORCE_INLINE void caliberSetOverflowAabb(btVector3& aabbMin, btVector3& aabbMax)
+{
+	aabbMin.setValue(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
+	aabbMax.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+}
+
+/// Checks t for getAabb: true when it is usable; otherwise asserts, writes the overflow AABB and
+/// returns false (release builds).
+SIMD_FORCE_INLINE bool caliberCheckAabbTransform(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax)
+{
+	if (btLikely(caliberIsFinite(t))) return true;
+	btAssert(caliberIsFinite(t) && "getAabb: non-finite transform");
+	caliberSetOverflowAabb(aabbMin, aabbMax);
+	return false;
+}
+
+/// A shape dimension made valid: |value| for finite values, 0 for NaN or infinite ones.
+SIMD_FORCE_INLINE btScalar caliberSanitizeDimension(btScalar value)
+{
+	return btIsFinite(value) ? btFabs(value) : btScalar(0);
+}
+
+/// The direction support functions use: dir itself, or (-1, -1, -1) when dir is zero, tiny or not finite
+/// (every point of a shape is a support point for the zero direction; this picks one on the surface).
+SIMD_FORCE_INLINE btVector3 caliberSupportDirection(const btVector3& dir)
+{
+	if (btLikely(caliberIsFinite(dir) && !(dir.length2() < SIMD_EPSILON * SIMD_EPSILON))) return dir;
+	return btVector3(btScalar(-1), btScalar(-1), btScalar(-1));
+}
+
+/// Checks a mass for calculateLocalInertia: true when it is finite and >= 0; otherwise asserts, sets
+/// inertia to (0, 0, 0) and returns false (release builds).
+SIMD_FORCE_INLINE bool caliberCheckMass(btScalar mass, btVector3& inertia)
+{
+	if (btLikely(mass >= btScalar(0) && btIsFinite(mass))) return true;
+	btAssert(mass >= btScalar(0) && btIsFinite(mass) && "calculateLocalInertia: bad mass");
+	inertia.setValue(btScalar(0), btScalar(0), btScalar(0));
+	return false;
+}
+
+/// A size given to a shape constructor or setter: asserts it is finite and >= 0, returns |size| (0 when
+/// not finite).
+SIMD_FORCE_INLINE btScalar caliberCheckSize(btScalar size)
+{
+	btAssert(size >= btScalar(0) && btIsFinite(size) && "shape size must be finite and >= 0");
+	return caliberSanitizeDimension(size);
+}
+
+/// caliberCheckSize per component.
+SIMD_FORCE_INLINE btVector3 caliberCheckSize(const btVector3& size)
+{
+	return btVector3(caliberCheckSize(size.x()), caliberCheckSize(size.y()), caliberCheckSize(size.z()));
+}
+
+#endif  // CALIBER_SHAPE_GUARDS_H
