@@ -43,7 +43,7 @@ inline double supportHeight(const CcdObject& obj, const btVector3& worldDirectio
 	return double(worldSupport(obj, worldDirection).dot(worldDirection));
 }
 
-/// How far b must move along -normalOnB (normalOnB points from b towards a) to leave a touching b:
+/// How far b must move along -normalOnB (normalOnB points from b towards a) until the two just touch:
 /// h_a(-n) + h_b(n), the depth of the Minkowski difference a - b in that direction. It is the
 /// penetration depth exactly when n is a minimal separating direction, and larger otherwise.
 inline double depthAlong(const CcdObject& a, const CcdObject& b, const btVector3& normalOnB)

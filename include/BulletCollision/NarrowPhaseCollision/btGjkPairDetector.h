@@ -50,7 +50,8 @@ public:
 	/// Pair of shapes whose margins are read from the shapes at each query.
 	btGjkPairDetector(const btConvexShape* objectA, const btConvexShape* objectB,
 	                  btSimplexSolverInterface* simplexSolver, btConvexPenetrationDepthSolver* penetrationDepthSolver);
-	/// Pair of shapes with given types and margins (used instead of the shapes' own margins).
+	/// Pair of shapes with given types and margins, used by GJK instead of the shapes' own margins (the
+	/// penetration depth solver still sees the shapes themselves, with their own margins).
 	btGjkPairDetector(const btConvexShape* objectA, const btConvexShape* objectB, int shapeTypeA, int shapeTypeB,
 	                  btScalar marginA, btScalar marginB, btSimplexSolverInterface* simplexSolver,
 	                  btConvexPenetrationDepthSolver* penetrationDepthSolver);

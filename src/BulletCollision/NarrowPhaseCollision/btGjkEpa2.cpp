@@ -158,10 +158,14 @@ struct EpaPolytope
 		const btVector3 n = (w[i1] - w[i0]).cross(w[i2] - w[i0]);
 		const btScalar length = n.length();
 		const btScalar edgeScale = (w[i1] - w[i0]).length2() + (w[i2] - w[i0]).length2();
-		if (length > SIMD_EPSILON * edgeScale && length > btScalar(0))
+		const btScalar distance = length > btScalar(0) ? n.dot(w[i0]) / length : btScalar(0);
+		// The origin is inside the polytope, so a face it lies clearly outside of has been wound the wrong
+		// way by rounding (a nearly flat horizon fan): it must never be chosen or seen.
+		const btScalar flippedLimit = -kRelativeTolerance * (btSqrt(edgeScale) + w[i0].length());
+		if (length > SIMD_EPSILON * edgeScale && length > btScalar(0) && distance >= flippedLimit)
 		{
 			face.normal = n / length;
-			face.distance = face.normal.dot(w[i0]);
+			face.distance = distance;
 		}
 		else
 		{
@@ -299,6 +303,32 @@ btScalar faceWeights(const EpaPolytope& poly, const EpaFace& face, btScalar* wei
 	return weight[0] + weight[1] + weight[2];
 }
 
+// Witnesses from the origin's projection on the face (weights clamped to the face), normal from B to A
+// and depth. Returns false for a degenerate face or non-finite results.
+bool witnessesFromFace(const EpaPolytope& poly, const EpaFace& face, btVector3& witnessA, btVector3& witnessB,
+                       btVector3& normalBtoA, btScalar& depth)
+{
+	btScalar weight[3];
+	faceWeights(poly, face, weight);
+	btScalar sum = btScalar(0);
+	for (btScalar& x : weight)
+	{
+		x = btMax(x, btScalar(0));
+		sum += x;
+	}
+	if (!(sum > btScalar(0)) || !(face.distance < BT_LARGE_FLOAT)) return false;
+	witnessA.setValue(btScalar(0), btScalar(0), btScalar(0));
+	witnessB = witnessA;
+	for (int i = 0; i < 3; ++i)
+	{
+		witnessA += poly.onA[face.vertex[i]] * (weight[i] / sum);
+		witnessB += poly.onB[face.vertex[i]] * (weight[i] / sum);
+	}
+	normalBtoA = -face.normal;
+	depth = btMax(face.distance, btScalar(0));
+	return isFiniteVector(witnessA) && isFiniteVector(witnessB);
+}
+
 // EPA from the simplex GJK ended with. Fills the penetration results; returns false when it fails.
 bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simplex, EpaPolytope& poly,
             btVector3& witnessA, btVector3& witnessB, btVector3& normalBtoA, btScalar& depth)
@@ -308,9 +338,14 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 	if (poly.numVertices < 1 || !buildInitialTetrahedron(diff, poly)) return false;
 
 	int best = closestFace(poly);
+	// Faces refer to vertices, which are never removed: a copy of the best face stays valid even if an
+	// expansion step goes wrong, and is the answer when one does.
+	EpaFace lastBest = poly.faces[best >= 0 ? best : 0];
+	bool expansionFailed = false;
 	for (int iteration = 0; iteration < kMaxEpaIterations && best >= 0; ++iteration)
 	{
 		const EpaFace face = poly.faces[best];
+		lastBest = face;
 		btVector3 onA, onB;
 		const btVector3 wv = diff.support(face.normal, onA, onB);
 		if (!isFiniteVector(wv)) return false;
@@ -320,12 +355,15 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 		if (supportDistance - face.distance <= tolerance) break;
 		if (poly.numVertices >= kMaxEpaVertices) break;
 		const int newIndex = poly.addVertex(wv, onA, onB);
+		const btScalar visibilityTolerance = btScalar(16) * SIMD_EPSILON * (wv.length() + btScalar(1));
 		// Remove every face that sees the new vertex; the boundary of the removed region is the horizon.
 		poly.numHorizon = 0;
 		for (int i = 0; i < poly.numFaces;)
 		{
 			const EpaFace& f = poly.faces[i];
-			const bool visible = (i == best) || f.normal.dot(wv - poly.w[f.vertex[0]]) > tolerance;
+			// Any face the new vertex is in front of (beyond rounding) goes: keeping a nearly-visible face
+			// would leave a fold in which later faces can be wound the wrong way.
+			const bool visible = (i == best) || f.normal.dot(wv - poly.w[f.vertex[0]]) > visibilityTolerance;
 			if (!visible)
 			{
 				++i;
@@ -338,12 +376,18 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 			poly.faces[i] = poly.faces[--poly.numFaces];
 			if (best == poly.numFaces) best = i;
 		}
-		for (int e = 0; e < poly.numHorizon; ++e)
-		{
-			if (!poly.addFace(poly.horizon[e].from, poly.horizon[e].to, newIndex)) return false;
-		}
+		for (int e = 0; e < poly.numHorizon && !expansionFailed; ++e)
+			expansionFailed = !poly.addFace(poly.horizon[e].from, poly.horizon[e].to, newIndex);
 		best = closestFace(poly);
+		// Rounding can make the visible region a ring rather than a disc; the polytope then stops being a
+		// sphere and may outgrow its arrays. Keep the last good face.
+		if (expansionFailed || best < 0)
+		{
+			expansionFailed = true;
+			break;
+		}
 	}
+	if (expansionFailed) return witnessesFromFace(poly, lastBest, witnessA, witnessB, normalBtoA, depth);
 	if (best < 0) return false;
 
 	// Flat sides of D are split into coplanar faces at the same distance up to rounding; the witnesses
@@ -364,27 +408,7 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 			chosen = i;
 		}
 	}
-	const EpaFace& face = poly.faces[chosen];
-	const btVector3 n = face.normal;
-	const btScalar distance = btMax(face.distance, btScalar(0));
-	faceWeights(poly, face, weight);
-	btScalar sum = btScalar(0);
-	for (btScalar& x : weight)
-	{
-		x = btMax(x, btScalar(0));
-		sum += x;
-	}
-	if (!(sum > btScalar(0))) return false;
-	witnessA.setValue(btScalar(0), btScalar(0), btScalar(0));
-	witnessB = witnessA;
-	for (int i = 0; i < 3; ++i)
-	{
-		witnessA += poly.onA[face.vertex[i]] * (weight[i] / sum);
-		witnessB += poly.onB[face.vertex[i]] * (weight[i] / sum);
-	}
-	normalBtoA = -n;
-	depth = distance;
-	return isFiniteVector(witnessA) && isFiniteVector(witnessB);
+	return witnessesFromFace(poly, poly.faces[chosen], witnessA, witnessB, normalBtoA, depth);
 }
 
 void setFailure(btGjkEpaSolver2::sResults& results, btGjkEpaSolver2::sResults::eStatus status)

@@ -3,6 +3,9 @@
 
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btCapsuleShape.h"
+#include "BulletCollision/CollisionShapes/btConeShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "BulletCollision/CollisionShapes/btCylinderShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
@@ -318,4 +321,56 @@ TEST(StorageResult, KeepsTheClosestPoint)
 	EXPECT_EQ(storage.m_distance, 1);
 	EXPECT_EQ(storage.m_closestPointInB, btVector3(2, 0, 0));
 	EXPECT_EQ(storage.m_normalOnSurfaceB, btVector3(1, 0, 0));
+}
+
+namespace
+{
+// Owns one shape of each kind the pair stress test draws from.
+struct ShapeZoo
+{
+	btSphereShape sphere{btScalar(0.6)};
+	btBoxShape box{btVector3(btScalar(0.5), btScalar(0.7), btScalar(0.3))};
+	btCapsuleShape capsule{btScalar(0.3), btScalar(0.8)};
+	btCylinderShape cylinder{btVector3(btScalar(0.4), btScalar(0.6), btScalar(0.4))};
+	btConeShape cone{btScalar(0.5), btScalar(1.0)};
+	btConvexHullShape hull;
+	ShapeZoo()
+	{
+		Random rng(7);
+		for (int i = 0; i < 12; ++i) hull.addPoint(rng.vector(btScalar(0.6)));
+	}
+	const btConvexShape* pick(int i) const
+	{
+		const btConvexShape* shapes[6] = {&sphere, &box, &capsule, &cylinder, &cone, &hull};
+		return shapes[i % 6];
+	}
+};
+}  // namespace
+
+TEST(GjkPairDetector, RandomShapePairsGiveFiniteResultsBoundedBySampling)
+{
+	ShapeZoo zoo;
+	Random rng(106);
+	btMinkowskiPenetrationDepthSolver sampling;
+	int penetrating = 0;
+	for (int trial = 0; trial < 600; ++trial)
+	{
+		const btConvexShape* a = zoo.pick(trial);
+		const btConvexShape* b = zoo.pick(trial / 6);
+		const btTransform ta = rng.transform(btScalar(1.2)), tb = rng.transform(btScalar(1.2));
+		const Query epa = closestPoints(*a, ta, *b, tb);
+		ASSERT_TRUE(epa.result.m_hasResult) << trial;
+		EXPECT_TRUE(isFinite(epa.result.m_normalOnBInWorld) && isFinite(epa.result.m_pointInWorld)) << trial;
+		EXPECT_TRUE(btIsFinite(epa.result.m_distance)) << trial;
+		EXPECT_NEAR(epa.result.m_normalOnBInWorld.length(), 1, kPenetrationTolerance) << trial;
+		if (epa.lastUsedMethod != 3) continue;
+		++penetrating;
+		// EPA's polytope lies inside the Minkowski difference, so its depth never exceeds the true
+		// depth; projection overlaps along sampled directions never undercut it. Allow EPA's stopping
+		// tolerance (256 SIMD_EPSILON relative, shapes of size ~1).
+		const Query sampled = closestPoints(*a, ta, *b, tb, &sampling);
+		if (!sampled.result.m_hasResult) continue;
+		EXPECT_GE(epa.result.m_distance, sampled.result.m_distance - kPenetrationTolerance) << trial;
+	}
+	EXPECT_GT(penetrating, 40);  // overlapping cores (the rest overlap in the margins only, or not at all)
 }

@@ -161,6 +161,39 @@ inline btScalar boxBoxDistance(const btVector3& ha, const btTransform& ta, const
 		}
 	return best;
 }
+// Penetration depth of two overlapping boxes: the smallest overlap of their projections over the 15
+// separating-axis candidates. These are all the face normals of the Minkowski difference, so the
+// minimum is the exact depth (0 or less when the boxes are apart).
+inline btScalar boxBoxSatDepth(const btVector3& ha, const btTransform& ta, const btVector3& hb, const btTransform& tb)
+{
+	btVector3 ca[8], cb[8];
+	boxCorners(ha, ta, ca);
+	boxCorners(hb, tb, cb);
+	btScalar depth = BT_LARGE_FLOAT;
+	for (int i = 0; i < 3; ++i)
+	{
+		btVector3 axes[5] = {ta.getBasis().getColumn(i), tb.getBasis().getColumn(i)};
+		int numAxes = 2;
+		for (int j = 0; j < 3; ++j)
+		{
+			const btVector3 c = ta.getBasis().getColumn(i).cross(tb.getBasis().getColumn(j));
+			if (c.length2() > btScalar(1e-6)) axes[numAxes++] = c.normalized();
+		}
+		for (int k = 0; k < numAxes; ++k)
+		{
+			btScalar minA = BT_LARGE_FLOAT, maxA = -BT_LARGE_FLOAT, minB = BT_LARGE_FLOAT, maxB = -BT_LARGE_FLOAT;
+			for (int v = 0; v < 8; ++v)
+			{
+				minA = btMin(minA, ca[v].dot(axes[k]));
+				maxA = btMax(maxA, ca[v].dot(axes[k]));
+				minB = btMin(minB, cb[v].dot(axes[k]));
+				maxB = btMax(maxB, cb[v].dot(axes[k]));
+			}
+			depth = btMin(depth, btMin(maxB - minA, maxA - minB));
+		}
+	}
+	return depth;
+}
 }  // namespace caliber_narrowphase_test
 
 #endif  // CALIBER_TESTS_NARROW_PHASE_TEST_UTIL_H
