@@ -3,8 +3,8 @@
 #define BULLET_COLLISION_COMMON_H
 
 /// Everything a collision-detection program needs, in one include (as with Bullet).
-/// For now it brings the LinearMath layer; the BulletCollision issues add their headers here
-/// (shapes, broadphases, dispatcher, collision world) as they land.
+/// It brings the LinearMath layer and the collision shapes that exist so far; the BulletCollision
+/// issues add the rest here (meshes, compounds, broadphases, dispatcher, collision world) as they land.
 
 #include "LinearMath/btScalar.h"
 #include "LinearMath/btVector3.h"
@@ -15,5 +15,17 @@
 #include "LinearMath/btDefaultMotionState.h"
 #include "LinearMath/btQuickprof.h"
 #include "LinearMath/btIDebugDraw.h"
+
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/CollisionShapes/btCapsuleShape.h"
+#include "BulletCollision/CollisionShapes/btCylinderShape.h"
+#include "BulletCollision/CollisionShapes/btConeShape.h"
+#include "BulletCollision/CollisionShapes/btStaticPlaneShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "BulletCollision/CollisionShapes/btMultiSphereShape.h"
+#include "BulletCollision/CollisionShapes/btUniformScalingShape.h"
+#include "BulletCollision/CollisionShapes/btEmptyShape.h"
+#include "BulletCollision/CollisionShapes/btTriangleShape.h"
 
 #endif  // BULLET_COLLISION_COMMON_H

@@ -657,17 +657,6 @@ TEST_P(RandomPairs, PairDetectorYesNoNeverContradictsLibccd)
 	runRandomPairs(GetParam().first, GetParam().second, kYesNo);
 }
 
-// Full agreement of both solvers: yes/no, always an answer, depth and normal within tolerance, and
-// libccd failing on at most 1% of the pairs. DISABLED until Caliber's EPA passes it: the summary lines
-// of a run with --gtest_also_run_disabled_tests show btGjkEpaSolver2::Penetration giving no result on
-// up to ~6% of the pairs with a curved shape (~27% of sphere-capsule pairs in double precision), and,
-// where cylinders or cones are involved, normals off by several degrees (near-ties of two faces aside)
-// and btGjkPairDetector's depths off by up to ~2e-2 relative.
-TEST_P(RandomPairs, DISABLED_BothSolversAgreeWithLibccdOnDepthAndNormal)
-{
-	runRandomPairs(GetParam().first, GetParam().second, kBothSolversFull);
-}
-
 std::vector<std::pair<int, int>> allShapePairs()
 {
 	std::vector<std::pair<int, int>> pairs;
@@ -683,13 +672,56 @@ std::string shapePairName(const ::testing::TestParamInfo<std::pair<int, int>>& i
 
 INSTANTIATE_TEST_SUITE_P(AllShapes, RandomPairs, ::testing::ValuesIn(allShapePairs()), shapePairName);
 
+class RandomPairsBothSolvers : public ::testing::TestWithParam<std::pair<int, int>>
+{
+};
+
+// Full agreement of both solvers: yes/no, always an answer, depth and normal within tolerance, and
+// libccd failing on at most 1% of the pairs.
+TEST_P(RandomPairsBothSolvers, BothSolversAgreeWithLibccdOnDepthAndNormal)
+{
+	runRandomPairs(GetParam().first, GetParam().second, kBothSolversFull);
+}
+
+// The same, DISABLED for the pairs where, in float, btGjkPairDetector does not pass (btGjkEpaSolver2
+// does): every pair with a cylinder, and the cone with anything but a hull. Its GJK on the cores stops
+// when a support point comes within the simplex solver's equal-vertex threshold (1e-2 units in float)
+// of a vertex, so shallow depths there are off by up to ~1e-4 units (~2e-3 relative) and some normals
+// by 1 to 5 degrees. Double precision passes them all.
+class RandomPairsBothSolversPending : public ::testing::TestWithParam<std::pair<int, int>>
+{
+};
+
+TEST_P(RandomPairsBothSolversPending, DISABLED_BothSolversAgreeWithLibccdOnDepthAndNormal)
+{
+	runRandomPairs(GetParam().first, GetParam().second, kBothSolversFull);
+}
+
+/// The shape pairs btGjkPairDetector passes in float (fullyChecked) or the others.
+std::vector<std::pair<int, int>> shapePairs(bool fullyChecked)
+{
+	std::vector<std::pair<int, int>> pairs;
+	for (const std::pair<int, int>& pair : allShapePairs())
+	{
+		const bool hasCylinder = pair.first == kCylinder || pair.second == kCylinder;
+		const bool hasCone = pair.first == kCone || pair.second == kCone;
+		const bool coneHull = hasCone && (pair.first == kHull || pair.second == kHull);
+		const bool passes = !hasCylinder && (!hasCone || coneHull);
+		if (passes == fullyChecked) pairs.push_back(pair);
+	}
+	return pairs;
+}
+
+INSTANTIATE_TEST_SUITE_P(PassingShapes, RandomPairsBothSolvers, ::testing::ValuesIn(shapePairs(true)), shapePairName);
+INSTANTIATE_TEST_SUITE_P(FailingShapes, RandomPairsBothSolversPending, ::testing::ValuesIn(shapePairs(false)),
+                         shapePairName);
+
 class RandomPairsFullyChecked : public ::testing::TestWithParam<std::pair<int, int>>
 {
 };
 
-// Every check on btGjkPairDetector, for the shape pairs where it passes today (boxes, hulls, spheres and
-// capsules, but not capsule-hull: one normal 3.3 degrees off); the others are in
-// RandomPairs.DISABLED_BothSolversAgreeWithLibccdOnDepthAndNormal.
+// Every check on btGjkPairDetector alone, for boxes, hulls, spheres and capsules (capsule-hull aside);
+// RandomPairsBothSolvers checks both solvers on these pairs and more.
 TEST_P(RandomPairsFullyChecked, PairDetectorAgreesWithLibccdOnDepthAndNormal)
 {
 	runRandomPairs(GetParam().first, GetParam().second, kPairDetector);
@@ -808,8 +840,7 @@ void runSphereScene(bool yesNoOnly)
 
 TEST(LibccdScenes, SpheresSlidingThroughEachOtherIntersectForSteps42To58) { runSphereScene(true); }
 
-// DISABLED: at step 50 the centres coincide and Caliber's EPA reports 0.8209 instead of 0.85.
-TEST(LibccdScenes, DISABLED_SpheresSlidingThroughEachOtherMatchClosedFormDepth) { runSphereScene(false); }
+TEST(LibccdScenes, SpheresSlidingThroughEachOtherMatchClosedFormDepth) { runSphereScene(false); }
 
 /// Cylinders along z (radius 0.35, half height 0.5; radius 0.5, half height 0.35) slide across each
 /// other along x (side against side) and along z (cap against cap); a cylinder also slides across a box.
@@ -838,9 +869,7 @@ void runCylinderScenes(bool yesNoOnly)
 
 TEST(LibccdScenes, CylindersSlidingThroughCylindersAndBoxesIntersectForSteps42To58) { runCylinderScenes(true); }
 
-// DISABLED: at step 50 (centres coincide) Caliber's EPA gives 0.84853 instead of 0.85 for both cylinder
-// pairs, and for the cylinder and box a normal 90 degrees from libccd's that needs depth 0.852.
-TEST(LibccdScenes, DISABLED_CylindersSlidingThroughCylindersAndBoxesMatchClosedFormDepth) { runCylinderScenes(false); }
+TEST(LibccdScenes, CylindersSlidingThroughCylindersAndBoxesMatchClosedFormDepth) { runCylinderScenes(false); }
 
 }  // namespace
 }  // namespace caliber_crosscheck

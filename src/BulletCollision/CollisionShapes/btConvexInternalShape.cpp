@@ -102,14 +102,7 @@ void btConvexInternalAabbCachingShape::getAabb(const btTransform& t, btVector3& 
 
 void btConvexInternalAabbCachingShape::recalcLocalAabb()
 {
-	m_isLocalAabbValid = true;
-	static const btVector3 directions[6] = {btVector3(1, 0, 0),  btVector3(0, 1, 0),  btVector3(0, 0, 1),
-	                                        btVector3(-1, 0, 0), btVector3(0, -1, 0), btVector3(0, 0, -1)};
-	btVector3 supports[6];
-	batchedUnitVectorGetSupportingVertexWithoutMargin(directions, supports, 6);
-	for (int axis = 0; axis < 3; ++axis)
-	{
-		m_localAabbMax[axis] = supports[axis][axis];
-		m_localAabbMin[axis] = supports[axis + 3][axis];
-	}
+	btVector3 aabbMin, aabbMax;
+	caliberLocalAabbFromSupports(*this, aabbMin, aabbMax);
+	setCachedLocalAabb(aabbMin, aabbMax);
 }

@@ -162,16 +162,7 @@ void btPolyhedralConvexAabbCachingShape::getAabb(const btTransform& t, btVector3
 
 void btPolyhedralConvexAabbCachingShape::recalcLocalAabb()
 {
-	static const btVector3 directions[6] = {btVector3(1, 0, 0),  btVector3(0, 1, 0),  btVector3(0, 0, 1),
-	                                        btVector3(-1, 0, 0), btVector3(0, -1, 0), btVector3(0, 0, -1)};
-	btVector3 supports[6];
-	batchedUnitVectorGetSupportingVertexWithoutMargin(directions, supports, 6);
 	btVector3 aabbMin, aabbMax;
-	for (int axis = 0; axis < 3; ++axis)
-	{
-		aabbMax[axis] = supports[axis][axis];
-		aabbMin[axis] = supports[axis + 3][axis];
-	}
-	aabbMin[3] = aabbMax[3] = 0;
+	caliberLocalAabbFromSupports(*this, aabbMin, aabbMax);
 	setCachedLocalAabb(aabbMin, aabbMax);
 }

@@ -76,4 +76,21 @@ SIMD_FORCE_INLINE btVector3 caliberCheckSize(const btVector3& size)
 	return btVector3(caliberCheckSize(size.x()), caliberCheckSize(size.y()), caliberCheckSize(size.z()));
 }
 
+/// The margin-free local AABB of a convex shape from its supports along the six axis directions
+/// (exact for a convex shape); both AABB-caching shape bases use it.
+template <class ConvexShape>
+inline void caliberLocalAabbFromSupports(const ConvexShape& shape, btVector3& aabbMin, btVector3& aabbMax)
+{
+	static const btVector3 directions[6] = {btVector3(1, 0, 0),  btVector3(0, 1, 0),  btVector3(0, 0, 1),
+	                                        btVector3(-1, 0, 0), btVector3(0, -1, 0), btVector3(0, 0, -1)};
+	btVector3 supports[6];
+	shape.batchedUnitVectorGetSupportingVertexWithoutMargin(directions, supports, 6);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		aabbMax[axis] = supports[axis][axis];
+		aabbMin[axis] = supports[axis + 3][axis];
+	}
+	aabbMin[3] = aabbMax[3] = 0;
+}
+
 #endif  // CALIBER_SHAPE_GUARDS_H

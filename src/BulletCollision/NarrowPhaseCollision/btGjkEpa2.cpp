@@ -18,6 +18,9 @@ const int kMaxEpaIterations = kMaxEpaVertices - 4;
 // Relative accuracy GJK and EPA stop at: a few hundred ulps, far above rounding in the dot products.
 const btScalar kRelativeTolerance = btScalar(256) * SIMD_EPSILON;
 
+// Relative gap between EPA's lower and upper depth bounds below which the lower one is reported.
+const btScalar kBoundsAgreement = btScalar(1e-4);
+
 bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
 
 bool isFiniteTransform(const btTransform& t)
@@ -326,6 +329,12 @@ bool witnessesFromFace(const EpaPolytope& poly, const EpaFace& face, btVector3& 
 	}
 	normalBtoA = -face.normal;
 	depth = btMax(face.distance, btScalar(0));
+	// Where the weights were clamped (the origin projects outside the face) the interpolated points are
+	// no longer a normal's length apart: keep their midpoint and separate them along the normal, so that
+	// the witnesses always agree with the normal and depth.
+	const btVector3 middle = (witnessA + witnessB) * btScalar(0.5);
+	witnessA = middle + face.normal * (depth * btScalar(0.5));
+	witnessB = middle - face.normal * (depth * btScalar(0.5));
 	return isFiniteVector(witnessA) && isFiniteVector(witnessB);
 }
 
@@ -338,21 +347,37 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 	if (poly.numVertices < 1 || !buildInitialTetrahedron(diff, poly)) return false;
 
 	int best = closestFace(poly);
-	// Faces refer to vertices, which are never removed: a copy of the best face stays valid even if an
-	// expansion step goes wrong, and is the answer when one does.
-	EpaFace lastBest = poly.faces[best >= 0 ? best : 0];
+	// The depth lies between two bounds: the nearest face's distance (the polytope is inside D) and the
+	// support distance of D along any normal tried (moving by it along that normal separates the
+	// shapes). On curved parts of D the upper bound converges quadratically in the normal's error while
+	// the lower one needs the polytope refined all around, so unless a face converged on its own the
+	// answer takes the normal of the best upper bound. Faces refer to vertices, which are never
+	// removed: a copy of a face stays valid whatever later expansion steps do.
+	EpaFace upperFace = poly.faces[best >= 0 ? best : 0];
+	btScalar upperDistance = BT_LARGE_FLOAT;
+	bool converged = false;
 	bool expansionFailed = false;
 	for (int iteration = 0; iteration < kMaxEpaIterations && best >= 0; ++iteration)
 	{
 		const EpaFace face = poly.faces[best];
-		lastBest = face;
 		btVector3 onA, onB;
 		const btVector3 wv = diff.support(face.normal, onA, onB);
 		if (!isFiniteVector(wv)) return false;
 		const btScalar supportDistance = face.normal.dot(wv);
-		// Converged: D reaches no further than this face along its normal.
+		if (face.distance < BT_LARGE_FLOAT && supportDistance < upperDistance)
+		{
+			upperDistance = supportDistance;
+			upperFace = face;
+		}
 		const btScalar tolerance = kRelativeTolerance * (btFabs(face.distance) + btSqrt(wv.length2())) + SIMD_EPSILON;
-		if (supportDistance - face.distance <= tolerance) break;
+		// Converged: D reaches no further than this face along its normal.
+		if (supportDistance - face.distance <= tolerance)
+		{
+			converged = true;
+			break;
+		}
+		// The nearest face has caught up with the best upper bound: that bound is the depth.
+		if (upperDistance - face.distance <= tolerance) break;
 		if (poly.numVertices >= kMaxEpaVertices) break;
 		const int newIndex = poly.addVertex(wv, onA, onB);
 		const btScalar visibilityTolerance = btScalar(16) * SIMD_EPSILON * (wv.length() + btScalar(1));
@@ -387,18 +412,38 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 			break;
 		}
 	}
-	if (expansionFailed) return witnessesFromFace(poly, lastBest, witnessA, witnessB, normalBtoA, depth);
-	if (best < 0) return false;
+	if (!converged || best < 0)
+	{
+		if (!(upperDistance < BT_LARGE_FLOAT)) return false;
+		if (!witnessesFromFace(poly, upperFace, witnessA, witnessB, normalBtoA, depth)) return false;
+		// Where the bounds agree closely the lower one is kept (the polytope lies inside D, so it is never
+		// too deep); a coarse polytope (every direction about equally deep) gives the upper one.
+		btScalar reported = upperDistance;
+		if (!expansionFailed && best >= 0 &&
+		    upperDistance - poly.faces[best].distance <= kBoundsAgreement * (btFabs(upperDistance) + btScalar(1)))
+			reported = poly.faces[best].distance;
+		// Separate the witnesses to that depth about their midpoint.
+		const btVector3 middle = (witnessA + witnessB) * btScalar(0.5);
+		depth = btMax(reported, btScalar(0));
+		witnessA = middle - normalBtoA * (depth * btScalar(0.5));
+		witnessB = middle + normalBtoA * (depth * btScalar(0.5));
+		return isFiniteVector(witnessA) && isFiniteVector(witnessB);
+	}
 
 	// Flat sides of D are split into coplanar faces at the same distance up to rounding; the witnesses
-	// come from the one the origin projects into (the least negative barycentric weight).
-	const btScalar slack = kRelativeTolerance * (btFabs(poly.faces[best].distance) + btScalar(1));
+	// come from the one the origin projects into (the least negative barycentric weight). A face at the
+	// same distance but tilted (on a curved side of D) is not part of the converged side: its normal
+	// would be wrong by its tilt.
+	const EpaFace& bestFace = poly.faces[best];
+	const btScalar slack = kRelativeTolerance * (btFabs(bestFace.distance) + btScalar(1));
+	const btScalar coplanarCosine = btScalar(1) - kRelativeTolerance;
 	int chosen = best;
 	btScalar chosenScore = -BT_LARGE_FLOAT;
 	btScalar weight[3];
 	for (int i = 0; i < poly.numFaces; ++i)
 	{
-		if (!(poly.faces[i].distance <= poly.faces[best].distance + slack)) continue;
+		if (!(poly.faces[i].distance <= bestFace.distance + slack)) continue;
+		if (i != best && !(poly.faces[i].normal.dot(bestFace.normal) >= coplanarCosine)) continue;
 		const btScalar total = faceWeights(poly, poly.faces[i], weight);
 		if (!(total > btScalar(0))) continue;
 		const btScalar score = btMin(weight[0], btMin(weight[1], weight[2])) / total;
