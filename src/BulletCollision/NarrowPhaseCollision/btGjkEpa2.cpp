@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/NarrowPhaseCollision/btGjkEpa2.h"
 
+#include "BulletCollision/NarrowPhaseCollision/btGjkConvergence.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 
 // GJK runs on the Minkowski difference D = A - B with btVoronoiSimplexSolver as its simplex. When D
@@ -95,20 +96,27 @@ GjkOutcome runGjk(const MinkowskiDifference& diff, const btVector3& guess, btVor
 			return GjkOutcome::Overlapping;
 		w = diff.support(-v, onA, onB);
 		if (!isFiniteVector(w)) return GjkOutcome::Failed;
-		// ||v||^2 - v.w bounds the gap between ||v|| and the true distance (times ||v||).
-		const btScalar gap = distanceSquared - v.dot(w);
-		if (gap <= kRelativeTolerance * distanceSquared + SIMD_EPSILON * scale) return GjkOutcome::Separated;
-		if (simplex.inSimplex(w)) return GjkOutcome::Separated;
+		if (caliber_gjk::boundsMet(distanceSquared, v.dot(w), scale)) return GjkOutcome::Separated;
+		// Only a numerical duplicate ends an unconverged search (see btGjkConvergence.h).
+		if (caliber_gjk::isDuplicateVertex(simplex, w)) break;
 		simplex.addVertex(w, onA, onB);
 		btVector3 next;
 		if (!simplex.closest(next)) return GjkOutcome::Failed;
 		if (simplex.fullSimplex()) return GjkOutcome::Overlapping;
 		const btScalar nextSquared = next.length2();
+		const btScalar lastVDotW = v.dot(w);
 		v = next;
 		// No progress: v is as close as the arithmetic allows.
 		if (distanceSquared - nextSquared <= SIMD_EPSILON * distanceSquared)
 		{
 			distanceSquared = nextSquared;
+			// A face through the origin leaves |v| at its rounding, which for a thin triangle exceeds the
+			// touching threshold below (1.7e-15 in double). The support plane did not separate (v.w <= 0)
+			// and |v| is below a repeat's distance: touching, which counts as overlapping.
+			const btScalar touching = caliber_gjk::kDuplicateVertexDistance;
+			if (lastVDotW <= btScalar(0) &&
+			    distanceSquared <= touching * touching * (simplex.maxVertex() + btScalar(1)))
+				return GjkOutcome::Overlapping;
 			break;
 		}
 		distanceSquared = nextSquared;

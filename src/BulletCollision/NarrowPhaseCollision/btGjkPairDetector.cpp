@@ -3,6 +3,7 @@
 
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "BulletCollision/NarrowPhaseCollision/btConvexPenetrationDepthSolver.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkConvergence.h"
 
 // GJK on the cores: each step asks both shapes for their margin-free support point along the current
 // closest point v of the simplex, stops when the lower bound v.w / |v| meets the upper bound |v|, and
@@ -11,7 +12,7 @@
 namespace
 {
 const int kMaxIterations = 1000;
-// Relative gap between GJK's lower and upper distance bounds at which it stops.
+// Relative slack when comparing the overlaps along +n and -n (a few hundred ulps).
 const btScalar kRelativeTolerance = btScalar(256) * SIMD_EPSILON;
 // Cores closer than this (length units) after a degenerate GJK ending are checked by the depth solver.
 const btScalar kDegenerateContactTolerance = btScalar(1e-3);
@@ -131,6 +132,9 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 	btScalar squaredDistance = BT_LARGE_FLOAT;
 	bool coresOverlap = false;
 	bool failed = false;
+	// The witnesses of the last closest point that made progress.
+	btVector3 previousA(btScalar(0), btScalar(0), btScalar(0)), previousB(btScalar(0), btScalar(0), btScalar(0));
+	bool haveWitnesses = false, keepPrevious = false;
 	for (;;)
 	{
 		const btVector3 supportA = worldSupport(m_minkowskiA, transA, -v, btScalar(0));
@@ -150,15 +154,16 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 			const btScalar lowerBound = delta / btSqrt(squaredDistance);
 			if (lowerBound - marginSum > maxDistance) return;
 		}
-		if (simplex.inSimplex(w))
+		if (squaredDistance < BT_LARGE_FLOAT && caliber_gjk::boundsMet(squaredDistance, delta, simplex.maxVertex()))
 		{
-			m_degenerateSimplex = 1;
+			m_degenerateSimplex = delta >= squaredDistance ? 2 : 0;
 			break;
 		}
-		const btScalar gap = squaredDistance - delta;
-		if (gap <= kRelativeTolerance * squaredDistance + SIMD_EPSILON * simplex.maxVertex())
+		// The bounds have not met, so w is new information even within the solver's equal-vertex
+		// threshold; only a numerical duplicate ends the search (see btGjkConvergence.h).
+		if (caliber_gjk::isDuplicateVertex(simplex, w))
 		{
-			m_degenerateSimplex = gap <= btScalar(0) ? 2 : 0;
+			m_degenerateSimplex = 1;
 			break;
 		}
 		simplex.addVertex(w, supportA, supportB);
@@ -177,13 +182,24 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 			break;
 		}
 		const btScalar previous = squaredDistance;
-		squaredDistance = next.length2();
-		v = next;
-		if (previous - squaredDistance <= SIMD_EPSILON * previous)
+		const btScalar nextSquared = next.length2();
+		if (previous - nextSquared <= SIMD_EPSILON * previous)
 		{
+			// No progress. When rounding on a sliver simplex made the new closest point worse, its
+			// direction can be off by far more than its length: the previous point is the answer.
+			keepPrevious = haveWitnesses && nextSquared > previous;
+			if (!keepPrevious)
+			{
+				squaredDistance = nextSquared;
+				v = next;
+			}
 			m_degenerateSimplex = 12;
 			break;
 		}
+		squaredDistance = nextSquared;
+		v = next;
+		simplex.compute_points(previousA, previousB);
+		haveWitnesses = true;
 		if (++m_curIter > kMaxIterations) break;
 		if (simplex.fullSimplex())
 		{
@@ -200,7 +216,15 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 	btVector3 pointOnA, pointOnB;
 	if (!coresOverlap)
 	{
-		simplex.compute_points(pointOnA, pointOnB);
+		if (keepPrevious)
+		{
+			pointOnA = previousA;
+			pointOnB = previousB;
+		}
+		else
+		{
+			simplex.compute_points(pointOnA, pointOnB);
+		}
 		const btVector3 delta = pointOnA - pointOnB;
 		const btScalar lengthSquared = delta.length2();
 		if (lengthSquared > overlapThreshold(simplex.maxVertex()) && isFiniteVector(delta))

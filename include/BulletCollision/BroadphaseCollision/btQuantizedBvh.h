@@ -1,0 +1,283 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef BT_QUANTIZED_BVH_H
+#define BT_QUANTIZED_BVH_H
+
+#include "LinearMath/btAlignedObjectArray.h"
+#include "LinearMath/btVector3.h"
+
+/// Subtrees at most this many bytes get a btBvhSubtreeInfo header.
+#define MAX_SUBTREE_SIZE_IN_BYTES 2048
+/// Bits of a quantized leaf's payload that hold the part id (the other 21 hold the triangle index).
+#define MAX_NUM_PARTS_IN_BITS 10
+
+/// A node of a quantized BVH: a 16-bit-per-axis box and either a leaf payload (part id and triangle
+/// index, >= 0) or, for an internal node, minus the number of nodes in its subtree (its escape index).
+ATTRIBUTE_ALIGNED16(struct)
+btQuantizedBvhNode
+{
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// Quantized minimum corner (even values: rounded down).
+	unsigned short int m_quantizedAabbMin[3];
+	/// Quantized maximum corner (odd values: rounded up).
+	unsigned short int m_quantizedAabbMax[3];
+	/// Leaf: (partId << 21) | triangleIndex. Internal node: -(nodes in the subtree).
+	int m_escapeIndexOrTriangleIndex;
+
+	/// True for a leaf.
+	bool isLeafNode() const { return m_escapeIndexOrTriangleIndex >= 0; }
+	/// Number of nodes in the subtree of an internal node (the step that skips it).
+	int getEscapeIndex() const
+	{
+		btAssert(!isLeafNode());
+		return -m_escapeIndexOrTriangleIndex;
+	}
+	/// Triangle index of a leaf.
+	int getTriangleIndex() const
+	{
+		btAssert(isLeafNode());
+		return m_escapeIndexOrTriangleIndex & ((1 << (31 - MAX_NUM_PARTS_IN_BITS)) - 1);
+	}
+	/// Part id of a leaf.
+	int getPartId() const
+	{
+		btAssert(isLeafNode());
+		return m_escapeIndexOrTriangleIndex >> (31 - MAX_NUM_PARTS_IN_BITS);
+	}
+};
+
+/// A node of an unquantized BVH: a float box, and the escape index (internal) or part and triangle (leaf).
+ATTRIBUTE_ALIGNED16(struct)
+btOptimizedBvhNode
+{
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// Minimum corner.
+	btVector3 m_aabbMinOrg;
+	/// Maximum corner.
+	btVector3 m_aabbMaxOrg;
+	/// -1 for a leaf; the number of nodes in the subtree for an internal node.
+	int m_escapeIndex;
+	/// Part id of a leaf.
+	int m_subPart;
+	/// Triangle index of a leaf.
+	int m_triangleIndex;
+	/// Keeps the node 64 bytes.
+	int m_padding[5];
+};
+
+/// A subtree small enough to stay in cache, with its quantized box (quantized BVHs only).
+ATTRIBUTE_ALIGNED16(class)
+btBvhSubtreeInfo
+{
+public:
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// Quantized minimum corner of the subtree.
+	unsigned short int m_quantizedAabbMin[3];
+	/// Quantized maximum corner of the subtree.
+	unsigned short int m_quantizedAabbMax[3];
+	/// Index of the subtree's root node.
+	int m_rootNodeIndex;
+	/// Number of nodes in the subtree.
+	int m_subtreeSize;
+	/// Keeps the header 32 bytes.
+	int m_padding[3];
+
+	/// A zeroed header.
+	btBvhSubtreeInfo() : m_rootNodeIndex(0), m_subtreeSize(0)
+	{
+		for (int i = 0; i < 3; ++i)
+		{
+			m_quantizedAabbMin[i] = m_quantizedAabbMax[i] = 0;
+			m_padding[i] = 0;
+		}
+	}
+	/// Copies the box of quantizedNode.
+	void setAabbFromQuantizeNode(const btQuantizedBvhNode& quantizedNode)
+	{
+		for (int i = 0; i < 3; ++i)
+		{
+			m_quantizedAabbMin[i] = quantizedNode.m_quantizedAabbMin[i];
+			m_quantizedAabbMax[i] = quantizedNode.m_quantizedAabbMax[i];
+		}
+	}
+};
+
+/// Receives the leaves a BVH query finds.
+class btNodeOverlapCallback
+{
+public:
+	/// Callbacks are deleted through base pointers.
+	virtual ~btNodeOverlapCallback() {}
+	/// One leaf: the part and triangle it stands for.
+	virtual void processNode(int subPart, int triangleIndex) = 0;
+};
+
+/// Unquantized nodes.
+typedef btAlignedObjectArray<btOptimizedBvhNode> NodeArray;
+/// Quantized nodes.
+typedef btAlignedObjectArray<btQuantizedBvhNode> QuantizedNodeArray;
+/// Subtree headers.
+typedef btAlignedObjectArray<btBvhSubtreeInfo> BvhSubtreeInfoArray;
+
+/// A bounding volume hierarchy over boxes (one box per leaf), stored depth-first in one array: a node's
+/// left child follows it, and an internal node stores the size of its subtree so that a query skips it
+/// in one step (stackless traversal, reading memory front to back). Boxes are 16-bit quantized
+/// (12 bytes per node plus payload, 16 in all) or plain btVector3 pairs. Built by binned surface area
+/// heuristic over leaf centroids along the widest axis. Serialization (serialize, deSerializeInPlace,
+/// calculateSerializeBufferSize) is not provided.
+ATTRIBUTE_ALIGNED16(class)
+btQuantizedBvh
+{
+public:
+	/// Bullet's traversal modes; Caliber always runs the stackless traversal (the node order is
+	/// already cache friendly), the setting is kept for source compatibility.
+	enum btTraversalMode
+	{
+		TRAVERSAL_STACKLESS = 0,
+		TRAVERSAL_STACKLESS_CACHE_FRIENDLY,
+		TRAVERSAL_RECURSIVE
+	};
+
+protected:
+	/// Minimum corner of the quantization box.
+	btVector3 m_bvhAabbMin;
+	/// Maximum corner of the quantization box.
+	btVector3 m_bvhAabbMax;
+	/// Quantized units per length unit, per axis.
+	btVector3 m_bvhQuantization;
+	/// Version tag (Bullet's 289).
+	int m_bulletVersion;
+	/// Number of nodes built.
+	int m_curNodeIndex;
+	/// True when the boxes are quantized.
+	bool m_useQuantization;
+	/// Unquantized leaves (input of buildInternal).
+	NodeArray m_leafNodes;
+	/// Unquantized tree, depth-first.
+	NodeArray m_contiguousNodes;
+	/// Quantized leaves (input of buildInternal).
+	QuantizedNodeArray m_quantizedLeafNodes;
+	/// Quantized tree, depth-first.
+	QuantizedNodeArray m_quantizedContiguousNodes;
+	/// Stored for compatibility (see btTraversalMode).
+	btTraversalMode m_traversalMode;
+	/// Headers of the cache-sized subtrees (quantized trees).
+	BvhSubtreeInfoArray m_SubtreeHeaders;
+	/// Number of subtree headers.
+	mutable int m_subtreeHeaderCount;
+
+	/// Builds the tree from the leaf array matching m_useQuantization (the leaf order is not kept).
+	void buildTreeFromLeaves();
+	/// Recomputes the boxes of internal nodes from their children, from the last node to the first.
+	void refitInternalNodes();
+	/// Recomputes the headers of the cache-sized subtrees.
+	void updateSubtreeHeaders();
+	/// Merges the box of child into node (internal nodes; both in the current format).
+	void mergeChildIntoNode(int nodeIndex, int childIndex);
+	/// Sets node nodeIndex to the union of its two children.
+	void setInternalNodeFromChildren(int nodeIndex);
+
+public:
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// An empty, unquantized BVH.
+	btQuantizedBvh();
+	/// BVHs are deleted through base pointers.
+	virtual ~btQuantizedBvh();
+
+	/// Sets the quantization box to [bvhAabbMin, bvhAabbMax] grown by quantizationMargin on every side
+	/// and turns quantization on. A non-finite or inverted box asserts and is replaced by [-1, 1]^3; an
+	/// axis of zero extent gets extent 1 so that quantization stays finite.
+	void setQuantizationValues(const btVector3& bvhAabbMin, const btVector3& bvhAabbMax,
+	                           btScalar quantizationMargin = btScalar(1.0));
+
+	/// The quantized leaves to fill before buildInternal.
+	QuantizedNodeArray& getLeafNodeArray() { return m_quantizedLeafNodes; }
+
+	/// Builds the tree from the leaves already stored (getLeafNodeArray for quantized BVHs).
+	void buildInternal();
+
+	/// Calls nodeCallback for every leaf whose box overlaps (or touches) [aabbMin, aabbMax]. Quantized
+	/// boxes are conservative: every leaf whose true box overlaps is reported, plus possibly leaves
+	/// within about two quantization steps. A non-finite box asserts and reports nothing.
+	void reportAabbOverlappingNodex(btNodeOverlapCallback * nodeCallback, const btVector3& aabbMin,
+	                                const btVector3& aabbMax) const;
+
+	/// Calls nodeCallback for every leaf whose box the segment raySource -> rayTarget touches (boxes grown
+	/// by a relative tolerance of about 1e-5 in single precision so that hits on box faces are not lost
+	/// to rounding).
+	void reportRayOverlappingNodex(btNodeOverlapCallback * nodeCallback, const btVector3& raySource,
+	                               const btVector3& rayTarget) const;
+
+	/// Calls nodeCallback for every leaf whose box is touched by the box [aabbMin, aabbMax] (relative to
+	/// the moving point) swept from raySource to rayTarget.
+	void reportBoxCastOverlappingNodex(btNodeOverlapCallback * nodeCallback, const btVector3& raySource,
+	                                   const btVector3& rayTarget, const btVector3& aabbMin, const btVector3& aabbMax)
+	    const;
+
+	/// Quantizes point (which should lie in the quantization box) conservatively: a minimum corner
+	/// (isMax == 0) rounds down to an even value, a maximum corner rounds up to an odd value, both with
+	/// a small safety slack for the rounding of the scaling itself. Out-of-range values are clamped.
+	SIMD_FORCE_INLINE void quantize(unsigned short* out, const btVector3& point, int isMax) const
+	{
+		btAssert(m_useQuantization);
+		const btVector3 v = (point - m_bvhAabbMin) * m_bvhQuantization;
+		// 1/16 of a step covers the float rounding of the product (a few ulp of values below 65536).
+		const btScalar slack = btScalar(0.0625);
+		for (int axis = 0; axis < 3; ++axis)
+		{
+			btScalar c = isMax ? v[axis] + slack : v[axis] - slack;
+			if (!(c >= btScalar(0))) c = btScalar(0);  // also catches NaN
+			if (c > btScalar(65535)) c = btScalar(65535);
+			unsigned q = unsigned(c);           // floor, c being >= 0
+			if (isMax && btScalar(q) < c) ++q;  // ceil
+			if (q > 65535u) q = 65535u;
+			out[axis] = (unsigned short)(isMax ? (q | 1u) : (q & 0xFFFEu));
+		}
+	}
+
+	/// quantize after clamping point into the quantization box.
+	SIMD_FORCE_INLINE void quantizeWithClamp(unsigned short* out, const btVector3& point2, int isMax) const
+	{
+		btAssert(m_useQuantization);
+		btVector3 clamped = point2;
+		clamped.setMax(m_bvhAabbMin);
+		clamped.setMin(m_bvhAabbMax);
+		quantize(out, clamped, isMax);
+	}
+
+	/// The point a quantized corner stands for.
+	SIMD_FORCE_INLINE btVector3 unQuantize(const unsigned short* vecIn) const
+	{
+		return btVector3(btScalar(vecIn[0]) / m_bvhQuantization.x(), btScalar(vecIn[1]) / m_bvhQuantization.y(),
+		                 btScalar(vecIn[2]) / m_bvhQuantization.z()) +
+		       m_bvhAabbMin;
+	}
+
+	/// Stores the traversal mode (see btTraversalMode).
+	void setTraversalMode(btTraversalMode traversalMode) { m_traversalMode = traversalMode; }
+
+	/// The quantized tree.
+	QuantizedNodeArray& getQuantizedNodeArray() { return m_quantizedContiguousNodes; }
+	/// The unquantized tree (Caliber addition, for inspection).
+	const NodeArray& getNodeArray() const { return m_contiguousNodes; }
+	/// The subtree headers.
+	BvhSubtreeInfoArray& getSubtreeInfoArray() { return m_SubtreeHeaders; }
+	/// Number of nodes in the tree (0 when empty; 2n - 1 for n leaves).
+	int getNumNodes() const { return m_curNodeIndex; }
+	/// Minimum corner of the quantization box.
+	const btVector3& getBvhAabbMin() const { return m_bvhAabbMin; }
+	/// Maximum corner of the quantization box.
+	const btVector3& getBvhAabbMax() const { return m_bvhAabbMax; }
+	/// Quantized units per length unit.
+	const btVector3& getBvhQuantization() const { return m_bvhQuantization; }
+
+	/// True when the boxes are quantized.
+	bool isQuantized() { return m_useQuantization; }
+	/// True when the boxes are quantized.
+	bool isQuantized() const { return m_useQuantization; }
+};
+
+#endif  // BT_QUANTIZED_BVH_H

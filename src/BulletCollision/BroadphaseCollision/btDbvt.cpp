@@ -1,0 +1,618 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/BroadphaseCollision/btDbvt.h"
+
+#include <algorithm>
+#include <new>
+
+// Design (see docs, "btDbvt"):
+// - Nodes come from blocks owned by the tree and are recycled through a free list, so that a tree in
+//   steady state (as many inserts as removes) never allocates. Leaves never move in memory.
+// - Insertion chooses the sibling that minimises the total surface area added to the tree: the area of
+//   the new parent plus the growth of every ancestor. The search is a branch and bound over the whole
+//   tree: a subtree is skipped when even a perfect fit inside it (the leaf's own area plus the growth
+//   its ancestors already incur) cannot beat the best sibling found so far.
+// - Removal replaces the leaf's parent by the leaf's sibling and refits the ancestors, stopping at the
+//   first one whose box does not change.
+
+namespace
+{
+/// Half the surface area of a box: the cost insertion minimises (the factor 2 changes no decision).
+SIMD_FORCE_INLINE btScalar halfArea(const btDbvtVolume& v)
+{
+	const btVector3 l = v.Lengths();
+	return l.x() * l.y() + l.y() * l.z() + l.z() * l.x();
+}
+
+SIMD_FORCE_INLINE btDbvtVolume merged(const btDbvtVolume& a, const btDbvtVolume& b)
+{
+	btDbvtVolume r;
+	Merge(a, b, r);
+	return r;
+}
+
+/// The volume stored for a leaf: NaN anywhere asserts and gives the empty box (inverted, so it merges
+/// as nothing and overlaps nothing); infinities assert and are clamped to +-BT_LARGE_FLOAT.
+btDbvtVolume sanitizedVolume(const btDbvtVolume& v)
+{
+	bool hasNaN = false, hasInf = false;
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		const btScalar lo = v.Mins()[axis], hi = v.Maxs()[axis];
+		hasNaN |= (lo != lo) || (hi != hi);
+		hasInf |= !btIsFinite(lo) || !btIsFinite(hi);
+	}
+	if (btLikely(!hasInf)) return v;
+	btAssert(!hasInf && "btDbvt: non-finite leaf volume");
+	const btScalar big = btScalar(BT_LARGE_FLOAT);
+	if (hasNaN) return btDbvtVolume::FromMM(btVector3(big, big, big), btVector3(-big, -big, -big));
+	btVector3 lo = v.Mins(), hi = v.Maxs();
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		lo[axis] = btMax(-big, btMin(big, lo[axis]));
+		hi[axis] = btMax(-big, btMin(big, hi[axis]));
+	}
+	return btDbvtVolume::FromMM(lo, hi);
+}
+
+SIMD_FORCE_INLINE int indexOfChild(const btDbvtNode* node) { return node->parent->childs[1] == node ? 1 : 0; }
+}  // namespace
+
+btDbvt::btDbvt() : m_root(0), m_free(0), m_lkhd(-1), m_leaves(0), m_opath(0), m_nextBlockSize(64) {}
+
+btDbvt::~btDbvt() { releaseAllNodes(); }
+
+void btDbvt::clear()
+{
+	releaseAllNodes();
+	m_stkStack.clear();
+	m_insertStack.clear();
+	m_rebuildLeaves.clear();
+	m_rebuildCosts.clear();
+	m_rebuildPartners.clear();
+}
+
+void btDbvt::releaseAllNodes()
+{
+	for (int i = 0; i < m_nodeBlocks.size(); ++i) btAlignedFree(m_nodeBlocks[i]);
+	m_nodeBlocks.clear();
+	m_root = 0;
+	m_free = 0;
+	m_leaves = 0;
+	m_opath = 0;
+	m_lkhd = -1;
+	m_nextBlockSize = 64;
+}
+
+btDbvtNode* btDbvt::allocateNode()
+{
+	if (!m_free)
+	{
+		// A new block, twice the last one up to 4096 nodes: few allocations while a tree grows.
+		const int count = m_nextBlockSize;
+		m_nextBlockSize = btMin(m_nextBlockSize * 2, 4096);
+		btDbvtNode* block = static_cast<btDbvtNode*>(btAlignedAlloc(sizeof(btDbvtNode) * count, 16));
+		m_nodeBlocks.push_back(block);
+		for (int i = count - 1; i >= 0; --i)
+		{
+			btDbvtNode* node = new (&block[i]) btDbvtNode;
+			node->parent = m_free;
+			m_free = node;
+		}
+	}
+	btDbvtNode* node = m_free;
+	m_free = node->parent;
+	node->parent = 0;
+	node->childs[0] = 0;
+	node->childs[1] = 0;
+	return node;
+}
+
+void btDbvt::freeNode(btDbvtNode* node)
+{
+	node->childs[0] = 0;
+	node->childs[1] = 0;
+	node->parent = m_free;
+	m_free = node;
+}
+
+btDbvtNode* btDbvt::insert(const btDbvtVolume& box, void* data)
+{
+	btDbvtNode* leaf = allocateNode();
+	leaf->volume = sanitizedVolume(box);
+	leaf->childs[1] = 0;
+	leaf->data = data;
+	insertLeaf(m_root, leaf);
+	++m_leaves;
+	return leaf;
+}
+
+void btDbvt::insertLeaf(btDbvtNode* start, btDbvtNode* leaf)
+{
+	if (!m_root)
+	{
+		m_root = leaf;
+		leaf->parent = 0;
+		return;
+	}
+	if (!start) start = m_root;
+
+	// Branch and bound for the sibling of least cost (area of the new parent + growth of the ancestors).
+	const btDbvtVolume& box = leaf->volume;
+	const btScalar leafArea = halfArea(box);
+	btDbvtNode* best = start;
+	btScalar bestCost = halfArea(merged(box, start->volume));
+	m_insertStack.resizeNoInitialize(0);
+	sInsertCandidate first = {start, btScalar(0), bestCost};
+	m_insertStack.push_back(first);
+	while (m_insertStack.size() > 0)
+	{
+		const sInsertCandidate candidate = m_insertStack[m_insertStack.size() - 1];
+		m_insertStack.pop_back();
+		// Even a perfect fit under this node costs leafArea plus what its ancestors grow by.
+		if (leafArea + candidate.inheritedCost >= bestCost && candidate.node != start) continue;
+		btDbvtNode* node = candidate.node;
+		const btScalar cost = candidate.mergedArea + candidate.inheritedCost;
+		if (cost < bestCost)
+		{
+			bestCost = cost;
+			best = node;
+		}
+		if (node->isleaf()) continue;
+		const btScalar childInherited = candidate.inheritedCost + (candidate.mergedArea - halfArea(node->volume));
+		if (leafArea + childInherited < bestCost)
+		{
+			// Depth first, the child whose union with the leaf is smaller on top: a good sibling is found
+			// early and bounds the rest of the search.
+			const btScalar area0 = halfArea(merged(box, node->childs[0]->volume));
+			const btScalar area1 = halfArea(merged(box, node->childs[1]->volume));
+			const int nearer = area1 < area0 ? 1 : 0;
+			sInsertCandidate later = {node->childs[1 - nearer], childInherited, nearer ? area0 : area1};
+			sInsertCandidate sooner = {node->childs[nearer], childInherited, nearer ? area1 : area0};
+			m_insertStack.push_back(later);
+			m_insertStack.push_back(sooner);
+		}
+	}
+
+	// A new parent takes the sibling's place and adopts sibling and leaf.
+	btDbvtNode* oldParent = best->parent;
+	btDbvtNode* parent = allocateNode();
+	parent->parent = oldParent;
+	Merge(box, best->volume, parent->volume);
+	parent->childs[0] = best;
+	parent->childs[1] = leaf;
+	if (oldParent)
+		oldParent->childs[indexOfChild(best)] = parent;
+	else
+		m_root = parent;
+	best->parent = parent;
+	leaf->parent = parent;
+
+	// Grow the ancestors until one already contains the leaf (the ones above it contain it too), and try a
+	// rotation at each: cost-based insertion alone degenerates towards a list for sorted input.
+	rotate(parent);
+	for (btDbvtNode* node = oldParent; node; node = node->parent)
+	{
+		if (node->volume.Contain(box)) break;
+		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
+		rotate(node);
+	}
+}
+
+void btDbvt::rotate(btDbvtNode* node)
+{
+	// Swapping a child of `node` with a grandchild under its other child keeps node's box and changes the
+	// box of that other child only; take the swap that shrinks it most (Catto, "Dynamic AABB trees", 2019).
+	btScalar bestGain = 0;
+	int bestChild = -1, bestGrandChild = -1;
+	for (int c = 0; c < 2; ++c)
+	{
+		const btDbvtNode* stay = node->childs[c];  // the child moved down
+		const btDbvtNode* opened = node->childs[1 - c];
+		if (opened->isleaf()) continue;
+		const btScalar openedArea = halfArea(opened->volume);
+		for (int g = 0; g < 2; ++g)
+		{
+			// stay swaps with opened->childs[g]; opened then holds stay and opened->childs[1 - g].
+			const btScalar gain = openedArea - halfArea(merged(stay->volume, opened->childs[1 - g]->volume));
+			if (gain > bestGain)
+			{
+				bestGain = gain;
+				bestChild = c;
+				bestGrandChild = g;
+			}
+		}
+	}
+	if (bestChild < 0) return;
+	btDbvtNode* down = node->childs[bestChild];
+	btDbvtNode* opened = node->childs[1 - bestChild];
+	btDbvtNode* up = opened->childs[bestGrandChild];
+	node->childs[bestChild] = up;
+	up->parent = node;
+	opened->childs[bestGrandChild] = down;
+	down->parent = opened;
+	Merge(opened->childs[0]->volume, opened->childs[1]->volume, opened->volume);
+}
+
+btDbvtNode* btDbvt::removeLeaf(btDbvtNode* leaf)
+{
+	if (leaf == m_root)
+	{
+		m_root = 0;
+		return 0;
+	}
+	btDbvtNode* parent = leaf->parent;
+	btDbvtNode* sibling = parent->childs[1 - indexOfChild(leaf)];
+	btDbvtNode* grandParent = parent->parent;
+	leaf->parent = 0;
+	if (!grandParent)
+	{
+		m_root = sibling;
+		sibling->parent = 0;
+		freeNode(parent);
+		return m_root;
+	}
+	grandParent->childs[indexOfChild(parent)] = sibling;
+	sibling->parent = grandParent;
+	freeNode(parent);
+	// Shrink the ancestors; once a box does not change, none above it does.
+	for (btDbvtNode* node = grandParent; node; node = node->parent)
+	{
+		const btDbvtVolume previous = node->volume;
+		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
+		if (!NotEqual(previous, node->volume)) break;
+	}
+	return grandParent;
+}
+
+void btDbvt::remove(btDbvtNode* leaf)
+{
+	btAssert(leaf && leaf->isleaf() && "btDbvt::remove: not a leaf");
+	if (!leaf || !leaf->isleaf() || !m_root) return;
+	removeLeaf(leaf);
+	freeNode(leaf);
+	--m_leaves;
+}
+
+void btDbvt::reinsertLeaf(btDbvtNode* leaf, int lookahead)
+{
+	btDbvtNode* start = removeLeaf(leaf);
+	if (start)
+	{
+		if (lookahead >= 0)
+		{
+			for (int i = 0; i < lookahead && start->parent; ++i) start = start->parent;
+		}
+		else
+			start = m_root;
+	}
+	insertLeaf(start, leaf);
+}
+
+void btDbvt::update(btDbvtNode* leaf, int lookahead)
+{
+	btAssert(leaf && leaf->isleaf() && "btDbvt::update: not a leaf");
+	if (!leaf || !leaf->isleaf() || !m_root) return;
+	reinsertLeaf(leaf, lookahead);
+}
+
+void btDbvt::update(btDbvtNode* leaf, btDbvtVolume& volume)
+{
+	btAssert(leaf && leaf->isleaf() && "btDbvt::update: not a leaf");
+	if (!leaf || !leaf->isleaf() || !m_root) return;
+	btDbvtNode* start = removeLeaf(leaf);
+	leaf->volume = sanitizedVolume(volume);
+	if (start)
+	{
+		if (m_lkhd >= 0)
+		{
+			for (int i = 0; i < m_lkhd && start->parent; ++i) start = start->parent;
+		}
+		else
+			start = m_root;
+	}
+	insertLeaf(start, leaf);
+}
+
+bool btDbvt::update(btDbvtNode* leaf, btDbvtVolume& volume, const btVector3& velocity, btScalar margin)
+{
+	if (leaf && leaf->volume.Contain(volume)) return false;
+	volume.Expand(btVector3(margin, margin, margin));
+	volume.SignedExpand(velocity);
+	update(leaf, volume);
+	return true;
+}
+
+bool btDbvt::update(btDbvtNode* leaf, btDbvtVolume& volume, const btVector3& velocity)
+{
+	if (leaf && leaf->volume.Contain(volume)) return false;
+	volume.SignedExpand(velocity);
+	update(leaf, volume);
+	return true;
+}
+
+bool btDbvt::update(btDbvtNode* leaf, btDbvtVolume& volume, btScalar margin)
+{
+	if (leaf && leaf->volume.Contain(volume)) return false;
+	volume.Expand(btVector3(margin, margin, margin));
+	update(leaf, volume);
+	return true;
+}
+
+void btDbvt::optimizeIncremental(int passes)
+{
+	if (passes < 0) passes = m_leaves;
+	if (!m_root || passes <= 0) return;
+	const int bits = int(sizeof(unsigned) * 8);
+	for (int pass = 0; pass < passes; ++pass)
+	{
+		// The bits of m_opath pick a child at each level, so that successive passes visit different leaves.
+		btDbvtNode* node = m_root;
+		for (int bit = 0; node->isinternal(); bit = (bit + 1) % bits) node = node->childs[(m_opath >> bit) & 1];
+		reinsertLeaf(node, -1);
+		++m_opath;
+	}
+}
+
+void btDbvt::collectLeavesFreeInternals(btAlignedObjectArray<btDbvtNode*>& leaves)
+{
+	leaves.resizeNoInitialize(0);
+	if (!m_root) return;
+	leaves.reserve(m_leaves);
+	sLocalStack<btDbvtNode*, 128> stack;
+	stack.push(m_root);
+	while (!stack.empty())
+	{
+		btDbvtNode* node = stack.pop();
+		if (node->isinternal())
+		{
+			stack.push(node->childs[0]);
+			stack.push(node->childs[1]);
+			freeNode(node);
+		}
+		else
+			leaves.push_back(node);
+	}
+	m_root = 0;
+}
+
+btDbvtNode* btDbvt::buildBottomUp(btDbvtNode** nodes, int count)
+{
+	// Agglomerative build: repeatedly join the two subtrees whose union has the least area. Each slot keeps
+	// its best partner, recomputed only when that partner disappears, which keeps the build near O(n^2).
+	if (count <= 0) return 0;
+	m_rebuildCosts.resizeNoInitialize(count);
+	m_rebuildPartners.resizeNoInitialize(count);
+	btScalar* cost = &m_rebuildCosts[0];
+	int* partner = &m_rebuildPartners[0];
+	const btScalar unset = SIMD_INFINITY;
+	auto findPartner = [&](int i)
+	{
+		cost[i] = unset;
+		partner[i] = -1;
+		for (int j = 0; j < count; ++j)
+		{
+			if (j == i || !nodes[j]) continue;
+			const btScalar c = halfArea(merged(nodes[i]->volume, nodes[j]->volume));
+			if (c < cost[i] || partner[i] < 0)
+			{
+				cost[i] = c;
+				partner[i] = j;
+			}
+		}
+	};
+	for (int i = 0; i < count; ++i) findPartner(i);
+	for (int alive = count; alive > 1; --alive)
+	{
+		int i = -1;
+		for (int k = 0; k < count; ++k)
+			if (nodes[k] && partner[k] >= 0 && (i < 0 || cost[k] < cost[i])) i = k;
+		const int j = partner[i];
+		btDbvtNode* parent = allocateNode();
+		parent->childs[0] = nodes[i];
+		parent->childs[1] = nodes[j];
+		nodes[i]->parent = parent;
+		nodes[j]->parent = parent;
+		Merge(nodes[i]->volume, nodes[j]->volume, parent->volume);
+		nodes[i] = parent;
+		nodes[j] = 0;
+		findPartner(i);
+		for (int k = 0; k < count; ++k)
+		{
+			if (!nodes[k] || k == i) continue;
+			if (partner[k] == i || partner[k] == j)
+				findPartner(k);
+			else
+			{
+				const btScalar c = halfArea(merged(nodes[k]->volume, parent->volume));
+				if (c < cost[k])
+				{
+					cost[k] = c;
+					partner[k] = i;
+				}
+			}
+		}
+	}
+	for (int k = 0; k < count; ++k)
+		if (nodes[k]) return nodes[k];
+	return 0;
+}
+
+btDbvtNode* btDbvt::buildTopDown(btDbvtNode** leaves, int count, int bottomUpThreshold)
+{
+	if (count == 1) return leaves[0];
+	if (count <= bottomUpThreshold) return buildBottomUp(leaves, count);
+	// Split at the median of the centres along the axis where the centres spread most.
+	btVector3 lo = leaves[0]->volume.Center(), hi = lo;
+	for (int i = 1; i < count; ++i)
+	{
+		const btVector3 c = leaves[i]->volume.Center();
+		lo.setMin(c);
+		hi.setMax(c);
+	}
+	const int axis = (hi - lo).maxAxis();
+	const int half = count / 2;
+	std::nth_element(
+	    leaves, leaves + half, leaves + count,
+	    [axis](const btDbvtNode* a, const btDbvtNode* b)
+	    { return a->volume.Mins()[axis] + a->volume.Maxs()[axis] < b->volume.Mins()[axis] + b->volume.Maxs()[axis]; });
+	btDbvtNode* left = buildTopDown(leaves, half, bottomUpThreshold);
+	btDbvtNode* right = buildTopDown(leaves + half, count - half, bottomUpThreshold);
+	btDbvtNode* parent = allocateNode();
+	parent->childs[0] = left;
+	parent->childs[1] = right;
+	left->parent = parent;
+	right->parent = parent;
+	Merge(left->volume, right->volume, parent->volume);
+	return parent;
+}
+
+void btDbvt::optimizeBottomUp()
+{
+	if (!m_root) return;
+	collectLeavesFreeInternals(m_rebuildLeaves);
+	m_root = buildBottomUp(&m_rebuildLeaves[0], m_rebuildLeaves.size());
+	m_root->parent = 0;
+}
+
+void btDbvt::optimizeTopDown(int bu_treshold)
+{
+	if (!m_root) return;
+	collectLeavesFreeInternals(m_rebuildLeaves);
+	m_root = buildTopDown(&m_rebuildLeaves[0], m_rebuildLeaves.size(), btMax(bu_treshold, 1));
+	m_root->parent = 0;
+}
+
+void btDbvt::write(IWriter* iwriter) const
+{
+	btAssert(iwriter && "btDbvt::write: null writer");
+	if (!iwriter) return;
+	// Breadth-first numbering: the children of a node get the next free indices when it is reached, so
+	// every index is known before the node is written.
+	btAlignedObjectArray<const btDbvtNode*> order;
+	btAlignedObjectArray<int> parentOf;
+	if (m_root)
+	{
+		order.push_back(m_root);
+		parentOf.push_back(-1);
+		for (int i = 0; i < order.size(); ++i)
+		{
+			if (order[i]->isinternal())
+			{
+				order.push_back(order[i]->childs[0]);
+				parentOf.push_back(i);
+				order.push_back(order[i]->childs[1]);
+				parentOf.push_back(i);
+			}
+		}
+	}
+	iwriter->Prepare(m_root, order.size());
+	int nextChild = 1;
+	for (int i = 0; i < order.size(); ++i)
+	{
+		if (order[i]->isinternal())
+		{
+			iwriter->WriteNode(order[i], i, parentOf[i], nextChild, nextChild + 1);
+			nextChild += 2;
+		}
+		else
+			iwriter->WriteLeaf(order[i], i, parentOf[i]);
+	}
+}
+
+void btDbvt::clone(btDbvt& dest, IClone* iclone) const
+{
+	btAssert(&dest != this && "btDbvt::clone: a tree cannot be cloned onto itself");
+	if (&dest == this) return;
+	dest.clear();
+	if (!m_root) return;
+	// Copy with a stack of (source node, parent of its copy, which child of that parent).
+	struct Pending
+	{
+		const btDbvtNode* source;
+		btDbvtNode* parent;
+		int childIndex;
+	};
+	sLocalStack<Pending, 128> stack;
+	Pending first = {m_root, 0, 0};
+	stack.push(first);
+	while (!stack.empty())
+	{
+		const Pending p = stack.pop();
+		btDbvtNode* copy = dest.allocateNode();
+		copy->volume = p.source->volume;
+		copy->parent = p.parent;
+		if (p.parent)
+			p.parent->childs[p.childIndex] = copy;
+		else
+			dest.m_root = copy;
+		if (p.source->isinternal())
+		{
+			// Mark as internal until the children are linked.
+			copy->childs[0] = copy->childs[1] = copy;
+			Pending c1 = {p.source->childs[1], copy, 1};
+			Pending c0 = {p.source->childs[0], copy, 0};
+			stack.push(c1);
+			stack.push(c0);
+		}
+		else
+		{
+			copy->childs[0] = p.source->childs[0];  // the whole union: data / dataAsInt
+			copy->childs[1] = 0;
+			++dest.m_leaves;
+			if (iclone) iclone->CloneLeaf(copy);
+		}
+	}
+	dest.m_lkhd = m_lkhd;
+}
+
+int btDbvt::maxdepth(const btDbvtNode* node)
+{
+	if (!node) return 0;
+	struct Entry
+	{
+		const btDbvtNode* node;
+		int depth;
+	};
+	sLocalStack<Entry, 128> stack;
+	Entry first = {node, 1};
+	stack.push(first);
+	int deepest = 0;
+	while (!stack.empty())
+	{
+		const Entry e = stack.pop();
+		deepest = btMax(deepest, e.depth);
+		if (e.node->isinternal())
+		{
+			for (int c = 0; c < 2; ++c)
+			{
+				Entry child = {e.node->childs[c], e.depth + 1};
+				stack.push(child);
+			}
+		}
+	}
+	return deepest;
+}
+
+int btDbvt::countLeaves(const btDbvtNode* node)
+{
+	struct Counter : ICollide
+	{
+		using ICollide::Process;
+		int count = 0;
+		void Process(const btDbvtNode*) override { ++count; }
+	} counter;
+	enumLeaves(node, counter);
+	return counter.count;
+}
+
+void btDbvt::extractLeaves(const btDbvtNode* node, btAlignedObjectArray<const btDbvtNode*>& leaves)
+{
+	struct Collector : ICollide
+	{
+		using ICollide::Process;
+		btAlignedObjectArray<const btDbvtNode*>* out;
+		void Process(const btDbvtNode* leaf) override { out->push_back(leaf); }
+	} collector;
+	collector.out = &leaves;
+	enumLeaves(node, collector);
+}

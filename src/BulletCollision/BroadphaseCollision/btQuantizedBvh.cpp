@@ -1,0 +1,501 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/BroadphaseCollision/btQuantizedBvh.h"
+
+#include "LinearMath/btAabbUtil2.h"
+
+namespace
+{
+bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
+
+// Half the surface area of a box: the SAH cost weight of a child.
+btScalar halfArea(const btVector3& mn, const btVector3& mx)
+{
+	const btVector3 e = mx - mn;
+	if (!(e.x() >= 0) || !(e.y() >= 0) || !(e.z() >= 0)) return 0;
+	return e.x() * e.y() + e.y() * e.z() + e.z() * e.x();
+}
+
+const int kNumBins = 16;
+
+// The bin of a centroid coordinate; NaN and out-of-range values are clamped.
+int binOf(btScalar c, btScalar cmin, btScalar binsPerLength)
+{
+	const btScalar f = (c - cmin) * binsPerLength;
+	if (!(f >= 0)) return 0;
+	if (!(f < btScalar(kNumBins))) return kNumBins - 1;
+	return int(f);
+}
+
+struct BuildTask
+{
+	int node;
+	int begin;
+	int end;
+};
+
+// A moving box (or point when boxMin == boxMax == 0) for the ray and box-cast traversals: the segment
+// source + t * dir, t in [0, 1], against node boxes grown by the moving box and by a tolerance.
+struct Sweep
+{
+	btVector3 source;
+	btVector3 dir;
+	btVector3 inv;
+	btVector3 growMin;  // subtracted from node minima: boxMax + tolerance
+	btVector3 growMax;  // added to node maxima: -boxMin + tolerance
+	btVector3 sweepMin;
+	btVector3 sweepMax;
+
+	bool hits(const btVector3& nodeMin, const btVector3& nodeMax) const
+	{
+		btScalar tEnter = 0, tExit = 1;
+		for (int a = 0; a < 3; ++a)
+		{
+			const btScalar lo = nodeMin[a] - growMin[a];
+			const btScalar hi = nodeMax[a] + growMax[a];
+			if (dir[a] == btScalar(0))
+			{
+				if (source[a] < lo || source[a] > hi) return false;
+				continue;
+			}
+			btScalar t0 = (lo - source[a]) * inv[a];
+			btScalar t1 = (hi - source[a]) * inv[a];
+			if (inv[a] < 0) btSwap(t0, t1);
+			// Written so that a NaN (0 * inf for a denormal direction on a box face) is ignored.
+			if (t0 > tEnter) tEnter = t0;
+			if (t1 < tExit) tExit = t1;
+			if (tEnter > tExit) return false;
+		}
+		return true;
+	}
+};
+}  // namespace
+
+btQuantizedBvh::btQuantizedBvh()
+    : m_bvhAabbMin(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT),
+      m_bvhAabbMax(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT),
+      m_bvhQuantization(1, 1, 1),
+      m_bulletVersion(289),
+      m_curNodeIndex(0),
+      m_useQuantization(false),
+      m_traversalMode(TRAVERSAL_STACKLESS),
+      m_subtreeHeaderCount(0)
+{
+}
+
+btQuantizedBvh::~btQuantizedBvh() {}
+
+void btQuantizedBvh::setQuantizationValues(const btVector3& bvhAabbMin, const btVector3& bvhAabbMax,
+                                           btScalar quantizationMargin)
+{
+	const bool valid = isFiniteVector(bvhAabbMin) && isFiniteVector(bvhAabbMax) && bvhAabbMin.x() <= bvhAabbMax.x() &&
+	                   bvhAabbMin.y() <= bvhAabbMax.y() && bvhAabbMin.z() <= bvhAabbMax.z();
+	btAssert(valid && "setQuantizationValues: non-finite or inverted box");
+	const btScalar margin =
+	    (quantizationMargin > btScalar(0) && btIsFinite(quantizationMargin)) ? quantizationMargin : btScalar(0);
+	const btVector3 grow(margin, margin, margin);
+	m_bvhAabbMin = valid ? bvhAabbMin - grow : btVector3(-1, -1, -1);
+	m_bvhAabbMax = valid ? bvhAabbMax + grow : btVector3(1, 1, 1);
+	for (int a = 0; a < 3; ++a)
+	{
+		// A flat axis would divide by zero; give it unit extent.
+		if (!(m_bvhAabbMax[a] - m_bvhAabbMin[a] > btScalar(0)) || !btIsFinite(m_bvhAabbMax[a] - m_bvhAabbMin[a]))
+			m_bvhAabbMax[a] = m_bvhAabbMin[a] + btScalar(1);
+		// 65533 leaves room for the max corner to round up to an odd value within 16 bits.
+		m_bvhQuantization[a] = btScalar(65533) / (m_bvhAabbMax[a] - m_bvhAabbMin[a]);
+	}
+	m_bvhQuantization[3] = 0;
+	m_useQuantization = true;
+}
+
+void btQuantizedBvh::buildInternal() { buildTreeFromLeaves(); }
+
+void btQuantizedBvh::buildTreeFromLeaves()
+{
+	const int numLeaves = m_useQuantization ? m_quantizedLeafNodes.size() : m_leafNodes.size();
+	m_contiguousNodes.resize(0);
+	m_quantizedContiguousNodes.resize(0);
+	m_SubtreeHeaders.resize(0);
+	m_subtreeHeaderCount = 0;
+	m_curNodeIndex = 0;
+	if (numLeaves == 0) return;
+
+	// Leaf boxes and centroids drive the split choice (quantized leaves are unquantized for it).
+	btAlignedObjectArray<btVector3> leafMin, leafMax, centroid;
+	btAlignedObjectArray<int> order;
+	leafMin.resize(numLeaves);
+	leafMax.resize(numLeaves);
+	centroid.resize(numLeaves);
+	order.resize(numLeaves);
+	for (int i = 0; i < numLeaves; ++i)
+	{
+		if (m_useQuantization)
+		{
+			leafMin[i] = unQuantize(m_quantizedLeafNodes[i].m_quantizedAabbMin);
+			leafMax[i] = unQuantize(m_quantizedLeafNodes[i].m_quantizedAabbMax);
+		}
+		else
+		{
+			leafMin[i] = m_leafNodes[i].m_aabbMinOrg;
+			leafMax[i] = m_leafNodes[i].m_aabbMaxOrg;
+		}
+		centroid[i] = btScalar(0.5) * (leafMin[i] + leafMax[i]);
+		order[i] = i;
+	}
+
+	const int numNodes = 2 * numLeaves - 1;
+	if (m_useQuantization)
+		m_quantizedContiguousNodes.resize(numNodes);
+	else
+		m_contiguousNodes.resize(numNodes);
+
+	btAlignedObjectArray<BuildTask> stack;
+	stack.reserve(64);
+	BuildTask root = {0, 0, numLeaves};
+	stack.push_back(root);
+	while (stack.size())
+	{
+		const BuildTask task = stack[stack.size() - 1];
+		stack.pop_back();
+		const int count = task.end - task.begin;
+		if (count == 1)
+		{
+			if (m_useQuantization)
+				m_quantizedContiguousNodes[task.node] = m_quantizedLeafNodes[order[task.begin]];
+			else
+				m_contiguousNodes[task.node] = m_leafNodes[order[task.begin]];
+			continue;
+		}
+
+		btVector3 cmin = centroid[order[task.begin]], cmax = cmin;
+		for (int i = task.begin + 1; i < task.end; ++i)
+		{
+			cmin.setMin(centroid[order[i]]);
+			cmax.setMax(centroid[order[i]]);
+		}
+		const btVector3 extent = cmax - cmin;
+		const int axis =
+		    extent.x() >= extent.y() ? (extent.x() >= extent.z() ? 0 : 2) : (extent.y() >= extent.z() ? 1 : 2);
+		int mid = task.begin + count / 2;  // fallback: equal halves (all centroids in one place)
+		const btScalar binsPerLength = extent[axis] > btScalar(0) ? btScalar(kNumBins) / extent[axis] : btScalar(0);
+		if (btIsFinite(binsPerLength) && binsPerLength > btScalar(0))
+		{
+			int binCount[kNumBins];
+			btVector3 binMin[kNumBins], binMax[kNumBins];
+			for (int b = 0; b < kNumBins; ++b)
+			{
+				binCount[b] = 0;
+				binMin[b].setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+				binMax[b].setValue(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
+			}
+			for (int i = task.begin; i < task.end; ++i)
+			{
+				const int leaf = order[i];
+				const int b = binOf(centroid[leaf][axis], cmin[axis], binsPerLength);
+				binCount[b]++;
+				binMin[b].setMin(leafMin[leaf]);
+				binMax[b].setMax(leafMax[leaf]);
+			}
+			// Sweep from the right to get the cost of every right-hand group, then from the left.
+			btScalar rightCost[kNumBins];
+			int rightCount = 0;
+			btVector3 rMin(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), rMax = -rMin;
+			for (int b = kNumBins - 1; b > 0; --b)
+			{
+				rightCount += binCount[b];
+				rMin.setMin(binMin[b]);
+				rMax.setMax(binMax[b]);
+				rightCost[b] = btScalar(rightCount) * halfArea(rMin, rMax);
+			}
+			int leftCount = 0, bestSplit = -1;
+			btScalar bestCost = BT_LARGE_FLOAT;
+			btVector3 lMin(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), lMax = -lMin;
+			for (int b = 0; b < kNumBins - 1; ++b)
+			{
+				leftCount += binCount[b];
+				lMin.setMin(binMin[b]);
+				lMax.setMax(binMax[b]);
+				if (leftCount == 0 || leftCount == count) continue;
+				const btScalar cost = btScalar(leftCount) * halfArea(lMin, lMax) + rightCost[b + 1];
+				if (bestSplit < 0 || cost < bestCost)
+				{
+					bestCost = cost;
+					bestSplit = b;
+				}
+			}
+			if (bestSplit >= 0)
+			{
+				// Partition: leaves in bins <= bestSplit first.
+				int lo = task.begin, hi = task.end - 1;
+				while (lo <= hi)
+				{
+					if (binOf(centroid[order[lo]][axis], cmin[axis], binsPerLength) <= bestSplit)
+						++lo;
+					else
+					{
+						btSwap(order[lo], order[hi]);
+						--hi;
+					}
+				}
+				if (lo > task.begin && lo < task.end) mid = lo;
+			}
+		}
+
+		const int leftLeaves = mid - task.begin;
+		if (m_useQuantization)
+			m_quantizedContiguousNodes[task.node].m_escapeIndexOrTriangleIndex = -(2 * count - 1);
+		else
+		{
+			btOptimizedBvhNode& node = m_contiguousNodes[task.node];
+			node.m_escapeIndex = 2 * count - 1;
+			node.m_subPart = -1;
+			node.m_triangleIndex = -1;
+		}
+		// Depth-first layout: the left subtree (2 leftLeaves - 1 nodes) follows the node, then the right.
+		BuildTask right = {task.node + 2 * leftLeaves, mid, task.end};
+		BuildTask left = {task.node + 1, task.begin, mid};
+		stack.push_back(right);
+		stack.push_back(left);
+	}
+	m_curNodeIndex = numNodes;
+	refitInternalNodes();
+	updateSubtreeHeaders();
+}
+
+void btQuantizedBvh::mergeChildIntoNode(int nodeIndex, int childIndex)
+{
+	if (m_useQuantization)
+	{
+		btQuantizedBvhNode& node = m_quantizedContiguousNodes[nodeIndex];
+		const btQuantizedBvhNode& child = m_quantizedContiguousNodes[childIndex];
+		for (int a = 0; a < 3; ++a)
+		{
+			node.m_quantizedAabbMin[a] = btMin(node.m_quantizedAabbMin[a], child.m_quantizedAabbMin[a]);
+			node.m_quantizedAabbMax[a] = btMax(node.m_quantizedAabbMax[a], child.m_quantizedAabbMax[a]);
+		}
+	}
+	else
+	{
+		btOptimizedBvhNode& node = m_contiguousNodes[nodeIndex];
+		const btOptimizedBvhNode& child = m_contiguousNodes[childIndex];
+		node.m_aabbMinOrg.setMin(child.m_aabbMinOrg);
+		node.m_aabbMaxOrg.setMax(child.m_aabbMaxOrg);
+	}
+}
+
+void btQuantizedBvh::setInternalNodeFromChildren(int nodeIndex)
+{
+	const int left = nodeIndex + 1;
+	int leftSize;
+	if (m_useQuantization)
+	{
+		btQuantizedBvhNode& node = m_quantizedContiguousNodes[nodeIndex];
+		// Start from the empty box (min above max) so that the merge is a plain union.
+		for (int a = 0; a < 3; ++a)
+		{
+			node.m_quantizedAabbMin[a] = 0xFFFE;
+			node.m_quantizedAabbMax[a] = 1;
+		}
+		const btQuantizedBvhNode& l = m_quantizedContiguousNodes[left];
+		leftSize = l.isLeafNode() ? 1 : l.getEscapeIndex();
+	}
+	else
+	{
+		btOptimizedBvhNode& node = m_contiguousNodes[nodeIndex];
+		node.m_aabbMinOrg.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+		node.m_aabbMaxOrg.setValue(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
+		const btOptimizedBvhNode& l = m_contiguousNodes[left];
+		leftSize = l.m_escapeIndex < 0 ? 1 : l.m_escapeIndex;
+	}
+	mergeChildIntoNode(nodeIndex, left);
+	mergeChildIntoNode(nodeIndex, left + leftSize);
+}
+
+void btQuantizedBvh::refitInternalNodes()
+{
+	for (int i = m_curNodeIndex - 1; i >= 0; --i)
+	{
+		const bool leaf =
+		    m_useQuantization ? m_quantizedContiguousNodes[i].isLeafNode() : m_contiguousNodes[i].m_escapeIndex < 0;
+		if (!leaf) setInternalNodeFromChildren(i);
+	}
+}
+
+void btQuantizedBvh::updateSubtreeHeaders()
+{
+	m_SubtreeHeaders.resize(0);
+	if (m_useQuantization)
+	{
+		const int maxNodes = MAX_SUBTREE_SIZE_IN_BYTES / int(sizeof(btQuantizedBvhNode));
+		int i = 0;
+		while (i < m_curNodeIndex)
+		{
+			const btQuantizedBvhNode& node = m_quantizedContiguousNodes[i];
+			const int size = node.isLeafNode() ? 1 : node.getEscapeIndex();
+			if (size > maxNodes)
+			{
+				++i;  // too big: descend (the left child is next, the right child follows its subtree)
+				continue;
+			}
+			btBvhSubtreeInfo header;
+			header.setAabbFromQuantizeNode(node);
+			header.m_rootNodeIndex = i;
+			header.m_subtreeSize = size;
+			m_SubtreeHeaders.push_back(header);
+			i += size;
+		}
+	}
+	m_subtreeHeaderCount = m_SubtreeHeaders.size();
+}
+
+void btQuantizedBvh::reportAabbOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& aabbMin,
+                                                const btVector3& aabbMax) const
+{
+	btAssert(nodeCallback != 0);
+	const bool finite = isFiniteVector(aabbMin) && isFiniteVector(aabbMax);
+	btAssert(finite && "reportAabbOverlappingNodex: non-finite box");
+	if (!nodeCallback || !finite || m_curNodeIndex == 0) return;
+	const int numNodes = m_curNodeIndex;
+	if (m_useQuantization)
+	{
+		// A box outside the quantization box would clamp onto its boundary and falsely touch nodes there.
+		if (!TestAabbAgainstAabb2(aabbMin, aabbMax, m_bvhAabbMin, m_bvhAabbMax)) return;
+		unsigned short qMin[3], qMax[3];
+		quantizeWithClamp(qMin, aabbMin, 0);
+		quantizeWithClamp(qMax, aabbMax, 1);
+		const btQuantizedBvhNode* nodes = &m_quantizedContiguousNodes[0];
+		int i = 0;
+		while (i < numNodes)
+		{
+			const btQuantizedBvhNode& node = nodes[i];
+			const bool overlap = testQuantizedAabbAgainstQuantizedAabb(qMin, qMax, node.m_quantizedAabbMin,
+			                                                           node.m_quantizedAabbMax) != 0;
+			if (node.isLeafNode())
+			{
+				if (overlap) nodeCallback->processNode(node.getPartId(), node.getTriangleIndex());
+				++i;
+			}
+			else
+				i += overlap ? 1 : node.getEscapeIndex();
+		}
+		return;
+	}
+	const btOptimizedBvhNode* nodes = &m_contiguousNodes[0];
+	int i = 0;
+	while (i < numNodes)
+	{
+		const btOptimizedBvhNode& node = nodes[i];
+		const bool overlap = TestAabbAgainstAabb2(aabbMin, aabbMax, node.m_aabbMinOrg, node.m_aabbMaxOrg);
+		if (node.m_escapeIndex < 0)
+		{
+			if (overlap) nodeCallback->processNode(node.m_subPart, node.m_triangleIndex);
+			++i;
+		}
+		else
+			i += overlap ? 1 : node.m_escapeIndex;
+	}
+}
+
+void btQuantizedBvh::reportRayOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& raySource,
+                                               const btVector3& rayTarget) const
+{
+	const btVector3 zero(0, 0, 0);
+	reportBoxCastOverlappingNodex(nodeCallback, raySource, rayTarget, zero, zero);
+}
+
+void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& raySource,
+                                                   const btVector3& rayTarget, const btVector3& aabbMin,
+                                                   const btVector3& aabbMax) const
+{
+	btAssert(nodeCallback != 0);
+	const bool finite =
+	    isFiniteVector(raySource) && isFiniteVector(rayTarget) && isFiniteVector(aabbMin) && isFiniteVector(aabbMax);
+	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
+	if (!nodeCallback || !finite || m_curNodeIndex == 0) return;
+	const int numNodes = m_curNodeIndex;
+
+	Sweep sweep;
+	sweep.source = raySource;
+	sweep.dir = rayTarget - raySource;
+	for (int a = 0; a < 3; ++a) sweep.inv[a] = sweep.dir[a] != btScalar(0) ? btScalar(1) / sweep.dir[a] : btScalar(0);
+	// The tolerance covers the rounding of t and of the node bounds (relative to the coordinates involved),
+	// so a segment exactly on a box face (a flat triangle's box) is not missed.
+	btVector3 rootMin, rootMax;
+	if (m_useQuantization)
+	{
+		rootMin = m_bvhAabbMin;
+		rootMax = m_bvhAabbMax;
+	}
+	else
+	{
+		rootMin = m_contiguousNodes[0].m_aabbMinOrg;
+		rootMax = m_contiguousNodes[0].m_aabbMaxOrg;
+	}
+	btScalar scale = 0;
+	const bool rootValid = rootMin.x() <= rootMax.x() && rootMin.y() <= rootMax.y() && rootMin.z() <= rootMax.z();
+	const btVector3* scaled[] = {&raySource, &rayTarget, &aabbMin, &aabbMax, &rootMin, &rootMax};
+	const int numScaled = rootValid ? 6 : 4;  // a tree of unreadable triangles has an empty (inverted) root
+	for (int s = 0; s < numScaled; ++s)
+		for (int a = 0; a < 3; ++a) scale = btMax(scale, btFabs((*scaled[s])[a]));
+	const btScalar tolerance = btScalar(64) * SIMD_EPSILON * scale;
+	const btVector3 tol(tolerance, tolerance, tolerance);
+	sweep.growMin = aabbMax + tol;
+	sweep.growMax = -aabbMin + tol;
+	sweep.sweepMin = raySource;
+	sweep.sweepMin.setMin(rayTarget);
+	sweep.sweepMax = raySource;
+	sweep.sweepMax.setMax(rayTarget);
+	sweep.sweepMin += aabbMin - tol;
+	sweep.sweepMax += aabbMax + tol;
+
+	if (m_useQuantization)
+	{
+		if (!TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, m_bvhAabbMin, m_bvhAabbMax)) return;
+		unsigned short qMin[3], qMax[3];
+		quantizeWithClamp(qMin, sweep.sweepMin, 0);
+		quantizeWithClamp(qMax, sweep.sweepMax, 1);
+		// Multiplying by the inverse instead of dividing (unQuantize) rounds once more; the tolerance covers it.
+		const btVector3 invQuantization(btScalar(1) / m_bvhQuantization.x(), btScalar(1) / m_bvhQuantization.y(),
+		                                btScalar(1) / m_bvhQuantization.z());
+		const btQuantizedBvhNode* nodes = &m_quantizedContiguousNodes[0];
+		int i = 0;
+		while (i < numNodes)
+		{
+			const btQuantizedBvhNode& node = nodes[i];
+			bool overlap = testQuantizedAabbAgainstQuantizedAabb(qMin, qMax, node.m_quantizedAabbMin,
+			                                                     node.m_quantizedAabbMax) != 0;
+			if (overlap)
+			{
+				const unsigned short* lo = node.m_quantizedAabbMin;
+				const unsigned short* hi = node.m_quantizedAabbMax;
+				const btVector3 nodeMin =
+				    btVector3(btScalar(lo[0]), btScalar(lo[1]), btScalar(lo[2])) * invQuantization + m_bvhAabbMin;
+				const btVector3 nodeMax =
+				    btVector3(btScalar(hi[0]), btScalar(hi[1]), btScalar(hi[2])) * invQuantization + m_bvhAabbMin;
+				overlap = sweep.hits(nodeMin, nodeMax);
+			}
+			if (node.isLeafNode())
+			{
+				if (overlap) nodeCallback->processNode(node.getPartId(), node.getTriangleIndex());
+				++i;
+			}
+			else
+				i += overlap ? 1 : node.getEscapeIndex();
+		}
+		return;
+	}
+	const btOptimizedBvhNode* nodes = &m_contiguousNodes[0];
+	int i = 0;
+	while (i < numNodes)
+	{
+		const btOptimizedBvhNode& node = nodes[i];
+		bool overlap = TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, node.m_aabbMinOrg, node.m_aabbMaxOrg);
+		if (overlap) overlap = sweep.hits(node.m_aabbMinOrg, node.m_aabbMaxOrg);
+		if (node.m_escapeIndex < 0)
+		{
+			if (overlap) nodeCallback->processNode(node.m_subPart, node.m_triangleIndex);
+			++i;
+		}
+		else
+			i += overlap ? 1 : node.m_escapeIndex;
+	}
+}

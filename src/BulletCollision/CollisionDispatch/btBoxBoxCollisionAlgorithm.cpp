@@ -1,0 +1,64 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
+
+#include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/CollisionDispatch/btBoxBoxDetector.h"
+#include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btManifoldResult.h"
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
+
+btBoxBoxCollisionAlgorithm::btBoxBoxCollisionAlgorithm(btPersistentManifold* mf,
+                                                       const btCollisionAlgorithmConstructionInfo& ci,
+                                                       const btCollisionObjectWrapper* body0Wrap,
+                                                       const btCollisionObjectWrapper* body1Wrap)
+    : btActivatingCollisionAlgorithm(ci, body0Wrap, body1Wrap), m_ownManifold(false), m_manifoldPtr(mf)
+{
+	if (!m_manifoldPtr && m_dispatcher &&
+	    m_dispatcher->needsCollision(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject()))
+	{
+		m_manifoldPtr = m_dispatcher->getNewManifold(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
+		m_ownManifold = true;
+	}
+}
+
+btBoxBoxCollisionAlgorithm::~btBoxBoxCollisionAlgorithm()
+{
+	if (m_ownManifold && m_manifoldPtr) m_dispatcher->releaseManifold(m_manifoldPtr);
+}
+
+void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper* body0Wrap,
+                                                  const btCollisionObjectWrapper* body1Wrap,
+                                                  const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
+{
+	if (!m_manifoldPtr || !resultOut) return;
+	resultOut->setPersistentManifold(m_manifoldPtr);
+	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	{
+		if (m_ownManifold) m_manifoldPtr->clearManifold();
+		return;
+	}
+	const btBoxShape* box0 = static_cast<const btBoxShape*>(body0Wrap->getCollisionShape());
+	const btBoxShape* box1 = static_cast<const btBoxShape*>(body1Wrap->getCollisionShape());
+
+	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+	input.m_transformA = body0Wrap->getWorldTransform();
+	input.m_transformB = body1Wrap->getWorldTransform();
+	const btScalar reach = m_manifoldPtr->getContactBreakingThreshold() + resultOut->m_closestPointDistanceThreshold;
+	input.m_maximumDistanceSquared = reach * reach;
+
+	btBoxBoxDetector detector(box0, box1);
+	detector.getClosestPoints(input, *resultOut, dispatchInfo.m_debugDraw);
+
+	if (m_ownManifold) resultOut->refreshContactPoints();
+}
+
+btScalar btBoxBoxCollisionAlgorithm::calculateTimeOfImpact(btCollisionObject*, btCollisionObject*,
+                                                           const btDispatcherInfo&, btManifoldResult*)
+{
+	return btScalar(1);
+}
+
+void btBoxBoxCollisionAlgorithm::getAllContactManifolds(btManifoldArray& manifoldArray)
+{
+	if (m_manifoldPtr && m_ownManifold) manifoldArray.push_back(m_manifoldPtr);
+}

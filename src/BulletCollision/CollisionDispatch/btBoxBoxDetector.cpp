@@ -1,0 +1,306 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/CollisionDispatch/btBoxBoxDetector.h"
+
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/btShapeGuards.h"
+
+namespace
+{
+// Edge pairs whose unit cross product is shorter than this (squared, about 0.06 degrees) are parallel;
+// their axis is covered by the face normals.
+const btScalar kParallelCross2 = btScalar(1e-6);
+// An edge axis replaces a face axis only when it separates more by this share of the boxes' size, so
+// that near ties (rounding, resting contacts) keep the face axis and its stable 4-point manifold.
+const btScalar kEdgeAxisBias = btScalar(1e-4);
+// Clip points closer than this share of the boxes' size are one point (a zero-size face collapses).
+const btScalar kMergeDistance = btScalar(1e-6);
+
+// Polygons here have at most 8 vertices: a quad clipped by 4 lines gains at most one vertex per line.
+const int kMaxClipVertices = 8;
+
+struct BoxFrame
+{
+	btVector3 centre;
+	btVector3 axis[3];
+	btVector3 half;
+};
+
+// Keeps the part of polygon (in, inCount) with sign * p[coordinate] <= limit; returns the new count.
+int clipAgainstLine(const btVector3* in, int inCount, int coordinate, btScalar sign, btScalar limit, btVector3* out)
+{
+	int outCount = 0;
+	if (inCount == 0) return 0;
+	btVector3 previous = in[inCount - 1];
+	btScalar previousDistance = sign * previous[coordinate] - limit;
+	for (int i = 0; i < inCount; ++i)
+	{
+		const btVector3& current = in[i];
+		const btScalar currentDistance = sign * current[coordinate] - limit;
+		const bool previousInside = previousDistance <= 0, currentInside = currentDistance <= 0;
+		// Opposite signs: the denominator is not zero.
+		if (previousInside != currentInside && outCount < kMaxClipVertices)
+			out[outCount++] = previous.lerp(current, previousDistance / (previousDistance - currentDistance));
+		if (currentInside && outCount < kMaxClipVertices) out[outCount++] = current;
+		previous = current;
+		previousDistance = currentDistance;
+	}
+	return outCount;
+}
+
+btScalar quadArea2(const btVector3& a, const btVector3& b, const btVector3& c, const btVector3& d)
+{
+	// Shoelace over (x, y) of a quad whose corners are in polygon order.
+	return btFabs((a.x() * b.y() - b.x() * a.y()) + (b.x() * c.y() - c.x() * b.y()) + (c.x() * d.y() - d.x() * c.y()) +
+	              (d.x() * a.y() - a.x() * d.y()));
+}
+
+// Reduces points (in convex polygon order, (x, y) in the reference face plane) to the 4 spanning the
+// largest area; the first maximum in lexicographic index order wins, so the choice is deterministic.
+int keepLargestQuad(btVector3* points, btScalar* depths, int count)
+{
+	if (count <= 4) return count;
+	int best[4] = {0, 1, 2, 3};
+	btScalar bestArea = -1;
+	for (int i = 0; i < count; ++i)
+		for (int j = i + 1; j < count; ++j)
+			for (int k = j + 1; k < count; ++k)
+				for (int l = k + 1; l < count; ++l)
+				{
+					const btScalar area = quadArea2(points[i], points[j], points[k], points[l]);
+					if (area > bestArea)
+					{
+						bestArea = area;
+						best[0] = i;
+						best[1] = j;
+						best[2] = k;
+						best[3] = l;
+					}
+				}
+	btVector3 keptPoints[4];
+	btScalar keptDepths[4];
+	for (int n = 0; n < 4; ++n)
+	{
+		keptPoints[n] = points[best[n]];
+		keptDepths[n] = depths[best[n]];
+	}
+	for (int n = 0; n < 4; ++n)
+	{
+		points[n] = keptPoints[n];
+		depths[n] = keptDepths[n];
+	}
+	return 4;
+}
+
+// Which box (0 = A, 1 = B) and axis index give the face axis, or the edge pair for edge axes.
+struct BestAxis
+{
+	int kind;  // 0: face of A, 1: face of B, 2: edge of A x edge of B
+	int indexA;
+	int indexB;
+	btVector3 normal;  // unit, from B towards A
+	btScalar separation;
+};
+
+void report(btDiscreteCollisionDetectorInterface::Result& output, bool swapResults, const btVector3& normal,
+            const btVector3& pointOnB, btScalar depth)
+{
+	if (swapResults)
+		output.addContactPoint(-normal, pointOnB + normal * depth, depth);
+	else
+		output.addContactPoint(normal, pointOnB, depth);
+}
+
+// Face contact: the reference box's face with outward normal referenceNormal (one of its axes, signed)
+// against the incident box's most opposed face. Reports points on B.
+void faceContact(const BoxFrame& reference, int referenceAxis, const btVector3& referenceNormal,
+                 const BoxFrame& incident, bool referenceIsA, const btVector3& normalBtoA, btScalar maxDistance,
+                 btScalar mergeDistance, btDiscreteCollisionDetectorInterface::Result& output, bool swapResults)
+{
+	const int uAxis = (referenceAxis + 1) % 3, vAxis = (referenceAxis + 2) % 3;
+	const btVector3& u = reference.axis[uAxis];
+	const btVector3& v = reference.axis[vAxis];
+
+	int incidentAxis = 0;
+	btScalar largest = -1;
+	for (int j = 0; j < 3; ++j)
+	{
+		const btScalar alignment = btFabs(incident.axis[j].dot(referenceNormal));
+		if (alignment > largest)
+		{
+			largest = alignment;
+			incidentAxis = j;
+		}
+	}
+	const btScalar faceSign = incident.axis[incidentAxis].dot(referenceNormal) > 0 ? btScalar(-1) : btScalar(1);
+	const btVector3 faceCentre =
+	    incident.centre + incident.axis[incidentAxis] * (faceSign * incident.half[incidentAxis]);
+	const int pAxis = (incidentAxis + 1) % 3, qAxis = (incidentAxis + 2) % 3;
+	const btVector3 edgeP = incident.axis[pAxis] * incident.half[pAxis];
+	const btVector3 edgeQ = incident.axis[qAxis] * incident.half[qAxis];
+
+	// Incident corners in the reference face frame: x along u, y along v, z along the outward normal.
+	btVector3 polygon[kMaxClipVertices], scratch[kMaxClipVertices];
+	const btVector3 corners[4] = {faceCentre + edgeP + edgeQ, faceCentre - edgeP + edgeQ, faceCentre - edgeP - edgeQ,
+	                              faceCentre + edgeP - edgeQ};
+	for (int i = 0; i < 4; ++i)
+	{
+		const btVector3 relative = corners[i] - reference.centre;
+		polygon[i].setValue(relative.dot(u), relative.dot(v), relative.dot(referenceNormal));
+	}
+	int count = 4;
+	const btScalar hu = reference.half[uAxis], hv = reference.half[vAxis];
+	count = clipAgainstLine(polygon, count, 0, btScalar(1), hu, scratch);
+	count = clipAgainstLine(scratch, count, 0, btScalar(-1), hu, polygon);
+	count = clipAgainstLine(polygon, count, 1, btScalar(1), hv, scratch);
+	count = clipAgainstLine(scratch, count, 1, btScalar(-1), hv, polygon);
+
+	// Keep the points near enough, merging coincident neighbours (order stays convex).
+	btVector3 points[kMaxClipVertices];
+	btScalar depths[kMaxClipVertices];
+	int kept = 0;
+	const btScalar referenceOffset = reference.half[referenceAxis];
+	for (int i = 0; i < count; ++i)
+	{
+		const btScalar depth = polygon[i].z() - referenceOffset;
+		if (!(depth <= maxDistance)) continue;
+		if (kept > 0 && (points[kept - 1] - polygon[i]).length2() <= mergeDistance * mergeDistance) continue;
+		points[kept] = polygon[i];
+		depths[kept] = depth;
+		++kept;
+	}
+	if (kept > 1 && (points[kept - 1] - points[0]).length2() <= mergeDistance * mergeDistance) --kept;
+	kept = keepLargestQuad(points, depths, kept);
+
+	for (int i = 0; i < kept; ++i)
+	{
+		const btVector3 world =
+		    reference.centre + u * points[i].x() + v * points[i].y() + referenceNormal * points[i].z();
+		// The clipped points lie on the incident box; when that is A, their partner on B is on B's face.
+		const btVector3 pointOnB = referenceIsA ? world : world - referenceNormal * depths[i];
+		report(output, swapResults, normalBtoA, pointOnB, depths[i]);
+	}
+}
+
+// Edge contact: the edge of A deepest towards B against the edge of B deepest towards A.
+void edgeContact(const BoxFrame& a, int edgeA, const BoxFrame& b, int edgeB, const btVector3& normalBtoA,
+                 btScalar maxDistance, btDiscreteCollisionDetectorInterface::Result& output, bool swapResults)
+{
+	btVector3 centreA = a.centre, centreB = b.centre;
+	for (int k = 0; k < 3; ++k)
+	{
+		if (k != edgeA) centreA += a.axis[k] * (a.axis[k].dot(normalBtoA) > 0 ? -a.half[k] : a.half[k]);
+		if (k != edgeB) centreB += b.axis[k] * (b.axis[k].dot(normalBtoA) >= 0 ? b.half[k] : -b.half[k]);
+	}
+	// Closest points of the lines centre + t * direction, t clamped to the half lengths.
+	const btVector3& directionA = a.axis[edgeA];
+	const btVector3& directionB = b.axis[edgeB];
+	const btVector3 offset = centreA - centreB;
+	const btScalar cosine = directionA.dot(directionB);
+	const btScalar alongA = directionA.dot(offset), alongB = directionB.dot(offset);
+	const btScalar denominator = btScalar(1) - cosine * cosine;  // > kParallelCross2 for a chosen edge axis
+	btScalar s = (cosine * alongB - alongA) / denominator;
+	s = btMax(-a.half[edgeA], btMin(a.half[edgeA], s));
+	btScalar t = cosine * s + alongB;
+	if (t < -b.half[edgeB] || t > b.half[edgeB])
+	{
+		t = btMax(-b.half[edgeB], btMin(b.half[edgeB], t));
+		s = btMax(-a.half[edgeA], btMin(a.half[edgeA], cosine * t - alongA));
+	}
+	const btVector3 onA = centreA + directionA * s;
+	const btVector3 onB = centreB + directionB * t;
+	const btScalar depth = (onA - onB).dot(normalBtoA);
+	if (depth <= maxDistance) report(output, swapResults, normalBtoA, onB, depth);
+}
+}  // namespace
+
+btBoxBoxDetector::btBoxBoxDetector(const btBoxShape* box1, const btBoxShape* box2) : m_box1(box1), m_box2(box2) {}
+
+void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& output, btIDebugDraw* /*debugDraw*/,
+                                        bool swapResults)
+{
+	const bool usable = m_box1 && m_box2 && caliberIsFinite(input.m_transformA) && caliberIsFinite(input.m_transformB);
+	btAssert(usable && "btBoxBoxDetector: null box or non-finite transform");
+	if (!usable) return;
+
+	// A NaN or negative limit reports touching and penetrating points only.
+	const btScalar maxDistanceSquared = input.m_maximumDistanceSquared;
+	const btScalar maxDistance = maxDistanceSquared > 0 ? btSqrt(maxDistanceSquared) : btScalar(0);
+
+	BoxFrame a, b;
+	a.centre = input.m_transformA.getOrigin();
+	b.centre = input.m_transformB.getOrigin();
+	a.half = m_box1->getHalfExtentsWithMargin();
+	b.half = m_box2->getHalfExtentsWithMargin();
+	for (int i = 0; i < 3; ++i)
+	{
+		a.axis[i] = input.m_transformA.getBasis().getColumn(i);
+		b.axis[i] = input.m_transformB.getBasis().getColumn(i);
+	}
+	const btVector3 delta = b.centre - a.centre;
+	const btScalar size = a.half[a.half.maxAxis()] + b.half[b.half.maxAxis()];
+
+	// Separation of the boxes along a unit axis: positive when apart, minus the overlap otherwise.
+	auto separationAlong = [&](const btVector3& axis)
+	{
+		btScalar radiusA = 0, radiusB = 0;
+		for (int k = 0; k < 3; ++k)
+		{
+			radiusA += a.half[k] * btFabs(a.axis[k].dot(axis));
+			radiusB += b.half[k] * btFabs(b.axis[k].dot(axis));
+		}
+		return btFabs(delta.dot(axis)) - radiusA - radiusB;
+	};
+	// The normal from B towards A along axis.
+	auto orient = [&](const btVector3& axis) { return delta.dot(axis) > 0 ? -axis : axis; };
+
+	BestAxis best;
+	best.kind = -1;
+	best.indexA = best.indexB = 0;
+	best.separation = -SIMD_INFINITY;
+	best.normal.setValue(0, 0, 1);
+	for (int box = 0; box < 2; ++box)
+	{
+		const BoxFrame& frame = box == 0 ? a : b;
+		for (int i = 0; i < 3; ++i)
+		{
+			const btScalar separation = separationAlong(frame.axis[i]);
+			if (separation > maxDistance) return;
+			if (separation > best.separation)
+			{
+				best.kind = box;
+				best.indexA = best.indexB = i;
+				best.normal = orient(frame.axis[i]);
+				best.separation = separation;
+			}
+		}
+	}
+	const btScalar edgeBias = kEdgeAxisBias * size;
+	for (int i = 0; i < 3; ++i)
+		for (int j = 0; j < 3; ++j)
+		{
+			const btVector3 cross = a.axis[i].cross(b.axis[j]);
+			const btScalar length2 = cross.length2();
+			if (!(length2 > kParallelCross2)) continue;
+			const btVector3 axis = cross / btSqrt(length2);
+			const btScalar separation = separationAlong(axis);
+			if (separation > maxDistance) return;
+			if (separation > best.separation + edgeBias)
+			{
+				best.kind = 2;
+				best.indexA = i;
+				best.indexB = j;
+				best.normal = orient(axis);
+				best.separation = separation;
+			}
+		}
+
+	const btScalar mergeDistance = kMergeDistance * size + SIMD_EPSILON;
+	if (best.kind == 0)
+		faceContact(a, best.indexA, -best.normal, b, true, best.normal, maxDistance, mergeDistance, output,
+		            swapResults);
+	else if (best.kind == 1)
+		faceContact(b, best.indexB, best.normal, a, false, best.normal, maxDistance, mergeDistance, output,
+		            swapResults);
+	else if (best.kind == 2)
+		edgeContact(a, best.indexA, b, best.indexB, best.normal, maxDistance, output, swapResults);
+}

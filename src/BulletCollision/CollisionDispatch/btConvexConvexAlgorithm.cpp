@@ -1,0 +1,290 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
+
+#include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btManifoldResult.h"
+#include "BulletCollision/CollisionShapes/btConvexShape.h"
+#include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
+#include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
+#include "LinearMath/btQuaternion.h"
+
+namespace
+{
+// Keeps GJK's single point so that the algorithm can decide how to use it.
+struct GjkPointResult : public btStorageResult
+{
+	bool found() const { return m_distance < btScalar(BT_LARGE_FLOAT); }
+	void setShapeIdentifiersA(int, int) override {}
+	void setShapeIdentifiersB(int, int) override {}
+};
+
+// Discards everything (findSeparatingAxis may report an edge point we do not use).
+struct DiscardResult : public btDiscreteCollisionDetectorInterface::Result
+{
+	void setShapeIdentifiersA(int, int) override {}
+	void setShapeIdentifiersB(int, int) override {}
+	void addContactPoint(const btVector3&, const btVector3&, btScalar) override {}
+};
+
+// Clipping works on the polyhedra, which for hulls are the margin-free cores (boxes list their full
+// corners). This adapter puts the margins back so that clipped points agree with GJK's distances, and
+// counts the points so that the algorithm can fall back to GJK's point when clipping finds none.
+struct MarginRestoringResult : public btDiscreteCollisionDetectorInterface::Result
+{
+	btDiscreteCollisionDetectorInterface::Result& m_output;
+	btScalar m_marginA;
+	btScalar m_marginB;
+	int m_count;
+
+	MarginRestoringResult(btDiscreteCollisionDetectorInterface::Result& output, btScalar marginA, btScalar marginB)
+	    : m_output(output), m_marginA(marginA), m_marginB(marginB), m_count(0)
+	{
+	}
+	void setShapeIdentifiersA(int partId, int index) override { m_output.setShapeIdentifiersA(partId, index); }
+	void setShapeIdentifiersB(int partId, int index) override { m_output.setShapeIdentifiersB(partId, index); }
+	void addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld, btScalar depth) override
+	{
+		++m_count;
+		m_output.addContactPoint(normalOnBInWorld, pointInWorld + normalOnBInWorld * m_marginB,
+		                         depth - m_marginA - m_marginB);
+	}
+};
+
+// GJK ran on a copy of one shape rotated slightly; this maps the point found on the rotated copy back
+// onto the real shape (same local point, real transform) and recomputes the depth along the normal.
+struct UnperturbingResult : public btDiscreteCollisionDetectorInterface::Result
+{
+	btDiscreteCollisionDetectorInterface::Result& m_output;
+	btTransform m_rotatedToReal;
+	bool m_perturbedA;
+
+	UnperturbingResult(btDiscreteCollisionDetectorInterface::Result& output, const btTransform& rotatedToReal,
+	                   bool perturbedA)
+	    : m_output(output), m_rotatedToReal(rotatedToReal), m_perturbedA(perturbedA)
+	{
+	}
+	void setShapeIdentifiersA(int, int) override {}
+	void setShapeIdentifiersB(int, int) override {}
+	void addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld, btScalar depth) override
+	{
+		btVector3 pointOnA = pointInWorld + normalOnBInWorld * depth;
+		btVector3 pointOnB = pointInWorld;
+		if (m_perturbedA)
+			pointOnA = m_rotatedToReal(pointOnA);
+		else
+			pointOnB = m_rotatedToReal(pointOnB);
+		const btScalar realDepth = (pointOnA - pointOnB).dot(normalOnBInWorld);
+		m_output.addContactPoint(normalOnBInWorld, pointOnA - normalOnBInWorld * realDepth, realDepth);
+	}
+};
+
+// Shape types known to derive from btPolyhedralConvexShape (and so to possibly carry a polyhedron).
+bool isPolyhedralShapeClass(int shapeType)
+{
+	switch (shapeType)
+	{
+		case BOX_SHAPE_PROXYTYPE:
+		case TRIANGLE_SHAPE_PROXYTYPE:
+		case TETRAHEDRAL_SHAPE_PROXYTYPE:
+		case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE:
+		case CONVEX_HULL_SHAPE_PROXYTYPE:
+		case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE:
+			return true;
+		default:
+			return false;
+	}
+}
+
+const btConvexPolyhedron* polyhedronOf(const btConvexShape* shape)
+{
+	if (!isPolyhedralShapeClass(shape->getShapeType())) return 0;
+	return static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
+}
+
+// The margin clipping must add back: boxes' polyhedra already have their full size.
+btScalar clippingMargin(const btConvexShape* shape)
+{
+	return shape->getShapeType() == BOX_SHAPE_PROXYTYPE ? btScalar(0) : shape->getMargin();
+}
+}  // namespace
+
+btConvexConvexAlgorithm::CreateFunc::CreateFunc(btConvexPenetrationDepthSolver* pdSolver)
+    : m_pdSolver(pdSolver), m_numPerturbationIterations(0), m_minimumPointsPerturbationThreshold(3)
+{
+}
+
+btConvexConvexAlgorithm::CreateFunc::~CreateFunc() {}
+
+btConvexConvexAlgorithm::btConvexConvexAlgorithm(btPersistentManifold* mf,
+                                                 const btCollisionAlgorithmConstructionInfo& ci,
+                                                 const btCollisionObjectWrapper* body0Wrap,
+                                                 const btCollisionObjectWrapper* body1Wrap,
+                                                 btConvexPenetrationDepthSolver* pdSolver,
+                                                 int numPerturbationIterations, int minimumPointsPerturbationThreshold)
+    : btActivatingCollisionAlgorithm(ci, body0Wrap, body1Wrap),
+      m_pdSolver(pdSolver),
+      m_ownManifold(false),
+      m_manifoldPtr(mf),
+      m_lowLevelOfDetail(false),
+      m_numPerturbationIterations(numPerturbationIterations),
+      m_minimumPointsPerturbationThreshold(minimumPointsPerturbationThreshold)
+{
+}
+
+btConvexConvexAlgorithm::~btConvexConvexAlgorithm()
+{
+	if (m_ownManifold && m_manifoldPtr) m_dispatcher->releaseManifold(m_manifoldPtr);
+}
+
+void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0Wrap,
+                                               const btCollisionObjectWrapper* body1Wrap,
+                                               const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
+{
+	if (!resultOut || !body0Wrap || !body1Wrap) return;
+	if (!m_manifoldPtr)
+	{
+		if (!m_dispatcher) return;
+		m_manifoldPtr = m_dispatcher->getNewManifold(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
+		m_ownManifold = true;
+	}
+	resultOut->setPersistentManifold(m_manifoldPtr);
+	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	{
+		if (m_ownManifold) m_manifoldPtr->clearManifold();
+		return;
+	}
+
+	const btConvexShape* shapeA = static_cast<const btConvexShape*>(body0Wrap->getCollisionShape());
+	const btConvexShape* shapeB = static_cast<const btConvexShape*>(body1Wrap->getCollisionShape());
+	const btScalar reach = m_manifoldPtr->getContactBreakingThreshold() + resultOut->m_closestPointDistanceThreshold;
+
+	btVoronoiSimplexSolver simplexSolver;
+	btGjkPairDetector gjk(shapeA, shapeB, &simplexSolver, m_pdSolver);
+	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+	input.m_transformA = body0Wrap->getWorldTransform();
+	input.m_transformB = body1Wrap->getWorldTransform();
+	const btScalar maxDistance = shapeA->getMargin() + shapeB->getMargin() + reach;
+	input.m_maximumDistanceSquared = maxDistance * maxDistance;
+
+	GjkPointResult gjkPoint;
+	gjk.getClosestPoints(input, gjkPoint, dispatchInfo.m_debugDraw);
+
+	const btConvexPolyhedron* polyA = polyhedronOf(shapeA);
+	const btConvexPolyhedron* polyB = polyhedronOf(shapeB);
+	if (polyA && polyB)
+	{
+		bool haveAxis = false;
+		btVector3 separatingAxis(0, 0, 0);
+		if (dispatchInfo.m_enableSatConvex)
+		{
+			// SAT sees the margin-free polyhedra: cores that are apart while the margins touch fall
+			// through to GJK's axis below.
+			DiscardResult discard;
+			haveAxis = btPolyhedralContactClipping::findSeparatingAxis(*polyA, *polyB, input.m_transformA,
+			                                                           input.m_transformB, separatingAxis, discard);
+		}
+		if (!haveAxis && gjkPoint.found() && gjkPoint.m_distance <= reach)
+		{
+			const btScalar axisLength = gjkPoint.m_normalOnSurfaceB.length();
+			haveAxis = axisLength > SIMD_EPSILON;
+			if (haveAxis) separatingAxis = gjkPoint.m_normalOnSurfaceB / axisLength;
+		}
+		if (haveAxis)
+		{
+			MarginRestoringResult clipped(*resultOut, clippingMargin(shapeA), clippingMargin(shapeB));
+			// The margins are added back after clipping, so clipping may keep points up to reach + margins.
+			btPolyhedralContactClipping::clipHullAgainstHull(
+			    separatingAxis, *polyA, *polyB, input.m_transformA, input.m_transformB, btScalar(-BT_LARGE_FLOAT),
+			    reach + clipped.m_marginA + clipped.m_marginB, worldVertsB1, worldVertsB2, clipped);
+			if (clipped.m_count == 0 && gjkPoint.found())
+				resultOut->addContactPoint(gjkPoint.m_normalOnSurfaceB, gjkPoint.m_closestPointInB,
+				                           gjkPoint.m_distance);
+		}
+		if (m_ownManifold) resultOut->refreshContactPoints();
+		return;
+	}
+
+	if (gjkPoint.found())
+		resultOut->addContactPoint(gjkPoint.m_normalOnSurfaceB, gjkPoint.m_closestPointInB, gjkPoint.m_distance);
+
+	// Optional multipoint: rotate the shape with the smaller angular disc slightly about axes across the
+	// normal; each rotated copy touches at another point of a flat contact.
+	if (gjkPoint.found() && m_numPerturbationIterations > 0 &&
+	    m_manifoldPtr->getNumContacts() < m_minimumPointsPerturbationThreshold)
+	{
+		btVector3 normal = gjkPoint.m_normalOnSurfaceB;
+		normal.safeNormalize();
+		btVector3 tangent0, tangent1;
+		btPlaneSpace1(normal, tangent0, tangent1);
+		const btScalar discA = shapeA->getAngularMotionDisc();
+		const btScalar discB = shapeB->getAngularMotionDisc();
+		const bool perturbA = discA < discB;
+		const btScalar disc = perturbA ? discA : discB;
+		const btScalar angleLimit = btScalar(0.125) * SIMD_PI;
+		btScalar tiltAngle = disc > SIMD_EPSILON ? gContactBreakingThreshold / disc : angleLimit;
+		if (tiltAngle > angleLimit) tiltAngle = angleLimit;
+		const btQuaternion tilt(tangent0, tiltAngle);
+		for (int i = 0; i < m_numPerturbationIterations; ++i)
+		{
+			const btQuaternion aroundNormal(normal, SIMD_2_PI * btScalar(i) / btScalar(m_numPerturbationIterations));
+			const btMatrix3x3 rotation(aroundNormal.inverse() * tilt * aroundNormal);
+			btDiscreteCollisionDetectorInterface::ClosestPointInput perturbed = input;
+			const btTransform& real = perturbA ? input.m_transformA : input.m_transformB;
+			btTransform& rotated = perturbA ? perturbed.m_transformA : perturbed.m_transformB;
+			rotated.setBasis(rotation * real.getBasis());
+			UnperturbingResult unperturbing(*resultOut, real * rotated.inverse(), perturbA);
+			simplexSolver.reset();
+			gjk.getClosestPoints(perturbed, unperturbing, dispatchInfo.m_debugDraw);
+		}
+	}
+
+	if (m_ownManifold) resultOut->refreshContactPoints();
+}
+
+btScalar btConvexConvexAlgorithm::calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1,
+                                                        const btDispatcherInfo&, btManifoldResult*)
+{
+	btScalar fraction = btScalar(1);
+	if (!body0 || !body1 || !body0->getCollisionShape() || !body1->getCollisionShape()) return fraction;
+	// CCD only matters when one body moves farther than its motion threshold during the step.
+	const btScalar motion0 =
+	    (body0->getInterpolationWorldTransform().getOrigin() - body0->getWorldTransform().getOrigin()).length2();
+	const btScalar motion1 =
+	    (body1->getInterpolationWorldTransform().getOrigin() - body1->getWorldTransform().getOrigin()).length2();
+	if (!(motion0 >= body0->getCcdSquareMotionThreshold()) && !(motion1 >= body1->getCcdSquareMotionThreshold()))
+		return fraction;
+	if (!caliberIsFinite(body0->getWorldTransform()) || !caliberIsFinite(body0->getInterpolationWorldTransform()) ||
+	    !caliberIsFinite(body1->getWorldTransform()) || !caliberIsFinite(body1->getInterpolationWorldTransform()))
+		return fraction;
+
+	// Each body's shape is cast against the other body's CCD swept sphere (a conservative inner core),
+	// so thin fast bodies do not tunnel; the earliest hit wins and lowers both hit fractions.
+	for (int side = 0; side < 2; ++side)
+	{
+		btCollisionObject* shapeBody = side == 0 ? body0 : body1;
+		btCollisionObject* sphereBody = side == 0 ? body1 : body0;
+		const btConvexShape* convex = static_cast<const btConvexShape*>(shapeBody->getCollisionShape());
+		btSphereShape sweptSphere(sphereBody->getCcdSweptSphereRadius());
+		btVoronoiSimplexSolver simplexSolver;
+		btGjkConvexCast cast(convex, &sweptSphere, &simplexSolver);
+		btConvexCast::CastResult result;
+		if (!cast.calcTimeOfImpact(shapeBody->getWorldTransform(), shapeBody->getInterpolationWorldTransform(),
+		                           sphereBody->getWorldTransform(), sphereBody->getInterpolationWorldTransform(),
+		                           result))
+			continue;
+		if (!(result.m_fraction >= btScalar(0) && result.m_fraction <= btScalar(1))) continue;
+		if (body0->getHitFraction() > result.m_fraction) body0->setHitFraction(result.m_fraction);
+		if (body1->getHitFraction() > result.m_fraction) body1->setHitFraction(result.m_fraction);
+		if (fraction > result.m_fraction) fraction = result.m_fraction;
+	}
+	return fraction;
+}
+
+void btConvexConvexAlgorithm::getAllContactManifolds(btManifoldArray& manifoldArray)
+{
+	if (m_manifoldPtr && m_ownManifold) manifoldArray.push_back(m_manifoldPtr);
+}

@@ -1,0 +1,150 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include <gtest/gtest.h>
+
+#include "../NarrowPhaseCollision/NarrowPhaseTestUtil.h"
+#include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/btConcaveShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/CollisionShapes/btTriangleCallback.h"
+#include "TestDispatcher.h"
+
+using caliber_dispatch_test::PairFixture;
+using caliber_dispatch_test::TestDispatcher;
+using caliber_narrowphase_test::vectorsNear;
+
+namespace
+{
+// A brute-force concave shape for these tests (independent of the BVH meshes): a list of triangles,
+// each reported when its AABB overlaps the query box. Counts the triangles it reports.
+class TriangleSoupShape : public btConcaveShape
+{
+public:
+	TriangleSoupShape() : m_scaling(1, 1, 1), m_reported(0) { m_shapeType = TRIANGLE_MESH_SHAPE_PROXYTYPE; }
+
+	void addTriangle(const btVector3& a, const btVector3& b, const btVector3& c)
+	{
+		m_vertices.push_back(a);
+		m_vertices.push_back(b);
+		m_vertices.push_back(c);
+	}
+
+	void processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
+	                         const btVector3& aabbMax) const override
+	{
+		for (int t = 0; t < m_vertices.size() / 3; ++t)
+		{
+			btVector3 triangle[3] = {m_vertices[3 * t], m_vertices[3 * t + 1], m_vertices[3 * t + 2]};
+			btVector3 lo = triangle[0], hi = triangle[0];
+			for (int i = 1; i < 3; ++i)
+			{
+				lo.setMin(triangle[i]);
+				hi.setMax(triangle[i]);
+			}
+			bool overlaps = true;
+			for (int i = 0; i < 3; ++i) overlaps = overlaps && lo[i] <= aabbMax[i] && hi[i] >= aabbMin[i];
+			if (!overlaps) continue;
+			++m_reported;
+			callback->processTriangle(triangle, 0, t);
+		}
+	}
+	void getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const override
+	{
+		aabbMin.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+		aabbMax = -aabbMin;
+		for (int i = 0; i < m_vertices.size(); ++i)
+		{
+			aabbMin.setMin(t(m_vertices[i]));
+			aabbMax.setMax(t(m_vertices[i]));
+		}
+	}
+	void setLocalScaling(const btVector3& scaling) override { m_scaling = scaling; }
+	const btVector3& getLocalScaling() const override { return m_scaling; }
+	void calculateLocalInertia(btScalar, btVector3& inertia) const override { inertia.setValue(0, 0, 0); }
+	const char* getName() const override { return "TriangleSoup"; }
+
+	btAlignedObjectArray<btVector3> m_vertices;
+	btVector3 m_scaling;
+	mutable int m_reported;
+};
+
+// A 4 x 4 floor at y = 0 of two triangles, plus a far-away triangle that must never be visited.
+void buildFloor(TriangleSoupShape& soup)
+{
+	soup.addTriangle(btVector3(-2, 0, -2), btVector3(-2, 0, 2), btVector3(2, 0, 2));
+	soup.addTriangle(btVector3(-2, 0, -2), btVector3(2, 0, 2), btVector3(2, 0, -2));
+	soup.addTriangle(btVector3(50, 0, 50), btVector3(51, 0, 50), btVector3(50, 0, 51));
+}
+
+// Float noise of GJK/EPA on unit-sized shapes.
+const btScalar kTolerance = btScalar(1e-3);
+}  // namespace
+
+TEST(ConvexConcaveAlgorithm, SphereOnMeshTouchesTheRightTriangle)
+{
+	btDefaultCollisionConfiguration config;
+	TestDispatcher dispatcher(&config);
+	TriangleSoupShape floor;
+	buildFloor(floor);
+	btSphereShape sphere(btScalar(0.5));
+	// Centre over triangle 0 (x < z side of the diagonal), 0.01 into the floor.
+	const btTransform sphereTransform(btQuaternion::getIdentity(), btVector3(-1, btScalar(0.49), 1));
+	for (int order = 0; order < 2; ++order)
+	{
+		floor.m_reported = 0;
+		PairFixture pair(dispatcher, order == 0 ? static_cast<btCollisionShape*>(&sphere) : &floor,
+		                 order == 0 ? sphereTransform : btTransform::getIdentity(),
+		                 order == 0 ? static_cast<btCollisionShape*>(&floor) : &sphere,
+		                 order == 0 ? btTransform::getIdentity() : sphereTransform);
+		btPersistentManifold* manifold = pair.process();
+		ASSERT_NE(manifold, nullptr);
+		ASSERT_EQ(manifold->getNumContacts(), 1) << "order " << order;
+		EXPECT_EQ(manifold->getBody0(), order == 0 ? &pair.m_object0 : &pair.m_object1) << "manifold is (convex, mesh)";
+		const btManifoldPoint& pt = manifold->getContactPoint(0);
+		EXPECT_NEAR(pt.getDistance(), -0.01, kTolerance);
+		EXPECT_TRUE(vectorsNear(pt.m_normalWorldOnB, btVector3(0, 1, 0), kTolerance));
+		EXPECT_TRUE(vectorsNear(pt.getPositionWorldOnB(), btVector3(-1, 0, 1), kTolerance));
+		EXPECT_EQ(pt.m_index1, 0) << "triangle index on the mesh side";
+		EXPECT_EQ(pt.m_partId1, 0);
+		EXPECT_LE(floor.m_reported, 2) << "the far triangle is outside the sphere's AABB";
+	}
+}
+
+TEST(ConvexConcaveAlgorithm, BoxOnMeshRestsAtItsDepth)
+{
+	btDefaultCollisionConfiguration config;
+	TestDispatcher dispatcher(&config);
+	TriangleSoupShape floor;
+	buildFloor(floor);
+	btBoxShape box(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
+	PairFixture pair(dispatcher, &box,
+	                 btTransform(btQuaternion::getIdentity(), btVector3(btScalar(0.3), btScalar(0.49), btScalar(-0.8))),
+	                 &floor, btTransform::getIdentity());
+	btPersistentManifold* manifold = 0;
+	for (int frame = 0; frame < 3; ++frame) manifold = pair.process();
+	ASSERT_GE(manifold->getNumContacts(), 1);
+	for (int i = 0; i < manifold->getNumContacts(); ++i)
+	{
+		EXPECT_NEAR(manifold->getContactPoint(i).getDistance(), -0.01, kTolerance);
+		EXPECT_TRUE(vectorsNear(manifold->getContactPoint(i).m_normalWorldOnB, btVector3(0, 1, 0), kTolerance));
+	}
+}
+
+TEST(ConvexConcaveAlgorithm, SeparatedConvexHasNoPointsAndAllocatesNothingPerFrame)
+{
+	btDefaultCollisionConfiguration config;
+	TestDispatcher dispatcher(&config);
+	TriangleSoupShape floor;
+	buildFloor(floor);
+	btSphereShape sphere(btScalar(0.5));
+	PairFixture pair(dispatcher, &sphere, btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(0.49), 0)),
+	                 &floor, btTransform::getIdentity());
+	pair.process();
+	const int freeAlgorithms = config.getCollisionAlgorithmPool()->getFreeCount();
+	const int freeManifolds = config.getPersistentManifoldPool()->getFreeCount();
+	for (int frame = 0; frame < 5; ++frame) pair.process();
+	EXPECT_EQ(config.getCollisionAlgorithmPool()->getFreeCount(), freeAlgorithms);
+	EXPECT_EQ(config.getPersistentManifoldPool()->getFreeCount(), freeManifolds);
+	pair.m_object0.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, 3, 0)));
+	EXPECT_EQ(pair.process()->getNumContacts(), 0);
+}
