@@ -310,7 +310,7 @@ TEST(BvhRefitTest, ZeroAreaTrianglesAreKeptAndReported)
 TEST(BvhRefitTest, NanVertexTriangleIsSkippedAndExcludedFromAabb)
 {
 	std::vector<btVector3> vertices = {btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 1, 0),
-	                                   btVector3(SIMD_INFINITY, 0, 0), btVector3(btScalar(NAN), 5, 5)};
+	                                   btVector3(SIMD_INFINITY * 2, 0, 0), btVector3(btScalar(NAN), 5, 5)};
 	std::vector<int> indices = {0, 1, 2, 0, 1, 3, 4, 1, 2};
 	TestMesh mesh;
 	mesh.addPart(vertices, indices);
