@@ -99,7 +99,8 @@ caliber_run_demos() {
 		echo
 		echo "----- $(basename "$demo") -----"
 		start=$SECONDS
-		"$demo"
+		# From the build directory, so that files a demo writes (raytracer.ppm) stay out of the sources.
+		(cd "$CALIBER_ROOT/$1" && "$demo")
 		echo "----- $(basename "$demo") finished in $((SECONDS - start))s -----"
 		count=$((count + 1))
 	done <"$list"

@@ -3,9 +3,9 @@
 #define BULLET_COLLISION_COMMON_H
 
 /// Everything a collision-detection program needs, in one include (as with Bullet).
-/// It brings the LinearMath layer, every collision shape, the collision objects, the default
-/// collision configuration and the narrowphase queries; the broadphases, the dispatcher and the
-/// collision world join here as they land.
+/// It brings the LinearMath layer, every collision shape, the collision objects and world, the
+/// default collision configuration and dispatcher, the broadphases and the narrowphase queries.
+/// Ghost objects (btGhostObject.h) and the internal-edge utility are included separately, as in Bullet.
 
 #include "LinearMath/btScalar.h"
 #include "LinearMath/btVector3.h"
@@ -40,6 +40,9 @@
 #include "BulletCollision/CollisionShapes/btConvexPointCloudShape.h"
 
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+#include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
+#include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "BulletCollision/CollisionDispatch/btCollisionCreateFunc.h"
@@ -47,6 +50,10 @@
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
 #include "BulletCollision/BroadphaseCollision/btDispatcher.h"
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
+#include "BulletCollision/BroadphaseCollision/btBroadphaseInterface.h"
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/BroadphaseCollision/btSimpleBroadphase.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"

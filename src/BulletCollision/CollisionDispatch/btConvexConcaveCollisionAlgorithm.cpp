@@ -6,7 +6,43 @@
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "BulletCollision/CollisionShapes/btConcaveShape.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleShape.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
+#include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
+
+namespace
+{
+// Casts the convex body's CCD swept sphere along its motion against each triangle it reaches, all
+// in the concave body's space; keeps the earliest fraction.
+class SweptSphereTriangleCallback : public btTriangleCallback
+{
+public:
+	SweptSphereTriangleCallback(const btTransform& from, const btTransform& to, btScalar radius, btScalar hitFraction)
+	    : m_from(from), m_to(to), m_sphere(radius), m_hitFraction(hitFraction)
+	{
+	}
+	void processTriangle(btVector3* triangle, int, int) override
+	{
+		btTriangleShape triangleShape(triangle[0], triangle[1], triangle[2]);
+		// The swept sphere's radius is the whole allowance; a triangle margin would add to it.
+		triangleShape.setMargin(btScalar(0));
+		btVoronoiSimplexSolver simplexSolver;
+		btGjkConvexCast cast(&m_sphere, &triangleShape, &simplexSolver);
+		btConvexCast::CastResult result;
+		const btTransform identity = btTransform::getIdentity();
+		if (!cast.calcTimeOfImpact(m_from, m_to, identity, identity, result)) return;
+		if (result.m_fraction >= btScalar(0) && result.m_fraction < m_hitFraction) m_hitFraction = result.m_fraction;
+	}
+	btScalar hitFraction() const { return m_hitFraction; }
+
+private:
+	btTransform m_from;
+	btTransform m_to;
+	btSphereShape m_sphere;
+	btScalar m_hitFraction;
+};
+}  // namespace
 
 btConvexTriangleCallback::btConvexTriangleCallback(btDispatcher* dispatcher, const btCollisionObjectWrapper* body0Wrap,
                                                    const btCollisionObjectWrapper* body1Wrap, bool isSwapped)
@@ -37,10 +73,13 @@ btConvexTriangleCallback::~btConvexTriangleCallback()
 		m_dispatcher->freeCollisionAlgorithm(m_triangleAlgorithm);
 	}
 	clearCache();
-	m_dispatcher->releaseManifold(m_manifoldPtr);
+	if (m_manifoldPtr) m_dispatcher->releaseManifold(m_manifoldPtr);
 }
 
-void btConvexTriangleCallback::clearCache() { m_dispatcher->clearManifold(m_manifoldPtr); }
+void btConvexTriangleCallback::clearCache()
+{
+	if (m_manifoldPtr) m_dispatcher->clearManifold(m_manifoldPtr);
+}
 
 void btConvexTriangleCallback::setTimeStepAndCounters(btScalar collisionMarginTriangle,
                                                       const btDispatcherInfo& dispatchInfo,
@@ -130,8 +169,9 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
                                                          const btDispatcherInfo& dispatchInfo,
                                                          btManifoldResult* resultOut)
 {
-	if (!resultOut) return;
 	btPersistentManifold* manifold = m_btConvexTriangleCallback.m_manifoldPtr;
+	// A full manifold pool without dynamic allocation gives none: the pair is skipped.
+	if (!resultOut || !manifold) return;
 	resultOut->setPersistentManifold(manifold);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{
@@ -153,8 +193,42 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	m_btConvexTriangleCallback.clearWrapperData();
 }
 
-btScalar btConvexConcaveCollisionAlgorithm::calculateTimeOfImpact(btCollisionObject*, btCollisionObject*,
+btScalar btConvexConcaveCollisionAlgorithm::calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1,
                                                                   const btDispatcherInfo&, btManifoldResult*)
 {
-	return btScalar(1);
+	const btScalar noHit = btScalar(1);
+	btCollisionObject* convexBody = m_isSwapped ? body1 : body0;
+	btCollisionObject* triBody = m_isSwapped ? body0 : body1;
+	if (!convexBody || !triBody || !triBody->getCollisionShape() || !triBody->getCollisionShape()->isConcave())
+		return noHit;
+	// Only the convex body's motion is swept: the concave side is static or kinematic in Bullet's CCD.
+	const btScalar motion =
+	    (convexBody->getInterpolationWorldTransform().getOrigin() - convexBody->getWorldTransform().getOrigin())
+	        .length2();
+	if (!(motion >= convexBody->getCcdSquareMotionThreshold())) return noHit;
+	if (!caliberIsFinite(convexBody->getWorldTransform()) ||
+	    !caliberIsFinite(convexBody->getInterpolationWorldTransform()) || !caliberIsFinite(triBody->getWorldTransform()))
+		return noHit;
+
+	const btTransform worldToMesh = triBody->getWorldTransform().inverse();
+	const btTransform from = worldToMesh * convexBody->getWorldTransform();
+	const btTransform to = worldToMesh * convexBody->getInterpolationWorldTransform();
+	// Only the triangles near the sweep matter: the box around the path grown by the sphere.
+	const btScalar radius = convexBody->getCcdSweptSphereRadius();
+	btVector3 sweepMin = from.getOrigin();
+	btVector3 sweepMax = from.getOrigin();
+	sweepMin.setMin(to.getOrigin());
+	sweepMax.setMax(to.getOrigin());
+	const btVector3 grow(radius, radius, radius);
+	sweepMin -= grow;
+	sweepMax += grow;
+
+	SweptSphereTriangleCallback sweep(from, to, radius, convexBody->getHitFraction());
+	static_cast<btConcaveShape*>(triBody->getCollisionShape())->processAllTriangles(&sweep, sweepMin, sweepMax);
+	if (sweep.hitFraction() < convexBody->getHitFraction())
+	{
+		convexBody->setHitFraction(sweep.hitFraction());
+		return sweep.hitFraction();
+	}
+	return noHit;
 }

@@ -149,6 +149,8 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		if (!m_dispatcher) return;
 		m_manifoldPtr = m_dispatcher->getNewManifold(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
+		// A full manifold pool without dynamic allocation gives none: the pair is skipped this step.
+		if (!m_manifoldPtr) return;
 		m_ownManifold = true;
 	}
 	resultOut->setPersistentManifold(m_manifoldPtr);

@@ -1,0 +1,432 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// btDbvtBroadphase: two btDbvt trees, fat boxes, pair search only for proxies whose box changed.
+//
+// The invariant kept by collide(): the cache holds exactly the filtered pairs whose tree boxes overlap.
+// A pair's status can only change when one of its two boxes changes, and every box change queues the
+// proxy (stage DYNAMIC_SET / FIXED_SET). collide() therefore (1) queries both trees with each queued
+// proxy's box and adds what it finds, (2) drops the pairs of queued proxies whose boxes no longer
+// overlap, and (3) marks the queued proxies up to date. Pairs of two proxies that did not move are
+// neither searched nor checked.
+
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
+
+#include <cstdio>
+#include <new>
+
+#include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
+#include "BulletCollision/CollisionShapes/btShapeGuards.h"
+#include "LinearMath/btAabbUtil2.h"
+#include "LinearMath/btAlignedAllocator.h"
+
+btScalar gDbvtMargin = btScalar(0.05);
+
+namespace
+{
+// Levels above its old place from which a moved dynamic leaf is re-inserted (see the constructor).
+const int kDynamicLookahead = 4;
+
+SIMD_FORCE_INLINE btDbvtProxy* proxyOfLeaf(const btDbvtNode* leaf) { return static_cast<btDbvtProxy*>(leaf->data); }
+
+SIMD_FORCE_INLINE bool isPending(const btDbvtProxy* proxy) { return proxy->stage != btDbvtBroadphase::STAGECOUNT; }
+
+// Tree query policy of the pair search: adds (proxy, other) for every leaf the query box overlaps. When
+// both proxies are pending, both searches find the pair; only the one with the lower id adds it.
+struct PairSearchPolicy
+{
+	btDbvtProxy* proxy;
+	btOverlappingPairCache* cache;
+
+	void Process(const btDbvtNode* leaf)
+	{
+		btDbvtProxy* other = proxyOfLeaf(leaf);
+		if (other == proxy) return;
+		if (isPending(other) && other->m_uniqueId < proxy->m_uniqueId) return;
+		cache->addOverlappingPair(proxy, other);
+	}
+};
+
+// Removes pairs with a pending proxy whose boxes separated.
+struct StalePairRemover : public btOverlapCallback
+{
+	bool onlyPending;
+
+	bool processOverlap(btBroadphasePair& pair) override
+	{
+		const btDbvtProxy* proxy0 = static_cast<const btDbvtProxy*>(pair.m_pProxy0);
+		const btDbvtProxy* proxy1 = static_cast<const btDbvtProxy*>(pair.m_pProxy1);
+		if (onlyPending && !isPending(proxy0) && !isPending(proxy1)) return false;
+		return !Intersect(proxy0->leaf->volume, proxy1->leaf->volume);
+	}
+};
+
+// aabbTest: the trees prune with the fat boxes; the proxy's own AABB decides.
+struct AabbQueryPolicy
+{
+	btVector3 queryMin;
+	btVector3 queryMax;
+	btBroadphaseAabbCallback* callback;
+
+	void Process(const btDbvtNode* leaf)
+	{
+		const btDbvtProxy* proxy = proxyOfLeaf(leaf);
+		if (TestAabbAgainstAabb2(queryMin, queryMax, proxy->m_aabbMin, proxy->m_aabbMax)) callback->process(proxy);
+	}
+};
+
+// rayTest: as above, with the ray slab test against the proxy's AABB grown by the swept box. The callback's
+// m_lambda_max is read for every proxy, so a closest-hit callback that shortens the ray prunes the rest.
+struct RayQueryPolicy
+{
+	btVector3 rayFrom;
+	btVector3 sweptMin;
+	btVector3 sweptMax;
+	btBroadphaseRayCallback* callback;
+
+	void Process(const btDbvtNode* leaf)
+	{
+		const btDbvtProxy* proxy = proxyOfLeaf(leaf);
+		const btVector3 bounds[2] = {proxy->m_aabbMin - sweptMax, proxy->m_aabbMax - sweptMin};
+		btScalar tmin;
+		if (btRayAabb2(rayFrom, callback->m_rayDirectionInverse, callback->m_signs, bounds, tmin, btScalar(0),
+		               callback->m_lambda_max))
+		{
+			callback->process(proxy);
+		}
+	}
+};
+
+bool finiteAabb(const btVector3& aabbMin, const btVector3& aabbMax)
+{
+	return caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+}
+}  // namespace
+
+btDbvtBroadphase::btDbvtBroadphase(btOverlappingPairCache* paircache)
+    : m_paircache(paircache),
+      m_prediction(btScalar(1)),
+      m_stageCurrent(0),
+      m_fupdates(1),
+      m_dupdates(1),
+      m_cupdates(10),
+      m_newpairs(0),
+      m_fixedleft(0),
+      m_updates_call(0),
+      m_updates_done(0),
+      m_updates_ratio(0),
+      m_pid(0),
+      m_cid(0),
+      m_gid(0),
+      m_releasepaircache(paircache == 0),
+      m_deferedcollide(false),
+      m_needcleanup(false)
+{
+	if (!m_paircache)
+	{
+		void* memory = btAlignedAlloc(sizeof(btHashedOverlappingPairCache), 16);
+		m_paircache = new (memory) btHashedOverlappingPairCache();
+	}
+	for (int i = 0; i <= STAGECOUNT; ++i) m_stageRoots[i] = 0;
+	m_rayTestStacks.resize(1);
+	// A moved leaf is re-inserted from a few levels above its old place: a moving object rarely goes far
+	// in one step, and a search of that subtree costs a fraction of a search from the root (10,000 moving
+	// boxes: about half the step time). The incremental optimisation repairs what this misses.
+	m_sets[DYNAMIC_SET].m_lkhd = kDynamicLookahead;
+}
+
+btDbvtBroadphase::~btDbvtBroadphase()
+{
+	// Proxies the user did not destroy are freed here (their pairs die with the cache or stay in a cache
+	// the user owns, as in Bullet).
+	for (int stage = 0; stage <= STAGECOUNT; ++stage)
+	{
+		btDbvtProxy* proxy = m_stageRoots[stage];
+		while (proxy)
+		{
+			btDbvtProxy* next = proxy->links[1];
+			proxy->~btDbvtProxy();
+			btAlignedFree(proxy);
+			proxy = next;
+		}
+		m_stageRoots[stage] = 0;
+	}
+	if (m_releasepaircache)
+	{
+		m_paircache->~btOverlappingPairCache();
+		btAlignedFree(m_paircache);
+	}
+}
+
+void btDbvtBroadphase::linkProxy(btDbvtProxy* proxy, int stage)
+{
+	proxy->stage = stage;
+	proxy->links[0] = 0;
+	proxy->links[1] = m_stageRoots[stage];
+	if (m_stageRoots[stage]) m_stageRoots[stage]->links[0] = proxy;
+	m_stageRoots[stage] = proxy;
+}
+
+void btDbvtBroadphase::unlinkProxy(btDbvtProxy* proxy)
+{
+	if (proxy->links[0])
+		proxy->links[0]->links[1] = proxy->links[1];
+	else
+		m_stageRoots[proxy->stage] = proxy->links[1];
+	if (proxy->links[1]) proxy->links[1]->links[0] = proxy->links[0];
+	proxy->links[0] = proxy->links[1] = 0;
+}
+
+void btDbvtBroadphase::moveLeaf(btDbvtProxy* proxy, btDbvtVolume& box)
+{
+	m_sets[proxy->set].update(proxy->leaf, box);
+	if (proxy->set == FIXED_SET) ++m_fixedleft;
+	if (!isPending(proxy))
+	{
+		unlinkProxy(proxy);
+		linkProxy(proxy, proxy->set);
+	}
+	m_needcleanup = true;
+}
+
+btBroadphaseProxy* btDbvtBroadphase::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int shapeType,
+                                                 void* userPtr, int collisionFilterGroup, int collisionFilterMask,
+                                                 btDispatcher* dispatcher)
+{
+	(void)shapeType;
+	(void)dispatcher;
+	const bool finite = finiteAabb(aabbMin, aabbMax);
+	btAssert(finite && "btDbvtBroadphase::createProxy: non-finite AABB");
+	if (!finite) return 0;
+	void* memory = btAlignedAlloc(sizeof(btDbvtProxy), 16);
+	btDbvtProxy* proxy = new (memory) btDbvtProxy(aabbMin, aabbMax, userPtr, collisionFilterGroup, collisionFilterMask);
+	proxy->m_uniqueId = ++m_gid;
+	proxy->set = (collisionFilterGroup & btBroadphaseProxy::StaticFilter) ? FIXED_SET : DYNAMIC_SET;
+	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
+	// Moving proxies start with the margin (their first small move then costs nothing); static ones get
+	// their exact box, which keeps the fixed tree tight.
+	if (proxy->set == DYNAMIC_SET)
+		box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
+	else
+		++m_fixedleft;
+	proxy->leaf = m_sets[proxy->set].insert(box, proxy);
+	linkProxy(proxy, proxy->set);
+	m_needcleanup = true;
+	return proxy;
+}
+
+void btDbvtBroadphase::destroyProxy(btBroadphaseProxy* absproxy, btDispatcher* dispatcher)
+{
+	if (!absproxy) return;
+	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	m_sets[proxy->set].remove(proxy->leaf);
+	unlinkProxy(proxy);
+	m_paircache->removeOverlappingPairsContainingProxy(proxy, dispatcher);
+	proxy->~btDbvtProxy();
+	btAlignedFree(proxy);
+}
+
+void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax,
+                               btDispatcher* dispatcher)
+{
+	(void)dispatcher;
+	btAssert(absproxy && "btDbvtBroadphase::setAabb: null proxy");
+	if (!absproxy) return;
+	const bool finite = finiteAabb(aabbMin, aabbMax);
+	btAssert(finite && "btDbvtBroadphase::setAabb: non-finite AABB");
+	if (!finite) return;
+	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	++m_updates_call;
+	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
+	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
+	proxy->m_aabbMin = aabbMin;
+	proxy->m_aabbMax = aabbMax;
+	if (proxy->leaf->volume.Contain(box)) return;  // still inside its fat box: pairs cannot change
+	++m_updates_done;
+	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
+	box.SignedExpand(displacement * m_prediction);
+	moveLeaf(proxy, box);
+}
+
+void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,
+                                          const btVector3& aabbMax, btDispatcher* dispatcher)
+{
+	(void)dispatcher;
+	btAssert(absproxy && "btDbvtBroadphase::setAabbForceUpdate: null proxy");
+	if (!absproxy) return;
+	const bool finite = finiteAabb(aabbMin, aabbMax);
+	btAssert(finite && "btDbvtBroadphase::setAabbForceUpdate: non-finite AABB");
+	if (!finite) return;
+	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	proxy->m_aabbMin = aabbMin;
+	proxy->m_aabbMax = aabbMax;
+	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
+	moveLeaf(proxy, box);
+}
+
+void btDbvtBroadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const
+{
+	btAssert(proxy && "btDbvtBroadphase::getAabb: null proxy");
+	if (!proxy)
+	{
+		aabbMin.setValue(0, 0, 0);
+		aabbMax.setValue(0, 0, 0);
+		return;
+	}
+	aabbMin = proxy->m_aabbMin;
+	aabbMax = proxy->m_aabbMax;
+}
+
+void btDbvtBroadphase::searchPairs(btDbvtProxy* proxy)
+{
+	PairSearchPolicy policy;
+	policy.proxy = proxy;
+	policy.cache = m_paircache;
+	const btDbvtVolume& box = proxy->leaf->volume;
+	m_sets[DYNAMIC_SET].collideTVNoStackAlloc(m_sets[DYNAMIC_SET].m_root, box, m_queryStack, policy);
+	m_sets[FIXED_SET].collideTVNoStackAlloc(m_sets[FIXED_SET].m_root, box, m_queryStack, policy);
+}
+
+void btDbvtBroadphase::collide(btDispatcher* dispatcher)
+{
+	if (m_needcleanup)
+	{
+		const int pairsBefore = m_paircache->getNumOverlappingPairs();
+		for (int stage = DYNAMIC_SET; stage < STAGECOUNT; ++stage)
+		{
+			for (btDbvtProxy* proxy = m_stageRoots[stage]; proxy; proxy = proxy->links[1]) searchPairs(proxy);
+		}
+		m_newpairs = m_paircache->getNumOverlappingPairs() - pairsBefore;
+		if (pairsBefore > 0)
+		{
+			// Pairs found above overlap by construction; only older pairs of moved proxies can be stale.
+			StalePairRemover remover;
+			remover.onlyPending = true;
+			m_paircache->processAllOverlappingPairs(&remover, dispatcher);
+		}
+		for (int stage = DYNAMIC_SET; stage < STAGECOUNT; ++stage)
+		{
+			while (btDbvtProxy* proxy = m_stageRoots[stage])
+			{
+				unlinkProxy(proxy);
+				linkProxy(proxy, STAGECOUNT);
+			}
+		}
+		m_needcleanup = false;
+	}
+	else
+	{
+		m_newpairs = 0;
+	}
+
+	// A few re-insertions per step keep the dynamic tree close to what a rebuild would give as objects
+	// drift; the fixed tree only needs them after it changed.
+	const int dynamicPasses = 1 + (m_sets[DYNAMIC_SET].m_leaves * m_dupdates) / 100;
+	if (m_sets[DYNAMIC_SET].m_leaves > 1)
+	{
+		m_sets[DYNAMIC_SET].optimizeIncremental(dynamicPasses);
+		m_pid += dynamicPasses;
+	}
+	if (m_fixedleft > 0 && m_sets[FIXED_SET].m_leaves > 1)
+	{
+		const int fixedPasses = btMin(m_fixedleft, 1 + (m_sets[FIXED_SET].m_leaves * m_fupdates) / 100);
+		m_sets[FIXED_SET].optimizeIncremental(fixedPasses);
+		m_fixedleft -= fixedPasses;
+		m_pid += fixedPasses;
+	}
+	else
+	{
+		m_fixedleft = 0;
+	}
+
+	m_updates_ratio = m_updates_call > 0 ? btScalar(m_updates_done) / btScalar(m_updates_call) : btScalar(0);
+	m_updates_call = 0;
+	m_updates_done = 0;
+	++m_stageCurrent;
+}
+
+void btDbvtBroadphase::calculateOverlappingPairs(btDispatcher* dispatcher) { collide(dispatcher); }
+
+void btDbvtBroadphase::performDeferredRemoval(btDispatcher* dispatcher)
+{
+	if (m_paircache->getNumOverlappingPairs() == 0) return;
+	StalePairRemover remover;
+	remover.onlyPending = false;
+	m_paircache->processAllOverlappingPairs(&remover, dispatcher);
+}
+
+void btDbvtBroadphase::optimize()
+{
+	m_sets[DYNAMIC_SET].optimizeTopDown();
+	m_sets[FIXED_SET].optimizeTopDown();
+}
+
+void btDbvtBroadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
+                               const btVector3& aabbMin, const btVector3& aabbMax)
+{
+	RayQueryPolicy policy;
+	policy.rayFrom = rayFrom;
+	policy.sweptMin = aabbMin;
+	policy.sweptMax = aabbMax;
+	policy.callback = &rayCallback;
+	btAlignedObjectArray<const btDbvtNode*>& stack = m_rayTestStacks[0];
+	for (int set = DYNAMIC_SET; set <= FIXED_SET; ++set)
+	{
+		m_sets[set].rayTestInternal(m_sets[set].m_root, rayFrom, rayTo, rayCallback.m_rayDirectionInverse,
+		                            rayCallback.m_signs, rayCallback.m_lambda_max, aabbMin, aabbMax, stack, policy);
+	}
+}
+
+void btDbvtBroadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, btBroadphaseAabbCallback& callback)
+{
+	AabbQueryPolicy policy;
+	policy.queryMin = aabbMin;
+	policy.queryMax = aabbMax;
+	policy.callback = &callback;
+	const btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
+	for (int set = DYNAMIC_SET; set <= FIXED_SET; ++set)
+		m_sets[set].collideTVNoStackAlloc(m_sets[set].m_root, box, m_queryStack, policy);
+}
+
+void btDbvtBroadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const
+{
+	const btDbvtNode* dynamicRoot = m_sets[DYNAMIC_SET].m_root;
+	const btDbvtNode* fixedRoot = m_sets[FIXED_SET].m_root;
+	btDbvtVolume bounds;
+	if (dynamicRoot && fixedRoot)
+		Merge(dynamicRoot->volume, fixedRoot->volume, bounds);
+	else if (dynamicRoot)
+		bounds = dynamicRoot->volume;
+	else if (fixedRoot)
+		bounds = fixedRoot->volume;
+	else
+		bounds = btDbvtVolume::FromCR(btVector3(0, 0, 0), 0);
+	aabbMin = bounds.Mins();
+	aabbMax = bounds.Maxs();
+}
+
+void btDbvtBroadphase::resetPool(btDispatcher* dispatcher)
+{
+	(void)dispatcher;
+	if (m_sets[DYNAMIC_SET].m_leaves + m_sets[FIXED_SET].m_leaves != 0) return;
+	m_sets[DYNAMIC_SET].clear();
+	m_sets[FIXED_SET].clear();
+	m_sets[DYNAMIC_SET].m_lkhd = kDynamicLookahead;  // clear() restores the tree's default
+	for (int i = 0; i <= STAGECOUNT; ++i) m_stageRoots[i] = 0;
+	m_stageCurrent = 0;
+	m_newpairs = 0;
+	m_fixedleft = 0;
+	m_updates_call = 0;
+	m_updates_done = 0;
+	m_updates_ratio = 0;
+	m_pid = 0;
+	m_cid = 0;
+	m_gid = 0;
+	m_needcleanup = false;
+}
+
+void btDbvtBroadphase::printStats()
+{
+	std::printf("btDbvtBroadphase: %d dynamic (depth %d), %d fixed (depth %d), %d pairs, update ratio %.3f\n",
+	            m_sets[DYNAMIC_SET].m_leaves, btDbvt::maxdepth(m_sets[DYNAMIC_SET].m_root), m_sets[FIXED_SET].m_leaves,
+	            btDbvt::maxdepth(m_sets[FIXED_SET].m_root), m_paircache->getNumOverlappingPairs(),
+	            double(m_updates_ratio));
+}

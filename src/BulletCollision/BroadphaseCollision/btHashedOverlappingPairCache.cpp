@@ -1,0 +1,225 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// btHashedOverlappingPairCache: pairs contiguous in one array, indexed by an open-addressing table.
+//
+// The table holds pair indices; m_pairKeys mirrors the pair array with each pair's 64-bit id key, so a
+// probe compares keys in one contiguous array and never dereferences proxies. Linear probing with
+// backward-shift deletion keeps every chain gap-free without tombstones, so a long-running scene that
+// adds and removes pairs forever never needs a cleanup rehash. The load factor stays at or below 1/2.
+
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+
+#include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
+
+namespace
+{
+const int kInitialTableSlots = 16;
+
+// Multiplicative hashing: the golden-ratio constant spreads consecutive ids over the whole word, and
+// folding the high half down lets a small power-of-two mask see all of it.
+SIMD_FORCE_INLINE int homeSlot(unsigned long long key, int mask)
+{
+	unsigned long long h = key * 0x9E3779B97F4A7C15ULL;
+	h ^= h >> 32;
+	return static_cast<int>(h & static_cast<unsigned long long>(mask));
+}
+
+// Ascending (proxy0 id, proxy1 id), the order sortOverlappingPairs promises.
+struct PairIdLess
+{
+	bool operator()(const btBroadphasePair& a, const btBroadphasePair& b) const
+	{
+		return caliberPairKey(a.m_pProxy0, a.m_pProxy1) < caliberPairKey(b.m_pProxy0, b.m_pProxy1);
+	}
+};
+}  // namespace
+
+btHashedOverlappingPairCache::btHashedOverlappingPairCache() : m_overlapFilterCallback(0), m_ghostPairCallback(0)
+{
+	rebuildTable(kInitialTableSlots);
+}
+
+btHashedOverlappingPairCache::~btHashedOverlappingPairCache() {}
+
+bool btHashedOverlappingPairCache::needsBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const
+{
+	return caliberNeedsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
+}
+
+void btHashedOverlappingPairCache::rebuildTable(int minSlots)
+{
+	int slots = kInitialTableSlots;
+	while (slots < minSlots) slots <<= 1;
+	m_hashTable.resizeNoInitialize(slots);
+	for (int i = 0; i < slots; ++i) m_hashTable[i] = BT_NULL_PAIR;
+	const int mask = slots - 1;
+	for (int index = 0; index < m_pairKeys.size(); ++index)
+	{
+		int slot = homeSlot(m_pairKeys[index], mask);
+		while (m_hashTable[slot] != BT_NULL_PAIR) slot = (slot + 1) & mask;
+		m_hashTable[slot] = index;
+	}
+}
+
+int btHashedOverlappingPairCache::findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0,
+                                                const btBroadphaseProxy* proxy1) const
+{
+	const int mask = m_hashTable.size() - 1;
+	for (int slot = homeSlot(key, mask);; slot = (slot + 1) & mask)
+	{
+		const int index = m_hashTable[slot];
+		if (index == BT_NULL_PAIR) return -1;
+		// Comparing the proxies as well keeps two broadphases that reuse ids from aliasing each other.
+		if (m_pairKeys[index] == key && m_pairs[index].m_pProxy0 == proxy0 && m_pairs[index].m_pProxy1 == proxy1)
+		{
+			return index;
+		}
+	}
+}
+
+int btHashedOverlappingPairCache::findSlotOfPair(int pairIndex) const
+{
+	const int mask = m_hashTable.size() - 1;
+	int slot = homeSlot(m_pairKeys[pairIndex], mask);
+	while (m_hashTable[slot] != pairIndex) slot = (slot + 1) & mask;
+	return slot;
+}
+
+void btHashedOverlappingPairCache::removePairAt(int index)
+{
+	const int mask = m_hashTable.size() - 1;
+	// Backward-shift deletion: pull later entries of the probe run into the hole when their home slot
+	// allows it, so that lookups never stop early at a gap.
+	int hole = findSlotOfPair(index);
+	for (int slot = (hole + 1) & mask; m_hashTable[slot] != BT_NULL_PAIR; slot = (slot + 1) & mask)
+	{
+		const int home = homeSlot(m_pairKeys[m_hashTable[slot]], mask);
+		// The entry may move to the hole when its home is not cyclically inside (hole, slot].
+		const bool homeInside = (hole <= slot) ? (home > hole && home <= slot) : (home > hole || home <= slot);
+		if (!homeInside)
+		{
+			m_hashTable[hole] = m_hashTable[slot];
+			hole = slot;
+		}
+	}
+	m_hashTable[hole] = BT_NULL_PAIR;
+
+	const int last = m_pairs.size() - 1;
+	if (index != last)
+	{
+		m_hashTable[findSlotOfPair(last)] = index;
+		m_pairs[index] = m_pairs[last];
+		m_pairKeys[index] = m_pairKeys[last];
+	}
+	m_pairs.pop_back();
+	m_pairKeys.pop_back();
+}
+
+btBroadphasePair* btHashedOverlappingPairCache::addOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
+{
+	btAssert(proxy0 && proxy1 && proxy0 != proxy1 && "addOverlappingPair: null or identical proxies");
+	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
+	if (!needsBroadphaseCollision(proxy0, proxy1)) return 0;
+	caliberOrderPair(proxy0, proxy1);
+	const unsigned long long key = caliberPairKey(proxy0, proxy1);
+	const int existing = findPairIndex(key, proxy0, proxy1);
+	if (existing >= 0) return &m_pairs[existing];
+
+	if ((m_pairs.size() + 1) * 2 > m_hashTable.size()) rebuildTable(m_hashTable.size() * 2);
+	const int index = m_pairs.size();
+	m_pairs.push_back(btBroadphasePair(*proxy0, *proxy1));
+	m_pairKeys.push_back(key);
+	const int mask = m_hashTable.size() - 1;
+	int slot = homeSlot(key, mask);
+	while (m_hashTable[slot] != BT_NULL_PAIR) slot = (slot + 1) & mask;
+	m_hashTable[slot] = index;
+
+	if (m_ghostPairCallback) m_ghostPairCallback->addOverlappingPair(proxy0, proxy1);
+	return &m_pairs[index];
+}
+
+void* btHashedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1,
+                                                          btDispatcher* dispatcher)
+{
+	btAssert(proxy0 && proxy1 && "removeOverlappingPair: null proxy");
+	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
+	caliberOrderPair(proxy0, proxy1);
+	const unsigned long long key = caliberPairKey(proxy0, proxy1);
+	int index = findPairIndex(key, proxy0, proxy1);
+	if (index < 0) return 0;
+	caliberReleasePairAlgorithm(m_pairs[index], dispatcher);
+	void* userInfo = m_pairs[index].m_internalInfo1;
+	removePairAt(index);
+	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
+	return userInfo;
+}
+
+void btHashedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroadphaseProxy* proxy,
+                                                                         btDispatcher* dispatcher)
+{
+	if (!proxy) return;
+	for (int i = 0; i < m_pairs.size();)
+	{
+		if (caliberPairContains(m_pairs[i], proxy))
+		{
+			// The last pair moves into slot i, so i is examined again.
+			removeOverlappingPair(m_pairs[i].m_pProxy0, m_pairs[i].m_pProxy1, dispatcher);
+		}
+		else
+		{
+			++i;
+		}
+	}
+}
+
+void btHashedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher)
+{
+	caliberReleasePairAlgorithm(pair, dispatcher);
+}
+
+void btHashedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy, btDispatcher* dispatcher)
+{
+	if (!proxy) return;
+	for (int i = 0; i < m_pairs.size(); ++i)
+	{
+		if (caliberPairContains(m_pairs[i], proxy)) caliberReleasePairAlgorithm(m_pairs[i], dispatcher);
+	}
+}
+
+btBroadphasePair* btHashedOverlappingPairCache::findPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
+{
+	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
+	caliberOrderPair(proxy0, proxy1);
+	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
+	return index >= 0 ? &m_pairs[index] : 0;
+}
+
+void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher)
+{
+	if (!callback) return;
+	for (int i = 0; i < m_pairs.size();)
+	{
+		// The callback may add or remove pairs (reallocating or reordering the array), so nothing is held
+		// across the call except the two proxies, and the pair is removed by identity, not by index.
+		btBroadphaseProxy* proxy0 = m_pairs[i].m_pProxy0;
+		btBroadphaseProxy* proxy1 = m_pairs[i].m_pProxy1;
+		if (callback->processOverlap(m_pairs[i])) removeOverlappingPair(proxy0, proxy1, dispatcher);
+		// Slot i holds an unvisited pair when this one left it (the last pair moved in); else move on.
+		if (i < m_pairs.size() && m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) ++i;
+	}
+}
+
+void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher,
+                                                              const btDispatcherInfo& dispatchInfo)
+{
+	if (dispatchInfo.m_deterministicOverlappingPairs) sortOverlappingPairs(dispatcher);
+	processAllOverlappingPairs(callback, dispatcher);
+}
+
+void btHashedOverlappingPairCache::sortOverlappingPairs(btDispatcher* dispatcher)
+{
+	(void)dispatcher;
+	// Sorting in place keeps each pair's algorithm and user info; only the index table changes.
+	m_pairs.quickSort(PairIdLess());
+	for (int i = 0; i < m_pairs.size(); ++i) m_pairKeys[i] = caliberPairKey(m_pairs[i].m_pProxy0, m_pairs[i].m_pProxy1);
+	rebuildTable(m_hashTable.size());
+}

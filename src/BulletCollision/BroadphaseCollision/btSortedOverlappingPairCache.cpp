@@ -1,0 +1,160 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// btSortedOverlappingPairCache: pairs kept in increasing key order, found by binary search.
+
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+
+#include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
+
+btSortedOverlappingPairCache::btSortedOverlappingPairCache()
+    : m_blockedForChanges(false), m_hasDeferredRemoval(true), m_overlapFilterCallback(0), m_ghostPairCallback(0)
+{
+}
+
+btSortedOverlappingPairCache::~btSortedOverlappingPairCache() {}
+
+bool btSortedOverlappingPairCache::needsBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const
+{
+	return caliberNeedsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
+}
+
+int btSortedOverlappingPairCache::lowerBound(unsigned long long key) const
+{
+	int lo = 0;
+	int hi = m_pairKeys.size();
+	while (lo < hi)
+	{
+		const int mid = (lo + hi) >> 1;
+		if (m_pairKeys[mid] < key)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+int btSortedOverlappingPairCache::findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0,
+                                                const btBroadphaseProxy* proxy1) const
+{
+	// Equal keys (proxies of two broadphases sharing ids) sit side by side; the proxies tell them apart.
+	for (int i = lowerBound(key); i < m_pairKeys.size() && m_pairKeys[i] == key; ++i)
+	{
+		if (m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) return i;
+	}
+	return -1;
+}
+
+btBroadphasePair* btSortedOverlappingPairCache::addOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
+{
+	btAssert(proxy0 && proxy1 && proxy0 != proxy1 && "addOverlappingPair: null or identical proxies");
+	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
+	if (!needsBroadphaseCollision(proxy0, proxy1)) return 0;
+	caliberOrderPair(proxy0, proxy1);
+	const unsigned long long key = caliberPairKey(proxy0, proxy1);
+	const int existing = findPairIndex(key, proxy0, proxy1);
+	if (existing >= 0) return &m_pairs[existing];
+
+	const int index = lowerBound(key);
+	const int count = m_pairs.size();
+	m_pairs.push_back(btBroadphasePair());
+	m_pairKeys.push_back(0);
+	for (int i = count; i > index; --i)
+	{
+		m_pairs[i] = m_pairs[i - 1];
+		m_pairKeys[i] = m_pairKeys[i - 1];
+	}
+	m_pairs[index] = btBroadphasePair(*proxy0, *proxy1);
+	m_pairKeys[index] = key;
+
+	if (m_ghostPairCallback) m_ghostPairCallback->addOverlappingPair(proxy0, proxy1);
+	return &m_pairs[index];
+}
+
+void* btSortedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1,
+                                                          btDispatcher* dispatcher)
+{
+	btAssert(proxy0 && proxy1 && "removeOverlappingPair: null proxy");
+	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
+	caliberOrderPair(proxy0, proxy1);
+	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
+	if (index < 0) return 0;
+	caliberReleasePairAlgorithm(m_pairs[index], dispatcher);
+	void* userInfo = m_pairs[index].m_internalInfo1;
+	const int count = m_pairs.size();
+	for (int i = index + 1; i < count; ++i)
+	{
+		m_pairs[i - 1] = m_pairs[i];
+		m_pairKeys[i - 1] = m_pairKeys[i];
+	}
+	m_pairs.pop_back();
+	m_pairKeys.pop_back();
+	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
+	return userInfo;
+}
+
+void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroadphaseProxy* proxy,
+                                                                         btDispatcher* dispatcher)
+{
+	if (!proxy) return;
+	// One compaction pass instead of one O(n) shift per removed pair. The ghost callback is told after
+	// the array is consistent again.
+	int kept = 0;
+	const int count = m_pairs.size();
+	for (int i = 0; i < count; ++i)
+	{
+		if (caliberPairContains(m_pairs[i], proxy))
+		{
+			caliberReleasePairAlgorithm(m_pairs[i], dispatcher);
+			continue;
+		}
+		if (kept != i)
+		{
+			btSwap(m_pairs[kept], m_pairs[i]);
+			btSwap(m_pairKeys[kept], m_pairKeys[i]);
+		}
+		++kept;
+	}
+	// Swapping (not copying) keeps the kept pairs in order and gathers the removed ones after them.
+	for (int i = kept; i < count; ++i)
+	{
+		if (m_ghostPairCallback)
+			m_ghostPairCallback->removeOverlappingPair(m_pairs[i].m_pProxy0, m_pairs[i].m_pProxy1, dispatcher);
+	}
+	m_pairs.resize(kept);
+	m_pairKeys.resize(kept);
+}
+
+void btSortedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher)
+{
+	caliberReleasePairAlgorithm(pair, dispatcher);
+}
+
+void btSortedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy, btDispatcher* dispatcher)
+{
+	if (!proxy) return;
+	for (int i = 0; i < m_pairs.size(); ++i)
+	{
+		if (caliberPairContains(m_pairs[i], proxy)) caliberReleasePairAlgorithm(m_pairs[i], dispatcher);
+	}
+}
+
+btBroadphasePair* btSortedOverlappingPairCache::findPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
+{
+	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
+	caliberOrderPair(proxy0, proxy1);
+	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
+	return index >= 0 ? &m_pairs[index] : 0;
+}
+
+void btSortedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher)
+{
+	if (!callback) return;
+	for (int i = 0; i < m_pairs.size();)
+	{
+		// As in the hashed cache: the callback may change the array, so the pair is removed by identity
+		// and index i is visited again when its pair left (the next pair shifted down into it).
+		btBroadphaseProxy* proxy0 = m_pairs[i].m_pProxy0;
+		btBroadphaseProxy* proxy1 = m_pairs[i].m_pProxy1;
+		if (callback->processOverlap(m_pairs[i])) removeOverlappingPair(proxy0, proxy1, dispatcher);
+		if (i < m_pairs.size() && m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) ++i;
+	}
+}

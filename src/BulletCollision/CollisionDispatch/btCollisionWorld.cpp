@@ -1,0 +1,238 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+
+#include <cstdio>
+
+#include "BulletCollision/CollisionShapes/btCollisionShape.h"
+#include "BulletCollision/CollisionShapes/btShapeGuards.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "LinearMath/btIDebugDraw.h"
+#include "LinearMath/btQuickprof.h"
+
+// The world's bookkeeping: objects, proxies, AABBs and the discrete collision step. The queries live in
+// btCollisionWorldRayTest.cpp, btCollisionWorldConvexSweep.cpp and btCollisionWorldContactTest.cpp, debug
+// drawing in btCollisionWorldDebugDraw.cpp.
+
+namespace
+{
+// Squared AABB diagonal above which a moving object is taken out of the simulation (Bullet's limit: a
+// box a million units across has left any sensible scene, and broadphases lose precision there).
+const btScalar kMaxAabbExtentSquared = btScalar(1e12);
+
+// True when index names collisionObject in objects (the O(1) membership test the world array index allows).
+bool isInWorldArray(const btAlignedObjectArray<btCollisionObject*>& objects, const btCollisionObject* collisionObject)
+{
+	const int index = collisionObject->getWorldArrayIndex();
+	return index >= 0 && index < objects.size() && objects[index] == collisionObject;
+}
+
+// The object's world AABB as the broadphase keeps it: the shape's AABB grown by the contact breaking
+// threshold (so that contacts are found just before touching). Returns false when the transform or the
+// resulting box is not finite (the box is then left unusable).
+bool computeBroadphaseAabb(const btCollisionObject* colObj, bool useContinuous, btVector3& aabbMin, btVector3& aabbMax)
+{
+	const btTransform& worldTransform = colObj->getWorldTransform();
+	if (!caliberIsFinite(worldTransform)) return false;
+	const btCollisionShape* shape = colObj->getCollisionShape();
+	shape->getAabb(worldTransform, aabbMin, aabbMax);
+	const btVector3 threshold(gContactBreakingThreshold, gContactBreakingThreshold, gContactBreakingThreshold);
+	aabbMin -= threshold;
+	aabbMax += threshold;
+
+	// Moving rigid bodies also cover their pose at the end of the step, so that continuous collision
+	// detection finds the pairs they sweep through.
+	if (useContinuous && colObj->getInternalType() == btCollisionObject::CO_RIGID_BODY &&
+	    !colObj->isStaticOrKinematicObject() && caliberIsFinite(colObj->getInterpolationWorldTransform()))
+	{
+		btVector3 endMin, endMax;
+		shape->getAabb(colObj->getInterpolationWorldTransform(), endMin, endMax);
+		endMin -= threshold;
+		endMax += threshold;
+		aabbMin.setMin(endMin);
+		aabbMax.setMax(endMax);
+	}
+	return caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+}
+}  // namespace
+
+btCollisionWorld::btCollisionWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphasePairCache,
+                                   btCollisionConfiguration* collisionConfiguration)
+    : m_dispatcher1(dispatcher),
+      m_broadphasePairCache(broadphasePairCache),
+      m_debugDrawer(0),
+      m_forceUpdateAllAabbs(true),
+      m_reportedAabbOverflow(false)
+{
+	(void)collisionConfiguration;
+	btAssert(dispatcher && "btCollisionWorld: null dispatcher");
+	btAssert(broadphasePairCache && "btCollisionWorld: null broadphase");
+}
+
+btCollisionWorld::~btCollisionWorld()
+{
+	// The objects belong to the user and may outlive the world; their proxies belong to the broadphase,
+	// which may be reused, so they go now.
+	for (int i = 0; i < m_collisionObjects.size(); i++)
+	{
+		btCollisionObject* collisionObject = m_collisionObjects[i];
+		btBroadphaseProxy* proxy = collisionObject->getBroadphaseHandle();
+		if (proxy && m_broadphasePairCache)
+		{
+			m_broadphasePairCache->getOverlappingPairCache()->cleanProxyFromPairs(proxy, m_dispatcher1);
+			m_broadphasePairCache->destroyProxy(proxy, m_dispatcher1);
+		}
+		collisionObject->setBroadphaseHandle(0);
+		collisionObject->setWorldArrayIndex(-1);
+	}
+}
+
+void btCollisionWorld::addCollisionObject(btCollisionObject* collisionObject, int collisionFilterGroup,
+                                          int collisionFilterMask)
+{
+	btAssert(collisionObject && "btCollisionWorld::addCollisionObject: null object");
+	if (!collisionObject) return;
+	btAssert(collisionObject->getCollisionShape() && "btCollisionWorld::addCollisionObject: object without shape");
+	if (!collisionObject->getCollisionShape()) return;
+	const bool alreadyAdded = isInWorldArray(m_collisionObjects, collisionObject);
+	btAssert(!alreadyAdded && "btCollisionWorld::addCollisionObject: object added twice");
+	if (alreadyAdded) return;
+
+	collisionObject->setWorldArrayIndex(m_collisionObjects.size());
+	m_collisionObjects.push_back(collisionObject);
+
+	btVector3 aabbMin, aabbMax;
+	const bool finite = computeBroadphaseAabb(collisionObject, false, aabbMin, aabbMax);
+	btAssert(finite && "btCollisionWorld::addCollisionObject: non-finite transform or AABB");
+	if (!finite || !m_broadphasePairCache)
+	{
+		// Kept in the world (so that remove works) but without a proxy: no pairs, no query hits.
+		collisionObject->setBroadphaseHandle(0);
+		collisionObject->forceActivationState(DISABLE_SIMULATION);
+		return;
+	}
+	const int shapeType = collisionObject->getCollisionShape()->getShapeType();
+	collisionObject->setBroadphaseHandle(m_broadphasePairCache->createProxy(
+	    aabbMin, aabbMax, shapeType, collisionObject, collisionFilterGroup, collisionFilterMask, m_dispatcher1));
+}
+
+void btCollisionWorld::removeCollisionObject(btCollisionObject* collisionObject)
+{
+	btAssert(collisionObject && "btCollisionWorld::removeCollisionObject: null object");
+	if (!collisionObject) return;
+	const bool inWorld = isInWorldArray(m_collisionObjects, collisionObject);
+	btAssert(inWorld && "btCollisionWorld::removeCollisionObject: object is not in this world");
+	if (!inWorld) return;
+
+	btBroadphaseProxy* proxy = collisionObject->getBroadphaseHandle();
+	if (proxy && m_broadphasePairCache)
+	{
+		m_broadphasePairCache->getOverlappingPairCache()->cleanProxyFromPairs(proxy, m_dispatcher1);
+		m_broadphasePairCache->destroyProxy(proxy, m_dispatcher1);
+	}
+	collisionObject->setBroadphaseHandle(0);
+
+	// Swap with the last object so that removal is O(1); the moved object learns its new index.
+	const int index = collisionObject->getWorldArrayIndex();
+	const int last = m_collisionObjects.size() - 1;
+	m_collisionObjects.swap(index, last);
+	m_collisionObjects.pop_back();
+	if (index < m_collisionObjects.size()) m_collisionObjects[index]->setWorldArrayIndex(index);
+	collisionObject->setWorldArrayIndex(-1);
+}
+
+void btCollisionWorld::refreshBroadphaseProxy(btCollisionObject* collisionObject)
+{
+	btAssert(collisionObject && "btCollisionWorld::refreshBroadphaseProxy: null object");
+	if (!collisionObject || !m_broadphasePairCache) return;
+	btBroadphaseProxy* proxy = collisionObject->getBroadphaseHandle();
+	if (!proxy) return;
+	const int group = proxy->m_collisionFilterGroup;
+	const int mask = proxy->m_collisionFilterMask;
+	m_broadphasePairCache->getOverlappingPairCache()->cleanProxyFromPairs(proxy, m_dispatcher1);
+	m_broadphasePairCache->destroyProxy(proxy, m_dispatcher1);
+	collisionObject->setBroadphaseHandle(0);
+
+	btVector3 aabbMin, aabbMax;
+	if (!computeBroadphaseAabb(collisionObject, false, aabbMin, aabbMax)) return;
+	const int shapeType = collisionObject->getCollisionShape()->getShapeType();
+	collisionObject->setBroadphaseHandle(
+	    m_broadphasePairCache->createProxy(aabbMin, aabbMax, shapeType, collisionObject, group, mask, m_dispatcher1));
+}
+
+void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
+{
+	btAssert(colObj && "btCollisionWorld::updateSingleAabb: null object");
+	if (!colObj || !colObj->getCollisionShape()) return;
+
+	btVector3 aabbMin, aabbMax;
+	const bool finiteTransform = caliberIsFinite(colObj->getWorldTransform());
+	btAssert(finiteTransform && "btCollisionWorld::updateSingleAabb: non-finite world transform");
+	const bool finite =
+	    finiteTransform && computeBroadphaseAabb(colObj, m_dispatchInfo.m_useContinuous, aabbMin, aabbMax);
+
+	// Static and kinematic objects may be as large as the user likes; a moving object whose box has blown
+	// up has left the scene (or its simulation diverged), so it stops taking part instead of stalling the
+	// broadphase and everything else.
+	const bool acceptable =
+	    finite && (colObj->isStaticOrKinematicObject() || (aabbMax - aabbMin).length2() < kMaxAabbExtentSquared);
+	if (acceptable)
+	{
+		if (colObj->getBroadphaseHandle() && m_broadphasePairCache)
+			m_broadphasePairCache->setAabb(colObj->getBroadphaseHandle(), aabbMin, aabbMax, m_dispatcher1);
+		return;
+	}
+
+	colObj->forceActivationState(DISABLE_SIMULATION);
+	if (!m_reportedAabbOverflow)
+	{
+		m_reportedAabbOverflow = true;
+		const char* message =
+		    "Caliber: overflow in AABB (non-finite or huge), object removed from simulation (DISABLE_SIMULATION)\n";
+		if (m_debugDrawer)
+			m_debugDrawer->reportErrorWarning(message);
+		else
+			fputs(message, stderr);
+	}
+}
+
+void btCollisionWorld::updateAabbs()
+{
+	BT_PROFILE("updateAabbs");
+	for (int i = 0; i < m_collisionObjects.size(); i++)
+	{
+		btCollisionObject* colObj = m_collisionObjects[i];
+		// Static objects got their box when added (and when the user calls updateSingleAabb); sleeping and
+		// disabled objects keep theirs.
+		if (m_forceUpdateAllAabbs || (colObj->isActive() && !colObj->isStaticObject())) updateSingleAabb(colObj);
+	}
+}
+
+void btCollisionWorld::computeOverlappingPairs()
+{
+	BT_PROFILE("calculateOverlappingPairs");
+	if (m_broadphasePairCache) m_broadphasePairCache->calculateOverlappingPairs(m_dispatcher1);
+}
+
+void btCollisionWorld::performDiscreteCollisionDetection()
+{
+	BT_PROFILE("performDiscreteCollisionDetection");
+	updateAabbs();
+	computeOverlappingPairs();
+	if (m_dispatcher1 && m_broadphasePairCache)
+	{
+		BT_PROFILE("dispatchAllCollisionPairs");
+		m_dispatcher1->dispatchAllCollisionPairs(m_broadphasePairCache->getOverlappingPairCache(), m_dispatchInfo,
+		                                         m_dispatcher1);
+	}
+}
+
+void btCollisionWorld::serializeCollisionObjects(btSerializer* serializer) { (void)serializer; }
+
+void btCollisionWorld::serializeContactManifolds(btSerializer* serializer) { (void)serializer; }
+
+void btCollisionWorld::serialize(btSerializer* serializer)
+{
+	// Caliber has no btSerializer yet; the call is accepted and writes nothing.
+	serializeCollisionObjects(serializer);
+	serializeContactManifolds(serializer);
+}

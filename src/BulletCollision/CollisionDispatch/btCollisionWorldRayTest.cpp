@@ -1,0 +1,458 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include <cstring>
+
+#include "BulletCollision/BroadphaseCollision/btDbvt.h"
+#include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
+#include "BulletCollision/CollisionShapes/btCompoundShape.h"
+#include "BulletCollision/CollisionShapes/btConcaveShape.h"
+#include "BulletCollision/CollisionShapes/btConvexShape.h"
+#include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
+#include "BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h"
+#include "BulletCollision/CollisionShapes/btShapeGuards.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/CollisionShapes/btStaticPlaneShape.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
+#include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
+#include "BulletCollision/NarrowPhaseCollision/btSubSimplexConvexCast.h"
+#include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
+#include "LinearMath/btQuickprof.h"
+
+// btCollisionWorld::rayTest and the per-object ray tests: the broadphase visits the objects whose boxes
+// the ray crosses, and each object's shape is tested by the method that suits it.
+
+namespace
+{
+typedef btCollisionWorld::RayResultCallback RayResultCallback;
+typedef btCollisionWorld::LocalRayResult LocalRayResult;
+typedef btCollisionWorld::LocalShapeInfo LocalShapeInfo;
+
+// Hands the hits of a triangle ray test (shape frame) to the user's callback, with the normal in world
+// space and the part and triangle in LocalShapeInfo. scaleInverse maps normals from the triangles' frame to
+// the shape's frame (1 except for scaled meshes, whose triangles are tested unscaled).
+class BridgeTriangleRaycastCallback : public btTriangleRaycastCallback
+{
+public:
+	BridgeTriangleRaycastCallback(const btVector3& from, const btVector3& to, RayResultCallback& resultCallback,
+	                              const btCollisionObject* collisionObject, const btTransform& colObjWorldTransform,
+	                              const btVector3& normalScale)
+	    : btTriangleRaycastCallback(from, to, resultCallback.m_flags),
+	      m_resultCallback(resultCallback),
+	      m_collisionObject(collisionObject),
+	      m_colObjWorldTransform(colObjWorldTransform),
+	      m_normalScale(normalScale)
+	{
+		m_hitFraction = resultCallback.m_closestHitFraction;
+	}
+
+	btScalar reportHit(const btVector3& hitNormalLocal, btScalar hitFraction, int partId, int triangleIndex) override
+	{
+		LocalShapeInfo shapeInfo;
+		shapeInfo.m_shapePart = partId;
+		shapeInfo.m_triangleIndex = triangleIndex;
+		btVector3 normalInShape = hitNormalLocal * m_normalScale;
+		const btScalar length2 = normalInShape.length2();
+		if (length2 > btScalar(0)) normalInShape /= btSqrt(length2);
+		LocalRayResult rayResult(m_collisionObject, &shapeInfo, m_colObjWorldTransform.getBasis() * normalInShape,
+		                         hitFraction);
+		return m_resultCallback.addSingleResult(rayResult, true);
+	}
+
+private:
+	RayResultCallback& m_resultCallback;
+	const btCollisionObject* m_collisionObject;
+	const btTransform& m_colObjWorldTransform;
+	btVector3 m_normalScale;
+};
+
+// Passes hits of one compound child to the user's callback, naming the child in LocalShapeInfo when the
+// child's own test did not (convex children), and keeps the closest-hit bound in step with the user's.
+class CompoundChildRayCallback : public RayResultCallback
+{
+public:
+	CompoundChildRayCallback(int childIndex, RayResultCallback& userCallback)
+	    : m_userCallback(userCallback), m_childIndex(childIndex)
+	{
+		m_closestHitFraction = userCallback.m_closestHitFraction;
+		m_collisionFilterGroup = userCallback.m_collisionFilterGroup;
+		m_collisionFilterMask = userCallback.m_collisionFilterMask;
+		m_flags = userCallback.m_flags;
+	}
+
+	bool needsCollision(btBroadphaseProxy* proxy0) const override { return m_userCallback.needsCollision(proxy0); }
+
+	btScalar addSingleResult(LocalRayResult& rayResult, bool normalInWorldSpace) override
+	{
+		LocalShapeInfo shapeInfo;
+		shapeInfo.m_shapePart = -1;
+		shapeInfo.m_triangleIndex = m_childIndex;
+		if (!rayResult.m_localShapeInfo) rayResult.m_localShapeInfo = &shapeInfo;
+		const btScalar bound = m_userCallback.addSingleResult(rayResult, normalInWorldSpace);
+		m_collisionObject = m_userCallback.m_collisionObject;
+		m_closestHitFraction = m_userCallback.m_closestHitFraction;
+		return bound;
+	}
+
+private:
+	RayResultCallback& m_userCallback;
+	int m_childIndex;
+};
+
+// Ray test of one compound child (a leaf of the compound's child tree, or a child by index).
+struct CompoundRayTester : btDbvt::ICollide
+{
+	CompoundRayTester(const btCollisionObjectWrapper* compoundWrap, const btCompoundShape* compound,
+	                  const btTransform& rayFromTrans, const btTransform& rayToTrans, RayResultCallback& resultCallback)
+	    : m_compoundWrap(compoundWrap),
+	      m_compound(compound),
+	      m_rayFromTrans(rayFromTrans),
+	      m_rayToTrans(rayToTrans),
+	      m_resultCallback(resultCallback)
+	{
+	}
+
+	void processChild(int childIndex)
+	{
+		if (m_resultCallback.m_closestHitFraction <= btScalar(0)) return;
+		const btTransform childWorldTransform =
+		    m_compoundWrap->getWorldTransform() * m_compound->getChildTransform(childIndex);
+		btCollisionObjectWrapper childWrap(m_compoundWrap, m_compound->getChildShape(childIndex),
+		                                   m_compoundWrap->getCollisionObject(), childWorldTransform, -1, childIndex);
+		CompoundChildRayCallback childCallback(childIndex, m_resultCallback);
+		btCollisionWorld::rayTestSingleInternal(m_rayFromTrans, m_rayToTrans, &childWrap, childCallback);
+	}
+
+	void Process(const btDbvtNode* leaf) override { processChild(leaf->dataAsInt); }
+
+	const btCollisionObjectWrapper* m_compoundWrap;
+	const btCompoundShape* m_compound;
+	const btTransform& m_rayFromTrans;
+	const btTransform& m_rayToTrans;
+	RayResultCallback& m_resultCallback;
+};
+
+// A plane is infinite: intersect it directly instead of building triangles around the ray. Same rules as
+// the triangle ray test: a hit needs a strict sign change, the normal faces the ray origin unless
+// kF_KeepUnflippedNormal, and kF_FilterBackfaces skips rays that start behind the plane.
+void rayTestPlane(const btVector3& fromLocal, const btVector3& toLocal, const btStaticPlaneShape* plane,
+                  const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
+{
+	const btVector3& normal = plane->getPlaneNormal();
+	const btScalar distFrom = normal.dot(fromLocal) - plane->getPlaneConstant();
+	const btScalar distTo = normal.dot(toLocal) - plane->getPlaneConstant();
+	if (!(distFrom * distTo < btScalar(0))) return;
+	if ((resultCallback.m_flags & btTriangleRaycastCallback::kF_FilterBackfaces) && distFrom < btScalar(0)) return;
+	const btScalar fraction = distFrom / (distFrom - distTo);
+	if (!(fraction < resultCallback.m_closestHitFraction)) return;
+	const bool keepNormal = (resultCallback.m_flags & btTriangleRaycastCallback::kF_KeepUnflippedNormal) != 0;
+	const btVector3 normalLocal = (keepNormal || distFrom > btScalar(0)) ? normal : -normal;
+	LocalShapeInfo shapeInfo;
+	shapeInfo.m_shapePart = -1;
+	shapeInfo.m_triangleIndex = -1;
+	LocalRayResult rayResult(wrap->getCollisionObject(), &shapeInfo, wrap->getWorldTransform().getBasis() * normalLocal,
+	                         fraction);
+	resultCallback.addSingleResult(rayResult, true);
+}
+
+void reportConvexHit(const btCollisionObjectWrapper* wrap, const btVector3& normalWorld, btScalar fraction,
+                     RayResultCallback& resultCallback)
+{
+	if (!(fraction < resultCallback.m_closestHitFraction)) return;
+	LocalRayResult rayResult(wrap->getCollisionObject(), 0, normalWorld, fraction);
+	resultCallback.addSingleResult(rayResult, true);
+}
+
+// Closed-form sphere test. A start inside or on the sphere hits at 0 with the outward radial normal, as
+// the convex casts report shapes that start in contact.
+void rayTestSphere(const btVector3& from, const btVector3& to, const btSphereShape* sphere,
+                   const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
+{
+	const btVector3 center = wrap->getWorldTransform().getOrigin();
+	const btScalar radius = sphere->getRadius();
+	const btVector3 direction = to - from;
+	const btVector3 offset = from - center;
+	const btScalar startGap = offset.dot(offset) - radius * radius;
+	if (startGap <= btScalar(0))
+	{
+		btVector3 normal = offset;
+		if (normal.length2() < SIMD_EPSILON * SIMD_EPSILON) normal = -direction;
+		if (normal.length2() < SIMD_EPSILON * SIMD_EPSILON) normal.setValue(0, 1, 0);
+		reportConvexHit(wrap, normal.normalized(), btScalar(0), resultCallback);
+		return;
+	}
+	const btScalar a = direction.dot(direction);
+	const btScalar b = offset.dot(direction);
+	if (!(a > btScalar(0)) || b >= btScalar(0)) return;  // no motion, or moving away
+	const btScalar discriminant = b * b - a * startGap;
+	if (discriminant < btScalar(0)) return;
+	// t = (-b - sqrt(disc)) / a written without the cancellation of two close numbers.
+	const btScalar fraction = startGap / (-b + btSqrt(discriminant));
+	if (fraction > btScalar(1)) return;
+	const btVector3 normal = (offset + direction * fraction) / radius;
+	reportConvexHit(wrap, normal.normalized(), fraction, resultCallback);
+}
+
+// Closed-form box test (slabs in the box frame) against the box's outer faces, which is the box Bullet's
+// default ray test sees. A start inside or on the box hits at 0 with the normal of the nearest face.
+void rayTestBox(const btVector3& from, const btVector3& to, const btBoxShape* box, const btCollisionObjectWrapper* wrap,
+                RayResultCallback& resultCallback)
+{
+	const btTransform& worldTransform = wrap->getWorldTransform();
+	const btVector3 start = worldTransform.invXform(from);
+	const btVector3 direction = worldTransform.invXform(to) - start;
+	const btVector3 halfExtents = box->getHalfExtentsWithMargin();
+	btScalar enter = btScalar(0), exit = btScalar(1);
+	int enterAxis = -1;
+	for (int axis = 0; axis < 3; axis++)
+	{
+		const btScalar half = halfExtents[axis];
+		if (direction[axis] == btScalar(0))
+		{
+			if (start[axis] < -half || start[axis] > half) return;
+			continue;
+		}
+		const btScalar inverse = btScalar(1) / direction[axis];
+		btScalar tNear = (-half - start[axis]) * inverse;
+		btScalar tFar = (half - start[axis]) * inverse;
+		if (tNear > tFar) btSwap(tNear, tFar);
+		if (tNear > enter)
+		{
+			enter = tNear;
+			enterAxis = axis;
+		}
+		exit = btMin(exit, tFar);
+		if (enter > exit) return;
+	}
+	btVector3 normalLocal(0, 0, 0);
+	if (enterAxis >= 0)
+	{
+		normalLocal[enterAxis] = direction[enterAxis] > btScalar(0) ? btScalar(-1) : btScalar(1);
+	}
+	else
+	{
+		// Starts inside (or on) the box: the face with the smallest distance from the start is the way out.
+		int nearestAxis = 0;
+		btScalar nearestGap = halfExtents[0] - btFabs(start[0]);
+		for (int axis = 1; axis < 3; axis++)
+		{
+			const btScalar gap = halfExtents[axis] - btFabs(start[axis]);
+			if (gap < nearestGap)
+			{
+				nearestGap = gap;
+				nearestAxis = axis;
+			}
+		}
+		normalLocal[nearestAxis] = start[nearestAxis] < btScalar(0) ? btScalar(-1) : btScalar(1);
+		enter = btScalar(0);
+	}
+	reportConvexHit(wrap, worldTransform.getBasis() * normalLocal, enter, resultCallback);
+}
+
+void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConvexShape* convexShape,
+                   const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
+{
+	// Spheres and boxes, the commonest ray targets, are intersected in closed form: exact and several times
+	// faster than a cast. kF_UseGjkConvexCastRaytest asks for the cast explicitly.
+	if (!(resultCallback.m_flags & btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest))
+	{
+		if (convexShape->getShapeType() == SPHERE_SHAPE_PROXYTYPE)
+		{
+			rayTestSphere(rayFromTrans.getOrigin(), rayToTrans.getOrigin(),
+			              static_cast<const btSphereShape*>(convexShape), wrap, resultCallback);
+			return;
+		}
+		if (convexShape->getShapeType() == BOX_SHAPE_PROXYTYPE)
+		{
+			rayTestBox(rayFromTrans.getOrigin(), rayToTrans.getOrigin(), static_cast<const btBoxShape*>(convexShape),
+			           wrap, resultCallback);
+			return;
+		}
+	}
+	// The ray is a point (a sphere of radius 0 and no margin) cast against the shape.
+	btSphereShape point(btScalar(0));
+	point.setMargin(btScalar(0));
+	btVoronoiSimplexSolver simplexSolver;
+	btConvexCast::CastResult castResult;
+	bool hit;
+	if (resultCallback.m_flags & btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest)
+	{
+		btGjkConvexCast cast(&point, convexShape, &simplexSolver);
+		hit = cast.calcTimeOfImpact(rayFromTrans, rayToTrans, wrap->getWorldTransform(), wrap->getWorldTransform(),
+		                            castResult);
+	}
+	else
+	{
+		btSubsimplexConvexCast cast(&point, convexShape, &simplexSolver);
+		hit = cast.calcTimeOfImpact(rayFromTrans, rayToTrans, wrap->getWorldTransform(), wrap->getWorldTransform(),
+		                            castResult);
+	}
+	// A zero normal means the cast found no direction (degenerate start inside); such a hit is dropped.
+	if (!hit || !(castResult.m_normal.length2() > btScalar(1e-4))) return;
+	if (!(castResult.m_fraction < resultCallback.m_closestHitFraction)) return;
+	LocalRayResult rayResult(wrap->getCollisionObject(), 0, castResult.m_normal.normalized(), castResult.m_fraction);
+	resultCallback.addSingleResult(rayResult, true);
+}
+
+void rayTestConcave(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConcaveShape* concave,
+                    const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
+{
+	const btTransform& worldTransform = wrap->getWorldTransform();
+	const btVector3 fromLocal = worldTransform.invXform(rayFromTrans.getOrigin());
+	const btVector3 toLocal = worldTransform.invXform(rayToTrans.getOrigin());
+	const btCollisionObject* object = wrap->getCollisionObject();
+	const btVector3 unitScale(btScalar(1), btScalar(1), btScalar(1));
+	const int shapeType = concave->getShapeType();
+
+	if (shapeType == STATIC_PLANE_PROXYTYPE)
+	{
+		rayTestPlane(fromLocal, toLocal, static_cast<const btStaticPlaneShape*>(concave), wrap, resultCallback);
+		return;
+	}
+	// Only btBvhTriangleMeshShape and its multimaterial subclass are known to have performRaycast
+	// (btTriangleMeshShape shares the type).
+	if ((shapeType == TRIANGLE_MESH_SHAPE_PROXYTYPE && std::strcmp(concave->getName(), "BVHTRIANGLEMESH") == 0) ||
+	    shapeType == MULTIMATERIAL_TRIANGLE_MESH_PROXYTYPE)
+	{
+		btBvhTriangleMeshShape* mesh =
+		    const_cast<btBvhTriangleMeshShape*>(static_cast<const btBvhTriangleMeshShape*>(concave));
+		BridgeTriangleRaycastCallback callback(fromLocal, toLocal, resultCallback, object, worldTransform, unitScale);
+		mesh->performRaycast(&callback, fromLocal, toLocal);
+		return;
+	}
+	if (shapeType == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE)
+	{
+		const btScaledBvhTriangleMeshShape* scaled = static_cast<const btScaledBvhTriangleMeshShape*>(concave);
+		const btVector3& scale = scaled->getLocalScaling();
+		const bool invertible = scale.x() != btScalar(0) && scale.y() != btScalar(0) && scale.z() != btScalar(0);
+		if (invertible && scaled->getChildShape())
+		{
+			// The segment maps to the unscaled mesh with the same fractions; normals map back by the inverse
+			// transpose of the scaling, i.e. they are divided by it.
+			const btVector3 inverseScale(btScalar(1) / scale.x(), btScalar(1) / scale.y(), btScalar(1) / scale.z());
+			const btVector3 fromChild = fromLocal * inverseScale;
+			const btVector3 toChild = toLocal * inverseScale;
+			BridgeTriangleRaycastCallback callback(fromChild, toChild, resultCallback, object, worldTransform,
+			                                       inverseScale);
+			const_cast<btBvhTriangleMeshShape*>(scaled->getChildShape())->performRaycast(&callback, fromChild, toChild);
+			return;
+		}
+	}
+	if (shapeType == TERRAIN_SHAPE_PROXYTYPE && std::strcmp(concave->getName(), "HEIGHTFIELD") == 0)
+	{
+		const btHeightfieldTerrainShape* terrain = static_cast<const btHeightfieldTerrainShape*>(concave);
+		BridgeTriangleRaycastCallback callback(fromLocal, toLocal, resultCallback, object, worldTransform, unitScale);
+		terrain->performRaycast(&callback, fromLocal, toLocal);
+		return;
+	}
+
+	// Any other concave shape: the triangles inside the ray's box.
+	BridgeTriangleRaycastCallback callback(fromLocal, toLocal, resultCallback, object, worldTransform, unitScale);
+	btVector3 boxMin = fromLocal, boxMax = fromLocal;
+	boxMin.setMin(toLocal);
+	boxMax.setMax(toLocal);
+	concave->processAllTriangles(&callback, boxMin, boxMax);
+}
+
+// Visited by the broadphase for each object whose box the ray crosses.
+struct WorldRayCallback : public btBroadphaseRayCallback
+{
+	WorldRayCallback(const btVector3& rayFromWorld, const btVector3& rayToWorld, RayResultCallback& resultCallback)
+	    : m_resultCallback(resultCallback)
+	{
+		m_rayFromTrans.setIdentity();
+		m_rayFromTrans.setOrigin(rayFromWorld);
+		m_rayToTrans.setIdentity();
+		m_rayToTrans.setOrigin(rayToWorld);
+		const btVector3 direction = rayToWorld - rayFromWorld;
+		for (int axis = 0; axis < 3; axis++)
+		{
+			m_rayDirectionInverse[axis] =
+			    direction[axis] == btScalar(0) ? btScalar(BT_LARGE_FLOAT) : btScalar(1) / direction[axis];
+			m_signs[axis] = m_rayDirectionInverse[axis] < btScalar(0) ? 1u : 0u;
+		}
+		m_lambda_max = resultCallback.m_closestHitFraction;
+	}
+
+	bool process(const btBroadphaseProxy* proxy) override
+	{
+		// A hit at fraction 0 cannot be beaten.
+		if (m_resultCallback.m_closestHitFraction <= btScalar(0)) return false;
+		btCollisionObject* collisionObject = static_cast<btCollisionObject*>(proxy->m_clientObject);
+		if (m_resultCallback.needsCollision(collisionObject->getBroadphaseHandle()))
+		{
+			btCollisionWorld::rayTestSingle(m_rayFromTrans, m_rayToTrans, collisionObject,
+			                                collisionObject->getCollisionShape(), collisionObject->getWorldTransform(),
+			                                m_resultCallback);
+			// Closest-hit callbacks shrink the bound; the broadphase may then skip boxes beyond it.
+			m_lambda_max = btMin(m_lambda_max, m_resultCallback.m_closestHitFraction);
+		}
+		return true;
+	}
+
+	btTransform m_rayFromTrans;
+	btTransform m_rayToTrans;
+	RayResultCallback& m_resultCallback;
+};
+}  // namespace
+
+void btCollisionWorld::rayTest(const btVector3& rayFromWorld, const btVector3& rayToWorld,
+                               RayResultCallback& resultCallback) const
+{
+	BT_PROFILE("rayTest");
+	const bool finite = caliberIsFinite(rayFromWorld) && caliberIsFinite(rayToWorld);
+	btAssert(finite && "btCollisionWorld::rayTest: non-finite ray");
+	if (!finite || !m_broadphasePairCache) return;
+	WorldRayCallback rayCallback(rayFromWorld, rayToWorld, resultCallback);
+	m_broadphasePairCache->rayTest(rayFromWorld, rayToWorld, rayCallback, btVector3(0, 0, 0), btVector3(0, 0, 0));
+}
+
+void btCollisionWorld::rayTestSingle(const btTransform& rayFromTrans, const btTransform& rayToTrans,
+                                     btCollisionObject* collisionObject, const btCollisionShape* collisionShape,
+                                     const btTransform& colObjWorldTransform, RayResultCallback& resultCallback)
+{
+	btCollisionObjectWrapper wrap(0, collisionShape, collisionObject, colObjWorldTransform, -1, -1);
+	rayTestSingleInternal(rayFromTrans, rayToTrans, &wrap, resultCallback);
+}
+
+void btCollisionWorld::rayTestSingleInternal(const btTransform& rayFromTrans, const btTransform& rayToTrans,
+                                             const btCollisionObjectWrapper* collisionObjectWrap,
+                                             RayResultCallback& resultCallback)
+{
+	btAssert(collisionObjectWrap && collisionObjectWrap->getCollisionShape());
+	if (!collisionObjectWrap || !collisionObjectWrap->getCollisionShape()) return;
+	const bool finite = caliberIsFinite(rayFromTrans.getOrigin()) && caliberIsFinite(rayToTrans.getOrigin()) &&
+	                    caliberIsFinite(collisionObjectWrap->getWorldTransform());
+	btAssert(finite && "btCollisionWorld::rayTestSingle: non-finite ray or object transform");
+	if (!finite) return;
+
+	const btCollisionShape* shape = collisionObjectWrap->getCollisionShape();
+	if (shape->isConvex())
+	{
+		rayTestConvex(rayFromTrans, rayToTrans, static_cast<const btConvexShape*>(shape), collisionObjectWrap,
+		              resultCallback);
+	}
+	else if (shape->isConcave())
+	{
+		rayTestConcave(rayFromTrans, rayToTrans, static_cast<const btConcaveShape*>(shape), collisionObjectWrap,
+		               resultCallback);
+	}
+	else if (shape->isCompound())
+	{
+		BT_PROFILE("rayTestCompound");
+		const btCompoundShape* compound = static_cast<const btCompoundShape*>(shape);
+		CompoundRayTester tester(collisionObjectWrap, compound, rayFromTrans, rayToTrans, resultCallback);
+		const btDbvt* tree = compound->getDynamicAabbTree();
+		if (tree && tree->m_root)
+		{
+			const btTransform& worldTransform = collisionObjectWrap->getWorldTransform();
+			btDbvt::rayTest(tree->m_root, worldTransform.invXform(rayFromTrans.getOrigin()),
+			                worldTransform.invXform(rayToTrans.getOrigin()), tester);
+		}
+		else if (!tree)
+		{
+			for (int i = 0; i < compound->getNumChildShapes(); i++) tester.processChild(i);
+		}
+	}
+	// Other shape kinds (soft bodies, fluids) are not ray-tested here.
+}

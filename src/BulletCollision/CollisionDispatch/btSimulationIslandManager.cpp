@@ -1,0 +1,238 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
+
+#include "BulletCollision/BroadphaseCollision/btDispatcher.h"
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+
+namespace
+{
+// The island of a manifold: the tag of whichever body belongs to an island (static ones have -1).
+int islandIdOf(const btPersistentManifold* manifold)
+{
+	const btCollisionObject* body0 = manifold->getBody0();
+	const btCollisionObject* body1 = manifold->getBody1();
+	const int tag0 = body0 ? body0->getIslandTag() : -1;
+	if (tag0 >= 0) return tag0;
+	return body1 ? body1->getIslandTag() : -1;
+}
+}  // namespace
+
+btSimulationIslandManager::btSimulationIslandManager() : m_splitIslands(true) {}
+
+btSimulationIslandManager::~btSimulationIslandManager() {}
+
+void btSimulationIslandManager::initUnionFind(int n) { m_unionFind.reset(n); }
+
+void btSimulationIslandManager::findUnions(btDispatcher* dispatcher, btCollisionWorld* colWorld)
+{
+	(void)dispatcher;
+	btAssert(colWorld);
+	if (!colWorld || !colWorld->getPairCache()) return;
+	btOverlappingPairCache* pairCache = colWorld->getPairCache();
+	const int numPairs = pairCache->getNumOverlappingPairs();
+	if (numPairs == 0) return;
+	const btBroadphasePair* pairs = pairCache->getOverlappingPairArrayPtr();
+	const int numElements = m_unionFind.getNumElements();
+	for (int i = 0; i < numPairs; ++i)
+	{
+		const btBroadphasePair& pair = pairs[i];
+		if (!pair.m_pProxy0 || !pair.m_pProxy1) continue;
+		const btCollisionObject* object0 = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+		const btCollisionObject* object1 = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+		// Static, kinematic and non-responding objects would chain every body resting on them into one
+		// island; they only touch islands, never join them.
+		if (!object0 || !object1 || !object0->mergesSimulationIslands() || !object1->mergesSimulationIslands())
+			continue;
+		const int tag0 = object0->getIslandTag();
+		const int tag1 = object1->getIslandTag();
+		if (tag0 < 0 || tag0 >= numElements || tag1 < 0 || tag1 >= numElements) continue;
+		m_unionFind.unite(tag0, tag1);
+	}
+}
+
+void btSimulationIslandManager::updateActivationState(btCollisionWorld* colWorld, btDispatcher* dispatcher)
+{
+	btAssert(colWorld);
+	if (!colWorld) return;
+	btCollisionObjectArray& objects = colWorld->getCollisionObjectArray();
+	int index = 0;
+	for (int i = 0; i < objects.size(); ++i)
+	{
+		btCollisionObject* object = objects[i];
+		if (!object->isStaticOrKinematicObject())
+			object->setIslandTag(index++);
+		else
+			object->setIslandTag(-1);
+		object->setCompanionId(-1);
+		object->setHitFraction(btScalar(1));
+	}
+	initUnionFind(index);
+	findUnions(dispatcher, colWorld);
+}
+
+void btSimulationIslandManager::storeIslandActivationState(btCollisionWorld* world)
+{
+	btAssert(world);
+	if (!world) return;
+	btCollisionObjectArray& objects = world->getCollisionObjectArray();
+	const int numElements = m_unionFind.getNumElements();
+	int index = 0;
+	for (int i = 0; i < objects.size(); ++i)
+	{
+		btCollisionObject* object = objects[i];
+		if (!object->isStaticOrKinematicObject() && index < numElements)
+		{
+			object->setIslandTag(m_unionFind.find(index));
+			// The unions are done, so the set sizes are no longer needed: m_sz now says which object the
+			// element stands for, which survives the sort in sortIslands.
+			m_unionFind.getElement(index).m_sz = i;
+			object->setCompanionId(-1);
+			++index;
+		}
+		else
+		{
+			object->setIslandTag(-1);
+			object->setCompanionId(-2);
+		}
+	}
+}
+
+void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisionWorld* collisionWorld)
+{
+	btAssert(dispatcher && collisionWorld);
+	m_islandmanifold.resize(0);
+	if (!dispatcher || !collisionWorld) return;
+	btCollisionObjectArray& objects = collisionWorld->getCollisionObjectArray();
+	const int numObjects = objects.size();
+
+	m_unionFind.sortIslands();
+	const int numElements = m_unionFind.getNumElements();
+
+	// Sleeping is all-or-nothing per island: one object that must stay awake keeps the whole island awake,
+	// because its contacts would otherwise push bodies that no longer integrate.
+	int islandEnd = 0;
+	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
+	{
+		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		islandEnd = islandStart + 1;
+		while (islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId) ++islandEnd;
+
+		bool allSleeping = true;
+		for (int e = islandStart; e < islandEnd; ++e)
+		{
+			const int objectIndex = m_unionFind.getElement(e).m_sz;
+			if (objectIndex < 0 || objectIndex >= numObjects) continue;
+			const btCollisionObject* object = objects[objectIndex];
+			if (object->getIslandTag() != islandId) continue;
+			const int state = object->getActivationState();
+			if (state == ACTIVE_TAG || state == DISABLE_DEACTIVATION) allSleeping = false;
+		}
+		for (int e = islandStart; e < islandEnd; ++e)
+		{
+			const int objectIndex = m_unionFind.getElement(e).m_sz;
+			if (objectIndex < 0 || objectIndex >= numObjects) continue;
+			btCollisionObject* object = objects[objectIndex];
+			if (object->getIslandTag() != islandId) continue;
+			if (allSleeping)
+			{
+				object->setActivationState(ISLAND_SLEEPING);
+			}
+			else if (object->getActivationState() == ISLAND_SLEEPING)
+			{
+				object->setActivationState(WANTS_DEACTIVATION);
+				object->setDeactivationTime(btScalar(0));
+			}
+		}
+	}
+
+	const int numManifolds = dispatcher->getNumManifolds();
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(i);
+		if (!manifold) continue;
+		if (collisionWorld->getDispatchInfo().m_deterministicOverlappingPairs && manifold->getNumContacts() == 0)
+			continue;
+		const btCollisionObject* body0 = manifold->getBody0();
+		const btCollisionObject* body1 = manifold->getBody1();
+		if (!body0 || !body1) continue;
+		const bool awake0 = body0->getActivationState() != ISLAND_SLEEPING;
+		const bool awake1 = body1->getActivationState() != ISLAND_SLEEPING;
+		if (!awake0 && !awake1) continue;
+		// A moving kinematic object belongs to no island but must wake what it pushes.
+		if (body0->isKinematicObject() && awake0 && body0->hasContactResponse()) body1->activate();
+		if (body1->isKinematicObject() && awake1 && body1->hasContactResponse()) body0->activate();
+		if (m_splitIslands && dispatcher->needsResponse(body0, body1)) m_islandmanifold.push_back(manifold);
+	}
+}
+
+void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btCollisionWorld* collisionWorld,
+                                               IslandCallback* callback)
+{
+	btAssert(dispatcher && collisionWorld && callback);
+	if (!dispatcher || !collisionWorld || !callback) return;
+	btCollisionObjectArray& objects = collisionWorld->getCollisionObjectArray();
+	const int numObjects = objects.size();
+
+	if (!m_splitIslands)
+	{
+		callback->processIsland(numObjects ? &objects[0] : 0, numObjects, dispatcher->getInternalManifoldPointer(),
+		                        dispatcher->getNumManifolds(), -1);
+		return;
+	}
+
+	// Group the manifolds by island with a counting sort: O(n), and stable, so each island sees its
+	// manifolds in the dispatcher's order whatever the number of islands.
+	const int numElements = m_unionFind.getNumElements();
+	const int numManifolds = m_islandmanifold.size();
+	m_islandManifoldStart.resize(0);
+	m_islandManifoldStart.resize(numElements + 1, 0);
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		const int islandId = islandIdOf(m_islandmanifold[i]);
+		if (islandId >= 0 && islandId < numElements) ++m_islandManifoldStart[islandId + 1];
+	}
+	for (int i = 0; i < numElements; ++i) m_islandManifoldStart[i + 1] += m_islandManifoldStart[i];
+	m_sortedManifolds.resize(m_islandManifoldStart[numElements]);
+	m_islandManifoldFill.resize(0);
+	m_islandManifoldFill.resize(numElements, 0);
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		const int islandId = islandIdOf(m_islandmanifold[i]);
+		if (islandId < 0 || islandId >= numElements) continue;
+		m_sortedManifolds[m_islandManifoldStart[islandId] + m_islandManifoldFill[islandId]++] = m_islandmanifold[i];
+	}
+
+	int islandEnd = 0;
+	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
+	{
+		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		bool islandSleeping = true;
+		m_islandBodies.resize(0);
+		for (islandEnd = islandStart; islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId;
+		     ++islandEnd)
+		{
+			const int objectIndex = m_unionFind.getElement(islandEnd).m_sz;
+			if (objectIndex < 0 || objectIndex >= numObjects) continue;
+			btCollisionObject* object = objects[objectIndex];
+			m_islandBodies.push_back(object);
+			if (object->isActive()) islandSleeping = false;
+		}
+		if (islandSleeping || m_islandBodies.size() == 0) continue;
+		const bool validId = islandId >= 0 && islandId < numElements;
+		const int first = validId ? m_islandManifoldStart[islandId] : 0;
+		const int count = validId ? m_islandManifoldStart[islandId + 1] - first : 0;
+		callback->processIsland(&m_islandBodies[0], m_islandBodies.size(), count ? &m_sortedManifolds[first] : 0, count,
+		                        islandId);
+	}
+	m_islandBodies.resize(0);
+}
+
+void btSimulationIslandManager::buildAndProcessIslands(btDispatcher* dispatcher, btCollisionWorld* collisionWorld,
+                                                       IslandCallback* callback)
+{
+	buildIslands(dispatcher, collisionWorld);
+	processIslands(dispatcher, collisionWorld, callback);
+}
