@@ -370,7 +370,7 @@ public:
 	virtual void rayTest(const btVector3& rayFromWorld, const btVector3& rayToWorld,
 	                     RayResultCallback& resultCallback) const;
 
-	/// Sweeps castShape from `from` to `to` (translation; rotation for convex targets) and reports the
+	/// Sweeps castShape from `from` to `to` (translation and rotation) and reports the
 	/// objects it hits. allowedCcdPenetration lets the sweep continue into that much overlap.
 	void convexSweepTest(const btConvexShape* castShape, const btTransform& from, const btTransform& to,
 	                     ConvexResultCallback& resultCallback, btScalar allowedCcdPenetration = btScalar(0)) const;

@@ -95,8 +95,8 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
                                                                          btDispatcher* dispatcher)
 {
 	if (!proxy) return;
-	// One compaction pass instead of one O(n) shift per removed pair. The ghost callback is told after
-	// the array is consistent again.
+	// One compaction pass instead of one O(n) shift per removed pair. The ghost callback is told once
+	// the kept pairs are compacted, while the removed ones still sit at the end (before the resize).
 	int kept = 0;
 	const int count = m_pairs.size();
 	for (int i = 0; i < count; ++i)
