@@ -59,6 +59,9 @@ struct btDbvtBroadphase : public btBroadphaseInterface
 	/// Heads of the stage lists: [DYNAMIC_SET] and [FIXED_SET] hold proxies of that tree whose box changed
 	/// since the last collide (pair search pending); [STAGECOUNT] holds every other proxy.
 	btDbvtProxy* m_stageRoots[STAGECOUNT + 1];
+	/// Destroyed proxies, kept (linked through links[1], leaf null) for reuse by createProxy: a second
+	/// destroyProxy or a setAabb of a destroyed proxy is then caught instead of touching freed memory.
+	btDbvtProxy* m_freeProxies;
 	/// The pair cache (owned when m_releasepaircache).
 	btOverlappingPairCache* m_paircache;
 	/// How far ahead of its motion a moved box is grown, in units of the last displacement (default 1).

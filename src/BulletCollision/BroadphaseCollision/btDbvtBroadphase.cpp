@@ -126,6 +126,7 @@ btDbvtBroadphase::btDbvtBroadphase(btOverlappingPairCache* paircache)
 		m_paircache = new (memory) btHashedOverlappingPairCache();
 	}
 	for (int i = 0; i <= STAGECOUNT; ++i) m_stageRoots[i] = 0;
+	m_freeProxies = 0;
 	m_rayTestStacks.resize(1);
 	// A moved leaf is re-inserted from a few levels above its old place: a moving object rarely goes far
 	// in one step, and a search of that subtree costs a fraction of a search from the root (10,000 moving
@@ -148,6 +149,13 @@ btDbvtBroadphase::~btDbvtBroadphase()
 			proxy = next;
 		}
 		m_stageRoots[stage] = 0;
+	}
+	while (m_freeProxies)
+	{
+		btDbvtProxy* next = m_freeProxies->links[1];
+		m_freeProxies->~btDbvtProxy();
+		btAlignedFree(m_freeProxies);
+		m_freeProxies = next;
 	}
 	if (m_releasepaircache)
 	{
@@ -196,7 +204,18 @@ btBroadphaseProxy* btDbvtBroadphase::createProxy(const btVector3& aabbMin, const
 	const bool finite = finiteAabb(aabbMin, aabbMax);
 	btAssert(finite && "btDbvtBroadphase::createProxy: non-finite AABB");
 	if (!finite) return 0;
-	void* memory = btAlignedAlloc(sizeof(btDbvtProxy), 16);
+	void* memory;
+	if (m_freeProxies)
+	{
+		btDbvtProxy* recycled = m_freeProxies;
+		m_freeProxies = recycled->links[1];
+		recycled->~btDbvtProxy();
+		memory = recycled;
+	}
+	else
+	{
+		memory = btAlignedAlloc(sizeof(btDbvtProxy), 16);
+	}
 	btDbvtProxy* proxy = new (memory) btDbvtProxy(aabbMin, aabbMax, userPtr, collisionFilterGroup, collisionFilterMask);
 	proxy->m_uniqueId = ++m_gid;
 	proxy->set = (collisionFilterGroup & btBroadphaseProxy::StaticFilter) ? FIXED_SET : DYNAMIC_SET;
@@ -217,11 +236,15 @@ void btDbvtBroadphase::destroyProxy(btBroadphaseProxy* absproxy, btDispatcher* d
 {
 	if (!absproxy) return;
 	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	btAssert(proxy->leaf && "btDbvtBroadphase::destroyProxy: proxy already destroyed");
+	if (!proxy->leaf) return;
 	m_sets[proxy->set].remove(proxy->leaf);
 	unlinkProxy(proxy);
 	m_paircache->removeOverlappingPairsContainingProxy(proxy, dispatcher);
-	proxy->~btDbvtProxy();
-	btAlignedFree(proxy);
+	proxy->leaf = 0;
+	proxy->links[0] = 0;
+	proxy->links[1] = m_freeProxies;
+	m_freeProxies = proxy;
 }
 
 void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax,
@@ -234,6 +257,8 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	btAssert(finite && "btDbvtBroadphase::setAabb: non-finite AABB");
 	if (!finite) return;
 	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	btAssert(proxy->leaf && "btDbvtBroadphase::setAabb: proxy was destroyed");
+	if (!proxy->leaf) return;
 	++m_updates_call;
 	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
 	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
@@ -256,6 +281,8 @@ void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btV
 	btAssert(finite && "btDbvtBroadphase::setAabbForceUpdate: non-finite AABB");
 	if (!finite) return;
 	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	btAssert(proxy->leaf && "btDbvtBroadphase::setAabbForceUpdate: proxy was destroyed");
+	if (!proxy->leaf) return;
 	proxy->m_aabbMin = aabbMin;
 	proxy->m_aabbMax = aabbMax;
 	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);

@@ -442,5 +442,25 @@ TEST(DbvtBroadphase, BadInputIsRejectedWithoutTouchingState)
 	ASSERT_NE(plane, nullptr);
 	broadphase.calculateOverlappingPairs(0);
 	EXPECT_EQ(broadphase.getOverlappingPairCache()->getNumOverlappingPairs(), 3);
+
+	// A destroyed proxy is kept for reuse, so using it again is caught rather than touching freed memory.
+	broadphase.destroyProxy(plane, 0);
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(broadphase.destroyProxy(plane, 0), "already destroyed");
+	EXPECT_DEATH(broadphase.setAabb(plane, btVector3(0, 0, 0), btVector3(1, 1, 1), 0), "was destroyed");
+#else
+	broadphase.destroyProxy(plane, 0);
+	broadphase.setAabb(plane, btVector3(0, 0, 0), btVector3(1, 1, 1), 0);
+	broadphase.setAabbForceUpdate(plane, btVector3(0, 0, 0), btVector3(1, 1, 1), 0);
+#endif
+	broadphase.calculateOverlappingPairs(0);
+	EXPECT_EQ(broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET].m_leaves, 2) << "the destroyed proxy stays out";
+	EXPECT_EQ(broadphase.getOverlappingPairCache()->getNumOverlappingPairs(), 1);
+	// The next proxy reuses the destroyed one's memory and works normally.
+	btBroadphaseProxy* reused =
+	    broadphase.createProxy(btVector3(0, 0, 0), btVector3(1, 1, 1), 0, idToClient(4), 1, -1, 0);
+	EXPECT_EQ(reused, plane);
+	broadphase.calculateOverlappingPairs(0);
+	EXPECT_EQ(broadphase.getOverlappingPairCache()->getNumOverlappingPairs(), 3);
 }
 }  // namespace
