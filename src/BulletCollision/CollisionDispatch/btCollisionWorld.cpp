@@ -111,8 +111,12 @@ void btCollisionWorld::addCollisionObject(btCollisionObject* collisionObject, in
 		return;
 	}
 	const int shapeType = collisionObject->getCollisionShape()->getShapeType();
-	collisionObject->setBroadphaseHandle(m_broadphasePairCache->createProxy(
-	    aabbMin, aabbMax, shapeType, collisionObject, collisionFilterGroup, collisionFilterMask, m_dispatcher1));
+	btBroadphaseProxy* proxy = m_broadphasePairCache->createProxy(
+	    aabbMin, aabbMax, shapeType, collisionObject, collisionFilterGroup, collisionFilterMask, m_dispatcher1);
+	collisionObject->setBroadphaseHandle(proxy);
+	// A broadphase that refuses the proxy (a full btAxisSweep3 pool) has asserted; the object stays in the
+	// world like one with a non-finite AABB.
+	if (!proxy) collisionObject->forceActivationState(DISABLE_SIMULATION);
 }
 
 void btCollisionWorld::removeCollisionObject(btCollisionObject* collisionObject)
