@@ -3,10 +3,17 @@
 #define BULLET_DYNAMICS_COMMON_H
 
 /// Everything a rigid-body program needs, in one include (as with Bullet): the collision layer
-/// plus the dynamics layer. For now that is LinearMath; the BulletDynamics issues add their headers
-/// here (dynamics worlds, rigid bodies, constraint solver, constraints, vehicle) as they land.
+/// plus the dynamics layer: dynamics worlds, rigid bodies and the constraint solver (joints and the
+/// vehicle are added here as they land).
 
 #include "btBulletCollisionCommon.h"
+
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btSimpleDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Dynamics/btActionInterface.h"
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
 
 #include "LinearMath/btVector3.h"
 #include "LinearMath/btQuaternion.h"

@@ -30,4 +30,28 @@ inline void caliberKeepOnlyNewestPoint(btPersistentManifold* manifold, int count
 	for (int i = countBeforeAdd - 1; i >= 0; --i) manifold->removeContactPoint(i);
 }
 
+// Algorithms that find the whole contact patch each frame (box-box, polyhedral clipping) call this before
+// adding the new points: points whose two halves have moved apart by more than the breaking threshold
+// (along the normal or across it) since last frame are dropped first. Otherwise a body that slides
+// further than the threshold per step finds its manifold full of last frame's points, and the area rule
+// would keep a lopsided mix of old and new ones. Lifetimes and callbacks are left to the
+// refreshContactPoints that follows the detection.
+inline void caliberDropStalePoints(btPersistentManifold* manifold, const btCollisionObjectWrapper* body0Wrap,
+                                   const btCollisionObjectWrapper* body1Wrap)
+{
+	const bool inOrder = manifold->getBody0() == body0Wrap->getCollisionObject();
+	const btTransform& trA = inOrder ? body0Wrap->getWorldTransform() : body1Wrap->getWorldTransform();
+	const btTransform& trB = inOrder ? body1Wrap->getWorldTransform() : body0Wrap->getWorldTransform();
+	const btScalar threshold = manifold->getContactBreakingThreshold();
+	for (int i = manifold->getNumContacts() - 1; i >= 0; --i)
+	{
+		const btManifoldPoint& point = manifold->getContactPoint(i);
+		const btVector3 onA = trA(point.m_localPointA);
+		const btVector3 onB = trB(point.m_localPointB);
+		const btScalar distance = (onA - onB).dot(point.m_normalWorldOnB);
+		const btVector3 drift = (onA - point.m_normalWorldOnB * distance) - onB;
+		if (distance > threshold || drift.length2() > threshold * threshold) manifold->removeContactPoint(i);
+	}
+}
+
 #endif  // CALIBER_ALGORITHM_UTIL_H

@@ -46,6 +46,7 @@ void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper
 	const btScalar reach = m_manifoldPtr->getContactBreakingThreshold() + resultOut->m_closestPointDistanceThreshold;
 	input.m_maximumDistanceSquared = reach * reach;
 
+	if (m_ownManifold) caliberDropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
 	btBoxBoxDetector detector(box0, box1);
 	detector.getClosestPoints(input, *resultOut, dispatchInfo.m_debugDraw);
 

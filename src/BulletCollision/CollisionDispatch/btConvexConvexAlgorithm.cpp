@@ -197,6 +197,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		}
 		if (haveAxis)
 		{
+			if (m_ownManifold) caliberDropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
 			MarginRestoringResult clipped(*resultOut, clippingMargin(shapeA), clippingMargin(shapeB));
 			// The margins are added back after clipping, so clipping may keep points up to reach + margins.
 			btPolyhedralContactClipping::clipHullAgainstHull(

@@ -1,0 +1,153 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef BT_DISCRETE_DYNAMICS_WORLD_H
+#define BT_DISCRETE_DYNAMICS_WORLD_H
+
+/// btDiscreteDynamicsWorld: the rigid-body world. The step, stage by stage, with the file of each, is
+/// drawn in docs/architecture.md; the dynamics in docs/rigid-body-dynamics.md.
+
+#include "BulletDynamics/Dynamics/btDynamicsWorld.h"
+#include "LinearMath/btAlignedObjectArray.h"
+
+class btCollisionConfiguration;
+class btConstraintSolver;
+class btSimulationIslandManager;
+class btTypedConstraint;
+class btPersistentManifold;
+struct InplaceSolverIslandCallback;
+
+/// Steps rigid bodies in fixed substeps: predict motion, find contacts, build islands, solve, integrate
+/// (with continuous collision for fast bodies), update actions and sleeping, then hand interpolated
+/// transforms to the motion states. Bad input (non-finite time steps, bodies whose state has become
+/// non-finite, bodies added twice or never added) is reported through btReportWarning and rejected or
+/// taken out of the simulation; the rest of the world keeps simulating.
+ATTRIBUTE_ALIGNED16(class)
+btDiscreteDynamicsWorld : public btDynamicsWorld
+{
+protected:
+	InplaceSolverIslandCallback* m_solverIslandCallback;
+	btConstraintSolver* m_constraintSolver;
+	btSimulationIslandManager* m_islandManager;
+	/// The bodies that may move (dynamic and kinematic), in insertion order.
+	btAlignedObjectArray<btRigidBody*> m_nonStaticRigidBodies;
+	btVector3 m_gravity;
+	/// Time accumulated towards the next fixed substep.
+	btScalar m_localTime;
+	btScalar m_fixedTimeStep;
+	bool m_ownsIslandManager;
+	bool m_ownsConstraintSolver;
+	bool m_synchronizeAllMotionStates;
+	bool m_applySpeculativeContactRestitution;
+	btAlignedObjectArray<btActionInterface*> m_actions;
+	int m_profileTimings;
+	bool m_latencyMotionStateInterpolation;
+	/// Set once the "non-finite body" warning has been given (it is given once per world).
+	bool m_reportedNonFiniteBody;
+
+	/// Integrates forces into velocities, applies damping and predicts the end-of-step transforms.
+	virtual void predictUnconstraintMotion(btScalar timeStep);
+	/// Moves the bodies to their end-of-step transforms, clamping fast ones at their time of impact.
+	void integrateTransformsInternal(btRigidBody * *bodies, int numBodies, btScalar timeStep);
+	virtual void integrateTransforms(btScalar timeStep);
+	/// Unites touching bodies into islands (and sets their island tags).
+	virtual void calculateSimulationIslands();
+	/// Runs the solver on every awake island.
+	virtual void solveConstraints(btContactSolverInfo & solverInfo);
+	/// Sleeping: accumulates still time and lets islands that have been still long enough fall asleep.
+	virtual void updateActivationState(btScalar timeStep);
+	void updateActions(btScalar timeStep);
+	void startProfiling(btScalar timeStep);
+	/// One fixed substep: the whole pipeline.
+	virtual void internalSingleStepSimulation(btScalar timeStep);
+	/// Reads kinematic bodies' motion states and derives their velocities.
+	virtual void saveKinematicState(btScalar timeStep);
+	/// Takes bodies whose state became non-finite out of the simulation, with a warning.
+	void quarantineNonFiniteBodies();
+
+public:
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// A world over the given dispatcher, broadphase and configuration (none owned). A null solver makes
+	/// the world create (and own) a btSequentialImpulseConstraintSolver.
+	btDiscreteDynamicsWorld(btDispatcher * dispatcher, btBroadphaseInterface * pairCache,
+	                        btConstraintSolver * constraintSolver, btCollisionConfiguration * collisionConfiguration);
+	virtual ~btDiscreteDynamicsWorld();
+
+	int stepSimulation(btScalar timeStep, int maxSubSteps = 1, btScalar fixedTimeStep = btScalar(1.) / btScalar(60.))
+	    override;
+
+	void synchronizeMotionStates() override;
+	/// Hands body's interpolated transform to its motion state.
+	void synchronizeSingleMotionState(btRigidBody * body);
+
+	void addAction(btActionInterface*) override;
+	void removeAction(btActionInterface*) override;
+
+	btSimulationIslandManager* getSimulationIslandManager() { return m_islandManager; }
+	const btSimulationIslandManager* getSimulationIslandManager() const { return m_islandManager; }
+
+	btCollisionWorld* getCollisionWorld() { return this; }
+
+	void setGravity(const btVector3& gravity) override;
+	btVector3 getGravity() const override;
+
+	/// Non-rigid objects default to the static filter group, colliding with everything non-static.
+	void addCollisionObject(
+	    btCollisionObject * collisionObject, int collisionFilterGroup = btBroadphaseProxy::StaticFilter,
+	    int collisionFilterMask = btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter) override;
+
+	/// Dynamic bodies join the default group and collide with everything; static and kinematic ones
+	/// join the static group and do not collide with each other. The body gets the world's gravity unless
+	/// it has BT_DISABLE_WORLD_GRAVITY.
+	void addRigidBody(btRigidBody * body) override;
+	void addRigidBody(btRigidBody * body, int group, int mask) override;
+	void removeRigidBody(btRigidBody * body) override;
+
+	/// Rigid bodies are removed as by removeRigidBody.
+	void removeCollisionObject(btCollisionObject * collisionObject) override;
+
+	void debugDrawWorld() override;
+
+	/// The old solver is deleted if the world owned it; the new one is not owned.
+	void setConstraintSolver(btConstraintSolver * solver) override;
+	btConstraintSolver* getConstraintSolver() override;
+
+	btDynamicsWorldType getWorldType() const override { return BT_DISCRETE_DYNAMICS_WORLD; }
+
+	void clearForces() override;
+
+	/// Adds each awake dynamic body's gravity to its accumulated force.
+	virtual void applyGravity();
+
+	/// Kept for source compatibility; the world runs on the calling thread.
+	virtual void setNumTasks(int numTasks) { (void)numTasks; }
+
+	/// Older name for updating the actions.
+	virtual void updateVehicles(btScalar timeStep) { updateActions(timeStep); }
+
+	void addVehicle(btActionInterface * vehicle) override;
+	void removeVehicle(btActionInterface * vehicle) override;
+	void addCharacter(btActionInterface * character) override;
+	void removeCharacter(btActionInterface * character) override;
+
+	/// When true, sleeping bodies' motion states are updated too (default false).
+	void setSynchronizeAllMotionStates(bool synchronizeAll) { m_synchronizeAllMotionStates = synchronizeAll; }
+	bool getSynchronizeAllMotionStates() const { return m_synchronizeAllMotionStates; }
+
+	/// Kept for source compatibility (Caliber does not bounce at a CCD time of impact).
+	void setApplySpeculativeContactRestitution(bool enable) { m_applySpeculativeContactRestitution = enable; }
+	bool getApplySpeculativeContactRestitution() const { return m_applySpeculativeContactRestitution; }
+
+	/// True (the default): motion states receive the pose interpolated between the last two substeps,
+	/// one substep behind the simulation, so rendering is smooth without extrapolating. False: the pose
+	/// extrapolated by the remaining accumulated time.
+	void setLatencyMotionStateInterpolation(bool latencyInterpolation)
+	{
+		m_latencyMotionStateInterpolation = latencyInterpolation;
+	}
+	bool getLatencyMotionStateInterpolation() const { return m_latencyMotionStateInterpolation; }
+
+	btAlignedObjectArray<btRigidBody*>& getNonStaticRigidBodies() { return m_nonStaticRigidBodies; }
+	const btAlignedObjectArray<btRigidBody*>& getNonStaticRigidBodies() const { return m_nonStaticRigidBodies; }
+};
+
+#endif  // BT_DISCRETE_DYNAMICS_WORLD_H

@@ -1,0 +1,392 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btQuickprof.h"
+#include "LinearMath/btTransformUtil.h"
+
+namespace
+{
+const unsigned long kDefaultSeed = 0;
+
+void shuffle(btAlignedObjectArray<int>& order, btSequentialImpulseConstraintSolver& solver)
+{
+	for (int i = order.size() - 1; i > 0; --i) order.swap(i, solver.btRandInt2(i + 1));
+}
+
+void identityOrder(btAlignedObjectArray<int>& order, int count)
+{
+	order.resizeNoInitialize(count);
+	for (int i = 0; i < count; ++i) order[i] = i;
+}
+}  // namespace
+
+btSequentialImpulseConstraintSolver::btSequentialImpulseConstraintSolver()
+    : m_solveCount(0),
+      m_fixedBodyId(-1),
+      m_btSeed2(kDefaultSeed),
+      m_leastSquaresResidual(0),
+      m_maxOverrideNumSolverIterations(0)
+{
+}
+
+btSequentialImpulseConstraintSolver::~btSequentialImpulseConstraintSolver() {}
+
+void btSequentialImpulseConstraintSolver::reset()
+{
+	m_btSeed2 = kDefaultSeed;
+	m_solveCount = 0;
+}
+
+unsigned long btSequentialImpulseConstraintSolver::btRand2()
+{
+	// A 32-bit linear congruential generator (Numerical Recipes' constants): cheap, and the same on
+	// every platform, which is all the shuffle needs.
+	m_btSeed2 = (1664525UL * m_btSeed2 + 1013904223UL) & 0xffffffffUL;
+	return m_btSeed2;
+}
+
+int btSequentialImpulseConstraintSolver::btRandInt2(int n)
+{
+	btAssert(n > 0);
+	// The high bits of an LCG are the random ones.
+	const unsigned long r = btRand2() >> 8;
+	return int(r % (unsigned long)n);
+}
+
+void btSequentialImpulseConstraintSolver::initSolverBody(btSolverBody* solverBody, btCollisionObject* collisionObject,
+                                                         btScalar timeStep)
+{
+	(void)timeStep;
+	const btVector3 zero(btScalar(0), btScalar(0), btScalar(0));
+	btRigidBody* rb = btRigidBody::upcast(collisionObject);
+	solverBody->m_deltaLinearVelocity = zero;
+	solverBody->m_deltaAngularVelocity = zero;
+	solverBody->m_pushVelocity = zero;
+	solverBody->m_turnVelocity = zero;
+	solverBody->m_externalForceImpulse = zero;
+	solverBody->m_externalTorqueImpulse = zero;
+	if (rb)
+	{
+		solverBody->m_worldTransform = rb->getWorldTransform();
+		solverBody->m_invMass = rb->getInvMass() * rb->getLinearFactor();
+		solverBody->m_originalBody = rb;
+		solverBody->m_angularFactor = rb->getAngularFactor();
+		solverBody->m_linearFactor = rb->getLinearFactor();
+		solverBody->m_linearVelocity = rb->getLinearVelocity();
+		solverBody->m_angularVelocity = rb->getAngularVelocity();
+	}
+	else
+	{
+		solverBody->m_worldTransform.setIdentity();
+		solverBody->m_invMass = zero;
+		solverBody->m_originalBody = 0;
+		solverBody->m_angularFactor.setValue(btScalar(1), btScalar(1), btScalar(1));
+		solverBody->m_linearFactor.setValue(btScalar(1), btScalar(1), btScalar(1));
+		solverBody->m_linearVelocity = zero;
+		solverBody->m_angularVelocity = zero;
+	}
+}
+
+int btSequentialImpulseConstraintSolver::getOrInitSolverBody(btCollisionObject& body, btScalar timeStep)
+{
+	// The companion id is a hint, not a promise: the island manager resets it every step, but a user
+	// calling solveGroup directly, or a kinematic body shared by two islands, may leave a stale one.
+	const int hint = body.getCompanionId();
+	if (hint >= 0 && hint < m_tmpSolverBodyPool.size() && m_tmpSolverBodyPool[hint].m_originalBody == &body)
+		return hint;
+
+	btRigidBody* rb = btRigidBody::upcast(&body);
+	// Moving bodies get their own entry: dynamic ones to be solved, kinematic ones because their velocity
+	// matters to the bodies they touch even though nothing pushes them back.
+	if (rb && (rb->getInvMass() != btScalar(0) || rb->isKinematicObject()))
+	{
+		const int index = m_tmpSolverBodyPool.size();
+		btSolverBody& solverBody = m_tmpSolverBodyPool.expandNonInitializing();
+		initSolverBody(&solverBody, &body, timeStep);
+		body.setCompanionId(index);
+		return index;
+	}
+	if (m_fixedBodyId < 0)
+	{
+		m_fixedBodyId = m_tmpSolverBodyPool.size();
+		btSolverBody& fixedBody = m_tmpSolverBodyPool.expandNonInitializing();
+		initSolverBody(&fixedBody, 0, timeStep);
+	}
+	return m_fixedBodyId;
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
+    btIDebugDraw* debugDrawer)
+{
+	BT_PROFILE("solveGroupCacheFriendlySetup");
+	(void)constraints;
+	(void)debugDrawer;
+	btAssert(numConstraints == 0 && "btSequentialImpulseConstraintSolver: joints are not supported yet");
+	m_fixedBodyId = -1;
+	m_maxOverrideNumSolverIterations = 0;
+	m_tmpSolverBodyPool.resize(0);
+	m_tmpSolverContactConstraintPool.resize(0);
+	m_tmpSolverContactFrictionConstraintPool.resize(0);
+	m_tmpSolverContactRollingFrictionConstraintPool.resize(0);
+	// Rough upper bound, so the pool grows at most once per new record scene size.
+	m_tmpSolverBodyPool.reserve(numBodies + 1);
+
+	for (int i = 0; i < numBodies; ++i)
+	{
+		// An island holds dynamic bodies; the static and kinematic ones they touch come in through the
+		// manifolds. Reset the hint so a stale id from another island is never trusted.
+		bodies[i]->setCompanionId(-1);
+	}
+	for (int i = 0; i < numBodies; ++i) getOrInitSolverBody(*bodies[i], infoGlobal.m_timeStep);
+
+	m_manifoldFirstRow.resize(0);
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		const int firstRow = m_tmpSolverContactConstraintPool.size();
+		convertContact(manifoldPtr[i], infoGlobal);
+		if (m_tmpSolverContactConstraintPool.size() > firstRow) m_manifoldFirstRow.push_back(firstRow);
+	}
+	m_manifoldFirstRow.push_back(m_tmpSolverContactConstraintPool.size());
+	++m_solveCount;
+
+	identityOrder(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
+	identityOrder(m_orderFrictionConstraintPool, m_tmpSolverContactFrictionConstraintPool.size());
+	identityOrder(m_orderRollingFrictionConstraintPool, m_tmpSolverContactRollingFrictionConstraintPool.size());
+	return btScalar(0);
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveFrictionRow(btSolverBody* solverBodies, int rowIndex)
+{
+	btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[rowIndex];
+	const btScalar normalImpulse = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
+	if (!(normalImpulse > btScalar(0))) return btScalar(0);
+	const btScalar bound = row.m_friction * normalImpulse;
+	return caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row, -bound,
+	                           bound);
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration, btCollisionObject** bodies,
+                                                                   int numBodies, btPersistentManifold** manifoldPtr,
+                                                                   int numManifolds, btTypedConstraint** constraints,
+                                                                   int numConstraints,
+                                                                   const btContactSolverInfo& infoGlobal,
+                                                                   btIDebugDraw* debugDrawer)
+{
+	(void)bodies;
+	(void)numBodies;
+	(void)manifoldPtr;
+	(void)numManifolds;
+	(void)constraints;
+	(void)numConstraints;
+	(void)debugDrawer;
+	if ((infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && (iteration & 7) == 0)
+	{
+		shuffle(m_orderTmpConstraintPool, *this);
+		shuffle(m_orderFrictionConstraintPool, *this);
+		shuffle(m_orderRollingFrictionConstraintPool, *this);
+	}
+
+	btSolverBody* solverBodies = m_tmpSolverBodyPool.size() ? &m_tmpSolverBodyPool[0] : 0;
+	btScalar residual = btScalar(0);
+
+	// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
+	if (infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER)
+	{
+		// Bullet's mode: the shuffled orders, normal rows first, then friction.
+		const int numContacts = m_tmpSolverContactConstraintPool.size();
+		for (int j = 0; j < numContacts; ++j)
+		{
+			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
+			residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
+			                                row.m_lowerLimit, row.m_upperLimit);
+		}
+		const int numFriction = m_tmpSolverContactFrictionConstraintPool.size();
+		for (int j = 0; j < numFriction; ++j)
+			residual += solveFrictionRow(solverBodies, m_orderFrictionConstraintPool[j]);
+	}
+	else
+	{
+		// A fixed order is biased: the first point of a manifold takes more than its share of the impulse
+		// in every sweep, and in a stack that bias tilts every box the same way, step after step, until
+		// the tower leans. So odd sweeps run backwards, and within each manifold the first point rotates
+		// with the sweep and the step. Deterministic, and no shuffle to pay for.
+		const bool backwards = (iteration & 1) != 0;
+		const int numManifolds = m_manifoldFirstRow.size() - 1;
+		const unsigned int rotation = unsigned(iteration >> 1) + m_solveCount;
+		for (int pass = 0; pass < 2; ++pass)
+		{
+			for (int k = 0; k < numManifolds; ++k)
+			{
+				const int m = backwards ? numManifolds - 1 - k : k;
+				const int first = m_manifoldFirstRow[m];
+				const int count = m_manifoldFirstRow[m + 1] - first;
+				for (int p = 0; p < count; ++p)
+				{
+					const int step = backwards ? count - 1 - p : p;
+					const int rowIndex = first + int((unsigned(step) + rotation) % unsigned(count));
+					if (pass == 0)
+					{
+						btSolverConstraint& row = m_tmpSolverContactConstraintPool[rowIndex];
+						residual +=
+						    caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB],
+						                        row, row.m_lowerLimit, row.m_upperLimit);
+					}
+					else
+					{
+						// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
+						residual += solveFrictionRow(solverBodies, 2 * rowIndex);
+						residual += solveFrictionRow(solverBodies, 2 * rowIndex + 1);
+					}
+				}
+			}
+		}
+	}
+
+	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
+	for (int j = 0; j < numRolling; ++j)
+	{
+		btSolverConstraint& row =
+		    m_tmpSolverContactRollingFrictionConstraintPool[m_orderRollingFrictionConstraintPool[j]];
+		const btScalar normalImpulse = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
+		if (normalImpulse > btScalar(0))
+		{
+			// Rolling resistance cannot exceed the friction torque the contact can carry.
+			const btScalar bound = btMin(row.m_friction * normalImpulse, row.m_upperLimit);
+			residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
+			                                -bound, bound);
+		}
+	}
+	return residual;
+}
+
+void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIterations(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
+    btIDebugDraw* debugDrawer)
+{
+	(void)bodies;
+	(void)numBodies;
+	(void)manifoldPtr;
+	(void)numManifolds;
+	(void)constraints;
+	(void)numConstraints;
+	(void)debugDrawer;
+	if (!infoGlobal.m_splitImpulse) return;
+	BT_PROFILE("solveGroupCacheFriendlySplitImpulseIterations");
+	const int numContacts = m_tmpSolverContactConstraintPool.size();
+	bool anyPenetration = false;
+	for (int j = 0; j < numContacts && !anyPenetration; ++j)
+		anyPenetration = m_tmpSolverContactConstraintPool[j].m_rhsPenetration != btScalar(0);
+	if (!anyPenetration) return;
+
+	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
+	for (int iteration = 0; iteration < infoGlobal.m_numIterations; ++iteration)
+	{
+		btScalar residual = btScalar(0);
+		for (int j = 0; j < numContacts; ++j)
+		{
+			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
+			if (row.m_rhsPenetration == btScalar(0) && row.m_appliedPushImpulse == btScalar(0)) continue;
+			residual +=
+			    caliber::resolvePushRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row);
+		}
+		if (residual <= infoGlobal.m_leastSquaresResidualThreshold) break;
+	}
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
+    btIDebugDraw* debugDrawer)
+{
+	BT_PROFILE("solveGroupCacheFriendlyIterations");
+	solveGroupCacheFriendlySplitImpulseIterations(bodies, numBodies, manifoldPtr, numManifolds, constraints,
+	                                              numConstraints, infoGlobal, debugDrawer);
+	const int maxIterations = btMax(infoGlobal.m_numIterations, m_maxOverrideNumSolverIterations);
+	m_leastSquaresResidual = btScalar(0);
+	for (int iteration = 0; iteration < maxIterations; ++iteration)
+	{
+		m_leastSquaresResidual = solveSingleIteration(iteration, bodies, numBodies, manifoldPtr, numManifolds,
+		                                              constraints, numConstraints, infoGlobal, debugDrawer);
+		if (m_leastSquaresResidual <= infoGlobal.m_leastSquaresResidualThreshold) break;
+	}
+	return m_leastSquaresResidual;
+}
+
+void btSequentialImpulseConstraintSolver::writeBackContacts(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal)
+{
+	(void)infoGlobal;
+	for (int j = iBegin; j < iEnd; ++j)
+	{
+		const btSolverConstraint& row = m_tmpSolverContactConstraintPool[j];
+		btManifoldPoint* point = static_cast<btManifoldPoint*>(row.m_originalContactPoint);
+		btAssert(point);
+		point->m_appliedImpulse = row.m_appliedImpulse;
+		// Friction rows come in pairs, in the order of their contact rows.
+		const btSolverConstraint& friction1 = m_tmpSolverContactFrictionConstraintPool[2 * j];
+		const btSolverConstraint& friction2 = m_tmpSolverContactFrictionConstraintPool[2 * j + 1];
+		point->m_appliedImpulseLateral1 = friction1.m_appliedImpulse;
+		point->m_appliedImpulseLateral2 = friction2.m_appliedImpulse;
+	}
+}
+
+void btSequentialImpulseConstraintSolver::writeBackBodies(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal)
+{
+	for (int i = iBegin; i < iEnd; ++i)
+	{
+		btSolverBody& solverBody = m_tmpSolverBodyPool[i];
+		btRigidBody* body = solverBody.m_originalBody;
+		if (!body) continue;
+		body->setCompanionId(-1);
+		if (body->isStaticOrKinematicObject()) continue;
+		body->setLinearVelocity(solverBody.m_linearVelocity + solverBody.m_deltaLinearVelocity);
+		body->setAngularVelocity(solverBody.m_angularVelocity + solverBody.m_deltaAngularVelocity);
+		if (infoGlobal.m_splitImpulse &&
+		    (!solverBody.m_pushVelocity.fuzzyZero() || !solverBody.m_turnVelocity.fuzzyZero()))
+		{
+			// The push moves the body out of penetration without leaving it any velocity.
+			btTransform moved;
+			btTransformUtil::integrateTransform(solverBody.m_worldTransform, solverBody.m_pushVelocity,
+			                                    solverBody.m_turnVelocity * infoGlobal.m_splitImpulseTurnErp,
+			                                    infoGlobal.m_timeStep, moved);
+			body->setWorldTransform(moved);
+		}
+	}
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                                                            const btContactSolverInfo& infoGlobal)
+{
+	BT_PROFILE("solveGroupCacheFriendlyFinish");
+	(void)bodies;
+	(void)numBodies;
+	writeBackContacts(0, m_tmpSolverContactConstraintPool.size(), infoGlobal);
+	writeBackBodies(0, m_tmpSolverBodyPool.size(), infoGlobal);
+	return btScalar(0);
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveGroup(btCollisionObject** bodies, int numBodies,
+                                                         btPersistentManifold** manifoldPtr, int numManifolds,
+                                                         btTypedConstraint** constraints, int numConstraints,
+                                                         const btContactSolverInfo& infoGlobal,
+                                                         btIDebugDraw* debugDrawer, btDispatcher* dispatcher)
+{
+	BT_PROFILE("solveGroup");
+	(void)dispatcher;
+	btAssert(numBodies >= 0 && numManifolds >= 0);
+	if ((numBodies > 0 && !bodies) || (numManifolds > 0 && !manifoldPtr) || numBodies < 0 || numManifolds < 0)
+		return btScalar(0);
+	btAssert(infoGlobal.m_timeStep > btScalar(0));
+	if (!(infoGlobal.m_timeStep > btScalar(0))) return btScalar(0);
+	solveGroupCacheFriendlySetup(bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints, infoGlobal,
+	                             debugDrawer);
+	solveGroupCacheFriendlyIterations(bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints,
+	                                  infoGlobal, debugDrawer);
+	solveGroupCacheFriendlyFinish(bodies, numBodies, infoGlobal);
+	return m_leastSquaresResidual;
+}

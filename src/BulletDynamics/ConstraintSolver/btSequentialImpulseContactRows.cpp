@@ -1,0 +1,358 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The contact half of the solver's setup: manifold points become normal, friction and rolling rows.
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
+
+namespace
+{
+const btScalar kUnbounded = btScalar(1e10);
+
+// What a row needs to know about one of its bodies.
+struct RowBody
+{
+	const btSolverBody* solverBody;
+	const btRigidBody* rigidBody;  // 0 for the shared static entry
+
+	// I^-1 F axis, where F is the angular factor; zero for bodies that do not turn.
+	btVector3 angularComponent(const btVector3& axis) const
+	{
+		if (!rigidBody || rigidBody->isStaticOrKinematicObject()) return btVector3(0, 0, 0);
+		return rigidBody->getInvInertiaTensorWorld() * (axis * rigidBody->getAngularFactor());
+	}
+	// The velocity change the body's accumulated force and torque gave it this step (the world adds them
+	// to the velocities before the solve).
+	btVector3 forceVelocityChange(btScalar timeStep) const
+	{
+		if (!rigidBody || rigidBody->isStaticOrKinematicObject()) return btVector3(0, 0, 0);
+		return rigidBody->getTotalForce() * solverBody->m_invMass * timeStep;
+	}
+	btVector3 torqueVelocityChange(btScalar timeStep) const
+	{
+		if (!rigidBody || rigidBody->isStaticOrKinematicObject()) return btVector3(0, 0, 0);
+		return rigidBody->getInvInertiaTensorWorld() * rigidBody->getTotalTorque() * solverBody->m_angularFactor *
+		       timeStep;
+	}
+	btVector3 angularFactor() const { return solverBody->m_angularFactor; }
+	btVector3 invMass() const { return solverBody->m_invMass; }
+	btVector3 linearVelocity() const { return solverBody->m_linearVelocity; }
+	btVector3 angularVelocity() const { return solverBody->m_angularVelocity; }
+};
+
+// Fills the Jacobian half of a row: linear directions n and -n, angular axes r1 x n and -(r2 x n);
+// returns J M^-1 J^T.
+btScalar setupJacobian(btSolverConstraint& row, const RowBody& a, const RowBody& b, const btVector3& normal,
+                       const btVector3& relPos1, const btVector3& relPos2)
+{
+	row.m_contactNormal1 = normal;
+	row.m_contactNormal2 = -normal;
+	row.m_relpos1CrossNormal = relPos1.cross(normal);
+	row.m_relpos2CrossNormal = -relPos2.cross(normal);
+	row.m_angularComponentA = a.angularComponent(row.m_relpos1CrossNormal);
+	row.m_angularComponentB = b.angularComponent(row.m_relpos2CrossNormal);
+	const btScalar linear = normal.dot(normal * a.invMass()) + normal.dot(normal * b.invMass());
+	const btScalar angular = row.m_relpos1CrossNormal.dot(row.m_angularComponentA * a.angularFactor()) +
+	                         row.m_relpos2CrossNormal.dot(row.m_angularComponentB * b.angularFactor());
+	return linear + angular;
+}
+
+// The same for a purely angular row about axis (rolling and spinning friction).
+btScalar setupAngularJacobian(btSolverConstraint& row, const RowBody& a, const RowBody& b, const btVector3& axis)
+{
+	row.m_contactNormal1.setZero();
+	row.m_contactNormal2.setZero();
+	row.m_relpos1CrossNormal = axis;
+	row.m_relpos2CrossNormal = -axis;
+	row.m_angularComponentA = a.angularComponent(axis);
+	row.m_angularComponentB = b.angularComponent(-axis);
+	return axis.dot(row.m_angularComponentA * a.angularFactor()) +
+	       (-axis).dot(row.m_angularComponentB * b.angularFactor());
+}
+
+// J v at the start of the solve.
+btScalar rowVelocity(const btSolverConstraint& row, const RowBody& a, const RowBody& b)
+{
+	return row.m_contactNormal1.dot(a.linearVelocity()) + row.m_relpos1CrossNormal.dot(a.angularVelocity()) +
+	       row.m_contactNormal2.dot(b.linearVelocity()) + row.m_relpos2CrossNormal.dot(b.angularVelocity());
+}
+
+// Bounce speed for an approach at relativeVelocity (negative when approaching); slow approaches do not
+// bounce, so resting contacts stay at rest.
+btScalar restitutionSpeed(btScalar relativeVelocity, btScalar restitution, btScalar velocityThreshold)
+{
+	if (btFabs(relativeVelocity) < velocityThreshold) return btScalar(0);
+	return btMax(btScalar(0), restitution * -relativeVelocity);
+}
+
+void applyWarmStart(btSolverConstraint& row, btSolverBody& a, btSolverBody& b)
+{
+	a.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, row.m_appliedImpulse);
+	b.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, row.m_appliedImpulse);
+}
+
+bool isFinitePoint(const btManifoldPoint& cp)
+{
+	const btVector3& a = cp.m_positionWorldOnA;
+	const btVector3& b = cp.m_positionWorldOnB;
+	const btVector3& n = cp.m_normalWorldOnB;
+	return btIsFinite(a.x() + a.y() + a.z() + b.x() + b.y() + b.z() + n.x() + n.y() + n.z() + cp.m_distance1);
+}
+}  // namespace
+
+void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstraint& row, int solverBodyIdA,
+                                                                 int solverBodyIdB, btManifoldPoint& cp,
+                                                                 const btContactSolverInfo& infoGlobal,
+                                                                 const btVector3& rel_pos1, const btVector3& rel_pos2)
+{
+	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
+	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	const RowBody a = {&bodyA, bodyA.m_originalBody};
+	const RowBody b = {&bodyB, bodyB.m_originalBody};
+	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
+
+	const btScalar denominator = setupJacobian(row, a, b, cp.m_normalWorldOnB, rel_pos1, rel_pos2);
+	btScalar erp = infoGlobal.m_erp2;
+	btScalar cfm = infoGlobal.m_globalCfm;
+	if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_CFM) cfm = cp.m_contactCFM;
+	if (cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP) erp = cp.m_contactERP;
+	// CFM is given per step in Bullet's convention (impulse-space softness scales with 1/h).
+	cfm *= invTimeStep;
+	row.m_jacDiagABInv = denominator + cfm > SIMD_EPSILON ? btScalar(1) / (denominator + cfm) : btScalar(0);
+	row.m_cfm = cfm * row.m_jacDiagABInv;
+	row.m_solverBodyIdA = solverBodyIdA;
+	row.m_solverBodyIdB = solverBodyIdB;
+	row.m_originalContactPoint = &cp;
+	row.m_friction = cp.m_combinedFriction;
+	row.m_overrideNumSolverIterations = -1;
+	row.m_frictionIndex = -1;
+	row.m_lowerLimit = btScalar(0);
+	row.m_upperLimit = kUnbounded;
+	row.m_appliedPushImpulse = btScalar(0);
+
+	const btScalar relativeVelocity = rowVelocity(row, a, b);
+	const btScalar penetration = cp.getDistance() + infoGlobal.m_linearSlop;
+	// The bounce is measured on the approach velocity before this step's forces: the impact happens
+	// within the step, and gravity acting over the whole step would otherwise feed the rebound (a ball
+	// bouncing a few percent higher than e^2 allows, every bounce).
+	const btScalar forceVelocity = row.m_contactNormal1.dot(a.forceVelocityChange(infoGlobal.m_timeStep)) +
+	                               row.m_relpos1CrossNormal.dot(a.torqueVelocityChange(infoGlobal.m_timeStep)) +
+	                               row.m_contactNormal2.dot(b.forceVelocityChange(infoGlobal.m_timeStep)) +
+	                               row.m_relpos2CrossNormal.dot(b.torqueVelocityChange(infoGlobal.m_timeStep));
+	const btScalar bounceSpeed = restitutionSpeed(relativeVelocity - forceVelocity, cp.m_combinedRestitution,
+	                                              infoGlobal.m_restitutionVelocityThreshold);
+	btScalar velocityError = bounceSpeed - relativeVelocity;
+	btScalar positionalError = btScalar(0);
+	// Deep penetrations are resolved by the split-impulse pass, which moves the bodies without adding
+	// the velocity that Baumgarte stabilisation would leave behind (the "popping" of deep contacts). So
+	// is any penetration of a bouncing contact: there the bounce already separates the bodies, and a
+	// Baumgarte velocity on top of it would add energy (bounces growing higher than e^2 allows).
+	const bool useSplit = infoGlobal.m_splitImpulse &&
+	                      (penetration <= infoGlobal.m_splitImpulsePenetrationThreshold || bounceSpeed > btScalar(0));
+	if (penetration > btScalar(0))
+	{
+		// Speculative: the bodies may still close the gap this step, but not more.
+		velocityError -= penetration * invTimeStep;
+	}
+	else
+	{
+		if (!useSplit && !(cp.m_contactPointFlags & BT_CONTACT_FLAG_HAS_CONTACT_ERP)) erp = infoGlobal.m_erp;
+		positionalError = -penetration * erp * invTimeStep;
+	}
+	const btScalar penetrationImpulse = positionalError * row.m_jacDiagABInv;
+	const btScalar velocityImpulse = velocityError * row.m_jacDiagABInv;
+	if (!useSplit)
+	{
+		row.m_rhs = penetrationImpulse + velocityImpulse;
+		row.m_rhsPenetration = btScalar(0);
+	}
+	else
+	{
+		row.m_rhs = velocityImpulse;
+		row.m_rhsPenetration = penetrationImpulse;
+	}
+
+	if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
+	{
+		row.m_appliedImpulse = cp.m_appliedImpulse * infoGlobal.m_warmstartingFactor;
+		applyWarmStart(row, bodyA, bodyB);
+	}
+	else
+	{
+		row.m_appliedImpulse = btScalar(0);
+	}
+}
+
+btSolverConstraint& btSequentialImpulseConstraintSolver::addFrictionConstraint(
+    const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
+    const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0, btCollisionObject* colObj1,
+    btScalar desiredVelocity, btScalar cfmSlip)
+{
+	(void)colObj0;
+	(void)colObj1;
+	btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
+	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
+	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	const RowBody a = {&bodyA, bodyA.m_originalBody};
+	const RowBody b = {&bodyB, bodyB.m_originalBody};
+	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
+	const btScalar cfm = cfmSlip + cp.m_frictionCFM;
+	row.m_jacDiagABInv = denominator + cfm > SIMD_EPSILON ? btScalar(1) / (denominator + cfm) : btScalar(0);
+	row.m_cfm = cfm * row.m_jacDiagABInv;
+	row.m_solverBodyIdA = solverBodyIdA;
+	row.m_solverBodyIdB = solverBodyIdB;
+	row.m_originalContactPoint = &cp;
+	row.m_friction = cp.m_combinedFriction;
+	row.m_frictionIndex = frictionIndex;
+	row.m_overrideNumSolverIterations = -1;
+	row.m_appliedImpulse = btScalar(0);
+	row.m_appliedPushImpulse = btScalar(0);
+	row.m_lowerLimit = -kUnbounded;
+	row.m_upperLimit = kUnbounded;
+	row.m_rhs = (desiredVelocity - rowVelocity(row, a, b)) * row.m_jacDiagABInv;
+	row.m_rhsPenetration = btScalar(0);
+	return row;
+}
+
+btSolverConstraint& btSequentialImpulseConstraintSolver::addTorsionalFrictionConstraint(
+    const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
+    btScalar torsionalFriction, const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0,
+    btCollisionObject* colObj1, btScalar desiredVelocity, btScalar cfmSlip)
+{
+	(void)rel_pos1;
+	(void)rel_pos2;
+	(void)colObj0;
+	(void)colObj1;
+	btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool.expandNonInitializing();
+	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
+	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	const RowBody a = {&bodyA, bodyA.m_originalBody};
+	const RowBody b = {&bodyB, bodyB.m_originalBody};
+	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
+	row.m_jacDiagABInv = denominator + cfmSlip > SIMD_EPSILON ? btScalar(1) / (denominator + cfmSlip) : btScalar(0);
+	row.m_cfm = cfmSlip * row.m_jacDiagABInv;
+	row.m_solverBodyIdA = solverBodyIdA;
+	row.m_solverBodyIdB = solverBodyIdB;
+	row.m_originalContactPoint = &cp;
+	row.m_friction = torsionalFriction;
+	row.m_frictionIndex = frictionIndex;
+	row.m_overrideNumSolverIterations = -1;
+	row.m_appliedImpulse = btScalar(0);
+	row.m_appliedPushImpulse = btScalar(0);
+	row.m_lowerLimit = -kUnbounded;
+	row.m_upperLimit = kUnbounded;
+	row.m_rhs = (desiredVelocity - rowVelocity(row, a, b)) * row.m_jacDiagABInv;
+	row.m_rhsPenetration = btScalar(0);
+	return row;
+}
+
+void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* manifold,
+                                                         const btContactSolverInfo& infoGlobal)
+{
+	btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
+	btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
+	if (!colObj0 || !colObj1) return;
+	const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
+	const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
+	// Two bodies that nothing can move (static or kinematic against each other) need no rows.
+	{
+		const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
+		const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
+		const bool aMoves = a.m_originalBody && !a.m_originalBody->isStaticOrKinematicObject();
+		const bool bMoves = b.m_originalBody && !b.m_originalBody->isStaticOrKinematicObject();
+		if (!aMoves && !bMoves) return;
+	}
+
+	for (int j = 0; j < manifold->getNumContacts(); ++j)
+	{
+		btManifoldPoint& cp = manifold->getContactPoint(j);
+		if (cp.getDistance() > manifold->getContactProcessingThreshold()) continue;
+		btAssert(isFinitePoint(cp));
+		if (!isFinitePoint(cp)) continue;
+
+		// Both bodies are pushed at the same point, halfway between the two witness points. With Bullet's
+		// choice (each body at its own witness point) a friction impulse on a penetrating contact has
+		// lever arms that differ by the depth, which creates angular momentum out of nothing.
+		const btVector3 contactPoint = (cp.getPositionWorldOnA() + cp.getPositionWorldOnB()) * btScalar(0.5);
+		const btVector3 rel_pos1 = contactPoint - colObj0->getWorldTransform().getOrigin();
+		const btVector3 rel_pos2 = contactPoint - colObj1->getWorldTransform().getOrigin();
+
+		// The friction impulse of the last step as a vector, to warm start the new directions with its
+		// projection (the directions follow the sliding velocity and turn from step to step).
+		const btVector3 previousFrictionImpulse = cp.m_lateralFrictionDir1 * cp.m_appliedImpulseLateral1 +
+		                                          cp.m_lateralFrictionDir2 * cp.m_appliedImpulseLateral2;
+
+		const int frictionIndex = m_tmpSolverContactConstraintPool.size();
+		btSolverConstraint& contactRow = m_tmpSolverContactConstraintPool.expandNonInitializing();
+		setupContactConstraint(contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, rel_pos1, rel_pos2);
+
+		const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
+		const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
+		const btVector3& normal = cp.m_normalWorldOnB;
+
+		// Rolling and spinning friction: angular rows about the normal and about two axes across it.
+		if (cp.m_combinedSpinningFriction > btScalar(0))
+			addTorsionalFrictionConstraint(normal, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
+			                               cp.m_combinedSpinningFriction, rel_pos1, rel_pos2, colObj0, colObj1);
+		if (cp.m_combinedRollingFriction > btScalar(0))
+		{
+			btVector3 axis0, axis1;
+			btPlaneSpace1(normal, axis0, axis1);
+			const btVector3 relativeSpin = a.m_angularVelocity - b.m_angularVelocity;
+			btVector3 rolling = relativeSpin - normal * normal.dot(relativeSpin);
+			if (rolling.length2() > SIMD_EPSILON)
+			{
+				axis0 = rolling.normalized();
+				axis1 = normal.cross(axis0);
+			}
+			addTorsionalFrictionConstraint(axis0, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
+			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1);
+			addTorsionalFrictionConstraint(axis1, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
+			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1);
+		}
+
+		// Sliding friction: always two directions, so that friction is isotropic whatever the solver mode.
+		// The first follows the tangential relative velocity when there is one, which makes the common
+		// case (sliding) a single active row.
+		const bool keepUserDirections = (infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
+		                                (cp.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED);
+		if (!keepUserDirections)
+		{
+			const btVector3 velocity = (a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)) -
+			                           (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2));
+			const btVector3 tangential = velocity - normal * normal.dot(velocity);
+			const btScalar tangentialSpeed2 = tangential.length2();
+			if (!(infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION) &&
+			    tangentialSpeed2 > SIMD_EPSILON)
+			{
+				cp.m_lateralFrictionDir1 = tangential / btSqrt(tangentialSpeed2);
+				cp.m_lateralFrictionDir2 = cp.m_lateralFrictionDir1.cross(normal).normalized();
+			}
+			else
+			{
+				btPlaneSpace1(normal, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
+			}
+			if ((infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
+			    (infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION))
+				cp.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
+		}
+		const int friction1Index = m_tmpSolverContactFrictionConstraintPool.size();
+		addFrictionConstraint(cp.m_lateralFrictionDir1, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
+		                      rel_pos2, colObj0, colObj1, cp.m_contactMotion1);
+		addFrictionConstraint(cp.m_lateralFrictionDir2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
+		                      rel_pos2, colObj0, colObj1, cp.m_contactMotion2);
+		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
+		{
+			// Indices, not references: the second row may have grown the pool.
+			btSolverConstraint& friction1 = m_tmpSolverContactFrictionConstraintPool[friction1Index];
+			btSolverConstraint& friction2 = m_tmpSolverContactFrictionConstraintPool[friction1Index + 1];
+			btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
+			btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+			friction1.m_appliedImpulse =
+			    previousFrictionImpulse.dot(cp.m_lateralFrictionDir1) * infoGlobal.m_warmstartingFactor;
+			friction2.m_appliedImpulse =
+			    previousFrictionImpulse.dot(cp.m_lateralFrictionDir2) * infoGlobal.m_warmstartingFactor;
+			applyWarmStart(friction1, bodyA, bodyB);
+			applyWarmStart(friction2, bodyA, bodyB);
+		}
+	}
+}

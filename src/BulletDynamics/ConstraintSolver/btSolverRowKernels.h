@@ -1,0 +1,75 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_SOLVER_ROW_KERNELS_H
+#define CALIBER_SOLVER_ROW_KERNELS_H
+
+// The inner loop of the sequential-impulse solver: one projected Gauss-Seidel update of one row.
+// Everything a row needs is in the row and its two solver bodies, so a later batched solver can run
+// rows that share no body side by side and get the same bits.
+
+#include "BulletDynamics/ConstraintSolver/btSolverBody.h"
+#include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
+
+namespace caliber
+{
+// The velocity error of the row measured through the solver's velocity changes so far.
+SIMD_FORCE_INLINE btScalar rowDeltaVelocity(const btSolverBody& bodyA, const btSolverBody& bodyB,
+                                            const btSolverConstraint& row)
+{
+	return row.m_contactNormal1.dot(bodyA.m_deltaLinearVelocity) +
+	       row.m_relpos1CrossNormal.dot(bodyA.m_deltaAngularVelocity) +
+	       row.m_contactNormal2.dot(bodyB.m_deltaLinearVelocity) +
+	       row.m_relpos2CrossNormal.dot(bodyB.m_deltaAngularVelocity);
+}
+
+// Drives the row towards its target with the accumulated impulse clamped to [lower, upper]; returns the
+// squared impulse change (the row's contribution to the least-squares residual).
+SIMD_FORCE_INLINE btScalar resolveRow(btSolverBody& bodyA, btSolverBody& bodyB, btSolverConstraint& row, btScalar lower,
+                                      btScalar upper)
+{
+	btScalar deltaImpulse =
+	    row.m_rhs - row.m_appliedImpulse * row.m_cfm - rowDeltaVelocity(bodyA, bodyB, row) * row.m_jacDiagABInv;
+	const btScalar sum = row.m_appliedImpulse + deltaImpulse;
+	if (sum < lower)
+	{
+		deltaImpulse = lower - row.m_appliedImpulse;
+		row.m_appliedImpulse = lower;
+	}
+	else if (sum > upper)
+	{
+		deltaImpulse = upper - row.m_appliedImpulse;
+		row.m_appliedImpulse = upper;
+	}
+	else
+	{
+		row.m_appliedImpulse = sum;
+	}
+	bodyA.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, deltaImpulse);
+	bodyB.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, deltaImpulse);
+	return deltaImpulse * deltaImpulse;
+}
+
+// The split-impulse counterpart: works on the push and turn velocities, impulse kept >= 0.
+SIMD_FORCE_INLINE btScalar resolvePushRow(btSolverBody& bodyA, btSolverBody& bodyB, btSolverConstraint& row)
+{
+	const btScalar deltaVelocity =
+	    row.m_contactNormal1.dot(bodyA.m_pushVelocity) + row.m_relpos1CrossNormal.dot(bodyA.m_turnVelocity) +
+	    row.m_contactNormal2.dot(bodyB.m_pushVelocity) + row.m_relpos2CrossNormal.dot(bodyB.m_turnVelocity);
+	btScalar deltaImpulse =
+	    row.m_rhsPenetration - row.m_appliedPushImpulse * row.m_cfm - deltaVelocity * row.m_jacDiagABInv;
+	const btScalar sum = row.m_appliedPushImpulse + deltaImpulse;
+	if (sum < btScalar(0))
+	{
+		deltaImpulse = -row.m_appliedPushImpulse;
+		row.m_appliedPushImpulse = btScalar(0);
+	}
+	else
+	{
+		row.m_appliedPushImpulse = sum;
+	}
+	bodyA.internalApplyPushImpulse(row.m_contactNormal1, row.m_angularComponentA, deltaImpulse);
+	bodyB.internalApplyPushImpulse(row.m_contactNormal2, row.m_angularComponentB, deltaImpulse);
+	return deltaImpulse * deltaImpulse;
+}
+}  // namespace caliber
+
+#endif  // CALIBER_SOLVER_ROW_KERNELS_H

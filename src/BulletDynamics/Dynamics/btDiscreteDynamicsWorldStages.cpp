@@ -1,0 +1,253 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The stages of one substep of btDiscreteDynamicsWorld, in the order internalSingleStepSimulation runs
+// them: predict, (collision detection: btCollisionWorld), islands, solve, integrate (with CCD),
+// sleeping. Kinematic state and quarantine of non-finite bodies come first.
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
+#include "BulletCollision/CollisionShapes/btCollisionShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btQuickprof.h"
+#include "LinearMath/btWarningHook.h"
+
+namespace
+{
+bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
+
+bool isFinite(const btTransform& t)
+{
+	const btMatrix3x3& b = t.getBasis();
+	return isFinite(t.getOrigin()) && isFinite(b[0]) && isFinite(b[1]) && isFinite(b[2]);
+}
+
+// The sweep of a fast body: the closest object that responds to contact with it, among those it is
+// moving towards (a hit whose normal faces along the motion is the body leaving a surface it touches).
+struct ClosestNotMeConvexResultCallback : public btCollisionWorld::ClosestConvexResultCallback
+{
+	btCollisionObject* m_me;
+	btScalar m_allowedPenetration;
+	btOverlappingPairCache* m_pairCache;
+	btDispatcher* m_dispatcher;
+
+	ClosestNotMeConvexResultCallback(btCollisionObject* me, const btVector3& fromA, const btVector3& toA,
+	                                 btOverlappingPairCache* pairCache, btDispatcher* dispatcher)
+	    : btCollisionWorld::ClosestConvexResultCallback(fromA, toA),
+	      m_me(me),
+	      m_allowedPenetration(btScalar(0)),
+	      m_pairCache(pairCache),
+	      m_dispatcher(dispatcher)
+	{
+	}
+
+	btScalar addSingleResult(btCollisionWorld::LocalConvexResult& convexResult, bool normalInWorldSpace) override
+	{
+		if (convexResult.m_hitCollisionObject == m_me) return btScalar(1);
+		if (!convexResult.m_hitCollisionObject->hasContactResponse()) return btScalar(1);
+		const btVector3 normal =
+		    normalInWorldSpace
+		        ? convexResult.m_hitNormalLocal
+		        : convexResult.m_hitCollisionObject->getWorldTransform().getBasis() * convexResult.m_hitNormalLocal;
+		const btVector3 motion = m_convexToWorld - m_convexFromWorld;
+		if (normal.dot(motion) >= -m_allowedPenetration) return btScalar(1);
+		return ClosestConvexResultCallback::addSingleResult(convexResult, normalInWorldSpace);
+	}
+
+	bool needsCollision(btBroadphaseProxy* proxy0) const override
+	{
+		if (proxy0->m_clientObject == m_me) return false;
+		if (!ClosestConvexResultCallback::needsCollision(proxy0)) return false;
+		if (m_pairCache->getOverlapFilterCallback() &&
+		    !m_pairCache->getOverlapFilterCallback()->needBroadphaseCollision(m_me->getBroadphaseHandle(), proxy0))
+			return false;
+		const btCollisionObject* other = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
+		return m_dispatcher->needsResponse(m_me, other);
+	}
+};
+}  // namespace
+
+void btDiscreteDynamicsWorld::saveKinematicState(btScalar timeStep)
+{
+	BT_PROFILE("saveKinematicState");
+	// All objects, not only the non-static list: a kinematic body made with mass 0 also carries
+	// CF_STATIC_OBJECT, as in Bullet.
+	for (int i = 0; i < m_collisionObjects.size(); ++i)
+	{
+		btRigidBody* body = btRigidBody::upcast(m_collisionObjects[i]);
+		if (body && body->getActivationState() != ISLAND_SLEEPING && body->isKinematicObject())
+			body->saveKinematicState(timeStep);
+	}
+}
+
+void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
+{
+	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+	{
+		btRigidBody* body = m_nonStaticRigidBodies[i];
+		if (body->getActivationState() == DISABLE_SIMULATION) continue;
+		if (isFinite(body->getWorldTransform()) && isFinite(body->getLinearVelocity()) &&
+		    isFinite(body->getAngularVelocity()))
+			continue;
+		// A body whose state is no longer a number would hand NaN to everything it touches: it leaves the
+		// broadphase (so it has no pairs) and the simulation, at its last finite pose when there is one.
+		if (!m_reportedNonFiniteBody)
+		{
+			m_reportedNonFiniteBody = true;
+			btReportWarning(
+			    "Caliber: a rigid body's transform or velocity is not finite; the body is taken out "
+			    "of the simulation (DISABLE_SIMULATION)\n",
+			    getDebugDrawer());
+		}
+		if (!isFinite(body->getWorldTransform()))
+		{
+			btTransform lastPose = body->getInterpolationWorldTransform();
+			if (!isFinite(lastPose)) lastPose.setIdentity();
+			body->setWorldTransform(lastPose);
+			body->setInterpolationWorldTransform(lastPose);
+		}
+		const btVector3 zero(0, 0, 0);
+		body->setLinearVelocity(zero);
+		body->setAngularVelocity(zero);
+		body->setInterpolationLinearVelocity(zero);
+		body->setInterpolationAngularVelocity(zero);
+		body->clearForces();
+		body->forceActivationState(DISABLE_SIMULATION);
+		btBroadphaseProxy* proxy = body->getBroadphaseHandle();
+		if (proxy && getBroadphase())
+		{
+			getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(proxy, getDispatcher());
+			getBroadphase()->destroyProxy(proxy, getDispatcher());
+			body->setBroadphaseHandle(0);
+		}
+	}
+}
+
+void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
+{
+	BT_PROFILE("predictUnconstraintMotion");
+	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+	{
+		btRigidBody* body = m_nonStaticRigidBodies[i];
+		if (body->isStaticOrKinematicObject()) continue;
+		body->applyDamping(timeStep);
+		if (body->isActive())
+		{
+			// Forces (gravity included) become velocity here, before the solver, so that contacts see the
+			// velocity the body would have without them: semi-implicit Euler, v1 = v0 + a h, x1 = x0 + v1 h.
+			btVector3 gyroscopicChange(0, 0, 0);
+			const int flags = body->getFlags();
+			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT)
+				gyroscopicChange -= body->getInvInertiaTensorWorld() *
+				                    body->computeGyroscopicForceExplicit(getSolverInfo().m_maxGyroscopicForce) *
+				                    timeStep;
+			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD)
+				gyroscopicChange += body->computeGyroscopicImpulseImplicit_World(timeStep);
+			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)
+				gyroscopicChange += body->computeGyroscopicImpulseImplicit_Body(timeStep);
+			body->integrateVelocities(timeStep);
+			if (!gyroscopicChange.fuzzyZero())
+				body->setAngularVelocity(body->getAngularVelocity() + gyroscopicChange * body->getAngularFactor());
+		}
+		// The predicted pose widens the broadphase box of fast bodies (m_useContinuous).
+		body->predictIntegratedTransform(timeStep, body->getInterpolationWorldTransform());
+	}
+}
+
+void btDiscreteDynamicsWorld::calculateSimulationIslands()
+{
+	BT_PROFILE("calculateSimulationIslands");
+	getSimulationIslandManager()->updateActivationState(getCollisionWorld(), getCollisionWorld()->getDispatcher());
+	getSimulationIslandManager()->storeIslandActivationState(getCollisionWorld());
+}
+
+void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
+{
+	BT_PROFILE("solveConstraints");
+	const int numManifolds = getDispatcher()->getNumManifolds();
+	m_solverIslandCallback->setup(&solverInfo, getDebugDrawer());
+	m_constraintSolver->prepareSolve(getCollisionWorld()->getNumCollisionObjects(), numManifolds);
+	m_islandManager->buildAndProcessIslands(getCollisionWorld()->getDispatcher(), getCollisionWorld(),
+	                                        m_solverIslandCallback);
+	m_solverIslandCallback->flush();
+	m_constraintSolver->allSolved(solverInfo, m_debugDrawer);
+}
+
+void btDiscreteDynamicsWorld::integrateTransformsInternal(btRigidBody** bodies, int numBodies, btScalar timeStep)
+{
+	btTransform predictedTrans;
+	for (int i = 0; i < numBodies; ++i)
+	{
+		btRigidBody* body = bodies[i];
+		body->setHitFraction(btScalar(1));
+		if (!body->isActive() || body->isStaticOrKinematicObject()) continue;
+		body->predictIntegratedTransform(timeStep, predictedTrans);
+		const btScalar squareMotion = (predictedTrans.getOrigin() - body->getWorldTransform().getOrigin()).length2();
+		// Continuous collision: a body that would move further than its motion threshold in this step
+		// sweeps a sphere of its swept-sphere radius along the way and stops where the sphere first hits.
+		if (getDispatchInfo().m_useContinuous && body->getCcdSquareMotionThreshold() != btScalar(0) &&
+		    body->getCcdSquareMotionThreshold() < squareMotion && body->getCollisionShape()->isConvex() &&
+		    body->getBroadphaseHandle())
+		{
+			ClosestNotMeConvexResultCallback sweepResults(body, body->getWorldTransform().getOrigin(),
+			                                              predictedTrans.getOrigin(),
+			                                              getBroadphase()->getOverlappingPairCache(), getDispatcher());
+			btSphereShape sweptSphere(body->getCcdSweptSphereRadius());
+			sweepResults.m_allowedPenetration = getDispatchInfo().m_allowedCcdPenetration;
+			sweepResults.m_collisionFilterGroup = body->getBroadphaseHandle()->m_collisionFilterGroup;
+			sweepResults.m_collisionFilterMask = body->getBroadphaseHandle()->m_collisionFilterMask;
+			btTransform sweepEnd = predictedTrans;
+			sweepEnd.setBasis(body->getWorldTransform().getBasis());
+			convexSweepTest(&sweptSphere, body->getWorldTransform(), sweepEnd, sweepResults);
+			if (sweepResults.hasHit() && sweepResults.m_closestHitFraction < btScalar(1))
+			{
+				body->setHitFraction(sweepResults.m_closestHitFraction);
+				body->predictIntegratedTransform(timeStep * body->getHitFraction(), predictedTrans);
+				body->setHitFraction(btScalar(0));
+				body->proceedToTransform(predictedTrans);
+				continue;
+			}
+		}
+		body->proceedToTransform(predictedTrans);
+	}
+}
+
+void btDiscreteDynamicsWorld::integrateTransforms(btScalar timeStep)
+{
+	BT_PROFILE("integrateTransforms");
+	if (m_nonStaticRigidBodies.size() > 0)
+		integrateTransformsInternal(&m_nonStaticRigidBodies[0], m_nonStaticRigidBodies.size(), timeStep);
+}
+
+void btDiscreteDynamicsWorld::updateActivationState(btScalar timeStep)
+{
+	BT_PROFILE("updateActivationState");
+	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+	{
+		btRigidBody* body = m_nonStaticRigidBodies[i];
+		body->updateDeactivation(timeStep);
+		if (body->wantsSleeping())
+		{
+			if (body->isStaticOrKinematicObject())
+			{
+				body->setActivationState(ISLAND_SLEEPING);
+			}
+			else
+			{
+				// The island decides: the body only says it could sleep; the island manager puts the whole
+				// island to sleep when every body in it agrees.
+				if (body->getActivationState() == ACTIVE_TAG) body->setActivationState(WANTS_DEACTIVATION);
+				if (body->getActivationState() == ISLAND_SLEEPING)
+				{
+					body->setAngularVelocity(btVector3(0, 0, 0));
+					body->setLinearVelocity(btVector3(0, 0, 0));
+				}
+			}
+		}
+		else if (body->getActivationState() != DISABLE_DEACTIVATION)
+		{
+			body->setActivationState(ACTIVE_TAG);
+		}
+	}
+}
