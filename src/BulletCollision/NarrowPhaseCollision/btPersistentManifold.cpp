@@ -233,6 +233,9 @@ void btPersistentManifold::replaceContactPoint(const btManifoldPoint& newPoint, 
 	const btScalar lateral2 = old.m_appliedImpulseLateral2;
 	const int lifeTime = old.m_lifeTime;
 	void* userData = old.m_userPersistentData;
+	// The lateral impulses are only meaningful along the directions they were solved in.
+	const btVector3 lateralDir1 = old.m_lateralFrictionDir1;
+	const btVector3 lateralDir2 = old.m_lateralFrictionDir2;
 
 	m_pointCache[insertIndex] = newPoint;
 	btManifoldPoint& point = m_pointCache[insertIndex];
@@ -242,6 +245,11 @@ void btPersistentManifold::replaceContactPoint(const btManifoldPoint& newPoint, 
 	point.m_appliedImpulseLateral2 = lateral2;
 	point.m_lifeTime = lifeTime;
 	point.m_userPersistentData = userData;
+	if (!(newPoint.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED))
+	{
+		point.m_lateralFrictionDir1 = lateralDir1;
+		point.m_lateralFrictionDir2 = lateralDir2;
+	}
 }
 
 void btPersistentManifold::refreshContactPoints(const btTransform& trA, const btTransform& trB)

@@ -213,9 +213,10 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	{
 		// A fixed order is biased: the first point of a manifold takes more than its share of the impulse
 		// in every sweep, and in a stack that bias tilts every box the same way, step after step, until
-		// the tower leans. So odd sweeps run backwards, and within each manifold the first point rotates
-		// with the sweep and the step. Deterministic, and no shuffle to pay for.
-		const bool backwards = (iteration & 1) != 0;
+		// the tower leans. So every other sweep runs backwards (starting with the other direction on
+		// every other step, so that an odd iteration count is balanced too), and within each manifold
+		// the first point rotates with the sweep and the step. Deterministic, and no shuffle to pay for.
+		const bool backwards = ((unsigned(iteration) + m_solveCount) & 1u) != 0;
 		const int numManifolds = m_manifoldFirstRow.size() - 1;
 		const unsigned int rotation = unsigned(iteration >> 1) + m_solveCount;
 		for (int pass = 0; pass < 2; ++pass)

@@ -215,6 +215,29 @@ TEST_F(PersistentManifoldTest, ReplaceContactPointKeepsWarmStartImpulsesAndLifet
 	EXPECT_EQ(now.getLifeTime(), 7);
 }
 
+TEST_F(PersistentManifoldTest, ReplaceContactPointKeepsTheFrictionDirectionsOfTheLateralImpulses)
+{
+	// The lateral impulses are kept for warm starting; they mean something only along the directions
+	// they were solved in, so those directions are kept too (unless the new point brings its own).
+	btPersistentManifold manifold(fakeBody0(), fakeBody1(), 0, kThreshold, 0);
+	manifold.addManifoldPoint(makePoint(btVector3(0, 0, 0), btScalar(-0.01)));
+	btManifoldPoint& old = manifold.getContactPoint(0);
+	old.m_appliedImpulseLateral1 = 5;
+	old.m_lateralFrictionDir1 = btVector3(1, 0, 0);
+	old.m_lateralFrictionDir2 = btVector3(0, 1, 0);
+	manifold.replaceContactPoint(makePoint(btVector3(btScalar(0.001), 0, 0), btScalar(-0.02)), 0);
+	EXPECT_EQ(manifold.getContactPoint(0).m_lateralFrictionDir1, btVector3(1, 0, 0));
+	EXPECT_EQ(manifold.getContactPoint(0).m_lateralFrictionDir2, btVector3(0, 1, 0));
+
+	btManifoldPoint userDirections = makePoint(btVector3(btScalar(0.002), 0, 0), btScalar(-0.02));
+	userDirections.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
+	userDirections.m_lateralFrictionDir1 = btVector3(0, 1, 0);
+	userDirections.m_lateralFrictionDir2 = btVector3(-1, 0, 0);
+	manifold.replaceContactPoint(userDirections, 0);
+	EXPECT_EQ(manifold.getContactPoint(0).m_lateralFrictionDir1, btVector3(0, 1, 0));
+	EXPECT_EQ(manifold.getContactPoint(0).m_lateralFrictionDir2, btVector3(-1, 0, 0));
+}
+
 TEST_F(PersistentManifoldTest, RefreshUpdatesDistancesExactlyForKnownMotion)
 {
 	btPersistentManifold manifold(fakeBody0(), fakeBody1(), 0, kThreshold, 0);

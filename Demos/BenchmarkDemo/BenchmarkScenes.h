@@ -1,0 +1,71 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_BENCHMARK_SCENES_H
+#define CALIBER_BENCHMARK_SCENES_H
+
+// The joint-free benchmark scenes of ../shared/bench/scenes.md (Bullet's benchmark scenes and Jolt's
+// pyramid), built from their written descriptions.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "btBulletDynamicsCommon.h"
+
+namespace benchmark_demo
+{
+/// One world and everything it owns.
+class Scene
+{
+public:
+	Scene();
+	virtual ~Scene();
+
+	btDiscreteDynamicsWorld& world() { return *m_world; }
+
+	/// A shape owned by the scene.
+	template <class Shape>
+	Shape* own(Shape* shape)
+	{
+		m_shapes.emplace_back(shape);
+		return shape;
+	}
+	/// A body (mass 0: static) with a default motion state, friction 0.5, restitution 0.
+	btRigidBody* addBody(btCollisionShape* shape, btScalar mass, const btTransform& pose);
+	/// Bullet's benchmark ground: a static box (250, 50, 250) at (0, -50, 0).
+	void addBenchmarkGround();
+	/// The procedural landscape of scenes.md: 8 BVH mesh tiles, 32768 triangles, body at (0, -25, 0).
+	void addLandscape();
+
+	const std::vector<btRigidBody*>& dynamicBodies() const { return m_dynamic; }
+	/// Called after each step (the raycast scene casts its rays here).
+	virtual void afterStep() {}
+	/// The scene's sanity figures, one line; returns false when a figure shows a broken simulation.
+	virtual bool report(std::string& line) const = 0;
+
+	/// Start poses of the dynamic bodies (same order as dynamicBodies()).
+	std::vector<btTransform> m_start;
+
+private:
+	std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
+	std::unique_ptr<btCollisionDispatcher> m_dispatcher;
+	std::unique_ptr<btDbvtBroadphase> m_broadphase;
+	std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
+	std::unique_ptr<btDiscreteDynamicsWorld> m_world;
+	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
+	std::vector<std::unique_ptr<btStridingMeshInterface>> m_meshes;
+	std::vector<std::vector<btScalar>> m_vertexData;
+	std::vector<std::vector<unsigned short>> m_indexData;
+	std::vector<std::unique_ptr<btDefaultMotionState>> m_motionStates;
+	std::vector<btRigidBody*> m_bodies;
+	std::vector<btRigidBody*> m_dynamic;
+};
+
+/// Names of the scenes, in order.
+std::vector<std::string> sceneNames();
+/// Builds the named scene (0 for an unknown name).
+std::unique_ptr<Scene> makeScene(const std::string& name);
+/// Height of the procedural landscape at (x, z), in landscape-local coordinates.
+btScalar landscapeHeight(btScalar x, btScalar z);
+}  // namespace benchmark_demo
+
+#endif  // CALIBER_BENCHMARK_SCENES_H

@@ -1,0 +1,98 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+//
+// BenchmarkDemo: the joint-free benchmark scenes of ../shared/bench/scenes.md, headless. For each scene
+// it prints the bodies, the build time, the step time in ms (mean, median, max) and the scene's
+// sanity figures (boxes displaced from rest, bodies tunnelled through the terrain, rays that hit, ...),
+// so that speed is never read without the physics it bought. Exit 1 when a sanity check fails (a NaN,
+// a body through the ground or the terrain, a ray that missed).
+//
+//   BenchmarkDemo                      every scene, 30 steps each (a quick run, as in CI)
+//   BenchmarkDemo stack1000,boxes3000 600   the named scenes, 600 steps each (the reference runs)
+//
+// As in the reference runs, deactivation is off (gDisableDeactivation), steps are 1/60 s with one
+// substep, the solver runs 5 iterations (10 for pyramid_jolt) in single-threaded mode.
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "BenchmarkScenes.h"
+
+namespace
+{
+double millisecondsSince(std::chrono::steady_clock::time_point start)
+{
+	return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool selected(const std::string& filter, const std::string& name)
+{
+	if (filter.empty() || filter == "all") return true;
+	size_t begin = 0;
+	while (begin <= filter.size())
+	{
+		const size_t end = std::min(filter.find(',', begin), filter.size());
+		const std::string part = filter.substr(begin, end - begin);
+		if (!part.empty() && name.find(part) != std::string::npos) return true;
+		begin = end + 1;
+	}
+	return false;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	const std::string filter = argc > 1 ? argv[1] : "all";
+	const int frames = argc > 2 ? atoi(argv[2]) : 30;
+	if (frames <= 0)
+	{
+		fprintf(stderr, "usage: %s [scene[,scene...]|all] [frames > 0]\n", argv[0]);
+		return 2;
+	}
+	gDisableDeactivation = true;
+	printf("# Caliber %d, btScalar=%s, dt=1/60, 1 substep/frame, deactivation off, %d frames per scene\n",
+	       btGetVersion(), sizeof(btScalar) == 8 ? "double" : "float", frames);
+	bool allSane = true;
+	int ran = 0;
+	for (const std::string& name : benchmark_demo::sceneNames())
+	{
+		if (!selected(filter, name)) continue;
+		++ran;
+		const auto buildStart = std::chrono::steady_clock::now();
+		std::unique_ptr<benchmark_demo::Scene> scene = benchmark_demo::makeScene(name);
+		const double buildMs = millisecondsSince(buildStart);
+		std::vector<double> stepMs;
+		stepMs.reserve(size_t(frames));
+		for (int frame = 0; frame < frames; ++frame)
+		{
+			const auto start = std::chrono::steady_clock::now();
+			scene->world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+			scene->afterStep();
+			stepMs.push_back(millisecondsSince(start));
+		}
+		double total = 0;
+		for (double ms : stepMs) total += ms;
+		std::vector<double> sorted = stepMs;
+		std::sort(sorted.begin(), sorted.end());
+		std::string sanity;
+		const bool sane = scene->report(sanity);
+		allSane = allSane && sane;
+		printf(
+		    "%-13s bodies %d (dynamic %d), iterations %d, frames %d, build %.1f ms, ms/step mean %.3f median %.3f max "
+		    "%.3f\n",
+		    name.c_str(), scene->world().getNumCollisionObjects(), int(scene->dynamicBodies().size()),
+		    scene->world().getSolverInfo().m_numIterations, frames, buildMs, total / frames, sorted[sorted.size() / 2],
+		    sorted.back());
+		printf("  sanity: %s%s\n", sanity.c_str(), sane ? "" : "  <-- FAILED");
+	}
+	if (ran == 0)
+	{
+		fprintf(stderr, "no scene matches '%s'\n", filter.c_str());
+		return 2;
+	}
+	return allSane ? 0 : 1;
+}
