@@ -59,7 +59,12 @@ void btSphereBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrap
 	}
 	const int countBefore = m_manifoldPtr->getNumContacts();
 	resultOut->addContactPoint(normal, pointOnBox, distance);
-	if (m_ownManifold) caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+	if (m_ownManifold)
+	{
+		caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+		// Ages the point (lifetime) and reports it to gContactProcessedCallback, as for every other shape.
+		resultOut->refreshContactPoints();
+	}
 }
 
 btScalar btSphereBoxCollisionAlgorithm::calculateTimeOfImpact(btCollisionObject*, btCollisionObject*,

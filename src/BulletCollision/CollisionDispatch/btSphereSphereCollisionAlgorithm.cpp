@@ -58,7 +58,12 @@ void btSphereSphereCollisionAlgorithm::processCollision(const btCollisionObjectW
 	const btVector3 pointOnB = body1Wrap->getWorldTransform().getOrigin() + normalOnB * radius1;
 	const int countBefore = m_manifoldPtr->getNumContacts();
 	resultOut->addContactPoint(normalOnB, pointOnB, centreDistance - radius0 - radius1);
-	if (m_ownManifold) caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+	if (m_ownManifold)
+	{
+		caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+		// Ages the point (lifetime) and reports it to gContactProcessedCallback, as for every other shape.
+		resultOut->refreshContactPoints();
+	}
 }
 
 btScalar btSphereSphereCollisionAlgorithm::calculateTimeOfImpact(btCollisionObject*, btCollisionObject*,
