@@ -17,12 +17,13 @@ btSolverBody
 {
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 
-	btTransform m_worldTransform;
+	// The four fields the row kernel reads and writes come first: one 64-byte cache line.
 	btVector3 m_deltaLinearVelocity;
 	btVector3 m_deltaAngularVelocity;
 	btVector3 m_angularFactor;
-	btVector3 m_linearFactor;
 	btVector3 m_invMass;
+	btVector3 m_linearFactor;
+	btTransform m_worldTransform;
 	btVector3 m_pushVelocity;
 	btVector3 m_turnVelocity;
 	btVector3 m_linearVelocity;

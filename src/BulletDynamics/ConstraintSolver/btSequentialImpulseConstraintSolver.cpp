@@ -226,10 +226,12 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 				const int m = backwards ? numManifolds - 1 - k : k;
 				const int first = m_manifoldFirstRow[m];
 				const int count = m_manifoldFirstRow[m + 1] - first;
+				const int start = int(rotation % unsigned(count));
 				for (int p = 0; p < count; ++p)
 				{
-					const int step = backwards ? count - 1 - p : p;
-					const int rowIndex = first + int((unsigned(step) + rotation) % unsigned(count));
+					int offset = (backwards ? count - 1 - p : p) + start;
+					if (offset >= count) offset -= count;
+					const int rowIndex = first + offset;
 					if (pass == 0)
 					{
 						btSolverConstraint& row = m_tmpSolverContactConstraintPool[rowIndex];
