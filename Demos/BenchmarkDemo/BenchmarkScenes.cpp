@@ -266,9 +266,17 @@ public:
 		{
 			const btVector3& p = body->getCenterOfMassPosition();
 			if (btFabs(p.x()) > 250 || btFabs(p.z()) > 250)
+			{
 				++offEdge;
-			else if (p.y() < landscapeHeight(p.x(), p.z()) - 25 - btScalar(0.3))
-				++tunnelled;  // centre below the terrain surface (the landscape body sits at y = -25)
+				continue;
+			}
+			// Tunnelled: the centre is below the terrain's surface straight beneath it (a ray against the
+			// static terrain only gives the surface of the triangles themselves).
+			const btVector3 from(p.x(), 1000, p.z()), to(p.x(), -1000, p.z());
+			btCollisionWorld::ClosestRayResultCallback down(from, to);
+			down.m_collisionFilterMask = btBroadphaseProxy::StaticFilter;
+			worldConst().rayTest(from, to, down);
+			if (down.hasHit() && p.y() < down.m_hitPointWorld.y()) ++tunnelled;
 		}
 		line = format("tunnelled %d, off the terrain edge %d, min y %.1f, non-finite %d", tunnelled, offEdge,
 		              double(c.minY), c.nonFinite);

@@ -21,6 +21,7 @@ public:
 	virtual ~Scene();
 
 	btDiscreteDynamicsWorld& world() { return *m_world; }
+	const btDiscreteDynamicsWorld& worldConst() const { return *m_world; }
 
 	/// A shape owned by the scene.
 	template <class Shape>

@@ -36,6 +36,9 @@ protected:
 	btAlignedObjectArray<int> m_manifoldFirstRow;
 	/// Counts solveGroup calls, so that the in-manifold order also changes from step to step.
 	unsigned int m_solveCount;
+	/// Friction rows per contact row in this solve: 2 with SOLVER_USE_2_FRICTION_DIRECTIONS, else 1. The
+	/// friction rows of contact row j are [j * m_frictionRowsPerContact, (j + 1) * m_frictionRowsPerContact).
+	int m_frictionRowsPerContact;
 	/// Index of the shared entry for static bodies in m_tmpSolverBodyPool (-1 until needed).
 	int m_fixedBodyId;
 	unsigned long m_btSeed2;

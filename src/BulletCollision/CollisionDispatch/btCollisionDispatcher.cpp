@@ -226,6 +226,19 @@ void btCollisionDispatcher::defaultNearCallback(btBroadphasePair& collisionPair,
 	if (!collisionPair.m_algorithm) return;
 
 	btManifoldResult result(&wrap0, &wrap1);
+	if (dispatchInfo.m_useContinuous && dispatchInfo.m_timeStep > btScalar(0))
+	{
+		// Speculative contacts: points are kept up to the distance the pair can close in one step, so a
+		// fast body meets the surface in the solver (which lets it close the gap and no more) instead of
+		// being found deep inside it a step later, or past a thin mesh.
+		const btVector3 relative =
+		    colObj0->getInterpolationLinearVelocity() - colObj1->getInterpolationLinearVelocity();
+		const btScalar angular =
+		    colObj0->getInterpolationAngularVelocity().length() * colObj0->getCollisionShape()->getAngularMotionDisc() +
+		    colObj1->getInterpolationAngularVelocity().length() * colObj1->getCollisionShape()->getAngularMotionDisc();
+		const btScalar closing = (relative.length() + angular) * dispatchInfo.m_timeStep;
+		if (btIsFinite(closing)) result.m_closestPointDistanceThreshold = closing;
+	}
 	if (dispatchInfo.m_dispatchFunc == btDispatcherInfo::DISPATCH_DISCRETE)
 	{
 		collisionPair.m_algorithm->processCollision(&wrap0, &wrap1, dispatchInfo, &result);

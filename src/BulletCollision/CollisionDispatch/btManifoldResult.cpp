@@ -79,12 +79,17 @@ void btManifoldResult::refreshContactPoints()
 	btAssert(m_manifoldPtr);
 	if (!m_manifoldPtr || !m_body0Wrap || !m_body1Wrap || m_manifoldPtr->getNumContacts() == 0) return;
 	const bool isSwapped = m_manifoldPtr->getBody0() != m_body0Wrap->getCollisionObject();
+	// Points found within the extra (speculative) distance must survive the refresh that follows.
+	const btScalar breakingThreshold = m_manifoldPtr->getContactBreakingThreshold();
+	if (m_closestPointDistanceThreshold > btScalar(0))
+		m_manifoldPtr->setContactBreakingThreshold(breakingThreshold + m_closestPointDistanceThreshold);
 	if (isSwapped)
 		m_manifoldPtr->refreshContactPoints(m_body1Wrap->getCollisionObject()->getWorldTransform(),
 		                                    m_body0Wrap->getCollisionObject()->getWorldTransform());
 	else
 		m_manifoldPtr->refreshContactPoints(m_body0Wrap->getCollisionObject()->getWorldTransform(),
 		                                    m_body1Wrap->getCollisionObject()->getWorldTransform());
+	m_manifoldPtr->setContactBreakingThreshold(breakingThreshold);
 }
 
 void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld, btScalar depth)

@@ -25,6 +25,7 @@ void identityOrder(btAlignedObjectArray<int>& order, int count)
 
 btSequentialImpulseConstraintSolver::btSequentialImpulseConstraintSolver()
     : m_solveCount(0),
+      m_frictionRowsPerContact(2),
       m_fixedBodyId(-1),
       m_btSeed2(kDefaultSeed),
       m_leastSquaresResidual(0),
@@ -144,6 +145,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	}
 	for (int i = 0; i < numBodies; ++i) getOrInitSolverBody(*bodies[i], infoGlobal.m_timeStep);
 
+	m_frictionRowsPerContact = (infoGlobal.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 2 : 1;
 	m_manifoldFirstRow.resize(0);
 	for (int i = 0; i < numManifolds; ++i)
 	{
@@ -242,8 +244,9 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 					else
 					{
 						// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
-						residual += solveFrictionRow(solverBodies, 2 * rowIndex);
-						residual += solveFrictionRow(solverBodies, 2 * rowIndex + 1);
+						const int firstFriction = rowIndex * m_frictionRowsPerContact;
+						for (int f = 0; f < m_frictionRowsPerContact; ++f)
+							residual += solveFrictionRow(solverBodies, firstFriction + f);
 					}
 				}
 			}
@@ -330,11 +333,12 @@ void btSequentialImpulseConstraintSolver::writeBackContacts(int iBegin, int iEnd
 		btManifoldPoint* point = static_cast<btManifoldPoint*>(row.m_originalContactPoint);
 		btAssert(point);
 		point->m_appliedImpulse = row.m_appliedImpulse;
-		// Friction rows come in pairs, in the order of their contact rows.
-		const btSolverConstraint& friction1 = m_tmpSolverContactFrictionConstraintPool[2 * j];
-		const btSolverConstraint& friction2 = m_tmpSolverContactFrictionConstraintPool[2 * j + 1];
-		point->m_appliedImpulseLateral1 = friction1.m_appliedImpulse;
-		point->m_appliedImpulseLateral2 = friction2.m_appliedImpulse;
+		// Friction rows follow the order of their contact rows, one or two per contact.
+		const int firstFriction = j * m_frictionRowsPerContact;
+		point->m_appliedImpulseLateral1 = m_tmpSolverContactFrictionConstraintPool[firstFriction].m_appliedImpulse;
+		point->m_appliedImpulseLateral2 =
+		    m_frictionRowsPerContact == 2 ? m_tmpSolverContactFrictionConstraintPool[firstFriction + 1].m_appliedImpulse
+		                                  : btScalar(0);
 	}
 }
 

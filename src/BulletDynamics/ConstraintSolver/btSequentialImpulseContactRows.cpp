@@ -150,8 +150,12 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
 	                      (penetration <= infoGlobal.m_splitImpulsePenetrationThreshold || bounceSpeed > btScalar(0));
 	if (penetration > btScalar(0))
 	{
-		// Speculative: the bodies may still close the gap this step, but not more.
-		velocityError -= penetration * invTimeStep;
+		// Speculative: the bodies may still close the gap this step, but not more. A bouncing contact
+		// that will close the gap within the step bounces now instead (its speed is exact; it turns
+		// at most one step's travel early), since a contact first met at rest would not bounce at all.
+		const bool bouncesThisStep =
+		    bounceSpeed > btScalar(0) && -relativeVelocity * infoGlobal.m_timeStep > penetration;
+		if (!bouncesThisStep) velocityError -= penetration * invTimeStep;
 	}
 	else
 	{
@@ -310,9 +314,9 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1);
 		}
 
-		// Sliding friction: always two directions, so that friction is isotropic whatever the solver mode.
-		// The first follows the tangential relative velocity when there is one, which makes the common
-		// case (sliding) a single active row.
+		// Sliding friction. The first direction follows the tangential relative velocity when there is
+		// one, so that a sliding contact needs a single row and its friction opposes the sliding exactly;
+		// the second, across it, is added with SOLVER_USE_2_FRICTION_DIRECTIONS.
 		const bool keepUserDirections = (infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
 		                                (cp.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED);
 		if (!keepUserDirections)
@@ -338,21 +342,21 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		const int friction1Index = m_tmpSolverContactFrictionConstraintPool.size();
 		addFrictionConstraint(cp.m_lateralFrictionDir1, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
 		                      rel_pos2, colObj0, colObj1, cp.m_contactMotion1);
-		addFrictionConstraint(cp.m_lateralFrictionDir2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
-		                      rel_pos2, colObj0, colObj1, cp.m_contactMotion2);
+		if (m_frictionRowsPerContact == 2)
+			addFrictionConstraint(cp.m_lateralFrictionDir2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
+			                      rel_pos2, colObj0, colObj1, cp.m_contactMotion2);
 		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
 		{
 			// Indices, not references: the second row may have grown the pool.
-			btSolverConstraint& friction1 = m_tmpSolverContactFrictionConstraintPool[friction1Index];
-			btSolverConstraint& friction2 = m_tmpSolverContactFrictionConstraintPool[friction1Index + 1];
 			btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
 			btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
-			friction1.m_appliedImpulse =
-			    previousFrictionImpulse.dot(cp.m_lateralFrictionDir1) * infoGlobal.m_warmstartingFactor;
-			friction2.m_appliedImpulse =
-			    previousFrictionImpulse.dot(cp.m_lateralFrictionDir2) * infoGlobal.m_warmstartingFactor;
-			applyWarmStart(friction1, bodyA, bodyB);
-			applyWarmStart(friction2, bodyA, bodyB);
+			for (int f = 0; f < m_frictionRowsPerContact; ++f)
+			{
+				btSolverConstraint& friction = m_tmpSolverContactFrictionConstraintPool[friction1Index + f];
+				const btVector3& direction = f == 0 ? cp.m_lateralFrictionDir1 : cp.m_lateralFrictionDir2;
+				friction.m_appliedImpulse = previousFrictionImpulse.dot(direction) * infoGlobal.m_warmstartingFactor;
+				applyWarmStart(friction, bodyA, bodyB);
+			}
 		}
 	}
 }

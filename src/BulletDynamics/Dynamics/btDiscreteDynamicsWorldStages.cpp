@@ -150,8 +150,12 @@ void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
 			if (!gyroscopicChange.fuzzyZero())
 				body->setAngularVelocity(body->getAngularVelocity() + gyroscopicChange * body->getAngularFactor());
 		}
-		// The predicted pose widens the broadphase box of fast bodies (m_useContinuous).
+		// The predicted pose widens the broadphase box of fast bodies (m_useContinuous), and the
+		// velocity this step will move with sets the pair's speculative contact distance (the
+		// dispatcher reads it from the interpolation velocities; integrateTransforms overwrites them).
 		body->predictIntegratedTransform(timeStep, body->getInterpolationWorldTransform());
+		body->setInterpolationLinearVelocity(body->getLinearVelocity());
+		body->setInterpolationAngularVelocity(body->getAngularVelocity());
 	}
 }
 

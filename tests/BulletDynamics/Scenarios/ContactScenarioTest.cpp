@@ -93,9 +93,11 @@ TEST(ContactScenario, BounceHeightsShrinkByRestitutionSquared)
 namespace
 {
 // A box on a horizontal floor under gravity tilted by angle: the same as a box on a slope of that angle.
-btScalar slideDistance(btScalar angleRadians, btScalar mu, btScalar seconds, btScalar* speedOut)
+btScalar slideDistance(btScalar angleRadians, btScalar mu, btScalar seconds, btScalar* speedOut,
+                       int extraSolverMode = 0)
 {
 	TestWorld w(btVector3(kGravity * btSin(angleRadians), -kGravity * btCos(angleRadians), 0));
+	w.world()->getSolverInfo().m_solverMode |= extraSolverMode;
 	w.addGround(btScalar(1), btScalar(0));  // combined friction = mu * 1
 	btRigidBody* box = w.addBody(w.shape<btBoxShape>(btVector3(0.5, 0.25, 0.5)), 1, btVector3(0, btScalar(0.25), 0));
 	box->setFriction(mu);
@@ -125,6 +127,12 @@ TEST(ContactScenario, BoxOnSlopeSlidesAboveTheFrictionAngleWithTheCoulombAcceler
 	btScalar speed = 0;
 	slideDistance(angle, mu, 1, &speed);
 	EXPECT_NEAR(speed, a * 1, btScalar(0.02) * a);
+	// The same with two friction directions: the second, across the sliding, carries no impulse.
+	slideDistance(angle, mu, 1, &speed, SOLVER_USE_2_FRICTION_DIRECTIONS);
+	EXPECT_NEAR(speed, a * 1, btScalar(0.02) * a);
+	// And both hold the box below the friction angle.
+	EXPECT_LT(btFabs(slideDistance(btScalar(20) * SIMD_RADS_PER_DEG, mu, 2, 0, SOLVER_USE_2_FRICTION_DIRECTIONS)),
+	          btScalar(0.01));
 }
 
 TEST(ContactScenario, CollisionsConserveLinearAndAngularMomentum)

@@ -13,9 +13,10 @@ const btScalar kHalf = btScalar(0.5);
 
 // A tower of n unit cubes standing on the ground, stepped for seconds; returns the largest horizontal
 // drift of any box from its starting column and checks each box's height.
-btScalar towerDrift(int n, btScalar seconds, btScalar* worstHeightError)
+btScalar towerDrift(int n, btScalar seconds, btScalar* worstHeightError, int extraSolverMode = 0)
 {
 	TestWorld w;
+	w.world()->getSolverInfo().m_solverMode |= extraSolverMode;
 	w.addGround(btScalar(0.8), btScalar(0));
 	btCollisionShape* box = w.shape<btBoxShape>(btVector3(kHalf, kHalf, kHalf));
 	std::vector<btRigidBody*> tower;
@@ -40,6 +41,14 @@ TEST(StackingAndSleeping, TowerOfTenBoxesStandsForTwentySeconds)
 	// height: the contacts of a tower compress by at most the solver's slop per contact, a few mm in all.
 	btScalar heightError = 0;
 	const btScalar drift = towerDrift(10, 20, &heightError);
+	EXPECT_LT(drift, btScalar(0.1));
+	EXPECT_LT(heightError, btScalar(0.05));
+}
+
+TEST(StackingAndSleeping, TowerOfTenBoxesStandsWithTwoFrictionDirectionsToo)
+{
+	btScalar heightError = 0;
+	const btScalar drift = towerDrift(10, 20, &heightError, SOLVER_USE_2_FRICTION_DIRECTIONS);
 	EXPECT_LT(drift, btScalar(0.1));
 	EXPECT_LT(heightError, btScalar(0.05));
 }
