@@ -233,9 +233,12 @@ void btCollisionDispatcher::defaultNearCallback(btBroadphasePair& collisionPair,
 		// being found deep inside it a step later, or past a thin mesh.
 		const btVector3 relative =
 		    colObj0->getInterpolationLinearVelocity() - colObj1->getInterpolationLinearVelocity();
-		const btScalar angular =
-		    colObj0->getInterpolationAngularVelocity().length() * colObj0->getCollisionShape()->getAngularMotionDisc() +
-		    colObj1->getInterpolationAngularVelocity().length() * colObj1->getCollisionShape()->getAngularMotionDisc();
+		// The angular motion disc costs a bounding-sphere computation: only asked of turning bodies.
+		btScalar angular = btScalar(0);
+		const btScalar spin0 = colObj0->getInterpolationAngularVelocity().length2();
+		const btScalar spin1 = colObj1->getInterpolationAngularVelocity().length2();
+		if (spin0 > btScalar(0)) angular += btSqrt(spin0) * colObj0->getCollisionShape()->getAngularMotionDisc();
+		if (spin1 > btScalar(0)) angular += btSqrt(spin1) * colObj1->getCollisionShape()->getAngularMotionDisc();
 		const btScalar closing = (relative.length() + angular) * dispatchInfo.m_timeStep;
 		if (btIsFinite(closing)) result.m_closestPointDistanceThreshold = closing;
 	}

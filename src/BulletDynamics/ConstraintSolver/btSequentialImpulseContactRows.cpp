@@ -84,6 +84,29 @@ btScalar restitutionSpeed(btScalar relativeVelocity, btScalar restitution, btSca
 	return btMax(btScalar(0), restitution * -relativeVelocity);
 }
 
+// What every friction-like row (sliding, rolling, spinning) shares once its Jacobian is set: its bodies,
+// its coefficient (the bound is the coefficient times the normal impulse, set per sweep), its softness,
+// and the target velocity as a right-hand side.
+void finishFrictionRow(btSolverConstraint& row, const RowBody& a, const RowBody& b, int solverBodyIdA,
+                       int solverBodyIdB, btManifoldPoint& cp, btScalar friction, int frictionIndex,
+                       btScalar denominator, btScalar cfm, btScalar desiredVelocity)
+{
+	row.m_jacDiagABInv = denominator + cfm > SIMD_EPSILON ? btScalar(1) / (denominator + cfm) : btScalar(0);
+	row.m_cfm = cfm * row.m_jacDiagABInv;
+	row.m_solverBodyIdA = solverBodyIdA;
+	row.m_solverBodyIdB = solverBodyIdB;
+	row.m_originalContactPoint = &cp;
+	row.m_friction = friction;
+	row.m_frictionIndex = frictionIndex;
+	row.m_overrideNumSolverIterations = -1;
+	row.m_appliedImpulse = btScalar(0);
+	row.m_appliedPushImpulse = btScalar(0);
+	row.m_lowerLimit = -kUnbounded;
+	row.m_upperLimit = kUnbounded;
+	row.m_rhs = (desiredVelocity - rowVelocity(row, a, b)) * row.m_jacDiagABInv;
+	row.m_rhsPenetration = btScalar(0);
+}
+
 void applyWarmStart(btSolverConstraint& row, btSolverBody& a, btSolverBody& b)
 {
 	a.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, row.m_appliedImpulse);
@@ -199,21 +222,8 @@ btSolverConstraint& btSequentialImpulseConstraintSolver::addFrictionConstraint(
 	const RowBody a = {&bodyA, bodyA.m_originalBody};
 	const RowBody b = {&bodyB, bodyB.m_originalBody};
 	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
-	const btScalar cfm = cfmSlip + cp.m_frictionCFM;
-	row.m_jacDiagABInv = denominator + cfm > SIMD_EPSILON ? btScalar(1) / (denominator + cfm) : btScalar(0);
-	row.m_cfm = cfm * row.m_jacDiagABInv;
-	row.m_solverBodyIdA = solverBodyIdA;
-	row.m_solverBodyIdB = solverBodyIdB;
-	row.m_originalContactPoint = &cp;
-	row.m_friction = cp.m_combinedFriction;
-	row.m_frictionIndex = frictionIndex;
-	row.m_overrideNumSolverIterations = -1;
-	row.m_appliedImpulse = btScalar(0);
-	row.m_appliedPushImpulse = btScalar(0);
-	row.m_lowerLimit = -kUnbounded;
-	row.m_upperLimit = kUnbounded;
-	row.m_rhs = (desiredVelocity - rowVelocity(row, a, b)) * row.m_jacDiagABInv;
-	row.m_rhsPenetration = btScalar(0);
+	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, frictionIndex, denominator,
+	                  cfmSlip + cp.m_frictionCFM, desiredVelocity);
 	return row;
 }
 
@@ -232,20 +242,8 @@ btSolverConstraint& btSequentialImpulseConstraintSolver::addTorsionalFrictionCon
 	const RowBody a = {&bodyA, bodyA.m_originalBody};
 	const RowBody b = {&bodyB, bodyB.m_originalBody};
 	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
-	row.m_jacDiagABInv = denominator + cfmSlip > SIMD_EPSILON ? btScalar(1) / (denominator + cfmSlip) : btScalar(0);
-	row.m_cfm = cfmSlip * row.m_jacDiagABInv;
-	row.m_solverBodyIdA = solverBodyIdA;
-	row.m_solverBodyIdB = solverBodyIdB;
-	row.m_originalContactPoint = &cp;
-	row.m_friction = torsionalFriction;
-	row.m_frictionIndex = frictionIndex;
-	row.m_overrideNumSolverIterations = -1;
-	row.m_appliedImpulse = btScalar(0);
-	row.m_appliedPushImpulse = btScalar(0);
-	row.m_lowerLimit = -kUnbounded;
-	row.m_upperLimit = kUnbounded;
-	row.m_rhs = (desiredVelocity - rowVelocity(row, a, b)) * row.m_jacDiagABInv;
-	row.m_rhsPenetration = btScalar(0);
+	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, torsionalFriction, frictionIndex, denominator,
+	                  cfmSlip, desiredVelocity);
 	return row;
 }
 
