@@ -166,8 +166,10 @@ btScalar btSequentialImpulseConstraintSolver::solveFrictionRow(btSolverBody* sol
 {
 	btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[rowIndex];
 	const btScalar normalImpulse = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
-	if (!(normalImpulse > btScalar(0))) return btScalar(0);
-	const btScalar bound = row.m_friction * normalImpulse;
+	// A contact that carries no normal impulse (a speculative one, say) carries no friction either: skip
+	// it, unless it holds a warm-started friction impulse, which the zero bound then takes back.
+	if (!(normalImpulse > btScalar(0)) && row.m_appliedImpulse == btScalar(0)) return btScalar(0);
+	const btScalar bound = row.m_friction * caliber::btMaxBranchless(btScalar(0), normalImpulse);
 	return caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row, -bound,
 	                           bound);
 }

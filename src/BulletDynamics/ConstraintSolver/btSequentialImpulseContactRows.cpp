@@ -157,12 +157,16 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
 	// The bounce is measured on the approach velocity before this step's forces: the impact happens
 	// within the step, and gravity acting over the whole step would otherwise feed the rebound (a ball
 	// bouncing a few percent higher than e^2 allows, every bounce).
-	const btScalar forceVelocity = row.m_contactNormal1.dot(a.forceVelocityChange(infoGlobal.m_timeStep)) +
-	                               row.m_relpos1CrossNormal.dot(a.torqueVelocityChange(infoGlobal.m_timeStep)) +
-	                               row.m_contactNormal2.dot(b.forceVelocityChange(infoGlobal.m_timeStep)) +
-	                               row.m_relpos2CrossNormal.dot(b.torqueVelocityChange(infoGlobal.m_timeStep));
-	const btScalar bounceSpeed = restitutionSpeed(relativeVelocity - forceVelocity, cp.m_combinedRestitution,
-	                                              infoGlobal.m_restitutionVelocityThreshold);
+	btScalar bounceSpeed = btScalar(0);
+	if (cp.m_combinedRestitution > btScalar(0))
+	{
+		const btScalar forceVelocity = row.m_contactNormal1.dot(a.forceVelocityChange(infoGlobal.m_timeStep)) +
+		                               row.m_relpos1CrossNormal.dot(a.torqueVelocityChange(infoGlobal.m_timeStep)) +
+		                               row.m_contactNormal2.dot(b.forceVelocityChange(infoGlobal.m_timeStep)) +
+		                               row.m_relpos2CrossNormal.dot(b.torqueVelocityChange(infoGlobal.m_timeStep));
+		bounceSpeed = restitutionSpeed(relativeVelocity - forceVelocity, cp.m_combinedRestitution,
+		                               infoGlobal.m_restitutionVelocityThreshold);
+	}
 	btScalar velocityError = bounceSpeed - relativeVelocity;
 	btScalar positionalError = btScalar(0);
 	// Deep penetrations are resolved by the split-impulse pass, which moves the bodies without adding

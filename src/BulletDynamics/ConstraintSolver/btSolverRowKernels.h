@@ -11,6 +11,10 @@
 
 namespace caliber
 {
+// Written so that the compiler emits minss/maxss (the operand order matters for NaN handling).
+SIMD_FORCE_INLINE btScalar btMinBranchless(btScalar a, btScalar b) { return b < a ? b : a; }
+SIMD_FORCE_INLINE btScalar btMaxBranchless(btScalar a, btScalar b) { return a < b ? b : a; }
+
 // The velocity error of the row measured through the solver's velocity changes so far.
 SIMD_FORCE_INLINE btScalar rowDeltaVelocity(const btSolverBody& bodyA, const btSolverBody& bodyB,
                                             const btSolverConstraint& row)
@@ -28,21 +32,12 @@ SIMD_FORCE_INLINE btScalar resolveRow(btSolverBody& bodyA, btSolverBody& bodyB, 
 {
 	btScalar deltaImpulse =
 	    row.m_rhs - row.m_appliedImpulse * row.m_cfm - rowDeltaVelocity(bodyA, bodyB, row) * row.m_jacDiagABInv;
+	// Clamped without branches (minss/maxss): which bound is active changes from sweep to sweep, and a
+	// mispredicted branch here costs more than the rest of the row.
 	const btScalar sum = row.m_appliedImpulse + deltaImpulse;
-	if (sum < lower)
-	{
-		deltaImpulse = lower - row.m_appliedImpulse;
-		row.m_appliedImpulse = lower;
-	}
-	else if (sum > upper)
-	{
-		deltaImpulse = upper - row.m_appliedImpulse;
-		row.m_appliedImpulse = upper;
-	}
-	else
-	{
-		row.m_appliedImpulse = sum;
-	}
+	const btScalar clamped = btMaxBranchless(lower, btMinBranchless(upper, sum));
+	deltaImpulse = clamped - row.m_appliedImpulse;
+	row.m_appliedImpulse = clamped;
 	bodyA.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, deltaImpulse);
 	bodyB.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, deltaImpulse);
 	return deltaImpulse * deltaImpulse;
@@ -56,16 +51,9 @@ SIMD_FORCE_INLINE btScalar resolvePushRow(btSolverBody& bodyA, btSolverBody& bod
 	    row.m_contactNormal2.dot(bodyB.m_pushVelocity) + row.m_relpos2CrossNormal.dot(bodyB.m_turnVelocity);
 	btScalar deltaImpulse =
 	    row.m_rhsPenetration - row.m_appliedPushImpulse * row.m_cfm - deltaVelocity * row.m_jacDiagABInv;
-	const btScalar sum = row.m_appliedPushImpulse + deltaImpulse;
-	if (sum < btScalar(0))
-	{
-		deltaImpulse = -row.m_appliedPushImpulse;
-		row.m_appliedPushImpulse = btScalar(0);
-	}
-	else
-	{
-		row.m_appliedPushImpulse = sum;
-	}
+	const btScalar clamped = btMaxBranchless(btScalar(0), row.m_appliedPushImpulse + deltaImpulse);
+	deltaImpulse = clamped - row.m_appliedPushImpulse;
+	row.m_appliedPushImpulse = clamped;
 	bodyA.internalApplyPushImpulse(row.m_contactNormal1, row.m_angularComponentA, deltaImpulse);
 	bodyB.internalApplyPushImpulse(row.m_contactNormal2, row.m_angularComponentB, deltaImpulse);
 	return deltaImpulse * deltaImpulse;
