@@ -200,9 +200,21 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 	{
 		// The callback may add or remove pairs (reallocating or reordering the array), so nothing is held
 		// across the call except the two proxies, and the pair is removed by identity, not by index.
-		btBroadphaseProxy* proxy0 = m_pairs[i].m_pProxy0;
-		btBroadphaseProxy* proxy1 = m_pairs[i].m_pProxy1;
-		if (callback->processOverlap(m_pairs[i])) removeOverlappingPair(proxy0, proxy1, dispatcher);
+		btBroadphasePair& pair = m_pairs[i];
+		btBroadphaseProxy* proxy0 = pair.m_pProxy0;
+		btBroadphaseProxy* proxy1 = pair.m_pProxy1;
+		// The narrowphase of a pair starts by reading its algorithm and the two objects, which live all
+		// over the heap: ask for a pair a few places ahead while this one is processed.
+#if defined(__GNUC__)
+		if (i + 4 < m_pairs.size())
+		{
+			const btBroadphasePair& ahead = m_pairs[i + 4];
+			if (ahead.m_algorithm) __builtin_prefetch(ahead.m_algorithm);
+			__builtin_prefetch(ahead.m_pProxy0);
+			__builtin_prefetch(ahead.m_pProxy1);
+		}
+#endif
+		if (callback->processOverlap(pair)) removeOverlappingPair(proxy0, proxy1, dispatcher);
 		// Slot i holds an unvisited pair when this one left it (the last pair moved in); else move on.
 		if (i < m_pairs.size() && m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) ++i;
 	}
