@@ -159,6 +159,31 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	identityOrder(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
 	identityOrder(m_orderFrictionConstraintPool, m_tmpSolverContactFrictionConstraintPool.size());
 	identityOrder(m_orderRollingFrictionConstraintPool, m_tmpSolverContactRollingFrictionConstraintPool.size());
+	if (!(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER))
+	{
+		// A fixed order is biased: the first point of a manifold takes more than its share of the impulse
+		// in every sweep, and in a stack that bias tilts every box the same way, step after step, until
+		// the tower leans. So within each manifold the first point rotates from step to step, and the
+		// sweeps alternate direction (solveSingleIteration). Deterministic, and no shuffle to pay for.
+		const int numManifoldsWithRows = m_manifoldFirstRow.size() - 1;
+		int next = 0;
+		for (int m = 0; m < numManifoldsWithRows; ++m)
+		{
+			const int first = m_manifoldFirstRow[m];
+			const int count = m_manifoldFirstRow[m + 1] - first;
+			const int start = int(m_solveCount % unsigned(count));
+			for (int p = 0; p < count; ++p)
+			{
+				int offset = p + start;
+				if (offset >= count) offset -= count;
+				m_orderTmpConstraintPool[next++] = first + offset;
+			}
+		}
+		for (int j = 0; j < m_orderTmpConstraintPool.size(); ++j)
+			for (int f = 0; f < m_frictionRowsPerContact; ++f)
+				m_orderFrictionConstraintPool[j * m_frictionRowsPerContact + f] =
+				    m_orderTmpConstraintPool[j] * m_frictionRowsPerContact + f;
+	}
 	return btScalar(0);
 }
 
@@ -198,61 +223,24 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	btSolverBody* solverBodies = m_tmpSolverBodyPool.size() ? &m_tmpSolverBodyPool[0] : 0;
 	btScalar residual = btScalar(0);
 
+	// Every other sweep runs backwards, starting with the other direction on every other step so that an
+	// odd iteration count is balanced too (not in Bullet's shuffled mode).
+	const bool reverse =
+	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && ((unsigned(iteration) + m_solveCount) & 1u) != 0;
 	// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
-	if (infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER)
+	const int numContacts = m_tmpSolverContactConstraintPool.size();
+	for (int k = 0; k < numContacts; ++k)
 	{
-		// Bullet's mode: the shuffled orders, normal rows first, then friction.
-		const int numContacts = m_tmpSolverContactConstraintPool.size();
-		for (int j = 0; j < numContacts; ++j)
-		{
-			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
-			residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
-			                                row.m_lowerLimit, row.m_upperLimit);
-		}
-		const int numFriction = m_tmpSolverContactFrictionConstraintPool.size();
-		for (int j = 0; j < numFriction; ++j)
-			residual += solveFrictionRow(solverBodies, m_orderFrictionConstraintPool[j]);
+		const int j = reverse ? numContacts - 1 - k : k;
+		btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
+		residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
+		                                row.m_lowerLimit, row.m_upperLimit);
 	}
-	else
+	const int numFriction = m_tmpSolverContactFrictionConstraintPool.size();
+	for (int k = 0; k < numFriction; ++k)
 	{
-		// A fixed order is biased: the first point of a manifold takes more than its share of the impulse
-		// in every sweep, and in a stack that bias tilts every box the same way, step after step, until
-		// the tower leans. So every other sweep runs backwards (starting with the other direction on
-		// every other step, so that an odd iteration count is balanced too), and within each manifold
-		// the first point rotates with the sweep and the step. Deterministic, and no shuffle to pay for.
-		const bool backwards = ((unsigned(iteration) + m_solveCount) & 1u) != 0;
-		const int numManifolds = m_manifoldFirstRow.size() - 1;
-		const unsigned int rotation = unsigned(iteration >> 1) + m_solveCount;
-		for (int pass = 0; pass < 2; ++pass)
-		{
-			for (int k = 0; k < numManifolds; ++k)
-			{
-				const int m = backwards ? numManifolds - 1 - k : k;
-				const int first = m_manifoldFirstRow[m];
-				const int count = m_manifoldFirstRow[m + 1] - first;
-				const int start = int(rotation % unsigned(count));
-				for (int p = 0; p < count; ++p)
-				{
-					int offset = (backwards ? count - 1 - p : p) + start;
-					if (offset >= count) offset -= count;
-					const int rowIndex = first + offset;
-					if (pass == 0)
-					{
-						btSolverConstraint& row = m_tmpSolverContactConstraintPool[rowIndex];
-						residual +=
-						    caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB],
-						                        row, row.m_lowerLimit, row.m_upperLimit);
-					}
-					else
-					{
-						// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
-						const int firstFriction = rowIndex * m_frictionRowsPerContact;
-						for (int f = 0; f < m_frictionRowsPerContact; ++f)
-							residual += solveFrictionRow(solverBodies, firstFriction + f);
-					}
-				}
-			}
-		}
+		const int j = reverse ? numFriction - 1 - k : k;
+		residual += solveFrictionRow(solverBodies, m_orderFrictionConstraintPool[j]);
 	}
 
 	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
