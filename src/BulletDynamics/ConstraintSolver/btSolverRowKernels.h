@@ -19,10 +19,12 @@ SIMD_FORCE_INLINE btScalar btMaxBranchless(btScalar a, btScalar b) { return a < 
 SIMD_FORCE_INLINE btScalar rowDeltaVelocity(const btSolverBody& bodyA, const btSolverBody& bodyB,
                                             const btSolverConstraint& row)
 {
-	return row.m_contactNormal1.dot(bodyA.m_deltaLinearVelocity) +
-	       row.m_relpos1CrossNormal.dot(bodyA.m_deltaAngularVelocity) +
-	       row.m_contactNormal2.dot(bodyB.m_deltaLinearVelocity) +
-	       row.m_relpos2CrossNormal.dot(bodyB.m_deltaAngularVelocity);
+	// Four lane-wise products summed as vectors, then one horizontal sum: cheaper in SIMD than four dot
+	// products, each with its own horizontal sum.
+	const btVector3 lanes =
+	    row.m_contactNormal1 * bodyA.m_deltaLinearVelocity + row.m_relpos1CrossNormal * bodyA.m_deltaAngularVelocity +
+	    row.m_contactNormal2 * bodyB.m_deltaLinearVelocity + row.m_relpos2CrossNormal * bodyB.m_deltaAngularVelocity;
+	return lanes.x() + lanes.y() + lanes.z();
 }
 
 // Drives the row towards its target with the accumulated impulse clamped to [lower, upper]; returns the
@@ -46,9 +48,10 @@ SIMD_FORCE_INLINE btScalar resolveRow(btSolverBody& bodyA, btSolverBody& bodyB, 
 // The split-impulse counterpart: works on the push and turn velocities, impulse kept >= 0.
 SIMD_FORCE_INLINE btScalar resolvePushRow(btSolverBody& bodyA, btSolverBody& bodyB, btSolverConstraint& row)
 {
-	const btScalar deltaVelocity =
-	    row.m_contactNormal1.dot(bodyA.m_pushVelocity) + row.m_relpos1CrossNormal.dot(bodyA.m_turnVelocity) +
-	    row.m_contactNormal2.dot(bodyB.m_pushVelocity) + row.m_relpos2CrossNormal.dot(bodyB.m_turnVelocity);
+	const btVector3 lanes =
+	    row.m_contactNormal1 * bodyA.m_pushVelocity + row.m_relpos1CrossNormal * bodyA.m_turnVelocity +
+	    row.m_contactNormal2 * bodyB.m_pushVelocity + row.m_relpos2CrossNormal * bodyB.m_turnVelocity;
+	const btScalar deltaVelocity = lanes.x() + lanes.y() + lanes.z();
 	btScalar deltaImpulse =
 	    row.m_rhsPenetration - row.m_appliedPushImpulse * row.m_cfm - deltaVelocity * row.m_jacDiagABInv;
 	const btScalar clamped = btMaxBranchless(btScalar(0), row.m_appliedPushImpulse + deltaImpulse);
