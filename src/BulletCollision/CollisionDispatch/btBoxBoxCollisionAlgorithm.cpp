@@ -31,6 +31,7 @@ void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper
                                                   const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
 	if (!m_manifoldPtr || !resultOut) return;
+	caliberPrefetchManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{

@@ -153,6 +153,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		if (!m_manifoldPtr) return;
 		m_ownManifold = true;
 	}
+	caliberPrefetchManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{
