@@ -3,6 +3,7 @@
 #define BT_SIMPLE_DYNAMICS_WORLD_H
 
 #include "BulletDynamics/Dynamics/btDynamicsWorld.h"
+#include "LinearMath/btAlignedObjectArray.h"
 
 class btDispatcher;
 class btOverlappingPairCache;
@@ -17,6 +18,8 @@ protected:
 	btConstraintSolver* m_constraintSolver;
 	bool m_ownsConstraintSolver;
 	btVector3 m_gravity;
+	/// The moving bodies handed to the solver, gathered each step.
+	btAlignedObjectArray<btCollisionObject*> m_solverBodies;
 
 	void predictUnconstraintMotion(btScalar timeStep);
 	void integrateTransforms(btScalar timeStep);

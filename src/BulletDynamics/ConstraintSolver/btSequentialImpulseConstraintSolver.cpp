@@ -251,8 +251,8 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 		const btScalar normalImpulse = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
 		if (normalImpulse > btScalar(0))
 		{
-			// Rolling resistance cannot exceed the friction torque the contact can carry.
-			const btScalar bound = btMin(row.m_friction * normalImpulse, row.m_upperLimit);
+			// Rolling and spinning resistance: the coefficient (a length) times the normal impulse.
+			const btScalar bound = row.m_friction * normalImpulse;
 			residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
 			                                -bound, bound);
 		}

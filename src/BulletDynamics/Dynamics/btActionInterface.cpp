@@ -6,7 +6,7 @@
 btRigidBody& btActionInterface::getFixedBody()
 {
 	// A function-local static: built on first use, so no static-initialisation order problems.
+	// Mass 0: static, with zero inverse mass and inertia.
 	static btRigidBody fixedBody(btScalar(0), 0, 0);
-	fixedBody.setMassProps(btScalar(0), btVector3(0, 0, 0));
 	return fixedBody;
 }

@@ -40,8 +40,9 @@ int btSimpleDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, bt
 	dispatchInfo.m_debugDraw = getDebugDrawer();
 	performDiscreteCollisionDetection();
 
-	// Every body and manifold in one group.
-	btAlignedObjectArray<btCollisionObject*> bodies;
+	// Every body and manifold in one group (the array keeps its capacity from step to step).
+	btAlignedObjectArray<btCollisionObject*>& bodies = m_solverBodies;
+	bodies.resize(0);
 	for (int i = 0; i < m_collisionObjects.size(); ++i)
 	{
 		btRigidBody* body = btRigidBody::upcast(m_collisionObjects[i]);
