@@ -10,6 +10,7 @@
 #include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
 #include "BulletDynamics/ConstraintSolver/btSolverBody.h"
 #include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btAlignedObjectArray.h"
 
 class btManifoldPoint;
@@ -26,9 +27,20 @@ btSequentialImpulseConstraintSolver : public btConstraintSolver
 protected:
 	btAlignedObjectArray<btSolverBody> m_tmpSolverBodyPool;
 	btConstraintArray m_tmpSolverContactConstraintPool;
+	/// Joint rows, constraint after constraint (see m_tmpJoints).
+	btConstraintArray m_tmpSolverNonContactConstraintPool;
 	btConstraintArray m_tmpSolverContactFrictionConstraintPool;
 	btConstraintArray m_tmpSolverContactRollingFrictionConstraintPool;
 	btAlignedObjectArray<int> m_orderTmpConstraintPool;
+	/// Sweep order of the joints (indices into m_tmpJoints).
+	btAlignedObjectArray<int> m_orderNonContactConstraintPool;
+	/// Rows per joint in this solve (Bullet's name); m_tmpJoints holds the joint, m_tmpJointFirstRow
+	/// its first row in m_tmpSolverNonContactConstraintPool.
+	btAlignedObjectArray<btTypedConstraint::btConstraintInfo1> m_tmpConstraintSizesPool;
+	btAlignedObjectArray<btTypedConstraint*> m_tmpJoints;
+	btAlignedObjectArray<int> m_tmpJointFirstRow;
+	/// Each joint's block of equality rows (see btSolverJointBlock).
+	btAlignedObjectArray<btSolverJointBlock> m_tmpJointBlocks;
 	btAlignedObjectArray<int> m_orderFrictionConstraintPool;
 	btAlignedObjectArray<int> m_orderRollingFrictionConstraintPool;
 	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
@@ -68,6 +80,18 @@ protected:
 	    btScalar torsionalFriction, const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0,
 	    btCollisionObject* colObj1, btScalar desiredVelocity = 0, btScalar cfmSlip = 0.f);
 
+	/// Adds the rows of every enabled joint, warm started from the joint's last step.
+	void convertJoints(btTypedConstraint * *constraints, int numConstraints, const btContactSolverInfo& infoGlobal);
+	/// Fills the info1.m_numConstraintRows rows at firstRow for one joint; false if the joint produced
+	/// non-finite rows (it is then disabled, with a warning).
+	bool convertJoint(btSolverConstraint * firstRow, btTypedConstraint * constraint,
+	                  const btTypedConstraint::btConstraintInfo1& info1, int solverBodyIdA, int solverBodyIdB,
+	                  const btContactSolverInfo& infoGlobal, btSolverJointBlock& block);
+	/// One sweep over the rows of joint i (its block, then its other rows); returns the squared impulse change.
+	btScalar solveJoint(btSolverBody * solverBodies, int jointIndex);
+	/// Stores the joints' row impulses (warm start, applied impulse, feedback) and breaks overloaded ones.
+	void writeBackJoints(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal);
+
 	/// Builds the body pool and the rows, and applies the warm-start impulses.
 	virtual btScalar solveGroupCacheFriendlySetup(btCollisionObject * *bodies, int numBodies,
 	                                              btPersistentManifold** manifoldPtr, int numManifolds,
@@ -104,8 +128,7 @@ public:
 	btSequentialImpulseConstraintSolver();
 	virtual ~btSequentialImpulseConstraintSolver();
 
-	/// Solves one island (see btConstraintSolver). Joints (constraints) arrive with a later release of
-	/// the dynamics: numConstraints must be 0 for now.
+	/// Solves one island (see btConstraintSolver): its contacts and its joints.
 	virtual btScalar solveGroup(btCollisionObject * *bodies, int numBodies, btPersistentManifold** manifold,
 	                            int numManifolds, btTypedConstraint** constraints, int numConstraints,
 	                            const btContactSolverInfo& info, btIDebugDraw* debugDrawer, btDispatcher* dispatcher)

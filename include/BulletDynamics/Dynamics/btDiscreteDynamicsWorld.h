@@ -42,6 +42,17 @@ protected:
 	bool m_latencyMotionStateInterpolation;
 	/// Set once the "non-finite body" warning has been given (it is given once per world).
 	bool m_reportedNonFiniteBody;
+	/// The joints, in the order they were added.
+	btAlignedObjectArray<btTypedConstraint*> m_constraints;
+	/// This step's enabled joints grouped by island (counting sort), and where each island's group starts.
+	btAlignedObjectArray<btTypedConstraint*> m_sortedConstraints;
+	btAlignedObjectArray<int> m_constraintIslandStart;
+	btAlignedObjectArray<int> m_islandFill;
+
+	/// Groups the enabled joints by island for the solver.
+	void sortConstraintsByIsland();
+	/// Whether body takes part in this world's islands (in the world, not static or kinematic).
+	bool isSimulatedHere(const btRigidBody& body) const;
 
 	/// Integrates forces into velocities, applies damping and predicts the end-of-step transforms.
 	virtual void predictUnconstraintMotion(btScalar timeStep);
@@ -79,6 +90,17 @@ public:
 	/// Hands body's interpolated transform to its motion state.
 	void synchronizeSingleMotionState(btRigidBody * body);
 
+	/// Adds a joint (not owned). With disableCollisionsBetweenLinkedBodies the two bodies stop colliding
+	/// with each other. A null joint, a joint added twice and a joint between a body and itself are
+	/// reported and ignored.
+	void addConstraint(btTypedConstraint * constraint, bool disableCollisionsBetweenLinkedBodies = false) override;
+	void removeConstraint(btTypedConstraint * constraint) override;
+	int getNumConstraints() const override { return m_constraints.size(); }
+	btTypedConstraint* getConstraint(int index) override { return m_constraints[index]; }
+	const btTypedConstraint* getConstraint(int index) const override { return m_constraints[index]; }
+	/// Draws a joint's frames (DBG_DrawConstraints) and limits (DBG_DrawConstraintLimits).
+	virtual void debugDrawConstraint(btTypedConstraint * constraint);
+
 	void addAction(btActionInterface*) override;
 	void removeAction(btActionInterface*) override;
 
@@ -100,6 +122,8 @@ public:
 	/// it has BT_DISABLE_WORLD_GRAVITY.
 	void addRigidBody(btRigidBody * body) override;
 	void addRigidBody(btRigidBody * body, int group, int mask) override;
+	/// A body that still has joints in this world takes them out of the world with it (reported with a
+	/// warning), so that the world never holds a joint to a body it no longer simulates.
 	void removeRigidBody(btRigidBody * body) override;
 
 	/// Rigid bodies are removed as by removeRigidBody.

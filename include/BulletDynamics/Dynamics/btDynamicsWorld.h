@@ -55,13 +55,14 @@ public:
 
 	virtual void debugDrawWorld() = 0;
 
-	/// Joints arrive with a later release of Caliber: for now a joint is refused with a warning.
+	/// Worlds without joints (btSimpleDynamicsWorld) refuse a joint with a warning; btDiscreteDynamicsWorld
+	/// solves them.
 	virtual void addConstraint(btTypedConstraint* constraint, bool disableCollisionsBetweenLinkedBodies = false)
 	{
 		(void)constraint;
 		(void)disableCollisionsBetweenLinkedBodies;
-		btAssert(!"btDynamicsWorld::addConstraint: joints are not supported yet");
-		btReportWarning("Caliber: addConstraint: joints are not supported yet; the constraint is ignored\n",
+		btAssert(!"btDynamicsWorld::addConstraint: this world does not solve joints");
+		btReportWarning("Caliber: addConstraint: this world does not solve joints; the constraint is ignored\n",
 		                getDebugDrawer());
 	}
 	virtual void removeConstraint(btTypedConstraint* constraint) { (void)constraint; }

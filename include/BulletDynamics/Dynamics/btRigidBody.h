@@ -131,7 +131,7 @@ public:
 	};
 
 	btRigidBody(const btRigidBodyConstructionInfo& constructionInfo);
-	btRigidBody(btScalar mass, btMotionState* motionState, btCollisionShape* collisionShape,
+	btRigidBody(btScalar mass, btMotionState * motionState, btCollisionShape * collisionShape,
 	            const btVector3& localInertia = btVector3(0, 0, 0));
 
 	/// A body still referenced by constraints asserts (remove the constraints first).
@@ -223,7 +223,10 @@ public:
 	btVector3 getTurnVelocity() const { return m_turnVelocity; }
 	void setPushVelocity(const btVector3& v) { m_pushVelocity = v; }
 	void setTurnVelocity(const btVector3& v) { m_turnVelocity = v; }
-	void applyCentralPushImpulse(const btVector3& impulse) { m_pushVelocity += impulse * m_linearFactor * m_inverseMass; }
+	void applyCentralPushImpulse(const btVector3& impulse)
+	{
+		m_pushVelocity += impulse * m_linearFactor * m_inverseMass;
+	}
 	void applyTorqueTurnImpulse(const btVector3& torque)
 	{
 		m_turnVelocity += m_invInertiaTensorWorld * torque * m_angularFactor;
@@ -299,6 +302,8 @@ public:
 	void removeConstraintRef(btTypedConstraint * c);
 	btTypedConstraint* getConstraintRef(int index) { return m_constraintRefs[index]; }
 	int getNumConstraintRefs() const { return m_constraintRefs.size(); }
+	/// False for a body linked to this one by an enabled joint that disables collisions between them.
+	bool checkCollideWithOverride(const btCollisionObject* co) const override;
 
 	void setFlags(int flags) { m_rigidbodyFlags = flags; }
 	int getFlags() const { return m_rigidbodyFlags; }

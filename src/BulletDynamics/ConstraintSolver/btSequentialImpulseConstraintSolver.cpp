@@ -125,9 +125,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
     btIDebugDraw* debugDrawer)
 {
 	BT_PROFILE("solveGroupCacheFriendlySetup");
-	(void)constraints;
 	(void)debugDrawer;
-	btAssert(numConstraints == 0 && "btSequentialImpulseConstraintSolver: joints are not supported yet");
 	m_fixedBodyId = -1;
 	m_maxOverrideNumSolverIterations = 0;
 	m_tmpSolverBodyPool.resize(0);
@@ -145,6 +143,9 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	}
 	for (int i = 0; i < numBodies; ++i) getOrInitSolverBody(*bodies[i], infoGlobal.m_timeStep);
 
+	// Joints first: their warm-start impulses are in the bodies before the contacts measure velocities.
+	convertJoints(constraints, numConstraints, infoGlobal);
+
 	m_frictionRowsPerContact = (infoGlobal.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 2 : 1;
 	m_manifoldFirstRow.resize(0);
 	for (int i = 0; i < numManifolds; ++i)
@@ -156,6 +157,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	m_manifoldFirstRow.push_back(m_tmpSolverContactConstraintPool.size());
 	++m_solveCount;
 
+	identityOrder(m_orderNonContactConstraintPool, m_tmpJoints.size());
 	identityOrder(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
 	identityOrder(m_orderFrictionConstraintPool, m_tmpSolverContactFrictionConstraintPool.size());
 	identityOrder(m_orderRollingFrictionConstraintPool, m_tmpSolverContactRollingFrictionConstraintPool.size());
@@ -215,6 +217,7 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	(void)debugDrawer;
 	if ((infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && (iteration & 7) == 0)
 	{
+		shuffle(m_orderNonContactConstraintPool, *this);
 		shuffle(m_orderTmpConstraintPool, *this);
 		shuffle(m_orderFrictionConstraintPool, *this);
 		shuffle(m_orderRollingFrictionConstraintPool, *this);
@@ -227,6 +230,18 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	// odd iteration count is balanced too (not in Bullet's shuffled mode).
 	const bool reverse =
 	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && ((unsigned(iteration) + m_solveCount) & 1u) != 0;
+	// Joint rows first (as in Bullet); a joint with its own iteration count stops when it is used up.
+	const int numJoints = m_tmpJoints.size();
+	for (int k = 0; k < numJoints; ++k)
+	{
+		const int j = m_orderNonContactConstraintPool[reverse ? numJoints - 1 - k : k];
+		if (iteration >= m_tmpSolverNonContactConstraintPool[m_tmpJointFirstRow[j]].m_overrideNumSolverIterations)
+			continue;
+		residual += solveJoint(solverBodies, j);
+	}
+	// Contacts run the world's iteration count; only joints that ask for more go on beyond it.
+	if (iteration >= infoGlobal.m_numIterations) return residual;
+
 	// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
 	const int numContacts = m_tmpSolverContactConstraintPool.size();
 	for (int k = 0; k < numContacts; ++k)
@@ -363,6 +378,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(btCo
 	(void)bodies;
 	(void)numBodies;
 	writeBackContacts(0, m_tmpSolverContactConstraintPool.size(), infoGlobal);
+	writeBackJoints(0, m_tmpJoints.size(), infoGlobal);
 	writeBackBodies(0, m_tmpSolverBodyPool.size(), infoGlobal);
 	return btScalar(0);
 }
@@ -378,6 +394,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroup(btCollisionObject** bod
 	btAssert(numBodies >= 0 && numManifolds >= 0);
 	if ((numBodies > 0 && !bodies) || (numManifolds > 0 && !manifoldPtr) || numBodies < 0 || numManifolds < 0)
 		return btScalar(0);
+	if (numConstraints < 0 || !constraints) numConstraints = 0;
 	btAssert(infoGlobal.m_timeStep > btScalar(0));
 	if (!(infoGlobal.m_timeStep > btScalar(0))) return btScalar(0);
 	solveGroupCacheFriendlySetup(bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints, infoGlobal,

@@ -6,6 +6,7 @@
 
 #include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btActionInterface.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
@@ -247,8 +248,61 @@ void btDiscreteDynamicsWorld::removeRigidBody(btRigidBody* body)
 		btReportWarning("Caliber: removeRigidBody: the body is not in this world; call ignored\n", getDebugDrawer());
 		return;
 	}
+	int removedJoints = 0;
+	for (int i = m_constraints.size() - 1; i >= 0; --i)
+	{
+		btTypedConstraint* constraint = m_constraints[i];
+		if (&constraint->getRigidBodyA() != body && &constraint->getRigidBodyB() != body) continue;
+		removeConstraint(constraint);
+		++removedJoints;
+	}
+	if (removedJoints)
+		btReportWarning(
+		    "Caliber: removeRigidBody: the body still had joints in this world; they have been removed "
+		    "from the world with it\n",
+		    getDebugDrawer());
 	m_nonStaticRigidBodies.remove(body);
 	btCollisionWorld::removeCollisionObject(body);
+}
+
+void btDiscreteDynamicsWorld::addConstraint(btTypedConstraint* constraint, bool disableCollisionsBetweenLinkedBodies)
+{
+	btAssert(constraint && "btDiscreteDynamicsWorld::addConstraint: null constraint");
+	if (!constraint)
+	{
+		btReportWarning("Caliber: addConstraint: null constraint; call ignored\n", getDebugDrawer());
+		return;
+	}
+	btAssert(&constraint->getRigidBodyA() != &constraint->getRigidBodyB() &&
+	         "btDiscreteDynamicsWorld::addConstraint: a constraint between a body and itself");
+	if (&constraint->getRigidBodyA() == &constraint->getRigidBodyB())
+	{
+		btReportWarning("Caliber: addConstraint: the constraint links a body to itself; it is ignored\n",
+		                getDebugDrawer());
+		return;
+	}
+	btAssert(m_constraints.findLinearSearch(constraint) == m_constraints.size() &&
+	         "btDiscreteDynamicsWorld::addConstraint: constraint added twice");
+	if (m_constraints.findLinearSearch(constraint) != m_constraints.size())
+	{
+		btReportWarning("Caliber: addConstraint: the constraint is already in this world; call ignored\n",
+		                getDebugDrawer());
+		return;
+	}
+	m_constraints.push_back(constraint);
+	if (disableCollisionsBetweenLinkedBodies)
+	{
+		constraint->getRigidBodyA().addConstraintRef(constraint);
+		constraint->getRigidBodyB().addConstraintRef(constraint);
+	}
+}
+
+void btDiscreteDynamicsWorld::removeConstraint(btTypedConstraint* constraint)
+{
+	if (!constraint) return;
+	m_constraints.remove(constraint);
+	constraint->getRigidBodyA().removeConstraintRef(constraint);
+	constraint->getRigidBodyB().removeConstraintRef(constraint);
 }
 
 void btDiscreteDynamicsWorld::removeCollisionObject(btCollisionObject* collisionObject)
@@ -360,5 +414,9 @@ void btDiscreteDynamicsWorld::debugDrawWorld()
 	if (mode & (btIDebugDraw::DBG_DrawWireframe | btIDebugDraw::DBG_DrawAabb))
 	{
 		for (int i = 0; i < m_actions.size(); ++i) m_actions[i]->debugDraw(drawer);
+	}
+	if (mode & (btIDebugDraw::DBG_DrawConstraints | btIDebugDraw::DBG_DrawConstraintLimits))
+	{
+		for (int i = m_constraints.size() - 1; i >= 0; --i) debugDrawConstraint(m_constraints[i]);
 	}
 }

@@ -7,6 +7,7 @@
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
@@ -163,14 +164,80 @@ void btDiscreteDynamicsWorld::calculateSimulationIslands()
 {
 	BT_PROFILE("calculateSimulationIslands");
 	getSimulationIslandManager()->updateActivationState(getCollisionWorld(), getCollisionWorld()->getDispatcher());
+	// Jointed bodies share an island: they are solved together, and sleep and wake together.
+	btUnionFind& unionFind = getSimulationIslandManager()->getUnionFind();
+	for (int i = 0; i < m_constraints.size(); ++i)
+	{
+		btTypedConstraint* constraint = m_constraints[i];
+		if (!constraint->isEnabled()) continue;
+		const btRigidBody& a = constraint->getRigidBodyA();
+		const btRigidBody& b = constraint->getRigidBodyB();
+		if (!isSimulatedHere(a) || !isSimulatedHere(b)) continue;
+		const int tagA = a.getIslandTag(), tagB = b.getIslandTag();
+		if (tagA >= 0 && tagB >= 0 && tagA < unionFind.getNumElements() && tagB < unionFind.getNumElements())
+			unionFind.unite(tagA, tagB);
+	}
 	getSimulationIslandManager()->storeIslandActivationState(getCollisionWorld());
+}
+
+bool btDiscreteDynamicsWorld::isSimulatedHere(const btRigidBody& body) const
+{
+	if (body.isStaticOrKinematicObject()) return false;
+	const int index = body.getWorldArrayIndex();
+	return index >= 0 && index < m_collisionObjects.size() && m_collisionObjects[index] == &body;
+}
+
+void btDiscreteDynamicsWorld::sortConstraintsByIsland()
+{
+	// A joint belongs to the island of its simulated body (A, or B when A is static, kinematic or the
+	// fixed body). Joints whose bodies are both outside the simulation have nothing to move.
+	const int numIslands = getSimulationIslandManager()->getUnionFind().getNumElements();
+	m_constraintIslandStart.resize(0);
+	m_constraintIslandStart.resize(numIslands + 1, 0);
+	m_sortedConstraints.resize(0);
+	const bool splitIslands = getSimulationIslandManager()->getSplitIslands();
+	for (int i = 0; i < m_constraints.size(); ++i)
+	{
+		btTypedConstraint* constraint = m_constraints[i];
+		if (!constraint->isEnabled()) continue;
+		const btRigidBody& a = constraint->getRigidBodyA();
+		const btRigidBody& b = constraint->getRigidBodyB();
+		const int island = isSimulatedHere(a) ? a.getIslandTag() : (isSimulatedHere(b) ? b.getIslandTag() : -1);
+		if (island < 0 || island >= numIslands) continue;
+		if (!splitIslands)
+		{
+			m_sortedConstraints.push_back(constraint);
+			continue;
+		}
+		++m_constraintIslandStart[island + 1];
+	}
+	if (!splitIslands) return;
+	for (int i = 0; i < numIslands; ++i) m_constraintIslandStart[i + 1] += m_constraintIslandStart[i];
+	m_sortedConstraints.resize(m_constraintIslandStart[numIslands]);
+	// Second pass: place each joint after those of its island already placed (stable: insertion order).
+	m_islandFill.resize(0);
+	m_islandFill.resize(numIslands, 0);
+	for (int i = 0; i < m_constraints.size(); ++i)
+	{
+		btTypedConstraint* constraint = m_constraints[i];
+		if (!constraint->isEnabled()) continue;
+		const btRigidBody& a = constraint->getRigidBodyA();
+		const btRigidBody& b = constraint->getRigidBodyB();
+		const int island = isSimulatedHere(a) ? a.getIslandTag() : (isSimulatedHere(b) ? b.getIslandTag() : -1);
+		if (island < 0 || island >= numIslands) continue;
+		m_sortedConstraints[m_constraintIslandStart[island] + m_islandFill[island]++] = constraint;
+	}
 }
 
 void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
 {
 	BT_PROFILE("solveConstraints");
 	const int numManifolds = getDispatcher()->getNumManifolds();
+	sortConstraintsByIsland();
 	m_solverIslandCallback->setup(&solverInfo, getDebugDrawer());
+	m_solverIslandCallback->setConstraints(m_sortedConstraints.size() ? &m_sortedConstraints[0] : 0,
+	                                       m_sortedConstraints.size(), &m_constraintIslandStart[0],
+	                                       m_constraintIslandStart.size() - 1);
 	m_constraintSolver->prepareSolve(getCollisionWorld()->getNumCollisionObjects(), numManifolds);
 	m_islandManager->buildAndProcessIslands(getCollisionWorld()->getDispatcher(), getCollisionWorld(),
 	                                        m_solverIslandCallback);

@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
+
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "LinearMath/btMotionState.h"
 #include "LinearMath/btTransformUtil.h"
@@ -17,10 +19,7 @@ bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite
 btScalar maxAngularSpeed(btScalar step) { return SIMD_HALF_PI / step; }
 
 // The skew matrix of v: skew(v) * w == v.cross(w).
-btMatrix3x3 skew(const btVector3& v)
-{
-	return btMatrix3x3(0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0);
-}
+btMatrix3x3 skew(const btVector3& v) { return btMatrix3x3(0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0); }
 }  // namespace
 
 btRigidBody::btRigidBody(const btRigidBodyConstructionInfo& constructionInfo) { setupRigidBody(constructionInfo); }
@@ -384,7 +383,22 @@ void btRigidBody::addConstraintRef(btTypedConstraint* c)
 void btRigidBody::removeConstraintRef(btTypedConstraint* c)
 {
 	m_constraintRefs.remove(c);
-	m_checkCollideWith = m_constraintRefs.size() > 0;
+	m_checkCollideWith = m_constraintRefs.size() > 0 || getNumObjectsWithoutCollision() > 0;
+}
+
+bool btRigidBody::checkCollideWithOverride(const btCollisionObject* co) const
+{
+	if (!btCollisionObject::checkCollideWithOverride(co)) return false;
+	const btRigidBody* other = btRigidBody::upcast(co);
+	if (!other) return true;
+	// Bodies linked by an enabled joint added with disableCollisionsBetweenLinkedBodies do not collide; a
+	// broken (disabled) joint lets them collide again.
+	for (int i = 0; i < m_constraintRefs.size(); ++i)
+	{
+		const btTypedConstraint* c = m_constraintRefs[i];
+		if (c->isEnabled() && (&c->getRigidBodyA() == other || &c->getRigidBodyB() == other)) return false;
+	}
+	return true;
 }
 
 btVector3 btRigidBody::getLocalInertia() const

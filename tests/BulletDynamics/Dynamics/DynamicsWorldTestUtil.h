@@ -28,6 +28,7 @@ public:
 
 	~TestWorld()
 	{
+		for (auto& constraint : m_constraints) m_world->removeConstraint(constraint.get());
 		for (btRigidBody* body : m_bodies)
 		{
 			if (body->isInWorld() || body->getWorldArrayIndex() >= 0) m_world->removeRigidBody(body);
@@ -84,6 +85,16 @@ public:
 		return ground;
 	}
 
+	/// A joint kept alive for the world's lifetime and added to it.
+	template <class Joint, class... Args>
+	Joint* addJoint(bool disableCollisionsBetweenLinkedBodies, Args&&... args)
+	{
+		Joint* joint = new Joint(std::forward<Args>(args)...);
+		m_constraints.emplace_back(joint);
+		m_world->addConstraint(joint, disableCollisionsBetweenLinkedBodies);
+		return joint;
+	}
+
 	/// Steps n fixed substeps of h.
 	void run(int n, btScalar h = btScalar(1. / 60.))
 	{
@@ -101,6 +112,7 @@ private:
 	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
 	std::vector<std::unique_ptr<btDefaultMotionState>> m_motionStates;
 	std::vector<btRigidBody*> m_bodies;
+	std::vector<std::unique_ptr<btTypedConstraint>> m_constraints;
 };
 
 /// Counts the warnings reported through btReportWarning while it lives.

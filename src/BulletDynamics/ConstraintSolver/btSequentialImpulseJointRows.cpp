@@ -1,0 +1,351 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The joint half of the solver's setup and write-back: each joint describes its rows through
+// getInfo1/getInfo2, written straight into the solver's row array, and the rows are then solved exactly
+// like contact rows (btSolverRowKernels.h).
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btQuickprof.h"
+#include "LinearMath/btWarningHook.h"
+
+namespace
+{
+bool isFinite(btScalar x) { return x == x && btFabs(x) <= SIMD_INFINITY; }
+bool isFinite(const btVector3& v) { return isFinite(v.x()) && isFinite(v.y()) && isFinite(v.z()); }
+
+// I^-1 F axis for a body that turns, zero for static and kinematic ones (nothing pushes them).
+btVector3 angularComponent(const btRigidBody& body, const btVector3& axis)
+{
+	if (body.isStaticOrKinematicObject()) return btVector3(0, 0, 0);
+	return body.getInvInertiaTensorWorld() * (axis * body.getAngularFactor());
+}
+
+// Rows whose bounds reach this far are equality rows.
+const btScalar kUnboundedImpulse = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
+
+// Inverts the n x n matrix J M^-1 J^T of rows [0, n) by Gauss-Jordan elimination with partial pivoting
+// into invK (stride btSolverJointBlock::MAX_ROWS); false when it is singular (redundant rows, or both
+// bodies immovable), in which case the rows are solved one by one.
+bool buildBlockInverse(const btSolverConstraint* rows, int n, const btSolverBody& a, const btSolverBody& b,
+                       btScalar* invK)
+{
+	const int S = btSolverJointBlock::MAX_ROWS;
+	btScalar k[S][2 * S];
+	btScalar largestDiagonal = 0;
+	for (int i = 0; i < n; ++i)
+	{
+		for (int j = 0; j < n; ++j)
+		{
+			k[i][j] = rows[i].m_contactNormal1.dot(rows[j].m_contactNormal1 * a.m_invMass) +
+			          rows[i].m_relpos1CrossNormal.dot(rows[j].m_angularComponentA * a.m_angularFactor) +
+			          rows[i].m_contactNormal2.dot(rows[j].m_contactNormal2 * b.m_invMass) +
+			          rows[i].m_relpos2CrossNormal.dot(rows[j].m_angularComponentB * b.m_angularFactor);
+			k[i][n + j] = i == j ? btScalar(1) : btScalar(0);
+		}
+		largestDiagonal = btMax(largestDiagonal, k[i][i]);
+	}
+	if (!(largestDiagonal > btScalar(0))) return false;
+	const btScalar tiny = largestDiagonal * btScalar(1e-5);
+	for (int c = 0; c < n; ++c)
+	{
+		int pivot = c;
+		for (int r = c + 1; r < n; ++r)
+			if (btFabs(k[r][c]) > btFabs(k[pivot][c])) pivot = r;
+		if (!(btFabs(k[pivot][c]) > tiny)) return false;
+		if (pivot != c)
+			for (int j = 0; j < 2 * n; ++j) btSwap(k[c][j], k[pivot][j]);
+		const btScalar inv = btScalar(1) / k[c][c];
+		for (int j = 0; j < 2 * n; ++j) k[c][j] *= inv;
+		for (int r = 0; r < n; ++r)
+		{
+			if (r == c || k[r][c] == btScalar(0)) continue;
+			const btScalar f = k[r][c];
+			for (int j = 0; j < 2 * n; ++j) k[r][j] -= f * k[c][j];
+		}
+	}
+	for (int i = 0; i < n; ++i)
+		for (int j = 0; j < n; ++j) invK[i * S + j] = k[i][n + j];
+	return true;
+}
+
+void clearRow(btSolverConstraint& row, btScalar cfm)
+{
+	const btVector3 zero(0, 0, 0);
+	row.m_relpos1CrossNormal = zero;
+	row.m_contactNormal1 = zero;
+	row.m_relpos2CrossNormal = zero;
+	row.m_contactNormal2 = zero;
+	row.m_angularComponentA = zero;
+	row.m_angularComponentB = zero;
+	row.m_appliedPushImpulse = 0;
+	row.m_appliedImpulse = 0;
+	row.m_friction = 0;
+	row.m_jacDiagABInv = 0;
+	row.m_rhs = 0;
+	row.m_cfm = cfm;
+	row.m_lowerLimit = -SIMD_INFINITY;
+	row.m_upperLimit = SIMD_INFINITY;
+	row.m_rhsPenetration = 0;
+	row.m_originalContactPoint = 0;
+	row.m_overrideNumSolverIterations = -1;
+	row.m_frictionIndex = -1;
+}
+}  // namespace
+
+bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* firstRow, btTypedConstraint* constraint,
+                                                       const btTypedConstraint::btConstraintInfo1& info1,
+                                                       int solverBodyIdA, int solverBodyIdB,
+                                                       const btContactSolverInfo& infoGlobal, btSolverJointBlock& block)
+{
+	const int numRows = info1.m_numConstraintRows;
+	block.m_size = 0;
+	const int iterations = constraint->getOverrideNumSolverIterations() >= 0
+	                           ? constraint->getOverrideNumSolverIterations()
+	                           : infoGlobal.m_numIterations;
+	for (int j = 0; j < numRows; ++j)
+	{
+		clearRow(firstRow[j], infoGlobal.m_globalCfm);
+		firstRow[j].m_solverBodyIdA = solverBodyIdA;
+		firstRow[j].m_solverBodyIdB = solverBodyIdB;
+		firstRow[j].m_overrideNumSolverIterations = iterations;
+		firstRow[j].m_originalContactPoint = constraint;
+	}
+
+	btTypedConstraint::btConstraintInfo2 info2;
+	info2.fps = btScalar(1) / infoGlobal.m_timeStep;
+	info2.erp = infoGlobal.m_erp;
+	info2.m_J1linearAxis = firstRow->m_contactNormal1.m_floats;
+	info2.m_J1angularAxis = firstRow->m_relpos1CrossNormal.m_floats;
+	info2.m_J2linearAxis = firstRow->m_contactNormal2.m_floats;
+	info2.m_J2angularAxis = firstRow->m_relpos2CrossNormal.m_floats;
+	info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
+	btAssert(info2.rowskip * sizeof(btScalar) == sizeof(btSolverConstraint));
+	info2.m_constraintError = &firstRow->m_rhs;
+	info2.cfm = &firstRow->m_cfm;
+	info2.m_lowerLimit = &firstRow->m_lowerLimit;
+	info2.m_upperLimit = &firstRow->m_upperLimit;
+	info2.m_numIterations = infoGlobal.m_numIterations;
+	info2.m_damping = infoGlobal.m_damping;
+	constraint->getInfo2(&info2);
+
+	btRigidBody& rbA = constraint->getRigidBodyA();
+	btRigidBody& rbB = constraint->getRigidBodyB();
+	const btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
+	const btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	const btScalar threshold = constraint->getBreakingImpulseThreshold();
+
+	btAlignedObjectArray<btScalar>& warm = constraint->internalGetWarmStartImpulses();
+	const bool warmStart = (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING) && warm.size() == numRows;
+
+	// The leading equality rows (no bounds, no softness) can be solved as one block.
+	int equalityRows = 0;
+	while (equalityRows < numRows && equalityRows < btSolverJointBlock::MAX_ROWS &&
+	       firstRow[equalityRows].m_lowerLimit <= -kUnboundedImpulse &&
+	       firstRow[equalityRows].m_upperLimit >= kUnboundedImpulse && firstRow[equalityRows].m_cfm == btScalar(0))
+		++equalityRows;
+
+	for (int j = 0; j < numRows; ++j)
+	{
+		btSolverConstraint& row = firstRow[j];
+		// A joint whose frames, pivots or bodies have gone non-finite must not spread NaN to its bodies.
+		if (!isFinite(row.m_contactNormal1) || !isFinite(row.m_relpos1CrossNormal) || !isFinite(row.m_contactNormal2) ||
+		    !isFinite(row.m_relpos2CrossNormal) || !isFinite(row.m_rhs) || !isFinite(row.m_cfm) ||
+		    row.m_lowerLimit != row.m_lowerLimit || row.m_upperLimit != row.m_upperLimit)
+			return false;
+
+		// No row may apply more than the breaking impulse: the joint breaks when one reaches it.
+		row.m_upperLimit = btMin(row.m_upperLimit, threshold);
+		row.m_lowerLimit = btMax(row.m_lowerLimit, -threshold);
+
+		row.m_angularComponentA = angularComponent(rbA, row.m_relpos1CrossNormal);
+		row.m_angularComponentB = angularComponent(rbB, row.m_relpos2CrossNormal);
+		const btScalar k = row.m_contactNormal1.dot(row.m_contactNormal1 * bodyA.m_invMass) +
+		                   row.m_relpos1CrossNormal.dot(row.m_angularComponentA * bodyA.m_angularFactor) +
+		                   row.m_contactNormal2.dot(row.m_contactNormal2 * bodyB.m_invMass) +
+		                   row.m_relpos2CrossNormal.dot(row.m_angularComponentB * bodyB.m_angularFactor);
+		row.m_jacDiagABInv = k > SIMD_EPSILON ? btScalar(1) / k : btScalar(0);
+
+		// The target (m_constraintError, written to m_rhs) minus the velocity the row starts with.
+		const btScalar velocity =
+		    row.m_contactNormal1.dot(bodyA.m_linearVelocity) + row.m_relpos1CrossNormal.dot(bodyA.m_angularVelocity) +
+		    row.m_contactNormal2.dot(bodyB.m_linearVelocity) + row.m_relpos2CrossNormal.dot(bodyB.m_angularVelocity);
+		const btScalar target = row.m_rhs - velocity * infoGlobal.m_damping;
+		if (j < equalityRows) block.m_target[j] = target;
+		row.m_rhs = target * row.m_jacDiagABInv;
+		row.m_rhsPenetration = 0;
+	}
+	if (equalityRows >= 2 && buildBlockInverse(firstRow, equalityRows, bodyA, bodyB, block.m_invK))
+		block.m_size = equalityRows;
+
+	if (warmStart)
+	{
+		for (int j = 0; j < numRows; ++j)
+		{
+			btSolverConstraint& row = firstRow[j];
+			const btScalar impulse =
+			    btMax(row.m_lowerLimit, btMin(row.m_upperLimit, warm[j] * infoGlobal.m_warmstartingFactor));
+			row.m_appliedImpulse = impulse;
+			m_tmpSolverBodyPool[solverBodyIdA].applyImpulse(row.m_contactNormal1, row.m_angularComponentA, impulse);
+			m_tmpSolverBodyPool[solverBodyIdB].applyImpulse(row.m_contactNormal2, row.m_angularComponentB, impulse);
+		}
+	}
+	return true;
+}
+
+void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** constraints, int numConstraints,
+                                                        const btContactSolverInfo& infoGlobal)
+{
+	BT_PROFILE("convertJoints");
+	m_tmpSolverNonContactConstraintPool.resize(0);
+	m_tmpConstraintSizesPool.resize(0);
+	m_tmpJoints.resize(0);
+	m_tmpJointFirstRow.resize(0);
+	m_tmpJointBlocks.resize(0);
+	if (numConstraints <= 0 || !constraints) return;
+
+	int totalRows = 0;
+	for (int i = 0; i < numConstraints; ++i)
+	{
+		btTypedConstraint* constraint = constraints[i];
+		if (!constraint || !constraint->isEnabled()) continue;
+		constraint->buildJacobian();
+		btTypedConstraint::btConstraintInfo1 info1;
+		info1.m_numConstraintRows = 0;
+		info1.nub = 0;
+		constraint->getInfo1(&info1);
+		if (info1.m_numConstraintRows <= 0)
+		{
+			constraint->internalGetWarmStartImpulses().resize(0);
+			continue;
+		}
+		m_tmpJoints.push_back(constraint);
+		m_tmpConstraintSizesPool.push_back(info1);
+		m_tmpJointFirstRow.push_back(totalRows);
+		totalRows += info1.m_numConstraintRows;
+		if (constraint->getOverrideNumSolverIterations() > m_maxOverrideNumSolverIterations)
+			m_maxOverrideNumSolverIterations = constraint->getOverrideNumSolverIterations();
+	}
+	m_tmpSolverNonContactConstraintPool.resizeNoInitialize(totalRows);
+	m_tmpJointBlocks.resizeNoInitialize(m_tmpJoints.size());
+
+	int kept = 0;
+	for (int i = 0; i < m_tmpJoints.size(); ++i)
+	{
+		btTypedConstraint* constraint = m_tmpJoints[i];
+		if (constraint->needsFeedback() && constraint->getJointFeedback())
+		{
+			btJointFeedback* feedback = constraint->getJointFeedback();
+			feedback->m_appliedForceBodyA.setZero();
+			feedback->m_appliedTorqueBodyA.setZero();
+			feedback->m_appliedForceBodyB.setZero();
+			feedback->m_appliedTorqueBodyB.setZero();
+		}
+		const int idA = getOrInitSolverBody(constraint->getRigidBodyA(), infoGlobal.m_timeStep);
+		const int idB = getOrInitSolverBody(constraint->getRigidBodyB(), infoGlobal.m_timeStep);
+		// Rows of dropped joints are squeezed out, so the row array stays dense.
+		const int firstRow =
+		    kept == i
+		        ? m_tmpJointFirstRow[i]
+		        : (kept ? m_tmpJointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0);
+		if (!convertJoint(&m_tmpSolverNonContactConstraintPool[firstRow], constraint, m_tmpConstraintSizesPool[i], idA,
+		                  idB, infoGlobal, m_tmpJointBlocks[kept]))
+		{
+			constraint->setEnabled(false);
+			constraint->internalGetWarmStartImpulses().resize(0);
+			btReportWarning(
+			    "Caliber: a constraint produced non-finite rows (NaN or infinite frames, pivots or body state); "
+			    "it has been disabled\n",
+			    0);
+			continue;
+		}
+		m_tmpJoints[kept] = constraint;
+		m_tmpConstraintSizesPool[kept] = m_tmpConstraintSizesPool[i];
+		m_tmpJointFirstRow[kept] = firstRow;
+		m_tmpJointBlocks[kept].m_firstRow = firstRow;
+		++kept;
+	}
+	m_tmpJoints.resize(kept);
+	m_tmpConstraintSizesPool.resize(kept);
+	m_tmpJointFirstRow.resize(kept);
+	m_tmpJointBlocks.resize(kept);
+	const int usedRows =
+	    kept ? m_tmpJointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0;
+	m_tmpSolverNonContactConstraintPool.resize(usedRows);
+}
+
+btScalar btSequentialImpulseConstraintSolver::solveJoint(btSolverBody* solverBodies, int jointIndex)
+{
+	const int first = m_tmpJointFirstRow[jointIndex];
+	const int end = first + m_tmpConstraintSizesPool[jointIndex].m_numConstraintRows;
+	btSolverConstraint* rows = &m_tmpSolverNonContactConstraintPool[0];
+	btSolverBody& bodyA = solverBodies[rows[first].m_solverBodyIdA];
+	btSolverBody& bodyB = solverBodies[rows[first].m_solverBodyIdB];
+	btScalar residual = 0;
+	int r = first;
+	const btSolverJointBlock& block = m_tmpJointBlocks[jointIndex];
+	if (block.m_size)
+	{
+		const int S = btSolverJointBlock::MAX_ROWS;
+		const int n = block.m_size;
+		btScalar error[S];
+		for (int i = 0; i < n; ++i)
+			error[i] = block.m_target[i] - caliber::rowDeltaVelocity(bodyA, bodyB, rows[first + i]);
+		for (int i = 0; i < n; ++i)
+		{
+			btScalar delta = 0;
+			for (int j = 0; j < n; ++j) delta += block.m_invK[i * S + j] * error[j];
+			btSolverConstraint& row = rows[first + i];
+			const btScalar clamped = btMax(row.m_lowerLimit, btMin(row.m_upperLimit, row.m_appliedImpulse + delta));
+			delta = clamped - row.m_appliedImpulse;
+			row.m_appliedImpulse = clamped;
+			bodyA.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, delta);
+			bodyB.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, delta);
+			residual += delta * delta;
+		}
+		r += n;
+	}
+	for (; r < end; ++r)
+		residual += caliber::resolveRow(bodyA, bodyB, rows[r], rows[r].m_lowerLimit, rows[r].m_upperLimit);
+	return residual;
+}
+
+void btSequentialImpulseConstraintSolver::writeBackJoints(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal)
+{
+	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
+	for (int i = iBegin; i < iEnd; ++i)
+	{
+		btTypedConstraint* constraint = m_tmpJoints[i];
+		const int first = m_tmpJointFirstRow[i];
+		const int numRows = m_tmpConstraintSizesPool[i].m_numConstraintRows;
+		btAlignedObjectArray<btScalar>& warm = constraint->internalGetWarmStartImpulses();
+		warm.resizeNoInitialize(numRows);
+		btJointFeedback* feedback = constraint->needsFeedback() ? constraint->getJointFeedback() : 0;
+		const btRigidBody& rbA = constraint->getRigidBodyA();
+		const btRigidBody& rbB = constraint->getRigidBodyB();
+		btScalar largest = 0;
+		bool broken = false;
+		for (int j = 0; j < numRows; ++j)
+		{
+			const btSolverConstraint& row = m_tmpSolverNonContactConstraintPool[first + j];
+			const btScalar impulse = row.m_appliedImpulse;
+			warm[j] = impulse;
+			if (btFabs(impulse) > btFabs(largest)) largest = impulse;
+			if (btFabs(impulse) >= constraint->getBreakingImpulseThreshold()) broken = true;
+			if (feedback)
+			{
+				feedback->m_appliedForceBodyA += row.m_contactNormal1 * rbA.getLinearFactor() * (impulse * invTimeStep);
+				feedback->m_appliedTorqueBodyA +=
+				    row.m_relpos1CrossNormal * rbA.getAngularFactor() * (impulse * invTimeStep);
+				feedback->m_appliedForceBodyB += row.m_contactNormal2 * rbB.getLinearFactor() * (impulse * invTimeStep);
+				feedback->m_appliedTorqueBodyB +=
+				    row.m_relpos2CrossNormal * rbB.getAngularFactor() * (impulse * invTimeStep);
+			}
+		}
+		constraint->internalSetAppliedImpulse(largest);
+		if (broken)
+		{
+			constraint->setEnabled(false);
+			warm.resize(0);
+		}
+	}
+}
