@@ -5,6 +5,7 @@
 /// btDiscreteDynamicsWorld: the rigid-body world. The step, stage by stage, with the file of each, is
 /// drawn in docs/architecture.md; the dynamics in docs/rigid-body-dynamics.md.
 
+#include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
 #include "BulletDynamics/Dynamics/btDynamicsWorld.h"
 #include "LinearMath/btAlignedObjectArray.h"
 
@@ -48,6 +49,9 @@ protected:
 	btAlignedObjectArray<btTypedConstraint*> m_sortedConstraints;
 	btAlignedObjectArray<int> m_constraintIslandStart;
 	btAlignedObjectArray<int> m_islandFill;
+	/// Scratch rows of the joint position correction.
+	btConstraintArray m_jointCorrectionRows;
+	btAlignedObjectArray<btRigidBody*> m_jointCorrectedBodies;
 
 	/// Groups the enabled joints by island for the solver.
 	void sortConstraintsByIsland();
@@ -59,6 +63,9 @@ protected:
 	/// Moves the bodies to their end-of-step transforms, clamping fast ones at their time of impact.
 	void integrateTransformsInternal(btRigidBody * *bodies, int numBodies, btScalar timeStep);
 	virtual void integrateTransforms(btScalar timeStep);
+	/// Moves jointed bodies so that their joints' equality rows hold at the new positions (velocities are
+	/// left alone): getSolverInfo().m_jointPositionIterations sweeps.
+	virtual void correctJointPositions();
 	/// Unites touching bodies into islands (and sets their island tags).
 	virtual void calculateSimulationIslands();
 	/// Runs the solver on every awake island.

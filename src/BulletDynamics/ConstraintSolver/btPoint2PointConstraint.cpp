@@ -13,6 +13,7 @@ btPoint2PointConstraint::btPoint2PointConstraint(btRigidBody& rbA, btRigidBody& 
       m_cfm(btScalar(0)),
       m_useSolveConstraintObsolete(false)
 {
+	m_correctsPosition = true;
 }
 
 btPoint2PointConstraint::btPoint2PointConstraint(btRigidBody& rbA, const btVector3& pivotInA)
@@ -24,6 +25,7 @@ btPoint2PointConstraint::btPoint2PointConstraint(btRigidBody& rbA, const btVecto
       m_cfm(btScalar(0)),
       m_useSolveConstraintObsolete(false)
 {
+	m_correctsPosition = true;
 }
 
 void btPoint2PointConstraint::getInfo1(btConstraintInfo1* info) { getInfo1NonVirtual(info); }
@@ -47,13 +49,15 @@ void btPoint2PointConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const 
 	const btVector3 gap = (body1_trans.getOrigin() + armB) - (body0_trans.getOrigin() + armA);
 	const btScalar erp = (m_flags & BT_P2P_FLAGS_ERP) ? m_erp : info->erp;
 	const btScalar clamp = m_setting.m_impulseClamp;
+	const btVector3 targets =
+	    caliber::linearRowTargets(*info, erp, gap, armA, m_rbA.getAngularVelocity(), armB, m_rbB.getAngularVelocity());
 	for (int axis = 0; axis < 3; ++axis)
 	{
 		btVector3 direction(0, 0, 0);
 		direction[axis] = btScalar(1);
 		caliber::JointRow row(*info, axis);
 		row.setLinear(direction, armA, armB);
-		row.error() = info->fps * erp * gap[axis];
+		row.error() = targets[axis];
 		if (m_flags & BT_P2P_FLAGS_CFM) row.cfm() = m_cfm;
 		if (clamp > btScalar(0))
 		{

@@ -3,6 +3,7 @@
 // getInfo1/getInfo2, written straight into the solver's row array, and the rows are then solved exactly
 // like contact rows (btSolverRowKernels.h).
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btQuickprof.h"
@@ -22,51 +23,6 @@ btVector3 angularComponent(const btRigidBody& body, const btVector3& axis)
 
 // Rows whose bounds reach this far are equality rows.
 const btScalar kUnboundedImpulse = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
-
-// Inverts the n x n matrix J M^-1 J^T of rows [0, n) by Gauss-Jordan elimination with partial pivoting
-// into invK (stride btSolverJointBlock::MAX_ROWS); false when it is singular (redundant rows, or both
-// bodies immovable), in which case the rows are solved one by one.
-bool buildBlockInverse(const btSolverConstraint* rows, int n, const btSolverBody& a, const btSolverBody& b,
-                       btScalar* invK)
-{
-	const int S = btSolverJointBlock::MAX_ROWS;
-	btScalar k[S][2 * S];
-	btScalar largestDiagonal = 0;
-	for (int i = 0; i < n; ++i)
-	{
-		for (int j = 0; j < n; ++j)
-		{
-			k[i][j] = rows[i].m_contactNormal1.dot(rows[j].m_contactNormal1 * a.m_invMass) +
-			          rows[i].m_relpos1CrossNormal.dot(rows[j].m_angularComponentA * a.m_angularFactor) +
-			          rows[i].m_contactNormal2.dot(rows[j].m_contactNormal2 * b.m_invMass) +
-			          rows[i].m_relpos2CrossNormal.dot(rows[j].m_angularComponentB * b.m_angularFactor);
-			k[i][n + j] = i == j ? btScalar(1) : btScalar(0);
-		}
-		largestDiagonal = btMax(largestDiagonal, k[i][i]);
-	}
-	if (!(largestDiagonal > btScalar(0))) return false;
-	const btScalar tiny = largestDiagonal * btScalar(1e-5);
-	for (int c = 0; c < n; ++c)
-	{
-		int pivot = c;
-		for (int r = c + 1; r < n; ++r)
-			if (btFabs(k[r][c]) > btFabs(k[pivot][c])) pivot = r;
-		if (!(btFabs(k[pivot][c]) > tiny)) return false;
-		if (pivot != c)
-			for (int j = 0; j < 2 * n; ++j) btSwap(k[c][j], k[pivot][j]);
-		const btScalar inv = btScalar(1) / k[c][c];
-		for (int j = 0; j < 2 * n; ++j) k[c][j] *= inv;
-		for (int r = 0; r < n; ++r)
-		{
-			if (r == c || k[r][c] == btScalar(0)) continue;
-			const btScalar f = k[r][c];
-			for (int j = 0; j < 2 * n; ++j) k[r][j] -= f * k[c][j];
-		}
-	}
-	for (int i = 0; i < n; ++i)
-		for (int j = 0; j < n; ++j) invK[i * S + j] = k[i][n + j];
-	return true;
-}
 
 void clearRow(btSolverConstraint& row, btScalar cfm)
 {
@@ -126,6 +82,7 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 	info2.m_upperLimit = &firstRow->m_upperLimit;
 	info2.m_numIterations = infoGlobal.m_numIterations;
 	info2.m_damping = infoGlobal.m_damping;
+	info2.m_isPositionPass = false;
 	constraint->getInfo2(&info2);
 
 	btRigidBody& rbA = constraint->getRigidBodyA();
@@ -174,7 +131,7 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 		row.m_rhs = target * row.m_jacDiagABInv;
 		row.m_rhsPenetration = 0;
 	}
-	if (equalityRows >= 2 && buildBlockInverse(firstRow, equalityRows, bodyA, bodyB, block.m_invK))
+	if (equalityRows >= 2 && caliber::buildBlockInverse(firstRow, equalityRows, bodyA, bodyB, block.m_invK))
 		block.m_size = equalityRows;
 
 	if (warmStart)

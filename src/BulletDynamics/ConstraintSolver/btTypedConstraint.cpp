@@ -25,7 +25,8 @@ btTypedConstraint::btTypedConstraint(btTypedConstraintType type, btRigidBody& rb
       m_rbB(getFixedBody()),
       m_appliedImpulse(btScalar(0)),
       m_dbgDrawSize(kDefaultDebugDrawSize),
-      m_jointFeedback(0)
+      m_jointFeedback(0),
+      m_correctsPosition(false)
 {
 }
 
@@ -41,7 +42,8 @@ btTypedConstraint::btTypedConstraint(btTypedConstraintType type, btRigidBody& rb
       m_rbB(rbB),
       m_appliedImpulse(btScalar(0)),
       m_dbgDrawSize(kDefaultDebugDrawSize),
-      m_jointFeedback(0)
+      m_jointFeedback(0),
+      m_correctsPosition(false)
 {
 }
 

@@ -161,6 +161,7 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	solveConstraints(getSolverInfo());
 
 	integrateTransforms(timeStep);
+	correctJointPositions();
 	quarantineNonFiniteBodies();
 
 	updateActions(timeStep);
@@ -292,8 +293,10 @@ void btDiscreteDynamicsWorld::addConstraint(btTypedConstraint* constraint, bool 
 	m_constraints.push_back(constraint);
 	if (disableCollisionsBetweenLinkedBodies)
 	{
-		constraint->getRigidBodyA().addConstraintRef(constraint);
-		constraint->getRigidBodyB().addConstraintRef(constraint);
+		// The fixed body collides with nothing and is shared by every world: it keeps no references.
+		btRigidBody& fixedBody = btTypedConstraint::getFixedBody();
+		if (&constraint->getRigidBodyA() != &fixedBody) constraint->getRigidBodyA().addConstraintRef(constraint);
+		if (&constraint->getRigidBodyB() != &fixedBody) constraint->getRigidBodyB().addConstraintRef(constraint);
 	}
 }
 

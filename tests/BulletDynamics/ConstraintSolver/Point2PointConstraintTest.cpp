@@ -283,7 +283,7 @@ TEST(TypedConstraint, OverrideIterationsTightenOneJoint)
 			link->setSleepingThresholds(0, 0);
 			if (previous)
 				joints.push_back(w.addJoint<btPoint2PointConstraint>(true, *previous, *link, btVector3(0, -0.1, 0),
-				                                                       btVector3(0, 0.1, 0)));
+				                                                     btVector3(0, 0.1, 0)));
 			else
 				joints.push_back(w.addJoint<btPoint2PointConstraint>(true, *link, btVector3(0, 0.1, 0)));
 			previous = link;

@@ -1,0 +1,428 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
+
+#include "BulletDynamics/ConstraintSolver/btJointLimitRow.h"
+#include "BulletDynamics/ConstraintSolver/btJointRowUtil.h"
+#include "LinearMath/btWarningHook.h"
+
+namespace
+{
+const btScalar kDefaultFixThreshold = btScalar(0.05);
+
+// Splits rel (frame B seen in frame A, w >= 0) into a twist about X and a swing about an axis in the
+// YZ plane, rel = swing * twist. Returns the twist angle in (-pi, pi]; swingAxis is the swing's unit
+// axis in A's frame (Y when there is no swing), swingAngle in [0, pi].
+btScalar decomposeSwingTwist(const btQuaternion& rel, btVector3& swingAxis, btScalar& swingAngle)
+{
+	btQuaternion q = rel;
+	if (q.w() < 0) q = btQuaternion(-q.x(), -q.y(), -q.z(), -q.w());
+	const btScalar twistNorm = btSqrt(q.x() * q.x() + q.w() * q.w());
+	btQuaternion twist(0, 0, 0, 1);
+	btScalar twistAngle = 0;
+	if (twistNorm > SIMD_EPSILON)
+	{
+		twist = btQuaternion(q.x() / twistNorm, 0, 0, q.w() / twistNorm);
+		twistAngle = btScalar(2) * btAtan2(twist.x(), twist.w());
+	}
+	const btQuaternion swing = q * twist.inverse();
+	const btVector3 axis(0, swing.y(), swing.z());
+	const btScalar sinHalf = axis.length();
+	swingAngle = btScalar(2) * btAtan2(sinHalf, btFabs(swing.w()));
+	if (sinHalf > SIMD_EPSILON)
+		swingAxis = (swing.w() < 0 ? -axis : axis) / sinHalf;
+	else
+		swingAxis.setValue(0, 1, 0);
+	return btNormalizeAngle(twistAngle);
+}
+
+// The cone's half-angle in the direction of a swing about unitAxis (in the YZ plane): swingSpan2
+// bounds swings about Y, swingSpan1 swings about Z, and the rim in between is an ellipse.
+btScalar coneLimitFor(const btVector3& unitAxis, btScalar swingSpan1, btScalar swingSpan2)
+{
+	const btScalar y = unitAxis.y() / swingSpan2;
+	const btScalar z = unitAxis.z() / swingSpan1;
+	const btScalar inverse = btSqrt(y * y + z * z);
+	return inverse > SIMD_EPSILON ? btScalar(1) / inverse : btMax(swingSpan1, swingSpan2);
+}
+}  // namespace
+
+btConeTwistConstraint::btConeTwistConstraint(btRigidBody& rbA, btRigidBody& rbB, const btTransform& rbAFrame,
+                                             const btTransform& rbBFrame)
+    : btTypedConstraint(CONETWIST_CONSTRAINT_TYPE, rbA, rbB), m_rbAFrame(rbAFrame), m_rbBFrame(rbBFrame)
+{
+	init();
+}
+
+btConeTwistConstraint::btConeTwistConstraint(btRigidBody& rbA, const btTransform& rbAFrame)
+    : btTypedConstraint(CONETWIST_CONSTRAINT_TYPE, rbA),
+      m_rbAFrame(rbAFrame),
+      m_rbBFrame(rbA.getCenterOfMassTransform() * rbAFrame)
+{
+	init();
+}
+
+void btConeTwistConstraint::init()
+{
+	m_angularOnly = false;
+	m_bMotorEnabled = false;
+	m_bNormalizedMotorStrength = false;
+	m_maxMotorImpulse = btScalar(-1);
+	m_qTarget = btQuaternion::getIdentity();
+	m_damping = btScalar(0.01);
+	m_dampingSet = false;
+	m_fixThresh = kDefaultFixThreshold;
+	m_flags = 0;
+	m_correctsPosition = true;
+	m_linCFM = 0;
+	m_linERP = btScalar(0.7);
+	m_angCFM = 0;
+	m_swingAngle = m_twistAngle = m_swingLimit = 0;
+	m_swingAxis.setValue(0, 1, 0);
+	m_twistAxis.setValue(1, 0, 0);
+	m_solveTwistLimit = m_solveSwingLimit = false;
+	m_twistLimitSign = 0;
+	setLimit(btScalar(BT_LARGE_FLOAT), btScalar(BT_LARGE_FLOAT), btScalar(BT_LARGE_FLOAT));
+	const btVector3 origins[2] = {m_rbAFrame.getOrigin(), m_rbBFrame.getOrigin()};
+	for (int i = 0; i < 2; ++i)
+	{
+		const btScalar l = origins[i].length2();
+		if (!(l == l) || !(l < SIMD_INFINITY))
+		{
+			btAssert(!"btConeTwistConstraint: non-finite frame");
+			btReportWarning("Caliber: btConeTwistConstraint: non-finite frame; the joint is disabled\n", 0);
+			setEnabled(false);
+		}
+	}
+}
+
+void btConeTwistConstraint::setLimit(btScalar _swingSpan1, btScalar _swingSpan2, btScalar _twistSpan,
+                                     btScalar _softness, btScalar _biasFactor, btScalar _relaxationFactor)
+{
+	m_swingSpan1 = _swingSpan1;
+	m_swingSpan2 = _swingSpan2;
+	m_twistSpan = _twistSpan;
+	m_limitSoftness = _softness;
+	m_biasFactor = _biasFactor;
+	m_relaxationFactor = _relaxationFactor;
+}
+
+void btConeTwistConstraint::setLimit(int limitIndex, btScalar limitValue)
+{
+	switch (limitIndex)
+	{
+		case 3:
+			m_twistSpan = limitValue;
+			break;
+		case 4:
+			m_swingSpan2 = limitValue;
+			break;
+		case 5:
+			m_swingSpan1 = limitValue;
+			break;
+		default:
+			btAssert(!"btConeTwistConstraint::setLimit: index must be 3, 4 or 5");
+	}
+}
+
+btScalar btConeTwistConstraint::getLimit(int limitIndex) const
+{
+	switch (limitIndex)
+	{
+		case 3:
+			return m_twistSpan;
+		case 4:
+			return m_swingSpan2;
+		case 5:
+			return m_swingSpan1;
+		default:
+			btAssert(!"btConeTwistConstraint::getLimit: index must be 3, 4 or 5");
+			return 0;
+	}
+}
+
+void btConeTwistConstraint::setFrames(const btTransform& frameA, const btTransform& frameB)
+{
+	m_rbAFrame = frameA;
+	m_rbBFrame = frameB;
+}
+
+void btConeTwistConstraint::calcAngleInfo()
+{
+	calcAngleInfo2(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform(), m_rbA.getInvInertiaTensorWorld(),
+	               m_rbB.getInvInertiaTensorWorld());
+}
+
+void btConeTwistConstraint::calcAngleInfo2(const btTransform& transA, const btTransform& transB,
+                                           const btMatrix3x3& invInertiaWorldA, const btMatrix3x3& invInertiaWorldB)
+{
+	(void)invInertiaWorldA;
+	(void)invInertiaWorldB;
+	const btMatrix3x3 frameA = transA.getBasis() * m_rbAFrame.getBasis();
+	const btMatrix3x3 frameB = transB.getBasis() * m_rbBFrame.getBasis();
+	btQuaternion qA, qB;
+	frameA.getRotation(qA);
+	frameB.getRotation(qB);
+	btVector3 swingAxisInA;
+	m_twistAngle = decomposeSwingTwist(qA.inverse() * qB, swingAxisInA, m_swingAngle);
+	m_swingAxis = frameA * swingAxisInA;
+	m_twistAxis = frameB.getColumn(0);
+
+	const bool swingLocked = m_swingSpan1 < m_fixThresh && m_swingSpan2 < m_fixThresh;
+	m_swingLimit = coneLimitFor(swingAxisInA, btMax(m_swingSpan1, SIMD_EPSILON), btMax(m_swingSpan2, SIMD_EPSILON));
+	m_solveSwingLimit = !swingLocked && m_swingAngle > m_swingLimit;
+
+	const bool twistLocked = m_twistSpan < m_fixThresh;
+	m_twistLimitSign = 0;
+	if (!twistLocked && m_twistAngle > m_twistSpan)
+		m_twistLimitSign = btScalar(-1);  // must turn back down
+	else if (!twistLocked && m_twistAngle < -m_twistSpan)
+		m_twistLimitSign = btScalar(1);
+	m_solveTwistLimit = m_twistLimitSign != btScalar(0);
+}
+
+int btConeTwistConstraint::rowCount() const
+{
+	int rows = m_angularOnly ? 0 : 3;
+	if (m_swingSpan1 < m_fixThresh && m_swingSpan2 < m_fixThresh) rows += 2;
+	if (m_twistSpan < m_fixThresh) rows += 1;
+	if (m_solveSwingLimit) rows += 1;
+	if (m_solveTwistLimit) rows += 1;
+	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0))) rows += 3;
+	return rows;
+}
+
+void btConeTwistConstraint::getInfo1(btConstraintInfo1* info) { getInfo1NonVirtual(info); }
+
+void btConeTwistConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
+{
+	calcAngleInfo();
+	info->m_numConstraintRows = rowCount();
+	info->nub = m_angularOnly ? 0 : 3;
+}
+
+void btConeTwistConstraint::getInfo2(btConstraintInfo2* info)
+{
+	getInfo2NonVirtual(info, m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform(),
+	                   m_rbA.getInvInertiaTensorWorld(), m_rbB.getInvInertiaTensorWorld());
+}
+
+void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTransform& transA,
+                                               const btTransform& transB, const btMatrix3x3& invInertiaWorldA,
+                                               const btMatrix3x3& invInertiaWorldB)
+{
+	calcAngleInfo2(transA, transB, invInertiaWorldA, invInertiaWorldB);
+	const btTransform frameA = transA * m_rbAFrame;
+	const btTransform frameB = transB * m_rbBFrame;
+	const btScalar angularRate = info->fps * info->erp;
+	const bool angularCfm = (m_flags & BT_CONETWIST_FLAGS_ANG_CFM) != 0;
+	int row = 0;
+
+	if (!m_angularOnly)
+	{
+		const btScalar linearErp = (m_flags & BT_CONETWIST_FLAGS_LIN_ERP) ? m_linERP : info->erp;
+		const btVector3 armA = frameA.getOrigin() - transA.getOrigin();
+		const btVector3 armB = frameB.getOrigin() - transB.getOrigin();
+		const btVector3 gap = frameB.getOrigin() - frameA.getOrigin();
+		const btVector3 targets = caliber::linearRowTargets(*info, linearErp, gap, armA, m_rbA.getAngularVelocity(),
+		                                                    armB, m_rbB.getAngularVelocity());
+		for (int axis = 0; axis < 3; ++axis, ++row)
+		{
+			btVector3 direction(0, 0, 0);
+			direction[axis] = btScalar(1);
+			caliber::JointRow r(*info, row);
+			r.setLinear(direction, armA, armB);
+			r.error() = targets[axis];
+			if (m_flags & BT_CONETWIST_FLAGS_LIN_CFM) r.cfm() = m_linCFM;
+		}
+	}
+
+	// Locked rotations are equality rows, so they join the linear rows in the solver's block.
+	if (m_swingSpan1 < m_fixThresh && m_swingSpan2 < m_fixThresh)
+	{
+		// Turning A about (xA x xB) brings its twist axis onto B's.
+		const btVector3 misalignment = frameA.getBasis().getColumn(0).cross(frameB.getBasis().getColumn(0));
+		for (int k = 1; k <= 2; ++k, ++row)
+		{
+			const btVector3 perpendicular = frameA.getBasis().getColumn(k);
+			caliber::JointRow r(*info, row);
+			r.setAngular(perpendicular);
+			r.error() = angularRate * misalignment.dot(perpendicular);
+			if (angularCfm) r.cfm() = m_angCFM;
+		}
+	}
+	// The position pass asks for position errors only: no velocity terms there.
+	const btVector3 relativeAngularVelocity =
+	    info->m_isPositionPass ? btVector3(0, 0, 0) : m_rbA.getAngularVelocity() - m_rbB.getAngularVelocity();
+	if (m_twistSpan < m_fixThresh)
+	{
+		// The twist grows when B turns about the axis relative to A, so (wA - wB) . x = rate * twist undoes it.
+		caliber::JointRow r(*info, row++);
+		r.setAngular(m_twistAxis);
+		r.error() = angularRate * m_twistAngle;
+		if (angularCfm) r.cfm() = m_angCFM;
+	}
+	const btScalar limitRate = info->fps * m_biasFactor;
+	if (m_solveSwingLimit)
+	{
+		// (wA - wB) . s is the rate at which the swing shrinks.
+		caliber::JointRow r(*info, row++);
+		r.setAngular(m_swingAxis);
+		caliber::setLimitRow(r, limitRate * (m_swingAngle - m_swingLimit), relativeAngularVelocity.dot(m_swingAxis),
+		                     m_relaxationFactor);
+		if (angularCfm) r.cfm() = m_angCFM;
+	}
+	if (m_solveTwistLimit)
+	{
+		// Oriented so that J v is the rate back into the range: -twist rate past +span, +twist rate past -span.
+		const btVector3 axis = m_twistAxis * -m_twistLimitSign;
+		caliber::JointRow r(*info, row++);
+		r.setAngular(axis);
+		const btScalar overshoot = btFabs(m_twistAngle) - m_twistSpan;
+		caliber::setLimitRow(r, limitRate * overshoot, relativeAngularVelocity.dot(axis), m_relaxationFactor);
+		if (angularCfm) r.cfm() = m_angCFM;
+	}
+	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0)))
+	{
+		// Desired turn rate of B relative to A, world frame: to the motor target in one step, or the damped
+		// share of the present relative rotation.
+		btVector3 desiredRateOfB(0, 0, 0);
+		if (m_bMotorEnabled)
+		{
+			btQuaternion qA, qB;
+			frameA.getBasis().getRotation(qA);
+			frameB.getBasis().getRotation(qB);
+			const btQuaternion current = qA.inverse() * qB;
+			const btQuaternion desired = m_qTarget.inverse();  // m_qTarget is frame A seen in frame B
+			btQuaternion error = desired * current.inverse();
+			if (error.w() < 0) error = btQuaternion(-error.x(), -error.y(), -error.z(), -error.w());
+			const btVector3 vector(error.x(), error.y(), error.z());
+			const btScalar sinHalf = vector.length();
+			if (sinHalf > SIMD_EPSILON)
+			{
+				const btScalar angle = btScalar(2) * btAtan2(sinHalf, error.w());
+				desiredRateOfB = frameA.getBasis() * (vector / sinHalf) * (angle * info->fps);
+			}
+		}
+		else
+		{
+			desiredRateOfB = relativeAngularVelocity * -(btScalar(1) - btMin(btScalar(1), m_damping));
+		}
+		for (int k = 0; k < 3; ++k)
+		{
+			btVector3 axis(0, 0, 0);
+			axis[k] = btScalar(-1);  // J v = (wB - wA)_k
+			caliber::JointRow r(*info, row++);
+			r.setAngular(axis);
+			r.error() = desiredRateOfB[k];
+			if (m_bMotorEnabled && m_maxMotorImpulse >= btScalar(0))
+			{
+				btScalar bound = m_maxMotorImpulse;
+				if (m_bNormalizedMotorStrength)
+				{
+					// Normalised: an angular velocity change; times the pair's rotational inertia about the axis.
+					const btScalar inverseInertia =
+					    axis.dot(invInertiaWorldA * axis) + axis.dot(invInertiaWorldB * axis);
+					bound = inverseInertia > SIMD_EPSILON ? m_maxMotorImpulse / inverseInertia : btScalar(0);
+				}
+				r.lower() = -bound;
+				r.upper() = bound;
+			}
+		}
+	}
+}
+
+void btConeTwistConstraint::setMotorTarget(const btQuaternion& q)
+{
+	// q is body A seen in body B; frame A seen in frame B follows from the two joint frames.
+	const btQuaternion frameAinFrameB = m_rbBFrame.getRotation().inverse() * q * m_rbAFrame.getRotation();
+	setMotorTargetInConstraintSpace(frameAinFrameB);
+}
+
+void btConeTwistConstraint::setMotorTargetInConstraintSpace(const btQuaternion& q)
+{
+	m_qTarget = q;
+	// Keep the target reachable: frame B in frame A is q^-1; clamp its swing into the cone and its twist
+	// into the range.
+	btVector3 swingAxis;
+	btScalar swingAngle;
+	btScalar twist = decomposeSwingTwist(q.inverse(), swingAxis, swingAngle);
+	bool clamped = false;
+	if (m_swingSpan1 >= m_fixThresh && m_swingSpan2 >= m_fixThresh)
+	{
+		const btScalar limit = coneLimitFor(swingAxis, m_swingSpan1, m_swingSpan2);
+		if (swingAngle > limit)
+		{
+			swingAngle = limit;
+			clamped = true;
+		}
+	}
+	if (m_twistSpan >= m_fixThresh && btFabs(twist) > m_twistSpan)
+	{
+		twist = twist > 0 ? m_twistSpan : -m_twistSpan;
+		clamped = true;
+	}
+	if (clamped)
+	{
+		const btQuaternion bInA = btQuaternion(swingAxis, swingAngle) * btQuaternion(btVector3(1, 0, 0), twist);
+		m_qTarget = bInA.inverse();
+	}
+}
+
+btVector3 btConeTwistConstraint::GetPointForAngle(btScalar fAngleInRadians, btScalar len) const
+{
+	const btVector3 axis(0, btCos(fAngleInRadians), btSin(fAngleInRadians));
+	const btScalar limit = coneLimitFor(axis, m_swingSpan1, m_swingSpan2);
+	return quatRotate(btQuaternion(axis, limit), btVector3(len, 0, 0));
+}
+
+void btConeTwistConstraint::setParam(int num, btScalar value, int axis)
+{
+	btAssertConstrParams(axis >= -1 && axis <= 5);
+	switch (num)
+	{
+		case BT_CONSTRAINT_ERP:
+		case BT_CONSTRAINT_STOP_ERP:
+			if (axis >= 0 && axis < 3)
+			{
+				m_linERP = value;
+				m_flags |= BT_CONETWIST_FLAGS_LIN_ERP;
+			}
+			else
+			{
+				m_biasFactor = value;
+			}
+			break;
+		case BT_CONSTRAINT_CFM:
+		case BT_CONSTRAINT_STOP_CFM:
+			if (axis >= 0 && axis < 3)
+			{
+				m_linCFM = value;
+				m_flags |= BT_CONETWIST_FLAGS_LIN_CFM;
+			}
+			else
+			{
+				m_angCFM = value;
+				m_flags |= BT_CONETWIST_FLAGS_ANG_CFM;
+			}
+			break;
+		default:
+			btAssertConstrParams(0);
+	}
+}
+
+btScalar btConeTwistConstraint::getParam(int num, int axis) const
+{
+	btAssertConstrParams(axis >= -1 && axis <= 5);
+	switch (num)
+	{
+		case BT_CONSTRAINT_ERP:
+		case BT_CONSTRAINT_STOP_ERP:
+			return (axis >= 0 && axis < 3) ? m_linERP : m_biasFactor;
+		case BT_CONSTRAINT_CFM:
+		case BT_CONSTRAINT_STOP_CFM:
+			return (axis >= 0 && axis < 3) ? m_linCFM : m_angCFM;
+		default:
+			btAssertConstrParams(0);
+			return SIMD_INFINITY;
+	}
+}

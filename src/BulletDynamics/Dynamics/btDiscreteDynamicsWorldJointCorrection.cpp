@@ -1,0 +1,216 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The joint position correction stage (after integrateTransforms). Velocity rows keep a joint's
+// anchors moving together, but they see motion only to first order: an anchor on a turning body
+// moves along a circle, the rows along its tangent, so every fast-turning joint opens a little each
+// step, and error reduction (ERP) closes it only by adding velocity, which costs energy and lets long
+// chains stretch. This stage instead moves the bodies themselves, Gauss-Seidel over the joints, each
+// joint's equality rows solved as one block at the bodies' current poses (nonlinear Gauss-Seidel on
+// positions). Velocities are left alone, so no energy is added.
+#include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "LinearMath/btQuickprof.h"
+
+namespace
+{
+const btScalar kUnbounded = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
+
+// Equality rows, one-sided limit rows, and at most how many rows of one joint take part.
+const int kMaxRows = 8;
+bool isEquality(const btSolverConstraint& row)
+{
+	return row.m_lowerLimit <= -kUnbounded && row.m_upperLimit >= kUnbounded && row.m_cfm == btScalar(0);
+}
+bool isOneSided(const btSolverConstraint& row)
+{
+	return row.m_lowerLimit == btScalar(0) && row.m_upperLimit >= kUnbounded && row.m_cfm == btScalar(0);
+}
+
+// Rows' mutual coupling: row i's change per unit impulse of row j, J_i M^-1 J_j^T.
+btScalar coupling(const btSolverConstraint& ri, const btSolverConstraint& rj, const btSolverBody& a,
+                  const btSolverBody& b)
+{
+	return ri.m_contactNormal1.dot(rj.m_contactNormal1 * a.m_invMass) +
+	       ri.m_relpos1CrossNormal.dot(rj.m_angularComponentA * a.m_angularFactor) +
+	       ri.m_contactNormal2.dot(rj.m_contactNormal2 * b.m_invMass) +
+	       ri.m_relpos2CrossNormal.dot(rj.m_angularComponentB * b.m_angularFactor);
+}
+
+// Position impulses for rows [0, n) (equalities, exact through invK) and [n, m) (one-sided, >= 0): block
+// Gauss-Seidel between the equality block and the limit rows. With no limit rows this is the exact solve.
+void solvePositionRows(const btSolverConstraint* rows, int n, int m, const btSolverBody& a, const btSolverBody& b,
+                       const btScalar* invK, btScalar* lambda)
+{
+	const int S = btSolverJointBlock::MAX_ROWS;
+	btScalar k[kMaxRows][kMaxRows];
+	for (int i = 0; i < m; ++i)
+		for (int j = 0; j < m; ++j) k[i][j] = (i < n && j < n) ? btScalar(0) : coupling(rows[i], rows[j], a, b);
+	const int passes = m > n ? 4 : 1;
+	for (int pass = 0; pass < passes; ++pass)
+	{
+		// The equality block, given the limit rows' current impulses.
+		btScalar residual[S];
+		for (int i = 0; i < n; ++i)
+		{
+			residual[i] = rows[i].m_rhs;
+			for (int j = n; j < m; ++j) residual[i] -= k[i][j] * lambda[j];
+		}
+		for (int i = 0; i < n; ++i)
+		{
+			lambda[i] = 0;
+			for (int j = 0; j < n; ++j) lambda[i] += invK[i * S + j] * residual[j];
+		}
+		// Each limit row, kept from pulling.
+		for (int i = n; i < m; ++i)
+		{
+			if (!(k[i][i] > SIMD_EPSILON)) continue;
+			btScalar achieved = 0;
+			for (int j = 0; j < m; ++j) achieved += k[i][j] * lambda[j];
+			lambda[i] = btMax(btScalar(0), lambda[i] + (rows[i].m_rhs - achieved) / k[i][i]);
+		}
+	}
+}
+
+bool movable(const btRigidBody& body) { return !body.isStaticOrKinematicObject() && body.isActive(); }
+
+// A solver-body stand-in carrying what the block algebra reads of a body: its inverse mass per axis
+// and its angular factor.
+btSolverBody massOf(const btRigidBody& body)
+{
+	btSolverBody b;
+	if (movable(body))
+	{
+		b.m_invMass = body.getLinearFactor() * body.getInvMass();
+		b.m_angularFactor = body.getAngularFactor();
+	}
+	else
+	{
+		b.m_invMass.setZero();
+		b.m_angularFactor.setZero();
+	}
+	return b;
+}
+
+// Moves body by the position impulse (linear part linear, angular part turn = I^-1 F angular).
+void displace(btRigidBody& body, const btVector3& linear, const btVector3& turn)
+{
+	btTransform& pose = body.getWorldTransform();
+	pose.setOrigin(pose.getOrigin() + linear * body.getLinearFactor() * body.getInvMass());
+	const btScalar angle = turn.length();
+	if (angle > btScalar(1e-9))
+	{
+		btQuaternion q = btQuaternion(turn / angle, angle) * pose.getRotation();
+		q.normalize();
+		pose.setRotation(q);
+	}
+}
+}  // namespace
+
+void btDiscreteDynamicsWorld::correctJointPositions()
+{
+	const int sweeps = getSolverInfo().m_jointPositionIterations;
+	if (sweeps <= 0 || m_constraints.size() == 0) return;
+	BT_PROFILE("correctJointPositions");
+	const int S = btSolverJointBlock::MAX_ROWS;
+	bool anyMoved = false;
+	for (int sweep = 0; sweep < sweeps; ++sweep)
+	{
+		// Always in insertion order: chains are usually built from the root out, and sweeping root to tip
+		// measured better than alternating directions (20-link chain: 0.026 m worst gap against 0.050 m).
+		for (int c = 0; c < m_constraints.size(); ++c)
+		{
+			btTypedConstraint* constraint = m_constraints[c];
+			if (!constraint->isEnabled() || !constraint->internalCorrectsPosition()) continue;
+			btRigidBody& a = constraint->getRigidBodyA();
+			btRigidBody& b = constraint->getRigidBodyB();
+			if (!movable(a) && !movable(b)) continue;
+			btTypedConstraint::btConstraintInfo1 info1;
+			info1.m_numConstraintRows = 0;
+			info1.nub = 0;
+			constraint->getInfo1(&info1);
+			if (info1.m_numConstraintRows <= 0) continue;
+
+			m_jointCorrectionRows.resizeNoInitialize(info1.m_numConstraintRows);
+			btSolverConstraint* rows = &m_jointCorrectionRows[0];
+			for (int j = 0; j < info1.m_numConstraintRows; ++j)
+			{
+				btSolverConstraint& row = rows[j];
+				row.m_contactNormal1.setZero();
+				row.m_relpos1CrossNormal.setZero();
+				row.m_contactNormal2.setZero();
+				row.m_relpos2CrossNormal.setZero();
+				row.m_rhs = 0;
+				row.m_cfm = 0;
+				row.m_lowerLimit = -SIMD_INFINITY;
+				row.m_upperLimit = SIMD_INFINITY;
+			}
+			// fps = erp = 1: each row's "velocity" target is then its position error itself.
+			btTypedConstraint::btConstraintInfo2 info2;
+			info2.fps = btScalar(1);
+			info2.erp = btScalar(1);
+			info2.m_J1linearAxis = rows->m_contactNormal1.m_floats;
+			info2.m_J1angularAxis = rows->m_relpos1CrossNormal.m_floats;
+			info2.m_J2linearAxis = rows->m_contactNormal2.m_floats;
+			info2.m_J2angularAxis = rows->m_relpos2CrossNormal.m_floats;
+			info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
+			info2.m_constraintError = &rows->m_rhs;
+			info2.cfm = &rows->m_cfm;
+			info2.m_lowerLimit = &rows->m_lowerLimit;
+			info2.m_upperLimit = &rows->m_upperLimit;
+			info2.m_numIterations = getSolverInfo().m_numIterations;
+			info2.m_damping = btScalar(1);
+			info2.m_isPositionPass = true;
+			constraint->getInfo2(&info2);
+
+			// The equality rows (leading, unbounded), solved exactly as a block, and the one-sided limit rows
+			// ([0, inf) bounds), which must not be pushed through by the block's correction. Motor rows
+			// (bounded both ways) are velocity goals and take no part.
+			int n = 0;
+			while (n < info1.m_numConstraintRows && n < S && isEquality(rows[n])) ++n;
+			int m = n;
+			for (int j = n; j < info1.m_numConstraintRows && m < kMaxRows; ++j)
+				if (isOneSided(rows[j])) rows[m++] = rows[j];
+			if (n == 0) continue;
+			bool finite = true;
+			for (int j = 0; j < m; ++j)
+			{
+				rows[j].m_angularComponentA =
+				    movable(a) ? a.getInvInertiaTensorWorld() * (rows[j].m_relpos1CrossNormal * a.getAngularFactor())
+				               : btVector3(0, 0, 0);
+				rows[j].m_angularComponentB =
+				    movable(b) ? b.getInvInertiaTensorWorld() * (rows[j].m_relpos2CrossNormal * b.getAngularFactor())
+				               : btVector3(0, 0, 0);
+				finite = finite && rows[j].m_rhs == rows[j].m_rhs && btFabs(rows[j].m_rhs) < SIMD_INFINITY;
+			}
+			if (!finite) continue;
+			const btSolverBody massA = massOf(a), massB = massOf(b);
+			btScalar invK[S * S];
+			if (!caliber::buildBlockInverse(rows, n, massA, massB, invK)) continue;
+			btScalar lambda[kMaxRows] = {0};
+			solvePositionRows(rows, n, m, massA, massB, invK, lambda);
+			btVector3 linearA(0, 0, 0), turnA(0, 0, 0), linearB(0, 0, 0), turnB(0, 0, 0);
+			for (int i = 0; i < m; ++i)
+			{
+				linearA += rows[i].m_contactNormal1 * lambda[i];
+				turnA += rows[i].m_angularComponentA * (lambda[i] * a.getAngularFactor());
+				linearB += rows[i].m_contactNormal2 * lambda[i];
+				turnB += rows[i].m_angularComponentB * (lambda[i] * b.getAngularFactor());
+			}
+			if (movable(a)) displace(a, linearA, turnA);
+			if (movable(b)) displace(b, linearB, turnB);
+			if (!anyMoved) m_jointCorrectedBodies.resize(0);
+			anyMoved = true;
+			m_jointCorrectedBodies.push_back(&a);
+			m_jointCorrectedBodies.push_back(&b);
+		}
+	}
+	if (!anyMoved) return;
+	// The moved poses are the step's result: interpolation starts from them and inertia follows them.
+	for (int i = 0; i < m_jointCorrectedBodies.size(); ++i)
+	{
+		btRigidBody* body = m_jointCorrectedBodies[i];
+		if (!movable(*body)) continue;
+		body->setInterpolationWorldTransform(body->getWorldTransform());
+		body->updateInertiaTensor();
+	}
+}

@@ -1,0 +1,139 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// btConeTwistConstraint: swing and twist limits, locked twist, free motion inside the cone, motor.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
+#include "JointTestUtil.h"
+
+using caliber_test::TestWorld;
+
+namespace
+{
+const btScalar kG = btScalar(10);
+
+// A capsule hanging 1 m below a world pivot, the joint's twist axis (frame X) pointing down along it.
+struct HangingLimb
+{
+	HangingLimb(TestWorld& w, btScalar swingSpan, btScalar twistSpan)
+	{
+		limb = w.addBody(w.shape<btCapsuleShape>(btScalar(0.1), btScalar(1.0)), 1, btVector3(0, -1, 0));
+		limb->setSleepingThresholds(0, 0);
+		btTransform frameInLimb;
+		// Frame X along the capsule's axis (y), pointing up to the pivot at the capsule's top (+1 m).
+		frameInLimb.setBasis(btMatrix3x3(0, -1, 0, 1, 0, 0, 0, 0, 1));
+		frameInLimb.setOrigin(btVector3(0, 1, 0));
+		joint = w.addJoint<btConeTwistConstraint>(false, *limb, frameInLimb);
+		joint->setLimit(swingSpan, swingSpan, twistSpan);
+	}
+	// The swing: the angle between the limb's axis and the vertical.
+	btScalar swing() const
+	{
+		const btVector3 axis = limb->getCenterOfMassTransform().getBasis().getColumn(1);
+		return btAcos(btMax(btScalar(-1), btMin(btScalar(1), axis.dot(btVector3(0, 1, 0)))));
+	}
+	btRigidBody* limb;
+	btConeTwistConstraint* joint;
+};
+}  // namespace
+
+TEST(ConeTwistConstraint, SwingStaysInsideTheCone)
+{
+	TestWorld w(btVector3(0, -kG, 0));
+	const btScalar span = btScalar(M_PI / 6);
+	HangingLimb h(w, span, btScalar(M_PI));
+	h.limb->applyCentralImpulse(btVector3(6, 0, 3));  // a hard kick, far more than the cone allows
+	btScalar widest = 0, worstGap = 0;
+	for (int i = 0; i < 240; ++i)
+	{
+		w.run(1);
+		widest = btMax(widest, h.swing());
+		worstGap = btMax(worstGap, (h.limb->getCenterOfMassTransform()(btVector3(0, 1, 0))).length());
+	}
+	// The swing limit engages once passed and pushes back by its bias (0.3 of the overshoot per step), so
+	// at impact it is overshot by about one step's swing at the impact rate (~6 rad/s * 1/60 s = 0.1).
+	EXPECT_LT(widest, span + 0.12);
+	EXPECT_GT(widest, span - 0.01) << "the kick reached the cone";
+	// In the impact steps the limit row and the pivot rows are solved one after the other (Gauss-Seidel),
+	// strongly coupled through the 1 m arm, which leaves the pivot a few centimetres open for two or three
+	// steps (a known limit of the row solver; see docs/constraints.md); the position correction then
+	// closes it completely.
+	EXPECT_LT(worstGap, 0.05);
+	EXPECT_LT((h.limb->getCenterOfMassTransform()(btVector3(0, 1, 0))).length(), 1e-4) << "closed again";
+	std::printf("[ measured ] cone swing: widest %.4f rad against a span of %.4f; pivot gap %.2e m\n", double(widest),
+	            double(span), double(worstGap));
+	// Settled inside the cone.
+	EXPECT_LT(h.swing(), span + 0.01);
+}
+
+TEST(ConeTwistConstraint, TwistLimitHoldsAgainstATorque)
+{
+	TestWorld w(btVector3(0, -kG, 0));
+	const btScalar twistSpan = btScalar(0.5);
+	HangingLimb h(w, btScalar(M_PI / 4), twistSpan);
+	for (int i = 0; i < 120; ++i)
+	{
+		h.limb->applyTorque(btVector3(0, 0.5, 0));  // about the limb's own axis
+		w.run(1);
+	}
+	h.joint->calcAngleInfo();
+	// Held at the limit against a steady torque: the bias brings the overshoot back to the torque's
+	// per-step push divided by the bias, tiny here.
+	EXPECT_NEAR(btFabs(h.joint->getTwistAngle()), twistSpan, 0.02);
+	EXPECT_TRUE(h.joint->getSolveTwistLimit() || btFabs(h.joint->getTwistAngle()) <= twistSpan);
+}
+
+TEST(ConeTwistConstraint, ZeroTwistSpanLocksTheTwist)
+{
+	TestWorld w(btVector3(0, -kG, 0));
+	HangingLimb h(w, btScalar(M_PI / 4), 0);
+	for (int i = 0; i < 120; ++i)
+	{
+		h.limb->applyTorque(btVector3(0, 0.5, 0));
+		w.run(1);
+	}
+	h.joint->calcAngleInfo();
+	// Locked twist is an equality row in the joint's block and in the position correction.
+	EXPECT_LT(btFabs(h.joint->getTwistAngle()), 1e-3);
+}
+
+TEST(ConeTwistConstraint, InsideTheConeItSwingsLikeABallJoint)
+{
+	// A small swing never reaches the 45-degree cone: the period is the free physical pendulum's.
+	TestWorld w(btVector3(0, -kG, 0));
+	HangingLimb h(w, btScalar(M_PI / 4), btScalar(M_PI / 4));
+	// Turning about the pivot at 0.3 rad/s: the centre (1 m below) moves at 0.3 m/s along +x.
+	h.limb->setAngularVelocity(btVector3(0, 0, 0.3));
+	h.limb->setLinearVelocity(btVector3(0.3, 0, 0));
+	caliber_test::CrossingTimer timer;
+	const btScalar step = btScalar(1. / 240.);
+	for (int i = 0; i < 240 * 6; ++i)
+	{
+		w.world()->stepSimulation(step, 1, step);
+		timer.sample(double(step) * (i + 1), double(h.limb->getCenterOfMassPosition().x()));
+	}
+	// Capsule: cylinder of height 1 and two hemispheres of radius 0.1; about the pivot at 1 m from the
+	// centre the equivalent length is (I_cm + m d^2) / (m d), computed from the body's own inertia.
+	const double inertiaCm = 1.0 / double(h.limb->getInvInertiaDiagLocal().z());
+	const double inertiaPivot = inertiaCm + 1.0;
+	const double equivalent = inertiaPivot / 1.0;
+	// Amplitude from energy: I_pivot w^2 / 2 = m g d (1 - cos theta0).
+	const double theta0 = std::acos(1.0 - inertiaPivot * 0.3 * 0.3 / (2.0 * kG));
+	const double expected = caliber_test::exactPendulumPeriod(equivalent, kG, theta0);
+	// Same error budget as the point-to-point pendulum (0.2 %).
+	EXPECT_NEAR(timer.period(), expected, 0.002 * expected);
+}
+
+TEST(ConeTwistConstraint, MotorDrivesToTheTargetOrientation)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	HangingLimb h(w, btScalar(M_PI / 2), btScalar(M_PI / 2));
+	// Target: frame A turned 0.4 rad about its Z relative to frame B, i.e. a 0.4 rad swing.
+	h.joint->setMaxMotorImpulse(1);
+	h.joint->enableMotor(true);
+	h.joint->setMotorTargetInConstraintSpace(btQuaternion(btVector3(0, 0, 1), btScalar(0.4)));
+	w.run(120);
+	EXPECT_NEAR(h.swing(), 0.4, 0.01);
+}
