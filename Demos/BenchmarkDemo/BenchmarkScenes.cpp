@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BenchmarkScenes.h"
 
+#include "../RagdollDemo/Ragdoll.h"
+
 #include <stdio.h>
 
 #include <cmath>
@@ -351,6 +353,53 @@ public:
 		return c.nonFinite == 0 && c.minY > btScalar(0.9);
 	}
 };
+// ---- scene 3: 136 ragdolls -------------------------------------------------------------------------
+class Ragdolls : public Scene, public ragdoll::Owner
+{
+public:
+	std::vector<ragdoll::Ragdoll> m_ragdolls;
+	Ragdolls()
+	{
+		addBenchmarkGround();
+		// Rows of 16, 15, ..., 1 ragdolls at scale 3.5; each row 7 m higher and 2 m further back.
+		m_ragdolls.reserve(136);
+		btVector3 offset(0, 1, 0);
+		for (int n = 16; n > 0; --n)
+		{
+			for (int i = 0; i < n; ++i)
+			{
+				offset.setX(-3 * btScalar(n) + 6 * btScalar(i));
+				m_ragdolls.emplace_back();
+				ragdoll::build(*this, offset, btScalar(3.5), m_ragdolls.back());
+			}
+			offset.setY(offset.y() + 7);
+			offset.setZ(offset.z() - 2);
+		}
+	}
+	btCollisionShape* keepShape(btCollisionShape* shape) override { return own(shape); }
+	btRigidBody* addBody(btCollisionShape* shape, btScalar mass, const btTransform& pose) override
+	{
+		return Scene::addBody(shape, mass, pose);
+	}
+	void addJoint(btTypedConstraint* joint) override { Scene::addJoint(joint); }
+	bool report(std::string& line) const override
+	{
+		const Census c(dynamicBodies());
+		btScalar worst = 0, sum = 0;
+		for (const ragdoll::Ragdoll& r : m_ragdolls)
+			for (int j = 0; j < ragdoll::Ragdoll::NUM_JOINTS; ++j)
+			{
+				worst = btMax(worst, r.pivotError(j));
+				sum += r.pivotError(j);
+			}
+		const int joints = int(m_ragdolls.size()) * ragdoll::Ragdoll::NUM_JOINTS;
+		line = format(
+		    "joints %d, pivot error max %.4f m mean %.5f m (Bullet 3.24: 0.0532 / 0.00433); min y %.3f, "
+		    "max speed %.2f, non-finite %d",
+		    joints, double(worst), double(sum / btScalar(joints)), double(c.minY), double(c.maxSpeed), c.nonFinite);
+		return c.nonFinite == 0 && worst < btScalar(0.5);
+	}
+};
 }  // namespace
 
 btScalar landscapeHeight(btScalar x, btScalar z)
@@ -378,6 +427,7 @@ Scene::Scene()
 
 Scene::~Scene()
 {
+	for (auto& joint : m_joints) m_world->removeConstraint(joint.get());
 	for (btRigidBody* body : m_bodies)
 	{
 		m_world->removeRigidBody(body);
@@ -400,6 +450,12 @@ btRigidBody* Scene::addBody(btCollisionShape* shape, btScalar mass, const btTran
 		m_start.push_back(pose);
 	}
 	return body;
+}
+
+void Scene::addJoint(btTypedConstraint* joint)
+{
+	m_joints.emplace_back(joint);
+	m_world->addConstraint(joint, true);
 }
 
 void Scene::addBenchmarkGround() { addBody(own(new btBoxShape(btVector3(250, 50, 250))), 0, at(btVector3(0, -50, 0))); }
@@ -452,13 +508,15 @@ void Scene::addLandscape()
 
 std::vector<std::string> sceneNames()
 {
-	return {"boxes3000", "stack1000", "convex1000", "prim_mesh", "convex_mesh", "raycast", "pyramid_jolt"};
+	return {"boxes3000", "stack1000",   "ragdolls136", "convex1000",
+	        "prim_mesh", "convex_mesh", "raycast",     "pyramid_jolt"};
 }
 
 std::unique_ptr<Scene> makeScene(const std::string& name)
 {
 	if (name == "boxes3000") return std::unique_ptr<Scene>(new Boxes3000());
 	if (name == "stack1000") return std::unique_ptr<Scene>(new Stack1000());
+	if (name == "ragdolls136") return std::unique_ptr<Scene>(new Ragdolls());
 	if (name == "convex1000") return std::unique_ptr<Scene>(new Convex1000());
 	if (name == "prim_mesh") return std::unique_ptr<Scene>(new OnLandscape(false));
 	if (name == "convex_mesh") return std::unique_ptr<Scene>(new OnLandscape(true));

@@ -2,8 +2,8 @@
 #ifndef CALIBER_BENCHMARK_SCENES_H
 #define CALIBER_BENCHMARK_SCENES_H
 
-// The joint-free benchmark scenes of ../shared/bench/scenes.md (Bullet's benchmark scenes and Jolt's
-// pyramid), built from their written descriptions.
+// The benchmark scenes of ../shared/bench/scenes.md (Bullet's benchmark scenes and Jolt's pyramid), built
+// from their written descriptions.
 
 #include <memory>
 #include <string>
@@ -32,6 +32,8 @@ public:
 	}
 	/// A body (mass 0: static) with a default motion state, friction 0.5, restitution 0.
 	btRigidBody* addBody(btCollisionShape* shape, btScalar mass, const btTransform& pose);
+	/// A joint owned by the scene, added with collisions between its bodies disabled.
+	void addJoint(btTypedConstraint* joint);
 	/// Bullet's benchmark ground: a static box (250, 50, 250) at (0, -50, 0).
 	void addBenchmarkGround();
 	/// The procedural landscape of scenes.md: 8 BVH mesh tiles, 32768 triangles, body at (0, -25, 0).
@@ -59,6 +61,7 @@ private:
 	std::vector<std::unique_ptr<btDefaultMotionState>> m_motionStates;
 	std::vector<btRigidBody*> m_bodies;
 	std::vector<btRigidBody*> m_dynamic;
+	std::vector<std::unique_ptr<btTypedConstraint>> m_joints;
 };
 
 /// Names of the scenes, in order.
