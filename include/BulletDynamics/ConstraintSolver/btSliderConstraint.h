@@ -114,8 +114,8 @@ public:
 	/// Same as getInfo1 (Bullet's version reports a fixed count; Caliber's is always the real one).
 	void getInfo1NonVirtual(btConstraintInfo1 * info);
 	void getInfo2(btConstraintInfo2 * info) override;
-	/// The rows for the given body transforms and linear velocities (inverse masses are not needed:
-	/// the rows are exact for any mass ratio; the parameters are kept for source compatibility).
+	/// The rows for the given body transforms and linear velocities (the masses and inertias are read from
+	/// the bodies; the inverse-mass parameters are kept for source compatibility).
 	void getInfo2NonVirtual(btConstraintInfo2 * info, const btTransform& transA, const btTransform& transB,
 	                        const btVector3& linVelA, const btVector3& linVelB, btScalar rbAinvMass,
 	                        btScalar rbBinvMass);

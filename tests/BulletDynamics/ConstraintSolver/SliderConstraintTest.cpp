@@ -255,6 +255,22 @@ TEST(SliderConstraint, LinearMotorOnAnOffAxisBodyStillAcceleratesAtForceOverMass
 	EXPECT_LT(worstTurn, kRoundingTolerance);
 }
 
+TEST(SliderConstraint, WithBsFrameAsReferenceTheMotorStillDrivesTheReportedPosition)
+{
+	// Reference frame B (the body's own): the position is the world frame's origin seen from the body,
+	// (pA - pB) . xB, so a motor driving it up at 1.5 m/s moves the body along -x at 1.5 m/s.
+	TestWorld w(btVector3(0, -kG, 0));
+	btRigidBody* body = addAwakeBody(w, w.shape<btSphereShape>(btScalar(0.2)), 2, btTransform::getIdentity());
+	btSliderConstraint* slider = w.addJoint<btSliderConstraint>(false, *body, btTransform::getIdentity(), false);
+	slider->setPoweredLinMotor(true);
+	slider->setTargetLinMotorVelocity(btScalar(1.5));
+	slider->setMaxLinMotorForce(1000);
+	w.run(60);
+	EXPECT_NEAR(body->getLinearVelocity().x(), -1.5, 1e-5);
+	EXPECT_NEAR(slider->getLinearPos(), 59 * 1.5 / 60, kRoundingTolerance);
+	EXPECT_NEAR(body->getCenterOfMassPosition().y(), 0, kRoundingTolerance);
+}
+
 TEST(SliderConstraint, AngularMotorReachesItsTargetWithinItsTorque)
 {
 	// A sphere turning about the slider axis (world x) through its centre: I = 2/5 m r^2 = 0.2 kg m^2.
