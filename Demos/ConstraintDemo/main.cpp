@@ -89,9 +89,32 @@ int main()
 	shoulder->setLimit(SIMD_PI / 6, SIMD_PI / 6, btScalar(0.3));
 	limb->applyCentralImpulse(btVector3(4, 0, 2));
 
-	std::printf("ConstraintDemo: ball joint, limited hinge (door), hinge motor (wheel), cone-twist (limb)\n");
-	std::printf("%5s | %9s %9s | %10s | %12s | %9s %9s\n", "time", "ball ang", "ball gap", "door ang", "wheel rad/s",
-	            "limb swing", "twist");
+	// Slider: a carriage on a rail tilted 30 degrees, driven up by a motor (at most 20 N) to its upper
+	// limit 1 m along, which it reaches and holds.
+	const btQuaternion tilt(btVector3(0, 0, 1), SIMD_PI / 6);
+	btRigidBody* carriage = d.body(new btBoxShape(btVector3(0.2, 0.1, 0.1)), 1, at(btVector3(12, 5, 0), tilt));
+	btSliderConstraint* rail = d.joint(new btSliderConstraint(*carriage, btTransform::getIdentity(), true));
+	rail->setLowerLinLimit(-1);
+	rail->setUpperLinLimit(1);
+	rail->setLowerAngLimit(0);
+	rail->setUpperAngLimit(0);
+	rail->setPoweredLinMotor(true);
+	rail->setTargetLinMotorVelocity(1);
+	rail->setMaxLinMotorForce(20);
+
+	// Gears: two wheels on hinges, geared 2:1; the small one is driven at 2 turns per second.
+	btRigidBody* small = d.body(new btCylinderShapeZ(btVector3(0.25, 0.25, 0.1)), 1, at(btVector3(15, 5, 0)));
+	btRigidBody* large = d.body(new btCylinderShapeZ(btVector3(0.5, 0.5, 0.1)), 1, at(btVector3(15.75, 5, 0)));
+	btHingeConstraint* smallAxle = d.joint(new btHingeConstraint(*small, btVector3(0, 0, 0), btVector3(0, 0, 1)));
+	d.joint(new btHingeConstraint(*large, btVector3(0, 0, 0), btVector3(0, 0, 1)));
+	d.joint(new btGearConstraint(*small, *large, btVector3(0, 0, 1), btVector3(0, 0, 1), 2));
+	smallAxle->enableAngularMotor(true, 4 * SIMD_PI, 1);
+
+	std::printf(
+	    "ConstraintDemo: ball joint, limited hinge (door), hinge motor (wheel), cone-twist (limb), slider\n"
+	    "(carriage on a tilted rail), gears (2:1)\n");
+	std::printf("%5s | %9s %9s | %10s | %12s | %9s %9s | %9s | %9s %9s\n", "time", "ball ang", "ball gap", "door ang",
+	            "wheel rad/s", "limb swing", "twist", "carriage", "small w", "large w");
 	bool ok = true;
 	for (int frame = 1; frame <= 300; ++frame)
 	{
@@ -101,15 +124,21 @@ int main()
 		const btScalar ballGap = (bob->getCenterOfMassTransform()(ball->getPivotInA()) - ball->getPivotInB()).length();
 		shoulder->calcAngleInfo();
 		if (frame % 30 == 0)
-			std::printf("%4.1fs | %9.4f %9.2e | %10.4f | %12.4f | %9.4f %9.4f\n", frame / 60.0,
+			std::printf("%4.1fs | %9.4f %9.2e | %10.4f | %12.4f | %9.4f %9.4f | %9.4f | %9.4f %9.4f\n", frame / 60.0,
 			            double(btAtan2(p.x(), -p.y())), double(ballGap), double(doorHinge->getHingeAngle()),
 			            double(wheel->getAngularVelocity().z()), double(shoulder->getSwingAngle()),
-			            double(shoulder->getTwistAngle()));
+			            double(shoulder->getTwistAngle()), double(rail->getLinearPos()),
+			            double(small->getAngularVelocity().z()), double(large->getAngularVelocity().z()));
 		ok = ok && ballGap < btScalar(0.01) && doorHinge->getHingeAngle() < SIMD_PI / 4 + btScalar(0.01) &&
 		     doorHinge->getHingeAngle() > -SIMD_PI / 6 - btScalar(0.01);
 	}
 	const bool wheelAtSpeed = btFabs(wheel->getAngularVelocity().z() - 4 * SIMD_PI) < btScalar(0.01);
-	std::printf("ball joint held, door within its limits: %s; wheel at its motor's 12.566 rad/s: %s\n",
-	            ok ? "yes" : "NO", wheelAtSpeed ? "yes" : "NO");
-	return ok && wheelAtSpeed ? 0 : 1;
+	const bool carriageAtLimit = btFabs(rail->getLinearPos() - 1) < btScalar(0.01);
+	// Gear ratio 2: the large wheel turns at half the small one's speed, the other way.
+	const bool geared = btFabs(large->getAngularVelocity().z() + small->getAngularVelocity().z() / 2) < btScalar(0.01);
+	std::printf(
+	    "ball joint held, door within its limits: %s; wheel at its motor's 12.566 rad/s: %s; carriage at "
+	    "its upper limit: %s; gears at 2:1: %s\n",
+	    ok ? "yes" : "NO", wheelAtSpeed ? "yes" : "NO", carriageAtLimit ? "yes" : "NO", geared ? "yes" : "NO");
+	return ok && wheelAtSpeed && carriageAtLimit && geared ? 0 : 1;
 }
