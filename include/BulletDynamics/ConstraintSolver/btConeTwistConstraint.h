@@ -58,6 +58,9 @@ btConeTwistConstraint : public btTypedConstraint
 	void init();
 	/// Number of rows this step (after calcAngleInfo2).
 	int rowCount() const;
+	/// Whether a swing (twist) limit row is needed: a limit is set and the rotation is not locked.
+	bool swingLimited() const;
+	bool twistLimited() const;
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -180,13 +180,22 @@ void btConeTwistConstraint::calcAngleInfo2(const btTransform& transA, const btTr
 	m_solveTwistLimit = m_twistLimitSign != btScalar(0);
 }
 
+bool btConeTwistConstraint::swingLimited() const
+{
+	const bool swingLocked = m_swingSpan1 < m_fixThresh && m_swingSpan2 < m_fixThresh;
+	// A swing can be at most half a turn: wider spans limit nothing.
+	return !swingLocked && btMin(m_swingSpan1, m_swingSpan2) < SIMD_PI;
+}
+
+bool btConeTwistConstraint::twistLimited() const { return m_twistSpan >= m_fixThresh && m_twistSpan < SIMD_PI; }
+
 int btConeTwistConstraint::rowCount() const
 {
 	int rows = m_angularOnly ? 0 : 3;
 	if (m_swingSpan1 < m_fixThresh && m_swingSpan2 < m_fixThresh) rows += 2;
 	if (m_twistSpan < m_fixThresh) rows += 1;
-	if (m_solveSwingLimit) rows += 1;
-	if (m_solveTwistLimit) rows += 1;
+	if (swingLimited()) rows += 1;
+	if (twistLimited()) rows += 1;
 	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0))) rows += 3;
 	return rows;
 }
@@ -262,23 +271,54 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
 	const btScalar limitRate = info->fps * m_biasFactor;
-	if (m_solveSwingLimit)
+	// Limit rows are there whenever a limit is set. Past the limit they push back (bias) and stop the
+	// velocity into it (relaxation); inside, they are speculative: they allow at most the approach speed
+	// that reaches the limit at the end of the step, so a fast swing stops at the cone instead of
+	// overshooting it by one step's travel.
+	if (swingLimited())
 	{
 		// (wA - wB) . s is the rate at which the swing shrinks.
 		caliber::JointRow r(*info, row++);
 		r.setAngular(m_swingAxis);
-		caliber::setLimitRow(r, limitRate * (m_swingAngle - m_swingLimit), relativeAngularVelocity.dot(m_swingAxis),
-		                     m_relaxationFactor);
+		if (m_solveSwingLimit)
+		{
+			caliber::setLimitRow(r, limitRate * (m_swingAngle - m_swingLimit), relativeAngularVelocity.dot(m_swingAxis),
+			                     m_relaxationFactor);
+		}
+		else
+		{
+			r.error() = -(m_swingLimit - m_swingAngle) * info->fps;
+			r.lower() = 0;
+			r.upper() = SIMD_INFINITY;
+		}
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
-	if (m_solveTwistLimit)
+	if (twistLimited())
 	{
-		// Oriented so that J v is the rate back into the range: -twist rate past +span, +twist rate past -span.
-		const btVector3 axis = m_twistAxis * -m_twistLimitSign;
+		// Oriented so that J v is the rate back into the range: -twist rate at the + end, +twist rate at
+		// the - end. Inside, the end guarded is the one the twist heads for (the nearer in the position pass).
+		btScalar sign = m_twistLimitSign;
+		if (!m_solveTwistLimit)
+		{
+			const btScalar twistRate = -relativeAngularVelocity.dot(m_twistAxis);
+			const bool towardsPlus = info->m_isPositionPass ? m_twistAngle >= 0 : twistRate >= 0;
+			sign = towardsPlus ? btScalar(-1) : btScalar(1);
+		}
+		const btVector3 axis = m_twistAxis * -sign;
 		caliber::JointRow r(*info, row++);
 		r.setAngular(axis);
 		const btScalar overshoot = btFabs(m_twistAngle) - m_twistSpan;
-		caliber::setLimitRow(r, limitRate * overshoot, relativeAngularVelocity.dot(axis), m_relaxationFactor);
+		if (m_solveTwistLimit)
+		{
+			caliber::setLimitRow(r, limitRate * overshoot, relativeAngularVelocity.dot(axis), m_relaxationFactor);
+		}
+		else
+		{
+			const btScalar room = m_twistSpan - (sign < 0 ? m_twistAngle : -m_twistAngle);
+			r.error() = -btMax(btScalar(0), room) * info->fps;
+			r.lower() = 0;
+			r.upper() = SIMD_INFINITY;
+		}
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
 	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0)))

@@ -24,6 +24,51 @@ btVector3 angularComponent(const btRigidBody& body, const btVector3& axis)
 // Rows whose bounds reach this far are equality rows.
 const btScalar kUnboundedImpulse = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
 
+// Makes a joint's later row (a limit or a motor) blind to its equality block: the row's Jacobian loses its
+// component along the block's rows in the bodies' mass metric, J_r - sum_j c_j J_j with c = K^-1 (J_block
+// M^-1 J_r^T), and its target the matching share of theirs. The block holds its rows to their targets, so
+// the solution is the same; but solving the row no longer disturbs the block and the block no longer
+// undoes the row, so a limit strongly coupled to its joint's pivot (a limb swinging into its cone) settles
+// in one sweep instead of opening the pivot while Gauss-Seidel goes back and forth.
+void decoupleFromBlock(const btSolverConstraint* blockRows, const btSolverJointBlock& block,
+                       const btScalar* blockTargets, btSolverConstraint& row, btScalar& target, const btRigidBody& rbA,
+                       const btRigidBody& rbB, const btSolverBody& bodyA, const btSolverBody& bodyB)
+{
+	const int S = btSolverJointBlock::MAX_ROWS;
+	const int n = block.m_size;
+	btScalar coupling[S];
+	bool coupled = false;
+	for (int i = 0; i < n; ++i)
+	{
+		const btSolverConstraint& b = blockRows[i];
+		coupling[i] = b.m_contactNormal1.dot(row.m_contactNormal1 * bodyA.m_invMass) +
+		              b.m_relpos1CrossNormal.dot(row.m_angularComponentA * bodyA.m_angularFactor) +
+		              b.m_contactNormal2.dot(row.m_contactNormal2 * bodyB.m_invMass) +
+		              b.m_relpos2CrossNormal.dot(row.m_angularComponentB * bodyB.m_angularFactor);
+		coupled = coupled || coupling[i] != btScalar(0);
+	}
+	if (!coupled) return;
+	for (int j = 0; j < n; ++j)
+	{
+		btScalar c = 0;
+		for (int i = 0; i < n; ++i) c += block.m_invK[j * S + i] * coupling[i];
+		const btSolverConstraint& b = blockRows[j];
+		row.m_contactNormal1 -= b.m_contactNormal1 * c;
+		row.m_relpos1CrossNormal -= b.m_relpos1CrossNormal * c;
+		row.m_contactNormal2 -= b.m_contactNormal2 * c;
+		row.m_relpos2CrossNormal -= b.m_relpos2CrossNormal * c;
+		target -= blockTargets[j] * c;
+	}
+	row.m_angularComponentA = angularComponent(rbA, row.m_relpos1CrossNormal);
+	row.m_angularComponentB = angularComponent(rbB, row.m_relpos2CrossNormal);
+	const btScalar k = row.m_contactNormal1.dot(row.m_contactNormal1 * bodyA.m_invMass) +
+	                   row.m_relpos1CrossNormal.dot(row.m_angularComponentA * bodyA.m_angularFactor) +
+	                   row.m_contactNormal2.dot(row.m_contactNormal2 * bodyB.m_invMass) +
+	                   row.m_relpos2CrossNormal.dot(row.m_angularComponentB * bodyB.m_angularFactor);
+	row.m_jacDiagABInv = k > SIMD_EPSILON ? btScalar(1) / k : btScalar(0);
+	row.m_rhs = target * row.m_jacDiagABInv;
+}
+
 void clearRow(btSolverConstraint& row, btScalar cfm)
 {
 	const btVector3 zero(0, 0, 0);
@@ -101,6 +146,8 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 	       firstRow[equalityRows].m_upperLimit >= kUnboundedImpulse && firstRow[equalityRows].m_cfm == btScalar(0))
 		++equalityRows;
 
+	const int kMaxDecoupledRows = 32;
+	btScalar targets[kMaxDecoupledRows];
 	for (int j = 0; j < numRows; ++j)
 	{
 		btSolverConstraint& row = firstRow[j];
@@ -128,11 +175,17 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 		    row.m_contactNormal2.dot(bodyB.m_linearVelocity) + row.m_relpos2CrossNormal.dot(bodyB.m_angularVelocity);
 		const btScalar target = row.m_rhs - velocity * infoGlobal.m_damping;
 		if (j < equalityRows) block.m_target[j] = target;
+		if (j < kMaxDecoupledRows) targets[j] = target;
 		row.m_rhs = target * row.m_jacDiagABInv;
 		row.m_rhsPenetration = 0;
 	}
 	if (equalityRows >= 2 && caliber::buildBlockInverse(firstRow, equalityRows, bodyA, bodyB, block.m_invK))
+	{
 		block.m_size = equalityRows;
+		if (numRows <= kMaxDecoupledRows)
+			for (int j = equalityRows; j < numRows; ++j)
+				decoupleFromBlock(firstRow, block, targets, firstRow[j], targets[j], rbA, rbB, bodyA, bodyB);
+	}
 
 	if (warmStart)
 	{

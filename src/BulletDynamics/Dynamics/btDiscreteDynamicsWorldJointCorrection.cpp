@@ -45,10 +45,9 @@ void solvePositionRows(const btSolverConstraint* rows, int n, int m, const btSol
 	btScalar k[kMaxRows][kMaxRows];
 	for (int i = 0; i < m; ++i)
 		for (int j = 0; j < m; ++j) k[i][j] = (i < n && j < n) ? btScalar(0) : coupling(rows[i], rows[j], a, b);
-	const int passes = m > n ? 4 : 1;
-	for (int pass = 0; pass < passes; ++pass)
+	// The equality block, given the limit rows' current impulses.
+	auto solveBlock = [&]()
 	{
-		// The equality block, given the limit rows' current impulses.
 		btScalar residual[S];
 		for (int i = 0; i < n; ++i)
 		{
@@ -60,7 +59,11 @@ void solvePositionRows(const btSolverConstraint* rows, int n, int m, const btSol
 			lambda[i] = 0;
 			for (int j = 0; j < n; ++j) lambda[i] += invK[i * S + j] * residual[j];
 		}
-		// Each limit row, kept from pulling.
+	};
+	solveBlock();
+	for (int pass = 0; pass < 4 && m > n; ++pass)
+	{
+		// Each limit row, kept from pulling; then the block again, so the joint itself ends exact.
 		for (int i = n; i < m; ++i)
 		{
 			if (!(k[i][i] > SIMD_EPSILON)) continue;
@@ -68,6 +71,7 @@ void solvePositionRows(const btSolverConstraint* rows, int n, int m, const btSol
 			for (int j = 0; j < m; ++j) achieved += k[i][j] * lambda[j];
 			lambda[i] = btMax(btScalar(0), lambda[i] + (rows[i].m_rhs - achieved) / k[i][i]);
 		}
+		solveBlock();
 	}
 }
 
