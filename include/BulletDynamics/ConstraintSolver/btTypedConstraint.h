@@ -173,6 +173,15 @@ public:
 	btAlignedObjectArray<btScalar>& internalGetWarmStartImpulses() { return m_warmStartImpulses; }
 	/// Whether the world's joint position correction applies to this joint (see m_correctsPosition).
 	bool internalCorrectsPosition() const { return m_correctsPosition; }
+	/// For joints that hold one point of A on one point of B: those points in A's and B's centre-of-mass
+	/// frames, for the world's cheap anchor-only position correction. Other joints return false and are
+	/// corrected through their rows.
+	virtual bool internalGetAnchors(btVector3 & anchorInA, btVector3 & anchorInB) const
+	{
+		(void)anchorInA;
+		(void)anchorInB;
+		return false;
+	}
 
 	btScalar getBreakingImpulseThreshold() const { return m_breakingImpulseThreshold; }
 	/// The joint breaks (is disabled) in the step in which one of its rows needs an impulse of at least

@@ -108,6 +108,48 @@ void displace(btRigidBody& body, const btVector3& linear, const btVector3& turn)
 		pose.setRotation(q);
 	}
 }
+// The anchor-only correction: moves A and B so that the world anchors meet, as one 3x3 solve (the
+// point constraint's effective mass). Cheap enough to run every step for every joint: no rows, no angles.
+// Returns false when neither body can move or the system is singular.
+bool closeAnchors(btRigidBody& a, btRigidBody& b, const btVector3& anchorInA, const btVector3& anchorInB)
+{
+	const bool moveA = movable(a), moveB = movable(b);
+	if (!moveA && !moveB) return false;
+	const btVector3 worldA = a.getWorldTransform()(anchorInA);
+	const btVector3 worldB = b.getWorldTransform()(anchorInB);
+	const btVector3 gap = worldB - worldA;
+	if (!(gap.length2() > btScalar(1e-14))) return false;
+	const btVector3 armA = worldA - a.getWorldTransform().getOrigin();
+	const btVector3 armB = worldB - b.getWorldTransform().getOrigin();
+	// Response of the anchors' separation to a unit impulse along each axis (+ on A, - on B).
+	btMatrix3x3 k;
+	k.setValue(0, 0, 0, 0, 0, 0, 0, 0, 0);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		btVector3 e(0, 0, 0);
+		e[axis] = 1;
+		btVector3 response(0, 0, 0);
+		if (moveA)
+			response += e * a.getLinearFactor() * a.getInvMass() +
+			            (a.getInvInertiaTensorWorld() * (armA.cross(e) * a.getAngularFactor()) * a.getAngularFactor())
+			                .cross(armA);
+		if (moveB)
+			response += e * b.getLinearFactor() * b.getInvMass() +
+			            (b.getInvInertiaTensorWorld() * (armB.cross(e) * b.getAngularFactor()) * b.getAngularFactor())
+			                .cross(armB);
+		for (int row = 0; row < 3; ++row) k[row][axis] = response[row];
+	}
+	const btScalar det = k.determinant();
+	if (!(btFabs(det) > SIMD_EPSILON * SIMD_EPSILON)) return false;
+	const btVector3 impulse = k.inverse() * gap;
+	if (moveA)
+		displace(a, impulse,
+		         a.getInvInertiaTensorWorld() * (armA.cross(impulse) * a.getAngularFactor()) * a.getAngularFactor());
+	if (moveB)
+		displace(b, -impulse,
+		         b.getInvInertiaTensorWorld() * (armB.cross(-impulse) * b.getAngularFactor()) * b.getAngularFactor());
+	return true;
+}
 }  // namespace
 
 void btDiscreteDynamicsWorld::correctJointPositions()
@@ -128,6 +170,18 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 			btRigidBody& a = constraint->getRigidBodyA();
 			btRigidBody& b = constraint->getRigidBodyB();
 			if (!movable(a) && !movable(b)) continue;
+			btVector3 anchorInA, anchorInB;
+			if (constraint->internalGetAnchors(anchorInA, anchorInB))
+			{
+				if (closeAnchors(a, b, anchorInA, anchorInB))
+				{
+					if (!anyMoved) m_jointCorrectedBodies.resize(0);
+					anyMoved = true;
+					m_jointCorrectedBodies.push_back(&a);
+					m_jointCorrectedBodies.push_back(&b);
+				}
+				continue;
+			}
 			btTypedConstraint::btConstraintInfo1 info1;
 			info1.m_numConstraintRows = 0;
 			info1.nub = 0;
