@@ -1,0 +1,309 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef BT_GENERIC_6DOF_CONSTRAINT_H
+#define BT_GENERIC_6DOF_CONSTRAINT_H
+
+/// btGeneric6DofConstraint: a joint that locks, limits, frees or drives each of the six coordinates of
+/// frame B (fixed in body B) relative to frame A (fixed in body A).
+///  - Linear coordinates 0..2: the position of B's frame origin relative to A's, along the axes of the
+///    linear reference frame (frame A's by default, frame B's with useLinearReferenceFrameA false).
+///  - Angular coordinates 3..5: the Euler angles (x, y, z) of frame B relative to frame A, with
+///    A^-1 B = Rz(z) Ry(y) Rx(x) (rotations about A's fixed X, then Y, then Z axes; the same matrix as
+///    btMatrix3x3::setEulerZYX(x, y, z)). x and z lie in (-pi, pi], y in [-pi/2, pi/2]; the joint is
+///    singular at y = +-pi/2, so keep y's range inside (-pi/2, pi/2).
+/// Per coordinate: lower == upper locks it there, lower > upper frees it, lower < upper limits it to
+/// [lower, upper]. Defaults (as in Bullet): linear coordinates locked at 0, angular coordinates free.
+/// Rows: locked coordinates first (solved together as one block), then limits, then motors.
+
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
+#include "LinearMath/btTransform.h"
+#include "LinearMath/btVector3.h"
+
+class btRigidBody;
+
+/// The limit and motor of one angular coordinate of a btGeneric6DofConstraint.
+class btRotationalLimitMotor
+{
+public:
+	/// Lower and upper angle (radians); equal locks, lower > upper frees the angle.
+	btScalar m_loLimit;
+	btScalar m_hiLimit;
+	/// The rate of the angle (rad/s) the motor drives towards.
+	btScalar m_targetVelocity;
+	/// The largest torque (N m, along the coordinate) the motor applies.
+	btScalar m_maxMotorForce;
+	/// Kept for source compatibility: Bullet's obsolete iterative path used it; the row solver does not.
+	btScalar m_maxLimitForce;
+	/// Kept for source compatibility (obsolete iterative path).
+	btScalar m_damping;
+	/// Kept for source compatibility (obsolete iterative path).
+	btScalar m_limitSoftness;
+	/// Softness of the motor row, used when set through setParam(BT_CONSTRAINT_CFM).
+	btScalar m_normalCFM;
+	/// Error reduction of the lock and limit rows, used when set through setParam(BT_CONSTRAINT_STOP_ERP).
+	btScalar m_stopERP;
+	/// Softness of the lock and limit rows, used when set through setParam(BT_CONSTRAINT_STOP_CFM).
+	btScalar m_stopCFM;
+	/// Restitution at the limits: the fraction of the approach rate that is reversed.
+	btScalar m_bounce;
+	/// Whether the motor drives the angle.
+	bool m_enableMotor;
+
+	/// How far the angle is past the limit it crossed (signed; 0 inside), set by testLimitValue.
+	btScalar m_currentLimitError;
+	/// The angle last given to testLimitValue.
+	btScalar m_currentPosition;
+	/// 0: inside the limits or free, 1: below the lower limit, 2: above the upper limit.
+	int m_currentLimit;
+	/// Kept for source compatibility (obsolete iterative path).
+	btScalar m_accumulatedImpulse;
+
+	btRotationalLimitMotor();
+
+	/// True when the angle is locked or limited (lower <= upper).
+	bool isLimited() const { return m_loLimit <= m_hiLimit; }
+	/// True when the motor is on or the angle is past a limit.
+	bool needApplyTorques() const { return m_currentLimit != 0 || m_enableMotor; }
+	/// Measures test_value (radians) against the limits, whole turns allowed: sets m_currentPosition,
+	/// m_currentLimit and m_currentLimitError; returns m_currentLimit.
+	int testLimitValue(btScalar test_value);
+};
+
+/// The limits and motors of the three linear coordinates of a btGeneric6DofConstraint.
+ATTRIBUTE_ALIGNED16(class)
+btTranslationalLimitMotor
+{
+public:
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// Lower and upper position per axis; equal locks, lower > upper frees the axis.
+	btVector3 m_lowerLimit;
+	btVector3 m_upperLimit;
+	/// Kept for source compatibility (obsolete iterative path).
+	btVector3 m_accumulatedImpulse;
+	/// Kept for source compatibility (obsolete iterative path).
+	btScalar m_limitSoftness;
+	/// Kept for source compatibility (obsolete iterative path).
+	btScalar m_damping;
+	/// Kept for source compatibility: linear limits do not bounce (as in Bullet's row path).
+	btScalar m_restitution;
+	/// Softness of the motor rows, used when set through setParam(BT_CONSTRAINT_CFM).
+	btVector3 m_normalCFM;
+	/// Error reduction of the lock and limit rows, used when set through setParam(BT_CONSTRAINT_STOP_ERP).
+	btVector3 m_stopERP;
+	/// Softness of the lock and limit rows, used when set through setParam(BT_CONSTRAINT_STOP_CFM).
+	btVector3 m_stopCFM;
+	/// Whether each axis's motor is on.
+	bool m_enableMotor[3];
+	/// The rate of each coordinate (m/s) the motors drive towards.
+	btVector3 m_targetVelocity;
+	/// The largest force (N, along the coordinate) each motor applies.
+	btVector3 m_maxMotorForce;
+	/// How far each coordinate is past the limit it crossed (signed; 0 inside), set by testLimitValue.
+	btVector3 m_currentLimitError;
+	/// The coordinates last measured (see btGeneric6DofConstraint::getRelativePivotPosition).
+	btVector3 m_currentLinearDiff;
+	/// Per axis: 0 inside the limits or free, 1 below the lower limit, 2 above the upper limit.
+	int m_currentLimit[3];
+
+	btTranslationalLimitMotor();
+
+	/// True when the axis is locked or limited (lower <= upper).
+	bool isLimited(int limitIndex) const { return m_upperLimit[limitIndex] >= m_lowerLimit[limitIndex]; }
+	/// True when the axis's motor is on or the coordinate is past a limit.
+	bool needApplyForce(int limitIndex) const { return m_currentLimit[limitIndex] != 0 || m_enableMotor[limitIndex]; }
+	/// Measures test_value against axis limitIndex's limits: sets m_currentLimit and m_currentLimitError of
+	/// that axis; returns its m_currentLimit.
+	int testLimitValue(int limitIndex, btScalar test_value);
+};
+
+/// Which per-axis parameters were set through setParam; each axis has BT_6DOF_FLAGS_AXIS_SHIFT bits.
+enum bt6DofFlags
+{
+	BT_6DOF_FLAGS_CFM_NORM = 1,
+	BT_6DOF_FLAGS_CFM_STOP = 2,
+	BT_6DOF_FLAGS_ERP_STOP = 4
+};
+#define BT_6DOF_FLAGS_AXIS_SHIFT 3  // bits per axis
+
+ATTRIBUTE_ALIGNED16(class)
+btGeneric6DofConstraint : public btTypedConstraint
+{
+protected:
+	/// The joint frames in each body's centre-of-mass frame.
+	btTransform m_frameInA;
+	btTransform m_frameInB;
+	btTranslationalLimitMotor m_linearLimits;
+	btRotationalLimitMotor m_angularLimits[3];
+
+	/// The joint frames in the world, as last calculated.
+	btTransform m_calculatedTransformA;
+	btTransform m_calculatedTransformB;
+	/// The Euler angles of frame B relative to frame A.
+	btVector3 m_calculatedAxisAngleDiff;
+	/// The world directions along which the relative angular velocity measures each angle's rate.
+	btVector3 m_calculatedAxis[3];
+	/// The linear coordinates.
+	btVector3 m_calculatedLinearDiff;
+	/// The world point at which the linear rows act when the frame offset is off (see calcAnchorPos).
+	btVector3 m_AnchorPos;
+	bool m_useLinearReferenceFrameA;
+	bool m_useOffsetForConstraintFrame;
+	int m_flags;
+
+	/// Caliber: the row directions of the last calculation. Linear coordinate i's rate is measured along
+	/// m_linearRowAxis[i] at m_linearRowPoint; angular coordinate i's rate is
+	/// (angular velocity of B - that of A) . m_angularRowAxis[i] (not unit length away from y = 0).
+	btVector3 m_linearRowAxis[3];
+	btVector3 m_angularRowAxis[3];
+	btVector3 m_linearRowPoint;
+	/// The bodies' centres of mass of the last calculation (the rows' lever arms start there).
+	btVector3 m_centerOfMassA;
+	btVector3 m_centerOfMassB;
+
+	/// Fills the linear coordinates and row directions from the calculated transforms.
+	void calculateLinearInfo();
+	/// Fills the Euler angles and angular row directions from the calculated transforms.
+	void calculateAngleInfo();
+	/// Warns and disables the joint when a frame is not finite; true when both are.
+	bool checkFrames();
+
+	/// How coordinate i (0..5) is constrained: lower == upper, lower < upper, or lower > upper.
+	bool isCoordinateLocked(int coordinate) const;
+	bool isCoordinateLimited(int coordinate) const;
+	/// True when coordinate i has a motor row (motor on and the coordinate not locked).
+	bool hasMotorRow(int coordinate) const;
+	/// The number of lock, limit and motor rows (without any a subclass adds).
+	int countLimitMotorRows() const;
+	/// Writes the lock, limit and motor rows from row 0 on (transforms already calculated); returns
+	/// their number.
+	int writeLimitMotorRows(btConstraintInfo2 * info, const btVector3& linVelA, const btVector3& linVelB,
+	                        const btVector3& angVelA, const btVector3& angVelB);
+	/// Coordinate i's measured value (angles in radians).
+	btScalar getCoordinate(int coordinate) const;
+	/// Coordinate i's rate for the given body velocities.
+	btScalar getCoordinateVelocity(int coordinate, const btVector3& linVelA, const btVector3& linVelB,
+	                               const btVector3& angVelA, const btVector3& angVelB) const;
+	/// The Jacobian whose product with the bodies' velocities (vA, wA, vB, wB) is coordinate i's rate.
+	void getCoordinateJacobian(int coordinate, btVector3& linearA, btVector3& angularA, btVector3& linearB,
+	                           btVector3& angularB) const;
+	/// Writes into row a row that drives coordinate i's rate to targetRate, projected so that its impulses
+	/// leave the locked rows' velocities alone (see the .cpp); its impulse is the coordinate's generalised
+	/// force times the step.
+	void writeCoordinateRow(btConstraintInfo2 * info, int row, int coordinate, btScalar targetRate) const;
+	/// The rate change of coordinate i per unit impulse of its row, with the locked coordinates held:
+	/// the inverse of the coordinate's effective mass (0 if nothing can move it).
+	btScalar getCoordinateInverseMass(int coordinate) const;
+
+	/// Caliber: the hard locked rows of the last getInfo2 (the solver's block), which the other rows are
+	/// projected against: their Jacobians (linear A, angular A, linear B, angular B), targets and the
+	/// inverse of their J M^-1 J^T (row-major, stride 6).
+	btVector3 m_blockRowJacobian[6][4];
+	btScalar m_blockRowTarget[6];
+	btScalar m_blockRowInverse[36];
+	int m_blockRowCount;
+
+public:
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// Kept for source compatibility; Caliber always solves the joint as rows.
+	bool m_useSolveConstraintObsolete;
+
+	/// frameInA and frameInB are in the bodies' centre-of-mass frames. useLinearReferenceFrameA: the linear
+	/// coordinates are measured along frame A's axes (else frame B's).
+	btGeneric6DofConstraint(btRigidBody & rbA, btRigidBody & rbB, const btTransform& frameInA,
+	                        const btTransform& frameInB, bool useLinearReferenceFrameA);
+	/// Body B jointed to the world: frame A is fixed in the world where frame B is now. The flag is kept
+	/// as getUseLinearReferenceFrameA (true: the linear axes are the world-fixed frame's).
+	btGeneric6DofConstraint(btRigidBody & rbB, const btTransform& frameInB, bool useLinearReferenceFrameB);
+
+	/// Recalculates the world frames, coordinates and axes for body transforms transA and transB.
+	void calculateTransforms(const btTransform& transA, const btTransform& transB);
+	/// The same for the bodies' current centre-of-mass transforms.
+	void calculateTransforms();
+
+	/// Frame A in the world, as last calculated.
+	const btTransform& getCalculatedTransformA() const { return m_calculatedTransformA; }
+	/// Frame B in the world, as last calculated.
+	const btTransform& getCalculatedTransformB() const { return m_calculatedTransformB; }
+	/// Frame A in body A's centre-of-mass frame.
+	const btTransform& getFrameOffsetA() const { return m_frameInA; }
+	/// Frame B in body B's centre-of-mass frame.
+	const btTransform& getFrameOffsetB() const { return m_frameInB; }
+	/// The frames, writable: a change takes effect at the next calculateTransforms or step.
+	btTransform& getFrameOffsetA() { return m_frameInA; }
+	btTransform& getFrameOffsetB() { return m_frameInB; }
+
+	/// Nothing to do: the rows are rebuilt every step.
+	void buildJacobian() override {}
+	/// One row per locked or limited coordinate and one per motor (internal, for the solver).
+	void getInfo1(btConstraintInfo1 * info) override;
+	void getInfo1NonVirtual(btConstraintInfo1 * info);
+	/// The rows for the bodies' current state (internal, for the solver).
+	void getInfo2(btConstraintInfo2 * info) override;
+	/// Writes the rows for the given body transforms and velocities.
+	void getInfo2NonVirtual(btConstraintInfo2 * info, const btTransform& transA, const btTransform& transB,
+	                        const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+	                        const btVector3& angVelB);
+	/// Nothing to update: the rows are rebuilt every step.
+	void updateRHS(btScalar timeStep) { (void)timeStep; }
+
+	/// The world axis (unit) along which the relative angular velocity measures the rate of angle
+	/// axis_index (0..2), as last calculated.
+	btVector3 getAxis(int axis_index) const;
+	/// The Euler angle axis_index (0..2) of frame B relative to frame A, as last calculated.
+	btScalar getAngle(int axis_index) const;
+	/// The linear coordinate axis_index (0..2), as last calculated.
+	btScalar getRelativePivotPosition(int axis_index) const;
+	/// Sets both frames (in the bodies' centre-of-mass frames) and recalculates.
+	void setFrames(const btTransform& frameA, const btTransform& frameB);
+
+	/// Measures angle axis_index against its limit; true when the angle needs a limit or motor row.
+	bool testAngularLimitMotor(int axis_index);
+
+	/// Linear limits per axis of the linear reference frame.
+	void setLinearLowerLimit(const btVector3& linearLower) { m_linearLimits.m_lowerLimit = linearLower; }
+	void getLinearLowerLimit(btVector3 & linearLower) const { linearLower = m_linearLimits.m_lowerLimit; }
+	void setLinearUpperLimit(const btVector3& linearUpper) { m_linearLimits.m_upperLimit = linearUpper; }
+	void getLinearUpperLimit(btVector3 & linearUpper) const { linearUpper = m_linearLimits.m_upperLimit; }
+	/// Angular limits (radians), each moved into (-pi, pi] as in Bullet.
+	void setAngularLowerLimit(const btVector3& angularLower);
+	void getAngularLowerLimit(btVector3 & angularLower) const;
+	void setAngularUpperLimit(const btVector3& angularUpper);
+	void getAngularUpperLimit(btVector3 & angularUpper) const;
+
+	/// The limit and motor of angle index (0..2).
+	btRotationalLimitMotor* getRotationalLimitMotor(int index) { return &m_angularLimits[index]; }
+	/// The limits and motors of the linear coordinates.
+	btTranslationalLimitMotor* getTranslationalLimitMotor() { return &m_linearLimits; }
+
+	/// Limits coordinate axis (0..2 linear, 3..5 angular, angles moved into (-pi, pi]) to [lo, hi].
+	void setLimit(int axis, btScalar lo, btScalar hi);
+	/// True when coordinate limitIndex (0..5) is locked or limited.
+	bool isLimited(int limitIndex) const;
+
+	/// Sets m_AnchorPos: between the two frame origins, nearer the one of the body that moves more
+	/// easily (inverse-mass weighted). Used by the linear rows when the frame offset is off.
+	virtual void calcAnchorPos(void);
+
+	/// Frame offset on (default): the linear rows measure the exact rate of the linear coordinates. Off:
+	/// they act at one shared anchor point (calcAnchorPos), an approximation kept for compatibility.
+	bool getUseFrameOffset() const { return m_useOffsetForConstraintFrame; }
+	void setUseFrameOffset(bool frameOffsetOnOff) { m_useOffsetForConstraintFrame = frameOffsetOnOff; }
+
+	/// True: the linear coordinates are measured along frame A's axes; false: along frame B's.
+	bool getUseLinearReferenceFrameA() const { return m_useLinearReferenceFrameA; }
+	void setUseLinearReferenceFrameA(bool linearReferenceFrameA) { m_useLinearReferenceFrameA = linearReferenceFrameA; }
+
+	/// BT_CONSTRAINT_STOP_ERP (also BT_CONSTRAINT_ERP), BT_CONSTRAINT_STOP_CFM (lock and limit rows) and
+	/// BT_CONSTRAINT_CFM (motor rows) of coordinate axis 0..5. Unset values fall back to the world's.
+	void setParam(int num, btScalar value, int axis = -1) override;
+	btScalar getParam(int num, int axis = -1) const override;
+
+	/// Re-orients both frames, keeping their origins: Z along axis1, Y along axis2, X = Y x Z (world axes).
+	virtual void setAxis(const btVector3& axis1, const btVector3& axis2);
+
+	/// The bt6DofFlags of all axes (BT_6DOF_FLAGS_AXIS_SHIFT bits per axis).
+	virtual int getFlags() const { return m_flags; }
+};
+
+#endif  // BT_GENERIC_6DOF_CONSTRAINT_H

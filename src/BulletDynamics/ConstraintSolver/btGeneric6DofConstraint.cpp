@@ -1,0 +1,771 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
+
+#include "BulletDynamics/ConstraintSolver/btJointRowUtil.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btWarningHook.h"
+
+// The coordinates and their rates.
+//
+// Linear: x_i = a_i . (pB - pA), a_i the reference frame's axis i, pA and pB the frame origins. Its rate
+// is exactly a_i . (velocity of B at P - velocity of A at P) with P = pB when the reference frame is A's
+// (the axes turn with A, so the rate is taken against the point of A that lies under pB) and P = pA when
+// it is B's. The linear rows therefore act at one point P for both bodies.
+//
+// Angular: A^-1 B = Rz(z) Ry(y) Rx(x). Differentiating B = A Rz Ry Rx gives the relative angular velocity
+//   wB - wA = x' e1 + y' e2 + z' e3,  e1 = B's X axis,  e2 = A Rz ey,  e3 = A's Z axis.
+// e2 is perpendicular to e1 and e3, and e1 . e3 = -sin y, so the rates are read off with the dual basis
+// (D_i . e_j = delta_ij): with u = A Rz ex (perpendicular to e2 and e3),
+//   D_x = u / cos y,  D_y = e2,  D_z = e3 + tan y u,
+// and angle i's rate is D_i . (wB - wA). Each row is built on D_i itself, so that its target is the
+// angle's rate and its impulse the angle's generalised torque (times the step).
+
+namespace
+{
+// Rows with 1 / cos y are clamped here, near the singular y = +-pi/2 (the joint is documented not to go
+// there; this only keeps the rows finite if it does).
+const btScalar kMinCosY = btScalar(1e-3);
+
+bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
+
+bool isFinite(const btTransform& t)
+{
+	const btMatrix3x3& b = t.getBasis();
+	return isFinite(t.getOrigin()) && isFinite(b[0]) && isFinite(b[1]) && isFinite(b[2]);
+}
+}  // namespace
+
+btRotationalLimitMotor::btRotationalLimitMotor()
+    : m_loLimit(btScalar(1)),
+      m_hiLimit(btScalar(-1)),
+      m_targetVelocity(btScalar(0)),
+      m_maxMotorForce(btScalar(6)),
+      m_maxLimitForce(btScalar(300)),
+      m_damping(btScalar(1)),
+      m_limitSoftness(btScalar(0.5)),
+      m_normalCFM(btScalar(0)),
+      m_stopERP(btScalar(0.2)),
+      m_stopCFM(btScalar(0)),
+      m_bounce(btScalar(0)),
+      m_enableMotor(false),
+      m_currentLimitError(btScalar(0)),
+      m_currentPosition(btScalar(0)),
+      m_currentLimit(0),
+      m_accumulatedImpulse(btScalar(0))
+{
+}
+
+int btRotationalLimitMotor::testLimitValue(btScalar test_value)
+{
+	m_currentPosition = test_value;
+	m_currentLimit = 0;
+	m_currentLimitError = btScalar(0);
+	if (m_loLimit > m_hiLimit) return 0;
+	if (m_loLimit == m_hiLimit)
+	{
+		// Locked: which side it is on, the short way round.
+		const btScalar error = btNormalizeAngle(test_value - m_loLimit);
+		if (error != btScalar(0))
+		{
+			m_currentLimit = error < btScalar(0) ? 1 : 2;
+			m_currentLimitError = error;
+		}
+		return m_currentLimit;
+	}
+	const btScalar angle = btAdjustAngleToLimits(test_value, m_loLimit, m_hiLimit);
+	if (angle < m_loLimit)
+	{
+		m_currentLimit = 1;
+		m_currentLimitError = angle - m_loLimit;
+	}
+	else if (angle > m_hiLimit)
+	{
+		m_currentLimit = 2;
+		m_currentLimitError = angle - m_hiLimit;
+	}
+	return m_currentLimit;
+}
+
+btTranslationalLimitMotor::btTranslationalLimitMotor()
+    : m_lowerLimit(0, 0, 0),
+      m_upperLimit(0, 0, 0),
+      m_accumulatedImpulse(0, 0, 0),
+      m_limitSoftness(btScalar(0.7)),
+      m_damping(btScalar(1)),
+      m_restitution(btScalar(0.5)),
+      m_normalCFM(0, 0, 0),
+      m_stopERP(btScalar(0.2), btScalar(0.2), btScalar(0.2)),
+      m_stopCFM(0, 0, 0),
+      m_targetVelocity(0, 0, 0),
+      m_maxMotorForce(0, 0, 0),
+      m_currentLimitError(0, 0, 0),
+      m_currentLinearDiff(0, 0, 0)
+{
+	for (int i = 0; i < 3; ++i)
+	{
+		m_enableMotor[i] = false;
+		m_currentLimit[i] = 0;
+	}
+}
+
+int btTranslationalLimitMotor::testLimitValue(int limitIndex, btScalar test_value)
+{
+	const btScalar lower = m_lowerLimit[limitIndex], upper = m_upperLimit[limitIndex];
+	int& limit = m_currentLimit[limitIndex];
+	limit = 0;
+	m_currentLimitError[limitIndex] = btScalar(0);
+	if (lower > upper) return 0;
+	if (test_value < lower)
+	{
+		limit = 1;
+		m_currentLimitError[limitIndex] = test_value - lower;
+	}
+	else if (test_value > upper)
+	{
+		limit = 2;
+		m_currentLimitError[limitIndex] = test_value - upper;
+	}
+	return limit;
+}
+
+btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbA, btRigidBody& rbB, const btTransform& frameInA,
+                                                 const btTransform& frameInB, bool useLinearReferenceFrameA)
+    : btTypedConstraint(D6_CONSTRAINT_TYPE, rbA, rbB),
+      m_frameInA(frameInA),
+      m_frameInB(frameInB),
+      m_useLinearReferenceFrameA(useLinearReferenceFrameA),
+      m_useOffsetForConstraintFrame(true),
+      m_flags(0),
+      m_blockRowCount(0),
+      m_useSolveConstraintObsolete(false)
+{
+	if (checkFrames()) calculateTransforms();
+}
+
+btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbB, const btTransform& frameInB,
+                                                 bool useLinearReferenceFrameB)
+    : btTypedConstraint(D6_CONSTRAINT_TYPE, getFixedBody(), rbB),
+      m_frameInA(rbB.getCenterOfMassTransform() * frameInB),
+      m_frameInB(frameInB),
+      m_useLinearReferenceFrameA(useLinearReferenceFrameB),
+      m_useOffsetForConstraintFrame(true),
+      m_flags(0),
+      m_blockRowCount(0),
+      m_useSolveConstraintObsolete(false)
+{
+	if (checkFrames()) calculateTransforms();
+}
+
+bool btGeneric6DofConstraint::checkFrames()
+{
+	if (isFinite(m_frameInA) && isFinite(m_frameInB)) return true;
+	btReportWarning("Caliber: btGeneric6DofConstraint: a joint frame is not finite; the joint is disabled\n", 0);
+	setEnabled(false);
+	return false;
+}
+
+void btGeneric6DofConstraint::calculateTransforms()
+{
+	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
+}
+
+void btGeneric6DofConstraint::calculateTransforms(const btTransform& transA, const btTransform& transB)
+{
+	m_centerOfMassA = transA.getOrigin();
+	m_centerOfMassB = transB.getOrigin();
+	m_calculatedTransformA = transA * m_frameInA;
+	m_calculatedTransformB = transB * m_frameInB;
+	calcAnchorPos();
+	calculateLinearInfo();
+	calculateAngleInfo();
+}
+
+void btGeneric6DofConstraint::calcAnchorPos(void)
+{
+	const btScalar imA = m_rbA.getInvMass(), imB = m_rbB.getInvMass();
+	const btScalar sum = imA + imB;
+	const btScalar weightA = sum > btScalar(0) ? imA / sum : btScalar(0.5);
+	m_AnchorPos = m_calculatedTransformA.getOrigin() * weightA + m_calculatedTransformB.getOrigin() * (1 - weightA);
+}
+
+void btGeneric6DofConstraint::calculateLinearInfo()
+{
+	const btVector3& pA = m_calculatedTransformA.getOrigin();
+	const btVector3& pB = m_calculatedTransformB.getOrigin();
+	const btMatrix3x3& reference =
+	    m_useLinearReferenceFrameA ? m_calculatedTransformA.getBasis() : m_calculatedTransformB.getBasis();
+	const btVector3 separation = pB - pA;
+	for (int i = 0; i < 3; ++i)
+	{
+		m_linearRowAxis[i] = reference.getColumn(i);
+		m_calculatedLinearDiff[i] = m_linearRowAxis[i].dot(separation);
+		m_linearLimits.m_currentLinearDiff[i] = m_calculatedLinearDiff[i];
+		m_linearLimits.testLimitValue(i, m_calculatedLinearDiff[i]);
+	}
+	if (m_useOffsetForConstraintFrame)
+		m_linearRowPoint = m_useLinearReferenceFrameA ? pB : pA;
+	else
+		m_linearRowPoint = m_AnchorPos;
+}
+
+void btGeneric6DofConstraint::calculateAngleInfo()
+{
+	const btMatrix3x3& basisA = m_calculatedTransformA.getBasis();
+	const btMatrix3x3 relative = basisA.transposeTimes(m_calculatedTransformB.getBasis());
+	// relative = Rz(z) Ry(y) Rx(x): its first column is (cos z cos y, sin z cos y, -sin y) and its last row
+	// is (-sin y, sin x cos y, cos x cos y).
+	const btScalar cosY = btSqrt(relative[0][0] * relative[0][0] + relative[1][0] * relative[1][0]);
+	const btScalar y = btAtan2(-relative[2][0], cosY);
+	btScalar x, z;
+	if (cosY > SIMD_EPSILON)
+	{
+		x = btAtan2(relative[2][1], relative[2][2]);
+		z = btAtan2(relative[1][0], relative[0][0]);
+	}
+	else
+	{
+		// At y = +-pi/2 only x -+ z is defined; take x = 0, where the middle column is (-sin z, cos z, 0).
+		x = btScalar(0);
+		z = btAtan2(-relative[0][1], relative[1][1]);
+	}
+	m_calculatedAxisAngleDiff.setValue(x, y, z);
+
+	const btScalar cz = btCos(z), sz = btSin(z), sy = btSin(y);
+	const btVector3 u = basisA.getColumn(0) * cz + basisA.getColumn(1) * sz;
+	const btVector3 e2 = basisA.getColumn(1) * cz - basisA.getColumn(0) * sz;
+	const btVector3 e3 = basisA.getColumn(2);
+	const btScalar rowCosY = btMax(btCos(y), kMinCosY);
+	m_angularRowAxis[0] = u / rowCosY;
+	m_angularRowAxis[1] = e2;
+	m_angularRowAxis[2] = e3 + u * (sy / rowCosY);
+	m_calculatedAxis[0] = u;
+	m_calculatedAxis[1] = e2;
+	m_calculatedAxis[2] = e3 * btCos(y) + u * sy;
+
+	for (int i = 0; i < 3; ++i) m_angularLimits[i].testLimitValue(m_calculatedAxisAngleDiff[i]);
+}
+
+btVector3 btGeneric6DofConstraint::getAxis(int axis_index) const
+{
+	btAssert(axis_index >= 0 && axis_index < 3);
+	return m_calculatedAxis[axis_index];
+}
+
+btScalar btGeneric6DofConstraint::getAngle(int axis_index) const
+{
+	btAssert(axis_index >= 0 && axis_index < 3);
+	return m_calculatedAxisAngleDiff[axis_index];
+}
+
+btScalar btGeneric6DofConstraint::getRelativePivotPosition(int axis_index) const
+{
+	btAssert(axis_index >= 0 && axis_index < 3);
+	return m_calculatedLinearDiff[axis_index];
+}
+
+void btGeneric6DofConstraint::setFrames(const btTransform& frameA, const btTransform& frameB)
+{
+	m_frameInA = frameA;
+	m_frameInB = frameB;
+	if (checkFrames()) calculateTransforms();
+}
+
+bool btGeneric6DofConstraint::testAngularLimitMotor(int axis_index)
+{
+	btRotationalLimitMotor& motor = m_angularLimits[axis_index];
+	motor.testLimitValue(btNormalizeAngle(m_calculatedAxisAngleDiff[axis_index]));
+	return motor.needApplyTorques();
+}
+
+void btGeneric6DofConstraint::setAngularLowerLimit(const btVector3& angularLower)
+{
+	for (int i = 0; i < 3; ++i) m_angularLimits[i].m_loLimit = btNormalizeAngle(angularLower[i]);
+}
+
+void btGeneric6DofConstraint::getAngularLowerLimit(btVector3& angularLower) const
+{
+	for (int i = 0; i < 3; ++i) angularLower[i] = m_angularLimits[i].m_loLimit;
+}
+
+void btGeneric6DofConstraint::setAngularUpperLimit(const btVector3& angularUpper)
+{
+	for (int i = 0; i < 3; ++i) m_angularLimits[i].m_hiLimit = btNormalizeAngle(angularUpper[i]);
+}
+
+void btGeneric6DofConstraint::getAngularUpperLimit(btVector3& angularUpper) const
+{
+	for (int i = 0; i < 3; ++i) angularUpper[i] = m_angularLimits[i].m_hiLimit;
+}
+
+void btGeneric6DofConstraint::setLimit(int axis, btScalar lo, btScalar hi)
+{
+	btAssert(axis >= 0 && axis < 6);
+	if (axis < 0 || axis >= 6) return;
+	if (axis < 3)
+	{
+		m_linearLimits.m_lowerLimit[axis] = lo;
+		m_linearLimits.m_upperLimit[axis] = hi;
+	}
+	else
+	{
+		m_angularLimits[axis - 3].m_loLimit = btNormalizeAngle(lo);
+		m_angularLimits[axis - 3].m_hiLimit = btNormalizeAngle(hi);
+	}
+}
+
+bool btGeneric6DofConstraint::isLimited(int limitIndex) const
+{
+	btAssert(limitIndex >= 0 && limitIndex < 6);
+	if (limitIndex < 3) return m_linearLimits.isLimited(limitIndex);
+	return m_angularLimits[limitIndex - 3].isLimited();
+}
+
+bool btGeneric6DofConstraint::isCoordinateLocked(int coordinate) const
+{
+	if (coordinate < 3) return m_linearLimits.m_lowerLimit[coordinate] == m_linearLimits.m_upperLimit[coordinate];
+	return m_angularLimits[coordinate - 3].m_loLimit == m_angularLimits[coordinate - 3].m_hiLimit;
+}
+
+bool btGeneric6DofConstraint::isCoordinateLimited(int coordinate) const
+{
+	if (coordinate < 3) return m_linearLimits.m_lowerLimit[coordinate] < m_linearLimits.m_upperLimit[coordinate];
+	return m_angularLimits[coordinate - 3].m_loLimit < m_angularLimits[coordinate - 3].m_hiLimit;
+}
+
+bool btGeneric6DofConstraint::hasMotorRow(int coordinate) const
+{
+	const bool enabled =
+	    coordinate < 3 ? m_linearLimits.m_enableMotor[coordinate] : m_angularLimits[coordinate - 3].m_enableMotor;
+	return enabled && !isCoordinateLocked(coordinate);
+}
+
+int btGeneric6DofConstraint::countLimitMotorRows() const
+{
+	int rows = 0;
+	for (int c = 0; c < 6; ++c)
+		rows += (isCoordinateLocked(c) || isCoordinateLimited(c) ? 1 : 0) + (hasMotorRow(c) ? 1 : 0);
+	return rows;
+}
+
+btScalar btGeneric6DofConstraint::getCoordinate(int coordinate) const
+{
+	return coordinate < 3 ? m_calculatedLinearDiff[coordinate] : m_calculatedAxisAngleDiff[coordinate - 3];
+}
+
+btScalar btGeneric6DofConstraint::getCoordinateVelocity(int coordinate, const btVector3& linVelA,
+                                                        const btVector3& linVelB, const btVector3& angVelA,
+                                                        const btVector3& angVelB) const
+{
+	if (coordinate >= 3) return m_angularRowAxis[coordinate - 3].dot(angVelB - angVelA);
+	const btVector3 velocityB = linVelB + angVelB.cross(m_linearRowPoint - m_centerOfMassB);
+	const btVector3 velocityA = linVelA + angVelA.cross(m_linearRowPoint - m_centerOfMassA);
+	return m_linearRowAxis[coordinate].dot(velocityB - velocityA);
+}
+
+void btGeneric6DofConstraint::getCoordinateJacobian(int coordinate, btVector3& linearA, btVector3& angularA,
+                                                    btVector3& linearB, btVector3& angularB) const
+{
+	if (coordinate >= 3)
+	{
+		const btVector3& axis = m_angularRowAxis[coordinate - 3];
+		linearA.setZero();
+		linearB.setZero();
+		angularA = -axis;
+		angularB = axis;
+		return;
+	}
+	const btVector3& axis = m_linearRowAxis[coordinate];
+	linearA = -axis;
+	linearB = axis;
+	angularA = -(m_linearRowPoint - m_centerOfMassA).cross(axis);
+	angularB = (m_linearRowPoint - m_centerOfMassB).cross(axis);
+}
+
+namespace
+{
+// One row's Jacobian as the solver reads it: J v = linA . vA + angA . wA + linB . vB + angB . wB.
+struct RowJacobian
+{
+	btVector3 part[4];  // linear A, angular A, linear B, angular B
+
+	btScalar dot(const RowJacobian& other) const
+	{
+		return part[0].dot(other.part[0]) + part[1].dot(other.part[1]) + part[2].dot(other.part[2]) +
+		       part[3].dot(other.part[3]);
+	}
+	void addScaled(const RowJacobian& other, btScalar scale)
+	{
+		for (int i = 0; i < 4; ++i) part[i] += other.part[i] * scale;
+	}
+};
+
+// M^-1 J^T with the solver's masses: linear and angular factors, nothing for static and kinematic bodies.
+RowJacobian applyInverseMass(const btRigidBody& a, const btRigidBody& b, const RowJacobian& j)
+{
+	RowJacobian r;
+	const btRigidBody* bodies[2] = {&a, &b};
+	for (int k = 0; k < 2; ++k)
+	{
+		const btRigidBody& body = *bodies[k];
+		if (body.isStaticOrKinematicObject())
+		{
+			r.part[2 * k].setZero();
+			r.part[2 * k + 1].setZero();
+			continue;
+		}
+		r.part[2 * k] = j.part[2 * k] * body.getLinearFactor() * body.getInvMass();
+		r.part[2 * k + 1] =
+		    (body.getInvInertiaTensorWorld() * (j.part[2 * k + 1] * body.getAngularFactor())) * body.getAngularFactor();
+	}
+	return r;
+}
+
+RowJacobian blockRow(const btVector3 (&parts)[4])
+{
+	RowJacobian r;
+	for (int i = 0; i < 4; ++i) r.part[i] = parts[i];
+	return r;
+}
+
+// Inverts the n x n matrix k (stride 6) into inverse by Gauss-Jordan elimination with partial pivoting;
+// false when it is singular.
+bool invertSmall(const btScalar* k, int n, btScalar* inverse)
+{
+	btScalar m[6][12];
+	btScalar largest = 0;
+	for (int i = 0; i < n; ++i)
+	{
+		for (int j = 0; j < n; ++j)
+		{
+			m[i][j] = k[i * 6 + j];
+			m[i][n + j] = i == j ? btScalar(1) : btScalar(0);
+		}
+		largest = btMax(largest, btFabs(m[i][i]));
+	}
+	if (n == 0) return true;
+	if (!(largest > btScalar(0))) return false;
+	const btScalar tiny = largest * btScalar(1e-6);
+	for (int c = 0; c < n; ++c)
+	{
+		int pivot = c;
+		for (int r = c + 1; r < n; ++r)
+			if (btFabs(m[r][c]) > btFabs(m[pivot][c])) pivot = r;
+		if (!(btFabs(m[pivot][c]) > tiny)) return false;
+		if (pivot != c)
+			for (int j = 0; j < 2 * n; ++j) btSwap(m[c][j], m[pivot][j]);
+		const btScalar scale = btScalar(1) / m[c][c];
+		for (int j = 0; j < 2 * n; ++j) m[c][j] *= scale;
+		for (int r = 0; r < n; ++r)
+		{
+			if (r == c || m[r][c] == btScalar(0)) continue;
+			const btScalar f = m[r][c];
+			for (int j = 0; j < 2 * n; ++j) m[r][j] -= f * m[c][j];
+		}
+	}
+	for (int i = 0; i < n; ++i)
+		for (int j = 0; j < n; ++j) inverse[i * 6 + j] = m[i][n + j];
+	return true;
+}
+
+void writeJacobian(btTypedConstraint::btConstraintInfo2& info, int row, const RowJacobian& j)
+{
+	btScalar* targets[4] = {info.m_J1linearAxis, info.m_J1angularAxis, info.m_J2linearAxis, info.m_J2angularAxis};
+	for (int k = 0; k < 4; ++k)
+	{
+		if (!targets[k]) continue;  // a solver may imply J2linear = -J1linear
+		btScalar* p = targets[k] + row * info.rowskip;
+		p[0] = j.part[k].x();
+		p[1] = j.part[k].y();
+		p[2] = j.part[k].z();
+	}
+}
+}  // namespace
+
+// Projection. The solver solves the hard locked rows J_e as one exact block. A limit, motor or spring row
+// J_c solved after them would on its own see only each body's inertia about its own centre (a hinge's
+// limit would act on the swinging body as if it were not pinned), and the solver would need many sweeps
+// to share its impulse with the block. Removing from J_c its part along the block,
+//   J_c' = J_c - a J_e,  a = (J_c M^-1 J_e^T) (J_e M^-1 J_e^T)^-1,
+// makes the row's impulses M^-1-orthogonal to the block: they leave the locked rows' velocities alone,
+// and J_c' M^-1 J_c'^T is the coordinate's true effective inverse mass with the locked coordinates held.
+// While the block holds, J_e v = t_e, so J_c' v = J_c v - a t_e: the target moves by the same amount.
+// The impulse along J_c' is still the coordinate's generalised force (the J_e part is the reaction the
+// block would have supplied), so motor and spring forces keep their meaning.
+
+btScalar btGeneric6DofConstraint::getCoordinateInverseMass(int coordinate) const
+{
+	RowJacobian j;
+	getCoordinateJacobian(coordinate, j.part[0], j.part[1], j.part[2], j.part[3]);
+	const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, j);
+	btScalar k = j.dot(weighted);
+	const int n = m_blockRowCount;
+	btScalar coupling[6];
+	for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(m_blockRowJacobian[e]));
+	for (int e = 0; e < n; ++e)
+		for (int f = 0; f < n; ++f) k -= coupling[e] * m_blockRowInverse[e * 6 + f] * coupling[f];
+	return btMax(k, btScalar(0));
+}
+
+void btGeneric6DofConstraint::writeCoordinateRow(btConstraintInfo2* info, int row, int coordinate,
+                                                 btScalar targetRate) const
+{
+	RowJacobian j;
+	getCoordinateJacobian(coordinate, j.part[0], j.part[1], j.part[2], j.part[3]);
+	const int n = m_blockRowCount;
+	if (n > 0)
+	{
+		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, j);
+		btScalar coupling[6];
+		for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(m_blockRowJacobian[e]));
+		for (int f = 0; f < n; ++f)
+		{
+			btScalar a = 0;
+			for (int e = 0; e < n; ++e) a += coupling[e] * m_blockRowInverse[e * 6 + f];
+			j.addScaled(blockRow(m_blockRowJacobian[f]), -a);
+			targetRate -= a * m_blockRowTarget[f];
+		}
+	}
+	writeJacobian(*info, row, j);
+	info->m_constraintError[row * info->rowskip] = targetRate;
+}
+
+int btGeneric6DofConstraint::writeLimitMotorRows(btConstraintInfo2* info, const btVector3& linVelA,
+                                                 const btVector3& linVelB, const btVector3& angVelA,
+                                                 const btVector3& angVelB)
+{
+	const btScalar fps = info->fps;
+	const btScalar h = btScalar(1) / fps;
+	struct Axis
+	{
+		btScalar lower, upper, stopErp, stopCfm, normalCfm, targetVelocity, maxMotorForce, bounce;
+		bool hasStopCfm, hasNormalCfm;
+	};
+	Axis axes[6];
+	for (int c = 0; c < 6; ++c)
+	{
+		Axis& a = axes[c];
+		if (c < 3)
+		{
+			const btTranslationalLimitMotor& m = m_linearLimits;
+			a = Axis{m.m_lowerLimit[c],     m.m_upperLimit[c],    m.m_stopERP[c], m.m_stopCFM[c], m.m_normalCFM[c],
+			         m.m_targetVelocity[c], m.m_maxMotorForce[c], btScalar(0),    false,          false};
+		}
+		else
+		{
+			const btRotationalLimitMotor& m = m_angularLimits[c - 3];
+			a = Axis{m.m_loLimit,        m.m_hiLimit,       m.m_stopERP, m.m_stopCFM, m.m_normalCFM,
+			         m.m_targetVelocity, m.m_maxMotorForce, m.m_bounce,  false,       false};
+		}
+		const int shift = c * BT_6DOF_FLAGS_AXIS_SHIFT;
+		if (!(m_flags & (BT_6DOF_FLAGS_ERP_STOP << shift))) a.stopErp = info->erp;
+		a.hasStopCfm = (m_flags & (BT_6DOF_FLAGS_CFM_STOP << shift)) != 0;
+		a.hasNormalCfm = (m_flags & (BT_6DOF_FLAGS_CFM_NORM << shift)) != 0;
+	}
+
+	// Hard locked coordinates first: the solver solves the leading rows without bounds or softness as one
+	// exact block. They are kept to project the rows after them against.
+	int row = 0;
+	m_blockRowCount = 0;
+	bool softLocked[6] = {false, false, false, false, false, false};
+	btScalar lockedTarget[6];
+	for (int c = 0; c < 6; ++c)
+	{
+		if (!isCoordinateLocked(c)) continue;
+		const Axis& a = axes[c];
+		btScalar error = a.lower - getCoordinate(c);
+		if (c >= 3) error = btNormalizeAngle(error);
+		lockedTarget[c] = fps * a.stopErp * error;
+		if (a.hasStopCfm && a.stopCfm != btScalar(0))
+		{
+			softLocked[c] = true;
+			continue;
+		}
+		btVector3(&jacobian)[4] = m_blockRowJacobian[m_blockRowCount];
+		getCoordinateJacobian(c, jacobian[0], jacobian[1], jacobian[2], jacobian[3]);
+		m_blockRowTarget[m_blockRowCount] = lockedTarget[c];
+		writeJacobian(*info, row, blockRow(jacobian));
+		info->m_constraintError[row * info->rowskip] = lockedTarget[c];
+		++m_blockRowCount;
+		++row;
+	}
+	btScalar k[36];
+	for (int e = 0; e < m_blockRowCount; ++e)
+	{
+		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, blockRow(m_blockRowJacobian[e]));
+		for (int f = 0; f < m_blockRowCount; ++f) k[e * 6 + f] = weighted.dot(blockRow(m_blockRowJacobian[f]));
+	}
+	// A singular block (both bodies immovable, or a degenerate frame) leaves the other rows unprojected.
+	if (!invertSmall(k, m_blockRowCount, m_blockRowInverse)) m_blockRowCount = 0;
+
+	for (int c = 0; c < 6; ++c)
+	{
+		if (!softLocked[c]) continue;
+		writeCoordinateRow(info, row, c, lockedTarget[c]);
+		info->cfm[row * info->rowskip] = axes[c].stopCfm;
+		++row;
+	}
+
+	// Limits: one row per limited coordinate, against the nearer limit. Away from it the row lets the
+	// coordinate approach by at most the remaining gap this step (so it never passes the limit); past it,
+	// the row pushes back with the error reduction.
+	for (int c = 0; c < 6; ++c)
+	{
+		if (!isCoordinateLimited(c)) continue;
+		const Axis& a = axes[c];
+		btScalar position = getCoordinate(c);
+		if (c >= 3) position = btAdjustAngleToLimits(position, a.lower, a.upper);
+		const btScalar velocity = getCoordinateVelocity(c, linVelA, linVelB, angVelA, angVelB);
+		btScalar target;
+		const bool lowerSide = position - a.lower <= a.upper - position;
+		if (lowerSide)
+		{
+			const btScalar gap = position - a.lower;
+			target = -gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
+			if (a.bounce > btScalar(0) && velocity < btScalar(0) && gap + velocity * h <= btScalar(0))
+				target = btMax(target, -a.bounce * velocity);
+		}
+		else
+		{
+			const btScalar gap = a.upper - position;
+			target = gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
+			if (a.bounce > btScalar(0) && velocity > btScalar(0) && gap - velocity * h <= btScalar(0))
+				target = btMin(target, -a.bounce * velocity);
+		}
+		writeCoordinateRow(info, row, c, target);
+		caliber::JointRow jointRow(*info, row);
+		if (lowerSide)
+			jointRow.lower() = btScalar(0);
+		else
+			jointRow.upper() = btScalar(0);
+		if (a.hasStopCfm) jointRow.cfm() = a.stopCfm;
+		++row;
+	}
+
+	// Motors: drive the coordinate's rate to the target with at most the motor's force, slowing down as
+	// a limit comes within one step.
+	for (int c = 0; c < 6; ++c)
+	{
+		if (!hasMotorRow(c)) continue;
+		const Axis& a = axes[c];
+		btScalar position = getCoordinate(c);
+		if (c >= 3 && a.lower < a.upper) position = btAdjustAngleToLimits(position, a.lower, a.upper);
+		writeCoordinateRow(info, row, c,
+		                   a.targetVelocity * getMotorFactor(position, a.lower, a.upper, a.targetVelocity, fps));
+		caliber::JointRow jointRow(*info, row);
+		const btScalar maxImpulse = btFabs(a.maxMotorForce) * h;
+		jointRow.lower() = -maxImpulse;
+		jointRow.upper() = maxImpulse;
+		if (a.hasNormalCfm) jointRow.cfm() = a.normalCfm;
+		++row;
+	}
+	return row;
+}
+
+void btGeneric6DofConstraint::getInfo1(btConstraintInfo1* info) { getInfo1NonVirtual(info); }
+
+void btGeneric6DofConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
+{
+	info->m_numConstraintRows = countLimitMotorRows();
+	int locked = 0;
+	for (int c = 0; c < 6; ++c) locked += isCoordinateLocked(c) ? 1 : 0;
+	info->nub = locked;
+}
+
+void btGeneric6DofConstraint::getInfo2(btConstraintInfo2* info)
+{
+	getInfo2NonVirtual(info, m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform(),
+	                   m_rbA.getLinearVelocity(), m_rbB.getLinearVelocity(), m_rbA.getAngularVelocity(),
+	                   m_rbB.getAngularVelocity());
+}
+
+void btGeneric6DofConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTransform& transA,
+                                                 const btTransform& transB, const btVector3& linVelA,
+                                                 const btVector3& linVelB, const btVector3& angVelA,
+                                                 const btVector3& angVelB)
+{
+	calculateTransforms(transA, transB);
+	const int rows = writeLimitMotorRows(info, linVelA, linVelB, angVelA, angVelB);
+	btAssert(rows == countLimitMotorRows());
+	(void)rows;
+}
+
+void btGeneric6DofConstraint::setParam(int num, btScalar value, int axis)
+{
+	btAssertConstrParams(axis >= 0 && axis < 6);
+	if (axis < 0 || axis >= 6) return;
+	const int shift = axis * BT_6DOF_FLAGS_AXIS_SHIFT;
+	btRotationalLimitMotor* angular = axis >= 3 ? &m_angularLimits[axis - 3] : 0;
+	switch (num)
+	{
+		case BT_CONSTRAINT_ERP:
+		case BT_CONSTRAINT_STOP_ERP:
+			if (angular)
+				angular->m_stopERP = value;
+			else
+				m_linearLimits.m_stopERP[axis] = value;
+			m_flags |= BT_6DOF_FLAGS_ERP_STOP << shift;
+			break;
+		case BT_CONSTRAINT_STOP_CFM:
+			if (angular)
+				angular->m_stopCFM = value;
+			else
+				m_linearLimits.m_stopCFM[axis] = value;
+			m_flags |= BT_6DOF_FLAGS_CFM_STOP << shift;
+			break;
+		case BT_CONSTRAINT_CFM:
+			if (angular)
+				angular->m_normalCFM = value;
+			else
+				m_linearLimits.m_normalCFM[axis] = value;
+			m_flags |= BT_6DOF_FLAGS_CFM_NORM << shift;
+			break;
+		default:
+			btAssertConstrParams(0);
+	}
+}
+
+btScalar btGeneric6DofConstraint::getParam(int num, int axis) const
+{
+	btAssertConstrParams(axis >= 0 && axis < 6);
+	if (axis < 0 || axis >= 6) return SIMD_INFINITY;
+	const int shift = axis * BT_6DOF_FLAGS_AXIS_SHIFT;
+	const btRotationalLimitMotor* angular = axis >= 3 ? &m_angularLimits[axis - 3] : 0;
+	switch (num)
+	{
+		case BT_CONSTRAINT_ERP:
+		case BT_CONSTRAINT_STOP_ERP:
+			btAssertConstrParams(m_flags & (BT_6DOF_FLAGS_ERP_STOP << shift));
+			return angular ? angular->m_stopERP : m_linearLimits.m_stopERP[axis];
+		case BT_CONSTRAINT_STOP_CFM:
+			btAssertConstrParams(m_flags & (BT_6DOF_FLAGS_CFM_STOP << shift));
+			return angular ? angular->m_stopCFM : m_linearLimits.m_stopCFM[axis];
+		case BT_CONSTRAINT_CFM:
+			btAssertConstrParams(m_flags & (BT_6DOF_FLAGS_CFM_NORM << shift));
+			return angular ? angular->m_normalCFM : m_linearLimits.m_normalCFM[axis];
+		default:
+			btAssertConstrParams(0);
+			return SIMD_INFINITY;
+	}
+}
+
+void btGeneric6DofConstraint::setAxis(const btVector3& axis1, const btVector3& axis2)
+{
+	const btScalar length1 = axis1.length(), length2 = axis2.length();
+	const bool usable = isFinite(axis1) && isFinite(axis2) && length1 > SIMD_EPSILON && length2 > SIMD_EPSILON &&
+	                    (axis1 / length1).cross(axis2 / length2).length() > btScalar(1e-3);
+	btAssert(usable && "btGeneric6DofConstraint::setAxis: the axes must be finite, non-zero and not parallel");
+	if (!usable)
+	{
+		btReportWarning(
+		    "Caliber: btGeneric6DofConstraint::setAxis: zero, parallel or non-finite axes; the frames are kept\n", 0);
+		return;
+	}
+	const btVector3 zAxis = axis1 / length1;
+	const btVector3 yAxis = (axis2 - zAxis * zAxis.dot(axis2)).normalized();
+	const btVector3 xAxis = yAxis.cross(zAxis);
+	const btMatrix3x3 world(xAxis.x(), yAxis.x(), zAxis.x(), xAxis.y(), yAxis.y(), zAxis.y(), xAxis.z(), yAxis.z(),
+	                        zAxis.z());
+	m_frameInA.setBasis(m_rbA.getCenterOfMassTransform().getBasis().transposeTimes(world));
+	m_frameInB.setBasis(m_rbB.getCenterOfMassTransform().getBasis().transposeTimes(world));
+	calculateTransforms();
+}
