@@ -1,0 +1,64 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef BT_GENERIC_6DOF_SPRING_CONSTRAINT_H
+#define BT_GENERIC_6DOF_SPRING_CONSTRAINT_H
+
+/// btGeneric6DofSpringConstraint: a btGeneric6DofConstraint with a spring and damper on any of its six
+/// coordinates (index 0..2 linear, 3..5 the Euler angles x, y, z). A spring on coordinate q applies the
+/// generalised force -stiffness (q - equilibrium) - damping q'. It acts on free and limited coordinates
+/// (a locked coordinate has nothing to spring), alongside any limit or motor.
+/// Units: stiffness N/m or N m/rad, damping N s/m or N m s/rad. Caliber's damping is this physical
+/// coefficient, default 0 (undamped); Bullet's was a dimensionless factor whose default 1 meant undamped.
+
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
+
+ATTRIBUTE_ALIGNED16(class)
+btGeneric6DofSpringConstraint : public btGeneric6DofConstraint
+{
+protected:
+	bool m_springEnabled[6];
+	btScalar m_equilibriumPoint[6];
+	btScalar m_springStiffness[6];
+	btScalar m_springDamping[6];
+
+	/// Sets the defaults: springs off, equilibrium 0, no stiffness or damping.
+	void init();
+	/// True when coordinate index gets a spring row this step.
+	bool hasSpringRow(int index) const;
+	/// Writes the spring rows from row on; returns how many.
+	int writeSpringRows(btConstraintInfo2 * info, int row, const btVector3& linVelA, const btVector3& linVelB,
+	                    const btVector3& angVelA, const btVector3& angVelB);
+
+public:
+	BT_DECLARE_ALIGNED_ALLOCATOR();
+
+	/// As btGeneric6DofConstraint's constructors.
+	btGeneric6DofSpringConstraint(btRigidBody & rbA, btRigidBody & rbB, const btTransform& frameInA,
+	                              const btTransform& frameInB, bool useLinearReferenceFrameA);
+	btGeneric6DofSpringConstraint(btRigidBody & rbB, const btTransform& frameInB, bool useLinearReferenceFrameB);
+
+	/// Turns the spring of coordinate index (0..5) on or off.
+	void enableSpring(int index, bool onOff);
+	/// Spring stiffness of coordinate index (N/m or N m/rad, >= 0).
+	void setStiffness(int index, btScalar stiffness);
+	/// Damping coefficient of coordinate index (N s/m or N m s/rad, >= 0).
+	void setDamping(int index, btScalar damping);
+	/// Makes the current value of every coordinate its spring's rest position.
+	void setEquilibriumPoint();
+	/// Makes the current value of coordinate index its spring's rest position.
+	void setEquilibriumPoint(int index);
+	/// Sets the rest position of coordinate index's spring (radians for angles).
+	void setEquilibriumPoint(int index, btScalar val);
+
+	bool isSpringEnabled(int index) const { return m_springEnabled[index]; }
+	btScalar getStiffness(int index) const { return m_springStiffness[index]; }
+	btScalar getDamping(int index) const { return m_springDamping[index]; }
+	btScalar getEquilibriumPoint(int index) const { return m_equilibriumPoint[index]; }
+
+	/// As btGeneric6DofConstraint::setAxis; the springs keep their rest positions.
+	void setAxis(const btVector3& axis1, const btVector3& axis2) override;
+
+	void getInfo1(btConstraintInfo1 * info) override;
+	void getInfo2(btConstraintInfo2 * info) override;
+};
+
+#endif  // BT_GENERIC_6DOF_SPRING_CONSTRAINT_H

@@ -1,0 +1,151 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofSpringConstraint.h"
+
+#include "BulletDynamics/ConstraintSolver/btJointRowUtil.h"
+#include "LinearMath/btWarningHook.h"
+
+// The spring as one row of fixed impulse per step.
+//
+// Each step the spring applies the impulse lambda = h F along its coordinate's (projected) row, which
+// changes the coordinate's rate by K lambda, K the coordinate's effective inverse mass with the locked
+// coordinates held. With F evaluated at the position the step starts from and the damping at the new rate,
+//   lambda = -h (k x + d (v + K lambda))  =>  lambda = -h (k x + d v) / (1 + h d K),
+// the spring part is semi-implicit Euler, like the rest of the world: it keeps the energy of an undamped
+// oscillator (no numerical decay), with the period too short by (omega h)^2 / 24, and the damping part
+// is implicit, so no damping coefficient can make it unstable. The explicit spring is stable only for
+// omega h < 2 (omega^2 = k K); a stiffer spring takes part of its force at the step's end position,
+// x + theta h (v + K lambda), with theta chosen so that theta = 0 up to omega h = sqrt 2 and beyond it
+// (omega h)^2 (1 - 2 theta) = 2, inside the stability bound 4: it then loses some energy per step rather
+// than blowing up.
+
+btGeneric6DofSpringConstraint::btGeneric6DofSpringConstraint(btRigidBody& rbA, btRigidBody& rbB,
+                                                             const btTransform& frameInA, const btTransform& frameInB,
+                                                             bool useLinearReferenceFrameA)
+    : btGeneric6DofConstraint(rbA, rbB, frameInA, frameInB, useLinearReferenceFrameA)
+{
+	init();
+}
+
+btGeneric6DofSpringConstraint::btGeneric6DofSpringConstraint(btRigidBody& rbB, const btTransform& frameInB,
+                                                             bool useLinearReferenceFrameB)
+    : btGeneric6DofConstraint(rbB, frameInB, useLinearReferenceFrameB)
+{
+	init();
+}
+
+void btGeneric6DofSpringConstraint::init()
+{
+	m_objectType = D6_SPRING_CONSTRAINT_TYPE;
+	for (int i = 0; i < 6; ++i)
+	{
+		m_springEnabled[i] = false;
+		m_equilibriumPoint[i] = btScalar(0);
+		m_springStiffness[i] = btScalar(0);
+		m_springDamping[i] = btScalar(0);
+	}
+}
+
+void btGeneric6DofSpringConstraint::enableSpring(int index, bool onOff)
+{
+	btAssert(index >= 0 && index < 6);
+	if (index < 0 || index >= 6) return;
+	m_springEnabled[index] = onOff;
+}
+
+void btGeneric6DofSpringConstraint::setStiffness(int index, btScalar stiffness)
+{
+	btAssert(index >= 0 && index < 6);
+	if (index < 0 || index >= 6) return;
+	if (!(stiffness >= btScalar(0)) || !btIsFinite(stiffness))
+	{
+		btReportWarning("Caliber: btGeneric6DofSpringConstraint::setStiffness: negative or non-finite; ignored\n", 0);
+		return;
+	}
+	m_springStiffness[index] = stiffness;
+}
+
+void btGeneric6DofSpringConstraint::setDamping(int index, btScalar damping)
+{
+	btAssert(index >= 0 && index < 6);
+	if (index < 0 || index >= 6) return;
+	if (!(damping >= btScalar(0)) || !btIsFinite(damping))
+	{
+		btReportWarning("Caliber: btGeneric6DofSpringConstraint::setDamping: negative or non-finite; ignored\n", 0);
+		return;
+	}
+	m_springDamping[index] = damping;
+}
+
+void btGeneric6DofSpringConstraint::setEquilibriumPoint()
+{
+	calculateTransforms();
+	for (int i = 0; i < 6; ++i) m_equilibriumPoint[i] = getCoordinate(i);
+}
+
+void btGeneric6DofSpringConstraint::setEquilibriumPoint(int index)
+{
+	btAssert(index >= 0 && index < 6);
+	if (index < 0 || index >= 6) return;
+	calculateTransforms();
+	m_equilibriumPoint[index] = getCoordinate(index);
+}
+
+void btGeneric6DofSpringConstraint::setEquilibriumPoint(int index, btScalar val)
+{
+	btAssert(index >= 0 && index < 6);
+	if (index < 0 || index >= 6) return;
+	m_equilibriumPoint[index] = val;
+}
+
+void btGeneric6DofSpringConstraint::setAxis(const btVector3& axis1, const btVector3& axis2)
+{
+	btGeneric6DofConstraint::setAxis(axis1, axis2);
+}
+
+bool btGeneric6DofSpringConstraint::hasSpringRow(int index) const
+{
+	return m_springEnabled[index] && !isCoordinateLocked(index) &&
+	       (m_springStiffness[index] > btScalar(0) || m_springDamping[index] > btScalar(0));
+}
+
+void btGeneric6DofSpringConstraint::getInfo1(btConstraintInfo1* info)
+{
+	getInfo1NonVirtual(info);
+	for (int i = 0; i < 6; ++i) info->m_numConstraintRows += hasSpringRow(i) ? 1 : 0;
+}
+
+void btGeneric6DofSpringConstraint::getInfo2(btConstraintInfo2* info)
+{
+	const btVector3 linVelA = m_rbA.getLinearVelocity(), linVelB = m_rbB.getLinearVelocity();
+	const btVector3 angVelA = m_rbA.getAngularVelocity(), angVelB = m_rbB.getAngularVelocity();
+	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
+	const int row = writeLimitMotorRows(info, linVelA, linVelB, angVelA, angVelB);
+	writeSpringRows(info, row, linVelA, linVelB, angVelA, angVelB);
+}
+
+int btGeneric6DofSpringConstraint::writeSpringRows(btConstraintInfo2* info, int row, const btVector3& linVelA,
+                                                   const btVector3& linVelB, const btVector3& angVelA,
+                                                   const btVector3& angVelB)
+{
+	const btScalar h = btScalar(1) / info->fps;
+	const int first = row;
+	for (int i = 0; i < 6; ++i)
+	{
+		if (!hasSpringRow(i)) continue;
+		const btScalar k = m_springStiffness[i], d = m_springDamping[i];
+		btScalar stretch = getCoordinate(i) - m_equilibriumPoint[i];
+		if (i >= 3) stretch = btNormalizeAngle(stretch);
+		const btScalar rate = getCoordinateVelocity(i, linVelA, linVelB, angVelA, angVelB);
+		const btScalar inverseMass = getCoordinateInverseMass(i);
+		const btScalar omegaH2 = h * h * k * inverseMass;
+		const btScalar theta = omegaH2 <= btScalar(2) ? btScalar(0) : btScalar(0.5) * (1 - btScalar(2) / omegaH2);
+		const btScalar implicitRate = theta * h * k + d;  // force per unit of the step's new rate
+		const btScalar impulse = -h * (k * stretch + implicitRate * rate) / (1 + h * implicitRate * inverseMass);
+		writeCoordinateRow(info, row, i, btScalar(0));
+		caliber::JointRow jointRow(*info, row);
+		jointRow.lower() = impulse;
+		jointRow.upper() = impulse;
+		++row;
+	}
+	return row - first;
+}
