@@ -2,6 +2,7 @@
 // Debug drawing of joints: frames (DBG_DrawConstraints) and limits (DBG_DrawConstraintLimits).
 #include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btGearConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btHingeConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btPoint2PointConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btSliderConstraint.h"
@@ -88,6 +89,29 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 				const btVector3 axis = frameA.getBasis().getColumn(0);
 				drawer->drawLine(frameA.getOrigin() + axis * slider->getLowerLinLimit(),
 				                 frameA.getOrigin() + axis * slider->getUpperLinLimit(), kLimitColor);
+			}
+			break;
+		}
+		case D6_CONSTRAINT_TYPE:
+		case D6_SPRING_CONSTRAINT_TYPE:
+		{
+			btGeneric6DofConstraint* d6 = static_cast<btGeneric6DofConstraint*>(constraint);
+			d6->calculateTransforms();
+			const btTransform& frameA = d6->getCalculatedTransformA();
+			if (drawFramesToo) drawFrames(drawer, frameA, d6->getCalculatedTransformB(), size);
+			if (drawLimits)
+			{
+				// The box the linear limits allow (free axes drawn as the frame size).
+				btVector3 low, high;
+				d6->getLinearLowerLimit(low);
+				d6->getLinearUpperLimit(high);
+				for (int k = 0; k < 3; ++k)
+					if (low[k] > high[k])
+					{
+						low[k] = -size;
+						high[k] = size;
+					}
+				drawer->drawBox(low, high, frameA, kLimitColor);
 			}
 			break;
 		}

@@ -52,3 +52,12 @@ TEST(ConstraintDebugDraw, FramesAndLimitsAreDrawnOnRequestOnly)
 	hinge->setLimit(-1, 1);
 	EXPECT_GT(linesDrawn(w, btIDebugDraw::DBG_DrawConstraintLimits), 36) << "now the hinge's arc too";
 }
+
+TEST(ConstraintDebugDraw, SixDofDrawsItsFramesAndItsLinearLimitBox)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* a = w.addBody(w.shape<btSphereShape>(btScalar(0.2)), 1, btVector3(0, 0, 0));
+	w.addJoint<btGeneric6DofConstraint>(false, *a, btTransform::getIdentity(), true);
+	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraints), 2 * 3);
+	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraintLimits), 12) << "the edges of one box";
+}
