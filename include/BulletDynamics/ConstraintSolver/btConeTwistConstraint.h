@@ -44,6 +44,12 @@ btConeTwistConstraint : public btTypedConstraint
 	bool m_solveSwingLimit;
 	btScalar m_twistLimitSign;
 
+	/// Whether this step has a swing (twist) limit row: past the limit or close enough to reach it soon.
+	bool m_swingRowNeeded;
+	bool m_twistRowNeeded;
+	/// The solver's last time step, for judging in getInfo1 whether a limit can be reached soon.
+	btScalar m_lastTimeStep;
+
 	bool m_angularOnly;
 	bool m_bMotorEnabled;
 	bool m_bNormalizedMotorStrength;

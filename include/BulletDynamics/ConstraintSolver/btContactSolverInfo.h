@@ -104,7 +104,7 @@ struct btContactSolverInfo : public btContactSolverInfoData
 		m_jointFeedbackInJointFrame = false;
 		m_reportSolverAnalytics = 0;
 		m_numNonContactInnerIterations = 1;
-		m_jointPositionIterations = 2;
+		m_jointPositionIterations = 3;
 	}
 };
 

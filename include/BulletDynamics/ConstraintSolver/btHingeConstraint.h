@@ -34,6 +34,11 @@ protected:
 	/// +1 measures the angle of A relative to B (Bullet's default), -1 of B relative to A.
 	btScalar m_referenceSign;
 
+	/// Whether this step has a limit row (past the limit, or close enough to reach it soon).
+	bool m_limitRowNeeded;
+	/// The solver's last time step, for judging in getInfo1 whether a limit can be reached soon.
+	btScalar m_lastTimeStep;
+
 	bool m_angularOnly;
 	bool m_enableAngularMotor;
 	bool m_useReferenceFrameA;

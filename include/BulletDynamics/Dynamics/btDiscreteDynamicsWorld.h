@@ -15,6 +15,10 @@ class btSimulationIslandManager;
 class btTypedConstraint;
 class btPersistentManifold;
 struct InplaceSolverIslandCallback;
+namespace caliber
+{
+class JointAnchorTree;
+}
 
 /// Steps rigid bodies in fixed substeps: predict motion, find contacts, build islands, solve, integrate
 /// (with continuous collision for fast bodies), update actions and sleeping, then hand interpolated
@@ -52,6 +56,10 @@ protected:
 	/// Scratch rows of the joint position correction.
 	btConstraintArray m_jointCorrectionRows;
 	btAlignedObjectArray<btRigidBody*> m_jointCorrectedBodies;
+	btAlignedObjectArray<btTypedConstraint*> m_jointCorrectionJoints;
+	btAlignedObjectArray<btTypedConstraint*> m_jointCorrectionLeftOver;
+	/// The exact tree solve of the position correction (internal).
+	caliber::JointAnchorTree* m_jointAnchorTree;
 
 	/// Groups the enabled joints by island for the solver.
 	void sortConstraintsByIsland();

@@ -2,6 +2,7 @@
 #include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
@@ -164,6 +165,21 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const btConvexShape* shapeA = static_cast<const btConvexShape*>(body0Wrap->getCollisionShape());
 	const btConvexShape* shapeB = static_cast<const btConvexShape*>(body1Wrap->getCollisionShape());
 	const btScalar reach = m_manifoldPtr->getContactBreakingThreshold() + resultOut->m_closestPointDistanceThreshold;
+
+	if (shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE && shapeB->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
+	{
+		// Two capsules in closed form (as Bullet does); crossing core segments go on to GJK/EPA below.
+		btVector3 normalOnB, pointOnB;
+		btScalar distance;
+		if (caliber::capsuleCapsuleContact(*static_cast<const btCapsuleShape*>(shapeA), body0Wrap->getWorldTransform(),
+		                                   *static_cast<const btCapsuleShape*>(shapeB), body1Wrap->getWorldTransform(),
+		                                   normalOnB, pointOnB, distance))
+		{
+			if (distance <= reach) resultOut->addContactPoint(normalOnB, pointOnB, distance);
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
+	}
 
 	btVoronoiSimplexSolver simplexSolver;
 	btGjkPairDetector gjk(shapeA, shapeB, &simplexSolver, m_pdSolver);

@@ -73,6 +73,8 @@ void btConeTwistConstraint::init()
 	m_fixThresh = kDefaultFixThreshold;
 	m_flags = 0;
 	m_correctsPosition = true;
+	m_swingRowNeeded = m_twistRowNeeded = false;
+	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_linCFM = 0;
 	m_linERP = btScalar(0.7);
 	m_angCFM = 0;
@@ -194,8 +196,8 @@ int btConeTwistConstraint::rowCount() const
 	int rows = m_angularOnly ? 0 : 3;
 	if (m_swingSpan1 < m_fixThresh && m_swingSpan2 < m_fixThresh) rows += 2;
 	if (m_twistSpan < m_fixThresh) rows += 1;
-	if (swingLimited()) rows += 1;
-	if (twistLimited()) rows += 1;
+	if (m_swingRowNeeded) rows += 1;
+	if (m_twistRowNeeded) rows += 1;
 	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0))) rows += 3;
 	return rows;
 }
@@ -205,6 +207,15 @@ void btConeTwistConstraint::getInfo1(btConstraintInfo1* info) { getInfo1NonVirtu
 void btConeTwistConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
 {
 	calcAngleInfo();
+	// Limit rows only past a limit or within two steps' travel of it (plus a milliradian): far from its
+	// limits the joint needs none, and rows cost solver time.
+	const btVector3 relative = m_rbA.getAngularVelocity() - m_rbB.getAngularVelocity();
+	const btScalar reach = 2 * m_lastTimeStep;
+	const btScalar margin = btScalar(1e-3);
+	m_swingRowNeeded = swingLimited() && (m_solveSwingLimit || m_swingLimit - m_swingAngle <=
+	                                                               btFabs(relative.dot(m_swingAxis)) * reach + margin);
+	m_twistRowNeeded = twistLimited() && (m_solveTwistLimit || m_twistSpan - btFabs(m_twistAngle) <=
+	                                                               btFabs(relative.dot(m_twistAxis)) * reach + margin);
 	info->m_numConstraintRows = rowCount();
 	info->nub = m_angularOnly ? 0 : 3;
 }
@@ -271,11 +282,12 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
 	const btScalar limitRate = info->fps * m_biasFactor;
-	// Limit rows are there whenever a limit is set. Past the limit they push back (bias) and stop the
+	// Limit rows are there past a limit or near one (getInfo1). Past the limit they push back (bias) and stop the
 	// velocity into it (relaxation); inside, they are speculative: they allow at most the approach speed
 	// that reaches the limit at the end of the step, so a fast swing stops at the cone instead of
 	// overshooting it by one step's travel.
-	if (swingLimited())
+	if (!info->m_isPositionPass && info->fps > btScalar(0)) m_lastTimeStep = btScalar(1) / info->fps;
+	if (m_swingRowNeeded)
 	{
 		// (wA - wB) . s is the rate at which the swing shrinks.
 		caliber::JointRow r(*info, row++);
@@ -293,7 +305,7 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 		}
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
-	if (twistLimited())
+	if (m_twistRowNeeded)
 	{
 		// Oriented so that J v is the rate back into the range: -twist rate at the + end, +twist rate at
 		// the - end. Inside, the end guarded is the one the twist heads for (the nearer in the position pass).

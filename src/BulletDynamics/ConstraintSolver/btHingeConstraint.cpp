@@ -31,6 +31,8 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
 	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
 	m_flags = 0;
 	m_correctsPosition = true;
+	m_limitRowNeeded = false;
+	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
 	setUseReferenceFrameA(useReferenceFrameA);
 	initFromPivotsAndAxes(pivotInA, pivotInB, axisInA, axisInB);
@@ -44,6 +46,8 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btVector3& pivotInA
 	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
 	m_flags = 0;
 	m_correctsPosition = true;
+	m_limitRowNeeded = false;
+	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
 	setUseReferenceFrameA(useReferenceFrameA);
 	// The world (the fixed body, at the identity) holds the pivot and axis where they are now.
@@ -59,6 +63,8 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
 	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
 	m_flags = 0;
 	m_correctsPosition = true;
+	m_limitRowNeeded = false;
+	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
 	setUseReferenceFrameA(useReferenceFrameA);
 	if (!usableAxis(rbAFrame.getBasis().getColumn(2)) || !usableAxis(rbBFrame.getBasis().getColumn(2))) rejectAxis();
@@ -73,6 +79,8 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btTransform& rbAFra
 	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
 	m_flags = 0;
 	m_correctsPosition = true;
+	m_limitRowNeeded = false;
+	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
 	setUseReferenceFrameA(useReferenceFrameA);
 	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis();
@@ -180,7 +188,18 @@ void btHingeConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
 	info->m_numConstraintRows = m_angularOnly ? 2 : 5;
 	info->nub = info->m_numConstraintRows;
 	testLimit(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
-	if (hasLimit()) ++info->m_numConstraintRows;
+	m_limitRowNeeded = false;
+	if (hasLimit())
+	{
+		// A limit row only when past the limit or within two steps' travel of it (plus a milliradian):
+		// far from its limits a hinge needs none, and rows cost solver time.
+		const btVector3 axis = (m_rbA.getCenterOfMassTransform().getBasis() * m_rbAFrame.getBasis()).getColumn(2);
+		const btScalar rate = (m_rbA.getAngularVelocity() - m_rbB.getAngularVelocity()).dot(axis) * m_referenceSign;
+		const btScalar deviation = btNormalizeAngle(m_hingeAngle - m_limit.getCenter());
+		const btScalar room = rate >= 0 ? m_limit.getHalfRange() - deviation : deviation + m_limit.getHalfRange();
+		m_limitRowNeeded = m_limit.isLimit() || room <= btFabs(rate) * 2 * m_lastTimeStep + btScalar(1e-3);
+	}
+	if (m_limitRowNeeded) ++info->m_numConstraintRows;
 	if (m_enableAngularMotor) ++info->m_numConstraintRows;
 }
 
@@ -248,9 +267,10 @@ void btHingeConstraint::getInfo2Internal(btConstraintInfo2* info, const btTransf
 	const btVector3 angleAxis = axisA * m_referenceSign;
 	// The position pass asks for position errors only: no velocity terms there.
 	const btScalar angleRate = info->m_isPositionPass ? btScalar(0) : (angVelA - angVelB).dot(angleAxis);
-	if (hasLimit())
+	if (!info->m_isPositionPass && info->fps > btScalar(0)) m_lastTimeStep = btScalar(1) / info->fps;
+	if (m_limitRowNeeded)
 	{
-		// The limit row is always there while a limit is set. Past the limit it pushes back (bias) and
+		// The limit row is there while the hinge is past or near a limit. Past the limit it pushes back (bias) and
 		// stops the velocity into it (relaxation); inside, it is speculative: it allows at most the
 		// approach speed that reaches the limit at the end of the step, so a fast swing stops at the
 		// limit instead of overshooting it by one step's travel.

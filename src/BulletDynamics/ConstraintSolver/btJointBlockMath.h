@@ -19,20 +19,103 @@ inline bool buildBlockInverse(const btSolverConstraint* rows, int n, const btSol
 	const int S = btSolverJointBlock::MAX_ROWS;
 	btScalar k[S][2 * S];
 	btScalar largestDiagonal = 0;
+	// K is symmetric: each pair once. Rows carry I^-1 J in m_angularComponent, so K_ij = J_i . M^-1 J_j.
 	for (int i = 0; i < n; ++i)
 	{
-		for (int j = 0; j < n; ++j)
+		const btVector3 linearA = rows[i].m_contactNormal1 * a.m_invMass;
+		const btVector3 linearB = rows[i].m_contactNormal2 * b.m_invMass;
+		const btVector3 angularA = rows[i].m_angularComponentA * a.m_angularFactor;
+		const btVector3 angularB = rows[i].m_angularComponentB * b.m_angularFactor;
+		for (int j = i; j < n; ++j)
 		{
-			k[i][j] = rows[i].m_contactNormal1.dot(rows[j].m_contactNormal1 * a.m_invMass) +
-			          rows[i].m_relpos1CrossNormal.dot(rows[j].m_angularComponentA * a.m_angularFactor) +
-			          rows[i].m_contactNormal2.dot(rows[j].m_contactNormal2 * b.m_invMass) +
-			          rows[i].m_relpos2CrossNormal.dot(rows[j].m_angularComponentB * b.m_angularFactor);
-			k[i][n + j] = i == j ? btScalar(1) : btScalar(0);
+			const btVector3 lanes = rows[j].m_contactNormal1 * linearA + rows[j].m_relpos1CrossNormal * angularA +
+			                        rows[j].m_contactNormal2 * linearB + rows[j].m_relpos2CrossNormal * angularB;
+			k[i][j] = k[j][i] = lanes.x() + lanes.y() + lanes.z();
 		}
+		for (int j = 0; j < n; ++j) k[i][n + j] = i == j ? btScalar(1) : btScalar(0);
 		largestDiagonal = btMax(largestDiagonal, k[i][i]);
 	}
 	if (!(largestDiagonal > btScalar(0))) return false;
 	const btScalar tiny = largestDiagonal * btScalar(1e-5);
+	if (n >= 3)
+	{
+		// The leading 3 x 3 (a ball joint's block, or the pivot rows of a hinge) in closed form, the rest
+		// through its Schur complement: cheaper than eliminating the whole block.
+		const btMatrix3x3 leading(k[0][0], k[0][1], k[0][2], k[1][0], k[1][1], k[1][2], k[2][0], k[2][1], k[2][2]);
+		const btScalar det = leading.determinant();
+		if (btFabs(det) > tiny * tiny * tiny)
+		{
+			const btMatrix3x3 aInverse = leading.adjoint() * (btScalar(1) / det);
+			const int m = n - 3;
+			if (m == 0)
+			{
+				for (int i = 0; i < 3; ++i)
+					for (int j = 0; j < 3; ++j) invK[i * S + j] = aInverse[i][j];
+				return true;
+			}
+			// A^-1 B (3 x m), then S = C - B^T A^-1 B (m x m), inverted by elimination.
+			btScalar aInvB[3][3], schur[3][2 * 3];
+			for (int i = 0; i < 3; ++i)
+				for (int j = 0; j < m; ++j)
+					aInvB[i][j] =
+					    aInverse[i][0] * k[0][3 + j] + aInverse[i][1] * k[1][3 + j] + aInverse[i][2] * k[2][3 + j];
+			for (int i = 0; i < m; ++i)
+				for (int j = 0; j < m; ++j)
+				{
+					schur[i][j] = k[3 + i][3 + j] -
+					              (k[0][3 + i] * aInvB[0][j] + k[1][3 + i] * aInvB[1][j] + k[2][3 + i] * aInvB[2][j]);
+					schur[i][m + j] = i == j ? btScalar(1) : btScalar(0);
+				}
+			bool regular = true;
+			for (int c = 0; c < m && regular; ++c)
+			{
+				int pivot = c;
+				for (int r = c + 1; r < m; ++r)
+					if (btFabs(schur[r][c]) > btFabs(schur[pivot][c])) pivot = r;
+				regular = btFabs(schur[pivot][c]) > tiny;
+				if (!regular) break;
+				if (pivot != c)
+					for (int j = 0; j < 2 * m; ++j) btSwap(schur[c][j], schur[pivot][j]);
+				const btScalar inv = btScalar(1) / schur[c][c];
+				for (int j = 0; j < 2 * m; ++j) schur[c][j] *= inv;
+				for (int r = 0; r < m; ++r)
+				{
+					if (r == c) continue;
+					const btScalar f = schur[r][c];
+					for (int j = 0; j < 2 * m; ++j) schur[r][j] -= f * schur[c][j];
+				}
+			}
+			if (regular)
+			{
+				// [[A^-1 + A^-1 B S^-1 B^T A^-1, -A^-1 B S^-1], [-S^-1 B^T A^-1, S^-1]].
+				btScalar cross[3][3];  // A^-1 B S^-1 (3 x m)
+				for (int i = 0; i < 3; ++i)
+					for (int j = 0; j < m; ++j)
+					{
+						btScalar sum = 0;
+						for (int l = 0; l < m; ++l) sum += aInvB[i][l] * schur[l][m + j];
+						cross[i][j] = sum;
+					}
+				for (int i = 0; i < 3; ++i)
+				{
+					for (int j = 0; j < 3; ++j)
+					{
+						btScalar sum = aInverse[i][j];
+						for (int l = 0; l < m; ++l) sum += cross[i][l] * aInvB[j][l];
+						invK[i * S + j] = sum;
+					}
+					for (int j = 0; j < m; ++j)
+					{
+						invK[i * S + 3 + j] = -cross[i][j];
+						invK[(3 + j) * S + i] = -cross[i][j];
+					}
+				}
+				for (int i = 0; i < m; ++i)
+					for (int j = 0; j < m; ++j) invK[(3 + i) * S + 3 + j] = schur[i][m + j];
+				return true;
+			}
+		}
+	}
 	for (int c = 0; c < n; ++c)
 	{
 		int pivot = c;

@@ -9,6 +9,7 @@
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btActionInterface.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
+#include "BulletDynamics/Dynamics/btJointAnchorTree.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btMotionState.h"
@@ -29,7 +30,8 @@ btDiscreteDynamicsWorld::btDiscreteDynamicsWorld(btDispatcher* dispatcher, btBro
       m_applySpeculativeContactRestitution(false),
       m_profileTimings(0),
       m_latencyMotionStateInterpolation(true),
-      m_reportedNonFiniteBody(false)
+      m_reportedNonFiniteBody(false),
+      m_jointAnchorTree(new caliber::JointAnchorTree())
 {
 	if (!m_constraintSolver)
 	{
@@ -54,6 +56,7 @@ btDiscreteDynamicsWorld::btDiscreteDynamicsWorld(btDispatcher* dispatcher, btBro
 
 btDiscreteDynamicsWorld::~btDiscreteDynamicsWorld()
 {
+	delete m_jointAnchorTree;
 	if (m_ownsIslandManager)
 	{
 		m_islandManager->~btSimulationIslandManager();

@@ -9,11 +9,20 @@
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btJointAnchorTree.h"
 #include "LinearMath/btQuickprof.h"
 
 namespace
 {
 const btScalar kUnbounded = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
+
+// Articulations with at least this many anchor joints get the exact tree solve; Gauss-Seidel sweeps
+// converge well enough on shorter ones (a ragdoll's 10 joints), at a fraction of the cost.
+const int kTreeMinJoints = 12;
+// Marks a body whose corrected pose has been written back (in its companion id, -1 otherwise).
+const int kCorrectedMark = -2;
+// Anchor gaps below this are left alone (0.1 mm: far below what any test or user can see).
+const btScalar kNegligibleGap = btScalar(1e-4);
 
 // Equality rows, one-sided limit rows, and at most how many rows of one joint take part.
 const int kMaxRows = 8;
@@ -118,7 +127,7 @@ bool closeAnchors(btRigidBody& a, btRigidBody& b, const btVector3& anchorInA, co
 	const btVector3 worldA = a.getWorldTransform()(anchorInA);
 	const btVector3 worldB = b.getWorldTransform()(anchorInB);
 	const btVector3 gap = worldB - worldA;
-	if (!(gap.length2() > btScalar(1e-14))) return false;
+	if (!(gap.length2() > kNegligibleGap * kNegligibleGap)) return false;
 	const btVector3 armA = worldA - a.getWorldTransform().getOrigin();
 	const btVector3 armB = worldB - b.getWorldTransform().getOrigin();
 	// Response of the anchors' separation to a unit impulse along each axis (+ on A, - on B).
@@ -159,14 +168,41 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 	BT_PROFILE("correctJointPositions");
 	const int S = btSolverJointBlock::MAX_ROWS;
 	bool anyMoved = false;
+	m_jointCorrectedBodies.resize(0);
+
+	// Each iteration solves every long articulation of anchor joints (chains, ropes) exactly, in linear
+	// time, as one (damped) Newton step. The joints the trees leave out (short articulations such as
+	// ragdolls, joints that close loops, joints without a single anchor, bodies with scaled factors) get
+	// one Gauss-Seidel sweep, in the first iteration: measured on ragdolls136, a second sweep costs 0.4
+	// ms per step and gains nothing visible (pivot errors 2.4 mm max, 0.1 mm mean, after one).
+	m_jointCorrectionJoints.resize(0);
+	for (int c = 0; c < m_constraints.size(); ++c)
+	{
+		btTypedConstraint* constraint = m_constraints[c];
+		if (constraint->isEnabled() && constraint->internalCorrectsPosition())
+			m_jointCorrectionJoints.push_back(constraint);
+	}
+	if (m_jointCorrectionJoints.size() == 0) return;
+	bool treeMoved = true;
 	for (int sweep = 0; sweep < sweeps; ++sweep)
 	{
-		// Always in insertion order: chains are usually built from the root out, and sweeping root to tip
-		// measured better than alternating directions (20-link chain: 0.026 m worst gap against 0.050 m).
-		for (int c = 0; c < m_constraints.size(); ++c)
+		// When no long articulation needed a correction, further iterations would find none either.
+		if (!treeMoved) break;
+		m_jointCorrectionLeftOver.resize(0);
+		treeMoved =
+		    m_jointAnchorTree->solve(&m_jointCorrectionJoints[0], m_jointCorrectionJoints.size(), kTreeMinJoints,
+		                             kNegligibleGap, m_jointCorrectionLeftOver, m_jointCorrectedBodies);
+		anyMoved = anyMoved || treeMoved;
+		if (sweep > 0) continue;
+		for (int c = 0; c < m_jointCorrectionJoints.size(); ++c)
 		{
-			btTypedConstraint* constraint = m_constraints[c];
-			if (!constraint->isEnabled() || !constraint->internalCorrectsPosition()) continue;
+			btVector3 unusedA, unusedB;
+			if (!m_jointCorrectionJoints[c]->internalGetAnchors(unusedA, unusedB))
+				m_jointCorrectionLeftOver.push_back(m_jointCorrectionJoints[c]);
+		}
+		for (int c = 0; c < m_jointCorrectionLeftOver.size(); ++c)
+		{
+			btTypedConstraint* constraint = m_jointCorrectionLeftOver[c];
 			btRigidBody& a = constraint->getRigidBodyA();
 			btRigidBody& b = constraint->getRigidBodyB();
 			if (!movable(a) && !movable(b)) continue;
@@ -175,7 +211,6 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 			{
 				if (closeAnchors(a, b, anchorInA, anchorInB))
 				{
-					if (!anyMoved) m_jointCorrectedBodies.resize(0);
 					anyMoved = true;
 					m_jointCorrectedBodies.push_back(&a);
 					m_jointCorrectedBodies.push_back(&b);
@@ -256,7 +291,6 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 			}
 			if (movable(a)) displace(a, linearA, turnA);
 			if (movable(b)) displace(b, linearB, turnB);
-			if (!anyMoved) m_jointCorrectedBodies.resize(0);
 			anyMoved = true;
 			m_jointCorrectedBodies.push_back(&a);
 			m_jointCorrectedBodies.push_back(&b);
@@ -264,11 +298,15 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 	}
 	if (!anyMoved) return;
 	// The moved poses are the step's result: interpolation starts from them and inertia follows them.
+	// A body is listed once per joint that moved it; the companion id (free outside the solver) marks
+	// the ones done.
 	for (int i = 0; i < m_jointCorrectedBodies.size(); ++i)
 	{
 		btRigidBody* body = m_jointCorrectedBodies[i];
-		if (!movable(*body)) continue;
+		if (!movable(*body) || body->getCompanionId() == kCorrectedMark) continue;
+		body->setCompanionId(kCorrectedMark);
 		body->setInterpolationWorldTransform(body->getWorldTransform());
 		body->updateInertiaTensor();
 	}
+	for (int i = 0; i < m_jointCorrectedBodies.size(); ++i) m_jointCorrectedBodies[i]->setCompanionId(-1);
 }

@@ -25,7 +25,8 @@ btTransform pose(const btVector3& origin, const btQuaternion& rotation = btQuate
 
 void expectNear(const btVector3& actual, const btVector3& expected, btScalar tolerance, const char* what)
 {
-	for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(actual[axis], expected[axis], tolerance) << what << " axis " << axis;
+	for (int axis = 0; axis < 3; ++axis)
+		EXPECT_NEAR(actual[axis], expected[axis], tolerance) << what << " axis " << axis;
 }
 }  // namespace
 
@@ -77,8 +78,8 @@ TEST(RigidBody, ImpulsesChangeVelocitiesAsNewtonEulerSays)
 	    basis * btMatrix3x3(1 / inertia.x(), 0, 0, 0, 1 / inertia.y(), 0, 0, 0, 1 / inertia.z()) * basis.transpose();
 	expectNear(body.getAngularVelocity(), inverseInertiaWorld * arm.cross(impulse), kTight * 10, "angular");
 	// The velocity of the hit point follows: v + w x r.
-	expectNear(body.getVelocityInLocalPoint(arm),
-	           body.getLinearVelocity() + body.getAngularVelocity().cross(arm), kTight, "point velocity");
+	expectNear(body.getVelocityInLocalPoint(arm), body.getLinearVelocity() + body.getAngularVelocity().cross(arm),
+	           kTight, "point velocity");
 
 	// computeImpulseDenominator is n . (1/m + (I^-1 (r x n)) x r): the inverse effective mass.
 	const btVector3 normal = btVector3(0, 1, 1).normalized();
@@ -223,7 +224,8 @@ TEST(RigidBody, ImplicitGyroscopicStepKeepsAngularMomentumAndNeverGainsEnergy)
 	body.setAngularVelocity(btVector3(btScalar(0.01), 4, btScalar(0.01)));
 	const btScalar h = btScalar(1) / 240;
 	const btMatrix3x3 inertiaLocal(inertia.x(), 0, 0, 0, inertia.y(), 0, 0, 0, inertia.z());
-	auto momentum = [&]() {
+	auto momentum = [&]()
+	{
 		const btMatrix3x3& basis = body.getCenterOfMassTransform().getBasis();
 		return basis * (inertiaLocal * (basis.transpose() * body.getAngularVelocity()));
 	};
