@@ -14,6 +14,7 @@ public:
 	/// Keeps frameInA (in A's centre-of-mass frame) and frameInB (in B's) together in the world.
 	btFixedConstraint(btRigidBody & rbA, btRigidBody & rbB, const btTransform& frameInA, const btTransform& frameInB);
 
+	/// Out of line, as in Bullet.
 	virtual ~btFixedConstraint();
 };
 

@@ -83,6 +83,7 @@ public:
 	btScalar m_currentPosition;
 	int m_currentLimit;
 
+	/// Free, unpowered and springless (Bullet's defaults).
 	btRotationalLimitMotor2()
 	    : m_loLimit(1),
 	      m_hiLimit(-1),
@@ -159,6 +160,7 @@ public:
 	btVector3 m_currentLinearDiff;
 	int m_currentLimit[3];
 
+	/// Locked, unpowered and springless (Bullet's defaults).
 	btTranslationalLimitMotor2()
 	    : m_lowerLimit(0, 0, 0),
 	      m_upperLimit(0, 0, 0),
@@ -236,8 +238,11 @@ private:
 	/// Euler rotation axes); m_calculatedAxis holds them normalised.
 	btVector3 m_angularJacobian[3];
 
+	/// True for 0..5; anything else asserts, and in release builds is reported and ignored.
 	bool checkIndex(int index, const char* function) const;
+	/// Updates every coordinate's current position and limit state from the calculated transforms.
 	void testLimits();
+	/// Writes the rows getInfo1 counted; returns how many.
 	int writeRows(btConstraintInfo2 * info);
 
 public:
@@ -249,8 +254,11 @@ public:
 	/// Body B held to the world; A's frame is where B's frame is now.
 	btGeneric6DofSpring2Constraint(btRigidBody & rbB, const btTransform& frameInB, RotateOrder rotOrder = RO_XYZ);
 
+	/// Nothing to prepare: the rows are rebuilt from the bodies' poses every step.
 	void buildJacobian() override {}
+	/// Measures the joint and counts its rows (nub: the locked ones).
 	void getInfo1(btConstraintInfo1 * info) override;
+	/// Writes the rows: locked, then limits, motors and springs.
 	void getInfo2(btConstraintInfo2 * info) override;
 
 	/// The settings of angular coordinate index (0..2).
@@ -271,6 +279,7 @@ public:
 	const btTransform& getFrameOffsetA() const { return m_frameInA; }
 	/// Joint frame in B's centre-of-mass frame.
 	const btTransform& getFrameOffsetB() const { return m_frameInB; }
+	/// Writable joint frames (changes take effect at the next step).
 	btTransform& getFrameOffsetA() { return m_frameInA; }
 	btTransform& getFrameOffsetB() { return m_frameInB; }
 
@@ -284,6 +293,7 @@ public:
 	/// Replaces both joint frames (non-finite frames are reported and disable the joint).
 	void setFrames(const btTransform& frameA, const btTransform& frameB);
 
+	/// Linear limits per coordinate (metres).
 	void setLinearLowerLimit(const btVector3& linearLower) { m_linearLimits.m_lowerLimit = linearLower; }
 	void getLinearLowerLimit(btVector3 & linearLower) const { linearLower = m_linearLimits.m_lowerLimit; }
 	void setLinearUpperLimit(const btVector3& linearUpper) { m_linearLimits.m_upperLimit = linearUpper; }
@@ -299,10 +309,12 @@ public:
 	{
 		for (int i = 0; i < 3; ++i) m_angularLimits[i].m_hiLimit = btNormalizeAngle(-angularLower[i]);
 	}
+	/// The lower angular limits as stored.
 	void getAngularLowerLimit(btVector3 & angularLower) const
 	{
 		for (int i = 0; i < 3; ++i) angularLower[i] = m_angularLimits[i].m_loLimit;
 	}
+	/// The lower limits of the opposite sense (the negated upper limits).
 	void getAngularLowerLimitReversed(btVector3 & angularLower) const
 	{
 		for (int i = 0; i < 3; ++i) angularLower[i] = -m_angularLimits[i].m_hiLimit;
@@ -317,10 +329,12 @@ public:
 	{
 		for (int i = 0; i < 3; ++i) m_angularLimits[i].m_loLimit = btNormalizeAngle(-angularUpper[i]);
 	}
+	/// The upper angular limits as stored.
 	void getAngularUpperLimit(btVector3 & angularUpper) const
 	{
 		for (int i = 0; i < 3; ++i) angularUpper[i] = m_angularLimits[i].m_hiLimit;
 	}
+	/// The upper limits of the opposite sense (the negated lower limits).
 	void getAngularUpperLimitReversed(btVector3 & angularUpper) const
 	{
 		for (int i = 0; i < 3; ++i) angularUpper[i] = -m_angularLimits[i].m_loLimit;
@@ -333,6 +347,7 @@ public:
 	/// True unless coordinate limitIndex (0..5) is free.
 	bool isLimited(int limitIndex) const;
 
+	/// The Euler order the angles (and their limits, motors and springs) are measured in.
 	void setRotationOrder(RotateOrder order) { m_rotateOrder = order; }
 	RotateOrder getRotationOrder() const { return m_rotateOrder; }
 
@@ -371,6 +386,7 @@ public:
 	/// BT_CONSTRAINT_STOP_ERP / STOP_CFM set the locked and limit rows of axis 0..5, BT_CONSTRAINT_ERP /
 	/// CFM the servo and motor rows. Until set, the world's ERP and CFM are used.
 	void setParam(int num, btScalar value, int axis = -1) override;
+	/// The value set through setParam (asserts that it was set, as in Bullet).
 	btScalar getParam(int num, int axis = -1) const override;
 
 	/// Element index of mat, counting down the columns (index % 3 is the row, index / 3 the column).

@@ -159,6 +159,104 @@ TEST(Generic6DofSpring2Constraint, EachAngleMovesOnlyWhenBTurnsAlongItsAxis)
 	}
 }
 
+TEST(Generic6DofSpring2Constraint, RowsComeLockedFirstThenLimitsMotorsAndSprings)
+{
+	// Axis 0 and 3 locked, 1 limited, 2 free with a motor, 4 free with a spring, 5 limited with a motor:
+	// the two locked rows lead as equality rows (the solver's exact block), then two one-sided rows per
+	// limit, then the motors bounded by force times step, then the spring.
+	TestWorld w(kZero);
+	btRigidBody* body = w.addBody(w.shape<btSphereShape>(btScalar(0.1)), 1, btVector3(0, 0, 0));
+	btGeneric6DofSpring2Constraint joint(*body, btTransform::getIdentity());
+	joint.setLimit(0, 0, 0);
+	joint.setLimit(1, -1, 1);
+	joint.setLimit(2, 1, -1);
+	joint.setLimit(3, 0, 0);
+	joint.setLimit(4, 1, -1);
+	joint.setLimit(5, btScalar(-0.5), btScalar(0.5));
+	const btScalar force = 4;
+	for (int axis : {2, 5})
+	{
+		joint.enableMotor(axis, true);
+		joint.setMaxMotorForce(axis, force);
+	}
+	joint.enableSpring(4, true);
+	joint.setStiffness(4, 10);
+	btTypedConstraint::btConstraintInfo1 info1;
+	joint.getInfo1(&info1);
+	ASSERT_EQ(info1.m_numConstraintRows, 9);
+	EXPECT_EQ(info1.nub, 2);
+
+	const int rows = 9, skip = 3;
+	btScalar j1l[rows * skip] = {}, j1a[rows * skip] = {}, j2l[rows * skip] = {}, j2a[rows * skip] = {};
+	btScalar error[rows * skip] = {}, cfm[rows * skip] = {}, lower[rows * skip], upper[rows * skip];
+	for (int i = 0; i < rows * skip; ++i)
+	{
+		lower[i] = -SIMD_INFINITY;
+		upper[i] = SIMD_INFINITY;
+	}
+	btTypedConstraint::btConstraintInfo2 info2;
+	info2.fps = 60;
+	info2.erp = btScalar(0.2);
+	info2.m_J1linearAxis = j1l;
+	info2.m_J1angularAxis = j1a;
+	info2.m_J2linearAxis = j2l;
+	info2.m_J2angularAxis = j2a;
+	info2.rowskip = skip;
+	info2.m_constraintError = error;
+	info2.cfm = cfm;
+	info2.m_lowerLimit = lower;
+	info2.m_upperLimit = upper;
+	info2.m_numIterations = 10;
+	info2.m_damping = 1;
+	joint.getInfo2(&info2);
+	auto linearRow = [&](int r) { return btVector3(j1l[r * skip], j1l[r * skip + 1], j1l[r * skip + 2]).length() > 0; };
+	// Locked: x (linear), then angle x.
+	EXPECT_TRUE(linearRow(0));
+	EXPECT_FALSE(linearRow(1));
+	for (int r = 0; r < 2; ++r)
+	{
+		EXPECT_LE(lower[r * skip], -SIMD_INFINITY) << "row " << r;
+		EXPECT_GE(upper[r * skip], SIMD_INFINITY) << "row " << r;
+	}
+	// Limits: y (linear) then angle z, each a lower row (pushes up) and an upper row (pushes down).
+	for (int r = 2; r < 6; r += 2)
+	{
+		EXPECT_EQ(lower[r * skip], 0) << "row " << r;
+		EXPECT_GE(upper[r * skip], SIMD_INFINITY) << "row " << r;
+		EXPECT_LE(lower[(r + 1) * skip], -SIMD_INFINITY) << "row " << r + 1;
+		EXPECT_EQ(upper[(r + 1) * skip], 0) << "row " << r + 1;
+	}
+	EXPECT_TRUE(linearRow(2));
+	EXPECT_FALSE(linearRow(4));
+	// Motors: z (linear) then angle z, bounded by force / fps.
+	for (int r = 6; r < 8; ++r)
+	{
+		EXPECT_NEAR(upper[r * skip], force / 60, 1e-7) << "row " << r;
+		EXPECT_NEAR(lower[r * skip], -force / 60, 1e-7) << "row " << r;
+	}
+	EXPECT_TRUE(linearRow(6));
+	EXPECT_FALSE(linearRow(7));
+	// The spring on angle y, a soft spring: its implicit impulse as both bounds (0 at equilibrium).
+	EXPECT_FALSE(linearRow(8));
+	EXPECT_EQ(lower[8 * skip], upper[8 * skip]);
+}
+
+TEST(Generic6DofSpring2Constraint, SetEquilibriumPointTakesTheCurrentPose)
+{
+	TestWorld w(kZero);
+	btRigidBody* body = w.addBody(w.shape<btSphereShape>(btScalar(0.1)), 1, btVector3(0, 0, 0));
+	btGeneric6DofSpring2Constraint joint(*body, btTransform::getIdentity());
+	body->setCenterOfMassTransform(btTransform(btQuaternion(btVector3(0, 1, 0), btScalar(0.3)), btVector3(1, 2, 3)));
+	joint.setEquilibriumPoint(1);
+	EXPECT_NEAR(joint.getTranslationalLimitMotor()->m_equilibriumPoint.y(), 2, 1e-6);
+	EXPECT_EQ(joint.getTranslationalLimitMotor()->m_equilibriumPoint.x(), 0) << "only the index given";
+	joint.setEquilibriumPoint();
+	EXPECT_NEAR(joint.getTranslationalLimitMotor()->m_equilibriumPoint.z(), 3, 1e-6);
+	EXPECT_NEAR(joint.getRotationalLimitMotor(1)->m_equilibriumPoint, -0.3, 1e-6);
+	joint.setEquilibriumPoint(4, btScalar(0.7));
+	EXPECT_EQ(joint.getRotationalLimitMotor(1)->m_equilibriumPoint, btScalar(0.7));
+}
+
 // ---- locked, limited and free coordinates -------------------------------------------------------
 
 TEST(Generic6DofSpring2Constraint, LockedCoordinatesStayLockedWhileAFreeSliderFalls)
