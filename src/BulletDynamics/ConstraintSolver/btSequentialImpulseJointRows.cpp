@@ -187,6 +187,19 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 				decoupleFromBlock(firstRow, block, targets, firstRow[j], targets[j], rbA, rbB, bodyA, bodyB);
 	}
 
+	// Soft rows (cfm c > 0) as K (1 + c) with cfm c / (1 + c): the same solution as Bullet's form
+	// (J v = target - c K lambda) but Gauss-Seidel on it converges for any c, where Bullet's overshoots
+	// once c reaches 1.
+	for (int j = 0; j < numRows; ++j)
+	{
+		btSolverConstraint& row = firstRow[j];
+		if (!(row.m_cfm > btScalar(0))) continue;
+		const btScalar softening = btScalar(1) + row.m_cfm;
+		row.m_jacDiagABInv /= softening;
+		row.m_rhs /= softening;
+		row.m_cfm /= softening;
+	}
+
 	if (warmStart)
 	{
 		for (int j = 0; j < numRows; ++j)

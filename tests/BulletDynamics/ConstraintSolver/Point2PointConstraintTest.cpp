@@ -298,3 +298,47 @@ TEST(TypedConstraint, OverrideIterationsTightenOneJoint)
 	EXPECT_GT(gaps[0], 0.02);
 	EXPECT_LT(gaps[1], 0.5 * gaps[0]);
 }
+
+namespace
+{
+// One soft row holding body A's x velocity at 0 with the given cfm.
+class SoftBrake : public btTypedConstraint
+{
+public:
+	SoftBrake(btRigidBody& body, btScalar cfm) : btTypedConstraint(POINT2POINT_CONSTRAINT_TYPE, body), m_cfm(cfm) {}
+	void getInfo1(btConstraintInfo1* info) override
+	{
+		info->m_numConstraintRows = 1;
+		info->nub = 0;
+	}
+	void getInfo2(btConstraintInfo2* info) override
+	{
+		info->m_J1linearAxis[0] = 1;
+		info->m_J2linearAxis[0] = -1;
+		info->cfm[0] = m_cfm;
+	}
+	void setParam(int, btScalar, int) override {}
+	btScalar getParam(int, int) const override { return 0; }
+
+private:
+	btScalar m_cfm;
+};
+}  // namespace
+
+TEST(TypedConstraint, SoftRowsReachBulletsSoftSolutionForAnyCfm)
+{
+	// A soft row solves J v = target - cfm K lambda (Bullet's meaning of cfm). For a body of mass m
+	// moving at v0 along the row (K = 1/m, target 0): lambda = m (v - v0) and v = -cfm lambda / m, so
+	// v = v0 cfm / (1 + cfm): a harder row (smaller cfm) brakes more. Gauss-Seidel on Bullet's own form of the row
+	// overshoots once cfm >= 1; the rows are rescaled so that it converges for any cfm, to the same solution.
+	for (btScalar cfm : {btScalar(0.5), btScalar(2), btScalar(10)})
+	{
+		TestWorld w(btVector3(0, 0, 0));
+		btRigidBody* body = w.addBody(w.shape<btSphereShape>(btScalar(0.5)), 2, btVector3(0, 0, 0));
+		body->setLinearVelocity(btVector3(3, 0, 0));
+		w.addJoint<SoftBrake>(false, *body, cfm);
+		w.run(1);
+		// One row, 10 iterations: converged to float rounding.
+		EXPECT_NEAR(body->getLinearVelocity().x(), 3 * cfm / (1 + cfm), 1e-5) << "cfm " << cfm;
+	}
+}
