@@ -110,11 +110,30 @@ int main()
 	d.joint(new btGearConstraint(*small, *large, btVector3(0, 0, 1), btVector3(0, 0, 1), 2));
 	smallAxle->enableAngularMotor(true, 4 * SIMD_PI, 1);
 
+	// Spring: a 1 kg weight on a vertical 6-DoF spring (k = 40 N/m, lightly damped) to the world,
+	// released at the spring's rest length: it bobs about m g / k = 0.25 m lower and settles there.
+	btRigidBody* weight = d.body(new btBoxShape(btVector3(0.1, 0.1, 0.1)), 1, at(btVector3(18, 5, 0)));
+	btGeneric6DofSpring2Constraint* spring =
+	    d.joint(new btGeneric6DofSpring2Constraint(*weight, btTransform::getIdentity()));
+	spring->setLinearLowerLimit(btVector3(0, 1, 0));  // y free (lower > upper), x and z locked
+	spring->setLinearUpperLimit(btVector3(0, -1, 0));
+	spring->enableSpring(1, true);
+	spring->setStiffness(1, 40);
+	spring->setDamping(1, btScalar(0.5));
+	spring->setEquilibriumPoint(1, 0);
+
+	// Weld: an L of two boxes joined by a fixed joint, thrown spinning: it turns as one body.
+	btRigidBody* armA = d.body(new btBoxShape(btVector3(0.5, 0.1, 0.1)), 1, at(btVector3(21, 6, 0)));
+	btRigidBody* armB = d.body(new btBoxShape(btVector3(0.1, 0.5, 0.1)), 1, at(btVector3(21.4, 6.6, 0)));
+	d.joint(new btFixedConstraint(*armA, *armB, at(btVector3(0.4, 0, 0)), at(btVector3(0, -0.6, 0))));
+	armA->setAngularVelocity(btVector3(0, 0, 3));
+
 	std::printf(
 	    "ConstraintDemo: ball joint, limited hinge (door), hinge motor (wheel), cone-twist (limb), slider\n"
-	    "(carriage on a tilted rail), gears (2:1)\n");
-	std::printf("%5s | %9s %9s | %10s | %12s | %9s %9s | %9s | %9s %9s\n", "time", "ball ang", "ball gap", "door ang",
-	            "wheel rad/s", "limb swing", "twist", "carriage", "small w", "large w");
+	    "(carriage on a tilted rail), gears (2:1), 6-DoF spring (weight), fixed joint (welded L)\n");
+	std::printf("%5s | %9s %9s | %10s | %12s | %9s %9s | %9s | %9s %9s | %9s | %9s\n", "time", "ball ang", "ball gap",
+	            "door ang", "wheel rad/s", "limb swing", "twist", "carriage", "small w", "large w", "weight y",
+	            "weld gap");
 	bool ok = true;
 	for (int frame = 1; frame <= 300; ++frame)
 	{
@@ -124,21 +143,28 @@ int main()
 		const btScalar ballGap = (bob->getCenterOfMassTransform()(ball->getPivotInA()) - ball->getPivotInB()).length();
 		shoulder->calcAngleInfo();
 		if (frame % 30 == 0)
-			std::printf("%4.1fs | %9.4f %9.2e | %10.4f | %12.4f | %9.4f %9.4f | %9.4f | %9.4f %9.4f\n", frame / 60.0,
-			            double(btAtan2(p.x(), -p.y())), double(ballGap), double(doorHinge->getHingeAngle()),
-			            double(wheel->getAngularVelocity().z()), double(shoulder->getSwingAngle()),
-			            double(shoulder->getTwistAngle()), double(rail->getLinearPos()),
-			            double(small->getAngularVelocity().z()), double(large->getAngularVelocity().z()));
+			std::printf("%4.1fs | %9.4f %9.2e | %10.4f | %12.4f | %9.4f %9.4f | %9.4f | %9.4f %9.4f | %9.4f | %9.2e\n",
+			            frame / 60.0, double(btAtan2(p.x(), -p.y())), double(ballGap),
+			            double(doorHinge->getHingeAngle()), double(wheel->getAngularVelocity().z()),
+			            double(shoulder->getSwingAngle()), double(shoulder->getTwistAngle()),
+			            double(rail->getLinearPos()), double(small->getAngularVelocity().z()),
+			            double(large->getAngularVelocity().z()), double(weight->getCenterOfMassPosition().y() - 5),
+			            double((armA->getCenterOfMassTransform()(btVector3(0.4, 0, 0)) -
+			                    armB->getCenterOfMassTransform()(btVector3(0, -0.6, 0)))
+			                       .length()));
 		ok = ok && ballGap < btScalar(0.01) && doorHinge->getHingeAngle() < SIMD_PI / 4 + btScalar(0.01) &&
 		     doorHinge->getHingeAngle() > -SIMD_PI / 6 - btScalar(0.01);
 	}
 	const bool wheelAtSpeed = btFabs(wheel->getAngularVelocity().z() - 4 * SIMD_PI) < btScalar(0.01);
+	// Settled on the spring: m g / k below the rest length, within the damped oscillation's remainder.
+	const bool springSettled = btFabs(weight->getCenterOfMassPosition().y() - 5 + btScalar(0.25)) < btScalar(0.05);
 	const bool carriageAtLimit = btFabs(rail->getLinearPos() - 1) < btScalar(0.01);
 	// Gear ratio 2: the large wheel turns at half the small one's speed, the other way.
 	const bool geared = btFabs(large->getAngularVelocity().z() + small->getAngularVelocity().z() / 2) < btScalar(0.01);
 	std::printf(
 	    "ball joint held, door within its limits: %s; wheel at its motor's 12.566 rad/s: %s; carriage at "
-	    "its upper limit: %s; gears at 2:1: %s\n",
-	    ok ? "yes" : "NO", wheelAtSpeed ? "yes" : "NO", carriageAtLimit ? "yes" : "NO", geared ? "yes" : "NO");
-	return ok && wheelAtSpeed && carriageAtLimit && geared ? 0 : 1;
+	    "its upper limit: %s; gears at 2:1: %s; weight near m g / k below its rest: %s\n",
+	    ok ? "yes" : "NO", wheelAtSpeed ? "yes" : "NO", carriageAtLimit ? "yes" : "NO", geared ? "yes" : "NO",
+	    springSettled ? "yes" : "NO");
+	return ok && wheelAtSpeed && carriageAtLimit && geared && springSettled ? 0 : 1;
 }

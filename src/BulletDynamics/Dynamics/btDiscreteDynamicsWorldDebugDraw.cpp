@@ -3,6 +3,7 @@
 #include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btGearConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
 #include "BulletDynamics/ConstraintSolver/btHingeConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btPoint2PointConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btSliderConstraint.h"
@@ -102,6 +103,28 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 			if (drawLimits)
 			{
 				// The box the linear limits allow (free axes drawn as the frame size).
+				btVector3 low, high;
+				d6->getLinearLowerLimit(low);
+				d6->getLinearUpperLimit(high);
+				for (int k = 0; k < 3; ++k)
+					if (low[k] > high[k])
+					{
+						low[k] = -size;
+						high[k] = size;
+					}
+				drawer->drawBox(low, high, frameA, kLimitColor);
+			}
+			break;
+		}
+		case D6_SPRING_2_CONSTRAINT_TYPE:
+		{
+			// Also btHinge2Constraint and btFixedConstraint.
+			btGeneric6DofSpring2Constraint* d6 = static_cast<btGeneric6DofSpring2Constraint*>(constraint);
+			d6->calculateTransforms();
+			const btTransform& frameA = d6->getCalculatedTransformA();
+			if (drawFramesToo) drawFrames(drawer, frameA, d6->getCalculatedTransformB(), size);
+			if (drawLimits)
+			{
 				btVector3 low, high;
 				d6->getLinearLowerLimit(low);
 				d6->getLinearUpperLimit(high);

@@ -61,3 +61,12 @@ TEST(ConstraintDebugDraw, SixDofDrawsItsFramesAndItsLinearLimitBox)
 	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraints), 2 * 3);
 	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraintLimits), 12) << "the edges of one box";
 }
+
+TEST(ConstraintDebugDraw, SixDofSpring2DrawsItsFramesAndItsLinearLimitBox)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* a = w.addBody(w.shape<btSphereShape>(btScalar(0.2)), 1, btVector3(0, 0, 0));
+	w.addJoint<btGeneric6DofSpring2Constraint>(false, *a, btTransform::getIdentity());
+	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraints), 2 * 3);
+	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraintLimits), 12) << "the edges of one box";
+}
