@@ -128,9 +128,26 @@ int main()
 	d.joint(new btFixedConstraint(*armA, *armB, at(btVector3(0.4, 0, 0)), at(btVector3(0, -0.6, 0))));
 	armA->setAngularVelocity(btVector3(0, 0, 3));
 
+	// Cardan joint: an input shaft along x driven at 2 rad/s by a hinge motor, a universal joint at its end
+	// and an output shaft bent 30 degrees up, both on hinges to the world through their centres. The
+	// output turns at between cos 30 = 0.866 and 1 / cos 30 = 1.155 times the input's rate.
+	const btScalar bend = SIMD_PI / 6;
+	const btVector3 outputAxis(btCos(bend), btSin(bend), 0);
+	btRigidBody* input = d.body(new btBoxShape(btVector3(0.5, 0.05, 0.05)), 1, at(btVector3(24.5, 5, 0)));
+	btRigidBody* output =
+	    d.body(new btBoxShape(btVector3(0.5, 0.05, 0.05)), 1,
+	           at(btVector3(25, 5, 0) + outputAxis * btScalar(0.5), btQuaternion(btVector3(0, 0, 1), bend)));
+	btHingeConstraint* inputBearing = d.joint(new btHingeConstraint(*input, btVector3(0, 0, 0), btVector3(1, 0, 0)));
+	d.joint(new btHingeConstraint(*output, btVector3(0, 0, 0), btVector3(1, 0, 0)));
+	d.joint(new btUniversalConstraint(*input, *output, btVector3(25, 5, 0), btVector3(0, 0, 1),
+	                                  btVector3(-btSin(bend), btCos(bend), 0)));
+	inputBearing->enableAngularMotor(true, 2, 10);
+	btScalar slowest = BT_LARGE_FLOAT, fastest = 0;
+
 	std::printf(
 	    "ConstraintDemo: ball joint, limited hinge (door), hinge motor (wheel), cone-twist (limb), slider\n"
-	    "(carriage on a tilted rail), gears (2:1), 6-DoF spring (weight), fixed joint (welded L)\n");
+	    "(carriage on a tilted rail), gears (2:1), 6-DoF spring (weight), fixed joint (welded L), universal (Cardan "
+	    "shafts)\n");
 	std::printf("%5s | %9s %9s | %10s | %12s | %9s %9s | %9s | %9s %9s | %9s | %9s\n", "time", "ball ang", "ball gap",
 	            "door ang", "wheel rad/s", "limb swing", "twist", "carriage", "small w", "large w", "weight y",
 	            "weld gap");
@@ -142,6 +159,12 @@ int main()
 		const btVector3 p = bob->getCenterOfMassPosition() - btVector3(0, 5, 0);
 		const btScalar ballGap = (bob->getCenterOfMassTransform()(ball->getPivotInA()) - ball->getPivotInB()).length();
 		shoulder->calcAngleInfo();
+		if (frame > 60)
+		{
+			const btScalar ratio = output->getAngularVelocity().dot(outputAxis) / input->getAngularVelocity().x();
+			slowest = btMin(slowest, ratio);
+			fastest = btMax(fastest, ratio);
+		}
 		if (frame % 30 == 0)
 			std::printf("%4.1fs | %9.4f %9.2e | %10.4f | %12.4f | %9.4f %9.4f | %9.4f | %9.4f %9.4f | %9.4f | %9.2e\n",
 			            frame / 60.0, double(btAtan2(p.x(), -p.y())), double(ballGap),
@@ -166,5 +189,10 @@ int main()
 	    "its upper limit: %s; gears at 2:1: %s; weight near m g / k below its rest: %s\n",
 	    ok ? "yes" : "NO", wheelAtSpeed ? "yes" : "NO", carriageAtLimit ? "yes" : "NO", geared ? "yes" : "NO",
 	    springSettled ? "yes" : "NO");
-	return ok && wheelAtSpeed && carriageAtLimit && geared && springSettled ? 0 : 1;
+	// The Cardan ratio swings between cos and 1 / cos of the bend (to the solver's precision).
+	const bool cardan =
+	    btFabs(slowest - btCos(bend)) < btScalar(0.01) && btFabs(fastest - 1 / btCos(bend)) < btScalar(0.01);
+	std::printf("Cardan shafts: output / input rate from %.4f to %.4f (cos 30 = 0.8660, 1 / cos 30 = 1.1547): %s\n",
+	            double(slowest), double(fastest), cardan ? "yes" : "NO");
+	return ok && wheelAtSpeed && carriageAtLimit && geared && springSettled && cardan ? 0 : 1;
 }
