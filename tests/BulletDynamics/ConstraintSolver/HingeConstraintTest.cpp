@@ -45,7 +45,7 @@ TEST(HingeConstraint, HingeAngleIsTheTurnOfAAgainstB)
 	EXPECT_NEAR(hinge->getHingeAngle(), -0.4, 1e-5);
 }
 
-TEST(HingeConstraint, PendulumLosesLessThanOneHundredthOfARadianInTwentySeconds)
+TEST(HingeConstraint, PendulumAmplitudeChangesLessThanOneHundredthOfARadianInTwentySeconds)
 {
 	// Bullet 3.24 loses 0.087 rad from 60 degrees in 20 s at 10 iterations and 1/60 s. With no damping
 	// the exact motion keeps its amplitude; what is lost is numerical dissipation.
