@@ -111,6 +111,8 @@ TEST(CapsuleCapsuleContact, DistanceMatchesTheSegmentsMinimumOverRandomPoses)
 		++checked;
 	}
 	EXPECT_GT(checked, 100) << "enough touching poses were drawn";
+	world.removeCollisionObject(&a);  // the objects go before the world that holds them
+	world.removeCollisionObject(&b);
 }
 
 TEST(CapsuleCapsuleContact, ParallelCapsulesRestOnEachOtherAtTheSumOfTheirRadii)
@@ -133,4 +135,6 @@ TEST(CapsuleCapsuleContact, ParallelCapsulesRestOnEachOtherAtTheSumOfTheirRadii)
 	// Parallel cores 0.49 apart, radii 0.25 each: 0.01 of overlap, along y.
 	EXPECT_NEAR(contact.m_distance, -0.01, 1e-6);
 	EXPECT_NEAR(contact.m_normalOnB.y(), 1, 1e-6);
+	world.removeCollisionObject(&a);  // the objects go before the world that holds them
+	world.removeCollisionObject(&b);
 }
