@@ -282,6 +282,24 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		const btVector3 rel_pos1 = contactPoint - colObj0->getWorldTransform().getOrigin();
 		const btVector3 rel_pos2 = contactPoint - colObj1->getWorldTransform().getOrigin();
 
+		if (cp.getDistance() > btScalar(0))
+		{
+			// A speculative point (apart, kept because the pair might close the gap this step) whose
+			// bodies do not approach fast enough to close it even at twice their present speed needs no
+			// rows: they would carry no impulse. Fast approaches keep theirs (that is what speculative
+			// contacts are for); the point's stale impulses are cleared so they do not warm start later.
+			const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
+			const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
+			const btScalar approach =
+			    -cp.m_normalWorldOnB.dot((a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)) -
+			                             (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)));
+			if (cp.getDistance() > btScalar(2) * btMax(approach, btScalar(0)) * infoGlobal.m_timeStep)
+			{
+				cp.m_appliedImpulse = cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = btScalar(0);
+				continue;
+			}
+		}
+
 		// The friction impulse of the last step as a vector, to warm start the new directions with its
 		// projection (the directions follow the sliding velocity and turn from step to step).
 		const btVector3 previousFrictionImpulse = cp.m_lateralFrictionDir1 * cp.m_appliedImpulseLateral1 +
