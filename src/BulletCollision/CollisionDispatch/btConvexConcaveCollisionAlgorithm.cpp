@@ -97,8 +97,35 @@ void btConvexTriangleCallback::setTimeStepAndCounters(btScalar collisionMarginTr
 	    triBodyWrap->getWorldTransform().inverse() * convexBodyWrap->getWorldTransform();
 	convexBodyWrap->getCollisionShape()->getAabb(convexInTriangleSpace, m_aabbMin, m_aabbMax);
 	// Triangles within the breaking threshold must be seen too, or contacts would flicker at rest.
-	const btScalar extra = collisionMarginTriangle + m_manifoldPtr->getContactBreakingThreshold() +
-	                       resultOut->m_closestPointDistanceThreshold;
+	btScalar extra = collisionMarginTriangle + m_manifoldPtr->getContactBreakingThreshold();
+	const btScalar speculative = resultOut->m_closestPointDistanceThreshold;
+	if (speculative > btScalar(0) && dispatchInfo.m_timeStep > btScalar(0))
+	{
+		// The speculative reach (how far the pair can close this step) only matters ahead of the convex:
+		// grow the box along its motion relative to the mesh, and by the turning part all round. Triangles
+		// behind a falling body are not worth a collision query.
+		const btCollisionObject* convex = convexBodyWrap->getCollisionObject();
+		const btCollisionObject* mesh = triBodyWrap->getCollisionObject();
+		const btVector3 relative = convex->getInterpolationLinearVelocity() - mesh->getInterpolationLinearVelocity();
+		const btVector3 travel =
+		    triBodyWrap->getWorldTransform().getBasis().transpose() * relative * dispatchInfo.m_timeStep;
+		const btScalar turning = btMax(btScalar(0), speculative - relative.length() * dispatchInfo.m_timeStep);
+		if (btIsFinite(travel.x()) && btIsFinite(travel.y()) && btIsFinite(travel.z()) && btIsFinite(turning))
+		{
+			extra += turning;
+			for (int axis = 0; axis < 3; ++axis)
+			{
+				if (travel[axis] < 0)
+					m_aabbMin[axis] += travel[axis];
+				else
+					m_aabbMax[axis] += travel[axis];
+			}
+		}
+		else
+		{
+			extra += speculative;
+		}
+	}
 	const btVector3 grow(extra, extra, extra);
 	m_aabbMin -= grow;
 	m_aabbMax += grow;
@@ -207,7 +234,8 @@ btScalar btConvexConcaveCollisionAlgorithm::calculateTimeOfImpact(btCollisionObj
 	        .length2();
 	if (!(motion >= convexBody->getCcdSquareMotionThreshold())) return noHit;
 	if (!caliberIsFinite(convexBody->getWorldTransform()) ||
-	    !caliberIsFinite(convexBody->getInterpolationWorldTransform()) || !caliberIsFinite(triBody->getWorldTransform()))
+	    !caliberIsFinite(convexBody->getInterpolationWorldTransform()) ||
+	    !caliberIsFinite(triBody->getWorldTransform()))
 		return noHit;
 
 	const btTransform worldToMesh = triBody->getWorldTransform().inverse();
