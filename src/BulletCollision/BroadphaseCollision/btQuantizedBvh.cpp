@@ -44,10 +44,13 @@ struct Sweep
 	btVector3 growMax;  // added to node maxima: -boxMin + tolerance
 	btVector3 sweepMin;
 	btVector3 sweepMax;
+	const btScalar* maxFraction;
 
 	bool hits(const btVector3& nodeMin, const btVector3& nodeMax) const
 	{
 		btScalar tEnter = 0, tExit = 1;
+		// The tolerance of the boxes also covers rounding of the fraction itself.
+		if (maxFraction && *maxFraction < tExit) tExit = *maxFraction + btScalar(1e-5);
 		for (int a = 0; a < 3; ++a)
 		{
 			const btScalar lo = nodeMin[a] - growMin[a];
@@ -404,7 +407,7 @@ void btQuantizedBvh::reportRayOverlappingNodex(btNodeOverlapCallback* nodeCallba
 
 void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& raySource,
                                                    const btVector3& rayTarget, const btVector3& aabbMin,
-                                                   const btVector3& aabbMax) const
+                                                   const btVector3& aabbMax, const btScalar* maxFraction) const
 {
 	btAssert(nodeCallback != 0);
 	const bool finite =
@@ -414,6 +417,7 @@ void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCa
 	const int numNodes = m_curNodeIndex;
 
 	Sweep sweep;
+	sweep.maxFraction = maxFraction;
 	sweep.source = raySource;
 	sweep.dir = rayTarget - raySource;
 	for (int a = 0; a < 3; ++a) sweep.inv[a] = sweep.dir[a] != btScalar(0) ? btScalar(1) / sweep.dir[a] : btScalar(0);

@@ -127,7 +127,7 @@ void btBvhTriangleMeshShape::performConvexcast(btTriangleCallback* callback, con
 		return;
 	}
 	MeshNodeCallback nodes(*m_meshInterface, callback);
-	m_bvh->reportBoxCastOverlappingNodex(&nodes, boxSource, boxTarget, boxMin, boxMax);
+	m_bvh->reportBoxCastOverlappingNodex(&nodes, boxSource, boxTarget, boxMin, boxMax, callback->caliberMaxFraction());
 }
 
 void btBvhTriangleMeshShape::refitTree(const btVector3& aabbMin, const btVector3& aabbMax)
