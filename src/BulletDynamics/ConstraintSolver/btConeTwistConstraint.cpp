@@ -8,6 +8,8 @@
 namespace
 {
 const btScalar kDefaultFixThreshold = btScalar(0.05);
+// A bound no real impulse reaches, yet below the solver's threshold for equality rows.
+const btScalar kUnlimitedRowImpulse = btScalar(1e20);
 
 // Splits rel (frame B seen in frame A, w >= 0) into a twist about X and a swing about an axis in the
 // YZ plane, rel = swing * twist. Returns the twist angle in (-pi, pi]; swingAxis is the swing's unit
@@ -198,7 +200,10 @@ int btConeTwistConstraint::rowCount() const
 	if (m_twistSpan < m_fixThresh) rows += 1;
 	if (m_swingRowNeeded) rows += 1;
 	if (m_twistRowNeeded) rows += 1;
-	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0))) rows += 3;
+	if (m_bMotorEnabled)
+		rows += 3;
+	else if (m_dampingSet && m_damping > btScalar(0))
+		rows += 1;
 	return rows;
 }
 
@@ -333,31 +338,23 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 		}
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
-	if (m_bMotorEnabled || (m_dampingSet && m_damping > btScalar(0)))
+	if (m_bMotorEnabled)
 	{
-		// Desired turn rate of B relative to A, world frame: to the motor target in one step, or the damped
-		// share of the present relative rotation.
+		// Desired turn rate of B relative to A, world frame: to the motor target in one step.
 		btVector3 desiredRateOfB(0, 0, 0);
-		if (m_bMotorEnabled)
+		btQuaternion qA, qB;
+		frameA.getBasis().getRotation(qA);
+		frameB.getBasis().getRotation(qB);
+		const btQuaternion current = qA.inverse() * qB;
+		const btQuaternion desired = m_qTarget.inverse();  // m_qTarget is frame A seen in frame B
+		btQuaternion error = desired * current.inverse();
+		if (error.w() < 0) error = btQuaternion(-error.x(), -error.y(), -error.z(), -error.w());
+		const btVector3 vector(error.x(), error.y(), error.z());
+		const btScalar sinHalf = vector.length();
+		if (sinHalf > SIMD_EPSILON)
 		{
-			btQuaternion qA, qB;
-			frameA.getBasis().getRotation(qA);
-			frameB.getBasis().getRotation(qB);
-			const btQuaternion current = qA.inverse() * qB;
-			const btQuaternion desired = m_qTarget.inverse();  // m_qTarget is frame A seen in frame B
-			btQuaternion error = desired * current.inverse();
-			if (error.w() < 0) error = btQuaternion(-error.x(), -error.y(), -error.z(), -error.w());
-			const btVector3 vector(error.x(), error.y(), error.z());
-			const btScalar sinHalf = vector.length();
-			if (sinHalf > SIMD_EPSILON)
-			{
-				const btScalar angle = btScalar(2) * btAtan2(sinHalf, error.w());
-				desiredRateOfB = frameA.getBasis() * (vector / sinHalf) * (angle * info->fps);
-			}
-		}
-		else
-		{
-			desiredRateOfB = relativeAngularVelocity * -(btScalar(1) - btMin(btScalar(1), m_damping));
+			const btScalar angle = btScalar(2) * btAtan2(sinHalf, error.w());
+			desiredRateOfB = frameA.getBasis() * (vector / sinHalf) * (angle * info->fps);
 		}
 		for (int k = 0; k < 3; ++k)
 		{
@@ -366,7 +363,12 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 			caliber::JointRow r(*info, row++);
 			r.setAngular(axis);
 			r.error() = desiredRateOfB[k];
-			if (m_bMotorEnabled && m_maxMotorImpulse >= btScalar(0))
+			// Motor rows are velocity goals, never equality rows: an impulse bound always (a very large one
+			// when none is set), so the solver keeps them out of the joint's exact block and the position
+			// correction leaves them alone.
+			r.lower() = -kUnlimitedRowImpulse;
+			r.upper() = kUnlimitedRowImpulse;
+			if (m_maxMotorImpulse >= btScalar(0))
 			{
 				btScalar bound = m_maxMotorImpulse;
 				if (m_bNormalizedMotorStrength)
@@ -380,6 +382,19 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 				r.upper() = bound;
 			}
 		}
+	}
+	else if (m_dampingSet && m_damping > btScalar(0))
+	{
+		// Damping: one row along the present relative turn, keeping the share 1 - d of its rate (a single
+		// row, so it can never disagree with itself, or with locked rotations, which the solver projects
+		// out of it). Bounded like a motor row, so that it is never taken for an equality row.
+		const btScalar rate = relativeAngularVelocity.length();
+		const btVector3 direction = rate > SIMD_EPSILON ? relativeAngularVelocity / rate : btVector3(1, 0, 0);
+		caliber::JointRow r(*info, row++);
+		r.setAngular(direction);  // J v = (wA - wB) . direction
+		r.error() = (btScalar(1) - btMin(btScalar(1), m_damping)) * rate;
+		r.lower() = -kUnlimitedRowImpulse;
+		r.upper() = kUnlimitedRowImpulse;
 	}
 }
 

@@ -189,7 +189,10 @@ void btHingeConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
 	info->nub = info->m_numConstraintRows;
 	testLimit(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
 	m_limitRowNeeded = false;
-	if (hasLimit())
+	// A limit with a zero range (setLimit(a, a)) locks the hinge: hasLimit() says no, as in Bullet, but
+	// the limit is there.
+	const bool limitSet = m_limit.getHalfRange() >= btScalar(0);
+	if (limitSet)
 	{
 		// A limit row only when past the limit or within two steps' travel of it (plus a milliradian):
 		// far from its limits a hinge needs none, and rows cost solver time.
@@ -301,8 +304,9 @@ void btHingeConstraint::getInfo2Internal(btConstraintInfo2* info, const btTransf
 	{
 		caliber::JointRow r(*info, row++);
 		r.setAngular(angleAxis);
-		const btScalar low = hasLimit() ? getLowerLimit() : btScalar(1);
-		const btScalar high = hasLimit() ? getUpperLimit() : btScalar(-1);
+		const bool limitSet = m_limit.getHalfRange() >= btScalar(0);
+		const btScalar low = limitSet ? getLowerLimit() : btScalar(1);
+		const btScalar high = limitSet ? getUpperLimit() : btScalar(-1);
 		const btScalar factor = getMotorFactor(m_hingeAngle, low, high, m_motorTargetVelocity, info->fps);
 		r.error() = factor * m_motorTargetVelocity;
 		r.lower() = -m_maxMotorImpulse;

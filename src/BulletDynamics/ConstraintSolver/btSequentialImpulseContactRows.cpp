@@ -284,16 +284,17 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 
 		if (cp.getDistance() > btScalar(0))
 		{
-			// A speculative point (apart, kept because the pair might close the gap this step) whose
-			// bodies do not approach fast enough to close it even at twice their present speed needs no
-			// rows: they would carry no impulse. Fast approaches keep theirs (that is what speculative
-			// contacts are for); the point's stale impulses are cleared so they do not warm start later.
+			// A speculative point (apart, kept because the pair might close the gap this step) that its
+			// bodies could not close even if each moved straight at the other at twice its present speed
+			// needs no rows: they would carry no impulse. The bound uses each point's own speed, not the
+			// pair's relative approach: two boxes falling together approach at 0, but the ground may stop
+			// the lower one during the solve. Fast approaches keep their rows (that is what speculative
+			// contacts are for). The point's old impulses are cleared: a gap that wide means it carries none.
 			const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
 			const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
-			const btScalar approach =
-			    -cp.m_normalWorldOnB.dot((a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)) -
-			                             (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)));
-			if (cp.getDistance() > btScalar(2) * btMax(approach, btScalar(0)) * infoGlobal.m_timeStep)
+			const btScalar approach = (a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)).length() +
+			                          (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)).length();
+			if (cp.getDistance() > btScalar(2) * approach * infoGlobal.m_timeStep)
 			{
 				cp.m_appliedImpulse = cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = btScalar(0);
 				continue;

@@ -48,6 +48,7 @@ void decoupleFromBlock(const btSolverConstraint* blockRows, const btSolverJointB
 		coupled = coupled || coupling[i] != btScalar(0);
 	}
 	if (!coupled) return;
+	const btScalar originalK = row.m_jacDiagABInv > btScalar(0) ? btScalar(1) / row.m_jacDiagABInv : btScalar(0);
 	for (int j = 0; j < n; ++j)
 	{
 		btScalar c = 0;
@@ -65,8 +66,11 @@ void decoupleFromBlock(const btSolverConstraint* blockRows, const btSolverJointB
 	                   row.m_relpos1CrossNormal.dot(row.m_angularComponentA * bodyA.m_angularFactor) +
 	                   row.m_contactNormal2.dot(row.m_contactNormal2 * bodyB.m_invMass) +
 	                   row.m_relpos2CrossNormal.dot(row.m_angularComponentB * bodyB.m_angularFactor);
-	row.m_jacDiagABInv = k > SIMD_EPSILON ? btScalar(1) / k : btScalar(0);
-	row.m_rhs = target * row.m_jacDiagABInv;
+	// A row (almost) wholly within the block's span asks for what the block already decides: it is
+	// dropped rather than left to fight the block through a near-zero effective mass.
+	const bool independent = k > btScalar(1e-4) * originalK && k > SIMD_EPSILON;
+	row.m_jacDiagABInv = independent ? btScalar(1) / k : btScalar(0);
+	row.m_rhs = independent ? target * row.m_jacDiagABInv : btScalar(0);
 }
 
 void clearRow(btSolverConstraint& row, btScalar cfm)
@@ -239,6 +243,7 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 		if (info1.m_numConstraintRows <= 0)
 		{
 			constraint->internalGetWarmStartImpulses().resize(0);
+			constraint->internalSetAppliedImpulse(0);
 			continue;
 		}
 		m_tmpJoints.push_back(constraint);

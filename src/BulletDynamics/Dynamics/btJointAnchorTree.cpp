@@ -213,7 +213,12 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 	{
 		if (q == m_nodes.size())
 		{
-			while (nextRootCandidate < numBodies && m_bodyNode[nextRootCandidate] >= 0) ++nextRootCandidate;
+			// Free trees start at a body; bodies without tree joints (all theirs left to Gauss-Seidel) are
+			// not part of any tree.
+			while (nextRootCandidate < numBodies &&
+			       (m_bodyNode[nextRootCandidate] >= 0 ||
+			        m_edgeStart[nextRootCandidate + 1] == m_edgeStart[nextRootCandidate]))
+				++nextRootCandidate;
 			if (nextRootCandidate == numBodies) break;
 			Node root = {-1, nextRootCandidate, -1};
 			m_bodyNode[nextRootCandidate] = m_nodes.size();

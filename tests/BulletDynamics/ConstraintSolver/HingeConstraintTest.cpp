@@ -192,3 +192,21 @@ TEST(HingeConstraint, ZeroLengthAxisIsReportedAndTheJointIsInert)
 	EXPECT_TRUE(std::isfinite(body->getCenterOfMassPosition().y()));
 #endif
 }
+
+TEST(HingeConstraint, ZeroRangeLimitLocksTheHinge)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* door = w.addBody(w.shape<btBoxShape>(btVector3(0.5, 1, 0.05)), 10, btVector3(0.5, 0, 0));
+	door->setSleepingThresholds(0, 0);
+	btHingeConstraint* hinge = w.addJoint<btHingeConstraint>(false, *door, btVector3(-0.5, 0, 0), btVector3(0, 1, 0));
+	hinge->setLimit(btScalar(0.2), btScalar(0.2));  // locked at 0.2 rad
+	EXPECT_FALSE(hinge->hasLimit()) << "as in Bullet: a zero range is not a range";
+	for (int i = 0; i < 120; ++i)
+	{
+		door->applyTorque(btVector3(0, i < 60 ? 20 : -20, 0));
+		w.run(1);
+	}
+	// Pushed both ways, it stays at the locked angle: the limit row's bias holds it within what one
+	// step's torque can push (alpha h^2 = 6 rad/s^2 / 3600 s^-2 = 1.7 mrad) over the bias.
+	EXPECT_NEAR(hinge->getHingeAngle(), 0.2, 0.01);
+}
