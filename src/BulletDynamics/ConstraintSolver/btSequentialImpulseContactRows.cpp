@@ -285,15 +285,17 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		if (cp.getDistance() > btScalar(0))
 		{
 			// A speculative point (apart, kept because the pair might close the gap this step) that its
-			// bodies could not close even if each moved straight at the other at twice its present speed
-			// needs no rows: they would carry no impulse. The bound uses each point's own speed, not the
-			// pair's relative approach: two boxes falling together approach at 0, but the ground may stop
-			// the lower one during the solve. Fast approaches keep their rows (that is what speculative
-			// contacts are for). The point's old impulses are cleared: a gap that wide means it carries none.
+			// bodies could not close even if each moved along the normal at twice its present normal speed
+			// needs no rows: they would carry no impulse. Each body's own normal speed counts, not the
+			// pair's relative approach: two boxes falling together do not approach, but the ground may
+			// stop the lower one during the solve. Neighbours side by side (normal across the fall) and
+			// fast approaches (what speculative contacts are for) are told apart. The point's old
+			// impulses are cleared: a gap that wide means it carries none.
 			const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
 			const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
-			const btScalar approach = (a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)).length() +
-			                          (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)).length();
+			const btVector3& n = cp.m_normalWorldOnB;
+			const btScalar approach = btFabs(n.dot(a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1))) +
+			                          btFabs(n.dot(b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)));
 			if (cp.getDistance() > btScalar(2) * approach * infoGlobal.m_timeStep)
 			{
 				cp.m_appliedImpulse = cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = btScalar(0);
