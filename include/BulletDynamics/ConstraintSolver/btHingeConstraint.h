@@ -54,6 +54,8 @@ protected:
 	                           const btVector3& axisInB);
 	/// Reports a zero-length or non-finite axis and makes the joint inert.
 	void rejectAxis();
+	/// The settings every constructor starts from.
+	void initDefaults(bool useReferenceFrameA);
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

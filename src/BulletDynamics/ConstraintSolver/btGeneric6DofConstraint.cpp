@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
 
+#include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
 #include "BulletDynamics/ConstraintSolver/btJointRowUtil.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btWarningHook.h"
@@ -427,44 +428,14 @@ RowJacobian blockRow(const btVector3 (&parts)[4])
 	return r;
 }
 
-// Inverts the n x n matrix k (stride 6) into inverse by Gauss-Jordan elimination with partial pivoting;
-// false when it is singular.
+// Inverts the n x n matrix k (stride 6); pivots are judged against its largest diagonal entry.
 bool invertSmall(const btScalar* k, int n, btScalar* inverse)
 {
-	btScalar m[6][12];
-	btScalar largest = 0;
-	for (int i = 0; i < n; ++i)
-	{
-		for (int j = 0; j < n; ++j)
-		{
-			m[i][j] = k[i * 6 + j];
-			m[i][n + j] = i == j ? btScalar(1) : btScalar(0);
-		}
-		largest = btMax(largest, btFabs(m[i][i]));
-	}
 	if (n == 0) return true;
+	btScalar largest = 0;
+	for (int i = 0; i < n; ++i) largest = btMax(largest, btFabs(k[i * 6 + i]));
 	if (!(largest > btScalar(0))) return false;
-	const btScalar tiny = largest * btScalar(1e-6);
-	for (int c = 0; c < n; ++c)
-	{
-		int pivot = c;
-		for (int r = c + 1; r < n; ++r)
-			if (btFabs(m[r][c]) > btFabs(m[pivot][c])) pivot = r;
-		if (!(btFabs(m[pivot][c]) > tiny)) return false;
-		if (pivot != c)
-			for (int j = 0; j < 2 * n; ++j) btSwap(m[c][j], m[pivot][j]);
-		const btScalar scale = btScalar(1) / m[c][c];
-		for (int j = 0; j < 2 * n; ++j) m[c][j] *= scale;
-		for (int r = 0; r < n; ++r)
-		{
-			if (r == c || m[r][c] == btScalar(0)) continue;
-			const btScalar f = m[r][c];
-			for (int j = 0; j < 2 * n; ++j) m[r][j] -= f * m[c][j];
-		}
-	}
-	for (int i = 0; i < n; ++i)
-		for (int j = 0; j < n; ++j) inverse[i * 6 + j] = m[i][n + j];
-	return true;
+	return caliber::invertDense(k, n, 6, largest * btScalar(1e-6), inverse);
 }
 
 void writeJacobian(btTypedConstraint::btConstraintInfo2& info, int row, const RowJacobian& j)

@@ -27,14 +27,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
                                      bool useReferenceFrameA)
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA, rbB)
 {
-	m_motorTargetVelocity = m_maxMotorImpulse = m_hingeAngle = 0;
-	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
-	m_flags = 0;
-	m_correctsPosition = true;
-	m_limitRowNeeded = false;
-	m_lastTimeStep = btScalar(1) / btScalar(60);
-	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
-	setUseReferenceFrameA(useReferenceFrameA);
+	initDefaults(useReferenceFrameA);
 	initFromPivotsAndAxes(pivotInA, pivotInB, axisInA, axisInB);
 }
 
@@ -42,14 +35,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btVector3& pivotInA
                                      bool useReferenceFrameA)
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA)
 {
-	m_motorTargetVelocity = m_maxMotorImpulse = m_hingeAngle = 0;
-	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
-	m_flags = 0;
-	m_correctsPosition = true;
-	m_limitRowNeeded = false;
-	m_lastTimeStep = btScalar(1) / btScalar(60);
-	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
-	setUseReferenceFrameA(useReferenceFrameA);
+	initDefaults(useReferenceFrameA);
 	// The world (the fixed body, at the identity) holds the pivot and axis where they are now.
 	const btTransform& a = rbA.getCenterOfMassTransform();
 	initFromPivotsAndAxes(pivotInA, a(pivotInA), axisInA, a.getBasis() * axisInA);
@@ -59,14 +45,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
                                      const btTransform& rbBFrame, bool useReferenceFrameA)
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA, rbB), m_rbAFrame(rbAFrame), m_rbBFrame(rbBFrame)
 {
-	m_motorTargetVelocity = m_maxMotorImpulse = m_hingeAngle = 0;
-	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
-	m_flags = 0;
-	m_correctsPosition = true;
-	m_limitRowNeeded = false;
-	m_lastTimeStep = btScalar(1) / btScalar(60);
-	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
-	setUseReferenceFrameA(useReferenceFrameA);
+	initDefaults(useReferenceFrameA);
 	if (!usableAxis(rbAFrame.getBasis().getColumn(2)) || !usableAxis(rbBFrame.getBasis().getColumn(2))) rejectAxis();
 }
 
@@ -74,6 +53,12 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btTransform& rbAFra
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA),
       m_rbAFrame(rbAFrame),
       m_rbBFrame(rbA.getCenterOfMassTransform() * rbAFrame)
+{
+	initDefaults(useReferenceFrameA);
+	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis();
+}
+
+void btHingeConstraint::initDefaults(bool useReferenceFrameA)
 {
 	m_motorTargetVelocity = m_maxMotorImpulse = m_hingeAngle = 0;
 	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
@@ -83,7 +68,6 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btTransform& rbAFra
 	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
 	setUseReferenceFrameA(useReferenceFrameA);
-	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis();
 }
 
 void btHingeConstraint::rejectAxis()

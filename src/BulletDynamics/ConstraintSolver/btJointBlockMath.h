@@ -10,6 +10,40 @@
 
 namespace caliber
 {
+// Inverts the n x n matrix a (n <= 6, rows stride apart) into inverse (same stride) by Gauss-Jordan
+// elimination with partial pivoting; false when a pivot falls to tiny or below (singular for the
+// caller's scale). Used by every small dense solve of the joints.
+inline bool invertDense(const btScalar* a, int n, int stride, btScalar tiny, btScalar* inverse)
+{
+	btScalar m[6][12];
+	for (int i = 0; i < n; ++i)
+		for (int j = 0; j < n; ++j)
+		{
+			m[i][j] = a[i * stride + j];
+			m[i][n + j] = i == j ? btScalar(1) : btScalar(0);
+		}
+	for (int c = 0; c < n; ++c)
+	{
+		int pivot = c;
+		for (int r = c + 1; r < n; ++r)
+			if (btFabs(m[r][c]) > btFabs(m[pivot][c])) pivot = r;
+		if (!(btFabs(m[pivot][c]) > tiny)) return false;
+		if (pivot != c)
+			for (int j = 0; j < 2 * n; ++j) btSwap(m[c][j], m[pivot][j]);
+		const btScalar inv = btScalar(1) / m[c][c];
+		for (int j = 0; j < 2 * n; ++j) m[c][j] *= inv;
+		for (int r = 0; r < n; ++r)
+		{
+			if (r == c || m[r][c] == btScalar(0)) continue;
+			const btScalar f = m[r][c];
+			for (int j = 0; j < 2 * n; ++j) m[r][j] -= f * m[c][j];
+		}
+	}
+	for (int i = 0; i < n; ++i)
+		for (int j = 0; j < n; ++j) inverse[i * stride + j] = m[i][n + j];
+	return true;
+}
+
 // Inverts the n x n matrix J M^-1 J^T of rows [0, n) by Gauss-Jordan elimination with partial pivoting
 // into invK (stride btSolverJointBlock::MAX_ROWS); false when it is singular (redundant rows, or both
 // bodies immovable), in which case the rows are solved one by one.
@@ -116,26 +150,10 @@ inline bool buildBlockInverse(const btSolverConstraint* rows, int n, const btSol
 			}
 		}
 	}
-	for (int c = 0; c < n; ++c)
-	{
-		int pivot = c;
-		for (int r = c + 1; r < n; ++r)
-			if (btFabs(k[r][c]) > btFabs(k[pivot][c])) pivot = r;
-		if (!(btFabs(k[pivot][c]) > tiny)) return false;
-		if (pivot != c)
-			for (int j = 0; j < 2 * n; ++j) btSwap(k[c][j], k[pivot][j]);
-		const btScalar inv = btScalar(1) / k[c][c];
-		for (int j = 0; j < 2 * n; ++j) k[c][j] *= inv;
-		for (int r = 0; r < n; ++r)
-		{
-			if (r == c || k[r][c] == btScalar(0)) continue;
-			const btScalar f = k[r][c];
-			for (int j = 0; j < 2 * n; ++j) k[r][j] -= f * k[c][j];
-		}
-	}
+	btScalar dense[S * S];
 	for (int i = 0; i < n; ++i)
-		for (int j = 0; j < n; ++j) invK[i * S + j] = k[i][n + j];
-	return true;
+		for (int j = 0; j < n; ++j) dense[i * S + j] = k[i][j];
+	return invertDense(dense, n, S, tiny, invK);
 }
 
 }  // namespace caliber

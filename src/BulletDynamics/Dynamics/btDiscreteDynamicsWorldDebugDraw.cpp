@@ -20,6 +20,27 @@ void drawFrames(btIDebugDraw* drawer, const btTransform& a, const btTransform& b
 	drawer->drawTransform(a, size);
 	drawer->drawTransform(b, size);
 }
+
+// The two 6-DoF families share their drawing: both frames, and the box the linear limits allow (free
+// axes drawn as the frame size).
+template <class SixDof>
+void drawSixDof(btIDebugDraw* drawer, SixDof* d6, btScalar size, bool drawFramesToo, bool drawLimits)
+{
+	d6->calculateTransforms();
+	const btTransform& frameA = d6->getCalculatedTransformA();
+	if (drawFramesToo) drawFrames(drawer, frameA, d6->getCalculatedTransformB(), size);
+	if (!drawLimits) return;
+	btVector3 low, high;
+	d6->getLinearLowerLimit(low);
+	d6->getLinearUpperLimit(high);
+	for (int k = 0; k < 3; ++k)
+		if (low[k] > high[k])
+		{
+			low[k] = -size;
+			high[k] = size;
+		}
+	drawer->drawBox(low, high, frameA, kLimitColor);
+}
 }  // namespace
 
 void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
@@ -95,49 +116,13 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 		}
 		case D6_CONSTRAINT_TYPE:
 		case D6_SPRING_CONSTRAINT_TYPE:
-		{
-			btGeneric6DofConstraint* d6 = static_cast<btGeneric6DofConstraint*>(constraint);
-			d6->calculateTransforms();
-			const btTransform& frameA = d6->getCalculatedTransformA();
-			if (drawFramesToo) drawFrames(drawer, frameA, d6->getCalculatedTransformB(), size);
-			if (drawLimits)
-			{
-				// The box the linear limits allow (free axes drawn as the frame size).
-				btVector3 low, high;
-				d6->getLinearLowerLimit(low);
-				d6->getLinearUpperLimit(high);
-				for (int k = 0; k < 3; ++k)
-					if (low[k] > high[k])
-					{
-						low[k] = -size;
-						high[k] = size;
-					}
-				drawer->drawBox(low, high, frameA, kLimitColor);
-			}
+			drawSixDof(drawer, static_cast<btGeneric6DofConstraint*>(constraint), size, drawFramesToo, drawLimits);
 			break;
-		}
 		case D6_SPRING_2_CONSTRAINT_TYPE:
-		{
 			// Also btHinge2Constraint and btFixedConstraint.
-			btGeneric6DofSpring2Constraint* d6 = static_cast<btGeneric6DofSpring2Constraint*>(constraint);
-			d6->calculateTransforms();
-			const btTransform& frameA = d6->getCalculatedTransformA();
-			if (drawFramesToo) drawFrames(drawer, frameA, d6->getCalculatedTransformB(), size);
-			if (drawLimits)
-			{
-				btVector3 low, high;
-				d6->getLinearLowerLimit(low);
-				d6->getLinearUpperLimit(high);
-				for (int k = 0; k < 3; ++k)
-					if (low[k] > high[k])
-					{
-						low[k] = -size;
-						high[k] = size;
-					}
-				drawer->drawBox(low, high, frameA, kLimitColor);
-			}
+			drawSixDof(drawer, static_cast<btGeneric6DofSpring2Constraint*>(constraint), size, drawFramesToo,
+			           drawLimits);
 			break;
-		}
 		default:
 			// Other joints: the two bodies' centres, linked.
 			if (drawFramesToo) drawer->drawLine(bodyA.getOrigin(), bodyB.getOrigin(), btVector3(1, 1, 0));

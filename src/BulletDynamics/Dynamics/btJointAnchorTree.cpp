@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "btJointAnchorTree.h"
 
+#include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
 namespace caliber
@@ -20,40 +21,14 @@ bool eligible(const btRigidBody& body)
 	       inertia.x() > 0 && inertia.y() > 0 && inertia.z() > 0;
 }
 
-// Inverts the n x n block a (stride S) into inverse by Gauss-Jordan with partial pivoting.
+// Inverts the n x n block a (stride S); pivots are judged against the block's largest entry.
 bool invert(const btScalar* a, int n, btScalar* inverse)
 {
-	btScalar m[S][2 * S];
 	btScalar scale = 0;
 	for (int i = 0; i < n; ++i)
-		for (int j = 0; j < n; ++j)
-		{
-			m[i][j] = a[i * S + j];
-			m[i][n + j] = i == j ? btScalar(1) : btScalar(0);
-			scale = btMax(scale, btFabs(m[i][j]));
-		}
+		for (int j = 0; j < n; ++j) scale = btMax(scale, btFabs(a[i * S + j]));
 	if (!(scale > 0) || !(scale < SIMD_INFINITY)) return false;
-	const btScalar tiny = scale * btScalar(1e-7);
-	for (int c = 0; c < n; ++c)
-	{
-		int pivot = c;
-		for (int r = c + 1; r < n; ++r)
-			if (btFabs(m[r][c]) > btFabs(m[pivot][c])) pivot = r;
-		if (!(btFabs(m[pivot][c]) > tiny)) return false;
-		if (pivot != c)
-			for (int j = 0; j < 2 * n; ++j) btSwap(m[c][j], m[pivot][j]);
-		const btScalar inv = btScalar(1) / m[c][c];
-		for (int j = 0; j < 2 * n; ++j) m[c][j] *= inv;
-		for (int r = 0; r < n; ++r)
-		{
-			if (r == c || m[r][c] == btScalar(0)) continue;
-			const btScalar f = m[r][c];
-			for (int j = 0; j < 2 * n; ++j) m[r][j] -= f * m[c][j];
-		}
-	}
-	for (int i = 0; i < n; ++i)
-		for (int j = 0; j < n; ++j) inverse[i * S + j] = m[i][n + j];
-	return true;
+	return invertDense(a, n, S, scale * btScalar(1e-7), inverse);
 }
 
 // The coupling block between a joint's three rows and one of its bodies (3 x 6, stride S): minus the
