@@ -29,6 +29,10 @@ public:
 	/// The scaled half extents of the core (margin excluded).
 	const btVector3& getHalfExtentsWithoutMargin() const { return m_implicitShapeDimensions; }
 
+	/// The sphere around the box's local bounding box (the same sphere as the base class finds, without the
+	/// bounding-box pass: the dispatcher asks for it for every turning pair in every step).
+	void getBoundingSphere(btVector3 & center, btScalar & radius) const override;
+
 	/// The corner of the full box (margin included) farthest along vec (a negative side for a zero or NaN
 	/// component).
 	btVector3 localGetSupportingVertex(const btVector3& vec) const override;

@@ -71,6 +71,12 @@ void btBoxShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aa
 	btTransformAabb(getHalfExtentsWithMargin(), btScalar(0), t, aabbMin, aabbMax);
 }
 
+void btBoxShape::getBoundingSphere(btVector3& center, btScalar& radius) const
+{
+	center.setValue(btScalar(0), btScalar(0), btScalar(0));
+	radius = getHalfExtentsWithMargin().length();
+}
+
 void btBoxShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
 	if (!caliberCheckMass(mass, inertia)) return;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btConcaveShape.h"
 #include "BulletCollision/CollisionShapes/btConvexInternalShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleCallback.h"
@@ -203,6 +204,24 @@ TEST(ConvexInternalShapeTest, BoundingSphereAndMotionDiscComeFromLocalAabb)
 	EXPECT_NEAR(3, radius, kRoundingTolerance * 4);
 	EXPECT_NEAR(3, segment.getAngularMotionDisc(), kRoundingTolerance * 4);
 	EXPECT_NEAR(btScalar(1.5), segment.getContactBreakingThreshold(btScalar(0.5)), kRoundingTolerance * 4);
+}
+
+TEST(ConvexInternalShapeTest, BoxBoundingSphereIsTheSphereAroundItsLocalAabb)
+{
+	// The box's own bounding sphere must be the base class's (the sphere around the margin-inclusive
+	// local bounding box): the contact breaking threshold and the speculative reach depend on it.
+	btBoxShape box(btVector3(1, 2, 3));
+	box.setMargin(btScalar(0.25));
+	btVector3 aabbMin, aabbMax;
+	box.getAabb(btTransform::getIdentity(), aabbMin, aabbMax);
+	btVector3 center;
+	btScalar radius;
+	box.getBoundingSphere(center, radius);
+	EXPECT_TRUE(vectorsNear((aabbMin + aabbMax) * btScalar(0.5), center, kRoundingTolerance));
+	// The corners are at (1, 2, 3) (the margin lies inside the half extents): radius sqrt(14).
+	EXPECT_NEAR(btSqrt(btScalar(14)), radius, kRoundingTolerance * 4);
+	EXPECT_NEAR((aabbMax - aabbMin).length() * btScalar(0.5), radius, kRoundingTolerance * 4);
+	EXPECT_NEAR(btSqrt(btScalar(14)), box.getAngularMotionDisc(), kRoundingTolerance * 4);
 }
 
 TEST(ConvexInternalShapeTest, TemporalAabbGrowsTowardsMotionAndByRotation)
