@@ -265,7 +265,16 @@ SIMD_FORCE_INLINE btVector3 operator*(const btMatrix3x3& m, const btVector3& v)
 /// Row vector times matrix: v^T * m.
 SIMD_FORCE_INLINE btVector3 operator*(const btVector3& v, const btMatrix3x3& m)
 {
+#ifdef BT_USE_SSE
+	// v.x row0 + v.y row1 + v.z row2, summed in the order of tdotx: no transpose through memory.
+	const __m128 a = v.get128();
+	const __m128 sum = _mm_add_ps(
+	    _mm_add_ps(_mm_mul_ps(m[0].get128(), caliberSplat(a, 0)), _mm_mul_ps(m[1].get128(), caliberSplat(a, 1))),
+	    _mm_mul_ps(m[2].get128(), caliberSplat(a, 2)));
+	return btVector3(caliberClearW(sum));
+#else
 	return btVector3(m.tdotx(v), m.tdoty(v), m.tdotz(v));
+#endif
 }
 
 /// Matrix product.
@@ -316,8 +325,19 @@ SIMD_FORCE_INLINE btMatrix3x3& btMatrix3x3::operator*=(const btMatrix3x3& m)
 
 SIMD_FORCE_INLINE btMatrix3x3 btMatrix3x3::transpose() const
 {
+#ifdef BT_USE_SSE
+	// Shuffled in registers; the zero fourth row leaves w = 0 in every transposed row.
+	__m128 r0 = m_el[0].get128(), r1 = m_el[1].get128(), r2 = m_el[2].get128(), r3 = _mm_setzero_ps();
+	_MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+	btMatrix3x3 result;
+	result[0] = btVector3(r0);
+	result[1] = btVector3(r1);
+	result[2] = btVector3(r2);
+	return result;
+#else
 	return btMatrix3x3(m_el[0].x(), m_el[1].x(), m_el[2].x(), m_el[0].y(), m_el[1].y(), m_el[2].y(), m_el[0].z(),
 	                   m_el[1].z(), m_el[2].z());
+#endif
 }
 
 SIMD_FORCE_INLINE btMatrix3x3 btMatrix3x3::adjoint() const
@@ -347,9 +367,20 @@ SIMD_FORCE_INLINE btMatrix3x3 btMatrix3x3::transposeTimes(const btMatrix3x3& m) 
 {
 	// (this^T m)[i][j] = column i of this . column j of m.
 	btMatrix3x3 result;
+#ifdef BT_USE_SSE
+	// Row i of the result is this[0][i] m[0] + this[1][i] m[1] + this[2][i] m[2], summed in that order.
+	for (int i = 0; i < 3; ++i)
+	{
+		const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m_el[0][i]), m[0].get128()),
+		                                         _mm_mul_ps(_mm_set1_ps(m_el[1][i]), m[1].get128())),
+		                              _mm_mul_ps(_mm_set1_ps(m_el[2][i]), m[2].get128()));
+		result[i] = btVector3(caliberClearW(sum));
+	}
+#else
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) result[i][j] = m_el[0][i] * m[0][j] + m_el[1][i] * m[1][j] + m_el[2][i] * m[2][j];
 	for (int i = 0; i < 3; ++i) result[i][3] = btScalar(0);
+#endif
 	return result;
 }
 

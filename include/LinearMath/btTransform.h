@@ -86,7 +86,7 @@ public:
 	SIMD_FORCE_INLINE btVector3 invXform(const btVector3& inVec) const
 	{
 		const btVector3 v = inVec - m_origin;
-		return m_basis.transpose() * v;
+		return v * m_basis;
 	}
 	SIMD_FORCE_INLINE void setBasis(const btMatrix3x3& basis) { m_basis = basis; }
 	SIMD_FORCE_INLINE void setRotation(const btQuaternion& q) { m_basis.setRotation(q); }

@@ -62,10 +62,15 @@ public:
 	/// (x, y, z) with w = 0.
 	SIMD_FORCE_INLINE btVector3(const btScalar& x, const btScalar& y, const btScalar& z)
 	{
+#ifdef BT_USE_SSE
+		// Built in a register: four scalar stores read back as one vector would stall store forwarding.
+		mVec128 = _mm_setr_ps(x, y, z, btScalar(0.));
+#else
 		m_floats[0] = x;
 		m_floats[1] = y;
 		m_floats[2] = z;
 		m_floats[3] = btScalar(0.);
+#endif
 	}
 
 	SIMD_FORCE_INLINE btVector3& operator+=(const btVector3& v)
@@ -305,10 +310,14 @@ public:
 	/// Sets x, y, z and w = 0.
 	SIMD_FORCE_INLINE void setValue(const btScalar& x, const btScalar& y, const btScalar& z)
 	{
+#ifdef BT_USE_SSE
+		mVec128 = _mm_setr_ps(x, y, z, btScalar(0.));
+#else
 		m_floats[0] = x;
 		m_floats[1] = y;
 		m_floats[2] = z;
 		m_floats[3] = btScalar(0.);
+#endif
 	}
 
 	/// The rows of the cross-product matrix [v]x, so that [v]x * u == v.cross(u).
