@@ -59,18 +59,20 @@ public:
 	/// Sets x, y, z and w = 0.
 	SIMD_FORCE_INLINE void setValue(const btScalar& x, const btScalar& y, const btScalar& z)
 	{
-		m_floats[0] = x;
-		m_floats[1] = y;
-		m_floats[2] = z;
-		m_floats[3] = 0.f;
+		setValue(x, y, z, btScalar(0));
 	}
 	/// Sets all four components.
 	SIMD_FORCE_INLINE void setValue(const btScalar& x, const btScalar& y, const btScalar& z, const btScalar& w)
 	{
+#ifdef BT_USE_SSE
+		// Built in a register: four scalar stores read back as one vector would stall store forwarding.
+		mVec128 = _mm_setr_ps(x, y, z, w);
+#else
 		m_floats[0] = x;
 		m_floats[1] = y;
 		m_floats[2] = z;
 		m_floats[3] = w;
+#endif
 	}
 
 	/// Uninitialised.

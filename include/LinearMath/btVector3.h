@@ -453,8 +453,7 @@ SIMD_FORCE_INLINE btVector3 btVector3::rotate(const btVector3& wAxis, const btSc
 /// A btVector3 whose fourth component is meaningful (colours, plane equations).
 ATTRIBUTE_ALIGNED16(class)
 btVector4 : public btVector3{public : SIMD_FORCE_INLINE btVector4(){} SIMD_FORCE_INLINE btVector4(
-	            const btScalar& x, const btScalar& y, const btScalar& z, const btScalar& w) :
-	                             btVector3(x, y, z){m_floats[3] = w;
+	            const btScalar& x, const btScalar& y, const btScalar& z, const btScalar& w){setValue(x, y, z, w);
 }
 #ifdef BT_USE_SSE
 SIMD_FORCE_INLINE btVector4(const btSimdFloat4 v128) : btVector3(v128) {}
@@ -490,10 +489,14 @@ SIMD_FORCE_INLINE int closestAxis4() const { return absolute4().maxAxis4(); }
 /// Sets all four components.
 SIMD_FORCE_INLINE void setValue(const btScalar& x, const btScalar& y, const btScalar& z, const btScalar& w)
 {
+#ifdef BT_USE_SSE
+	mVec128 = _mm_setr_ps(x, y, z, w);
+#else
 	m_floats[0] = x;
 	m_floats[1] = y;
 	m_floats[2] = z;
 	m_floats[3] = w;
+#endif
 }
 
 /// Exact equality of all four components.

@@ -8,7 +8,9 @@
 
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 
+#include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
 #include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
 namespace
 {
@@ -212,6 +214,15 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 			if (ahead.m_algorithm) __builtin_prefetch(ahead.m_algorithm);
 			__builtin_prefetch(ahead.m_pProxy0);
 			__builtin_prefetch(ahead.m_pProxy1);
+		}
+		// Two pairs ahead the algorithm is in cache: its manifold is next (the manifold's points and the
+		// thresholds at its end are all read).
+		if (i + 2 < m_pairs.size() && m_pairs[i + 2].m_algorithm)
+		{
+			const char* manifold = static_cast<const char*>(m_pairs[i + 2].m_algorithm->caliberPrefetchHint());
+			if (manifold)
+				for (int offset = 0; offset < int(sizeof(btPersistentManifold)); offset += 64)
+					__builtin_prefetch(manifold + offset);
 		}
 #endif
 		if (callback->processOverlap(pair)) removeOverlappingPair(proxy0, proxy1, dispatcher);

@@ -134,6 +134,7 @@ btConvexConvexAlgorithm::btConvexConvexAlgorithm(btPersistentManifold* mf,
       m_numPerturbationIterations(numPerturbationIterations),
       m_minimumPointsPerturbationThreshold(minimumPointsPerturbationThreshold)
 {
+	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btConvexConvexAlgorithm::~btConvexConvexAlgorithm()
@@ -153,6 +154,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		// A full manifold pool without dynamic allocation gives none: the pair is skipped this step.
 		if (!m_manifoldPtr) return;
 		m_ownManifold = true;
+		m_caliberPrefetchHint = m_manifoldPtr;
 	}
 	caliberPrefetchManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);

@@ -25,6 +25,7 @@ btSphereBoxCollisionAlgorithm::btSphereBoxCollisionAlgorithm(btPersistentManifol
 		m_manifoldPtr = m_dispatcher->getNewManifold(sphereWrap->getCollisionObject(), boxWrap->getCollisionObject());
 		m_ownManifold = true;
 	}
+	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btSphereBoxCollisionAlgorithm::~btSphereBoxCollisionAlgorithm()

@@ -150,6 +150,15 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	m_manifoldFirstRow.resize(0);
 	for (int i = 0; i < numManifolds; ++i)
 	{
+#if defined(__GNUC__)
+		// Manifolds are scattered over the heap and each is read whole: ask for the one two ahead.
+		if (i + 2 < numManifolds)
+		{
+			const char* ahead = reinterpret_cast<const char*>(manifoldPtr[i + 2]);
+			for (int offset = 0; offset < int(sizeof(btPersistentManifold)); offset += 64)
+				__builtin_prefetch(ahead + offset);
+		}
+#endif
 		const int firstRow = m_tmpSolverContactConstraintPool.size();
 		convertContact(manifoldPtr[i], infoGlobal);
 		if (m_tmpSolverContactConstraintPool.size() > firstRow) m_manifoldFirstRow.push_back(firstRow);
