@@ -208,18 +208,27 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 		// The narrowphase of a pair starts by reading its algorithm and the two objects, which live all
 		// over the heap: ask for a pair a few places ahead while this one is processed.
 #if defined(__GNUC__)
-		if (i + 4 < m_pairs.size())
+		// Eight pairs ahead: the pair's algorithm and proxies; four ahead (the algorithm is in cache by
+		// then): its manifold's first and last lines, which start the hardware's stream through the rest.
+		if (i + 8 < m_pairs.size())
 		{
-			const btBroadphasePair& ahead = m_pairs[i + 4];
+			const btBroadphasePair& ahead = m_pairs[i + 8];
 			if (ahead.m_algorithm) __builtin_prefetch(ahead.m_algorithm);
 			__builtin_prefetch(ahead.m_pProxy0);
 			__builtin_prefetch(ahead.m_pProxy1);
 		}
-		// Two pairs ahead the algorithm is in cache: its manifold is next (the manifold's points and the
-		// thresholds at its end are all read).
-		if (i + 2 < m_pairs.size() && m_pairs[i + 2].m_algorithm)
+		if (i + 4 < m_pairs.size() && m_pairs[i + 4].m_algorithm)
 		{
-			const char* manifold = static_cast<const char*>(m_pairs[i + 2].m_algorithm->caliberPrefetchHint());
+			const btBroadphasePair& ahead = m_pairs[i + 4];
+			// The objects' transforms come first in them.
+			for (const btBroadphaseProxy* proxy : {ahead.m_pProxy0, ahead.m_pProxy1})
+			{
+				if (!proxy) continue;
+				const char* object = static_cast<const char*>(proxy->m_clientObject);
+				__builtin_prefetch(object);
+				__builtin_prefetch(object + 64);
+			}
+			const char* manifold = static_cast<const char*>(ahead.m_algorithm->caliberPrefetchHint());
 			if (manifold)
 				for (int offset = 0; offset < int(sizeof(btPersistentManifold)); offset += 64)
 					__builtin_prefetch(manifold + offset);

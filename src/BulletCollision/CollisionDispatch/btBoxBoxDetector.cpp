@@ -239,60 +239,82 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 	const btVector3 delta = b.centre - a.centre;
 	const btScalar size = a.half[a.half.maxAxis()] + b.half[b.half.maxAxis()];
 
-	// Separation of the boxes along a unit axis: positive when apart, minus the overlap otherwise.
-	auto separationAlong = [&](const btVector3& axis)
-	{
-		btScalar radiusA = 0, radiusB = 0;
-		for (int k = 0; k < 3; ++k)
-		{
-			radiusA += a.half[k] * btFabs(a.axis[k].dot(axis));
-			radiusB += b.half[k] * btFabs(b.axis[k].dot(axis));
-		}
-		return btFabs(delta.dot(axis)) - radiusA - radiusB;
-	};
-	// The normal from B towards A along axis.
+	// Separating-axis test in A's frame: R[i][j] = a_i . b_j and t = delta in A's frame give every axis's
+	// radii and centre distance from 9 + 3 dot products, instead of 6 per axis for 15 axes. The normal
+	// from B towards A along axis.
 	auto orient = [&](const btVector3& axis) { return delta.dot(axis) > 0 ? -axis : axis; };
+	btScalar R[3][3], absR[3][3], t[3];
+	for (int i = 0; i < 3; ++i)
+	{
+		t[i] = delta.dot(a.axis[i]);
+		for (int j = 0; j < 3; ++j)
+		{
+			R[i][j] = a.axis[i].dot(b.axis[j]);
+			absR[i][j] = btFabs(R[i][j]);
+		}
+	}
 
 	BestAxis best;
 	best.kind = -1;
 	best.indexA = best.indexB = 0;
 	best.separation = -SIMD_INFINITY;
 	best.normal.setValue(0, 0, 1);
-	for (int box = 0; box < 2; ++box)
+	// Face axes of A: A's radius is its half extent, B's is its extents projected with |R|.
+	for (int i = 0; i < 3; ++i)
 	{
-		const BoxFrame& frame = box == 0 ? a : b;
-		for (int i = 0; i < 3; ++i)
+		const btScalar radiusB = b.half[0] * absR[i][0] + b.half[1] * absR[i][1] + b.half[2] * absR[i][2];
+		const btScalar separation = btFabs(t[i]) - a.half[i] - radiusB;
+		if (separation > maxDistance) return;
+		if (separation > best.separation)
 		{
-			const btScalar separation = separationAlong(frame.axis[i]);
-			if (separation > maxDistance) return;
-			if (separation > best.separation)
-			{
-				best.kind = box;
-				best.indexA = best.indexB = i;
-				best.normal = orient(frame.axis[i]);
-				best.separation = separation;
-			}
+			best.kind = 0;
+			best.indexA = best.indexB = i;
+			best.separation = separation;
 		}
 	}
+	// Face axes of B: the same with the roles exchanged (delta . b_j = sum_i t_i R[i][j]).
+	for (int j = 0; j < 3; ++j)
+	{
+		const btScalar radiusA = a.half[0] * absR[0][j] + a.half[1] * absR[1][j] + a.half[2] * absR[2][j];
+		const btScalar centreDistance = t[0] * R[0][j] + t[1] * R[1][j] + t[2] * R[2][j];
+		const btScalar separation = btFabs(centreDistance) - radiusA - b.half[j];
+		if (separation > maxDistance) return;
+		if (separation > best.separation)
+		{
+			best.kind = 1;
+			best.indexA = best.indexB = j;
+			best.separation = separation;
+		}
+	}
+	if (best.kind >= 0) best.normal = orient(best.kind == 0 ? a.axis[best.indexA] : b.axis[best.indexB]);
+
+	// Edge axes a_i x b_j, of length sqrt(1 - R[i][j]^2). With (i, i1, i2) and (j, j1, j2) cyclic:
+	// a_i1 . (a_i x b_j) = -R[i2][j], a_i2 . (a_i x b_j) = R[i1][j], and b_j1, b_j2 likewise, so the
+	// radii and the centre distance along the axis come from R and t alone.
 	const btScalar edgeBias = kEdgeAxisBias * size;
 	for (int i = 0; i < 3; ++i)
+	{
+		const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
 		for (int j = 0; j < 3; ++j)
 		{
-			const btVector3 cross = a.axis[i].cross(b.axis[j]);
-			const btScalar length2 = cross.length2();
+			const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+			const btScalar length2 = btScalar(1) - R[i][j] * R[i][j];
 			if (!(length2 > kParallelCross2)) continue;
-			const btVector3 axis = cross / btSqrt(length2);
-			const btScalar separation = separationAlong(axis);
+			const btScalar radiusA = a.half[i1] * absR[i2][j] + a.half[i2] * absR[i1][j];
+			const btScalar radiusB = b.half[j1] * absR[i][j2] + b.half[j2] * absR[i][j1];
+			const btScalar centreDistance = t[i2] * R[i1][j] - t[i1] * R[i2][j];
+			const btScalar separation = (btFabs(centreDistance) - radiusA - radiusB) / btSqrt(length2);
 			if (separation > maxDistance) return;
 			if (separation > best.separation + edgeBias)
 			{
 				best.kind = 2;
 				best.indexA = i;
 				best.indexB = j;
-				best.normal = orient(axis);
 				best.separation = separation;
 			}
 		}
+	}
+	if (best.kind == 2) best.normal = orient(a.axis[best.indexA].cross(b.axis[best.indexB]).normalized());
 
 	const btScalar mergeDistance = kMergeDistance * size + SIMD_EPSILON;
 	if (best.kind == 0)
