@@ -46,6 +46,8 @@ protected:
 	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
 	/// of the points within a manifold.
 	btAlignedObjectArray<int> m_manifoldFirstRow;
+	/// Contact rows (in solving order) with a split-impulse target: the only ones the push pass visits.
+	btAlignedObjectArray<int> m_pushRows;
 	/// Counts solveGroup calls, so that the in-manifold order also changes from step to step.
 	unsigned int m_solveCount;
 	/// Friction rows per contact row in this solve: 2 with SOLVER_USE_2_FRICTION_DIRECTIONS, else 1. The

@@ -298,20 +298,25 @@ void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIte
 	(void)debugDrawer;
 	if (!infoGlobal.m_splitImpulse) return;
 	BT_PROFILE("solveGroupCacheFriendlySplitImpulseIterations");
+	// A row without a push target starts with no push impulse and is never given one, so only the rows
+	// with a target are visited (in the normal rows' order), instead of every row in every sweep.
 	const int numContacts = m_tmpSolverContactConstraintPool.size();
-	bool anyPenetration = false;
-	for (int j = 0; j < numContacts && !anyPenetration; ++j)
-		anyPenetration = m_tmpSolverContactConstraintPool[j].m_rhsPenetration != btScalar(0);
-	if (!anyPenetration) return;
+	m_pushRows.resize(0);
+	for (int j = 0; j < numContacts; ++j)
+	{
+		const int index = m_orderTmpConstraintPool[j];
+		if (m_tmpSolverContactConstraintPool[index].m_rhsPenetration != btScalar(0)) m_pushRows.push_back(index);
+	}
+	if (m_pushRows.size() == 0) return;
 
 	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
+	const int numPushRows = m_pushRows.size();
 	for (int iteration = 0; iteration < infoGlobal.m_numIterations; ++iteration)
 	{
 		btScalar residual = btScalar(0);
-		for (int j = 0; j < numContacts; ++j)
+		for (int k = 0; k < numPushRows; ++k)
 		{
-			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
-			if (row.m_rhsPenetration == btScalar(0) && row.m_appliedPushImpulse == btScalar(0)) continue;
+			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_pushRows[k]];
 			residual +=
 			    caliber::resolvePushRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row);
 		}
