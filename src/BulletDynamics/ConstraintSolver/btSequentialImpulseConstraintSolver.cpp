@@ -176,20 +176,33 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 		// in every sweep, and in a stack that bias tilts every box the same way, step after step, until
 		// the tower leans. So within each manifold the first point rotates from step to step, and the
 		// sweeps alternate direction (solveSingleIteration). Deterministic, and no shuffle to pay for.
+		//
+		// The points of one manifold share both bodies, so solving them back to back makes every row wait
+		// for the previous one's body update. Taking the manifolds' k-th points in turn, in blocks of a
+		// few manifolds, gives the processor independent rows to overlap while the sweep stays local.
 		const int numManifoldsWithRows = m_manifoldFirstRow.size() - 1;
+		const int kInterleave = 8;
 		int next = 0;
-		for (int m = 0; m < numManifoldsWithRows; ++m)
+		for (int blockStart = 0; blockStart < numManifoldsWithRows; blockStart += kInterleave)
 		{
-			const int first = m_manifoldFirstRow[m];
-			const int count = m_manifoldFirstRow[m + 1] - first;
-			const int start = int(m_solveCount % unsigned(count));
-			for (int p = 0; p < count; ++p)
+			const int blockEnd = btMin(blockStart + kInterleave, numManifoldsWithRows);
+			int maxCount = 0;
+			for (int m = blockStart; m < blockEnd; ++m)
+				maxCount = btMax(maxCount, m_manifoldFirstRow[m + 1] - m_manifoldFirstRow[m]);
+			for (int p = 0; p < maxCount; ++p)
 			{
-				int offset = p + start;
-				if (offset >= count) offset -= count;
-				m_orderTmpConstraintPool[next++] = first + offset;
+				for (int m = blockStart; m < blockEnd; ++m)
+				{
+					const int first = m_manifoldFirstRow[m];
+					const int count = m_manifoldFirstRow[m + 1] - first;
+					if (p >= count) continue;
+					int offset = p + int(m_solveCount % unsigned(count));
+					if (offset >= count) offset -= count;
+					m_orderTmpConstraintPool[next++] = first + offset;
+				}
 			}
 		}
+		btAssert(next == m_orderTmpConstraintPool.size());
 		for (int j = 0; j < m_orderTmpConstraintPool.size(); ++j)
 			for (int f = 0; f < m_frictionRowsPerContact; ++f)
 				m_orderFrictionConstraintPool[j * m_frictionRowsPerContact + f] =
