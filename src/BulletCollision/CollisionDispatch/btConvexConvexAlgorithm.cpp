@@ -8,6 +8,7 @@
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/CollisionShapes/btTriangleShape.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
@@ -106,6 +107,32 @@ const btConvexPolyhedron* polyhedronOf(const btConvexShape* shape)
 	return static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
 }
 
+// GJK's starting axis (from B towards A) when one shape is a triangle: its normal, turned towards the
+// other shape's origin. The first GJK step is then the face test, which rejects a shape beyond reach
+// on either side of the plane at once (most triangles a mesh query returns), and a shape resting on
+// the face starts from its contact normal. False for other pairs and for degenerate triangles.
+bool triangleStartAxis(const btConvexShape* shapeA, const btTransform& transformA, const btConvexShape* shapeB,
+                       const btTransform& transformB, btVector3& axis)
+{
+	const bool triangleIsB = shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE;
+	if (!triangleIsB && shapeA->getShapeType() != TRIANGLE_SHAPE_PROXYTYPE) return false;
+	const btTriangleShape* triangle = static_cast<const btTriangleShape*>(triangleIsB ? shapeB : shapeA);
+	const btTransform& triangleTransform = triangleIsB ? transformB : transformA;
+	const btVector3* corners = triangle->m_vertices1;
+	const btVector3 edge1 = corners[1] - corners[0];
+	const btVector3 edge2 = corners[2] - corners[0];
+	const btVector3 normal = triangleTransform.getBasis() * edge1.cross(edge2);
+	const btScalar normalLengthSquared = normal.length2();
+	// A sliver's cross product is mostly rounding: its direction would be no better than the default.
+	if (!(normalLengthSquared > SIMD_EPSILON * edge1.length2() * edge2.length2()) || !btIsFinite(normalLengthSquared))
+		return false;
+	const btVector3 corner = triangleTransform(corners[0]);
+	const btVector3 towardsA = triangleIsB ? transformA.getOrigin() - corner : corner - transformB.getOrigin();
+	axis = normal / btSqrt(normalLengthSquared);
+	if (axis.dot(towardsA) < btScalar(0)) axis = -axis;
+	return true;
+}
+
 // The margin clipping must add back: boxes' polyhedra already have their full size.
 btScalar clippingMargin(const btConvexShape* shape)
 {
@@ -190,6 +217,10 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	input.m_transformB = body1Wrap->getWorldTransform();
 	const btScalar maxDistance = shapeA->getMargin() + shapeB->getMargin() + reach;
 	input.m_maximumDistanceSquared = maxDistance * maxDistance;
+
+	btVector3 startAxis;
+	if (triangleStartAxis(shapeA, input.m_transformA, shapeB, input.m_transformB, startAxis))
+		gjk.setCachedSeperatingAxis(startAxis);
 
 	GjkPointResult gjkPoint;
 	gjk.getClosestPoints(input, gjkPoint, dispatchInfo.m_debugDraw);

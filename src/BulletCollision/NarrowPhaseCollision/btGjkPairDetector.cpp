@@ -147,11 +147,13 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 			break;
 		}
 		const btScalar delta = v.dot(w);
-		// v.w / |v| is a lower bound on the core distance: once the reported distance must exceed the
-		// maximum, nothing will be reported.
-		if (delta > btScalar(0) && squaredDistance < BT_LARGE_FLOAT)
+		// v.w / |v| is a lower bound on the core distance for any v, the starting axis included (a
+		// good one, such as a triangle's normal, then ends a query in one step): once the reported
+		// distance must exceed the maximum, nothing will be reported.
+		if (delta > btScalar(0))
 		{
-			const btScalar lowerBound = delta / btSqrt(squaredDistance);
+			const btScalar lengthSquared = squaredDistance < BT_LARGE_FLOAT ? squaredDistance : v.length2();
+			const btScalar lowerBound = delta / btSqrt(lengthSquared);
 			if (lowerBound - marginSum > maxDistance) return;
 		}
 		if (squaredDistance < BT_LARGE_FLOAT && caliber_gjk::boundsMet(squaredDistance, delta, simplex.maxVertex()))

@@ -5,6 +5,7 @@
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btConcaveShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleCallback.h"
 #include "TestDispatcher.h"
@@ -147,4 +148,62 @@ TEST(ConvexConcaveAlgorithm, SeparatedConvexHasNoPointsAndAllocatesNothingPerFra
 	EXPECT_EQ(config.getPersistentManifoldPool()->getFreeCount(), freeManifolds);
 	pair.m_object0.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, 3, 0)));
 	EXPECT_EQ(pair.process()->getNumContacts(), 0);
+}
+
+TEST(ConvexConcaveAlgorithm, HullNearATiltedTriangleIsFoundUpToTheReachOnEverySide)
+{
+	// GJK starts each triangle from its normal and stops once a lower bound on the distance exceeds
+	// the reach. A cube hull just inside the reach must still be found wherever it is: above the face,
+	// below it, beside an edge in the triangle's plane, and diagonally off that edge.
+	btDefaultCollisionConfiguration config;
+	TestDispatcher dispatcher(&config);
+	TriangleSoupShape mesh;
+	// Normal +y in the mesh's frame; the edge from (-2, 0, 0) to (2, 0, 0) bounds it at z = 0.
+	mesh.addTriangle(btVector3(-2, 0, 0), btVector3(0, 0, 3), btVector3(2, 0, 0));
+	mesh.setMargin(btScalar(0.01));
+	btConvexHullShape cube;
+	for (int corner = 0; corner < 8; ++corner)
+		cube.addPoint(btVector3(corner & 1 ? btScalar(0.5) : btScalar(-0.5),
+		                        corner & 2 ? btScalar(0.5) : btScalar(-0.5),
+		                        corner & 4 ? btScalar(0.5) : btScalar(-0.5)));
+	cube.setMargin(btScalar(0.04));
+	const btScalar margins = cube.getMargin() + mesh.getMargin();
+	const btTransform meshTransform(btQuaternion(btVector3(1, 0, 1), btScalar(0.5)), btVector3(3, -1, 2));
+
+	struct Placement
+	{
+		btVector3 direction;         // unit, in the mesh's frame: from the triangle towards the cube
+		btVector3 cubeCentreAtZero;  // where the cube touches the triangle (zero distance)
+	};
+	const btScalar diagonal = btSqrt(btScalar(0.5));
+	const Placement placements[] = {
+	    {btVector3(0, 1, 0), btVector3(0, btScalar(0.5), 1)},
+	    {btVector3(0, -1, 0), btVector3(0, btScalar(-0.5), 1)},
+	    {btVector3(0, 0, -1), btVector3(0, 0, btScalar(-0.5))},
+	    {btVector3(0, diagonal, -diagonal), btVector3(0, btScalar(0.5), btScalar(-0.5))},
+	};
+	// Coordinates of size ~5 after two rotations: a few ulps of 5 per operation, far below 1e-4.
+	const btScalar tolerance = btScalar(1e-4);
+	for (int p = 0; p < 4; ++p)
+	{
+		const Placement& placement = placements[p];
+		PairFixture pair(dispatcher, &cube, btTransform::getIdentity(), &mesh, meshTransform);
+		// The margins sit between the cores: a core gap of margins + d is a reported distance d.
+		const auto placeAt = [&](btScalar distance)
+		{
+			const btVector3 local = placement.cubeCentreAtZero + placement.direction * (margins + distance);
+			pair.m_object0.setWorldTransform(meshTransform * btTransform(btQuaternion::getIdentity(), local));
+			return pair.process();
+		};
+		const btScalar reach = placeAt(btScalar(5))->getContactBreakingThreshold();
+		ASSERT_GT(reach, btScalar(0.01));
+		btPersistentManifold* manifold = placeAt(reach * btScalar(0.95));
+		ASSERT_EQ(manifold->getNumContacts(), 1) << "placement " << p << " reach " << reach;
+		const btManifoldPoint& point = manifold->getContactPoint(0);
+		EXPECT_NEAR(point.getDistance(), reach * btScalar(0.95), tolerance) << "placement " << p;
+		EXPECT_TRUE(vectorsNear(point.m_normalWorldOnB, meshTransform.getBasis() * placement.direction, tolerance))
+		    << "placement " << p;
+		manifold->clearManifold();
+		EXPECT_EQ(placeAt(reach * btScalar(1.05))->getNumContacts(), 0) << "placement " << p;
+	}
 }

@@ -7,6 +7,7 @@
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 #include "BulletCollision/CollisionShapes/btCylinderShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/CollisionShapes/btTriangleShape.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
 #include "BulletCollision/NarrowPhaseCollision/btMinkowskiPenetrationDepthSolver.h"
@@ -241,6 +242,53 @@ TEST(GjkPairDetector, PointsBeyondTheMaximumDistanceAreNotReported)
 	EXPECT_NEAR(near.m_distance, 3, kDistanceTolerance);
 	EXPECT_TRUE(vectorsNear(detector.getCachedSeparatingAxis(), btVector3(1, 0, 0), kDistanceTolerance));
 	EXPECT_NEAR(detector.getCachedSeparatingDistance(), 3, kDistanceTolerance);
+}
+
+TEST(GjkPairDetector, StartingAxisRejectsOnlyPairsBeyondTheMaximumDistance)
+{
+	// A box over a triangle, their margins 0.04 and 0.03 apart from the cores. Along the exact starting
+	// axis (the triangle's normal) the first support step's lower bound equals the core distance, so a
+	// bound that left out the margins or the axis's length would reject the pair just inside the limit.
+	btBoxShape box(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
+	box.setMargin(btScalar(0.04));
+	btTriangleShape triangle(btVector3(-2, 0, -2), btVector3(-2, 0, 2), btVector3(2, 0, 0));
+	triangle.setMargin(btScalar(0.03));
+	const btScalar maxDistance = btScalar(0.3);
+	const btScalar startLengths[] = {btScalar(1), btScalar(10), btScalar(0.1)};
+	for (btScalar startLength : startLengths)
+	{
+		for (int side = 0; side < 2; ++side)
+		{
+			// Just inside and just outside the maximum, with the box above or below the triangle.
+			const btScalar gaps[] = {maxDistance - btScalar(1e-3), maxDistance + btScalar(1e-3)};
+			for (int g = 0; g < 2; ++g)
+			{
+				const btScalar sign = side == 0 ? btScalar(1) : btScalar(-1);
+				btVoronoiSimplexSolver simplex;
+				btGjkEpaPenetrationDepthSolver epa;
+				btGjkPairDetector detector(&box, &triangle, &simplex, &epa);
+				detector.setCachedSeperatingAxis(btVector3(0, sign * startLength, 0));
+				btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+				// The box's full half height is 0.5 (btBoxShape keeps its margin inside).
+				input.m_transformA = at(btVector3(btScalar(0.2), sign * (btScalar(0.5) + btScalar(0.03) + gaps[g]), 0));
+				input.m_transformB = at(btVector3(0, 0, 0));
+				input.m_maximumDistanceSquared = maxDistance * maxDistance;
+				btPointCollector result;
+				detector.getClosestPoints(input, result, nullptr);
+				if (g == 0)
+				{
+					ASSERT_TRUE(result.m_hasResult) << "start length " << startLength << " side " << side;
+					EXPECT_NEAR(result.m_distance, gaps[g], kDistanceTolerance);
+					EXPECT_TRUE(vectorsNear(result.m_normalOnBInWorld, btVector3(0, sign, 0), kDistanceTolerance));
+				}
+				else
+				{
+					EXPECT_FALSE(result.m_hasResult)
+					    << "start length " << startLength << " side " << side << " distance " << result.m_distance;
+				}
+			}
+		}
+	}
 }
 
 TEST(GjkPairDetector, MinkowskiSamplingSolverGivesExactFaceDepthForBoxes)
