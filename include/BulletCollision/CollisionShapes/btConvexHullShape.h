@@ -12,6 +12,17 @@ ATTRIBUTE_ALIGNED16(class)
 btConvexHullShape : public btPolyhedralConvexAabbCachingShape
 {
 	btAlignedObjectArray<btVector3> m_unscaledPoints;
+	// The support scan's copy of the points: the distinct ones (bitwise, first occurrences in order) in
+	// blocks of four, stored as 4 x, 4 y and 4 z; a partial last block repeats the first point. Kept in
+	// step by the methods that change the points; handing out the writable points makes it stale, and
+	// support queries then scan m_unscaledPoints until the next addPoint or optimizeConvexHull.
+	btAlignedObjectArray<btScalar> m_supportLanes;
+	int m_supportCount;
+	bool m_supportLanesValid;
+
+	void rebuildSupportLanes();
+	void appendSupportLane(const btVector3& point);
+	int supportLaneIndex(const btVector3& direction) const;
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
@@ -24,8 +35,14 @@ public:
 	/// Appends a point and, if recalculateLocalAabb, refreshes the cached AABB.
 	void addPoint(const btVector3& point, bool recalculateLocalAabb = true);
 
-	/// The stored points, local scaling not applied.
-	btVector3* getUnscaledPoints() { return m_unscaledPoints.size() ? &m_unscaledPoints[0] : 0; }
+	/// The stored points, local scaling not applied. Points edited through this pointer are seen by the
+	/// support queries (which then scan all the points) until the next addPoint or optimizeConvexHull;
+	/// call recalcLocalAabb after editing, as the cached AABB needs it.
+	btVector3* getUnscaledPoints()
+	{
+		m_supportLanesValid = false;
+		return m_unscaledPoints.size() ? &m_unscaledPoints[0] : 0;
+	}
 	/// The stored points, local scaling not applied.
 	const btVector3* getUnscaledPoints() const { return m_unscaledPoints.size() ? &m_unscaledPoints[0] : 0; }
 	/// Same as getUnscaledPoints (Bullet's older name).

@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 #include "BulletCollision/CollisionShapes/PolyShapeTestUtil.h"
 
@@ -54,6 +56,79 @@ TEST(ConvexHullShape, SupportMatchesBruteForceOverPoints)
 	btVector3 out[3];
 	hull.batchedUnitVectorGetSupportingVertexWithoutMargin(dirs, out, 3);
 	for (int k = 0; k < 3; ++k) EXPECT_EQ(out[k], hull.localGetSupportingVertexWithoutMargin(dirs[k]));
+}
+
+TEST(ConvexHullShape, SupportIsBitwiseTheFirstPointOfLargestDotAmongRepeatsAndTies)
+{
+	// The support scan keeps one copy of each point; the answer must still be exactly maxDot's over all
+	// points (the first point of largest dot product), also where points tie: on the grid below, axis and
+	// diagonal directions meet whole faces and edges. Sizes cover partial blocks of four and clouds
+	// beyond the duplicate-check limit (128 distinct points).
+	polytest::Random rng(7);
+	const int sizes[] = {1, 2, 3, 4, 5, 7, 9, 13, 40, 150, 400};
+	for (int size : sizes)
+	{
+		btAlignedObjectArray<btVector3> points;
+		for (int i = 0; i < size; ++i)
+		{
+			// Grid points on a 3 x 3 x 3 lattice (many ties), and every third one repeated later.
+			btVector3 p(btScalar(rng.uniform(0, 3) > 2     ? 1
+			                     : rng.uniform(0, 3) > 1.5 ? 0
+			                                               : -1),
+			            btScalar(int(rng.uniform(0, 2.999)) - 1), btScalar(int(rng.uniform(0, 2.999)) - 1));
+			if (i % 5 == 4) p = rng.point(1);
+			points.push_back(p);
+			if (i % 3 == 0) points.push_back(points[int(rng.uniform(0, btScalar(points.size()) - btScalar(0.001)))]);
+		}
+		// A negative zero next to a positive one: both are kept (they differ in their bits).
+		points.push_back(btVector3(btScalar(-0.0), 1, 1));
+		points.push_back(btVector3(0, 1, 1));
+		btConvexHullShape hull;
+		for (int i = 0; i < points.size(); ++i) hull.addPoint(points[i], i + 1 == points.size());
+		const btVector3 scalings[] = {btVector3(1, 1, 1), btVector3(2, btScalar(0.5), 3)};
+		for (const btVector3& scaling : scalings)
+		{
+			hull.setLocalScaling(scaling);
+			for (int trial = 0; trial < 300; ++trial)
+			{
+				btVector3 dir = rng.direction();
+				if (trial < 27)
+					dir = btVector3(btScalar(trial % 3 - 1), btScalar(trial / 3 % 3 - 1), btScalar(trial / 9 - 1));
+				const btConvexHullShape& constHull = hull;
+				const btVector3 got = constHull.localGetSupportingVertexWithoutMargin(dir);
+				btVector3 scaledDir = dir * scaling;
+				if (scaledDir.length2() < SIMD_EPSILON * SIMD_EPSILON) scaledDir.setValue(-1, -1, -1);
+				btScalar best;
+				const long index = scaledDir.maxDot(&points[0], points.size(), best);
+				ASSERT_GE(index, 0);
+				const btVector3 expected = points[int(index)] * scaling;
+				for (int k = 0; k < 3; ++k)
+				{
+					ASSERT_EQ(std::memcmp(&got[k], &expected[k], sizeof(btScalar)), 0)
+					    << "size " << size << " trial " << trial << " axis " << k << ": got " << got[k]
+					    << ", maxDot gives " << expected[k] << " (index " << index << ")";
+				}
+			}
+		}
+	}
+}
+
+TEST(ConvexHullShape, PointsEditedInPlaceAreSeenBySupport)
+{
+	btConvexHullShape hull;
+	addBoxCorners(hull, btVector3(1, 1, 1));
+	EXPECT_EQ(hull.localGetSupportingVertexWithoutMargin(btVector3(1, 1, 1)), btVector3(1, 1, 1));
+	hull.getUnscaledPoints()[0] = btVector3(5, 5, 5);
+	hull.recalcLocalAabb();
+	EXPECT_EQ(hull.localGetSupportingVertexWithoutMargin(btVector3(1, 1, 1)), btVector3(5, 5, 5));
+	EXPECT_EQ(hull.localGetSupportingVertexWithoutMargin(btVector3(-1, -1, -1)), btVector3(1, -1, -1))
+	    << "the edited corner (-1, -1, -1) is gone: the first of the three next corners wins";
+	// Adding a point afterwards keeps the edit.
+	hull.addPoint(btVector3(-6, -6, -6));
+	EXPECT_EQ(hull.localGetSupportingVertexWithoutMargin(btVector3(1, 1, 1)), btVector3(5, 5, 5));
+	EXPECT_EQ(hull.localGetSupportingVertexWithoutMargin(btVector3(-1, -1, -1)), btVector3(-6, -6, -6));
+	hull.optimizeConvexHull();
+	EXPECT_EQ(hull.localGetSupportingVertexWithoutMargin(btVector3(1, 1, 1)), btVector3(5, 5, 5));
 }
 
 TEST(ConvexHullShape, StrideConstructorReadsInterleavedPoints)
