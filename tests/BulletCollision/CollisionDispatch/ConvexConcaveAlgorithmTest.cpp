@@ -207,3 +207,63 @@ TEST(ConvexConcaveAlgorithm, HullNearATiltedTriangleIsFoundUpToTheReachOnEverySi
 		EXPECT_EQ(placeAt(reach * btScalar(1.05))->getNumContacts(), 0) << "placement " << p;
 	}
 }
+
+TEST(ConvexConcaveAlgorithm, TurnedHullReachesTrianglesAtItsExtremesOnEveryAxis)
+{
+	// The mesh query box of a hull is its exact box in the mesh's frame (its supports along the axes,
+	// plus its margin), tighter than its turned local box. A triangle facing the hull's extreme point
+	// along each axis of the mesh, just inside the reach, must still be queried and give its contact.
+	btDefaultCollisionConfiguration config;
+	TestDispatcher dispatcher(&config);
+	// A barrel: octagons of radius 1.1, 1.8, 1.1 at heights -2, 0, 2.
+	btConvexHullShape barrel;
+	const btScalar radii[3] = {btScalar(1.1), btScalar(1.8), btScalar(1.1)};
+	for (int ring = 0; ring < 3; ++ring)
+		for (int k = 0; k < 8; ++k)
+		{
+			const btScalar angle = btScalar(k) * SIMD_PI / btScalar(4);
+			barrel.addPoint(btVector3(radii[ring] * btCos(angle), btScalar(2 * ring - 2), radii[ring] * btSin(angle)),
+			                k == 7 && ring == 2);
+		}
+	barrel.setMargin(btScalar(0.04));
+	const btTransform meshTransform(btQuaternion(btVector3(1, 2, 0), btScalar(0.3)), btVector3(1, -2, 3));
+	const btTransform barrelInMesh(btQuaternion(btVector3(btScalar(0.2), btScalar(-0.7), 1), btScalar(0.9)),
+	                               btVector3(btScalar(0.5), 4, btScalar(-1)));
+	// Coordinates of size ~5 after two rotations: a few ulps of 5 per operation, far below 1e-4.
+	const btScalar tolerance = btScalar(1e-4);
+	for (int direction = 0; direction < 6; ++direction)
+	{
+		const int axis = direction % 3;
+		const btScalar sign = direction < 3 ? btScalar(1) : btScalar(-1);
+		btVector3 outward(0, 0, 0);
+		outward[axis] = sign;
+		// The barrel's extreme point along the axis, in the mesh's frame.
+		const btVector3 extreme =
+		    barrelInMesh(barrel.localGetSupportingVertexWithoutMargin(outward * barrelInMesh.getBasis()));
+		TriangleSoupShape mesh;
+		mesh.setMargin(btScalar(0.01));
+		PairFixture pair(dispatcher, &barrel, meshTransform * barrelInMesh, &mesh, meshTransform);
+		const btScalar reach = pair.process()->getContactBreakingThreshold();
+		ASSERT_GT(reach, btScalar(0.01));
+		// A triangle across the axis, its plane at the reported distance 0.95 reach beyond the extreme
+		// (the margins lie between the cores), covering the extreme point's neighbourhood.
+		const btScalar distance = reach * btScalar(0.95);
+		const btVector3 centre = extreme + outward * (barrel.getMargin() + mesh.getMargin() + distance);
+		const int across1 = (axis + 1) % 3, across2 = (axis + 2) % 3;
+		btVector3 corners[3] = {centre, centre, centre};
+		corners[0][across1] -= 3;
+		corners[0][across2] -= 3;
+		corners[1][across1] += 6;
+		corners[1][across2] -= 3;
+		corners[2][across1] -= 3;
+		corners[2][across2] += 6;
+		mesh.addTriangle(corners[0], corners[1], corners[2]);
+		btPersistentManifold* manifold = pair.process();
+		ASSERT_EQ(mesh.m_reported, 1) << "direction " << direction << ": the triangle is in the query box";
+		ASSERT_EQ(manifold->getNumContacts(), 1) << "direction " << direction;
+		EXPECT_NEAR(manifold->getContactPoint(0).getDistance(), distance, tolerance) << "direction " << direction;
+		EXPECT_TRUE(
+		    vectorsNear(manifold->getContactPoint(0).m_normalWorldOnB, meshTransform.getBasis() * -outward, tolerance))
+		    << "direction " << direction;
+	}
+}
