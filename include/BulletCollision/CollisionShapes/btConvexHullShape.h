@@ -22,7 +22,6 @@ btConvexHullShape : public btPolyhedralConvexAabbCachingShape
 
 	void rebuildSupportLanes();
 	void appendSupportLane(const btVector3& point);
-	int supportLaneIndex(const btVector3& direction) const;
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

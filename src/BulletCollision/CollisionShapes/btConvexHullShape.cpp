@@ -15,6 +15,72 @@ const int kDeduplicatedPointLimit = 128;
 const int kBlockScalars = 12;
 
 bool sameBits(btScalar a, btScalar b) { return std::memcmp(&a, &b, sizeof(btScalar)) == 0; }
+
+// The index of the first of count points, stored as btConvexHullShape::m_supportLanes, with the largest
+// dot product with direction; -1 when every product is NaN.
+SIMD_FORCE_INLINE int firstLargestDotLane(const btScalar* lanes, int count, const btVector3& direction)
+{
+	// The same answer as btVector3::maxDot over all the points: each dot product is rounded the same
+	// way, (x dx + y dy) + z dz, the largest wins, ties keep the first point and NaN products are
+	// skipped; removing later copies of a point cannot change which value or coordinates win.
+	const int blocks = (count + 3) / 4;
+#ifdef BT_USE_SSE
+	const __m128 dx = _mm_set1_ps(direction.x());
+	const __m128 dy = _mm_set1_ps(direction.y());
+	const __m128 dz = _mm_set1_ps(direction.z());
+	__m128 laneBest = _mm_set1_ps(BT_NAN);
+	__m128i laneIndex = _mm_set1_epi32(-1);
+	__m128i currentIndex = _mm_setr_epi32(0, 1, 2, 3);
+	const __m128i four = _mm_set1_epi32(4);
+	for (int b = 0; b < blocks; ++b, lanes += kBlockScalars)
+	{
+		const __m128 dots =
+		    _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(lanes), dx), _mm_mul_ps(_mm_load_ps(lanes + 4), dy)),
+		               _mm_mul_ps(_mm_load_ps(lanes + 8), dz));
+		// A lane takes a product that beats its best, or its first non-NaN one.
+		const __m128 better = _mm_and_ps(_mm_or_ps(_mm_cmpgt_ps(dots, laneBest), _mm_cmpunord_ps(laneBest, laneBest)),
+		                                 _mm_cmpord_ps(dots, dots));
+		laneBest = _mm_or_ps(_mm_and_ps(better, dots), _mm_andnot_ps(better, laneBest));
+		const __m128i betterMask = _mm_castps_si128(better);
+		laneIndex = _mm_or_si128(_mm_and_si128(betterMask, currentIndex), _mm_andnot_si128(betterMask, laneIndex));
+		currentIndex = _mm_add_epi32(currentIndex, four);
+	}
+	alignas(16) float values[4];
+	alignas(16) int indices[4];
+	_mm_store_ps(values, laneBest);
+	_mm_store_si128(reinterpret_cast<__m128i*>(indices), laneIndex);
+	int bestIndex = -1;
+	float best = 0;
+	for (int lane = 0; lane < 4; ++lane)
+	{
+		if (indices[lane] < 0) continue;
+		if (bestIndex < 0 || values[lane] > best || (values[lane] == best && indices[lane] < bestIndex))
+		{
+			best = values[lane];
+			bestIndex = indices[lane];
+		}
+	}
+	return bestIndex;
+#else
+	int bestIndex = -1;
+	btScalar best = btScalar(0);
+	for (int b = 0; b < blocks; ++b, lanes += kBlockScalars)
+	{
+		for (int lane = 0; lane < 4; ++lane)
+		{
+			const btScalar d =
+			    (lanes[lane] * direction.x() + lanes[4 + lane] * direction.y()) + lanes[8 + lane] * direction.z();
+			if (d != d) continue;
+			if (bestIndex < 0 || d > best)
+			{
+				best = d;
+				bestIndex = 4 * b + lane;
+			}
+		}
+	}
+	return bestIndex;
+#endif
+}
 }  // namespace
 
 btConvexHullShape::btConvexHullShape(const btScalar* points, int numPoints, int stride)
@@ -101,71 +167,6 @@ void btConvexHullShape::appendSupportLane(const btVector3& point)
 	++m_supportCount;
 }
 
-int btConvexHullShape::supportLaneIndex(const btVector3& direction) const
-{
-	// The same answer as btVector3::maxDot over all the points: each dot product is rounded the same
-	// way, (x dx + y dy) + z dz, the largest wins, ties keep the first point and NaN products are
-	// skipped; removing later copies of a point cannot change which value or coordinates win.
-	const int blocks = (m_supportCount + 3) / 4;
-	const btScalar* lanes = &m_supportLanes[0];
-#ifdef BT_USE_SSE
-	const __m128 dx = _mm_set1_ps(direction.x());
-	const __m128 dy = _mm_set1_ps(direction.y());
-	const __m128 dz = _mm_set1_ps(direction.z());
-	__m128 laneBest = _mm_set1_ps(BT_NAN);
-	__m128i laneIndex = _mm_set1_epi32(-1);
-	__m128i currentIndex = _mm_setr_epi32(0, 1, 2, 3);
-	const __m128i four = _mm_set1_epi32(4);
-	for (int b = 0; b < blocks; ++b, lanes += kBlockScalars)
-	{
-		const __m128 dots =
-		    _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(lanes), dx), _mm_mul_ps(_mm_load_ps(lanes + 4), dy)),
-		               _mm_mul_ps(_mm_load_ps(lanes + 8), dz));
-		// A lane takes a product that beats its best, or its first non-NaN one.
-		const __m128 better = _mm_and_ps(_mm_or_ps(_mm_cmpgt_ps(dots, laneBest), _mm_cmpunord_ps(laneBest, laneBest)),
-		                                 _mm_cmpord_ps(dots, dots));
-		laneBest = _mm_or_ps(_mm_and_ps(better, dots), _mm_andnot_ps(better, laneBest));
-		const __m128i betterMask = _mm_castps_si128(better);
-		laneIndex = _mm_or_si128(_mm_and_si128(betterMask, currentIndex), _mm_andnot_si128(betterMask, laneIndex));
-		currentIndex = _mm_add_epi32(currentIndex, four);
-	}
-	alignas(16) float values[4];
-	alignas(16) int indices[4];
-	_mm_store_ps(values, laneBest);
-	_mm_store_si128(reinterpret_cast<__m128i*>(indices), laneIndex);
-	int bestIndex = -1;
-	float best = 0;
-	for (int lane = 0; lane < 4; ++lane)
-	{
-		if (indices[lane] < 0) continue;
-		if (bestIndex < 0 || values[lane] > best || (values[lane] == best && indices[lane] < bestIndex))
-		{
-			best = values[lane];
-			bestIndex = indices[lane];
-		}
-	}
-	return bestIndex;
-#else
-	int bestIndex = -1;
-	btScalar best = btScalar(0);
-	for (int b = 0; b < blocks; ++b, lanes += kBlockScalars)
-	{
-		for (int lane = 0; lane < 4; ++lane)
-		{
-			const btScalar d =
-			    (lanes[lane] * direction.x() + lanes[4 + lane] * direction.y()) + lanes[8 + lane] * direction.z();
-			if (d != d) continue;
-			if (bestIndex < 0 || d > best)
-			{
-				best = d;
-				bestIndex = 4 * b + lane;
-			}
-		}
-	}
-	return bestIndex;
-#endif
-}
-
 btVector3 btConvexHullShape::localGetSupportingVertexWithoutMargin(const btVector3& vec) const
 {
 	if (m_unscaledPoints.size() == 0) return btVector3(0, 0, 0);
@@ -173,7 +174,7 @@ btVector3 btConvexHullShape::localGetSupportingVertexWithoutMargin(const btVecto
 	const btVector3 scaledDir = caliberSupportDirection(vec) * m_localScaling;
 	if (m_supportLanesValid && m_supportCount > 0)
 	{
-		const int index = supportLaneIndex(scaledDir);
+		const int index = firstLargestDotLane(&m_supportLanes[0], m_supportCount, scaledDir);
 		if (index < 0) return btVector3(0, 0, 0);
 		const btScalar* block = &m_supportLanes[(index / 4) * kBlockScalars];
 		const int lane = index % 4;
