@@ -17,18 +17,19 @@ const int kBlockScalars = 12;
 bool sameBits(btScalar a, btScalar b) { return std::memcmp(&a, &b, sizeof(btScalar)) == 0; }
 
 // The index of the first of count points, stored as btConvexHullShape::m_supportLanes, with the largest
-// dot product with direction; -1 when every product is NaN.
+// dot product with direction, each rounded as btVector3::dot rounds it ((x dx + y dy) + z dz); NaN
+// products are skipped. -1 when no product exceeds minus infinity (all NaN or -inf after overflow),
+// where the caller asks maxDot.
 SIMD_FORCE_INLINE int firstLargestDotLane(const btScalar* lanes, int count, const btVector3& direction)
 {
-	// The same answer as btVector3::maxDot over all the points: each dot product is rounded the same
-	// way, (x dx + y dy) + z dz, the largest wins, ties keep the first point and NaN products are
-	// skipped; removing later copies of a point cannot change which value or coordinates win.
 	const int blocks = (count + 3) / 4;
 #ifdef BT_USE_SSE
 	const __m128 dx = _mm_set1_ps(direction.x());
 	const __m128 dy = _mm_set1_ps(direction.y());
 	const __m128 dz = _mm_set1_ps(direction.z());
-	__m128 laneBest = _mm_set1_ps(BT_NAN);
+	// Each lane keeps its best product and that product's first index; a NaN product compares false
+	// and _mm_max_ps then keeps the lane's best (its second operand).
+	__m128 laneBest = _mm_set1_ps(-SIMD_INFINITY);
 	__m128i laneIndex = _mm_set1_epi32(-1);
 	__m128i currentIndex = _mm_setr_epi32(0, 1, 2, 3);
 	const __m128i four = _mm_set1_epi32(4);
@@ -37,11 +38,8 @@ SIMD_FORCE_INLINE int firstLargestDotLane(const btScalar* lanes, int count, cons
 		const __m128 dots =
 		    _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(lanes), dx), _mm_mul_ps(_mm_load_ps(lanes + 4), dy)),
 		               _mm_mul_ps(_mm_load_ps(lanes + 8), dz));
-		// A lane takes a product that beats its best, or its first non-NaN one.
-		const __m128 better = _mm_and_ps(_mm_or_ps(_mm_cmpgt_ps(dots, laneBest), _mm_cmpunord_ps(laneBest, laneBest)),
-		                                 _mm_cmpord_ps(dots, dots));
-		laneBest = _mm_or_ps(_mm_and_ps(better, dots), _mm_andnot_ps(better, laneBest));
-		const __m128i betterMask = _mm_castps_si128(better);
+		const __m128i betterMask = _mm_castps_si128(_mm_cmpgt_ps(dots, laneBest));
+		laneBest = _mm_max_ps(dots, laneBest);
 		laneIndex = _mm_or_si128(_mm_and_si128(betterMask, currentIndex), _mm_andnot_si128(betterMask, laneIndex));
 		currentIndex = _mm_add_epi32(currentIndex, four);
 	}
@@ -63,15 +61,14 @@ SIMD_FORCE_INLINE int firstLargestDotLane(const btScalar* lanes, int count, cons
 	return bestIndex;
 #else
 	int bestIndex = -1;
-	btScalar best = btScalar(0);
+	btScalar best = -SIMD_INFINITY;
 	for (int b = 0; b < blocks; ++b, lanes += kBlockScalars)
 	{
 		for (int lane = 0; lane < 4; ++lane)
 		{
 			const btScalar d =
 			    (lanes[lane] * direction.x() + lanes[4 + lane] * direction.y()) + lanes[8 + lane] * direction.z();
-			if (d != d) continue;
-			if (bestIndex < 0 || d > best)
+			if (d > best)
 			{
 				best = d;
 				bestIndex = 4 * b + lane;
@@ -172,13 +169,17 @@ btVector3 btConvexHullShape::localGetSupportingVertexWithoutMargin(const btVecto
 	if (m_unscaledPoints.size() == 0) return btVector3(0, 0, 0);
 	// The support of S P along d is S times the support of P along S d (S diagonal).
 	const btVector3 scaledDir = caliberSupportDirection(vec) * m_localScaling;
+	// The distinct points give maxDot's answer over all of them bitwise: ties keep the first point, and
+	// a later copy of a point never beats it.
 	if (m_supportLanesValid && m_supportCount > 0)
 	{
 		const int index = firstLargestDotLane(&m_supportLanes[0], m_supportCount, scaledDir);
-		if (index < 0) return btVector3(0, 0, 0);
-		const btScalar* block = &m_supportLanes[(index / 4) * kBlockScalars];
-		const int lane = index % 4;
-		return btVector3(block[lane], block[4 + lane], block[8 + lane]) * m_localScaling;
+		if (index >= 0)
+		{
+			const btScalar* block = &m_supportLanes[(index / 4) * kBlockScalars];
+			const int lane = index % 4;
+			return btVector3(block[lane], block[4 + lane], block[8 + lane]) * m_localScaling;
+		}
 	}
 	btScalar best;
 	const long index = scaledDir.maxDot(&m_unscaledPoints[0], m_unscaledPoints.size(), best);

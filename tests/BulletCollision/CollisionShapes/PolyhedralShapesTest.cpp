@@ -113,6 +113,47 @@ TEST(ConvexHullShape, SupportIsBitwiseTheFirstPointOfLargestDotAmongRepeatsAndTi
 	}
 }
 
+TEST(ConvexHullShape, SupportSkipsOverflowingProductsAsMaxDotDoes)
+{
+	// Coordinates of 1e30 along directions of 1e10 overflow: products are +-inf and their sums may be
+	// NaN. maxDot skips NaN and still takes -inf; the support must give the same point bitwise, down to
+	// directions where every product is NaN or -inf (the first cloud along -(1, 1, 1): point 1 wins),
+	// and where a NaN comes before the winner in the same lane of four (both clouds along (-1, 1, 1):
+	// point 0 is NaN, point 4 is +inf, and in the second cloud point 6 is a finite runner-up).
+	const btScalar big = btScalar(1e30);
+	btAlignedObjectArray<btVector3> points;
+	points.push_back(btVector3(big, -big, big));
+	points.push_back(btVector3(big, big, big));
+	points.push_back(btVector3(big, big, 0));
+	points.push_back(btVector3(big, -big, 0));
+	points.push_back(btVector3(-big, big, 0));
+	points.push_back(btVector3(big, big, 0));
+	points.push_back(btVector3(-big, -big, big));
+	for (int cloud = 0; cloud < 2; ++cloud)
+	{
+		if (cloud == 1) points.push_back(btVector3(0, 0, 1));
+		btConvexHullShape hull(&points[0].x(), points.size());
+		polytest::Random rng(11);
+		for (int trial = 0; trial < 200; ++trial)
+		{
+			btVector3 dir = rng.direction() * btScalar(1e10);
+			if (trial < 27)
+				dir = btVector3(btScalar(trial % 3 - 1), btScalar(trial / 3 % 3 - 1), btScalar(trial / 9 - 1)) *
+				      btScalar(1e10);
+			if (dir.length2() == 0) continue;
+			btScalar best;
+			const long index = dir.maxDot(&points[0], points.size(), best);
+			const btConvexHullShape& constHull = hull;
+			const btVector3 got = constHull.localGetSupportingVertexWithoutMargin(dir);
+			const btVector3 expected = index >= 0 ? points[int(index)] : btVector3(0, 0, 0);
+			for (int k = 0; k < 3; ++k)
+				ASSERT_EQ(std::memcmp(&got[k], &expected[k], sizeof(btScalar)), 0)
+				    << "cloud " << cloud << " trial " << trial << " axis " << k << ": got " << got[k]
+				    << ", maxDot gives " << expected[k] << " (index " << index << ", dot " << best << ")";
+		}
+	}
+}
+
 TEST(ConvexHullShape, PointsEditedInPlaceAreSeenBySupport)
 {
 	btConvexHullShape hull;
