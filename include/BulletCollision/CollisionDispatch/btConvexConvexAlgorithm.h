@@ -31,6 +31,9 @@ class btConvexConvexAlgorithm : public btActivatingCollisionAlgorithm
 	bool m_lowLevelOfDetail;
 	int m_numPerturbationIterations;
 	int m_minimumPointsPerturbationThreshold;
+	// GJK's axis at the end of the last step (world space, from B towards A), where the next starts.
+	btVector3 m_lastSeparatingAxis;
+	bool m_haveLastSeparatingAxis;
 
 public:
 	/// An algorithm filling mf, or its own manifold (made at the first processCollision) when mf is null.

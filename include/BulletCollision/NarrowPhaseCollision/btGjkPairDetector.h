@@ -70,7 +70,8 @@ public:
 	void setMinkowskiB(const btConvexShape* minkB) { m_minkowskiB = minkB; }
 	/// Sets the axis GJK starts from (from B towards A; the last result's normal is a good choice).
 	void setCachedSeperatingAxis(const btVector3& seperatingAxis) { m_cachedSeparatingAxis = seperatingAxis; }
-	/// The separating axis of the last query (the reported normal when a point was reported).
+	/// The separating axis of the last query: the reported normal when a point was reported, the axis
+	/// that proved the pair farther apart than the maximum distance when that ended the query.
 	const btVector3& getCachedSeparatingAxis() const { return m_cachedSeparatingAxis; }
 	/// The signed distance of the last reported point.
 	btScalar getCachedSeparatingDistance() const { return m_cachedSeparatingDistance; }

@@ -159,7 +159,9 @@ btConvexConvexAlgorithm::btConvexConvexAlgorithm(btPersistentManifold* mf,
       m_manifoldPtr(mf),
       m_lowLevelOfDetail(false),
       m_numPerturbationIterations(numPerturbationIterations),
-      m_minimumPointsPerturbationThreshold(minimumPointsPerturbationThreshold)
+      m_minimumPointsPerturbationThreshold(minimumPointsPerturbationThreshold),
+      m_lastSeparatingAxis(btScalar(0), btScalar(1), btScalar(0)),
+      m_haveLastSeparatingAxis(false)
 {
 	m_caliberPrefetchHint = m_manifoldPtr;
 }
@@ -218,12 +220,23 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const btScalar maxDistance = shapeA->getMargin() + shapeB->getMargin() + reach;
 	input.m_maximumDistanceSquared = maxDistance * maxDistance;
 
+	// One algorithm serves all the triangles of a convex-mesh pair: each starts from its normal. A pair
+	// of its own starts from where its last step ended (bodies move little per step: a pair kept apart
+	// last step is usually shown apart again by the first support step).
 	btVector3 startAxis;
-	if (triangleStartAxis(shapeA, input.m_transformA, shapeB, input.m_transformB, startAxis))
+	const bool triangle = triangleStartAxis(shapeA, input.m_transformA, shapeB, input.m_transformB, startAxis);
+	if (triangle)
 		gjk.setCachedSeperatingAxis(startAxis);
+	else if (m_haveLastSeparatingAxis)
+		gjk.setCachedSeperatingAxis(m_lastSeparatingAxis);
 
 	GjkPointResult gjkPoint;
 	gjk.getClosestPoints(input, gjkPoint, dispatchInfo.m_debugDraw);
+	if (!triangle)
+	{
+		m_lastSeparatingAxis = gjk.getCachedSeparatingAxis();
+		m_haveLastSeparatingAxis = true;
+	}
 
 	const btConvexPolyhedron* polyA = polyhedronOf(shapeA);
 	const btConvexPolyhedron* polyB = polyhedronOf(shapeB);

@@ -154,7 +154,12 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 		{
 			const btScalar lengthSquared = squaredDistance < BT_LARGE_FLOAT ? squaredDistance : v.length2();
 			const btScalar lowerBound = delta / btSqrt(lengthSquared);
-			if (lowerBound - marginSum > maxDistance) return;
+			if (lowerBound - marginSum > maxDistance)
+			{
+				// v separates the pair by more than the maximum: the axis to start from next time.
+				m_cachedSeparatingAxis = v;
+				return;
+			}
 		}
 		if (squaredDistance < BT_LARGE_FLOAT && caliber_gjk::boundsMet(squaredDistance, delta, simplex.maxVertex()))
 		{

@@ -291,6 +291,37 @@ TEST(GjkPairDetector, StartingAxisRejectsOnlyPairsBeyondTheMaximumDistance)
 	}
 }
 
+TEST(GjkPairDetector, AQueryEndedBeyondTheMaximumLeavesItsSeparatingAxis)
+{
+	// Boxes 3 apart along x with a maximum of 1: the query ends on an axis that proves them apart. That
+	// axis is left as the cached one, so the same query from it ends at the first support step, where
+	// the default start (0, 1, 0) proves nothing.
+	btBoxShape a(btVector3(1, 1, 1)), b(btVector3(1, 1, 1));
+	btVoronoiSimplexSolver simplex;
+	btGjkEpaPenetrationDepthSolver epa;
+	btGjkPairDetector detector(&a, &b, &simplex, &epa);
+	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+	input.m_transformA = btTransform(btQuaternion(btVector3(0, 1, 1), btScalar(0.3)), btVector3(5, btScalar(0.5), 0));
+	input.m_transformB = at(btVector3(0, 0, 0));
+	input.m_maximumDistanceSquared = 1;
+	btPointCollector first;
+	detector.getClosestPoints(input, first, nullptr);
+	EXPECT_FALSE(first.m_hasResult);
+	EXPECT_GT(detector.m_curIter, 0) << "the default start axis does not separate the boxes";
+	const btVector3 axis = detector.getCachedSeparatingAxis();
+	ASSERT_GT(axis.length2(), btScalar(0));
+	// The axis points from B towards A and separates the full boxes by more than the maximum.
+	const btVector3 unit = axis.normalized();
+	const btScalar gap =
+	    input.m_transformA(a.localGetSupportingVertex(-unit * input.m_transformA.getBasis())).dot(unit) -
+	    input.m_transformB(b.localGetSupportingVertex(unit * input.m_transformB.getBasis())).dot(unit);
+	EXPECT_GT(gap, btScalar(1)) << "axis " << axis.x() << " " << axis.y() << " " << axis.z();
+	btPointCollector second;
+	detector.getClosestPoints(input, second, nullptr);
+	EXPECT_FALSE(second.m_hasResult);
+	EXPECT_EQ(detector.m_curIter, 0) << "started from the separating axis, the first support step ends the query";
+}
+
 TEST(GjkPairDetector, MinkowskiSamplingSolverGivesExactFaceDepthForBoxes)
 {
 	btBoxShape a(btVector3(1, 1, 1)), b(btVector3(2, btScalar(0.5), 2));
