@@ -706,6 +706,40 @@ TEST(Dbvt, VolumeHelpersMatchTheirDefinitions)
 	EXPECT_EQ(Select(a, far, nearBox), 1);
 }
 
+TEST(Dbvt, BoxesIntersectWhenOverlappingOrTouchingOnEveryAxis)
+{
+	const btDbvtVolume a = btDbvtVolume::FromMM(btVector3(0, 0, 0), btVector3(1, 2, 3));
+	// Overlap, containment and touching faces or corners count, in both argument orders.
+	const btDbvtVolume overlapping = btDbvtVolume::FromMM(btVector3(btScalar(0.5), 1, 2), btVector3(2, 3, 4));
+	const btDbvtVolume inside = btDbvtVolume::FromMM(btVector3(btScalar(0.25), 1, 1), btVector3(btScalar(0.5), 1, 2));
+	const btDbvtVolume corner = btDbvtVolume::FromMM(btVector3(1, 2, 3), btVector3(2, 3, 4));
+	for (const btDbvtVolume* b : {&overlapping, &inside, &corner})
+	{
+		EXPECT_TRUE(Intersect(a, *b));
+		EXPECT_TRUE(Intersect(*b, a));
+	}
+	// Apart along any single axis (on either side), while overlapping on the other two: no intersection.
+	for (int axis = 0; axis < 3; ++axis)
+		for (int side = 0; side < 2; ++side)
+		{
+			btVector3 shift(0, 0, 0);
+			shift[axis] = side ? btScalar(3.01) : btScalar(-3.01);
+			const btDbvtVolume apart = btDbvtVolume::FromMM(a.Mins() + shift, a.Maxs() + shift);
+			EXPECT_FALSE(Intersect(a, apart)) << "axis " << axis << " side " << side;
+			EXPECT_FALSE(Intersect(apart, a)) << "axis " << axis << " side " << side;
+		}
+	// A NaN in any coordinate of either box: no intersection.
+	const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		btVector3 low = a.Mins(), high = a.Maxs();
+		low[axis] = nan;
+		EXPECT_FALSE(Intersect(a, btDbvtVolume::FromMM(low, a.Maxs()))) << "axis " << axis;
+		high[axis] = nan;
+		EXPECT_FALSE(Intersect(btDbvtVolume::FromMM(a.Mins(), high), a)) << "axis " << axis;
+	}
+}
+
 TEST(Dbvt, BadInputIsRejected)
 {
 	btDbvt tree;
