@@ -16,6 +16,19 @@ void shuffle(btAlignedObjectArray<int>& order, btSequentialImpulseConstraintSolv
 	for (int i = order.size() - 1; i > 0; --i) order.swap(i, solver.btRandInt2(i + 1));
 }
 
+// Every line of a solver row (160 bytes, so up to three lines).
+SIMD_FORCE_INLINE void prefetchRow(const btSolverConstraint* row)
+{
+#if defined(__GNUC__)
+	const char* bytes = reinterpret_cast<const char*>(row);
+	__builtin_prefetch(bytes);
+	__builtin_prefetch(bytes + 64);
+	__builtin_prefetch(bytes + sizeof(btSolverConstraint) - 1);
+#else
+	(void)row;
+#endif
+}
+
 void identityOrder(btAlignedObjectArray<int>& order, int count)
 {
 	order.resizeNoInitialize(count);
@@ -265,10 +278,18 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	if (iteration >= infoGlobal.m_numIterations) return residual;
 
 	// Normal rows first, so that friction sees this sweep's normal impulses as its bounds.
+	// The interleaved order (see solveGroupCacheFriendlySetup) jumps between a few manifolds' rows, which
+	// the hardware prefetcher does not follow: rows are requested a few places ahead.
+	const int kRowPrefetchDistance = 8;
 	const int numContacts = m_tmpSolverContactConstraintPool.size();
 	for (int k = 0; k < numContacts; ++k)
 	{
 		const int j = reverse ? numContacts - 1 - k : k;
+		if (k + kRowPrefetchDistance < numContacts)
+		{
+			const int ahead = reverse ? j - kRowPrefetchDistance : j + kRowPrefetchDistance;
+			prefetchRow(&m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[ahead]]);
+		}
 		btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
 		residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
 		                                row.m_lowerLimit, row.m_upperLimit);
@@ -277,6 +298,11 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	for (int k = 0; k < numFriction; ++k)
 	{
 		const int j = reverse ? numFriction - 1 - k : k;
+		if (k + kRowPrefetchDistance < numFriction)
+		{
+			const int ahead = reverse ? j - kRowPrefetchDistance : j + kRowPrefetchDistance;
+			prefetchRow(&m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[ahead]]);
+		}
 		residual += solveFrictionRow(solverBodies, m_orderFrictionConstraintPool[j]);
 	}
 
@@ -329,6 +355,7 @@ void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIte
 		btScalar residual = btScalar(0);
 		for (int k = 0; k < numPushRows; ++k)
 		{
+			if (k + 8 < numPushRows) prefetchRow(&m_tmpSolverContactConstraintPool[m_pushRows[k + 8]]);
 			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_pushRows[k]];
 			residual +=
 			    caliber::resolvePushRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row);
