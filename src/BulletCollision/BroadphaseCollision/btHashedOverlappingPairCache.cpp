@@ -208,8 +208,9 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 		// The narrowphase of a pair starts by reading its algorithm and the two objects, which live all
 		// over the heap: ask for a pair a few places ahead while this one is processed.
 #if defined(__GNUC__)
-		// Eight pairs ahead: the pair's algorithm and proxies; four ahead (the algorithm is in cache by
-		// then): its manifold's first and last lines, which start the hardware's stream through the rest.
+		// A three-stage pipeline: eight pairs ahead the pair's algorithm and proxies; four ahead (the
+		// algorithm is in cache by then) the objects' transforms and the manifold's last line, which holds
+		// its point count; two ahead the lines of the points it holds (an empty manifold needs none).
 		if (i + 8 < m_pairs.size())
 		{
 			const btBroadphasePair& ahead = m_pairs[i + 8];
@@ -220,7 +221,6 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 		if (i + 4 < m_pairs.size() && m_pairs[i + 4].m_algorithm)
 		{
 			const btBroadphasePair& ahead = m_pairs[i + 4];
-			// The objects' transforms come first in them.
 			for (const btBroadphaseProxy* proxy : {ahead.m_pProxy0, ahead.m_pProxy1})
 			{
 				if (!proxy) continue;
@@ -229,9 +229,19 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 				__builtin_prefetch(object + 64);
 			}
 			const char* manifold = static_cast<const char*>(ahead.m_algorithm->caliberPrefetchHint());
+			if (manifold) __builtin_prefetch(manifold + sizeof(btPersistentManifold) - 64);
+		}
+		if (i + 2 < m_pairs.size() && m_pairs[i + 2].m_algorithm)
+		{
+			const btPersistentManifold* manifold =
+			    static_cast<const btPersistentManifold*>(m_pairs[i + 2].m_algorithm->caliberPrefetchHint());
 			if (manifold)
-				for (int offset = 0; offset < int(sizeof(btPersistentManifold)); offset += 64)
-					__builtin_prefetch(manifold + offset);
+			{
+				// The points come first in the manifold, after its 16-byte type header.
+				const char* base = reinterpret_cast<const char*>(manifold);
+				const int bytes = 16 + manifold->getNumContacts() * int(sizeof(btManifoldPoint));
+				for (int offset = 0; offset < bytes; offset += 64) __builtin_prefetch(base + offset);
+			}
 		}
 #endif
 		if (callback->processOverlap(pair)) removeOverlappingPair(proxy0, proxy1, dispatcher);
