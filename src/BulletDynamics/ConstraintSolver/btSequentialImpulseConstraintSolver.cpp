@@ -164,12 +164,15 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	for (int i = 0; i < numManifolds; ++i)
 	{
 #if defined(__GNUC__)
-		// Manifolds are scattered over the heap and each is read whole: ask for the one two ahead.
+		// Manifolds are scattered over the heap: the header line (with the point count) four ahead, then
+		// the lines of the points held two ahead.
+		if (i + 4 < numManifolds)
+			__builtin_prefetch(reinterpret_cast<const char*>(manifoldPtr[i + 4]) + sizeof(btPersistentManifold) - 64);
 		if (i + 2 < numManifolds)
 		{
 			const char* ahead = reinterpret_cast<const char*>(manifoldPtr[i + 2]);
-			for (int offset = 0; offset < int(sizeof(btPersistentManifold)); offset += 64)
-				__builtin_prefetch(ahead + offset);
+			const int bytes = 16 + manifoldPtr[i + 2]->getNumContacts() * int(sizeof(btManifoldPoint));
+			for (int offset = 0; offset < bytes; offset += 64) __builtin_prefetch(ahead + offset);
 		}
 #endif
 		const int firstRow = m_tmpSolverContactConstraintPool.size();
