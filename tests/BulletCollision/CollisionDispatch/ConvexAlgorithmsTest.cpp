@@ -51,6 +51,21 @@ btConvexHullShape* makeHullBox(const btVector3& h)
 	hull->recalcLocalAabb();
 	return hull;
 }
+
+// The closest points from a GJK detector made for this one query (no state from earlier queries).
+btPointCollector freshClosestPoints(const btConvexShape* a, const btTransform& ta, const btConvexShape* b,
+                                    const btTransform& tb)
+{
+	btVoronoiSimplexSolver simplex;
+	btGjkEpaPenetrationDepthSolver epa;
+	btGjkPairDetector gjk(a, b, &simplex, &epa);
+	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+	input.m_transformA = ta;
+	input.m_transformB = tb;
+	btPointCollector reference;
+	gjk.getClosestPoints(input, reference, 0);
+	return reference;
+}
 }  // namespace
 
 TEST(ConvexAlgorithms, BoxRestingOnPlaneGetsFourCornersInFirstFrame)
@@ -208,14 +223,7 @@ TEST(ConvexAlgorithms, ConvexConvexAgreesWithGjkPairDetector)
 		                     ta.getOrigin() + random.unitVector() * random.uniform(btScalar(0.5), btScalar(2)));
 
 		// Independent run of the detector the algorithm is built on.
-		btVoronoiSimplexSolver simplex;
-		btGjkEpaPenetrationDepthSolver epa;
-		btGjkPairDetector gjk(a, b, &simplex, &epa);
-		btDiscreteCollisionDetectorInterface::ClosestPointInput input;
-		input.m_transformA = ta;
-		input.m_transformB = tb;
-		btPointCollector reference;
-		gjk.getClosestPoints(input, reference, 0);
+		const btPointCollector reference = freshClosestPoints(a, ta, b, tb);
 
 		PairFixture pair(dispatcher, a, ta, b, tb);
 		btPersistentManifold* manifold = pair.process();
@@ -257,14 +265,7 @@ TEST(ConvexAlgorithms, ConvexConvexStartingWhereTheLastStepEndedAgreesWithAFresh
 			const btTransform ta = random.transform(btScalar(0.2));
 			const btTransform tb(random.rotation(),
 			                     ta.getOrigin() + random.unitVector() * random.uniform(btScalar(0.5), btScalar(2)));
-			btVoronoiSimplexSolver simplex;
-			btGjkEpaPenetrationDepthSolver epa;
-			btGjkPairDetector gjk(a, b, &simplex, &epa);
-			btDiscreteCollisionDetectorInterface::ClosestPointInput input;
-			input.m_transformA = ta;
-			input.m_transformB = tb;
-			btPointCollector reference;
-			gjk.getClosestPoints(input, reference, 0);
+			const btPointCollector reference = freshClosestPoints(a, ta, b, tb);
 
 			pair.m_object0.setWorldTransform(ta);
 			pair.m_object1.setWorldTransform(tb);
