@@ -99,6 +99,7 @@ struct BestAxis
 	int indexB;
 	btVector3 normal;  // unit, from B towards A
 	btScalar separation;
+	btScalar edgeLength2;  // edge axes: |edge A x edge B|^2
 };
 
 void report(btDiscreteCollisionDetectorInterface::Result& output, bool swapResults, const btVector3& normal,
@@ -182,8 +183,9 @@ void faceContact(const BoxFrame& reference, int referenceAxis, const btVector3& 
 }
 
 // Edge contact: the edge of A deepest towards B against the edge of B deepest towards A.
-void edgeContact(const BoxFrame& a, int edgeA, const BoxFrame& b, int edgeB, const btVector3& normalBtoA,
-                 btScalar maxDistance, btDiscreteCollisionDetectorInterface::Result& output, bool swapResults)
+void edgeContact(const BoxFrame& a, int edgeA, const BoxFrame& b, int edgeB, btScalar crossLength2,
+                 const btVector3& normalBtoA, btScalar maxDistance,
+                 btDiscreteCollisionDetectorInterface::Result& output, bool swapResults)
 {
 	btVector3 centreA = a.centre, centreB = b.centre;
 	for (int k = 0; k < 3; ++k)
@@ -197,7 +199,9 @@ void edgeContact(const BoxFrame& a, int edgeA, const BoxFrame& b, int edgeB, con
 	const btVector3 offset = centreA - centreB;
 	const btScalar cosine = directionA.dot(directionB);
 	const btScalar alongA = directionA.dot(offset), alongB = directionB.dot(offset);
-	const btScalar denominator = btScalar(1) - cosine * cosine;  // > kParallelCross2 for a chosen edge axis
+	// 1 - cosine^2, but from the cross product's components: no cancellation for near-parallel edges,
+	// and > kParallelCross2 for a chosen edge axis.
+	const btScalar denominator = crossLength2;
 	btScalar s = (cosine * alongB - alongA) / denominator;
 	s = btMax(-a.half[edgeA], btMin(a.half[edgeA], s));
 	btScalar t = cosine * s + alongB;
@@ -258,6 +262,7 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 	best.kind = -1;
 	best.indexA = best.indexB = 0;
 	best.separation = -SIMD_INFINITY;
+	best.edgeLength2 = btScalar(1);
 	best.normal.setValue(0, 0, 1);
 	// Face axes of A: A's radius is its half extent, B's is its extents projected with |R|.
 	for (int i = 0; i < 3; ++i)
@@ -298,7 +303,10 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 		for (int j = 0; j < 3; ++j)
 		{
 			const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-			const btScalar length2 = btScalar(1) - R[i][j] * R[i][j];
+			// |a_i x b_j|^2 from its two components in A's frame (b_j there is column j of R). 1 - R[i][j]^2
+			// would lose every digit to cancellation for near-parallel edges, exactly where the cut-off
+			// and the face-axis bias must decide.
+			const btScalar length2 = R[i1][j] * R[i1][j] + R[i2][j] * R[i2][j];
 			if (!(length2 > kParallelCross2)) continue;
 			const btScalar radiusA = a.half[i1] * absR[i2][j] + a.half[i2] * absR[i1][j];
 			const btScalar radiusB = b.half[j1] * absR[i][j2] + b.half[j2] * absR[i][j1];
@@ -311,6 +319,7 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 				best.indexA = i;
 				best.indexB = j;
 				best.separation = separation;
+				best.edgeLength2 = length2;
 			}
 		}
 	}
@@ -324,5 +333,5 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 		faceContact(b, best.indexB, best.normal, a, false, best.normal, maxDistance, mergeDistance, output,
 		            swapResults);
 	else if (best.kind == 2)
-		edgeContact(a, best.indexA, b, best.indexB, best.normal, maxDistance, output, swapResults);
+		edgeContact(a, best.indexA, b, best.indexB, best.edgeLength2, best.normal, maxDistance, output, swapResults);
 }
