@@ -228,20 +228,15 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 				__builtin_prefetch(object);
 				__builtin_prefetch(object + 64);
 			}
-			const char* manifold = static_cast<const char*>(ahead.m_algorithm->caliberPrefetchHint());
-			if (manifold) __builtin_prefetch(manifold + sizeof(btPersistentManifold) - 64);
+			const btPersistentManifold* manifold =
+			    static_cast<const btPersistentManifold*>(ahead.m_algorithm->caliberPrefetchHint());
+			if (manifold) manifold->caliberPrefetchHeader();
 		}
 		if (i + 2 < m_pairs.size() && m_pairs[i + 2].m_algorithm)
 		{
 			const btPersistentManifold* manifold =
 			    static_cast<const btPersistentManifold*>(m_pairs[i + 2].m_algorithm->caliberPrefetchHint());
-			if (manifold)
-			{
-				// The points come first in the manifold, after its 16-byte type header.
-				const char* base = reinterpret_cast<const char*>(manifold);
-				const int bytes = 16 + manifold->getNumContacts() * int(sizeof(btManifoldPoint));
-				for (int offset = 0; offset < bytes; offset += 64) __builtin_prefetch(base + offset);
-			}
+			if (manifold) manifold->caliberPrefetchPoints();
 		}
 #endif
 		if (callback->processOverlap(pair)) removeOverlappingPair(proxy0, proxy1, dispatcher);

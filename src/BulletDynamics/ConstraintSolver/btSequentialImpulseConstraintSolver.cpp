@@ -163,18 +163,10 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	m_manifoldFirstRow.resize(0);
 	for (int i = 0; i < numManifolds; ++i)
 	{
-#if defined(__GNUC__)
 		// Manifolds are scattered over the heap: the header line (with the point count) four ahead, then
 		// the lines of the points held two ahead.
-		if (i + 4 < numManifolds)
-			__builtin_prefetch(reinterpret_cast<const char*>(manifoldPtr[i + 4]) + sizeof(btPersistentManifold) - 64);
-		if (i + 2 < numManifolds)
-		{
-			const char* ahead = reinterpret_cast<const char*>(manifoldPtr[i + 2]);
-			const int bytes = 16 + manifoldPtr[i + 2]->getNumContacts() * int(sizeof(btManifoldPoint));
-			for (int offset = 0; offset < bytes; offset += 64) __builtin_prefetch(ahead + offset);
-		}
-#endif
+		if (i + 4 < numManifolds) manifoldPtr[i + 4]->caliberPrefetchHeader();
+		if (i + 2 < numManifolds) manifoldPtr[i + 2]->caliberPrefetchPoints();
 		const int firstRow = m_tmpSolverContactConstraintPool.size();
 		convertContact(manifoldPtr[i], infoGlobal);
 		if (m_tmpSolverContactConstraintPool.size() > firstRow) m_manifoldFirstRow.push_back(firstRow);
