@@ -15,6 +15,18 @@
 
 class btManifoldPoint;
 
+namespace caliber
+{
+/// A contact row that rebounds this step if its contact is met (see the solver's restitution pass).
+struct SolverBounceRow
+{
+	int row;                      ///< index into the contact row pool
+	btScalar startVelocity;       ///< J v at setup (the solver bodies' velocities, before any impulse)
+	btScalar targetVelocity;      ///< J v the rebound leaves the step with
+	btScalar targetPushVelocity;  ///< position correction over the step, as a push velocity (<= 0; 0: none)
+};
+}  // namespace caliber
+
 /// The default solver of btDiscreteDynamicsWorld. Each solveGroup copies the bodies into a contiguous
 /// pool of btSolverBody, turns every manifold point within the contact processing threshold into one
 /// normal row, two friction rows and optional rolling/spinning rows (contiguous arrays, indices into
@@ -48,6 +60,8 @@ protected:
 	btAlignedObjectArray<int> m_manifoldFirstRow;
 	/// Contact rows (in solving order) with a split-impulse target: the only ones the push pass visits.
 	btAlignedObjectArray<int> m_pushRows;
+	/// Contact rows whose restitution applies if they are met this step (in setup order).
+	btAlignedObjectArray<caliber::SolverBounceRow> m_bounceRows;
 	/// Counts solveGroup calls, so that the in-manifold order also changes from step to step.
 	unsigned int m_solveCount;
 	/// Friction rows per contact row in this solve: 2 with SOLVER_USE_2_FRICTION_DIRECTIONS, else 1. The
@@ -116,6 +130,9 @@ protected:
 	    btCollisionObject * *bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
 	    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
 	    btIDebugDraw* debugDrawer);
+	/// The restitution pass, after the velocity sweeps: every bouncing row that took an impulse is driven
+	/// to its rebound velocity (accumulated impulse kept >= 0).
+	void solveRestitution(const btContactSolverInfo& infoGlobal);
 	/// Writes impulses to the manifold points and velocities and transforms to the bodies.
 	virtual btScalar solveGroupCacheFriendlyFinish(btCollisionObject * *bodies, int numBodies,
 	                                               const btContactSolverInfo& infoGlobal);

@@ -145,6 +145,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	m_tmpSolverContactConstraintPool.resize(0);
 	m_tmpSolverContactFrictionConstraintPool.resize(0);
 	m_tmpSolverContactRollingFrictionConstraintPool.resize(0);
+	m_bounceRows.resize(0);
 	// Rough upper bound, so the pool grows at most once per new record scene size.
 	m_tmpSolverBodyPool.reserve(numBodies + 1);
 
@@ -375,7 +376,58 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
 		                                              constraints, numConstraints, infoGlobal, debugDrawer);
 		if (m_leastSquaresResidual <= infoGlobal.m_leastSquaresResidualThreshold) break;
 	}
+	solveRestitution(infoGlobal);
 	return m_leastSquaresResidual;
+}
+
+void btSequentialImpulseConstraintSolver::solveRestitution(const btContactSolverInfo& infoGlobal)
+{
+	// Only contacts that were met this step bounce: a speculative row that never took an impulse was
+	// not reached (its gap was not closed), and one whose impulse went back to zero was kept apart by
+	// others.
+	int numBouncing = 0;
+	for (int i = 0; i < m_bounceRows.size(); ++i)
+		if (m_tmpSolverContactConstraintPool[m_bounceRows[i].row].m_appliedImpulse > btScalar(0))
+			m_bounceRows[numBouncing++] = m_bounceRows[i];
+	m_bounceRows.resize(numBouncing);
+	if (numBouncing == 0) return;
+	BT_PROFILE("solveRestitution");
+
+	// Several points of one body (a box landing flat) rebound together: sweeps in alternating directions
+	// until the impulses settle, as in the velocity sweeps.
+	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
+	for (int iteration = 0; iteration < infoGlobal.m_numIterations; ++iteration)
+	{
+		btScalar residual = btScalar(0);
+		for (int k = 0; k < numBouncing; ++k)
+		{
+			const caliber::SolverBounceRow& bounce = m_bounceRows[(iteration & 1) ? numBouncing - 1 - k : k];
+			btSolverConstraint& row = m_tmpSolverContactConstraintPool[bounce.row];
+			btSolverBody& bodyA = solverBodies[row.m_solverBodyIdA];
+			btSolverBody& bodyB = solverBodies[row.m_solverBodyIdB];
+			const btScalar velocity = bounce.startVelocity + caliber::rowDeltaVelocity(bodyA, bodyB, row);
+			const btScalar impulse = caliber::btMaxBranchless(
+			    btScalar(0), row.m_appliedImpulse + (bounce.targetVelocity - velocity) * row.m_jacDiagABInv);
+			const btScalar deltaImpulse = impulse - row.m_appliedImpulse;
+			row.m_appliedImpulse = impulse;
+			bodyA.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, deltaImpulse);
+			bodyB.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, deltaImpulse);
+			residual += deltaImpulse * deltaImpulse;
+			if (bounce.targetPushVelocity != btScalar(0))
+			{
+				// An equality on the push velocities: the pair ends the step at its rebound's top.
+				const btVector3 lanes =
+				    row.m_contactNormal1 * bodyA.m_pushVelocity + row.m_relpos1CrossNormal * bodyA.m_turnVelocity +
+				    row.m_contactNormal2 * bodyB.m_pushVelocity + row.m_relpos2CrossNormal * bodyB.m_turnVelocity;
+				const btScalar pushImpulse =
+				    (bounce.targetPushVelocity - (lanes.x() + lanes.y() + lanes.z())) * row.m_jacDiagABInv;
+				bodyA.internalApplyPushImpulse(row.m_contactNormal1, row.m_angularComponentA, pushImpulse);
+				bodyB.internalApplyPushImpulse(row.m_contactNormal2, row.m_angularComponentB, pushImpulse);
+				residual += pushImpulse * pushImpulse;
+			}
+		}
+		if (residual <= infoGlobal.m_leastSquaresResidualThreshold) break;
+	}
 }
 
 void btSequentialImpulseConstraintSolver::writeBackContacts(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal)
@@ -407,10 +459,10 @@ void btSequentialImpulseConstraintSolver::writeBackBodies(int iBegin, int iEnd, 
 		if (body->isStaticOrKinematicObject()) continue;
 		body->setLinearVelocity(solverBody.m_linearVelocity + solverBody.m_deltaLinearVelocity);
 		body->setAngularVelocity(solverBody.m_angularVelocity + solverBody.m_deltaAngularVelocity);
-		if (infoGlobal.m_splitImpulse &&
-		    (!solverBody.m_pushVelocity.fuzzyZero() || !solverBody.m_turnVelocity.fuzzyZero()))
+		// Split impulse and weak rebounds (see solveRestitution) leave push velocities.
+		if (!solverBody.m_pushVelocity.fuzzyZero() || !solverBody.m_turnVelocity.fuzzyZero())
 		{
-			// The push moves the body out of penetration without leaving it any velocity.
+			// The push moves the body without leaving it any velocity.
 			btTransform moved;
 			btTransformUtil::integrateTransform(solverBody.m_worldTransform, solverBody.m_pushVelocity,
 			                                    solverBody.m_turnVelocity * infoGlobal.m_splitImpulseTurnErp,

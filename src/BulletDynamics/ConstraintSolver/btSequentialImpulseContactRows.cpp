@@ -76,12 +76,43 @@ btScalar rowVelocity(const btSolverConstraint& row, const RowBody& a, const RowB
 	       row.m_contactNormal2.dot(b.linearVelocity()) + row.m_relpos2CrossNormal.dot(b.angularVelocity());
 }
 
-// Bounce speed for an approach at relativeVelocity (negative when approaching); slow approaches do not
-// bounce, so resting contacts stay at rest.
-btScalar restitutionSpeed(btScalar relativeVelocity, btScalar restitution, btScalar velocityThreshold)
+// How a bouncing contact leaves the step. Velocities are those of semi-implicit Euler (x1 = x0 + v1 h):
+// the velocity a body moves with over a step is its true velocity at the middle of the step. In those
+// terms the exact answer is known for a pair under constant forces: the gap x(t) = gap + u0 t + a t^2/2
+// closes at time tc with speed wc and reopens at e wc along the rebound trajectory r(t). When r, taken
+// back in time, passes through the starting gap, the pair simply moves along that time-shifted rebound
+// from where it is: the right energy, no position correction, at most a step early. A weak rebound
+// whose top stays below the starting gap cannot: the pair then follows r itself, with a position
+// correction (pushGap = r(0) - gap, negative) that a push moves without leaving velocity.
+//   startVelocity   J v before this step's forces (negative when approaching)
+//   acceleration    relative normal acceleration of the forces (J a)
+//   gap             distance at the start of the step (0 when touching or penetrating)
+struct Bounce
 {
-	if (btFabs(relativeVelocity) < velocityThreshold) return btScalar(0);
-	return btMax(btScalar(0), restitution * -relativeVelocity);
+	btScalar velocity;  // J v to leave the step with
+	btScalar pushGap;   // position correction along the normal (<= 0)
+};
+bool bounceTarget(btScalar startVelocity, btScalar acceleration, btScalar gap, btScalar restitution,
+                  btScalar velocityThreshold, btScalar timeStep, Bounce& bounce)
+{
+	const btScalar halfStepGain = acceleration * timeStep * btScalar(0.5);
+	const btScalar velocityNow = startVelocity + halfStepGain;  // true velocity at the start of the step
+	const btScalar impactSpeed2 = velocityNow * velocityNow - btScalar(2) * acceleration * gap;
+	if (!(velocityNow < btScalar(0)) || !(impactSpeed2 > velocityThreshold * velocityThreshold)) return false;
+	const btScalar reboundSpeed2 = restitution * restitution * impactSpeed2 + btScalar(2) * acceleration * gap;
+	if (reboundSpeed2 >= btScalar(0))
+	{
+		bounce.velocity = btSqrt(reboundSpeed2) + halfStepGain;
+		bounce.pushGap = btScalar(0);
+		return true;
+	}
+	// Only an attracting force (acceleration < 0) makes the rebound fall short of the gap.
+	const btScalar impactSpeed = btSqrt(impactSpeed2);
+	const btScalar impactTime = btScalar(2) * gap / (impactSpeed - velocityNow);
+	const btScalar reboundSpeed = restitution * impactSpeed;
+	bounce.velocity = reboundSpeed + acceleration * (btScalar(0.5) * timeStep - impactTime);
+	bounce.pushGap = -reboundSpeed * impactTime + btScalar(0.5) * acceleration * impactTime * impactTime - gap;
+	return true;
 }
 
 // What every friction-like row (sliding, rolling, spinning) shares once its Jacobian is set: its bodies,
@@ -154,35 +185,43 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
 
 	const btScalar relativeVelocity = rowVelocity(row, a, b);
 	const btScalar penetration = cp.getDistance() + infoGlobal.m_linearSlop;
-	// The bounce is measured on the approach velocity before this step's forces: the impact happens
-	// within the step, and gravity acting over the whole step would otherwise feed the rebound (a ball
-	// bouncing a few percent higher than e^2 allows, every bounce).
-	btScalar bounceSpeed = btScalar(0);
+	// Restitution has a pass of its own after the velocity sweeps (solveRestitution): the sweeps treat a
+	// bouncing contact like any other (close the gap, stop), and the pass then gives every contact that
+	// was really met this step (it took an impulse) its rebound. Deciding the bounce here instead would
+	// bounce contacts that other rows keep apart, or miss impacts that fall between two steps.
+	bool bounces = false;
 	if (cp.m_combinedRestitution > btScalar(0))
 	{
+		// The velocity change this step's forces gave the pair (the world adds them before the solve).
 		const btScalar forceVelocity = row.m_contactNormal1.dot(a.forceVelocityChange(infoGlobal.m_timeStep)) +
 		                               row.m_relpos1CrossNormal.dot(a.torqueVelocityChange(infoGlobal.m_timeStep)) +
 		                               row.m_contactNormal2.dot(b.forceVelocityChange(infoGlobal.m_timeStep)) +
 		                               row.m_relpos2CrossNormal.dot(b.torqueVelocityChange(infoGlobal.m_timeStep));
-		bounceSpeed = restitutionSpeed(relativeVelocity - forceVelocity, cp.m_combinedRestitution,
-		                               infoGlobal.m_restitutionVelocityThreshold);
+		Bounce target;
+		bounces = bounceTarget(relativeVelocity - forceVelocity, forceVelocity * invTimeStep,
+		                       btMax(btScalar(0), penetration), cp.m_combinedRestitution,
+		                       infoGlobal.m_restitutionVelocityThreshold, infoGlobal.m_timeStep, target);
+		if (bounces)
+		{
+			caliber::SolverBounceRow bounce;
+			bounce.row = int(&row - &m_tmpSolverContactConstraintPool[0]);
+			bounce.startVelocity = relativeVelocity;
+			bounce.targetVelocity = target.velocity;
+			bounce.targetPushVelocity = target.pushGap * invTimeStep;
+			m_bounceRows.push_back(bounce);
+		}
 	}
-	btScalar velocityError = bounceSpeed - relativeVelocity;
+	btScalar velocityError = -relativeVelocity;
 	btScalar positionalError = btScalar(0);
 	// Deep penetrations are resolved by the split-impulse pass, which moves the bodies without adding
 	// the velocity that Baumgarte stabilisation would leave behind (the "popping" of deep contacts). So
-	// is any penetration of a bouncing contact: there the bounce already separates the bodies, and a
-	// Baumgarte velocity on top of it would add energy (bounces growing higher than e^2 allows).
-	const bool useSplit = infoGlobal.m_splitImpulse &&
-	                      (penetration <= infoGlobal.m_splitImpulsePenetrationThreshold || bounceSpeed > btScalar(0));
+	// is any penetration of a bouncing contact: a Baumgarte velocity would add to the rebound's energy.
+	const bool useSplit =
+	    infoGlobal.m_splitImpulse && (penetration <= infoGlobal.m_splitImpulsePenetrationThreshold || bounces);
 	if (penetration > btScalar(0))
 	{
-		// Speculative: the bodies may still close the gap this step, but not more. A bouncing contact
-		// that will close the gap within the step bounces now instead (its speed is exact; it turns
-		// at most one step's travel early), since a contact first met at rest would not bounce at all.
-		const bool bouncesThisStep =
-		    bounceSpeed > btScalar(0) && -relativeVelocity * infoGlobal.m_timeStep > penetration;
-		if (!bouncesThisStep) velocityError -= penetration * invTimeStep;
+		// Speculative: the bodies may still close the gap this step, but not more.
+		velocityError -= penetration * invTimeStep;
 	}
 	else
 	{
