@@ -62,6 +62,15 @@ protected:
 	btAlignedObjectArray<int> m_pushRows;
 	/// Contact rows whose restitution applies if they are met this step (in setup order).
 	btAlignedObjectArray<caliber::SolverBounceRow> m_bounceRows;
+	/// Shock propagation's scratch (see propagateShock): set when a contact holds bodies of very
+	/// different masses; the contact graph, each body's level above the ground, the rows bottom up.
+	bool m_shockPropagationNeeded;
+	btAlignedObjectArray<int> m_shockAdjacencyStart;
+	btAlignedObjectArray<int> m_shockAdjacency;
+	btAlignedObjectArray<int> m_shockCursor;
+	btAlignedObjectArray<int> m_shockBodyLevel;
+	btAlignedObjectArray<int> m_shockQueue;
+	btAlignedObjectArray<int> m_shockRowOrder;
 	/// Counts solveGroup calls, so that the in-manifold order also changes from step to step.
 	unsigned int m_solveCount;
 	/// Friction rows per contact row in this solve: 2 with SOLVER_USE_2_FRICTION_DIRECTIONS, else 1. The
@@ -133,6 +142,11 @@ protected:
 	/// The restitution pass, after the velocity sweeps: every bouncing row that took an impulse is driven
 	/// to its rebound velocity (accumulated impulse kept >= 0).
 	void solveRestitution(const btContactSolverInfo& infoGlobal);
+	/// One last sweep from the ground up, each contact holding its lower body fixed, in islands where a
+	/// contact joins bodies of very different masses (heavy on light).
+	void propagateShock(const btContactSolverInfo& infoGlobal);
+	/// Contact row r and its friction rows in the shock sweep (the lower body held fixed).
+	void propagateShockRow(btSolverBody * bodies, int r);
 	/// Writes impulses to the manifold points and velocities and transforms to the bodies.
 	virtual btScalar solveGroupCacheFriendlyFinish(btCollisionObject * *bodies, int numBodies,
 	                                               const btContactSolverInfo& infoGlobal);

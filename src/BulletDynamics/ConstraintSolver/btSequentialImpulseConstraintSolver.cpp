@@ -44,6 +44,7 @@ btSequentialImpulseConstraintSolver::btSequentialImpulseConstraintSolver()
       m_leastSquaresResidual(0),
       m_maxOverrideNumSolverIterations(0)
 {
+	m_shockPropagationNeeded = false;
 }
 
 btSequentialImpulseConstraintSolver::~btSequentialImpulseConstraintSolver() {}
@@ -146,6 +147,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	m_tmpSolverContactFrictionConstraintPool.resize(0);
 	m_tmpSolverContactRollingFrictionConstraintPool.resize(0);
 	m_bounceRows.resize(0);
+	m_shockPropagationNeeded = false;
 	// Rough upper bound, so the pool grows at most once per new record scene size.
 	m_tmpSolverBodyPool.reserve(numBodies + 1);
 
@@ -376,6 +378,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
 		                                              constraints, numConstraints, infoGlobal, debugDrawer);
 		if (m_leastSquaresResidual <= infoGlobal.m_leastSquaresResidualThreshold) break;
 	}
+	propagateShock(infoGlobal);
 	solveRestitution(infoGlobal);
 	return m_leastSquaresResidual;
 }

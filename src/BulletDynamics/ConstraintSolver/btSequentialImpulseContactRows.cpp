@@ -305,6 +305,14 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		const bool aMoves = a.m_originalBody && !a.m_originalBody->isStaticOrKinematicObject();
 		const bool bMoves = b.m_originalBody && !b.m_originalBody->isStaticOrKinematicObject();
 		if (!aMoves && !bMoves) return;
+		// A heavy body on a light one needs the shock-propagation sweep (see propagateShock).
+		const btScalar kShockMassRatio = 4;
+		if (aMoves && bMoves && a.m_originalBody->getInvMass() > btScalar(0) &&
+		    b.m_originalBody->getInvMass() > btScalar(0))
+		{
+			const btScalar ratio = a.m_originalBody->getInvMass() / b.m_originalBody->getInvMass();
+			if (ratio > kShockMassRatio || ratio * kShockMassRatio < btScalar(1)) m_shockPropagationNeeded = true;
+		}
 	}
 
 	for (int j = 0; j < manifold->getNumContacts(); ++j)
