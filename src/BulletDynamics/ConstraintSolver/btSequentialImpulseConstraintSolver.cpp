@@ -399,7 +399,11 @@ void btSequentialImpulseConstraintSolver::solveRestitution(const btContactSolver
 	// Several points of one body (a box landing flat) rebound together: sweeps in alternating directions
 	// until the impulses settle, as in the velocity sweeps.
 	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
-	for (int iteration = 0; iteration < infoGlobal.m_numIterations; ++iteration)
+	// The points of one landing face form a singular system (eight coplanar points of a compound hold
+	// three degrees of freedom), on which Gauss-Seidel converges slowly; an unconverged pass tilts the
+	// body. Bouncing rows are few and live one step, so they get more sweeps than the velocity pass.
+	const int restitutionSweeps = btMax(4 * infoGlobal.m_numIterations, 32);
+	for (int iteration = 0; iteration < restitutionSweeps; ++iteration)
 	{
 		btScalar residual = btScalar(0);
 		for (int k = 0; k < numBouncing; ++k)
