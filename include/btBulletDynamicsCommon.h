@@ -2,9 +2,10 @@
 #ifndef BULLET_DYNAMICS_COMMON_H
 #define BULLET_DYNAMICS_COMMON_H
 
-/// Everything a rigid-body program needs, in one include (as with Bullet): the collision layer
-/// plus the dynamics layer: dynamics worlds, rigid bodies and the constraint solver (joints and the
-/// vehicle are added here as they land).
+/// Everything a rigid-body program needs, in one include (as with Bullet): the collision layer plus
+/// the dynamics layer: dynamics worlds, rigid bodies, actions, the sequential-impulse solver and every
+/// joint. Bullet's raycast vehicle and character controller are not implemented yet; their headers
+/// join here when they land.
 
 #include "btBulletCollisionCommon.h"
 

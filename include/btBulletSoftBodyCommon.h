@@ -2,9 +2,9 @@
 #ifndef CALIBER_BULLET_SOFT_BODY_COMMON_H
 #define CALIBER_BULLET_SOFT_BODY_COMMON_H
 
-/// Caliber's own umbrella header (Bullet has none): everything a soft-body program needs, in one
-/// include: the rigid-body layers plus the soft-body layer. For now that is LinearMath; the
-/// BulletSoftBody issues add their headers here (soft bodies, helpers, soft-rigid world) as they land.
+/// Caliber's own umbrella header (Bullet has none): meant to be everything a soft-body program needs,
+/// in one include. Soft bodies are not implemented yet (there is no BulletSoftBody library), so today it
+/// is exactly btBulletDynamicsCommon.h; the soft-body headers join here when that layer lands.
 
 #include "btBulletDynamicsCommon.h"
 

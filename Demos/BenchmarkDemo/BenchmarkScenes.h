@@ -2,8 +2,9 @@
 #ifndef CALIBER_BENCHMARK_SCENES_H
 #define CALIBER_BENCHMARK_SCENES_H
 
-// The benchmark scenes of ../shared/bench/scenes.md (Bullet's benchmark scenes and Jolt's pyramid), built
-// from their written descriptions.
+// The benchmark scenes (Bullet's benchmark scenes and Jolt's pyramid; docs/rigid-body-dynamics.md),
+// body for body as the reference program that measured Bullet builds them: same positions, same
+// order, same arithmetic, so that both print the same state hash against the same library.
 
 #include <memory>
 #include <string>
@@ -36,14 +37,15 @@ public:
 	void addJoint(btTypedConstraint* joint);
 	/// Bullet's benchmark ground: a static box (250, 50, 250) at (0, -50, 0).
 	void addBenchmarkGround();
-	/// The procedural landscape of scenes.md: 8 BVH mesh tiles, 32768 triangles, body at (0, -25, 0).
+	/// The procedural stand-in for Bullet's landscape: 8 BVH mesh tiles, 32768 triangles, body at (0, -25, 0).
 	void addLandscape();
 
 	const std::vector<btRigidBody*>& dynamicBodies() const { return m_dynamic; }
 	/// Called after each step (the raycast scene casts its rays here).
 	virtual void afterStep() {}
-	/// The scene's sanity figures, one line; returns false when a figure shows a broken simulation.
-	virtual bool report(std::string& line) const = 0;
+	/// The scene's sanity figures after frames steps, one line; returns false when a figure shows a
+	/// broken simulation.
+	virtual bool report(std::string& line, int frames) const = 0;
 
 	/// Start poses of the dynamic bodies (same order as dynamicBodies()).
 	std::vector<btTransform> m_start;

@@ -1,17 +1,21 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 //
-// BenchmarkDemo: the joint-free benchmark scenes of ../shared/bench/scenes.md, headless. For each scene
-// it prints the bodies, the build time, the step time in ms (mean, median, max) and the scene's
-// sanity figures (boxes displaced from rest, bodies tunnelled through the terrain, rays that hit, ...),
-// so that speed is never read without the physics it bought. Exit 1 when a sanity check fails (a NaN,
-// a body through the ground or the terrain, a ray that missed).
+// BenchmarkDemo: the benchmark scenes of docs/rigid-body-dynamics.md (Bullet's benchmark scenes and
+// Jolt's pyramid), headless, body for body as the reference program that measured Bullet builds them.
+// For each scene it prints the bodies, the build time, the step time in ms (mean, median, max), the
+// scene's sanity figures (boxes displaced from rest, bodies tunnelled through the terrain, rays that
+// hit, ...) and a hash of the final state, so that speed is never read without the physics it bought.
+// Exit 1 when a sanity check fails (a NaN, a body through the ground or the terrain, a ray that
+// missed, a settled stack that moved).
 //
 //   BenchmarkDemo                      every scene, 30 steps each (a quick run, as in CI)
-//   BenchmarkDemo stack1000,boxes3000 600   the named scenes, 600 steps each (the reference runs)
+//   BenchmarkDemo all 600              every scene, 600 steps each (the reference length)
+//   BenchmarkDemo stack1000,boxes3000 600   the named scenes (substrings of the names)
 //
 // As in the reference runs, deactivation is off (gDisableDeactivation), steps are 1/60 s with one
 // substep, the solver runs 5 iterations (10 for pyramid_jolt) in single-threaded mode.
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -42,6 +46,27 @@ bool selected(const std::string& filter, const std::string& name)
 	}
 	return false;
 }
+
+// FNV-1a over the bits of every dynamic body's final position and orientation (7 btScalars each), as
+// the reference program prints it: equal hashes mean the same simulation, bit for bit.
+uint64_t stateHash(const std::vector<btRigidBody*>& bodies)
+{
+	uint64_t hash = 1469598103934665603ull;
+	for (const btRigidBody* body : bodies)
+	{
+		const btTransform& pose = body->getCenterOfMassTransform();
+		const btQuaternion rotation = pose.getRotation();
+		const btScalar state[7] = {pose.getOrigin().x(), pose.getOrigin().y(), pose.getOrigin().z(), rotation.x(),
+		                           rotation.y(),         rotation.z(),         rotation.w()};
+		const unsigned char* bytes = reinterpret_cast<const unsigned char*>(state);
+		for (size_t i = 0; i < sizeof(state); ++i)
+		{
+			hash ^= bytes[i];
+			hash *= 1099511628211ull;
+		}
+	}
+	return hash;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -54,8 +79,11 @@ int main(int argc, char** argv)
 		return 2;
 	}
 	gDisableDeactivation = true;
-	printf("# Caliber %d, btScalar=%s, dt=1/60, 1 substep/frame, deactivation off, %d frames per scene\n",
-	       btGetVersion(), sizeof(btScalar) == 8 ? "double" : "float", frames);
+	printf(
+	    "# Caliber %d.%d.%d (Bullet API %d.%02d), btScalar=%s, dt=1/60, 1 substep/frame, deactivation off, %d "
+	    "frames per scene\n",
+	    CALIBER_VERSION_MAJOR, CALIBER_VERSION_MINOR, CALIBER_VERSION_PATCH, btGetVersion() / 100, btGetVersion() % 100,
+	    sizeof(btScalar) == 8 ? "double" : "float", frames);
 	bool allSane = true;
 	int ran = 0;
 	for (const std::string& name : benchmark_demo::sceneNames())
@@ -79,7 +107,7 @@ int main(int argc, char** argv)
 		std::vector<double> sorted = stepMs;
 		std::sort(sorted.begin(), sorted.end());
 		std::string sanity;
-		const bool sane = scene->report(sanity);
+		const bool sane = scene->report(sanity, frames);
 		allSane = allSane && sane;
 		printf(
 		    "%-13s bodies %d (dynamic %d), iterations %d, frames %d, build %.1f ms, ms/step mean %.3f median %.3f max "
@@ -87,7 +115,8 @@ int main(int argc, char** argv)
 		    name.c_str(), scene->world().getNumCollisionObjects(), int(scene->dynamicBodies().size()),
 		    scene->world().getSolverInfo().m_numIterations, frames, buildMs, total / frames, sorted[sorted.size() / 2],
 		    sorted.back());
-		printf("  sanity: %s%s\n", sanity.c_str(), sane ? "" : "  <-- FAILED");
+		printf("  sanity: %s; hash %016llx%s\n", sanity.c_str(), (unsigned long long)stateHash(scene->dynamicBodies()),
+		       sane ? "" : "  <-- FAILED");
 	}
 	if (ran == 0)
 	{

@@ -3,8 +3,9 @@
 #define CALIBER_DEMOS_RAGDOLL_H
 
 // The classic Bullet ragdoll: 11 capsules (pelvis, spine, head, legs, arms) joined by 5 hinges (pelvis-spine,
-// knees, elbows) and 5 cone-twist joints (neck, hips, shoulders), with the sizes, frames and limits that
-// ../shared/bench/scenes.md gives for its ragdolls136 scene. Used by RagdollDemo and BenchmarkDemo.
+// knees, elbows) and 5 cone-twist joints (neck, hips, shoulders), with the sizes, frames and limits of
+// the benchmark's ragdolls136 scene (docs/rigid-body-dynamics.md, "Speed"). Used by RagdollDemo and
+// BenchmarkDemo.
 
 #include "btBulletDynamicsCommon.h"
 

@@ -1,1 +1,0 @@
-// Placeholder translation unit for a layer whose sources land in a later step.
