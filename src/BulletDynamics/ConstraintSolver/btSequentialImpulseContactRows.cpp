@@ -1,6 +1,9 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // The contact half of the solver's setup: manifold points become normal, friction and rolling rows.
+#include "BulletCollision/CollisionShapes/btConvexShape.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
@@ -142,6 +145,46 @@ void applyWarmStart(btSolverConstraint& row, btSolverBody& a, btSolverBody& b)
 {
 	a.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, row.m_appliedImpulse);
 	b.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, row.m_appliedImpulse);
+}
+
+// How far a body's surface can sweep by turning over a step (0 for a sphere, which turning does not move).
+btScalar turningSweep(const btCollisionShape& shape, const btSolverBody& body, btScalar timeStep)
+{
+	if (shape.getShapeType() == SPHERE_SHAPE_PROXYTYPE) return btScalar(0);
+	return body.m_angularVelocity.length() * shape.getAngularMotionDisc() * timeStep;
+}
+
+// A speculative point is a plane through the nearest points: the row lets the pair close the gap
+// along the normal and no more. At a face that is exact; at an edge or a corner the distance grows
+// again as the bodies slide past, and a pair passing close by at speed would be stopped by a contact
+// it never makes (a ghost hit). So a convex pair that would close its gap along the normal this step
+// while sliding further than the gap, and barely turning, is cast along its motion over the step
+// (linear conservative advancement); if it meets nothing, the point gets no rows.
+bool slidesPastWithoutTouching(const btCollisionObject& objectA, const btCollisionObject& objectB,
+                               const btSolverBody& a, const btSolverBody& b, const btManifoldPoint& cp,
+                               btScalar timeStep)
+{
+	const btCollisionShape* shapeA = objectA.getCollisionShape();
+	const btCollisionShape* shapeB = objectB.getCollisionShape();
+	if (!shapeA || !shapeB || !shapeA->isConvex() || !shapeB->isConvex()) return false;
+	const btScalar gap = cp.getDistance();
+	const btVector3& normal = cp.m_normalWorldOnB;
+	const btVector3 relative = a.m_linearVelocity - b.m_linearVelocity;
+	const btScalar closing = -normal.dot(relative) * timeStep;
+	if (!(closing > gap)) return false;  // the row would not act: nothing to decide
+	const btVector3 sliding = relative - normal * normal.dot(relative);
+	if (!(sliding.length() * timeStep > gap)) return false;  // mostly head on: the plane is right
+	// The cast moves the shapes without turning them: only trusted when turning sweeps little.
+	if (turningSweep(*shapeA, a, timeStep) + turningSweep(*shapeB, b, timeStep) > btScalar(0.1) * gap) return false;
+
+	btVoronoiSimplexSolver simplex;
+	btGjkConvexCast cast(static_cast<const btConvexShape*>(shapeA), static_cast<const btConvexShape*>(shapeB),
+	                     &simplex);
+	btTransform toA = objectA.getWorldTransform(), toB = objectB.getWorldTransform();
+	toA.setOrigin(toA.getOrigin() + a.m_linearVelocity * timeStep);
+	toB.setOrigin(toB.getOrigin() + b.m_linearVelocity * timeStep);
+	btConvexCast::CastResult result;
+	return !cast.calcTimeOfImpact(objectA.getWorldTransform(), toA, objectB.getWorldTransform(), toB, result);
 }
 
 bool isFinitePoint(const btManifoldPoint& cp)
@@ -343,7 +386,8 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 			const btVector3& n = cp.m_normalWorldOnB;
 			const btScalar approach = btFabs(n.dot(a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1))) +
 			                          btFabs(n.dot(b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)));
-			if (cp.getDistance() > btScalar(2) * approach * infoGlobal.m_timeStep)
+			if (cp.getDistance() > btScalar(2) * approach * infoGlobal.m_timeStep ||
+			    slidesPastWithoutTouching(*colObj0, *colObj1, a, b, cp, infoGlobal.m_timeStep))
 			{
 				cp.m_appliedImpulse = cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = btScalar(0);
 				continue;
