@@ -582,4 +582,13 @@ SIMD_FORCE_INLINE void btVector3::serialize(struct btVector3Data& dataOut) const
 SIMD_FORCE_INLINE void btVector3::deSerialize(const struct btVector3FloatData& dataIn) { deSerializeFloat(dataIn); }
 SIMD_FORCE_INLINE void btVector3::deSerialize(const struct btVector3DoubleData& dataIn) { deSerializeDouble(dataIn); }
 
+namespace caliber
+{
+/// True when x, y and z are all finite (not NaN, not infinite); the unused fourth lane is not read.
+SIMD_FORCE_INLINE bool isFinite(const btVector3& v)
+{
+	return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z());
+}
+}  // namespace caliber
+
 #endif  // BT_VECTOR3_H

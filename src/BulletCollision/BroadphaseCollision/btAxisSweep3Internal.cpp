@@ -14,11 +14,7 @@ namespace
 {
 bool finiteBox(const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	for (int axis = 0; axis < 3; ++axis)
-	{
-		if (!btIsFinite(aabbMin[axis]) || !btIsFinite(aabbMax[axis])) return false;
-	}
-	return true;
+	return caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 }
 
 int nextAxis(int axis) { return axis == 2 ? 0 : axis + 1; }

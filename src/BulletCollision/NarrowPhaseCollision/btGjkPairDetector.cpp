@@ -17,15 +17,6 @@ const btScalar kRelativeTolerance = btScalar(256) * SIMD_EPSILON;
 // Cores closer than this (length units) after a degenerate GJK ending are checked by the depth solver.
 const btScalar kDegenerateContactTolerance = btScalar(1e-3);
 
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFiniteTransform(const btTransform& t)
-{
-	const btMatrix3x3& basis = t.getBasis();
-	return isFiniteVector(basis[0]) && isFiniteVector(basis[1]) && isFiniteVector(basis[2]) &&
-	       isFiniteVector(t.getOrigin());
-}
-
 // Squared length under which a closest point counts as the origin (rounding of coordinates of size scale).
 btScalar overlapThreshold(btScalar scaleSquared)
 {
@@ -107,9 +98,9 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 	m_curIter = 0;
 	m_degenerateSimplex = 0;
 	btAssert(m_minkowskiA && m_minkowskiB && m_simplexSolver);
-	btAssert(isFiniteTransform(input.m_transformA) && isFiniteTransform(input.m_transformB));
-	if (!m_minkowskiA || !m_minkowskiB || !m_simplexSolver || !isFiniteTransform(input.m_transformA) ||
-	    !isFiniteTransform(input.m_transformB))
+	btAssert(caliber::isFinite(input.m_transformA) && caliber::isFinite(input.m_transformB));
+	if (!m_minkowskiA || !m_minkowskiB || !m_simplexSolver || !caliber::isFinite(input.m_transformA) ||
+	    !caliber::isFinite(input.m_transformB))
 		return;
 
 	const btVector3 offset = (input.m_transformA.getOrigin() + input.m_transformB.getOrigin()) * btScalar(0.5);
@@ -127,7 +118,7 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 	btSimplexSolverInterface& simplex = *m_simplexSolver;
 	simplex.reset();
 	btVector3 v = m_cachedSeparatingAxis;
-	if (!isFiniteVector(v) || v.fuzzyZero()) v.setValue(btScalar(0), btScalar(1), btScalar(0));
+	if (!caliber::isFinite(v) || v.fuzzyZero()) v.setValue(btScalar(0), btScalar(1), btScalar(0));
 
 	btScalar squaredDistance = BT_LARGE_FLOAT;
 	bool coresOverlap = false;
@@ -140,7 +131,7 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 		const btVector3 supportA = worldSupport(m_minkowskiA, transA, -v, btScalar(0));
 		const btVector3 supportB = worldSupport(m_minkowskiB, transB, v, btScalar(0));
 		const btVector3 w = supportA - supportB;
-		if (!isFiniteVector(w))
+		if (!caliber::isFinite(w))
 		{
 			failed = true;
 			m_degenerateSimplex = 9;
@@ -178,7 +169,7 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 		if (!simplex.closest(next))
 		{
 			m_degenerateSimplex = 3;
-			failed = !isFiniteVector(next);
+			failed = !caliber::isFinite(next);
 			break;
 		}
 		if (next.length2() <= overlapThreshold(simplex.maxVertex()))
@@ -234,7 +225,7 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 		}
 		const btVector3 delta = pointOnA - pointOnB;
 		const btScalar lengthSquared = delta.length2();
-		if (lengthSquared > overlapThreshold(simplex.maxVertex()) && isFiniteVector(delta))
+		if (lengthSquared > overlapThreshold(simplex.maxVertex()) && caliber::isFinite(delta))
 		{
 			const btScalar length = btSqrt(lengthSquared);
 			normalInB = delta / length;
@@ -262,7 +253,7 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 		    simplex, m_minkowskiA, m_minkowskiB, transA, transB, solverAxis, solverA, solverB, debugDraw);
 		const btVector3 delta = solverB - solverA;
 		const btScalar lengthSquared = delta.length2();
-		if (penetrating && isFiniteVector(delta) && isFiniteVector(solverAxis))
+		if (penetrating && caliber::isFinite(delta) && caliber::isFinite(solverAxis))
 		{
 			btVector3 normal = solverAxis;
 			btScalar depthDistance = btScalar(0);
@@ -290,7 +281,7 @@ void btGjkPairDetector::getClosestPointsNonVirtual(const ClosestPointInput& inpu
 		{
 			// The solver found the full shapes apart (or failed): a finite, non-zero gap is still a result.
 			const btScalar length = btSqrt(lengthSquared);
-			if (!isValid && isFiniteVector(delta) && length > SIMD_EPSILON)
+			if (!isValid && caliber::isFinite(delta) && length > SIMD_EPSILON)
 			{
 				normalInB = -delta / length;
 				distance = length;

@@ -67,14 +67,6 @@ bool decomposeEuler(const btMatrix3x3& q, const EulerOrder& o, btVector3& angles
 	return false;
 }
 
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFinite(const btTransform& t)
-{
-	const btMatrix3x3& m = t.getBasis();
-	return isFinite(m[0]) && isFinite(m[1]) && isFinite(m[2]) && isFinite(t.getOrigin());
-}
-
 void warn(const char* function, const char* what)
 {
 	char message[200];
@@ -213,7 +205,7 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbA,
       m_rotateOrder(rotOrder),
       m_flags(0)
 {
-	if (!isFinite(frameInA) || !isFinite(frameInB))
+	if (!caliber::isFinite(frameInA) || !caliber::isFinite(frameInB))
 	{
 		// An inert joint with harmless frames rather than one that spreads NaN.
 		warn("constructor", "non-finite joint frame; the joint is disabled");
@@ -231,7 +223,7 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbB,
       m_rotateOrder(rotOrder),
       m_flags(0)
 {
-	if (!isFinite(frameInB) || !isFinite(rbB.getCenterOfMassTransform()))
+	if (!caliber::isFinite(frameInB) || !caliber::isFinite(rbB.getCenterOfMassTransform()))
 	{
 		warn("constructor", "non-finite joint frame; the joint is disabled");
 		m_frameInB.setIdentity();
@@ -239,7 +231,7 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbB,
 	}
 	// Without a body A the world is A, and its frame is where B's frame is now.
 	m_frameInA = rbB.getCenterOfMassTransform() * m_frameInB;
-	if (!isFinite(m_frameInA)) m_frameInA.setIdentity();
+	if (!caliber::isFinite(m_frameInA)) m_frameInA.setIdentity();
 	calculateTransforms();
 }
 
@@ -548,7 +540,7 @@ bool btGeneric6DofSpring2Constraint::checkIndex(int index, const char* function)
 
 void btGeneric6DofSpring2Constraint::setFrames(const btTransform& frameA, const btTransform& frameB)
 {
-	if (!isFinite(frameA) || !isFinite(frameB))
+	if (!caliber::isFinite(frameA) || !caliber::isFinite(frameB))
 	{
 		warn("setFrames", "non-finite joint frame; frames kept and the joint is disabled");
 		setEnabled(false);
@@ -607,9 +599,9 @@ bool btGeneric6DofSpring2Constraint::isLimited(int limitIndex) const
 
 void btGeneric6DofSpring2Constraint::setAxis(const btVector3& axis1, const btVector3& axis2)
 {
-	const btScalar length1 = isFinite(axis1) ? axis1.length() : btScalar(0);
+	const btScalar length1 = caliber::isFinite(axis1) ? axis1.length() : btScalar(0);
 	const btVector3 zAxis = length1 > SIMD_EPSILON ? axis1 / length1 : btVector3(0, 0, 0);
-	const btVector3 across = isFinite(axis2) ? axis2 - zAxis * zAxis.dot(axis2) : btVector3(0, 0, 0);
+	const btVector3 across = caliber::isFinite(axis2) ? axis2 - zAxis * zAxis.dot(axis2) : btVector3(0, 0, 0);
 	const btScalar length2 = across.length();
 	if (!(length1 > SIMD_EPSILON) || !(length2 > SIMD_EPSILON * btMax(btScalar(1), axis2.length())))
 	{

@@ -113,6 +113,8 @@ void applyWarmStart(btSolverConstraint& row, btSolverBody& a, btSolverBody& b)
 	b.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, row.m_appliedImpulse);
 }
 
+// One test on the sum rather than caliber::isFinite per vector: cheaper per contact, and a sum that
+// overflows (a point near the float range) is refused too.
 bool isFinitePoint(const btManifoldPoint& cp)
 {
 	const btVector3& a = cp.m_positionWorldOnA;

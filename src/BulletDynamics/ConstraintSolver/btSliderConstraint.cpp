@@ -19,20 +19,17 @@
 
 namespace
 {
-bool isFinite(btScalar x) { return x == x && btFabs(x) <= SIMD_INFINITY; }
-bool isFinite(const btVector3& v) { return isFinite(v.x()) && isFinite(v.y()) && isFinite(v.z()); }
-
 // Finite, and its axes span space: each has length, and together they are not close to coplanar (the
 // determinant is at least 1 % of the product of the lengths, which is what orthogonal axes give).
 bool isUsableFrame(const btTransform& frame)
 {
-	if (!isFinite(frame.getOrigin())) return false;
+	if (!caliber::isFinite(frame.getOrigin())) return false;
 	const btMatrix3x3& basis = frame.getBasis();
 	btScalar lengths = 1;
 	for (int i = 0; i < 3; ++i)
 	{
 		const btVector3 column = basis.getColumn(i);
-		if (!isFinite(column)) return false;
+		if (!caliber::isFinite(column)) return false;
 		const btScalar length = column.length();
 		if (!(length > btScalar(1e-6))) return false;
 		lengths *= length;

@@ -16,14 +16,6 @@
 
 namespace
 {
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFinite(const btTransform& t)
-{
-	const btMatrix3x3& b = t.getBasis();
-	return isFinite(t.getOrigin()) && isFinite(b[0]) && isFinite(b[1]) && isFinite(b[2]);
-}
-
 // The sweep of a fast body's sphere: the closest object that responds to contact with it, among those
 // it is moving towards (a hit whose normal faces along the motion is the body leaving a surface it
 // touches). It filters like the body's own broadphase proxy.
@@ -105,8 +97,8 @@ void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
 	{
 		btRigidBody* body = m_nonStaticRigidBodies[i];
 		if (body->getActivationState() == DISABLE_SIMULATION) continue;
-		if (isFinite(body->getWorldTransform()) && isFinite(body->getLinearVelocity()) &&
-		    isFinite(body->getAngularVelocity()))
+		if (caliber::isFinite(body->getWorldTransform()) && caliber::isFinite(body->getLinearVelocity()) &&
+		    caliber::isFinite(body->getAngularVelocity()))
 			continue;
 		// A body whose state is no longer a number would hand NaN to everything it touches: it leaves the
 		// broadphase (so it has no pairs) and the simulation, at its last finite pose when there is one.
@@ -118,10 +110,10 @@ void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
 			    "of the simulation (DISABLE_SIMULATION)\n",
 			    getDebugDrawer());
 		}
-		if (!isFinite(body->getWorldTransform()))
+		if (!caliber::isFinite(body->getWorldTransform()))
 		{
 			btTransform lastPose = body->getInterpolationWorldTransform();
-			if (!isFinite(lastPose)) lastPose.setIdentity();
+			if (!caliber::isFinite(lastPose)) lastPose.setIdentity();
 			body->setWorldTransform(lastPose);
 			body->setInterpolationWorldTransform(lastPose);
 		}

@@ -12,8 +12,6 @@ bool gDisableDeactivation = false;
 
 namespace
 {
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
 // The angular speed at which a body turns a quarter turn in one step; faster spins are clamped
 // (integrateTransform cannot represent more per step, and such speeds are numerical blow-ups).
 btScalar maxAngularSpeed(btScalar step) { return SIMD_HALF_PI / step; }
@@ -191,8 +189,8 @@ void btRigidBody::applyDamping(btScalar timeStep)
 
 void btRigidBody::setGravity(const btVector3& acceleration)
 {
-	btAssert(isFiniteVector(acceleration) && "btRigidBody::setGravity: non-finite acceleration");
-	if (!isFiniteVector(acceleration)) return;
+	btAssert(caliber::isFinite(acceleration) && "btRigidBody::setGravity: non-finite acceleration");
+	if (!caliber::isFinite(acceleration)) return;
 	if (m_inverseMass != btScalar(0)) m_gravity = acceleration * (btScalar(1) / m_inverseMass);
 	m_gravity_acceleration = acceleration;
 }
@@ -211,44 +209,44 @@ void btRigidBody::clearGravity()
 
 void btRigidBody::applyCentralForce(const btVector3& force)
 {
-	btAssert(isFiniteVector(force) && "btRigidBody: non-finite force");
-	if (!isFiniteVector(force)) return;
+	btAssert(caliber::isFinite(force) && "btRigidBody: non-finite force");
+	if (!caliber::isFinite(force)) return;
 	m_totalForce += force * m_linearFactor;
 }
 
 void btRigidBody::applyTorque(const btVector3& torque)
 {
-	btAssert(isFiniteVector(torque) && "btRigidBody: non-finite torque");
-	if (!isFiniteVector(torque)) return;
+	btAssert(caliber::isFinite(torque) && "btRigidBody: non-finite torque");
+	if (!caliber::isFinite(torque)) return;
 	m_totalTorque += torque * m_angularFactor;
 }
 
 void btRigidBody::applyForce(const btVector3& force, const btVector3& rel_pos)
 {
-	btAssert(isFiniteVector(force) && isFiniteVector(rel_pos) && "btRigidBody: non-finite force or point");
-	if (!isFiniteVector(force) || !isFiniteVector(rel_pos)) return;
+	btAssert(caliber::isFinite(force) && caliber::isFinite(rel_pos) && "btRigidBody: non-finite force or point");
+	if (!caliber::isFinite(force) || !caliber::isFinite(rel_pos)) return;
 	applyCentralForce(force);
 	applyTorque(rel_pos.cross(force * m_linearFactor));
 }
 
 void btRigidBody::applyCentralImpulse(const btVector3& impulse)
 {
-	btAssert(isFiniteVector(impulse) && "btRigidBody: non-finite impulse");
-	if (!isFiniteVector(impulse)) return;
+	btAssert(caliber::isFinite(impulse) && "btRigidBody: non-finite impulse");
+	if (!caliber::isFinite(impulse)) return;
 	m_linearVelocity += impulse * m_linearFactor * m_inverseMass;
 }
 
 void btRigidBody::applyTorqueImpulse(const btVector3& torque)
 {
-	btAssert(isFiniteVector(torque) && "btRigidBody: non-finite torque impulse");
-	if (!isFiniteVector(torque)) return;
+	btAssert(caliber::isFinite(torque) && "btRigidBody: non-finite torque impulse");
+	if (!caliber::isFinite(torque)) return;
 	m_angularVelocity += m_invInertiaTensorWorld * torque * m_angularFactor;
 }
 
 void btRigidBody::applyImpulse(const btVector3& impulse, const btVector3& rel_pos)
 {
-	btAssert(isFiniteVector(impulse) && isFiniteVector(rel_pos) && "btRigidBody: non-finite impulse or point");
-	if (!isFiniteVector(impulse) || !isFiniteVector(rel_pos)) return;
+	btAssert(caliber::isFinite(impulse) && caliber::isFinite(rel_pos) && "btRigidBody: non-finite impulse or point");
+	if (!caliber::isFinite(impulse) || !caliber::isFinite(rel_pos)) return;
 	if (m_inverseMass == btScalar(0)) return;
 	applyCentralImpulse(impulse);
 	applyTorqueImpulse(rel_pos.cross(impulse * m_linearFactor));
@@ -263,16 +261,16 @@ void btRigidBody::applyPushImpulse(const btVector3& impulse, const btVector3& re
 
 void btRigidBody::setLinearVelocity(const btVector3& lin_vel)
 {
-	btAssert(isFiniteVector(lin_vel) && "btRigidBody::setLinearVelocity: non-finite velocity");
-	if (!isFiniteVector(lin_vel)) return;
+	btAssert(caliber::isFinite(lin_vel) && "btRigidBody::setLinearVelocity: non-finite velocity");
+	if (!caliber::isFinite(lin_vel)) return;
 	m_updateRevision++;
 	m_linearVelocity = lin_vel;
 }
 
 void btRigidBody::setAngularVelocity(const btVector3& ang_vel)
 {
-	btAssert(isFiniteVector(ang_vel) && "btRigidBody::setAngularVelocity: non-finite velocity");
-	if (!isFiniteVector(ang_vel)) return;
+	btAssert(caliber::isFinite(ang_vel) && "btRigidBody::setAngularVelocity: non-finite velocity");
+	if (!caliber::isFinite(ang_vel)) return;
 	m_updateRevision++;
 	m_angularVelocity = ang_vel;
 }
