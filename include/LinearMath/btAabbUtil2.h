@@ -37,16 +37,15 @@ SIMD_FORCE_INLINE bool TestAabbAgainstAabb2(const btVector3& aabbMin1, const btV
 SIMD_FORCE_INLINE bool TestTriangleAgainstAabb2(const btVector3* vertices, const btVector3& aabbMin,
                                                 const btVector3& aabbMax)
 {
-	const btVector3& p1 = vertices[0];
-	const btVector3& p2 = vertices[1];
-	const btVector3& p3 = vertices[2];
-	if (btMin(btMin(p1[0], p2[0]), p3[0]) > aabbMax[0]) return false;
-	if (btMax(btMax(p1[0], p2[0]), p3[0]) < aabbMin[0]) return false;
-	if (btMin(btMin(p1[2], p2[2]), p3[2]) > aabbMax[2]) return false;
-	if (btMax(btMax(p1[2], p2[2]), p3[2]) < aabbMin[2]) return false;
-	if (btMin(btMin(p1[1], p2[1]), p3[1]) > aabbMax[1]) return false;
-	if (btMax(btMax(p1[1], p2[1]), p3[1]) < aabbMin[1]) return false;
-	return true;
+	// setMin/setMax take the same component as btMin/btMax would, NaN included.
+	btVector3 triangleMin = vertices[0];
+	btVector3 triangleMax = vertices[0];
+	for (int corner = 1; corner < 3; ++corner)
+	{
+		triangleMin.setMin(vertices[corner]);
+		triangleMax.setMax(vertices[corner]);
+	}
+	return TestAabbAgainstAabb2(triangleMin, triangleMax, aabbMin, aabbMax);
 }
 
 /// Which sides of the centred box [-halfExtent, halfExtent] point p lies outside of: bits 0, 1, 2

@@ -423,4 +423,10 @@ SIMD_FORCE_INLINE void btMatrix3x3::deSerializeDouble(const struct btMatrix3x3Do
 	for (int i = 0; i < 3; ++i) m_el[i].deSerializeDouble(dataIn.m_el[i]);
 }
 
+namespace caliber
+{
+/// True when all nine entries are finite.
+SIMD_FORCE_INLINE bool isFinite(const btMatrix3x3& m) { return isFinite(m[0]) && isFinite(m[1]) && isFinite(m[2]); }
+}  // namespace caliber
+
 #endif  // BT_MATRIX3x3_H

@@ -186,4 +186,10 @@ SIMD_FORCE_INLINE void btTransform::deSerializeDouble(const btTransformDoubleDat
 	m_origin.deSerializeDouble(dataIn.m_origin);
 }
 
+namespace caliber
+{
+/// True when the basis and the origin are finite.
+SIMD_FORCE_INLINE bool isFinite(const btTransform& t) { return isFinite(t.getBasis()) && isFinite(t.getOrigin()); }
+}  // namespace caliber
+
 #endif  // BT_TRANSFORM_H

@@ -532,30 +532,20 @@ SIMD_FORCE_INLINE void btUnSwapVector3Endian(btVector3& vector)
 template <class T>
 SIMD_FORCE_INLINE void btPlaneSpace1(const T& n, T& p, T& q)
 {
-	if (btFabs(n[2]) > SIMDSQRT12)
-	{
-		// n leans towards z: build p in the y-z plane, where n's projection is long enough.
-		const btScalar a = n[1] * n[1] + n[2] * n[2];
-		const btScalar k = btRecipSqrt(a);
-		p[0] = 0;
-		p[1] = -n[2] * k;
-		p[2] = n[1] * k;
-		q[0] = a * k;
-		q[1] = -n[0] * p[2];
-		q[2] = n[0] * p[1];
-	}
-	else
-	{
-		// Otherwise build p in the x-y plane.
-		const btScalar a = n[0] * n[0] + n[1] * n[1];
-		const btScalar k = btRecipSqrt(a);
-		p[0] = -n[1] * k;
-		p[1] = n[0] * k;
-		p[2] = 0;
-		q[0] = -n[2] * p[1];
-		q[1] = n[2] * p[0];
-		q[2] = a * k;
-	}
+	// p lies in the coordinate plane that drops axis `dropped`: x when n leans towards z, z otherwise,
+	// so that n's projection onto that plane (squared length a) is never short. (dropped, first, second)
+	// is a cyclic order of the axes, which makes q = n x p come out with the signs below.
+	const int dropped = btFabs(n[2]) > SIMDSQRT12 ? 0 : 2;
+	const int first = dropped == 0 ? 1 : 0;
+	const int second = dropped == 0 ? 2 : 1;
+	const btScalar a = n[first] * n[first] + n[second] * n[second];
+	const btScalar k = btRecipSqrt(a);
+	p[dropped] = 0;
+	p[first] = -n[second] * k;
+	p[second] = n[first] * k;
+	q[dropped] = a * k;
+	q[first] = -n[dropped] * p[second];
+	q[second] = n[dropped] * p[first];
 }
 
 /// Serialised form of a vector in single precision.
@@ -591,5 +581,14 @@ SIMD_FORCE_INLINE void btVector3::serialize(struct btVector3Data& dataOut) const
 }
 SIMD_FORCE_INLINE void btVector3::deSerialize(const struct btVector3FloatData& dataIn) { deSerializeFloat(dataIn); }
 SIMD_FORCE_INLINE void btVector3::deSerialize(const struct btVector3DoubleData& dataIn) { deSerializeDouble(dataIn); }
+
+namespace caliber
+{
+/// True when x, y and z are all finite (not NaN, not infinite); the unused fourth lane is not read.
+SIMD_FORCE_INLINE bool isFinite(const btVector3& v)
+{
+	return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z());
+}
+}  // namespace caliber
 
 #endif  // BT_VECTOR3_H

@@ -10,14 +10,6 @@ namespace
 {
 btScalar frobeniusNorm2(const btMatrix3x3& m) { return m[0].length2() + m[1].length2() + m[2].length2(); }
 
-bool isFinite(const btMatrix3x3& m)
-{
-	for (int i = 0; i < 3; ++i)
-		for (int j = 0; j < 3; ++j)
-			if (!btIsFinite(m[i][j])) return false;
-	return true;
-}
-
 // (m + m^T) / 2.
 btMatrix3x3 symmetricPart(const btMatrix3x3& m) { return (m + m.transpose()) * btScalar(0.5); }
 
@@ -82,7 +74,7 @@ unsigned int btPolarDecomposition::decompose(const btMatrix3x3& a, btMatrix3x3& 
 	btScalar largest = 0;
 	for (int i = 0; i < 3; ++i)
 		for (int j = 0; j < 3; ++j) largest = btMax(largest, btFabs(a[i][j]));
-	if (!isFinite(a) || !(largest > btScalar(0)))
+	if (!caliber::isFinite(a) || !(largest > btScalar(0)))
 	{
 		u.setIdentity();
 		h.setZero();

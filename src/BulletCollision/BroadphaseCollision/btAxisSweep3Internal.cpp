@@ -8,16 +8,13 @@
 
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "LinearMath/btAabbUtil2.h"
+#include "LinearMath/btAlignedObject.h"
 
 namespace
 {
 bool finiteBox(const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	for (int axis = 0; axis < 3; ++axis)
-	{
-		if (!btIsFinite(aabbMin[axis]) || !btIsFinite(aabbMax[axis])) return false;
-	}
-	return true;
+	return caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 }
 
 int nextAxis(int axis) { return axis == 2 ? 0 : axis + 1; }
@@ -33,10 +30,9 @@ bool pointsInto(const void* pointer, const T* begin, const T* end)
 }  // namespace
 
 template <typename BP_FP_INT_TYPE>
-btAxisSweep3Internal<BP_FP_INT_TYPE>::btAxisSweep3Internal(const btVector3& worldAabbMin,
-                                                           const btVector3& worldAabbMax, BP_FP_INT_TYPE handleMask,
-                                                           BP_FP_INT_TYPE handleSentinel, BP_FP_INT_TYPE maxHandles,
-                                                           btOverlappingPairCache* pairCache,
+btAxisSweep3Internal<BP_FP_INT_TYPE>::btAxisSweep3Internal(const btVector3& worldAabbMin, const btVector3& worldAabbMax,
+                                                           BP_FP_INT_TYPE handleMask, BP_FP_INT_TYPE handleSentinel,
+                                                           BP_FP_INT_TYPE maxHandles, btOverlappingPairCache* pairCache,
                                                            bool disableRaycastAccelerator)
     : m_bpHandleMask(handleMask),
       m_handleSentinel(handleSentinel),
@@ -87,8 +83,7 @@ btAxisSweep3Internal<BP_FP_INT_TYPE>::btAxisSweep3Internal(const btVector3& worl
 	if (usableHandles > maxUsable) usableHandles = maxUsable;
 	m_maxHandles = BP_FP_INT_TYPE(usableHandles + 1);
 
-	m_pHandles = static_cast<Handle*>(btAlignedAlloc(sizeof(Handle) * size_t(m_maxHandles), 16));
-	for (size_t i = 0; i < size_t(m_maxHandles); ++i) new (&m_pHandles[i]) Handle();
+	m_pHandles = caliber::alignedNewArray<Handle>(size_t(m_maxHandles));
 	for (int axis = 0; axis < 3; ++axis)
 	{
 		m_pEdgesRawPtr[axis] = btAlignedAlloc(sizeof(Edge) * size_t(m_maxHandles) * 2, 16);
@@ -98,38 +93,26 @@ btAxisSweep3Internal<BP_FP_INT_TYPE>::btAxisSweep3Internal(const btVector3& worl
 
 	if (!m_pairCache)
 	{
-		void* memory = btAlignedAlloc(sizeof(btHashedOverlappingPairCache), 16);
-		m_pairCache = new (memory) btHashedOverlappingPairCache();
+		m_pairCache = caliber::alignedNew<btHashedOverlappingPairCache>();
 		m_ownsPairCache = true;
 	}
 	if (!disableRaycastAccelerator)
 	{
 		// A dynamic tree answers rays and box queries in log time; it needs no pairs of its own.
-		void* cacheMemory = btAlignedAlloc(sizeof(btNullPairCache), 16);
-		m_nullPairCache = new (cacheMemory) btNullPairCache();
-		void* treeMemory = btAlignedAlloc(sizeof(btDbvtBroadphase), 16);
-		m_raycastAccelerator = new (treeMemory) btDbvtBroadphase(m_nullPairCache);
+		m_nullPairCache = caliber::alignedNew<btNullPairCache>();
+		m_raycastAccelerator = caliber::alignedNew<btDbvtBroadphase>(m_nullPairCache);
 	}
 }
 
 template <typename BP_FP_INT_TYPE>
 btAxisSweep3Internal<BP_FP_INT_TYPE>::~btAxisSweep3Internal()
 {
-	if (m_raycastAccelerator)
-	{
-		m_raycastAccelerator->~btDbvtBroadphase();
-		btAlignedFree(m_raycastAccelerator);
-		m_nullPairCache->~btOverlappingPairCache();
-		btAlignedFree(m_nullPairCache);
-	}
-	for (int axis = 2; axis >= 0; --axis) btAlignedFree(m_pEdgesRawPtr[axis]);
-	for (size_t i = 0; i < size_t(m_maxHandles); ++i) m_pHandles[i].~Handle();
-	btAlignedFree(m_pHandles);
-	if (m_ownsPairCache)
-	{
-		m_pairCache->~btOverlappingPairCache();
-		btAlignedFree(m_pairCache);
-	}
+	// The tree before the pair cache it reports to; edges hold only handle indices.
+	caliber::alignedDelete(m_raycastAccelerator);
+	caliber::alignedDelete(m_nullPairCache);
+	for (void* edges : m_pEdgesRawPtr) btAlignedFree(edges);
+	caliber::alignedDeleteArray(m_pHandles, size_t(m_maxHandles));
+	if (m_ownsPairCache) caliber::alignedDelete(m_pairCache);
 }
 
 template <typename BP_FP_INT_TYPE>
@@ -200,7 +183,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::quantize(BP_FP_INT_TYPE* out, const b
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::unQuantize(btBroadphaseProxy* proxy, btVector3& aabbMin,
-                                                       btVector3& aabbMax) const
+                                                      btVector3& aabbMax) const
 {
 	const Handle* handle = static_cast<const Handle*>(proxy);
 	for (int axis = 0; axis < 3; ++axis)
@@ -214,7 +197,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::unQuantize(btBroadphaseProxy* proxy, 
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::clampToWorld(const btVector3& aabbMin, const btVector3& aabbMax,
-                                                         btVector3& clampedMin, btVector3& clampedMax)
+                                                        btVector3& clampedMin, btVector3& clampedMax)
 {
 	clampedMin = aabbMin;
 	clampedMax = aabbMax;
@@ -236,7 +219,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::clampToWorld(const btVector3& aabbMin
 
 template <typename BP_FP_INT_TYPE>
 bool btAxisSweep3Internal<BP_FP_INT_TYPE>::testOverlap2D(const Handle* handle0, const Handle* handle1, int axis1,
-                                                          int axis2)
+                                                         int axis2)
 {
 	// Edge indices order like positions, and a min and a max edge never share a position.
 	if (handle0->m_maxEdges[axis1] < handle1->m_minEdges[axis1] ||
@@ -285,7 +268,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::removePair(Handle* handle0, Handle* h
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMinDown(int axis, BP_FP_INT_TYPE edge, btDispatcher* dispatcher,
-                                                        bool updateOverlaps)
+                                                       bool updateOverlaps)
 {
 	(void)dispatcher;
 	Edge* edges = m_pEdges[axis];
@@ -314,7 +297,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMinDown(int axis, BP_FP_INT_TYPE 
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMinUp(int axis, BP_FP_INT_TYPE edge, btDispatcher* dispatcher,
-                                                      bool updateOverlaps)
+                                                     bool updateOverlaps)
 {
 	Edge* edges = m_pEdges[axis];
 	Handle* self = getHandle(edges[edge].m_handle);
@@ -342,7 +325,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMinUp(int axis, BP_FP_INT_TYPE ed
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMaxDown(int axis, BP_FP_INT_TYPE edge, btDispatcher* dispatcher,
-                                                        bool updateOverlaps)
+                                                       bool updateOverlaps)
 {
 	Edge* edges = m_pEdges[axis];
 	Handle* self = getHandle(edges[edge].m_handle);
@@ -370,7 +353,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMaxDown(int axis, BP_FP_INT_TYPE 
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::sortMaxUp(int axis, BP_FP_INT_TYPE edge, btDispatcher* dispatcher,
-                                                      bool updateOverlaps)
+                                                     bool updateOverlaps)
 {
 	(void)dispatcher;
 	Edge* edges = m_pEdges[axis];
@@ -486,7 +469,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::removeHandle(BP_FP_INT_TYPE handleInd
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::updateHandle(BP_FP_INT_TYPE handleIndex, const btVector3& aabbMin,
-                                                         const btVector3& aabbMax, btDispatcher* dispatcher)
+                                                        const btVector3& aabbMax, btDispatcher* dispatcher)
 {
 	const bool inUse =
 	    handleIndex != 0 && handleIndex < m_maxHandles && getHandle(handleIndex)->m_uniqueId == int(handleIndex);
@@ -547,11 +530,10 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::processAllOverlappingPairs(btOverlapC
 }
 
 template <typename BP_FP_INT_TYPE>
-btBroadphaseProxy* btAxisSweep3Internal<BP_FP_INT_TYPE>::createProxy(const btVector3& aabbMin,
-                                                                      const btVector3& aabbMax, int shapeType,
-                                                                      void* userPtr, int collisionFilterGroup,
-                                                                      int collisionFilterMask,
-                                                                      btDispatcher* dispatcher)
+btBroadphaseProxy* btAxisSweep3Internal<BP_FP_INT_TYPE>::createProxy(const btVector3& aabbMin, const btVector3& aabbMax,
+                                                                     int shapeType, void* userPtr,
+                                                                     int collisionFilterGroup, int collisionFilterMask,
+                                                                     btDispatcher* dispatcher)
 {
 	const BP_FP_INT_TYPE handleIndex =
 	    addHandle(aabbMin, aabbMax, userPtr, collisionFilterGroup, collisionFilterMask, dispatcher);
@@ -582,7 +564,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::destroyProxy(btBroadphaseProxy* proxy
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::setAabb(btBroadphaseProxy* proxy, const btVector3& aabbMin,
-                                                    const btVector3& aabbMax, btDispatcher* dispatcher)
+                                                   const btVector3& aabbMax, btDispatcher* dispatcher)
 {
 	btAssert(proxy && "btAxisSweep3::setAabb: null proxy");
 	if (!proxy) return;
@@ -608,7 +590,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::setAabb(btBroadphaseProxy* proxy, con
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin,
-                                                    btVector3& aabbMax) const
+                                                   btVector3& aabbMax) const
 {
 	btAssert(proxy && "btAxisSweep3::getAabb: null proxy");
 	if (!proxy)
@@ -623,8 +605,8 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::getAabb(btBroadphaseProxy* proxy, btV
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::rayTest(const btVector3& rayFrom, const btVector3& rayTo,
-                                                    btBroadphaseRayCallback& rayCallback, const btVector3& aabbMin,
-                                                    const btVector3& aabbMax)
+                                                   btBroadphaseRayCallback& rayCallback, const btVector3& aabbMin,
+                                                   const btVector3& aabbMax)
 {
 	if (m_raycastAccelerator)
 	{
@@ -648,7 +630,7 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::rayTest(const btVector3& rayFrom, con
 
 template <typename BP_FP_INT_TYPE>
 void btAxisSweep3Internal<BP_FP_INT_TYPE>::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax,
-                                                     btBroadphaseAabbCallback& callback)
+                                                    btBroadphaseAabbCallback& callback)
 {
 	if (m_raycastAccelerator)
 	{

@@ -97,7 +97,7 @@ struct RayQueryPolicy
 
 bool finiteAabb(const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	return caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	return caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 }
 }  // namespace
 

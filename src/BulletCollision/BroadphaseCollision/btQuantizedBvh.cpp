@@ -5,8 +5,6 @@
 
 namespace
 {
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
 // Half the surface area of a box: the SAH cost weight of a child.
 btScalar halfArea(const btVector3& mn, const btVector3& mx)
 {
@@ -90,8 +88,9 @@ btQuantizedBvh::~btQuantizedBvh() {}
 void btQuantizedBvh::setQuantizationValues(const btVector3& bvhAabbMin, const btVector3& bvhAabbMax,
                                            btScalar quantizationMargin)
 {
-	const bool valid = isFiniteVector(bvhAabbMin) && isFiniteVector(bvhAabbMax) && bvhAabbMin.x() <= bvhAabbMax.x() &&
-	                   bvhAabbMin.y() <= bvhAabbMax.y() && bvhAabbMin.z() <= bvhAabbMax.z();
+	const bool valid = caliber::isFinite(bvhAabbMin) && caliber::isFinite(bvhAabbMax) &&
+	                   bvhAabbMin.x() <= bvhAabbMax.x() && bvhAabbMin.y() <= bvhAabbMax.y() &&
+	                   bvhAabbMin.z() <= bvhAabbMax.z();
 	btAssert(valid && "setQuantizationValues: non-finite or inverted box");
 	const btScalar margin =
 	    (quantizationMargin > btScalar(0) && btIsFinite(quantizationMargin)) ? quantizationMargin : btScalar(0);
@@ -354,7 +353,7 @@ void btQuantizedBvh::reportAabbOverlappingNodex(btNodeOverlapCallback* nodeCallb
                                                 const btVector3& aabbMax) const
 {
 	btAssert(nodeCallback != 0);
-	const bool finite = isFiniteVector(aabbMin) && isFiniteVector(aabbMax);
+	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "reportAabbOverlappingNodex: non-finite box");
 	if (!nodeCallback || !finite || m_curNodeIndex == 0) return;
 	const int numNodes = m_curNodeIndex;
@@ -410,8 +409,8 @@ void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCa
                                                    const btVector3& aabbMax, const btScalar* maxFraction) const
 {
 	btAssert(nodeCallback != 0);
-	const bool finite =
-	    isFiniteVector(raySource) && isFiniteVector(rayTarget) && isFiniteVector(aabbMin) && isFiniteVector(aabbMax);
+	const bool finite = caliber::isFinite(raySource) && caliber::isFinite(rayTarget) && caliber::isFinite(aabbMin) &&
+	                    caliber::isFinite(aabbMax);
 	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
 	if (!nodeCallback || !finite || m_curNodeIndex == 0) return;
 	const int numNodes = m_curNodeIndex;

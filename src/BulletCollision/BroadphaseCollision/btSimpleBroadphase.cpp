@@ -93,7 +93,7 @@ btBroadphaseProxy* btSimpleBroadphase::createProxy(const btVector3& aabbMin, con
                                                    btDispatcher* dispatcher)
 {
 	(void)dispatcher;
-	const bool finite = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "btSimpleBroadphase::createProxy: non-finite AABB");
 	if (!finite) return 0;
 	const int index = allocHandle();
@@ -125,7 +125,7 @@ void btSimpleBroadphase::setAabb(btBroadphaseProxy* proxy, const btVector3& aabb
 	(void)dispatcher;
 	btAssert(proxy && "btSimpleBroadphase::setAabb: null proxy");
 	if (!proxy) return;
-	const bool finite = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "btSimpleBroadphase::setAabb: non-finite AABB");
 	if (!finite) return;
 	proxy->m_aabbMin = aabbMin;

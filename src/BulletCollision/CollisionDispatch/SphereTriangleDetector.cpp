@@ -93,7 +93,7 @@ void SphereTriangleDetector::getClosestPoints(const ClosestPointInput& input, Re
                                               bool swapResults)
 {
 	const bool usable =
-	    m_sphere && m_triangle && caliberIsFinite(input.m_transformA) && caliberIsFinite(input.m_transformB);
+	    m_sphere && m_triangle && caliber::isFinite(input.m_transformA) && caliber::isFinite(input.m_transformB);
 	btAssert(usable && "SphereTriangleDetector: null shape or non-finite transform");
 	if (!usable) return;
 

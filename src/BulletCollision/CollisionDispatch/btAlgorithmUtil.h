@@ -14,8 +14,8 @@
 inline bool caliberPairIsUsable(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap)
 {
 	const bool usable = body0Wrap && body1Wrap && body0Wrap->getCollisionShape() && body1Wrap->getCollisionShape() &&
-	                    caliberIsFinite(body0Wrap->getWorldTransform()) &&
-	                    caliberIsFinite(body1Wrap->getWorldTransform());
+	                    caliber::isFinite(body0Wrap->getWorldTransform()) &&
+	                    caliber::isFinite(body1Wrap->getWorldTransform());
 	btAssert(usable && "collision algorithm: null shape or non-finite transform");
 	return usable;
 }

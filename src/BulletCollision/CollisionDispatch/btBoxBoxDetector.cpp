@@ -222,7 +222,8 @@ btBoxBoxDetector::btBoxBoxDetector(const btBoxShape* box1, const btBoxShape* box
 void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& output, btIDebugDraw* /*debugDraw*/,
                                         bool swapResults)
 {
-	const bool usable = m_box1 && m_box2 && caliberIsFinite(input.m_transformA) && caliberIsFinite(input.m_transformB);
+	const bool usable =
+	    m_box1 && m_box2 && caliber::isFinite(input.m_transformA) && caliber::isFinite(input.m_transformB);
 	btAssert(usable && "btBoxBoxDetector: null box or non-finite transform");
 	if (!usable) return;
 

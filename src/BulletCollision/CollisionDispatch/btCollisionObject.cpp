@@ -93,7 +93,7 @@ void btCollisionObject::setContactStiffnessAndDamping(btScalar stiffness, btScal
 
 void btCollisionObject::setWorldTransform(const btTransform& worldTrans)
 {
-	const bool finite = caliberIsFinite(worldTrans);
+	const bool finite = caliber::isFinite(worldTrans);
 	btAssert(finite && "btCollisionObject::setWorldTransform: non-finite transform");
 	if (!finite) return;
 	m_updateRevision++;

@@ -32,7 +32,7 @@ bool isInWorldArray(const btAlignedObjectArray<btCollisionObject*>& objects, con
 bool computeBroadphaseAabb(const btCollisionObject* colObj, bool useContinuous, btVector3& aabbMin, btVector3& aabbMax)
 {
 	const btTransform& worldTransform = colObj->getWorldTransform();
-	if (!caliberIsFinite(worldTransform)) return false;
+	if (!caliber::isFinite(worldTransform)) return false;
 	const btCollisionShape* shape = colObj->getCollisionShape();
 	shape->getAabb(worldTransform, aabbMin, aabbMax);
 	const btVector3 threshold(gContactBreakingThreshold, gContactBreakingThreshold, gContactBreakingThreshold);
@@ -42,7 +42,7 @@ bool computeBroadphaseAabb(const btCollisionObject* colObj, bool useContinuous, 
 	// Moving rigid bodies also cover their pose at the end of the step, so that continuous collision
 	// detection finds the pairs they sweep through.
 	if (useContinuous && colObj->getInternalType() == btCollisionObject::CO_RIGID_BODY &&
-	    !colObj->isStaticOrKinematicObject() && caliberIsFinite(colObj->getInterpolationWorldTransform()))
+	    !colObj->isStaticOrKinematicObject() && caliber::isFinite(colObj->getInterpolationWorldTransform()))
 	{
 		btVector3 endMin, endMax;
 		shape->getAabb(colObj->getInterpolationWorldTransform(), endMin, endMax);
@@ -51,7 +51,7 @@ bool computeBroadphaseAabb(const btCollisionObject* colObj, bool useContinuous, 
 		aabbMin.setMin(endMin);
 		aabbMax.setMax(endMax);
 	}
-	return caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	return caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 }
 }  // namespace
 
@@ -169,7 +169,7 @@ void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
 	if (!colObj || !colObj->getCollisionShape()) return;
 
 	btVector3 aabbMin, aabbMax;
-	const bool finiteTransform = caliberIsFinite(colObj->getWorldTransform());
+	const bool finiteTransform = caliber::isFinite(colObj->getWorldTransform());
 	btAssert(finiteTransform && "btCollisionWorld::updateSingleAabb: non-finite world transform");
 	const bool finite =
 	    finiteTransform && computeBroadphaseAabb(colObj, m_dispatchInfo.m_useContinuous, aabbMin, aabbMax);

@@ -28,7 +28,7 @@ public:
 	void addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld, btScalar depth) override
 	{
 		const bool finiteInput =
-		    caliberIsFinite(normalOnBInWorld) && caliberIsFinite(pointInWorld) && btIsFinite(depth);
+		    caliber::isFinite(normalOnBInWorld) && caliber::isFinite(pointInWorld) && btIsFinite(depth);
 		btAssert(finiteInput && "contactTest: non-finite contact");
 		if (!finiteInput || !m_body0Wrap || !m_body1Wrap) return;
 		// The same distance filter as a manifold applies, so that queries and the simulation agree.
@@ -81,7 +81,7 @@ void runPairQuery(btDispatcher* dispatcher, const btDispatcherInfo& dispatchInfo
 
 bool isQueryable(const btCollisionObject* colObj)
 {
-	return colObj && colObj->getCollisionShape() && caliberIsFinite(colObj->getWorldTransform());
+	return colObj && colObj->getCollisionShape() && caliber::isFinite(colObj->getWorldTransform());
 }
 
 // Visited by the broadphase for each object whose box overlaps the query object's box.
@@ -128,7 +128,7 @@ void btCollisionWorld::contactTest(btCollisionObject* colObj, ContactResultCallb
 	const btScalar extra = btMax(resultCallback.m_closestDistanceThreshold, btScalar(0));
 	aabbMin -= btVector3(extra, extra, extra);
 	aabbMax += btVector3(extra, extra, extra);
-	if (!caliberIsFinite(aabbMin) || !caliberIsFinite(aabbMax)) return;
+	if (!caliber::isFinite(aabbMin) || !caliber::isFinite(aabbMax)) return;
 	ContactTestCallback callback(colObj, m_dispatcher1, m_dispatchInfo, resultCallback);
 	m_broadphasePairCache->aabbTest(aabbMin, aabbMax, callback);
 }

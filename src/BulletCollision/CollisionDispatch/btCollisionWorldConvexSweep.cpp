@@ -235,7 +235,7 @@ void btCollisionWorld::convexSweepTest(const btConvexShape* castShape, const btT
 	BT_PROFILE("convexSweepTest");
 	btAssert(castShape && "btCollisionWorld::convexSweepTest: null shape");
 	const bool finite =
-	    caliberIsFinite(convexFromWorld) && caliberIsFinite(convexToWorld) && btIsFinite(allowedCcdPenetration);
+	    caliber::isFinite(convexFromWorld) && caliber::isFinite(convexToWorld) && btIsFinite(allowedCcdPenetration);
 	btAssert(finite && "btCollisionWorld::convexSweepTest: non-finite transform");
 	if (!castShape || !finite || !m_broadphasePairCache) return;
 
@@ -263,8 +263,8 @@ void btCollisionWorld::objectQuerySingleInternal(const btConvexShape* castShape,
 {
 	btAssert(castShape && colObjWrap && colObjWrap->getCollisionShape());
 	if (!castShape || !colObjWrap || !colObjWrap->getCollisionShape()) return;
-	const bool finite = caliberIsFinite(convexFromTrans) && caliberIsFinite(convexToTrans) &&
-	                    caliberIsFinite(colObjWrap->getWorldTransform());
+	const bool finite = caliber::isFinite(convexFromTrans) && caliber::isFinite(convexToTrans) &&
+	                    caliber::isFinite(colObjWrap->getWorldTransform());
 	btAssert(finite && "btCollisionWorld::objectQuerySingle: non-finite transform");
 	if (!finite) return;
 

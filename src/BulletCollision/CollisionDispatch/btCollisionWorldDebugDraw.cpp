@@ -73,7 +73,7 @@ void btCollisionWorld::debugDrawObject(const btTransform& worldTransform, const 
                                        const btVector3& color)
 {
 	btIDebugDraw* drawer = getDebugDrawer();
-	if (!drawer || !shape || !caliberIsFinite(worldTransform)) return;
+	if (!drawer || !shape || !caliber::isFinite(worldTransform)) return;
 	if (drawer->getDebugMode() & btIDebugDraw::DBG_DrawFrames) drawer->drawTransform(worldTransform, btScalar(0.1));
 
 	switch (shape->getShapeType())
@@ -186,7 +186,7 @@ void btCollisionWorld::debugDrawWorld()
 	{
 		const btCollisionObject* colObj = m_collisionObjects[i];
 		if (colObj->getCollisionFlags() & btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT) continue;
-		if (!colObj->getCollisionShape() || !caliberIsFinite(colObj->getWorldTransform())) continue;
+		if (!colObj->getCollisionShape() || !caliber::isFinite(colObj->getWorldTransform())) continue;
 		if (mode & btIDebugDraw::DBG_DrawWireframe)
 			debugDrawObject(colObj->getWorldTransform(), colObj->getCollisionShape(), activationColor(colObj, colors));
 		if (mode & btIDebugDraw::DBG_DrawAabb)

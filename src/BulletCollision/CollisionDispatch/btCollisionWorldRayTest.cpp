@@ -400,7 +400,7 @@ void btCollisionWorld::rayTest(const btVector3& rayFromWorld, const btVector3& r
                                RayResultCallback& resultCallback) const
 {
 	BT_PROFILE("rayTest");
-	const bool finite = caliberIsFinite(rayFromWorld) && caliberIsFinite(rayToWorld);
+	const bool finite = caliber::isFinite(rayFromWorld) && caliber::isFinite(rayToWorld);
 	btAssert(finite && "btCollisionWorld::rayTest: non-finite ray");
 	if (!finite || !m_broadphasePairCache) return;
 	WorldRayCallback rayCallback(rayFromWorld, rayToWorld, resultCallback);
@@ -421,8 +421,8 @@ void btCollisionWorld::rayTestSingleInternal(const btTransform& rayFromTrans, co
 {
 	btAssert(collisionObjectWrap && collisionObjectWrap->getCollisionShape());
 	if (!collisionObjectWrap || !collisionObjectWrap->getCollisionShape()) return;
-	const bool finite = caliberIsFinite(rayFromTrans.getOrigin()) && caliberIsFinite(rayToTrans.getOrigin()) &&
-	                    caliberIsFinite(collisionObjectWrap->getWorldTransform());
+	const bool finite = caliber::isFinite(rayFromTrans.getOrigin()) && caliber::isFinite(rayToTrans.getOrigin()) &&
+	                    caliber::isFinite(collisionObjectWrap->getWorldTransform());
 	btAssert(finite && "btCollisionWorld::rayTestSingle: non-finite ray or object transform");
 	if (!finite) return;
 

@@ -262,9 +262,9 @@ btScalar btConvexConcaveCollisionAlgorithm::calculateTimeOfImpact(btCollisionObj
 	    (convexBody->getInterpolationWorldTransform().getOrigin() - convexBody->getWorldTransform().getOrigin())
 	        .length2();
 	if (!(motion >= convexBody->getCcdSquareMotionThreshold())) return noHit;
-	if (!caliberIsFinite(convexBody->getWorldTransform()) ||
-	    !caliberIsFinite(convexBody->getInterpolationWorldTransform()) ||
-	    !caliberIsFinite(triBody->getWorldTransform()))
+	if (!caliber::isFinite(convexBody->getWorldTransform()) ||
+	    !caliber::isFinite(convexBody->getInterpolationWorldTransform()) ||
+	    !caliber::isFinite(triBody->getWorldTransform()))
 		return noHit;
 
 	const btTransform worldToMesh = triBody->getWorldTransform().inverse();

@@ -323,8 +323,8 @@ btScalar btConvexConvexAlgorithm::calculateTimeOfImpact(btCollisionObject* body0
 	    (body1->getInterpolationWorldTransform().getOrigin() - body1->getWorldTransform().getOrigin()).length2();
 	if (!(motion0 >= body0->getCcdSquareMotionThreshold()) && !(motion1 >= body1->getCcdSquareMotionThreshold()))
 		return fraction;
-	if (!caliberIsFinite(body0->getWorldTransform()) || !caliberIsFinite(body0->getInterpolationWorldTransform()) ||
-	    !caliberIsFinite(body1->getWorldTransform()) || !caliberIsFinite(body1->getInterpolationWorldTransform()))
+	if (!caliber::isFinite(body0->getWorldTransform()) || !caliber::isFinite(body0->getInterpolationWorldTransform()) ||
+	    !caliber::isFinite(body1->getWorldTransform()) || !caliber::isFinite(body1->getInterpolationWorldTransform()))
 		return fraction;
 
 	// Each body's shape is cast against the other body's CCD swept sphere (a conservative inner core),

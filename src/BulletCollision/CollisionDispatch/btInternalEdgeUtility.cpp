@@ -71,7 +71,7 @@ public:
 		for (int i = 0; i < vertices.size(); ++i)
 		{
 			// Non-finite vertices belong to skipped triangles and are never welded.
-			if (!caliberIsFinite(vertices[i])) continue;
+			if (!caliber::isFinite(vertices[i])) continue;
 			m_boxMin.setMin(vertices[i]);
 			boxMax.setMax(vertices[i]);
 			any = true;
@@ -204,8 +204,8 @@ void generateFromTriangles(const TriangleGatherer& gathered, btTriangleInfoMap& 
 		const btVector3 cross = (v[1] - v[0]).cross(v[2] - v[0]);
 		const btScalar area2 = cross.length2();
 		// Zero-area and non-finite triangles have no normal: they get no entry and are nobody's neighbour.
-		usable[t] = caliberIsFinite(v[0]) && caliberIsFinite(v[1]) && caliberIsFinite(v[2]) && btIsFinite(area2) &&
-		            area2 > map.m_zeroAreaThreshold && area2 > btScalar(0);
+		usable[t] = caliber::isFinite(v[0]) && caliber::isFinite(v[1]) && caliber::isFinite(v[2]) &&
+		            btIsFinite(area2) && area2 > map.m_zeroAreaThreshold && area2 > btScalar(0);
 		normals[t] = usable[t] ? cross / btSqrt(area2) : btVector3(0, 0, 0);
 		for (int k = 0; k < 3; ++k) welded[3 * t + k] = usable[t] ? welder.weld(v[k]) : -1;
 		// Welding may collapse a thin triangle to a segment; such a triangle has no well-defined edges either.
@@ -275,7 +275,7 @@ void gatherAll(const btConcaveShape& shape, TriangleGatherer& gatherer)
 {
 	btVector3 aabbMin, aabbMax;
 	shape.getAabb(btTransform::getIdentity(), aabbMin, aabbMax);
-	if (!caliberIsFinite(aabbMin) || !caliberIsFinite(aabbMax)) return;
+	if (!caliber::isFinite(aabbMin) || !caliber::isFinite(aabbMax)) return;
 	// A little slack so that triangles lying on the box faces are reported whatever the rounding.
 	const btVector3 slack = (aabbMax - aabbMin) * btScalar(0.01) + btVector3(1, 1, 1);
 	shape.processAllTriangles(&gatherer, aabbMin - slack, aabbMax + slack);
@@ -444,8 +444,8 @@ void btAdjustInternalEdgeContacts(btManifoldPoint& cp, const btCollisionObjectWr
 	const btVector3 normal = cross / btSqrt(area2);
 
 	const btTransform& meshTransform = trimeshColObj0Wrap->getWorldTransform();
-	if (!caliberIsFinite(meshTransform) || !caliberIsFinite(cp.m_normalWorldOnB) ||
-	    !caliberIsFinite(cp.m_positionWorldOnA) || !caliberIsFinite(cp.m_positionWorldOnB))
+	if (!caliber::isFinite(meshTransform) || !caliber::isFinite(cp.m_normalWorldOnB) ||
+	    !caliber::isFinite(cp.m_positionWorldOnA) || !caliber::isFinite(cp.m_positionWorldOnB))
 		return;
 
 	const btCollisionObject* meshObject = trimeshColObj0Wrap->getCollisionObject();

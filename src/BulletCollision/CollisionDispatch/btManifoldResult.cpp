@@ -96,7 +96,8 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 {
 	if (!m_manifoldPtr || !m_body0Wrap || !m_body1Wrap) return;
 
-	const bool finiteInput = caliberIsFinite(normalOnBInWorld) && caliberIsFinite(pointInWorld) && btIsFinite(depth);
+	const bool finiteInput =
+	    caliber::isFinite(normalOnBInWorld) && caliber::isFinite(pointInWorld) && btIsFinite(depth);
 	btAssert(finiteInput && "btManifoldResult::addContactPoint: non-finite contact");
 	if (!finiteInput) return;
 

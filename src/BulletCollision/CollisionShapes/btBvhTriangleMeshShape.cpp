@@ -116,8 +116,8 @@ void btBvhTriangleMeshShape::performConvexcast(btTriangleCallback* callback, con
 	if (!callback || !m_meshInterface) return;
 	if (!m_bvh)
 	{
-		const bool finite = caliberIsFinite(boxSource) && caliberIsFinite(boxTarget) && caliberIsFinite(boxMin) &&
-		                    caliberIsFinite(boxMax);
+		const bool finite = caliber::isFinite(boxSource) && caliber::isFinite(boxTarget) && caliber::isFinite(boxMin) &&
+		                    caliber::isFinite(boxMax);
 		btAssert(finite && "performConvexcast: non-finite input");
 		if (!finite) return;
 		btVector3 sweepMin = boxSource, sweepMax = boxSource;
@@ -138,7 +138,7 @@ void btBvhTriangleMeshShape::refitTree(const btVector3& aabbMin, const btVector3
 
 void btBvhTriangleMeshShape::partialRefitTree(const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	const bool finite = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "partialRefitTree: non-finite box");
 	if (!finite) return;
 	if (m_bvh && m_meshInterface) m_bvh->refitPartial(m_meshInterface, aabbMin, aabbMax);
@@ -148,8 +148,8 @@ void btBvhTriangleMeshShape::partialRefitTree(const btVector3& aabbMin, const bt
 
 void btBvhTriangleMeshShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling) && "setLocalScaling: non-finite scaling");
-	if (!caliberIsFinite(scaling)) return;
+	btAssert(caliber::isFinite(scaling) && "setLocalScaling: non-finite scaling");
+	if (!caliber::isFinite(scaling)) return;
 	if ((getLocalScaling() - scaling).length2() > SIMD_EPSILON)
 	{
 		btTriangleMeshShape::setLocalScaling(scaling);

@@ -44,7 +44,7 @@ void btCollisionShape::calculateTemporalAabb(const btTransform& curTrans, const 
 	// No point of the shape moves further than |angle| * disc under a rotation by angle.
 	btScalar angularMotion = angvel.length() * getAngularMotionDisc() * timeStep;
 	// Bad velocities or time steps (NaN, infinite) are ignored rather than written into the box.
-	btAssert(caliberIsFinite(linMotion) && btIsFinite(angularMotion));
+	btAssert(caliber::isFinite(linMotion) && btIsFinite(angularMotion));
 	if (!(angularMotion >= btScalar(0) && angularMotion <= SIMD_INFINITY)) angularMotion = btScalar(0);
 	const btVector3 angularGrow(angularMotion, angularMotion, angularMotion);
 	temporalAabbMin += growMin - angularGrow;

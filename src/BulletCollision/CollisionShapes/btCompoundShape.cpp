@@ -19,7 +19,7 @@ void setLeafIndex(btDbvtNode* node, int index)
 
 bool isValidScaling(const btVector3& s)
 {
-	return caliberIsFinite(s) && s.x() != btScalar(0) && s.y() != btScalar(0) && s.z() != btScalar(0);
+	return caliber::isFinite(s) && s.x() != btScalar(0) && s.y() != btScalar(0) && s.z() != btScalar(0);
 }
 }  // namespace
 
@@ -60,8 +60,8 @@ void btCompoundShape::addChildShape(const btTransform& localTransform, btCollisi
 {
 	btAssert(shape && "btCompoundShape::addChildShape: null shape");
 	if (!shape) return;
-	btAssert(caliberIsFinite(localTransform) && "btCompoundShape::addChildShape: non-finite transform");
-	if (!caliberIsFinite(localTransform)) return;
+	btAssert(caliber::isFinite(localTransform) && "btCompoundShape::addChildShape: non-finite transform");
+	if (!caliber::isFinite(localTransform)) return;
 
 	++m_updateRevision;
 	btCompoundShapeChild child;
@@ -165,8 +165,8 @@ void btCompoundShape::updateChildTransform(int childIndex, const btTransform& ne
 	const bool valid = childIndex >= 0 && childIndex < m_children.size();
 	btAssert(valid && "btCompoundShape::updateChildTransform: index out of range");
 	if (!valid) return;
-	btAssert(caliberIsFinite(newChildTransform) && "btCompoundShape::updateChildTransform: non-finite transform");
-	if (!caliberIsFinite(newChildTransform)) return;
+	btAssert(caliber::isFinite(newChildTransform) && "btCompoundShape::updateChildTransform: non-finite transform");
+	if (!caliber::isFinite(newChildTransform)) return;
 
 	m_children[childIndex].m_transform = newChildTransform;
 	if (m_dynamicAabbTree && m_children[childIndex].m_node)

@@ -101,8 +101,8 @@ btConvexHullShape::btConvexHullShape(const btScalar* points, int numPoints, int 
 
 void btConvexHullShape::addPoint(const btVector3& point, bool recalculateLocalAabb)
 {
-	btAssert(caliberIsFinite(point) && "btConvexHullShape: non-finite point");
-	if (caliberIsFinite(point))
+	btAssert(caliber::isFinite(point) && "btConvexHullShape: non-finite point");
+	if (caliber::isFinite(point))
 	{
 		m_unscaledPoints.push_back(point);
 		m_unscaledPoints[m_unscaledPoints.size() - 1][3] = 0;

@@ -48,8 +48,8 @@ void btConvexInternalShape::getAabbSlow(const btTransform& t, btVector3& aabbMin
 
 void btConvexInternalShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling));
-	if (!caliberIsFinite(scaling)) return;
+	btAssert(caliber::isFinite(scaling));
+	if (!caliber::isFinite(scaling)) return;
 	m_localScaling = scaling.absolute();
 }
 

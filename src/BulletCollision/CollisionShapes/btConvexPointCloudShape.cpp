@@ -25,7 +25,7 @@ void btConvexPointCloudShape::setPoints(btVector3* points, int numPoints, bool c
 	m_unscaledPoints = usable ? points : 0;
 	m_numPoints = usable ? numPoints : 0;
 #if CALIBER_ASSERTS_ENABLED
-	for (int i = 0; i < m_numPoints; ++i) btAssert(caliberIsFinite(m_unscaledPoints[i]) && "non-finite point");
+	for (int i = 0; i < m_numPoints; ++i) btAssert(caliber::isFinite(m_unscaledPoints[i]) && "non-finite point");
 #endif
 	btConvexInternalShape::setLocalScaling(localScaling);
 	if (computeAabb) recalcLocalAabb();
@@ -44,14 +44,14 @@ btVector3 btConvexPointCloudShape::localGetSupportingVertexWithoutMargin(const b
 	const btVector3 scaledDir = caliberSupportDirection(vec) * m_localScaling;
 	btScalar best;
 	const long index = scaledDir.maxDot(m_unscaledPoints, m_numPoints, best);
-	if (index >= 0 && btIsFinite(best) && caliberIsFinite(m_unscaledPoints[index]))
+	if (index >= 0 && btIsFinite(best) && caliber::isFinite(m_unscaledPoints[index]))
 		return m_unscaledPoints[index] * m_localScaling;
 	// Some point is infinite (or none is finite): scan again over the finite points only.
 	btVector3 support(0, 0, 0);
 	bool found = false;
 	for (int i = 0; i < m_numPoints; ++i)
 	{
-		if (!caliberIsFinite(m_unscaledPoints[i])) continue;
+		if (!caliber::isFinite(m_unscaledPoints[i])) continue;
 		const btScalar d = scaledDir.dot(m_unscaledPoints[i]);
 		if (!found || d > best)
 		{

@@ -93,8 +93,8 @@ bool btConvexTriangleMeshShape::isInside(const btVector3& pt, btScalar tolerance
 
 void btConvexTriangleMeshShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling) && "setLocalScaling: non-finite scaling");
-	if (!m_stridingMesh || !caliberIsFinite(scaling)) return;
+	btAssert(caliber::isFinite(scaling) && "setLocalScaling: non-finite scaling");
+	if (!m_stridingMesh || !caliber::isFinite(scaling)) return;
 	m_stridingMesh->setScaling(scaling);
 	recalcLocalAabb();
 }
@@ -176,7 +176,7 @@ void btConvexTriangleMeshShape::calculateLocalInertia(btScalar mass, btVector3& 
 			                             for (int k = 0; k < 3; ++k) points.push_back(triangle[k]);
 		                             });
 	if (points.size() >= 4 && caliber::solidHullInertia(&points[0], points.size(), mass, inertia) &&
-	    caliberIsFinite(inertia))
+	    caliber::isFinite(inertia))
 		return;
 	caliber::aabbBoxInertia(*this, mass, inertia);
 }

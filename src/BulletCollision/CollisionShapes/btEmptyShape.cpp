@@ -21,8 +21,8 @@ void btEmptyShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& 
 
 void btEmptyShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling));
-	if (caliberIsFinite(scaling)) m_localScaling = scaling;
+	btAssert(caliber::isFinite(scaling));
+	if (caliber::isFinite(scaling)) m_localScaling = scaling;
 }
 
 void btEmptyShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const

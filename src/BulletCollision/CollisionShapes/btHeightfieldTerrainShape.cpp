@@ -266,7 +266,7 @@ void btHeightfieldTerrainShape::processCell(btTriangleCallback* callback, int x,
 void btHeightfieldTerrainShape::processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
                                                     const btVector3& aabbMax) const
 {
-	const bool boxValid = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool boxValid = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(callback && boxValid && "processAllTriangles: null callback or non-finite box");
 	if (!callback || !boxValid || m_heightStickWidth < 2) return;
 
@@ -299,7 +299,7 @@ void btHeightfieldTerrainShape::processAllTriangles(btTriangleCallback* callback
 void btHeightfieldTerrainShape::performRaycast(btTriangleCallback* callback, const btVector3& raySource,
                                                const btVector3& rayTarget) const
 {
-	const bool rayValid = caliberIsFinite(raySource) && caliberIsFinite(rayTarget);
+	const bool rayValid = caliber::isFinite(raySource) && caliber::isFinite(rayTarget);
 	btAssert(callback && rayValid && "performRaycast: null callback or non-finite ray");
 	if (!callback || !rayValid || m_heightStickWidth < 2) return;
 
@@ -415,7 +415,7 @@ void btHeightfieldTerrainShape::calculateLocalInertia(btScalar mass, btVector3& 
 
 void btHeightfieldTerrainShape::setLocalScaling(const btVector3& scaling)
 {
-	const bool valid = caliberIsFinite(scaling) && scaling.x() != btScalar(0) && scaling.y() != btScalar(0) &&
+	const bool valid = caliber::isFinite(scaling) && scaling.x() != btScalar(0) && scaling.y() != btScalar(0) &&
 	                   scaling.z() != btScalar(0);
 	btAssert(valid && "btHeightfieldTerrainShape::setLocalScaling: non-finite or zero scaling");
 	if (valid) m_localScaling = scaling;

@@ -70,9 +70,9 @@ public:
 				return false;
 			}
 			out[k] = readVertex(index) * scaling;
-			if (!caliberIsFinite(out[k]))
+			if (!caliber::isFinite(out[k]))
 			{
-				btAssert(caliberIsFinite(out[k]) && "mesh vertex not finite");
+				btAssert(caliber::isFinite(out[k]) && "mesh vertex not finite");
 				return false;
 			}
 		}

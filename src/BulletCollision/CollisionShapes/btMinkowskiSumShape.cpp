@@ -39,7 +39,7 @@ void btMinkowskiSumShape::calculateLocalInertia(btScalar mass, btVector3& inerti
 	btAssert(mass >= 0 && btIsFinite(mass));
 	inertia.setValue(0, 0, 0);
 	if (!(mass >= 0 && btIsFinite(mass))) return;
-	if (caliber::sampledSupportInertia(*this, mass, inertia) && caliberIsFinite(inertia)) return;
+	if (caliber::sampledSupportInertia(*this, mass, inertia) && caliber::isFinite(inertia)) return;
 	caliber::aabbBoxInertia(*this, mass, inertia);
 }
 

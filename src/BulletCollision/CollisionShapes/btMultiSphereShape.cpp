@@ -13,9 +13,9 @@ btMultiSphereShape::btMultiSphereShape(const btVector3* positions, const btScala
 	{
 		for (int i = 0; i < numSpheres; ++i)
 		{
-			btAssert(caliberIsFinite(positions[i]) && "btMultiSphereShape: non-finite centre");
+			btAssert(caliber::isFinite(positions[i]) && "btMultiSphereShape: non-finite centre");
 			btAssert(radi[i] >= 0 && btIsFinite(radi[i]) && "btMultiSphereShape: bad radius");
-			if (!caliberIsFinite(positions[i])) continue;
+			if (!caliber::isFinite(positions[i])) continue;
 			m_localPositionArray.push_back(positions[i]);
 			m_radiArray.push_back(caliberSanitizeDimension(radi[i]));
 		}
@@ -76,6 +76,6 @@ void btMultiSphereShape::calculateLocalInertia(btScalar mass, btVector3& inertia
 	btAssert(mass >= 0 && btIsFinite(mass));
 	inertia.setValue(0, 0, 0);
 	if (!(mass >= 0 && btIsFinite(mass))) return;
-	if (caliber::sampledSupportInertia(*this, mass, inertia) && caliberIsFinite(inertia)) return;
+	if (caliber::sampledSupportInertia(*this, mass, inertia) && caliber::isFinite(inertia)) return;
 	caliber::aabbBoxInertia(*this, mass, inertia);
 }

@@ -11,7 +11,7 @@ const int kTriangleIndexBits = 31 - MAX_NUM_PARTS_IN_BITS;
 
 bool validBox(const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	return caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax) && aabbMin.x() <= aabbMax.x() &&
+	return caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax) && aabbMin.x() <= aabbMax.x() &&
 	       aabbMin.y() <= aabbMax.y() && aabbMin.z() <= aabbMax.z();
 }
 
@@ -202,7 +202,7 @@ void btOptimizedBvh::refitPartial(btStridingMeshInterface* meshInterface, const 
                                   const btVector3& aabbMax)
 {
 	btAssert(meshInterface != 0 && "btOptimizedBvh::refitPartial: null mesh");
-	const bool finite = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "btOptimizedBvh::refitPartial: non-finite box");
 	if (!meshInterface || !finite || m_curNodeIndex == 0) return;
 	caliber::ReadOnlyMeshPart part;

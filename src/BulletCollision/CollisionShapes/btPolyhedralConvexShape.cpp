@@ -110,10 +110,10 @@ void btPolyhedralConvexShape::calculateLocalInertia(btScalar mass, btVector3& in
 	{
 		btVector3 vertex;
 		getVertex(i, vertex);
-		if (caliberIsFinite(vertex)) vertices.push_back(vertex);
+		if (caliber::isFinite(vertex)) vertices.push_back(vertex);
 	}
 	if (vertices.size() >= 4 && caliber::solidHullInertia(&vertices[0], vertices.size(), mass, inertia) &&
-	    caliberIsFinite(inertia))
+	    caliber::isFinite(inertia))
 		return;
 
 	// No volume: the solid box of the AABB grown by the margin (Bullet's formula), I = m (b^2 + c^2) / 12.

@@ -50,8 +50,8 @@ btScaledBvhTriangleMeshShape::~btScaledBvhTriangleMeshShape() {}
 
 void btScaledBvhTriangleMeshShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling) && "setLocalScaling: non-finite scaling");
-	if (caliberIsFinite(scaling)) m_localScaling = scaling;
+	btAssert(caliber::isFinite(scaling) && "setLocalScaling: non-finite scaling");
+	if (caliber::isFinite(scaling)) m_localScaling = scaling;
 }
 
 void btScaledBvhTriangleMeshShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
@@ -80,7 +80,7 @@ void btScaledBvhTriangleMeshShape::processAllTriangles(btTriangleCallback* callb
 {
 	btAssert(callback != 0);
 	if (!callback || !m_bvhTriMeshShape) return;
-	const bool finite = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "processAllTriangles: non-finite box");
 	if (!finite) return;
 	// Map the query box into the child's space: divide by the scaling. A zero factor flattens that axis to

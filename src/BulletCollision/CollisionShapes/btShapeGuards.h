@@ -8,19 +8,6 @@
 #include "LinearMath/btVector3.h"
 #include "LinearMath/btTransform.h"
 
-/// True when every component of v is finite.
-SIMD_FORCE_INLINE bool caliberIsFinite(const btVector3& v)
-{
-	return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z());
-}
-
-/// True when every entry of the basis and origin of t is finite.
-SIMD_FORCE_INLINE bool caliberIsFinite(const btTransform& t)
-{
-	const btMatrix3x3& b = t.getBasis();
-	return caliberIsFinite(b[0]) && caliberIsFinite(b[1]) && caliberIsFinite(b[2]) && caliberIsFinite(t.getOrigin());
-}
-
 /// The documented AABB of a shape under a non-finite transform: [-BT_LARGE_FLOAT, BT_LARGE_FLOAT]^3.
 SIMD_FORCE_INLINE void caliberSetOverflowAabb(btVector3& aabbMin, btVector3& aabbMax)
 {
@@ -32,8 +19,8 @@ SIMD_FORCE_INLINE void caliberSetOverflowAabb(btVector3& aabbMin, btVector3& aab
 /// returns false (release builds).
 SIMD_FORCE_INLINE bool caliberCheckAabbTransform(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax)
 {
-	if (btLikely(caliberIsFinite(t))) return true;
-	btAssert(caliberIsFinite(t) && "getAabb: non-finite transform");
+	if (btLikely(caliber::isFinite(t))) return true;
+	btAssert(caliber::isFinite(t) && "getAabb: non-finite transform");
 	caliberSetOverflowAabb(aabbMin, aabbMax);
 	return false;
 }
@@ -48,7 +35,7 @@ SIMD_FORCE_INLINE btScalar caliberSanitizeDimension(btScalar value)
 /// (every point of a shape is a support point for the zero direction; this picks one on the surface).
 SIMD_FORCE_INLINE btVector3 caliberSupportDirection(const btVector3& dir)
 {
-	if (btLikely(caliberIsFinite(dir) && !(dir.length2() < SIMD_EPSILON * SIMD_EPSILON))) return dir;
+	if (btLikely(caliber::isFinite(dir) && !(dir.length2() < SIMD_EPSILON * SIMD_EPSILON))) return dir;
 	return btVector3(btScalar(-1), btScalar(-1), btScalar(-1));
 }
 

@@ -87,15 +87,15 @@ bool btShapeHull::buildHull(btScalar margin, int highres)
 	for (int i = 0; i < directions.size(); ++i)
 	{
 		const btVector3 support = m_shape->localGetSupportingVertex(directions[i]);
-		if (caliberIsFinite(support)) points.push_back(support);
+		if (caliber::isFinite(support)) points.push_back(support);
 	}
 	for (int i = 0; i < preferred; ++i)
 	{
 		btVector3 direction(0, 0, 0);
 		m_shape->getPreferredPenetrationDirection(i, direction);
-		if (!caliberIsFinite(direction) || direction.length2() < SIMD_EPSILON) continue;
+		if (!caliber::isFinite(direction) || direction.length2() < SIMD_EPSILON) continue;
 		const btVector3 support = m_shape->localGetSupportingVertex(direction.normalized());
-		if (caliberIsFinite(support)) points.push_back(support);
+		if (caliber::isFinite(support)) points.push_back(support);
 	}
 	if (points.size() < 4) return false;
 

@@ -11,7 +11,7 @@ btStaticPlaneShape::btStaticPlaneShape(const btVector3& planeNormal, btScalar pl
       m_localScaling(btScalar(1), btScalar(1), btScalar(1))
 {
 	m_shapeType = STATIC_PLANE_PROXYTYPE;
-	const bool normalValid = caliberIsFinite(planeNormal) && !planeNormal.fuzzyZero();
+	const bool normalValid = caliber::isFinite(planeNormal) && !planeNormal.fuzzyZero();
 	btAssert(normalValid && "btStaticPlaneShape: zero or non-finite normal");
 	if (normalValid)
 		m_planeNormal.safeNormalize();
@@ -33,7 +33,7 @@ void btStaticPlaneShape::getAabb(const btTransform& t, btVector3& aabbMin, btVec
 void btStaticPlaneShape::processAllTriangles(btTriangleCallback* callback, const btVector3& aabbMin,
                                              const btVector3& aabbMax) const
 {
-	const bool boxValid = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax);
+	const bool boxValid = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(boxValid && callback);
 	if (!boxValid || !callback) return;
 
@@ -70,6 +70,6 @@ void btStaticPlaneShape::calculateLocalInertia(btScalar mass, btVector3& inertia
 
 void btStaticPlaneShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling));
-	if (caliberIsFinite(scaling)) m_localScaling = scaling;
+	btAssert(caliber::isFinite(scaling));
+	if (caliber::isFinite(scaling)) m_localScaling = scaling;
 }

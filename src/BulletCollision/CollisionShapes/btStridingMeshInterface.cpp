@@ -107,6 +107,6 @@ void btStridingMeshInterface::calculateAabbBruteForce(btVector3& aabbMin, btVect
 
 void btStridingMeshInterface::setScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling) && "btStridingMeshInterface::setScaling: non-finite scaling");
-	if (caliberIsFinite(scaling)) m_scaling = scaling;
+	btAssert(caliber::isFinite(scaling) && "btStridingMeshInterface::setScaling: non-finite scaling");
+	if (caliber::isFinite(scaling)) m_scaling = scaling;
 }

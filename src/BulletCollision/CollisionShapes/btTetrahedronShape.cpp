@@ -54,8 +54,8 @@ void btBU_Simplex1to4::getAabb(const btTransform& t, btVector3& aabbMin, btVecto
 void btBU_Simplex1to4::addVertex(const btVector3& pt)
 {
 	btAssert(m_numVertices < 4 && "btBU_Simplex1to4: already 4 vertices");
-	btAssert(caliberIsFinite(pt) && "btBU_Simplex1to4: non-finite vertex");
-	if (m_numVertices < 4 && caliberIsFinite(pt)) m_vertices[m_numVertices++] = pt;
+	btAssert(caliber::isFinite(pt) && "btBU_Simplex1to4: non-finite vertex");
+	if (m_numVertices < 4 && caliber::isFinite(pt)) m_vertices[m_numVertices++] = pt;
 	recalcLocalAabb();
 }
 

@@ -69,7 +69,7 @@ bool btTriangleIndexVertexArray::hasPremadeAabb() const { return m_hasAabb == 1;
 
 void btTriangleIndexVertexArray::setPremadeAabb(const btVector3& aabbMin, const btVector3& aabbMax) const
 {
-	const bool valid = caliberIsFinite(aabbMin) && caliberIsFinite(aabbMax) && aabbMin.x() <= aabbMax.x() &&
+	const bool valid = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax) && aabbMin.x() <= aabbMax.x() &&
 	                   aabbMin.y() <= aabbMax.y() && aabbMin.z() <= aabbMax.z();
 	btAssert(valid && "setPremadeAabb: non-finite or inverted box");
 	if (!valid) return;

@@ -110,7 +110,7 @@ void btTriangleMesh::insertIntoWeldHash(int vertexIndex)
 {
 	const btVector3 v = storedVertex(vertexIndex);
 	if (m_weldNext.size() <= vertexIndex) m_weldNext.resize(vertexIndex + 1, -1);
-	if (!caliberIsFinite(v))
+	if (!caliber::isFinite(v))
 	{
 		m_weldNext[vertexIndex] = -1;
 		return;
@@ -144,7 +144,7 @@ void btTriangleMesh::updateWeldHash(btScalar cellSize)
 
 int btTriangleMesh::findOrAddVertex(const btVector3& vertex, bool removeDuplicateVertices)
 {
-	if (removeDuplicateVertices && caliberIsFinite(vertex))
+	if (removeDuplicateVertices && caliber::isFinite(vertex))
 	{
 		const btScalar threshold =
 		    (m_weldingThreshold > btScalar(0) && btIsFinite(m_weldingThreshold)) ? m_weldingThreshold : btScalar(0);

@@ -79,8 +79,8 @@ void btTriangleMeshShape::calculateLocalInertia(btScalar mass, btVector3& inerti
 
 void btTriangleMeshShape::setLocalScaling(const btVector3& scaling)
 {
-	btAssert(caliberIsFinite(scaling) && "setLocalScaling: non-finite scaling");
-	if (!m_meshInterface || !caliberIsFinite(scaling)) return;
+	btAssert(caliber::isFinite(scaling) && "setLocalScaling: non-finite scaling");
+	if (!m_meshInterface || !caliber::isFinite(scaling)) return;
 	m_meshInterface->setScaling(scaling);
 	recalcLocalAabb();
 }

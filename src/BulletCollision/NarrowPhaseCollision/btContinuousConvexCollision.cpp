@@ -108,7 +108,7 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 		btPointCollector collector;
 		computeClosestPoints(transA, transB, collector);
 		if (!collector.m_hasResult || !btIsFinite(collector.m_distance) ||
-		    !caliberIsFinite(collector.m_normalOnBInWorld))
+		    !caliber::isFinite(collector.m_normalOnBInWorld))
 		{
 			// Overlapping cores without a (working) depth solver: advancement never gets here from a
 			// separated start, so the shapes overlapped already; this is the contact.

@@ -14,14 +14,14 @@ bool caliberCastClosestPoints(const btConvexShape* shapeA, const btConvexShape* 
                               btVector3& pointOnB, btScalar& distance)
 {
 	btGjkPairDetector detector(shapeA, shapeB, simplexSolver, depthSolver);
-	if (!axisHint.fuzzyZero() && caliberIsFinite(axisHint)) detector.setCachedSeperatingAxis(axisHint);
+	if (!axisHint.fuzzyZero() && caliber::isFinite(axisHint)) detector.setCachedSeperatingAxis(axisHint);
 	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
 	input.m_transformA = transA;
 	input.m_transformB = transB;
 	btPointCollector collector;
 	detector.getClosestPointsNonVirtual(input, collector, nullptr);
-	if (!collector.m_hasResult || !btIsFinite(collector.m_distance) || !caliberIsFinite(collector.m_normalOnBInWorld) ||
-	    !caliberIsFinite(collector.m_pointInWorld))
+	if (!collector.m_hasResult || !btIsFinite(collector.m_distance) ||
+	    !caliber::isFinite(collector.m_normalOnBInWorld) || !caliber::isFinite(collector.m_pointInWorld))
 		return false;
 	normal = collector.m_normalOnBInWorld;
 	pointOnB = collector.m_pointInWorld;

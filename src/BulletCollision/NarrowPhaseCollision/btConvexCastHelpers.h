@@ -39,7 +39,7 @@ inline bool caliberCastInputsValid(const void* shapeA, const void* shapeB, const
 	const bool shapesOk = shapeA != nullptr && shapeB != nullptr && simplexSolver != nullptr;
 	btAssert(shapesOk && "convex cast: null shape or simplex solver");
 	const bool finite =
-	    caliberIsFinite(fromA) && caliberIsFinite(toA) && caliberIsFinite(fromB) && caliberIsFinite(toB);
+	    caliber::isFinite(fromA) && caliber::isFinite(toA) && caliber::isFinite(fromB) && caliber::isFinite(toB);
 	btAssert(finite && "convex cast: non-finite transform");
 	return shapesOk && finite;
 }

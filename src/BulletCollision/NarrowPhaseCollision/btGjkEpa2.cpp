@@ -22,15 +22,6 @@ const btScalar kRelativeTolerance = btScalar(256) * SIMD_EPSILON;
 // Relative gap between EPA's lower and upper depth bounds below which the lower one is reported.
 const btScalar kBoundsAgreement = btScalar(1e-4);
 
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFiniteTransform(const btTransform& t)
-{
-	const btMatrix3x3& basis = t.getBasis();
-	return isFiniteVector(basis[0]) && isFiniteVector(basis[1]) && isFiniteVector(basis[2]) &&
-	       isFiniteVector(t.getOrigin());
-}
-
 // One side of the Minkowski difference: a convex shape, or (shape == nullptr) a point; either grown by
 // margin. The transform is already shifted by the query's offset.
 struct SupportSide
@@ -81,10 +72,10 @@ GjkOutcome runGjk(const MinkowskiDifference& diff, const btVector3& guess, btVor
 {
 	simplex.reset();
 	btVector3 dir = guess;
-	if (!isFiniteVector(dir) || dir.fuzzyZero()) dir.setValue(btScalar(1), btScalar(0), btScalar(0));
+	if (!caliber::isFinite(dir) || dir.fuzzyZero()) dir.setValue(btScalar(1), btScalar(0), btScalar(0));
 	btVector3 onA, onB;
 	btVector3 w = diff.support(-dir, onA, onB);
-	if (!isFiniteVector(w)) return GjkOutcome::Failed;
+	if (!caliber::isFinite(w)) return GjkOutcome::Failed;
 	simplex.addVertex(w, onA, onB);
 	v = w;
 	btScalar distanceSquared = v.length2();
@@ -95,7 +86,7 @@ GjkOutcome runGjk(const MinkowskiDifference& diff, const btVector3& guess, btVor
 		if (distanceSquared <= btScalar(16) * SIMD_EPSILON * SIMD_EPSILON * (scale + btScalar(1)))
 			return GjkOutcome::Overlapping;
 		w = diff.support(-v, onA, onB);
-		if (!isFiniteVector(w)) return GjkOutcome::Failed;
+		if (!caliber::isFinite(w)) return GjkOutcome::Failed;
 		if (caliber_gjk::boundsMet(distanceSquared, v.dot(w), scale)) return GjkOutcome::Separated;
 		// Only a numerical duplicate ends an unconverged search (see btGjkConvergence.h).
 		if (caliber_gjk::isDuplicateVertex(simplex, w)) break;
@@ -343,7 +334,7 @@ bool witnessesFromFace(const EpaPolytope& poly, const EpaFace& face, btVector3& 
 	const btVector3 middle = (witnessA + witnessB) * btScalar(0.5);
 	witnessA = middle + face.normal * (depth * btScalar(0.5));
 	witnessB = middle - face.normal * (depth * btScalar(0.5));
-	return isFiniteVector(witnessA) && isFiniteVector(witnessB);
+	return caliber::isFinite(witnessA) && caliber::isFinite(witnessB);
 }
 
 // EPA from the simplex GJK ended with. Fills the penetration results; returns false when it fails.
@@ -370,7 +361,7 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 		const EpaFace face = poly.faces[best];
 		btVector3 onA, onB;
 		const btVector3 wv = diff.support(face.normal, onA, onB);
-		if (!isFiniteVector(wv)) return false;
+		if (!caliber::isFinite(wv)) return false;
 		const btScalar supportDistance = face.normal.dot(wv);
 		if (face.distance < BT_LARGE_FLOAT && supportDistance < upperDistance)
 		{
@@ -435,7 +426,7 @@ bool runEpa(const MinkowskiDifference& diff, const btVoronoiSimplexSolver& simpl
 		depth = btMax(reported, btScalar(0));
 		witnessA = middle - normalBtoA * (depth * btScalar(0.5));
 		witnessB = middle + normalBtoA * (depth * btScalar(0.5));
-		return isFiniteVector(witnessA) && isFiniteVector(witnessB);
+		return caliber::isFinite(witnessA) && caliber::isFinite(witnessB);
 	}
 
 	// Flat sides of D are split into coplanar faces at the same distance up to rounding; the witnesses
@@ -478,8 +469,8 @@ bool setUp(const btConvexShape* shape0, const btTransform& wtrs0, const btConvex
            bool usemargins, MinkowskiDifference& diff, btVector3& offset, btGjkEpaSolver2::sResults& results)
 {
 	btAssert(shape0 && shape1);
-	btAssert(isFiniteTransform(wtrs0) && isFiniteTransform(wtrs1));
-	if (!shape0 || !shape1 || !isFiniteTransform(wtrs0) || !isFiniteTransform(wtrs1))
+	btAssert(caliber::isFinite(wtrs0) && caliber::isFinite(wtrs1));
+	if (!shape0 || !shape1 || !caliber::isFinite(wtrs0) || !caliber::isFinite(wtrs1))
 	{
 		setFailure(results, btGjkEpaSolver2::sResults::GJK_Failed);
 		return false;
@@ -503,7 +494,7 @@ bool fillSeparated(btVoronoiSimplexSolver& simplex, const btVector3& offset, btG
 	simplex.compute_points(onA, onB);
 	const btVector3 delta = onA - onB;
 	const btScalar length = delta.length();
-	if (!(length > btScalar(0)) || !isFiniteVector(delta))
+	if (!(length > btScalar(0)) || !caliber::isFinite(delta))
 	{
 		setFailure(results, btGjkEpaSolver2::sResults::GJK_Failed);
 		return false;
@@ -594,9 +585,9 @@ bool btGjkEpaSolver2::Penetration(const btConvexShape* shape0, const btTransform
 btScalar btGjkEpaSolver2::SignedDistance(const btVector3& position, btScalar margin, const btConvexShape* shape0,
                                          const btTransform& wtrs0, sResults& results)
 {
-	btAssert(shape0 && isFiniteTransform(wtrs0) && isFiniteVector(position) && btIsFinite(margin) &&
+	btAssert(shape0 && caliber::isFinite(wtrs0) && caliber::isFinite(position) && btIsFinite(margin) &&
 	         margin >= btScalar(0));
-	if (!shape0 || !isFiniteTransform(wtrs0) || !isFiniteVector(position) || !btIsFinite(margin) ||
+	if (!shape0 || !caliber::isFinite(wtrs0) || !caliber::isFinite(position) || !btIsFinite(margin) ||
 	    margin < btScalar(0))
 	{
 		setFailure(results, sResults::GJK_Failed);

@@ -7,15 +7,6 @@ namespace
 {
 const int kNumSphereDirections = 42;
 
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFiniteTransform(const btTransform& t)
-{
-	const btMatrix3x3& basis = t.getBasis();
-	return isFiniteVector(basis[0]) && isFiniteVector(basis[1]) && isFiniteVector(basis[2]) &&
-	       isFiniteVector(t.getOrigin());
-}
-
 btVector3 worldSupport(const btConvexShape* shape, const btTransform& t, const btVector3& unitDir)
 {
 	return t(shape->localGetSupportingVertexWithoutMargin(unitDir * t.getBasis())) + unitDir * shape->getMargin();
@@ -80,8 +71,8 @@ bool btMinkowskiPenetrationDepthSolver::calcPenDepth(btSimplexSolverInterface& s
 	v = zero;
 	pa = zero;
 	pb = zero;
-	btAssert(convexA && convexB && isFiniteTransform(transA) && isFiniteTransform(transB));
-	if (!convexA || !convexB || !isFiniteTransform(transA) || !isFiniteTransform(transB)) return false;
+	btAssert(convexA && convexB && caliber::isFinite(transA) && caliber::isFinite(transB));
+	if (!convexA || !convexB || !caliber::isFinite(transA) || !caliber::isFinite(transB)) return false;
 
 	BestDirection best = {convexA, convexB, &transA, &transB, BT_LARGE_FLOAT, zero, zero};
 	const btVector3* sphere = getPenetrationDirections();
@@ -114,7 +105,7 @@ bool btMinkowskiPenetrationDepthSolver::calcPenDepth(btSimplexSolverInterface& s
 		best.consider(world);
 		best.consider(-world);
 	}
-	if (!(best.overlap > btScalar(0)) || !(best.overlap < BT_LARGE_FLOAT) || !isFiniteVector(best.deepestA))
+	if (!(best.overlap > btScalar(0)) || !(best.overlap < BT_LARGE_FLOAT) || !caliber::isFinite(best.deepestA))
 		return false;
 	v = best.normal;
 	pa = best.deepestA;

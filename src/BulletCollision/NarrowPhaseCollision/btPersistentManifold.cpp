@@ -11,20 +11,11 @@ ContactEndedCallback gContactEndedCallback = 0;
 
 namespace
 {
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
 bool isFinitePoint(const btManifoldPoint& pt)
 {
-	return isFiniteVector(pt.m_localPointA) && isFiniteVector(pt.m_localPointB) &&
-	       isFiniteVector(pt.m_positionWorldOnA) && isFiniteVector(pt.m_positionWorldOnB) &&
-	       isFiniteVector(pt.m_normalWorldOnB) && btIsFinite(pt.m_distance1);
-}
-
-bool isFiniteTransform(const btTransform& tr)
-{
-	const btMatrix3x3& basis = tr.getBasis();
-	return isFiniteVector(tr.getOrigin()) && isFiniteVector(basis[0]) && isFiniteVector(basis[1]) &&
-	       isFiniteVector(basis[2]);
+	return caliber::isFinite(pt.m_localPointA) && caliber::isFinite(pt.m_localPointB) &&
+	       caliber::isFinite(pt.m_positionWorldOnA) && caliber::isFinite(pt.m_positionWorldOnB) &&
+	       caliber::isFinite(pt.m_normalWorldOnB) && btIsFinite(pt.m_distance1);
 }
 
 // Twice the area of a quadrilateral is the length of the cross product of its diagonals. Which pair
@@ -254,7 +245,7 @@ void btPersistentManifold::replaceContactPoint(const btManifoldPoint& newPoint, 
 
 void btPersistentManifold::refreshContactPoints(const btTransform& trA, const btTransform& trB)
 {
-	const bool finite = isFiniteTransform(trA) && isFiniteTransform(trB);
+	const bool finite = caliber::isFinite(trA) && caliber::isFinite(trB);
 	btAssert(finite);
 	if (!finite) return;
 

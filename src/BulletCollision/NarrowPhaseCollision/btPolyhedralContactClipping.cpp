@@ -230,7 +230,7 @@ bool btPolyhedralContactClipping::findSeparatingAxis(const btConvexPolyhedron& h
                                                      btDiscreteCollisionDetectorInterface::Result& resultOut)
 {
 	const bool usable = hullA.m_vertices.size() > 0 && hullB.m_vertices.size() > 0 && hullA.m_faces.size() > 0 &&
-	                    hullB.m_faces.size() > 0 && caliberIsFinite(transA) && caliberIsFinite(transB);
+	                    hullB.m_faces.size() > 0 && caliber::isFinite(transA) && caliber::isFinite(transB);
 	btAssert(usable && "findSeparatingAxis: hull without faces or vertices, or non-finite transform");
 	if (!usable) return false;
 
@@ -406,7 +406,8 @@ void btPolyhedralContactClipping::clipFaceAgainstHull(const btVector3& separatin
                                                       btDiscreteCollisionDetectorInterface::Result& resultOut)
 {
 	const btScalar normalLength2 = separatingNormal.length2();
-	const bool usable = caliberIsFinite(separatingNormal) && normalLength2 > SIMD_EPSILON && caliberIsFinite(transA);
+	const bool usable =
+	    caliber::isFinite(separatingNormal) && normalLength2 > SIMD_EPSILON && caliber::isFinite(transA);
 	btAssert(usable && "clipFaceAgainstHull: zero or non-finite normal, or non-finite transform");
 	if (!usable) return;
 	const btVector3 normal = separatingNormal / btSqrt(normalLength2);
@@ -471,8 +472,8 @@ void btPolyhedralContactClipping::clipHullAgainstHull(const btVector3& separatin
                                                       btDiscreteCollisionDetectorInterface::Result& resultOut)
 {
 	const btScalar normalLength2 = separatingNormal1.length2();
-	const bool usable = caliberIsFinite(separatingNormal1) && normalLength2 > SIMD_EPSILON && caliberIsFinite(transA) &&
-	                    caliberIsFinite(transB);
+	const bool usable = caliber::isFinite(separatingNormal1) && normalLength2 > SIMD_EPSILON &&
+	                    caliber::isFinite(transA) && caliber::isFinite(transB);
 	btAssert(usable && "clipHullAgainstHull: zero or non-finite normal, or non-finite transform");
 	if (!usable) return;
 	const btVector3 normal = separatingNormal1 / btSqrt(normalLength2);

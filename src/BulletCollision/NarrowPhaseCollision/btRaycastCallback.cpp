@@ -19,7 +19,7 @@ const btScalar kDegenerateSine = btScalar(16) * SIMD_EPSILON;
 
 bool trianglesFinite(const btVector3* triangle)
 {
-	return caliberIsFinite(triangle[0]) && caliberIsFinite(triangle[1]) && caliberIsFinite(triangle[2]);
+	return caliber::isFinite(triangle[0]) && caliber::isFinite(triangle[1]) && caliber::isFinite(triangle[2]);
 }
 }  // namespace
 
@@ -31,8 +31,8 @@ btTriangleRaycastCallback::btTriangleRaycastCallback(const btVector3& from, cons
 void btTriangleRaycastCallback::processTriangle(btVector3* triangle, int partId, int triangleIndex)
 {
 	btAssert(triangle && trianglesFinite(triangle) && "ray test: non-finite triangle");
-	btAssert(caliberIsFinite(m_from) && caliberIsFinite(m_to) && "ray test: non-finite ray");
-	if (!triangle || !trianglesFinite(triangle) || !caliberIsFinite(m_from) || !caliberIsFinite(m_to)) return;
+	btAssert(caliber::isFinite(m_from) && caliber::isFinite(m_to) && "ray test: non-finite ray");
+	if (!triangle || !trianglesFinite(triangle) || !caliber::isFinite(m_from) || !caliber::isFinite(m_to)) return;
 
 	const btVector3& v0 = triangle[0];
 	const btVector3 edge1 = triangle[1] - v0;

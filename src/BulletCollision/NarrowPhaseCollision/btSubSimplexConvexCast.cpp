@@ -89,7 +89,7 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 		const SupportPair s = supportC(m_convexA, transA, marginA, m_convexB, transB, marginB, v);
 		const btVector3 p = s.onA - s.onB;
 		const btVector3 w = x - p;
-		if (!caliberIsFinite(w)) return false;
+		if (!caliber::isFinite(w)) return false;
 		const btScalar vDotW = v.dot(w);
 		if (vDotW > btScalar(0))
 		{

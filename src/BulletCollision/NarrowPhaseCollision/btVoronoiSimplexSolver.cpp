@@ -221,7 +221,6 @@ void closestOnTetrahedron(const Vec* w, ClosestFeature& out)
 	out.degenerate = false;
 }
 
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
 }  // namespace
 
 btVoronoiSimplexSolver::btVoronoiSimplexSolver() : m_equalVertexThreshold(VORONOI_DEFAULT_EQUAL_VERTEX_THRESHOLD)
@@ -279,7 +278,7 @@ bool btVoronoiSimplexSolver::updateClosestVectorAndPoints()
 	m_cachedBC.reset();
 	const btVector3 zero(btScalar(0), btScalar(0), btScalar(0));
 	bool finite = m_numVertices > 0;
-	for (int i = 0; i < m_numVertices && finite; ++i) finite = isFiniteVector(m_simplexVectorW[i]);
+	for (int i = 0; i < m_numVertices && finite; ++i) finite = caliber::isFinite(m_simplexVectorW[i]);
 	// A fifth vertex is never examined: GJK reduces before adding, so it cannot occur in practice.
 	if (!finite || m_numVertices > 4)
 	{
@@ -329,7 +328,7 @@ bool btVoronoiSimplexSolver::updateClosestVectorAndPoints()
 	m_cachedP1 = toBt(p1);
 	m_cachedP2 = toBt(p2);
 	reduceVertices(m_cachedBC.m_usedVertices);
-	m_cachedValidClosest = isFiniteVector(m_cachedV);
+	m_cachedValidClosest = caliber::isFinite(m_cachedV);
 	if (!m_cachedValidClosest)
 	{
 		m_cachedV = zero;

@@ -5,14 +5,9 @@
 
 namespace
 {
-bool isFinite(btScalar x) { return x == x && btFabs(x) <= SIMD_INFINITY; }
-
 // An axis needs a direction: finite and not (close to) zero. 1e-6 is far below any axis a user means
 // and far above the rounding of a computed unit vector.
-bool isUsableAxis(const btVector3& axis)
-{
-	return isFinite(axis.x()) && isFinite(axis.y()) && isFinite(axis.z()) && axis.length() > btScalar(1e-6);
-}
+bool isUsableAxis(const btVector3& axis) { return caliber::isFinite(axis) && axis.length() > btScalar(1e-6); }
 
 void writeVector(btScalar* row, const btVector3& v)
 {
@@ -37,7 +32,7 @@ btGearConstraint::btGearConstraint(btRigidBody& rbA, btRigidBody& rbB, const btV
 
 bool btGearConstraint::checkInput(bool assertOnFailure)
 {
-	if (isUsableAxis(m_axisInA) && isUsableAxis(m_axisInB) && isFinite(m_ratio)) return true;
+	if (isUsableAxis(m_axisInA) && isUsableAxis(m_axisInB) && btIsFinite(m_ratio)) return true;
 	btAssert(!assertOnFailure && "btGearConstraint: an axis is zero-length or not finite, or the ratio is not finite");
 	(void)assertOnFailure;
 	btReportWarning(

@@ -27,13 +27,6 @@ namespace
 // there; this only keeps the rows finite if it does).
 const btScalar kMinCosY = btScalar(1e-3);
 
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFinite(const btTransform& t)
-{
-	const btMatrix3x3& b = t.getBasis();
-	return isFinite(t.getOrigin()) && isFinite(b[0]) && isFinite(b[1]) && isFinite(b[2]);
-}
 }  // namespace
 
 btRotationalLimitMotor::btRotationalLimitMotor()
@@ -159,7 +152,7 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbB, const btTrans
 
 bool btGeneric6DofConstraint::checkFrames()
 {
-	if (isFinite(m_frameInA) && isFinite(m_frameInB)) return true;
+	if (caliber::isFinite(m_frameInA) && caliber::isFinite(m_frameInB)) return true;
 	btReportWarning("Caliber: btGeneric6DofConstraint: a joint frame is not finite; the joint is disabled\n", 0);
 	setEnabled(false);
 	return false;
@@ -722,8 +715,8 @@ btScalar btGeneric6DofConstraint::getParam(int num, int axis) const
 void btGeneric6DofConstraint::setAxis(const btVector3& axis1, const btVector3& axis2)
 {
 	const btScalar length1 = axis1.length(), length2 = axis2.length();
-	const bool usable = isFinite(axis1) && isFinite(axis2) && length1 > SIMD_EPSILON && length2 > SIMD_EPSILON &&
-	                    (axis1 / length1).cross(axis2 / length2).length() > btScalar(1e-3);
+	const bool usable = caliber::isFinite(axis1) && caliber::isFinite(axis2) && length1 > SIMD_EPSILON &&
+	                    length2 > SIMD_EPSILON && (axis1 / length1).cross(axis2 / length2).length() > btScalar(1e-3);
 	btAssert(usable && "btGeneric6DofConstraint::setAxis: the axes must be finite, non-zero and not parallel");
 	if (!usable)
 	{

@@ -67,14 +67,6 @@ bool decomposeEuler(const btMatrix3x3& q, const EulerOrder& o, btVector3& angles
 	return false;
 }
 
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFinite(const btTransform& t)
-{
-	const btMatrix3x3& m = t.getBasis();
-	return isFinite(m[0]) && isFinite(m[1]) && isFinite(m[2]) && isFinite(t.getOrigin());
-}
-
 void warn(const char* function, const char* what)
 {
 	char message[200];
@@ -156,6 +148,14 @@ struct CoordinateSettings
 	btScalar targetVelocity, maxMotorForce, servoTarget;
 	btScalar stiffness, damping, equilibrium;
 	int state;  // 0 free, 3 locked, 4 limited
+	// The ERPs of the stop and motor rows (the world's unless set through setParam), and the CFMs set
+	// through setParam (rows otherwise keep the world's CFM they start with).
+	btScalar stopERP, motorERP;
+	bool hasStopCFM, hasMotorCFM;
+	btScalar stopCFM, motorCFM;
+	// A plain (not servo) motor's velocity along the coordinate and getMotorFactor's slow-down near the
+	// limits for it.
+	btScalar motorVelocity, motorFactor;
 };
 }  // namespace
 
@@ -213,7 +213,7 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbA,
       m_rotateOrder(rotOrder),
       m_flags(0)
 {
-	if (!isFinite(frameInA) || !isFinite(frameInB))
+	if (!caliber::isFinite(frameInA) || !caliber::isFinite(frameInB))
 	{
 		// An inert joint with harmless frames rather than one that spreads NaN.
 		warn("constructor", "non-finite joint frame; the joint is disabled");
@@ -231,7 +231,7 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbB,
       m_rotateOrder(rotOrder),
       m_flags(0)
 {
-	if (!isFinite(frameInB) || !isFinite(rbB.getCenterOfMassTransform()))
+	if (!caliber::isFinite(frameInB) || !caliber::isFinite(rbB.getCenterOfMassTransform()))
 	{
 		warn("constructor", "non-finite joint frame; the joint is disabled");
 		m_frameInB.setIdentity();
@@ -239,7 +239,7 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbB,
 	}
 	// Without a body A the world is A, and its frame is where B's frame is now.
 	m_frameInA = rbB.getCenterOfMassTransform() * m_frameInB;
-	if (!isFinite(m_frameInA)) m_frameInA.setIdentity();
+	if (!caliber::isFinite(m_frameInA)) m_frameInA.setIdentity();
 	calculateTransforms();
 }
 
@@ -335,18 +335,180 @@ void btGeneric6DofSpring2Constraint::getInfo2(btConstraintInfo2* info)
 	writeRows(info);
 }
 
+namespace
+{
+// The rows of one getInfo2 call, written in four groups by the steps below; next is the next free row.
+struct RowWriter
+{
+	btTypedConstraint::btConstraintInfo2& info;
+	btScalar fps, h;  // steps per second and step length (0 when fps is 0)
+	const btRigidBody& bodyA;
+	const btRigidBody& bodyB;
+	const CoordinateRow* jacobian;       // [6], J v is each coordinate's rate
+	const CoordinateSettings* settings;  // [6]
+	int next;
+
+	caliber::JointRow startRow(int axis)
+	{
+		caliber::JointRow row(info, next++);
+		jacobian[axis].write(row);
+		return row;
+	}
+};
+
+// A difference of two values of a coordinate: angles the short way round.
+btScalar coordinateDifference(int axis, btScalar to, btScalar from)
+{
+	return axis < 3 ? to - from : btNormalizeAngle(to - from);
+}
+
+void setStopCFM(caliber::JointRow& row, const CoordinateSettings& s)
+{
+	if (s.hasStopCFM) row.cfm() = s.stopCFM;
+}
+
+// Locked coordinates: equality rows, first, so that the solver solves them as one exact block.
+void writeLockedRows(RowWriter& w)
+{
+	for (int axis = 0; axis < 6; ++axis)
+	{
+		const CoordinateSettings& s = w.settings[axis];
+		if (s.state != 3) continue;
+		caliber::JointRow row = w.startRow(axis);
+		row.error() = w.fps * s.stopERP * coordinateDifference(axis, s.lo, s.position);
+		row.lower() = -SIMD_INFINITY;
+		row.upper() = SIMD_INFINITY;
+		setStopCFM(row, s);
+	}
+}
+
+// Limits: one one-sided row per end, always present so that the row count (and with it the warm start)
+// does not change as a limit comes into play. Each row is speculative: far from its end it allows the
+// coordinate to close the whole gap in this step and so stays idle; past its end it pushes back at the
+// stop ERP. A coordinate that would reach its end within the step and has a bounce leaves at bounce
+// times its approach speed at once (no exact time of impact is solved).
+void writeLimitRows(RowWriter& w)
+{
+	for (int axis = 0; axis < 6; ++axis)
+	{
+		const CoordinateSettings& s = w.settings[axis];
+		if (s.state != 4) continue;
+		const btScalar erp = s.stopERP;
+		const btScalar rate = w.jacobian[axis].rate(w.bodyA, w.bodyB);
+		const bool bounces = s.bounce > btScalar(0);
+
+		caliber::JointRow lower = w.startRow(axis);
+		const btScalar aboveLower = s.position - s.lo;
+		btScalar target = aboveLower >= btScalar(0) ? -aboveLower * w.fps : -aboveLower * w.fps * erp;
+		if (bounces && rate < btScalar(0) && aboveLower + rate * w.h < btScalar(0))
+			target = btMax(target, -s.bounce * rate);
+		lower.error() = target;
+		lower.lower() = btScalar(0);
+		lower.upper() = SIMD_INFINITY;
+		setStopCFM(lower, s);
+
+		caliber::JointRow upper = w.startRow(axis);
+		const btScalar belowUpper = s.hi - s.position;
+		target = belowUpper >= btScalar(0) ? belowUpper * w.fps : belowUpper * w.fps * erp;
+		if (bounces && rate > btScalar(0) && belowUpper - rate * w.h < btScalar(0))
+			target = btMin(target, -s.bounce * rate);
+		upper.error() = target;
+		upper.lower() = -SIMD_INFINITY;
+		upper.upper() = btScalar(0);
+		setStopCFM(upper, s);
+	}
+}
+
+// Motors and servos, bounded by the largest force times the step.
+void writeMotorRows(RowWriter& w)
+{
+	for (int axis = 0; axis < 6; ++axis)
+	{
+		const CoordinateSettings& s = w.settings[axis];
+		if (s.state == 3 || !s.motor) continue;
+		caliber::JointRow row = w.startRow(axis);
+		const btScalar erp = s.motorERP;
+		if (s.servo)
+		{
+			// Towards the target at up to |m_targetVelocity|, covering at most erp of the remaining gap
+			// per step so that the servo settles on the target instead of overshooting it. A weak motor
+			// also needs room to brake: decelerating at half its most, F K / 2 (the other half is left
+			// for loads on the coordinate and for the rows it shares its bodies with), a speed v stops
+			// within v^2 / (F K), so the servo never asks for more than sqrt(F K gap).
+			const btScalar gap = coordinateDifference(axis, s.servoTarget, s.position);
+			const btScalar brakingSpeed =
+			    btSqrt(btFabs(s.maxMotorForce) * w.jacobian[axis].inverseMass(w.bodyA, w.bodyB) * btFabs(gap));
+			const btScalar speed = btMin(btMin(btFabs(s.targetVelocity), w.fps * erp * btFabs(gap)), brakingSpeed);
+			row.error() = gap > btScalar(0) ? speed : (gap < btScalar(0) ? -speed : btScalar(0));
+		}
+		else
+		{
+			row.error() = s.motorVelocity * s.motorFactor;
+		}
+		const btScalar bound = btFabs(s.maxMotorForce) * w.h;
+		row.lower() = -bound;
+		row.upper() = bound;
+		if (s.hasMotorCFM) row.cfm() = s.motorCFM;
+	}
+}
+
+// Springs.
+//
+// Implicit (backward Euler) spring on the coordinate x = q - q0 with rate v: the impulse p of the step
+// is the force at the END of the step,
+//     p = -h (k x' + c v'),  x' = x + h v',  v' = v + K p,
+// with K = J M^-1 J^T the inverse of the mass the row moves. Eliminating x',
+//     p = -h k x - D v',  D = h (h k + c),
+// which is exactly a soft constraint row: v' = -(h k / D) x - p / D, i.e. a row whose target is
+// fps * ERP * (-x) with ERP = h k / (h k + c), and whose softness (velocity per impulse) is 1 / D. The
+// solver's CFM is in impulse per impulse (it is scaled by 1 / K), so CFM = 1 / (K D). Backward Euler
+// damps every mode and never gains energy, so any k and c are stable at any h.
+// The solver's iteration for a lone soft row contracts by CFM per sweep and diverges for CFM > 1, which
+// is where the spring is slow compared with the step ((omega h)^2 + 2 zeta omega h < 1). There the same
+// implicit impulse is computed in closed form,
+//     p = -(h k x + D v) / (1 + K D),
+// and applied as a fixed impulse (both bounds p). Both forms give the same step for a spring on its
+// own; the soft row also shares the work correctly with other rows through the iterations.
+void writeSpringRows(RowWriter& w)
+{
+	const btScalar h = w.h;
+	for (int axis = 0; axis < 6; ++axis)
+	{
+		const CoordinateSettings& s = w.settings[axis];
+		if (s.state == 3 || !s.spring) continue;
+		caliber::JointRow row = w.startRow(axis);
+		const btScalar k = s.stiffness > btScalar(0) ? s.stiffness : btScalar(0);
+		const btScalar c = s.damping > btScalar(0) ? s.damping : btScalar(0);
+		const btScalar x = coordinateDifference(axis, s.position, s.equilibrium);
+		const btScalar D = h * (h * k + c);
+		const btScalar K = w.jacobian[axis].inverseMass(w.bodyA, w.bodyB);
+		if (K * D * kLargestSoftRowCfm >= btScalar(1))
+		{
+			row.error() = -w.fps * (h * k / (h * k + c)) * x;
+			row.cfm() = btScalar(1) / (K * D);
+			row.lower() = -SIMD_INFINITY;
+			row.upper() = SIMD_INFINITY;
+		}
+		else
+		{
+			const btScalar v = w.jacobian[axis].rate(w.bodyA, w.bodyB) * w.info.m_damping;
+			const btScalar p = -(h * k * x + D * v) / (btScalar(1) + K * D);
+			row.error() = btScalar(0);
+			row.cfm() = btScalar(0);
+			row.lower() = p;
+			row.upper() = p;
+		}
+	}
+}
+}  // namespace
+
 int btGeneric6DofSpring2Constraint::writeRows(btConstraintInfo2* info)
 {
-	const btScalar fps = info->fps;
-	const btScalar h = fps > btScalar(0) ? btScalar(1) / fps : btScalar(0);
-	const btRigidBody& bodyA = m_rbA;
-	const btRigidBody& bodyB = m_rbB;
-
 	// Each coordinate's Jacobian, written so that J v is the coordinate's rate.
 	CoordinateRow jacobian[6];
 	const btVector3 pivotB = m_calculatedTransformB.getOrigin();
-	const btVector3 armA = pivotB - bodyA.getCenterOfMassPosition();
-	const btVector3 armB = pivotB - bodyB.getCenterOfMassPosition();
+	const btVector3 armA = pivotB - m_rbA.getCenterOfMassPosition();
+	const btVector3 armB = pivotB - m_rbB.getCenterOfMassPosition();
 	for (int i = 0; i < 3; ++i)
 	{
 		// d_i = a_i . (pB - pA) with a_i A's axis i. Its rate is a_i . (vB + wB x armB - vA - wA x armA)
@@ -356,184 +518,74 @@ int btGeneric6DofSpring2Constraint::writeRows(btConstraintInfo2* info)
 		jacobian[3 + i] = CoordinateRow::rotation(m_angularJacobian[i]);
 	}
 
+	// Each coordinate's settings, from the linear motor (0..2) or an angular one (3..5).
+	const btScalar fps = info->fps;
 	CoordinateSettings settings[6];
 	for (int axis = 0; axis < 6; ++axis)
 	{
 		CoordinateSettings& s = settings[axis];
+		const int flags = m_flags >> (axis * BT_6DOF_FLAGS_AXIS_SHIFT2);
+		const bool ownStopERP = (flags & BT_6DOF_FLAGS_ERP_STOP2) != 0;
+		const bool ownMotorERP = (flags & BT_6DOF_FLAGS_ERP_MOTO2) != 0;
+		s.hasStopCFM = (flags & BT_6DOF_FLAGS_CFM_STOP2) != 0;
+		s.hasMotorCFM = (flags & BT_6DOF_FLAGS_CFM_MOTO2) != 0;
 		if (axis < 3)
 		{
 			const btTranslationalLimitMotor2& m = m_linearLimits;
-			s = {m.m_lowerLimit[axis],       m.m_upperLimit[axis],      m.m_currentLinearDiff[axis],
-			     m.m_bounce[axis],           m.m_enableMotor[axis],     m.m_servoMotor[axis],
-			     m.m_enableSpring[axis],     m.m_targetVelocity[axis],  m.m_maxMotorForce[axis],
-			     m.m_servoTarget[axis],      m.m_springStiffness[axis], m.m_springDamping[axis],
-			     m.m_equilibriumPoint[axis], m.m_currentLimit[axis]};
+			s.lo = m.m_lowerLimit[axis];
+			s.hi = m.m_upperLimit[axis];
+			s.position = m.m_currentLinearDiff[axis];
+			s.bounce = m.m_bounce[axis];
+			s.motor = m.m_enableMotor[axis];
+			s.servo = m.m_servoMotor[axis];
+			s.spring = m.m_enableSpring[axis];
+			s.targetVelocity = m.m_targetVelocity[axis];
+			s.maxMotorForce = m.m_maxMotorForce[axis];
+			s.servoTarget = m.m_servoTarget[axis];
+			s.stiffness = m.m_springStiffness[axis];
+			s.damping = m.m_springDamping[axis];
+			s.equilibrium = m.m_equilibriumPoint[axis];
+			s.state = m.m_currentLimit[axis];
+			s.stopERP = ownStopERP ? m.m_stopERP[axis] : info->erp;
+			s.motorERP = ownMotorERP ? m.m_motorERP[axis] : info->erp;
+			s.stopCFM = m.m_stopCFM[axis];
+			s.motorCFM = m.m_motorCFM[axis];
 		}
 		else
 		{
 			const btRotationalLimitMotor2& m = m_angularLimits[axis - 3];
-			s = {m.m_loLimit,         m.m_hiLimit,       m.m_currentPosition,  m.m_bounce,        m.m_enableMotor,
-			     m.m_servoMotor,      m.m_enableSpring,  m.m_targetVelocity,   m.m_maxMotorForce, m.m_servoTarget,
-			     m.m_springStiffness, m.m_springDamping, m.m_equilibriumPoint, m.m_currentLimit};
+			s.lo = m.m_loLimit;
+			s.hi = m.m_hiLimit;
+			s.position = m.m_currentPosition;
+			s.bounce = m.m_bounce;
+			s.motor = m.m_enableMotor;
+			s.servo = m.m_servoMotor;
+			s.spring = m.m_enableSpring;
+			s.targetVelocity = m.m_targetVelocity;
+			s.maxMotorForce = m.m_maxMotorForce;
+			s.servoTarget = m.m_servoTarget;
+			s.stiffness = m.m_springStiffness;
+			s.damping = m.m_springDamping;
+			s.equilibrium = m.m_equilibriumPoint;
+			s.state = m.m_currentLimit;
+			s.stopERP = ownStopERP ? m.m_stopERP : info->erp;
+			s.motorERP = ownMotorERP ? m.m_motorERP : info->erp;
+			s.stopCFM = m.m_stopCFM;
+			s.motorCFM = m.m_motorCFM;
 		}
-	}
-	auto flagSet = [this](int axis, int flag) { return ((m_flags >> (axis * BT_6DOF_FLAGS_AXIS_SHIFT2)) & flag) != 0; };
-	auto stopERP = [&](int axis)
-	{
-		if (!flagSet(axis, BT_6DOF_FLAGS_ERP_STOP2)) return info->erp;
-		return axis < 3 ? m_linearLimits.m_stopERP[axis] : m_angularLimits[axis - 3].m_stopERP;
-	};
-	auto motorERP = [&](int axis)
-	{
-		if (!flagSet(axis, BT_6DOF_FLAGS_ERP_MOTO2)) return info->erp;
-		return axis < 3 ? m_linearLimits.m_motorERP[axis] : m_angularLimits[axis - 3].m_motorERP;
-	};
-	// Rows start with the world's CFM; a CFM set through setParam replaces it.
-	auto setStopCFM = [&](caliber::JointRow& row, int axis)
-	{
-		if (flagSet(axis, BT_6DOF_FLAGS_CFM_STOP2))
-			row.cfm() = axis < 3 ? m_linearLimits.m_stopCFM[axis] : m_angularLimits[axis - 3].m_stopCFM;
-	};
-	auto setMotorCFM = [&](caliber::JointRow& row, int axis)
-	{
-		if (flagSet(axis, BT_6DOF_FLAGS_CFM_MOTO2))
-			row.cfm() = axis < 3 ? m_linearLimits.m_motorCFM[axis] : m_angularLimits[axis - 3].m_motorCFM;
-	};
-	// A difference of two values of a coordinate: angles the short way round.
-	auto difference = [](int axis, btScalar to, btScalar from)
-	{ return axis < 3 ? to - from : btNormalizeAngle(to - from); };
-
-	int r = 0;
-
-	// 1. Locked coordinates: equality rows, first, so that the solver solves them as one exact block.
-	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = settings[axis];
-		if (s.state != 3) continue;
-		caliber::JointRow row(*info, r++);
-		jacobian[axis].write(row);
-		row.error() = fps * stopERP(axis) * difference(axis, s.lo, s.position);
-		row.lower() = -SIMD_INFINITY;
-		row.upper() = SIMD_INFINITY;
-		setStopCFM(row, axis);
+		// Bullet's sense: the motor drives A relative to B, which for a linear coordinate (B's pivot in
+		// A's frame) is the opposite of the coordinate's rate.
+		s.motorVelocity = (axis < 3 ? btScalar(-1) : btScalar(1)) * s.targetVelocity;
+		s.motorFactor = getMotorFactor(s.position, s.lo, s.hi, s.motorVelocity, fps * s.motorERP);
 	}
 
-	// 2. Limits: one one-sided row per end, always present so that the row count (and with it the
-	// warm start) does not change as a limit comes into play. Each row is speculative: far from its
-	// end it allows the coordinate to close the whole gap in this step and so stays idle; past its end
-	// it pushes back at the stop ERP. A coordinate that would reach its end within the step and has a
-	// bounce leaves at bounce times its approach speed at once (no exact time of impact is solved).
-	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = settings[axis];
-		if (s.state != 4) continue;
-		const btScalar erp = stopERP(axis);
-		const btScalar rate = jacobian[axis].rate(bodyA, bodyB);
-		const bool bounces = s.bounce > btScalar(0);
-
-		caliber::JointRow lower(*info, r++);
-		jacobian[axis].write(lower);
-		const btScalar aboveLower = s.position - s.lo;
-		btScalar target = aboveLower >= btScalar(0) ? -aboveLower * fps : -aboveLower * fps * erp;
-		if (bounces && rate < btScalar(0) && aboveLower + rate * h < btScalar(0))
-			target = btMax(target, -s.bounce * rate);
-		lower.error() = target;
-		lower.lower() = btScalar(0);
-		lower.upper() = SIMD_INFINITY;
-		setStopCFM(lower, axis);
-
-		caliber::JointRow upper(*info, r++);
-		jacobian[axis].write(upper);
-		const btScalar belowUpper = s.hi - s.position;
-		target = belowUpper >= btScalar(0) ? belowUpper * fps : belowUpper * fps * erp;
-		if (bounces && rate > btScalar(0) && belowUpper - rate * h < btScalar(0))
-			target = btMin(target, -s.bounce * rate);
-		upper.error() = target;
-		upper.lower() = -SIMD_INFINITY;
-		upper.upper() = btScalar(0);
-		setStopCFM(upper, axis);
-	}
-
-	// 3. Motors and servos, bounded by the largest force times the step.
-	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = settings[axis];
-		if (s.state == 3 || !s.motor) continue;
-		caliber::JointRow row(*info, r++);
-		jacobian[axis].write(row);
-		const btScalar erp = motorERP(axis);
-		if (s.servo)
-		{
-			// Towards the target at up to |m_targetVelocity|, covering at most erp of the remaining gap
-			// per step so that the servo settles on the target instead of overshooting it. A weak motor
-			// also needs room to brake: decelerating at half its most, F K / 2 (the other half is left
-			// for loads on the coordinate and for the rows it shares its bodies with), a speed v stops
-			// within v^2 / (F K), so the servo never asks for more than sqrt(F K gap).
-			const btScalar gap = difference(axis, s.servoTarget, s.position);
-			const btScalar brakingSpeed =
-			    btSqrt(btFabs(s.maxMotorForce) * jacobian[axis].inverseMass(bodyA, bodyB) * btFabs(gap));
-			const btScalar speed = btMin(btMin(btFabs(s.targetVelocity), fps * erp * btFabs(gap)), brakingSpeed);
-			row.error() = gap > btScalar(0) ? speed : (gap < btScalar(0) ? -speed : btScalar(0));
-		}
-		else
-		{
-			// Bullet's sense: the motor drives A relative to B, which for a linear coordinate (B's pivot
-			// in A's frame) is the opposite of the coordinate's rate.
-			const btScalar sense = axis < 3 ? btScalar(-1) : btScalar(1);
-			const btScalar velocity = sense * s.targetVelocity;
-			row.error() = velocity * getMotorFactor(s.position, s.lo, s.hi, velocity, fps * erp);
-		}
-		const btScalar bound = btFabs(s.maxMotorForce) * h;
-		row.lower() = -bound;
-		row.upper() = bound;
-		setMotorCFM(row, axis);
-	}
-
-	// 4. Springs.
-	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = settings[axis];
-		if (s.state == 3 || !s.spring) continue;
-		caliber::JointRow row(*info, r++);
-		jacobian[axis].write(row);
-		// Implicit (backward Euler) spring on the coordinate x = q - q0 with rate v: the impulse p of the
-		// step is the force at the END of the step,
-		//     p = -h (k x' + c v'),  x' = x + h v',  v' = v + K p,
-		// with K = J M^-1 J^T the inverse of the mass the row moves. Eliminating x',
-		//     p = -h k x - D v',  D = h (h k + c),
-		// which is exactly a soft constraint row: v' = -(h k / D) x - p / D, i.e. a row whose target is
-		// fps * ERP * (-x) with ERP = h k / (h k + c), and whose softness (velocity per impulse) is
-		// 1 / D. The solver's CFM is in impulse per impulse (it is scaled by 1 / K), so CFM = 1 / (K D).
-		// Backward Euler damps every mode and never gains energy, so any k and c are stable at any h.
-		// The solver's iteration for a lone soft row contracts by CFM per sweep and diverges for CFM > 1,
-		// which is where the spring is slow compared with the step ((omega h)^2 + 2 zeta omega h < 1).
-		// There the same implicit impulse is computed in closed form,
-		//     p = -(h k x + D v) / (1 + K D),
-		// and applied as a fixed impulse (both bounds p). Both forms give the same step for a spring on
-		// its own; the soft row also shares the work correctly with other rows through the iterations.
-		const btScalar k = s.stiffness > btScalar(0) ? s.stiffness : btScalar(0);
-		const btScalar c = s.damping > btScalar(0) ? s.damping : btScalar(0);
-		const btScalar x = difference(axis, s.position, s.equilibrium);
-		const btScalar D = h * (h * k + c);
-		const btScalar K = jacobian[axis].inverseMass(bodyA, bodyB);
-		if (K * D * kLargestSoftRowCfm >= btScalar(1))
-		{
-			row.error() = -fps * (h * k / (h * k + c)) * x;
-			row.cfm() = btScalar(1) / (K * D);
-			row.lower() = -SIMD_INFINITY;
-			row.upper() = SIMD_INFINITY;
-		}
-		else
-		{
-			const btScalar v = jacobian[axis].rate(bodyA, bodyB) * info->m_damping;
-			const btScalar p = -(h * k * x + D * v) / (btScalar(1) + K * D);
-			row.error() = btScalar(0);
-			row.cfm() = btScalar(0);
-			row.lower() = p;
-			row.upper() = p;
-		}
-	}
-	return r;
+	RowWriter writer{*info,    fps, fps > btScalar(0) ? btScalar(1) / fps : btScalar(0), m_rbA, m_rbB, jacobian,
+	                 settings, 0};
+	writeLockedRows(writer);
+	writeLimitRows(writer);
+	writeMotorRows(writer);
+	writeSpringRows(writer);
+	return writer.next;
 }
 
 // ---- settings -----------------------------------------------------------------------------------
@@ -548,7 +600,7 @@ bool btGeneric6DofSpring2Constraint::checkIndex(int index, const char* function)
 
 void btGeneric6DofSpring2Constraint::setFrames(const btTransform& frameA, const btTransform& frameB)
 {
-	if (!isFinite(frameA) || !isFinite(frameB))
+	if (!caliber::isFinite(frameA) || !caliber::isFinite(frameB))
 	{
 		warn("setFrames", "non-finite joint frame; frames kept and the joint is disabled");
 		setEnabled(false);
@@ -607,9 +659,9 @@ bool btGeneric6DofSpring2Constraint::isLimited(int limitIndex) const
 
 void btGeneric6DofSpring2Constraint::setAxis(const btVector3& axis1, const btVector3& axis2)
 {
-	const btScalar length1 = isFinite(axis1) ? axis1.length() : btScalar(0);
+	const btScalar length1 = caliber::isFinite(axis1) ? axis1.length() : btScalar(0);
 	const btVector3 zAxis = length1 > SIMD_EPSILON ? axis1 / length1 : btVector3(0, 0, 0);
-	const btVector3 across = isFinite(axis2) ? axis2 - zAxis * zAxis.dot(axis2) : btVector3(0, 0, 0);
+	const btVector3 across = caliber::isFinite(axis2) ? axis2 - zAxis * zAxis.dot(axis2) : btVector3(0, 0, 0);
 	const btScalar length2 = across.length();
 	if (!(length1 > SIMD_EPSILON) || !(length2 > SIMD_EPSILON * btMax(btScalar(1), axis2.length())))
 	{

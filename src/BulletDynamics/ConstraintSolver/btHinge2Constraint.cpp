@@ -5,8 +5,6 @@
 
 namespace
 {
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
 // An axle leaning by more than this (as the cosine of its angle to axis1) is reported before it is
 // straightened: float round-off in user code stays far below it.
 const btScalar kPerpendicularTolerance = btScalar(1e-3);
@@ -22,7 +20,7 @@ btHinge2Constraint::btHinge2Constraint(btRigidBody& rbA, btRigidBody& rbB, const
 	// Frame: z along axis1, x along axis2, y = z x x. With rotation order XYZ the first rotation turns
 	// about B's x (the axle: the wheel's spin, free), the last about A's z (steering, limited) and the
 	// middle one, which would tilt the axle out of the plane perpendicular to axis1, is locked.
-	const bool finite = isFinite(anchor) && isFinite(axis1) && isFinite(axis2);
+	const bool finite = caliber::isFinite(anchor) && caliber::isFinite(axis1) && caliber::isFinite(axis2);
 	const btScalar length1 = finite ? axis1.length() : btScalar(0);
 	const btVector3 zAxis = length1 > SIMD_EPSILON ? axis1 / length1 : btVector3(0, 0, 0);
 	const btScalar alongAxis1 = finite ? zAxis.dot(axis2) : btScalar(0);

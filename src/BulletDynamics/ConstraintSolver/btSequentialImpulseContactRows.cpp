@@ -187,6 +187,8 @@ bool slidesPastWithoutTouching(const btCollisionObject& objectA, const btCollisi
 	return !cast.calcTimeOfImpact(objectA.getWorldTransform(), toA, objectB.getWorldTransform(), toB, result);
 }
 
+// One test on the sum rather than caliber::isFinite per vector: cheaper per contact, and a sum that
+// overflows (a point near the float range) is refused too.
 bool isFinitePoint(const btManifoldPoint& cp)
 {
 	const btVector3& a = cp.m_positionWorldOnA;

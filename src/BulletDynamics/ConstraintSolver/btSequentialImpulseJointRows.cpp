@@ -11,9 +11,6 @@
 
 namespace
 {
-bool isFinite(btScalar x) { return x == x && btFabs(x) <= SIMD_INFINITY; }
-bool isFinite(const btVector3& v) { return isFinite(v.x()) && isFinite(v.y()) && isFinite(v.z()); }
-
 // I^-1 F axis for a body that turns, zero for static and kinematic ones (nothing pushes them).
 btVector3 angularComponent(const btRigidBody& body, const btVector3& axis)
 {
@@ -156,9 +153,10 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 	{
 		btSolverConstraint& row = firstRow[j];
 		// A joint whose frames, pivots or bodies have gone non-finite must not spread NaN to its bodies.
-		if (!isFinite(row.m_contactNormal1) || !isFinite(row.m_relpos1CrossNormal) || !isFinite(row.m_contactNormal2) ||
-		    !isFinite(row.m_relpos2CrossNormal) || !isFinite(row.m_rhs) || !isFinite(row.m_cfm) ||
-		    row.m_lowerLimit != row.m_lowerLimit || row.m_upperLimit != row.m_upperLimit)
+		if (!caliber::isFinite(row.m_contactNormal1) || !caliber::isFinite(row.m_relpos1CrossNormal) ||
+		    !caliber::isFinite(row.m_contactNormal2) || !caliber::isFinite(row.m_relpos2CrossNormal) ||
+		    !btIsFinite(row.m_rhs) || !btIsFinite(row.m_cfm) || row.m_lowerLimit != row.m_lowerLimit ||
+		    row.m_upperLimit != row.m_upperLimit)
 			return false;
 
 		// No row may apply more than the breaking impulse: the joint breaks when one reaches it.

@@ -19,20 +19,17 @@
 
 namespace
 {
-bool isFinite(btScalar x) { return x == x && btFabs(x) <= SIMD_INFINITY; }
-bool isFinite(const btVector3& v) { return isFinite(v.x()) && isFinite(v.y()) && isFinite(v.z()); }
-
 // Finite, and its axes span space: each has length, and together they are not close to coplanar (the
 // determinant is at least 1 % of the product of the lengths, which is what orthogonal axes give).
 bool isUsableFrame(const btTransform& frame)
 {
-	if (!isFinite(frame.getOrigin())) return false;
+	if (!caliber::isFinite(frame.getOrigin())) return false;
 	const btMatrix3x3& basis = frame.getBasis();
 	btScalar lengths = 1;
 	for (int i = 0; i < 3; ++i)
 	{
 		const btVector3 column = basis.getColumn(i);
-		if (!isFinite(column)) return false;
+		if (!caliber::isFinite(column)) return false;
 		const btScalar length = column.length();
 		if (!(length > btScalar(1e-6))) return false;
 		lengths *= length;
@@ -221,35 +218,43 @@ private:
 
 void btSliderConstraint::initParams()
 {
+	// Limits start inverted (lower > upper: the linear axis is free) and the angular range is zero.
 	m_lowerLinLimit = btScalar(1);
 	m_upperLinLimit = btScalar(-1);
 	m_lowerAngLimit = btScalar(0);
 	m_upperAngLimit = btScalar(0);
 
-	m_softnessDirLin = SLIDER_CONSTRAINT_DEF_SOFTNESS;
-	m_restitutionDirLin = SLIDER_CONSTRAINT_DEF_RESTITUTION;
-	m_dampingDirLin = btScalar(0);
-	m_cfmDirLin = SLIDER_CONSTRAINT_DEF_CFM;
-	m_softnessDirAng = SLIDER_CONSTRAINT_DEF_SOFTNESS;
-	m_restitutionDirAng = SLIDER_CONSTRAINT_DEF_RESTITUTION;
-	m_dampingDirAng = btScalar(0);
-	m_cfmDirAng = SLIDER_CONSTRAINT_DEF_CFM;
-	m_softnessOrthoLin = SLIDER_CONSTRAINT_DEF_SOFTNESS;
-	m_restitutionOrthoLin = SLIDER_CONSTRAINT_DEF_RESTITUTION;
-	m_dampingOrthoLin = SLIDER_CONSTRAINT_DEF_DAMPING;
-	m_cfmOrthoLin = SLIDER_CONSTRAINT_DEF_CFM;
-	m_softnessOrthoAng = SLIDER_CONSTRAINT_DEF_SOFTNESS;
-	m_restitutionOrthoAng = SLIDER_CONSTRAINT_DEF_RESTITUTION;
-	m_dampingOrthoAng = SLIDER_CONSTRAINT_DEF_DAMPING;
-	m_cfmOrthoAng = SLIDER_CONSTRAINT_DEF_CFM;
-	m_softnessLimLin = SLIDER_CONSTRAINT_DEF_SOFTNESS;
-	m_restitutionLimLin = SLIDER_CONSTRAINT_DEF_RESTITUTION;
-	m_dampingLimLin = SLIDER_CONSTRAINT_DEF_DAMPING;
-	m_cfmLimLin = SLIDER_CONSTRAINT_DEF_CFM;
-	m_softnessLimAng = SLIDER_CONSTRAINT_DEF_SOFTNESS;
-	m_restitutionLimAng = SLIDER_CONSTRAINT_DEF_RESTITUTION;
-	m_dampingLimAng = SLIDER_CONSTRAINT_DEF_DAMPING;
-	m_cfmLimAng = SLIDER_CONSTRAINT_DEF_CFM;
+	// The six groups of rows (along the axis, across it, at a limit; each linear and angular) share their
+	// defaults, except that the rows along the free axis start undamped.
+	struct RowSettings
+	{
+		btScalar btSliderConstraint::*softness;
+		btScalar btSliderConstraint::*restitution;
+		btScalar btSliderConstraint::*damping;
+		btScalar btSliderConstraint::*cfm;
+		bool alongFreeAxis;
+	};
+	static const RowSettings kRowGroups[] = {
+	    {&btSliderConstraint::m_softnessDirLin, &btSliderConstraint::m_restitutionDirLin,
+	     &btSliderConstraint::m_dampingDirLin, &btSliderConstraint::m_cfmDirLin, true},
+	    {&btSliderConstraint::m_softnessDirAng, &btSliderConstraint::m_restitutionDirAng,
+	     &btSliderConstraint::m_dampingDirAng, &btSliderConstraint::m_cfmDirAng, true},
+	    {&btSliderConstraint::m_softnessOrthoLin, &btSliderConstraint::m_restitutionOrthoLin,
+	     &btSliderConstraint::m_dampingOrthoLin, &btSliderConstraint::m_cfmOrthoLin, false},
+	    {&btSliderConstraint::m_softnessOrthoAng, &btSliderConstraint::m_restitutionOrthoAng,
+	     &btSliderConstraint::m_dampingOrthoAng, &btSliderConstraint::m_cfmOrthoAng, false},
+	    {&btSliderConstraint::m_softnessLimLin, &btSliderConstraint::m_restitutionLimLin,
+	     &btSliderConstraint::m_dampingLimLin, &btSliderConstraint::m_cfmLimLin, false},
+	    {&btSliderConstraint::m_softnessLimAng, &btSliderConstraint::m_restitutionLimAng,
+	     &btSliderConstraint::m_dampingLimAng, &btSliderConstraint::m_cfmLimAng, false},
+	};
+	for (const RowSettings& group : kRowGroups)
+	{
+		this->*group.softness = SLIDER_CONSTRAINT_DEF_SOFTNESS;
+		this->*group.restitution = SLIDER_CONSTRAINT_DEF_RESTITUTION;
+		this->*group.damping = group.alongFreeAxis ? btScalar(0) : btScalar(SLIDER_CONSTRAINT_DEF_DAMPING);
+		this->*group.cfm = SLIDER_CONSTRAINT_DEF_CFM;
+	}
 
 	m_solveLinLim = false;
 	m_solveAngLim = false;

@@ -11,7 +11,6 @@ const btScalar kRangeMargin = btScalar(0.01);
 // |cos| between the unit axes above which they are reported as not perpendicular (0.06 degrees).
 const btScalar kPerpendicularTolerance = btScalar(1e-3);
 
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
 }  // namespace
 
 btUniversalConstraint::btUniversalConstraint(btRigidBody& rbA, btRigidBody& rbB, const btVector3& anchor,
@@ -31,7 +30,8 @@ btUniversalConstraint::btUniversalConstraint(btRigidBody& rbA, btRigidBody& rbB,
 bool btUniversalConstraint::setFramesFromAxes(const btVector3& anchor, const btVector3& axis1, const btVector3& axis2)
 {
 	const btScalar length1 = axis1.length(), length2 = axis2.length();
-	const bool usable = isFinite(axis1) && isFinite(axis2) && length1 > SIMD_EPSILON && length2 > SIMD_EPSILON &&
+	const bool usable = caliber::isFinite(axis1) && caliber::isFinite(axis2) && length1 > SIMD_EPSILON &&
+	                    length2 > SIMD_EPSILON &&
 	                    (axis1 / length1).cross(axis2 / length2).length() > kPerpendicularTolerance;
 	btAssert(usable && "btUniversalConstraint: the axes must be finite, non-zero and not parallel");
 	if (!usable)

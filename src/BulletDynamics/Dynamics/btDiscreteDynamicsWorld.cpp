@@ -11,21 +11,106 @@
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btJointAnchorTree.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btAlignedObject.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btMotionState.h"
 #include "LinearMath/btQuickprof.h"
 #include "LinearMath/btTransformUtil.h"
 #include "LinearMath/btWarningHook.h"
 
+namespace
+{
+// stepSimulation's bookkeeping of time, as a pure function of the call and the world's clock.
+struct SubstepPlan
+{
+	int substepsDue;          // whole substeps the clock has reached (stepSimulation's return value)
+	int substepsToRun;        // substepsDue capped at the call's maxSubSteps
+	btScalar substepSeconds;  // length of each substep run
+	btScalar localTime;       // the world's new m_localTime
+	btScalar fixedTimeStep;   // the world's new m_fixedTimeStep (0 after a zero-length variable step)
+};
+
+// With maxSubSteps > 0 time accumulates in localTime and leaves it in whole fixed substeps; the rest
+// waits for the next call. With maxSubSteps == 0 the call is one variable substep of exactly timeStep
+// (none when timeStep is about zero). Substeps beyond maxSubSteps are dropped: the simulation runs
+// slower than real time rather than spiralling into ever longer frames.
+SubstepPlan planSubsteps(btScalar localTime, bool latencyInterpolation, btScalar timeStep, int maxSubSteps,
+                         btScalar fixedTimeStep)
+{
+	SubstepPlan plan;
+	if (maxSubSteps == 0)
+	{
+		const int substeps = btFuzzyZero(timeStep) ? 0 : 1;
+		plan.substepsDue = substeps;
+		plan.substepsToRun = substeps;
+		plan.substepSeconds = timeStep;
+		plan.localTime = latencyInterpolation ? btScalar(0) : timeStep;
+		plan.fixedTimeStep = substeps ? timeStep : btScalar(0);
+		return plan;
+	}
+	plan.localTime = localTime + timeStep;
+	plan.substepsDue = 0;
+	if (plan.localTime >= fixedTimeStep)
+	{
+		plan.substepsDue = int(plan.localTime / fixedTimeStep);
+		plan.localTime -= plan.substepsDue * fixedTimeStep;
+	}
+	plan.substepsToRun = btMin(plan.substepsDue, maxSubSteps);
+	plan.substepSeconds = fixedTimeStep;
+	plan.fixedTimeStep = fixedTimeStep;
+	return plan;
+}
+
+// The one-argument addRigidBody's broadphase filter, and what the world does with a body, by the body's
+// role. A body flagged both static and kinematic counts as static.
+enum BodyRole
+{
+	kDynamicBody,
+	kKinematicBody,
+	kStaticBody,
+	kBodyRoleCount
+};
+
+struct BodyRoleRules
+{
+	int defaultGroup;
+	int defaultMask;
+	bool takesWorldGravity;  // unless the body has BT_DISABLE_WORLD_GRAVITY
+	bool steppedByWorld;     // listed in m_nonStaticRigidBodies; otherwise parked asleep
+};
+
+const BodyRoleRules kBodyRoleRules[kBodyRoleCount] = {
+    {btBroadphaseProxy::DefaultFilter, btBroadphaseProxy::AllFilter, true, true},
+    {btBroadphaseProxy::StaticFilter, btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter, false, true},
+    {btBroadphaseProxy::StaticFilter, btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter, false, false},
+};
+
+BodyRole roleOf(const btRigidBody& body)
+{
+	if (body.isStaticObject()) return kStaticBody;
+	return body.isKinematicObject() ? kKinematicBody : kDynamicBody;
+}
+
+bool holds(const btCollisionObjectArray& objects, const btCollisionObject* object)
+{
+	const int index = object->getWorldArrayIndex();
+	return index >= 0 && index < objects.size() && objects[index] == object;
+}
+}  // namespace
+
 btDiscreteDynamicsWorld::btDiscreteDynamicsWorld(btDispatcher* dispatcher, btBroadphaseInterface* pairCache,
                                                  btConstraintSolver* constraintSolver,
                                                  btCollisionConfiguration* collisionConfiguration)
     : btDynamicsWorld(dispatcher, pairCache, collisionConfiguration),
       m_solverIslandCallback(0),
-      m_constraintSolver(constraintSolver),
+      m_constraintSolver(constraintSolver ? constraintSolver
+                                          : caliber::alignedNew<btSequentialImpulseConstraintSolver>()),
+      m_islandManager(caliber::alignedNew<btSimulationIslandManager>()),
       m_gravity(0, -10, 0),
       m_localTime(0),
       m_fixedTimeStep(0),
+      m_ownsIslandManager(true),
+      m_ownsConstraintSolver(constraintSolver == 0),
       m_synchronizeAllMotionStates(false),
       m_applySpeculativeContactRestitution(false),
       m_profileTimings(0),
@@ -33,45 +118,16 @@ btDiscreteDynamicsWorld::btDiscreteDynamicsWorld(btDispatcher* dispatcher, btBro
       m_reportedNonFiniteBody(false),
       m_jointAnchorTree(new caliber::JointAnchorTree())
 {
-	if (!m_constraintSolver)
-	{
-		void* memory = btAlignedAlloc(sizeof(btSequentialImpulseConstraintSolver), 16);
-		m_constraintSolver = new (memory) btSequentialImpulseConstraintSolver;
-		m_ownsConstraintSolver = true;
-	}
-	else
-	{
-		m_ownsConstraintSolver = false;
-	}
-	{
-		void* memory = btAlignedAlloc(sizeof(btSimulationIslandManager), 16);
-		m_islandManager = new (memory) btSimulationIslandManager();
-	}
-	m_ownsIslandManager = true;
-	{
-		void* memory = btAlignedAlloc(sizeof(InplaceSolverIslandCallback), 16);
-		m_solverIslandCallback = new (memory) InplaceSolverIslandCallback(m_constraintSolver, dispatcher);
-	}
+	// Declared before the solver it feeds, so made here rather than in the list above.
+	m_solverIslandCallback = caliber::alignedNew<InplaceSolverIslandCallback>(m_constraintSolver, dispatcher);
 }
 
 btDiscreteDynamicsWorld::~btDiscreteDynamicsWorld()
 {
+	caliber::alignedDelete(m_solverIslandCallback);
+	if (m_ownsIslandManager) caliber::alignedDelete(m_islandManager);
+	if (m_ownsConstraintSolver) caliber::alignedDelete(m_constraintSolver);
 	delete m_jointAnchorTree;
-	if (m_ownsIslandManager)
-	{
-		m_islandManager->~btSimulationIslandManager();
-		btAlignedFree(m_islandManager);
-	}
-	if (m_solverIslandCallback)
-	{
-		m_solverIslandCallback->~InplaceSolverIslandCallback();
-		btAlignedFree(m_solverIslandCallback);
-	}
-	if (m_ownsConstraintSolver)
-	{
-		m_constraintSolver->~btConstraintSolver();
-		btAlignedFree(m_constraintSolver);
-	}
 }
 
 int btDiscreteDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
@@ -90,58 +146,30 @@ int btDiscreteDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, 
 	}
 
 	startProfiling(timeStep);
-	int numSimulationSubSteps = 0;
-	if (maxSubSteps)
-	{
-		// Fixed substeps; what is left over waits in m_localTime for the next call.
-		m_localTime += timeStep;
-		if (m_localTime >= fixedTimeStep)
-		{
-			numSimulationSubSteps = int(m_localTime / fixedTimeStep);
-			m_localTime -= numSimulationSubSteps * fixedTimeStep;
-		}
-	}
-	else
-	{
-		// One variable step of exactly timeStep.
-		fixedTimeStep = timeStep;
-		m_localTime = m_latencyMotionStateInterpolation ? btScalar(0) : timeStep;
-		m_fixedTimeStep = btScalar(0);
-		if (btFuzzyZero(timeStep))
-		{
-			numSimulationSubSteps = 0;
-			maxSubSteps = 0;
-		}
-		else
-		{
-			numSimulationSubSteps = 1;
-			maxSubSteps = 1;
-		}
-	}
-	if (maxSubSteps) m_fixedTimeStep = fixedTimeStep;
+	const SubstepPlan plan =
+	    planSubsteps(m_localTime, m_latencyMotionStateInterpolation, timeStep, maxSubSteps, fixedTimeStep);
+	m_localTime = plan.localTime;
+	m_fixedTimeStep = plan.fixedTimeStep;
 
 	if (getDebugDrawer())
 		gDisableDeactivation = (getDebugDrawer()->getDebugMode() & btIDebugDraw::DBG_NoDeactivation) != 0;
 
-	if (numSimulationSubSteps)
-	{
-		// Steps beyond maxSubSteps are dropped (the simulation runs slower than real time rather than
-		// spiralling into ever longer frames).
-		const int clampedSimulationSteps = numSimulationSubSteps > maxSubSteps ? maxSubSteps : numSimulationSubSteps;
-		saveKinematicState(fixedTimeStep * clampedSimulationSteps);
-		applyGravity();
-		for (int i = 0; i < clampedSimulationSteps; ++i)
-		{
-			internalSingleStepSimulation(fixedTimeStep);
-			synchronizeMotionStates();
-		}
-	}
-	else
+	if (plan.substepsToRun == 0)
 	{
 		synchronizeMotionStates();
 	}
+	else
+	{
+		saveKinematicState(plan.substepSeconds * plan.substepsToRun);
+		applyGravity();
+		for (int substep = 0; substep < plan.substepsToRun; ++substep)
+		{
+			internalSingleStepSimulation(plan.substepSeconds);
+			synchronizeMotionStates();
+		}
+	}
 	clearForces();
-	return numSimulationSubSteps;
+	return plan.substepsDue;
 }
 
 void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
@@ -208,35 +236,25 @@ void btDiscreteDynamicsWorld::addRigidBody(btRigidBody* body)
 {
 	btAssert(body && "btDiscreteDynamicsWorld::addRigidBody: null body");
 	if (!body) return;
-	const bool isDynamic = !(body->isStaticObject() || body->isKinematicObject());
-	const int group = isDynamic ? int(btBroadphaseProxy::DefaultFilter) : int(btBroadphaseProxy::StaticFilter);
-	const int mask = isDynamic ? int(btBroadphaseProxy::AllFilter)
-	                           : int(btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
-	addRigidBody(body, group, mask);
+	const BodyRoleRules& rules = kBodyRoleRules[roleOf(*body)];
+	addRigidBody(body, rules.defaultGroup, rules.defaultMask);
 }
 
 void btDiscreteDynamicsWorld::addRigidBody(btRigidBody* body, int group, int mask)
 {
 	btAssert(body && "btDiscreteDynamicsWorld::addRigidBody: null body");
 	if (!body) return;
-	const bool alreadyAdded = body->getWorldArrayIndex() >= 0 &&
-	                          body->getWorldArrayIndex() < m_collisionObjects.size() &&
-	                          m_collisionObjects[body->getWorldArrayIndex()] == body;
-	btAssert(!alreadyAdded && "btDiscreteDynamicsWorld::addRigidBody: body added twice");
-	if (alreadyAdded)
+	btAssert(!holds(m_collisionObjects, body) && "btDiscreteDynamicsWorld::addRigidBody: body added twice");
+	if (holds(m_collisionObjects, body))
 	{
 		btReportWarning("Caliber: addRigidBody: the body is already in the world; call ignored\n", getDebugDrawer());
 		return;
 	}
-	if (!body->isStaticOrKinematicObject() && !(body->getFlags() & BT_DISABLE_WORLD_GRAVITY))
-		body->setGravity(m_gravity);
-	if (body->getCollisionShape())
-	{
-		if (!body->isStaticObject())
-			m_nonStaticRigidBodies.push_back(body);
-		else
-			body->setActivationState(ISLAND_SLEEPING);
-	}
+	const BodyRoleRules& rules = kBodyRoleRules[roleOf(*body)];
+	if (rules.takesWorldGravity && !(body->getFlags() & BT_DISABLE_WORLD_GRAVITY)) body->setGravity(m_gravity);
+	// A body without a shape is in neither list; it still enters the collision world.
+	if (body->getCollisionShape() && rules.steppedByWorld) m_nonStaticRigidBodies.push_back(body);
+	if (body->getCollisionShape() && !rules.steppedByWorld) body->setActivationState(ISLAND_SLEEPING);
 	addCollisionObject(body, group, mask);
 }
 
@@ -244,8 +262,7 @@ void btDiscreteDynamicsWorld::removeRigidBody(btRigidBody* body)
 {
 	btAssert(body && "btDiscreteDynamicsWorld::removeRigidBody: null body");
 	if (!body) return;
-	const bool inWorld = body->getWorldArrayIndex() >= 0 && body->getWorldArrayIndex() < m_collisionObjects.size() &&
-	                     m_collisionObjects[body->getWorldArrayIndex()] == body;
+	const bool inWorld = holds(m_collisionObjects, body);
 	btAssert(inWorld && "btDiscreteDynamicsWorld::removeRigidBody: body is not in this world");
 	if (!inWorld)
 	{
@@ -349,11 +366,7 @@ void btDiscreteDynamicsWorld::setConstraintSolver(btConstraintSolver* solver)
 {
 	btAssert(solver && "btDiscreteDynamicsWorld::setConstraintSolver: null solver");
 	if (!solver) return;
-	if (m_ownsConstraintSolver)
-	{
-		m_constraintSolver->~btConstraintSolver();
-		btAlignedFree(m_constraintSolver);
-	}
+	if (m_ownsConstraintSolver) caliber::alignedDelete(m_constraintSolver);
 	m_ownsConstraintSolver = false;
 	m_constraintSolver = solver;
 	m_solverIslandCallback->m_solver = solver;

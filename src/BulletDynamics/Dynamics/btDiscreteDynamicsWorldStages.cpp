@@ -16,57 +16,66 @@
 
 namespace
 {
-bool isFinite(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
-bool isFinite(const btTransform& t)
+// The sweep of a fast body's sphere: the closest object that responds to contact with it, among those
+// it is moving towards (a hit whose normal faces along the motion is the body leaving a surface it
+// touches). It filters like the body's own broadphase proxy.
+class FirstContactOfSweep : public btCollisionWorld::ClosestConvexResultCallback
 {
-	const btMatrix3x3& b = t.getBasis();
-	return isFinite(t.getOrigin()) && isFinite(b[0]) && isFinite(b[1]) && isFinite(b[2]);
-}
+public:
+	FirstContactOfSweep(btCollisionWorld& world, btCollisionObject& body, const btVector3& from, const btVector3& to)
+	    : btCollisionWorld::ClosestConvexResultCallback(from, to),
+	      m_body(&body),
+	      m_pairCache(world.getBroadphase()->getOverlappingPairCache()),
+	      m_dispatcher(world.getDispatcher()),
+	      m_allowedPenetration(world.getDispatchInfo().m_allowedCcdPenetration)
+	{
+		m_collisionFilterGroup = body.getBroadphaseHandle()->m_collisionFilterGroup;
+		m_collisionFilterMask = body.getBroadphaseHandle()->m_collisionFilterMask;
+	}
 
-// The sweep of a fast body: the closest object that responds to contact with it, among those it is
-// moving towards (a hit whose normal faces along the motion is the body leaving a surface it touches).
-struct ClosestNotMeConvexResultCallback : public btCollisionWorld::ClosestConvexResultCallback
-{
-	btCollisionObject* m_me;
-	btScalar m_allowedPenetration;
+	bool needsCollision(btBroadphaseProxy* proxy) const override
+	{
+		if (proxy->m_clientObject == m_body || !ClosestConvexResultCallback::needsCollision(proxy)) return false;
+		btOverlapFilterCallback* filter = m_pairCache->getOverlapFilterCallback();
+		if (filter && !filter->needBroadphaseCollision(m_body->getBroadphaseHandle(), proxy)) return false;
+		return m_dispatcher->needsResponse(m_body, static_cast<const btCollisionObject*>(proxy->m_clientObject));
+	}
+
+	btScalar addSingleResult(btCollisionWorld::LocalConvexResult& hit, bool normalInWorldSpace) override
+	{
+		const btCollisionObject* other = hit.m_hitCollisionObject;
+		if (other == m_body || !other->hasContactResponse()) return btScalar(1);
+		const btVector3 worldNormal =
+		    normalInWorldSpace ? hit.m_hitNormalLocal : other->getWorldTransform().getBasis() * hit.m_hitNormalLocal;
+		const bool leaving = worldNormal.dot(m_convexToWorld - m_convexFromWorld) >= -m_allowedPenetration;
+		return leaving ? btScalar(1) : ClosestConvexResultCallback::addSingleResult(hit, normalInWorldSpace);
+	}
+
+private:
+	btCollisionObject* m_body;
 	btOverlappingPairCache* m_pairCache;
 	btDispatcher* m_dispatcher;
-
-	ClosestNotMeConvexResultCallback(btCollisionObject* me, const btVector3& fromA, const btVector3& toA,
-	                                 btOverlappingPairCache* pairCache, btDispatcher* dispatcher)
-	    : btCollisionWorld::ClosestConvexResultCallback(fromA, toA),
-	      m_me(me),
-	      m_allowedPenetration(btScalar(0)),
-	      m_pairCache(pairCache),
-	      m_dispatcher(dispatcher)
-	{
-	}
-
-	btScalar addSingleResult(btCollisionWorld::LocalConvexResult& convexResult, bool normalInWorldSpace) override
-	{
-		if (convexResult.m_hitCollisionObject == m_me) return btScalar(1);
-		if (!convexResult.m_hitCollisionObject->hasContactResponse()) return btScalar(1);
-		const btVector3 normal =
-		    normalInWorldSpace
-		        ? convexResult.m_hitNormalLocal
-		        : convexResult.m_hitCollisionObject->getWorldTransform().getBasis() * convexResult.m_hitNormalLocal;
-		const btVector3 motion = m_convexToWorld - m_convexFromWorld;
-		if (normal.dot(motion) >= -m_allowedPenetration) return btScalar(1);
-		return ClosestConvexResultCallback::addSingleResult(convexResult, normalInWorldSpace);
-	}
-
-	bool needsCollision(btBroadphaseProxy* proxy0) const override
-	{
-		if (proxy0->m_clientObject == m_me) return false;
-		if (!ClosestConvexResultCallback::needsCollision(proxy0)) return false;
-		if (m_pairCache->getOverlapFilterCallback() &&
-		    !m_pairCache->getOverlapFilterCallback()->needBroadphaseCollision(m_me->getBroadphaseHandle(), proxy0))
-			return false;
-		const btCollisionObject* other = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
-		return m_dispatcher->needsResponse(m_me, other);
-	}
+	btScalar m_allowedPenetration;
 };
+
+// Continuous collision: the fraction of this step a body may move before it would pass through
+// something, or 1 when it may take the whole step. Only a convex body in the broadphase that would move
+// further than its CCD motion threshold is checked, by sweeping a sphere of its swept-sphere radius
+// (with the body's orientation kept: only the path of its centre matters) to its predicted position.
+btScalar freeFractionOfStep(btCollisionWorld& world, btRigidBody& body, const btTransform& predicted)
+{
+	const btTransform& start = body.getWorldTransform();
+	const btScalar squareMotion = (predicted.getOrigin() - start.getOrigin()).length2();
+	const btScalar squareThreshold = body.getCcdSquareMotionThreshold();
+	const bool sweep = world.getDispatchInfo().m_useContinuous && squareThreshold != btScalar(0) &&
+	                   squareThreshold < squareMotion && body.getCollisionShape()->isConvex() &&
+	                   body.getBroadphaseHandle();
+	if (!sweep) return btScalar(1);
+	FirstContactOfSweep firstContact(world, body, start.getOrigin(), predicted.getOrigin());
+	const btSphereShape sphere(body.getCcdSweptSphereRadius());
+	world.convexSweepTest(&sphere, start, btTransform(start.getBasis(), predicted.getOrigin()), firstContact);
+	return firstContact.hasHit() ? firstContact.m_closestHitFraction : btScalar(1);
+}
 }  // namespace
 
 void btDiscreteDynamicsWorld::saveKinematicState(btScalar timeStep)
@@ -88,8 +97,8 @@ void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
 	{
 		btRigidBody* body = m_nonStaticRigidBodies[i];
 		if (body->getActivationState() == DISABLE_SIMULATION) continue;
-		if (isFinite(body->getWorldTransform()) && isFinite(body->getLinearVelocity()) &&
-		    isFinite(body->getAngularVelocity()))
+		if (caliber::isFinite(body->getWorldTransform()) && caliber::isFinite(body->getLinearVelocity()) &&
+		    caliber::isFinite(body->getAngularVelocity()))
 			continue;
 		// A body whose state is no longer a number would hand NaN to everything it touches: it leaves the
 		// broadphase (so it has no pairs) and the simulation, at its last finite pose when there is one.
@@ -101,10 +110,10 @@ void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
 			    "of the simulation (DISABLE_SIMULATION)\n",
 			    getDebugDrawer());
 		}
-		if (!isFinite(body->getWorldTransform()))
+		if (!caliber::isFinite(body->getWorldTransform()))
 		{
 			btTransform lastPose = body->getInterpolationWorldTransform();
-			if (!isFinite(lastPose)) lastPose.setIdentity();
+			if (!caliber::isFinite(lastPose)) lastPose.setIdentity();
 			body->setWorldTransform(lastPose);
 			body->setInterpolationWorldTransform(lastPose);
 		}
@@ -247,40 +256,21 @@ void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
 
 void btDiscreteDynamicsWorld::integrateTransformsInternal(btRigidBody** bodies, int numBodies, btScalar timeStep)
 {
-	btTransform predictedTrans;
+	btTransform predicted;
 	for (int i = 0; i < numBodies; ++i)
 	{
 		btRigidBody* body = bodies[i];
 		body->setHitFraction(btScalar(1));
 		if (!body->isActive() || body->isStaticOrKinematicObject()) continue;
-		body->predictIntegratedTransform(timeStep, predictedTrans);
-		const btScalar squareMotion = (predictedTrans.getOrigin() - body->getWorldTransform().getOrigin()).length2();
-		// Continuous collision: a body that would move further than its motion threshold in this step
-		// sweeps a sphere of its swept-sphere radius along the way and stops where the sphere first hits.
-		if (getDispatchInfo().m_useContinuous && body->getCcdSquareMotionThreshold() != btScalar(0) &&
-		    body->getCcdSquareMotionThreshold() < squareMotion && body->getCollisionShape()->isConvex() &&
-		    body->getBroadphaseHandle())
+		body->predictIntegratedTransform(timeStep, predicted);
+		const btScalar freeFraction = freeFractionOfStep(*this, *body, predicted);
+		if (freeFraction < btScalar(1))
 		{
-			ClosestNotMeConvexResultCallback sweepResults(body, body->getWorldTransform().getOrigin(),
-			                                              predictedTrans.getOrigin(),
-			                                              getBroadphase()->getOverlappingPairCache(), getDispatcher());
-			btSphereShape sweptSphere(body->getCcdSweptSphereRadius());
-			sweepResults.m_allowedPenetration = getDispatchInfo().m_allowedCcdPenetration;
-			sweepResults.m_collisionFilterGroup = body->getBroadphaseHandle()->m_collisionFilterGroup;
-			sweepResults.m_collisionFilterMask = body->getBroadphaseHandle()->m_collisionFilterMask;
-			btTransform sweepEnd = predictedTrans;
-			sweepEnd.setBasis(body->getWorldTransform().getBasis());
-			convexSweepTest(&sweptSphere, body->getWorldTransform(), sweepEnd, sweepResults);
-			if (sweepResults.hasHit() && sweepResults.m_closestHitFraction < btScalar(1))
-			{
-				body->setHitFraction(sweepResults.m_closestHitFraction);
-				body->predictIntegratedTransform(timeStep * body->getHitFraction(), predictedTrans);
-				body->setHitFraction(btScalar(0));
-				body->proceedToTransform(predictedTrans);
-				continue;
-			}
+			// The body stops where its sphere first touched; hit fraction 0 then says it was clamped.
+			body->predictIntegratedTransform(timeStep * freeFraction, predicted);
+			body->setHitFraction(btScalar(0));
 		}
-		body->proceedToTransform(predictedTrans);
+		body->proceedToTransform(predicted);
 	}
 }
 

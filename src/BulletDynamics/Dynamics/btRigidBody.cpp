@@ -12,8 +12,6 @@ bool gDisableDeactivation = false;
 
 namespace
 {
-bool isFiniteVector(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
 // The angular speed at which a body turns a quarter turn in one step; faster spins are clamped
 // (integrateTransform cannot represent more per step, and such speeds are numerical blow-ups).
 btScalar maxAngularSpeed(btScalar step) { return SIMD_HALF_PI / step; }
@@ -39,54 +37,72 @@ btRigidBody::~btRigidBody()
 void btRigidBody::setupRigidBody(const btRigidBodyConstructionInfo& info)
 {
 	m_internalType = CO_RIGID_BODY;
-	const btVector3 zero(btScalar(0), btScalar(0), btScalar(0));
-	m_linearVelocity = zero;
-	m_angularVelocity = zero;
+
+	// A new body is at rest with nothing pending: no velocity, force, solver delta or split-impulse
+	// velocity; mass and inertia are zero until setMassProps below.
+	static btVector3 btRigidBody::*const kZeroAtStart[] = {
+	    &btRigidBody::m_linearVelocity,
+	    &btRigidBody::m_angularVelocity,
+	    &btRigidBody::m_gravity,
+	    &btRigidBody::m_gravity_acceleration,
+	    &btRigidBody::m_totalForce,
+	    &btRigidBody::m_totalTorque,
+	    &btRigidBody::m_deltaLinearVelocity,
+	    &btRigidBody::m_deltaAngularVelocity,
+	    &btRigidBody::m_pushVelocity,
+	    &btRigidBody::m_turnVelocity,
+	    &btRigidBody::m_invMass,
+	    &btRigidBody::m_invInertiaLocal,
+	    &btRigidBody::m_interpolationLinearVelocity,
+	    &btRigidBody::m_interpolationAngularVelocity,
+	};
+	for (btVector3 btRigidBody::*member : kZeroAtStart) (this->*member).setValue(0, 0, 0);
+	m_inverseMass = btScalar(0);
+	m_invInertiaTensorWorld.setZero();
 	m_linearFactor.setValue(btScalar(1), btScalar(1), btScalar(1));
 	m_angularFactor.setValue(btScalar(1), btScalar(1), btScalar(1));
-	m_gravity = zero;
-	m_gravity_acceleration = zero;
-	m_totalForce = zero;
-	m_totalTorque = zero;
-	m_deltaLinearVelocity = zero;
-	m_deltaAngularVelocity = zero;
-	m_pushVelocity = zero;
-	m_turnVelocity = zero;
-	m_inverseMass = btScalar(0);
-	m_invMass = zero;
-	m_invInertiaLocal = zero;
-	m_invInertiaTensorWorld.setZero();
-	setDamping(info.m_linearDamping, info.m_angularDamping);
-	m_linearSleepingThreshold = info.m_linearSleepingThreshold;
-	m_angularSleepingThreshold = info.m_angularSleepingThreshold;
+
+	// Settings the construction info hands over unchanged.
+	struct CopiedSetting
+	{
+		btScalar btRigidBody::*body;
+		btScalar btRigidBodyConstructionInfo::*info;
+	};
+	static const CopiedSetting kCopied[] = {
+	    {&btRigidBody::m_friction, &btRigidBodyConstructionInfo::m_friction},
+	    {&btRigidBody::m_rollingFriction, &btRigidBodyConstructionInfo::m_rollingFriction},
+	    {&btRigidBody::m_spinningFriction, &btRigidBodyConstructionInfo::m_spinningFriction},
+	    {&btRigidBody::m_restitution, &btRigidBodyConstructionInfo::m_restitution},
+	    {&btRigidBody::m_linearSleepingThreshold, &btRigidBodyConstructionInfo::m_linearSleepingThreshold},
+	    {&btRigidBody::m_angularSleepingThreshold, &btRigidBodyConstructionInfo::m_angularSleepingThreshold},
+	    {&btRigidBody::m_additionalDampingFactor, &btRigidBodyConstructionInfo::m_additionalDampingFactor},
+	    {&btRigidBody::m_additionalLinearDampingThresholdSqr,
+	     &btRigidBodyConstructionInfo::m_additionalLinearDampingThresholdSqr},
+	    {&btRigidBody::m_additionalAngularDampingThresholdSqr,
+	     &btRigidBodyConstructionInfo::m_additionalAngularDampingThresholdSqr},
+	    {&btRigidBody::m_additionalAngularDampingFactor,
+	     &btRigidBodyConstructionInfo::m_additionalAngularDampingFactor},
+	};
+	for (const CopiedSetting& setting : kCopied) this->*setting.body = info.*setting.info;
+	m_additionalDamping = info.m_additionalDamping;
 	m_optionalMotionState = info.m_motionState;
 	m_contactSolverType = 0;
 	m_frictionSolverType = 0;
-	m_additionalDamping = info.m_additionalDamping;
-	m_additionalDampingFactor = info.m_additionalDampingFactor;
-	m_additionalLinearDampingThresholdSqr = info.m_additionalLinearDampingThresholdSqr;
-	m_additionalAngularDampingThresholdSqr = info.m_additionalAngularDampingThresholdSqr;
-	m_additionalAngularDampingFactor = info.m_additionalAngularDampingFactor;
+	setDamping(info.m_linearDamping, info.m_angularDamping);  // clamped to [0, 1]
 
+	// The motion state, when there is one, knows where the body starts; the info's transform otherwise.
 	if (m_optionalMotionState)
 		m_optionalMotionState->getWorldTransform(m_worldTransform);
 	else
 		m_worldTransform = info.m_startWorldTransform;
 	m_interpolationWorldTransform = m_worldTransform;
-	m_interpolationLinearVelocity = zero;
-	m_interpolationAngularVelocity = zero;
 
-	m_friction = info.m_friction;
-	m_rollingFriction = info.m_rollingFriction;
-	m_spinningFriction = info.m_spinningFriction;
-	m_restitution = info.m_restitution;
 	setCollisionShape(info.m_collisionShape);
-
-	static int uniqueBodyId = 0;
-	m_debugBodyId = uniqueBodyId++;
+	static int nextDebugBodyId = 0;
+	m_debugBodyId = nextDebugBodyId++;
 	// The implicit body-space gyroscopic term is stable at any spin rate, so it is on by default.
 	m_rigidbodyFlags = BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY;
-
+	// Needs the pose and the zero gravity acceleration set above.
 	setMassProps(info.m_mass, info.m_localInertia);
 	updateInertiaTensor();
 	m_updateRevision = 0;
@@ -173,8 +189,8 @@ void btRigidBody::applyDamping(btScalar timeStep)
 
 void btRigidBody::setGravity(const btVector3& acceleration)
 {
-	btAssert(isFiniteVector(acceleration) && "btRigidBody::setGravity: non-finite acceleration");
-	if (!isFiniteVector(acceleration)) return;
+	btAssert(caliber::isFinite(acceleration) && "btRigidBody::setGravity: non-finite acceleration");
+	if (!caliber::isFinite(acceleration)) return;
 	if (m_inverseMass != btScalar(0)) m_gravity = acceleration * (btScalar(1) / m_inverseMass);
 	m_gravity_acceleration = acceleration;
 }
@@ -193,44 +209,44 @@ void btRigidBody::clearGravity()
 
 void btRigidBody::applyCentralForce(const btVector3& force)
 {
-	btAssert(isFiniteVector(force) && "btRigidBody: non-finite force");
-	if (!isFiniteVector(force)) return;
+	btAssert(caliber::isFinite(force) && "btRigidBody: non-finite force");
+	if (!caliber::isFinite(force)) return;
 	m_totalForce += force * m_linearFactor;
 }
 
 void btRigidBody::applyTorque(const btVector3& torque)
 {
-	btAssert(isFiniteVector(torque) && "btRigidBody: non-finite torque");
-	if (!isFiniteVector(torque)) return;
+	btAssert(caliber::isFinite(torque) && "btRigidBody: non-finite torque");
+	if (!caliber::isFinite(torque)) return;
 	m_totalTorque += torque * m_angularFactor;
 }
 
 void btRigidBody::applyForce(const btVector3& force, const btVector3& rel_pos)
 {
-	btAssert(isFiniteVector(force) && isFiniteVector(rel_pos) && "btRigidBody: non-finite force or point");
-	if (!isFiniteVector(force) || !isFiniteVector(rel_pos)) return;
+	btAssert(caliber::isFinite(force) && caliber::isFinite(rel_pos) && "btRigidBody: non-finite force or point");
+	if (!caliber::isFinite(force) || !caliber::isFinite(rel_pos)) return;
 	applyCentralForce(force);
 	applyTorque(rel_pos.cross(force * m_linearFactor));
 }
 
 void btRigidBody::applyCentralImpulse(const btVector3& impulse)
 {
-	btAssert(isFiniteVector(impulse) && "btRigidBody: non-finite impulse");
-	if (!isFiniteVector(impulse)) return;
+	btAssert(caliber::isFinite(impulse) && "btRigidBody: non-finite impulse");
+	if (!caliber::isFinite(impulse)) return;
 	m_linearVelocity += impulse * m_linearFactor * m_inverseMass;
 }
 
 void btRigidBody::applyTorqueImpulse(const btVector3& torque)
 {
-	btAssert(isFiniteVector(torque) && "btRigidBody: non-finite torque impulse");
-	if (!isFiniteVector(torque)) return;
+	btAssert(caliber::isFinite(torque) && "btRigidBody: non-finite torque impulse");
+	if (!caliber::isFinite(torque)) return;
 	m_angularVelocity += m_invInertiaTensorWorld * torque * m_angularFactor;
 }
 
 void btRigidBody::applyImpulse(const btVector3& impulse, const btVector3& rel_pos)
 {
-	btAssert(isFiniteVector(impulse) && isFiniteVector(rel_pos) && "btRigidBody: non-finite impulse or point");
-	if (!isFiniteVector(impulse) || !isFiniteVector(rel_pos)) return;
+	btAssert(caliber::isFinite(impulse) && caliber::isFinite(rel_pos) && "btRigidBody: non-finite impulse or point");
+	if (!caliber::isFinite(impulse) || !caliber::isFinite(rel_pos)) return;
 	if (m_inverseMass == btScalar(0)) return;
 	applyCentralImpulse(impulse);
 	applyTorqueImpulse(rel_pos.cross(impulse * m_linearFactor));
@@ -245,16 +261,16 @@ void btRigidBody::applyPushImpulse(const btVector3& impulse, const btVector3& re
 
 void btRigidBody::setLinearVelocity(const btVector3& lin_vel)
 {
-	btAssert(isFiniteVector(lin_vel) && "btRigidBody::setLinearVelocity: non-finite velocity");
-	if (!isFiniteVector(lin_vel)) return;
+	btAssert(caliber::isFinite(lin_vel) && "btRigidBody::setLinearVelocity: non-finite velocity");
+	if (!caliber::isFinite(lin_vel)) return;
 	m_updateRevision++;
 	m_linearVelocity = lin_vel;
 }
 
 void btRigidBody::setAngularVelocity(const btVector3& ang_vel)
 {
-	btAssert(isFiniteVector(ang_vel) && "btRigidBody::setAngularVelocity: non-finite velocity");
-	if (!isFiniteVector(ang_vel)) return;
+	btAssert(caliber::isFinite(ang_vel) && "btRigidBody::setAngularVelocity: non-finite velocity");
+	if (!caliber::isFinite(ang_vel)) return;
 	m_updateRevision++;
 	m_angularVelocity = ang_vel;
 }

@@ -20,8 +20,45 @@ btSimpleDynamicsWorld::btSimpleDynamicsWorld(btDispatcher* dispatcher, btBroadph
 
 btSimpleDynamicsWorld::~btSimpleDynamicsWorld() {}
 
+namespace
+{
+// Contacts for the moved bodies, with the step's length on record for the algorithms that read it.
+void findContacts(btCollisionWorld& world, btScalar timeStep)
+{
+	btDispatcherInfo& dispatchInfo = world.getDispatchInfo();
+	dispatchInfo.m_debugDraw = world.getDebugDrawer();
+	dispatchInfo.m_stepCount = 0;
+	dispatchInfo.m_timeStep = timeStep;
+	world.performDiscreteCollisionDetection();
+}
+
+// The simple world has no islands and no joints: every dynamic body and every manifold go to the
+// solver as one group. bodies is scratch that keeps its capacity from step to step.
+void solveContactsAsOneGroup(btCollisionWorld& world, btConstraintSolver& solver, btContactSolverInfo info,
+                             btScalar timeStep, btAlignedObjectArray<btCollisionObject*>& bodies)
+{
+	bodies.resize(0);
+	const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+	for (int i = 0; i < objects.size(); ++i)
+	{
+		btRigidBody* body = btRigidBody::upcast(objects[i]);
+		if (body && !body->isStaticOrKinematicObject()) bodies.push_back(body);
+	}
+	btDispatcher* dispatcher = world.getDispatcher();
+	const int numManifolds = dispatcher->getNumManifolds();
+	btPersistentManifold** manifolds = numManifolds ? dispatcher->getInternalManifoldPointer() : 0;
+	btCollisionObject** bodyArray = bodies.size() ? &bodies[0] : 0;
+	info.m_timeStep = timeStep;
+	solver.prepareSolve(bodies.size(), numManifolds);
+	solver.solveGroup(bodyArray, bodies.size(), manifolds, numManifolds, 0, 0, info, world.getDebugDrawer(),
+	                  dispatcher);
+	solver.allSolved(info, world.getDebugDrawer());
+}
+}  // namespace
+
 int btSimpleDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
 {
+	// One step of exactly timeStep: this world does not substep.
 	(void)maxSubSteps;
 	(void)fixedTimeStep;
 	const bool valid = btIsFinite(timeStep) && timeStep >= btScalar(0);
@@ -34,29 +71,8 @@ int btSimpleDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, bt
 	if (timeStep == btScalar(0) || !m_constraintSolver) return 0;
 
 	predictUnconstraintMotion(timeStep);
-	btDispatcherInfo& dispatchInfo = getDispatchInfo();
-	dispatchInfo.m_timeStep = timeStep;
-	dispatchInfo.m_stepCount = 0;
-	dispatchInfo.m_debugDraw = getDebugDrawer();
-	performDiscreteCollisionDetection();
-
-	// Every body and manifold in one group (the array keeps its capacity from step to step).
-	btAlignedObjectArray<btCollisionObject*>& bodies = m_solverBodies;
-	bodies.resize(0);
-	for (int i = 0; i < m_collisionObjects.size(); ++i)
-	{
-		btRigidBody* body = btRigidBody::upcast(m_collisionObjects[i]);
-		if (body && !body->isStaticOrKinematicObject()) bodies.push_back(body);
-	}
-	const int numManifolds = m_dispatcher1->getNumManifolds();
-	btPersistentManifold** manifolds = numManifolds ? m_dispatcher1->getInternalManifoldPointer() : 0;
-	btContactSolverInfo info = getSolverInfo();
-	info.m_timeStep = timeStep;
-	m_constraintSolver->prepareSolve(bodies.size(), numManifolds);
-	m_constraintSolver->solveGroup(bodies.size() ? &bodies[0] : 0, bodies.size(), manifolds, numManifolds, 0, 0, info,
-	                               getDebugDrawer(), m_dispatcher1);
-	m_constraintSolver->allSolved(info, getDebugDrawer());
-
+	findContacts(*this, timeStep);
+	solveContactsAsOneGroup(*this, *m_constraintSolver, getSolverInfo(), timeStep, m_solverBodies);
 	integrateTransforms(timeStep);
 	updateAabbs();
 	synchronizeMotionStates();
