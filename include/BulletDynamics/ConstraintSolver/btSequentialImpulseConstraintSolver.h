@@ -142,6 +142,8 @@ protected:
 	/// The restitution pass, after the velocity sweeps: every bouncing row that took an impulse is driven
 	/// to its rebound velocity (accumulated impulse kept >= 0).
 	void solveRestitution(const btContactSolverInfo& infoGlobal);
+	/// Whether any row of the manifold that contact row `row` belongs to took an impulse this step.
+	bool manifoldWasMet(int row) const;
 	/// One last sweep from the ground up, each contact holding its lower body fixed, in islands where a
 	/// contact joins bodies of very different masses (heavy on light).
 	void propagateShock(const btContactSolverInfo& infoGlobal);

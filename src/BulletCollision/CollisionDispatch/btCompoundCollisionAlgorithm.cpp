@@ -59,10 +59,11 @@ struct CompoundChildVisitor : public btDbvt::ICollide
 		btCollisionAlgorithm*& algorithm = m_childAlgorithms[index];
 		if (!algorithm)
 		{
-			const ebtDispatcherQueryType queryType = m_resultOut->m_closestPointDistanceThreshold > 0
-			                                             ? BT_CLOSEST_POINT_ALGORITHMS
-			                                             : BT_CONTACT_POINT_ALGORITHMS;
-			algorithm = m_dispatcher->findAlgorithm(wrap0, wrap1, m_sharedManifold, queryType);
+			// Always the contact algorithm: it is cached for the pair's life, and a contact distance above
+			// zero is the normal case here (the dispatcher's speculative reach for any moving pair). The
+			// closest-point table would give two boxes a one-point GJK algorithm for good, and a compound
+			// landing flat on such points turns and slides. Contact algorithms honour the distance too.
+			algorithm = m_dispatcher->findAlgorithm(wrap0, wrap1, m_sharedManifold, BT_CONTACT_POINT_ALGORITHMS);
 			if (!algorithm) return;
 		}
 		const btCollisionObjectWrapper* saved0 = m_resultOut->getBody0Wrap();

@@ -100,8 +100,8 @@ void btCompoundCompoundCollisionAlgorithm::processCollision(const btCollisionObj
 	btAlignedObjectArray<int>& near0 = m_near0;
 	btAlignedObjectArray<int>& near1 = m_near1;
 	childrenNear(compound0, body0Wrap->getWorldTransform(), min1, max1, stack2, near0);
-	const ebtDispatcherQueryType queryType =
-	    resultOut->m_closestPointDistanceThreshold > 0 ? BT_CLOSEST_POINT_ALGORITHMS : BT_CONTACT_POINT_ALGORITHMS;
+	// The contact algorithms, as for a compound against a convex (see btCompoundCollisionAlgorithm.cpp).
+	const ebtDispatcherQueryType queryType = BT_CONTACT_POINT_ALGORITHMS;
 	const btCollisionObjectWrapper* saved0 = resultOut->getBody0Wrap();
 	const btCollisionObjectWrapper* saved1 = resultOut->getBody1Wrap();
 	for (int a = 0; a < near0.size(); ++a)

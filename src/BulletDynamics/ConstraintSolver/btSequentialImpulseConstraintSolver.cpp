@@ -4,6 +4,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Dynamics/btSpinMomentum.h"
 #include "LinearMath/btQuickprof.h"
 #include "LinearMath/btTransformUtil.h"
 
@@ -383,15 +384,34 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
 	return m_leastSquaresResidual;
 }
 
+bool btSequentialImpulseConstraintSolver::manifoldWasMet(int row) const
+{
+	// m_manifoldFirstRow is ascending, with one past the last row at the end: find the range of row.
+	int lo = 0, hi = m_manifoldFirstRow.size() - 1;
+	while (hi - lo > 1)
+	{
+		const int mid = (lo + hi) / 2;
+		if (m_manifoldFirstRow[mid] <= row)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	for (int r = m_manifoldFirstRow[lo]; r < m_manifoldFirstRow[hi]; ++r)
+		if (m_tmpSolverContactConstraintPool[r].m_appliedImpulse > btScalar(0)) return true;
+	return false;
+}
+
 void btSequentialImpulseConstraintSolver::solveRestitution(const btContactSolverInfo& infoGlobal)
 {
-	// Only contacts that were met this step bounce: a speculative row that never took an impulse was
-	// not reached (its gap was not closed), and one whose impulse went back to zero was kept apart by
-	// others.
+	// Only contacts that were met this step bounce: a manifold none of whose rows took an impulse was not
+	// reached (a speculative gap that was never closed) or was held apart by others. The whole manifold
+	// counts, not each row: a face landing flat is often stopped by one or two of its points, and a
+	// rebound from those alone would turn the body.
 	int numBouncing = 0;
 	for (int i = 0; i < m_bounceRows.size(); ++i)
-		if (m_tmpSolverContactConstraintPool[m_bounceRows[i].row].m_appliedImpulse > btScalar(0))
-			m_bounceRows[numBouncing++] = m_bounceRows[i];
+	{
+		if (manifoldWasMet(m_bounceRows[i].row)) m_bounceRows[numBouncing++] = m_bounceRows[i];
+	}
 	m_bounceRows.resize(numBouncing);
 	if (numBouncing == 0) return;
 	BT_PROFILE("solveRestitution");
@@ -474,6 +494,10 @@ void btSequentialImpulseConstraintSolver::writeBackBodies(int iBegin, int iEnd, 
 			btTransformUtil::integrateTransform(solverBody.m_worldTransform, solverBody.m_pushVelocity,
 			                                    solverBody.m_turnVelocity * infoGlobal.m_splitImpulseTurnErp,
 			                                    infoGlobal.m_timeStep, moved);
+			// A push that turns the body keeps its angular momentum, as a free turn does.
+			if (caliber::spinFollowsAngularMomentum(*body) && !solverBody.m_turnVelocity.fuzzyZero())
+				body->setAngularVelocity(
+				    caliber::angularVelocityAfterTurn(*body, solverBody.m_worldTransform.getBasis(), moved.getBasis()));
 			body->setWorldTransform(moved);
 		}
 	}

@@ -9,6 +9,7 @@
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btSpinMomentum.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btQuickprof.h"
@@ -154,7 +155,9 @@ void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
 				                    timeStep;
 			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD)
 				gyroscopicChange += body->computeGyroscopicImpulseImplicit_World(timeStep);
-			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY)
+			// The default implicit flag is applied when the body turns (integrateTransformsInternal), as
+			// conservation of angular momentum; bodies that do not turn freely keep Bullet's Newton step.
+			if ((flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) && !caliber::spinFollowsAngularMomentum(*body))
 				gyroscopicChange += body->computeGyroscopicImpulseImplicit_Body(timeStep);
 			body->integrateVelocities(timeStep);
 			if (!gyroscopicChange.fuzzyZero())
@@ -262,15 +265,33 @@ void btDiscreteDynamicsWorld::integrateTransformsInternal(btRigidBody** bodies, 
 		btRigidBody* body = bodies[i];
 		body->setHitFraction(btScalar(1));
 		if (!body->isActive() || body->isStaticOrKinematicObject()) continue;
-		body->predictIntegratedTransform(timeStep, predicted);
+		// A body whose spin follows its angular momentum turns freely (btSpinMomentum.h); others turn by
+		// their angular velocity, as in Bullet.
+		const bool freeTurn = caliber::spinFollowsAngularMomentum(*body);
+		btVector3 angularVelocityAfter = body->getAngularVelocity();
+		if (freeTurn)
+		{
+			btQuaternion orientation;
+			caliber::turnFreely(*body, body->getOrientation(), timeStep, orientation, angularVelocityAfter);
+			predicted.setOrigin(body->getCenterOfMassPosition() + body->getLinearVelocity() * timeStep);
+			predicted.setRotation(orientation);
+		}
+		else
+		{
+			body->predictIntegratedTransform(timeStep, predicted);
+		}
 		const btScalar freeFraction = freeFractionOfStep(*this, *body, predicted);
 		if (freeFraction < btScalar(1))
 		{
 			// The body stops where its sphere first touched; hit fraction 0 then says it was clamped.
 			body->predictIntegratedTransform(timeStep * freeFraction, predicted);
 			body->setHitFraction(btScalar(0));
+			if (freeTurn)
+				angularVelocityAfter = caliber::angularVelocityAfterTurn(*body, body->getWorldTransform().getBasis(),
+				                                                         predicted.getBasis());
 		}
 		body->proceedToTransform(predicted);
+		if (freeTurn) body->setAngularVelocity(angularVelocityAfter);
 	}
 }
 

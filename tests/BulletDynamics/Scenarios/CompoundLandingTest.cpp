@@ -72,9 +72,12 @@ TEST(CompoundLanding, PrincipalAxisCompoundLandsFlatWhereItFalls)
 
 TEST(CompoundLanding, PrincipalAxisCompoundBouncesWithoutTurning)
 {
-	// The same with restitution 0.5: the eight points of the landing face rebound together, so the
-	// compound leaves the ground without a turn. (It still lands 1.7 mm aside after its bounces, from
-	// the friction of the unconverged velocity sweeps at the impact; see docs/rigid-body-dynamics.md.)
+	// The same with restitution 0.5: the eight points of the landing face rebound together. Ideally it
+	// leaves the ground without any turn. What remains (0.1 degrees about the vertical, measured) is the
+	// friction the landing's velocity sweeps apply while they spread the impact unevenly over the eight
+	// points; 0.25 degrees guards against the rebound itself turning the body, as it did when only the
+	// points that took an impulse rebounded, or when the children had one-point manifolds (0.6 to 9
+	// degrees).
 	const Landing bouncing = dropDumbbell(btScalar(0.5));
-	EXPECT_LT(bouncing.turnDegrees, btScalar(0.05));
+	EXPECT_LT(bouncing.turnDegrees, btScalar(0.25));
 }
