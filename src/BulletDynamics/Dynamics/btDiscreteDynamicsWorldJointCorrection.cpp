@@ -165,7 +165,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
                                     const btAlignedObjectArray<btTypedConstraint*>& constraints,
                                     WorldStepContext& context)
 {
-	const int sweeps = world.getSolverInfo().m_jointPositionIterations;
+	const int sweeps = context.jointPositionIterations;
 	if (sweeps <= 0 || constraints.size() == 0) return;
 	BT_PROFILE("correctJointPositions");
 	const int S = btSolverJointBlock::MAX_ROWS;

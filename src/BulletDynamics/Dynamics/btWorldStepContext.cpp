@@ -2,6 +2,8 @@
 // Each world's step context, kept beside the world rather than in it (see btWorldStepContext.h).
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 
+#include "Caliber/JointPositionCorrection.h"
+
 #include "LinearMath/btSideTable.h"
 
 namespace caliber
@@ -12,4 +14,14 @@ WorldStepContext& stepContextOf(const btDiscreteDynamicsWorld& world)
 }
 
 void releaseStepContext(const btDiscreteDynamicsWorld& world) { sideTable<WorldStepContext>().release(&world); }
+
+void setJointPositionIterations(btDiscreteDynamicsWorld& world, int iterations)
+{
+	stepContextOf(world).jointPositionIterations = iterations;
+}
+
+int getJointPositionIterations(const btDiscreteDynamicsWorld& world)
+{
+	return stepContextOf(world).jointPositionIterations;
+}
 }  // namespace caliber

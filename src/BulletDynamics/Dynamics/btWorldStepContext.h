@@ -35,6 +35,9 @@ struct WorldStepContext
 	btAlignedObjectArray<btTypedConstraint*> jointCorrectionLeftOver;
 	/// The exact tree solve of the position correction.
 	JointAnchorTree jointAnchorTree;
+	/// Sweeps of the joint position correction after each substep (0: off); see
+	/// include/Caliber/JointPositionCorrection.h.
+	int jointPositionIterations = 3;
 };
 
 /// world's step context, made on first use.
@@ -53,7 +56,7 @@ void sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
                              const btAlignedObjectArray<btTypedConstraint*>& constraints,
                              btAlignedObjectArray<btTypedConstraint*>& sorted, WorldStepContext& context);
 /// Moves jointed bodies so that their joints' equality rows hold at the new positions (velocities are
-/// left alone): getSolverInfo().m_jointPositionIterations sweeps.
+/// left alone): context.jointPositionIterations sweeps.
 void correctJointPositions(btDiscreteDynamicsWorld& world, const btAlignedObjectArray<btTypedConstraint*>& constraints,
                            WorldStepContext& context);
 }  // namespace caliber
