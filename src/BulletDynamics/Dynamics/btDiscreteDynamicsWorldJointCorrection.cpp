@@ -7,6 +7,7 @@
 // joint's equality rows solved as one block at the bodies' current poses (nonlinear Gauss-Seidel on
 // positions). Velocities are left alone, so no energy is added.
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btJointPositionPass.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
@@ -184,7 +185,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 	for (int c = 0; c < constraints.size(); ++c)
 	{
 		btTypedConstraint* constraint = constraints[c];
-		if (constraint->isEnabled() && constraint->internalCorrectsPosition()) joints.push_back(constraint);
+		if (constraint->isEnabled() && caliber::correctsPosition(*constraint)) joints.push_back(constraint);
 	}
 	if (joints.size() == 0) return;
 	bool treeMoved = true;
@@ -200,7 +201,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 		for (int c = 0; c < joints.size(); ++c)
 		{
 			btVector3 unusedA, unusedB;
-			if (!joints[c]->internalGetAnchors(unusedA, unusedB)) leftOver.push_back(joints[c]);
+			if (!caliber::jointAnchors(*joints[c], unusedA, unusedB)) leftOver.push_back(joints[c]);
 		}
 		for (int c = 0; c < leftOver.size(); ++c)
 		{
@@ -209,7 +210,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 			btRigidBody& b = constraint->getRigidBodyB();
 			if (!movable(a) && !movable(b)) continue;
 			btVector3 anchorInA, anchorInB;
-			if (constraint->internalGetAnchors(anchorInA, anchorInB))
+			if (caliber::jointAnchors(*constraint, anchorInA, anchorInB))
 			{
 				if (closeAnchors(a, b, anchorInA, anchorInB))
 				{
@@ -254,8 +255,10 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 			info2.m_upperLimit = &rows->m_upperLimit;
 			info2.m_numIterations = world.getSolverInfo().m_numIterations;
 			info2.m_damping = btScalar(1);
-			info2.m_isPositionPass = true;
-			constraint->getInfo2(&info2);
+			{
+				caliber::JointPositionPassScope positionPass;
+				constraint->getInfo2(&info2);
+			}
 
 			// The equality rows (leading, unbounded), solved exactly as a block, and the one-sided limit rows
 			// ([0, inf) bounds), which must not be pushed through by the block's correction. Motor rows

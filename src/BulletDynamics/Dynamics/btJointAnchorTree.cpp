@@ -2,6 +2,7 @@
 #include "btJointAnchorTree.h"
 
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btJointPositionPass.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
 namespace caliber
@@ -97,7 +98,7 @@ void JointAnchorTree::gatherEdges(btTypedConstraint** joints, int numJoints,
 	{
 		btTypedConstraint* joint = joints[j];
 		btVector3 anchorInA, anchorInB;
-		if (!joint->internalGetAnchors(anchorInA, anchorInB)) continue;
+		if (!caliber::jointAnchors(*joint, anchorInA, anchorInB)) continue;
 		btRigidBody& a = joint->getRigidBodyA();
 		btRigidBody& b = joint->getRigidBodyB();
 		const int ia = indexOf(a), ib = indexOf(b);
