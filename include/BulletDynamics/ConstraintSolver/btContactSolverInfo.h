@@ -60,10 +60,6 @@ struct btContactSolverInfoData
 	bool m_jointFeedbackInJointFrame;
 	int m_reportSolverAnalytics;
 	int m_numNonContactInnerIterations;
-	/// Caliber: sweeps of the joint position correction after each step (0: off). Each sweep moves the
-	/// bodies of every joint so that its equality rows hold at the new positions, without changing
-	/// velocities, which takes out the drift that velocity rows cannot see (see docs/constraints.md).
-	int m_jointPositionIterations;
 };
 
 /// btContactSolverInfoData with Bullet's defaults.
@@ -104,7 +100,6 @@ struct btContactSolverInfo : public btContactSolverInfoData
 		m_jointFeedbackInJointFrame = false;
 		m_reportSolverAnalytics = 0;
 		m_numNonContactInnerIterations = 1;
-		m_jointPositionIterations = 3;
 	}
 };
 

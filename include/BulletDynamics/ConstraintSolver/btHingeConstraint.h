@@ -161,14 +161,6 @@ public:
 	void setParam(int num, btScalar value, int axis = -1) override;
 	btScalar getParam(int num, int axis = -1) const override;
 	int getFlags() const { return m_flags; }
-	/// The pivots, for the world's anchor-only position correction.
-	bool internalGetAnchors(btVector3 & anchorInA, btVector3 & anchorInB) const override
-	{
-		if (m_angularOnly) return false;
-		anchorInA = m_rbAFrame.getOrigin();
-		anchorInB = m_rbBFrame.getOrigin();
-		return true;
-	}
 };
 
 /// A hinge whose angle keeps counting past +-pi (getAccumulatedHingeAngle), for motors and limits that

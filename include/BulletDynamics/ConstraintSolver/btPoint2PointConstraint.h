@@ -64,13 +64,6 @@ public:
 	void setParam(int num, btScalar value, int axis = -1) override;
 	btScalar getParam(int num, int axis = -1) const override;
 	int getFlags() const { return m_flags; }
-	/// The pivots, for the world's anchor-only position correction.
-	bool internalGetAnchors(btVector3 & anchorInA, btVector3 & anchorInB) const override
-	{
-		anchorInA = m_pivotInA;
-		anchorInB = m_pivotInB;
-		return true;
-	}
 };
 
 #endif  // BT_POINT2POINT_CONSTRAINT_H

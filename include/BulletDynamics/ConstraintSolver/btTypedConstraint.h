@@ -93,11 +93,6 @@ protected:
 	/// addition: joints converge faster when they start from last step's answer, as contacts do).
 	btAlignedObjectArray<btScalar> m_warmStartImpulses;
 
-	/// Set by Caliber's own joints, whose equality rows report their position error as
-	/// fps * erp * error: the world may then correct their positions after the step. User-written joints
-	/// keep it false unless they follow that convention.
-	bool m_correctsPosition;
-
 	/// How strongly a motor may still push at position pos between lowLim and uppLim: 1 well inside,
 	/// falling to 0 at the limit it is driving towards (so a motor does not fight its own limit).
 	btScalar getMotorFactor(btScalar pos, btScalar lowLim, btScalar uppLim, btScalar vel, btScalar timeFact);
@@ -135,9 +130,6 @@ public:
 		btScalar *m_lowerLimit, *m_upperLimit;
 		int m_numIterations;
 		btScalar m_damping;
-		/// Caliber: true when the world's joint position correction asks (fps = erp = 1, so each
-		/// equality row's target is its position error); velocity-only terms are then left out.
-		bool m_isPositionPass;
 	};
 
 	int getOverrideNumSolverIterations() const { return m_overrideNumSolverIterations; }
@@ -171,17 +163,6 @@ public:
 
 	/// The solver's warm-start store for this joint's rows (internal).
 	btAlignedObjectArray<btScalar>& internalGetWarmStartImpulses() { return m_warmStartImpulses; }
-	/// Whether the world's joint position correction applies to this joint (see m_correctsPosition).
-	bool internalCorrectsPosition() const { return m_correctsPosition; }
-	/// For joints that hold one point of A on one point of B: those points in A's and B's centre-of-mass
-	/// frames, for the world's cheap anchor-only position correction. Other joints return false and are
-	/// corrected through their rows.
-	virtual bool internalGetAnchors(btVector3 & anchorInA, btVector3 & anchorInB) const
-	{
-		(void)anchorInA;
-		(void)anchorInB;
-		return false;
-	}
 
 	btScalar getBreakingImpulseThreshold() const { return m_breakingImpulseThreshold; }
 	/// The joint breaks (is disabled) in the step in which one of its rows needs an impulse of at least

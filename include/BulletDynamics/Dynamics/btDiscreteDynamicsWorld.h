@@ -5,7 +5,6 @@
 /// btDiscreteDynamicsWorld: the rigid-body world. The step, stage by stage, with the file of each, is
 /// drawn in docs/architecture.md; the dynamics in docs/rigid-body-dynamics.md.
 
-#include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
 #include "BulletDynamics/Dynamics/btDynamicsWorld.h"
 #include "LinearMath/btAlignedObjectArray.h"
 
@@ -15,10 +14,6 @@ class btSimulationIslandManager;
 class btTypedConstraint;
 class btPersistentManifold;
 struct InplaceSolverIslandCallback;
-namespace caliber
-{
-class JointAnchorTree;
-}
 
 /// Steps rigid bodies in fixed substeps: predict motion, find contacts, build islands, solve, integrate
 /// (with continuous collision for fast bodies), update actions and sleeping, then hand interpolated
@@ -29,6 +24,8 @@ ATTRIBUTE_ALIGNED16(class)
 btDiscreteDynamicsWorld : public btDynamicsWorld
 {
 protected:
+	/// This step's enabled joints grouped by island (see docs/architecture.md).
+	btAlignedObjectArray<btTypedConstraint*> m_sortedConstraints;
 	InplaceSolverIslandCallback* m_solverIslandCallback;
 	btConstraintSolver* m_constraintSolver;
 	btSimulationIslandManager* m_islandManager;
@@ -45,35 +42,14 @@ protected:
 	btAlignedObjectArray<btActionInterface*> m_actions;
 	int m_profileTimings;
 	bool m_latencyMotionStateInterpolation;
-	/// Set once the "non-finite body" warning has been given (it is given once per world).
-	bool m_reportedNonFiniteBody;
 	/// The joints, in the order they were added.
 	btAlignedObjectArray<btTypedConstraint*> m_constraints;
-	/// This step's enabled joints grouped by island (counting sort), and where each island's group starts.
-	btAlignedObjectArray<btTypedConstraint*> m_sortedConstraints;
-	btAlignedObjectArray<int> m_constraintIslandStart;
-	btAlignedObjectArray<int> m_islandFill;
-	/// Scratch rows of the joint position correction.
-	btConstraintArray m_jointCorrectionRows;
-	btAlignedObjectArray<btRigidBody*> m_jointCorrectedBodies;
-	btAlignedObjectArray<btTypedConstraint*> m_jointCorrectionJoints;
-	btAlignedObjectArray<btTypedConstraint*> m_jointCorrectionLeftOver;
-	/// The exact tree solve of the position correction (internal).
-	caliber::JointAnchorTree* m_jointAnchorTree;
-
-	/// Groups the enabled joints by island for the solver.
-	void sortConstraintsByIsland();
-	/// Whether body takes part in this world's islands (in the world, not static or kinematic).
-	bool isSimulatedHere(const btRigidBody& body) const;
 
 	/// Integrates forces into velocities, applies damping and predicts the end-of-step transforms.
 	virtual void predictUnconstraintMotion(btScalar timeStep);
 	/// Moves the bodies to their end-of-step transforms, clamping fast ones at their time of impact.
 	void integrateTransformsInternal(btRigidBody * *bodies, int numBodies, btScalar timeStep);
 	virtual void integrateTransforms(btScalar timeStep);
-	/// Moves jointed bodies so that their joints' equality rows hold at the new positions (velocities are
-	/// left alone): getSolverInfo().m_jointPositionIterations sweeps.
-	virtual void correctJointPositions();
 	/// Unites touching bodies into islands (and sets their island tags).
 	virtual void calculateSimulationIslands();
 	/// Runs the solver on every awake island.
@@ -86,8 +62,6 @@ protected:
 	virtual void internalSingleStepSimulation(btScalar timeStep);
 	/// Reads kinematic bodies' motion states and derives their velocities.
 	virtual void saveKinematicState(btScalar timeStep);
-	/// Takes bodies whose state became non-finite out of the simulation, with a warning.
-	void quarantineNonFiniteBodies();
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -74,7 +74,6 @@ void btConeTwistConstraint::init()
 	m_dampingSet = false;
 	m_fixThresh = kDefaultFixThreshold;
 	m_flags = 0;
-	m_correctsPosition = true;
 	m_swingRowNeeded = m_twistRowNeeded = false;
 	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_linCFM = 0;
@@ -277,7 +276,7 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 	}
 	// The position pass asks for position errors only: no velocity terms there.
 	const btVector3 relativeAngularVelocity =
-	    info->m_isPositionPass ? btVector3(0, 0, 0) : m_rbA.getAngularVelocity() - m_rbB.getAngularVelocity();
+	    caliber::inJointPositionPass() ? btVector3(0, 0, 0) : m_rbA.getAngularVelocity() - m_rbB.getAngularVelocity();
 	if (m_twistSpan < m_fixThresh)
 	{
 		// The twist grows when B turns about the axis relative to A, so (wA - wB) . x = rate * twist undoes it.
@@ -291,7 +290,7 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 	// velocity into it (relaxation); inside, they are speculative: they allow at most the approach speed
 	// that reaches the limit at the end of the step, so a fast swing stops at the cone instead of
 	// overshooting it by one step's travel.
-	if (!info->m_isPositionPass && info->fps > btScalar(0)) m_lastTimeStep = btScalar(1) / info->fps;
+	if (!caliber::inJointPositionPass() && info->fps > btScalar(0)) m_lastTimeStep = btScalar(1) / info->fps;
 	if (m_swingRowNeeded)
 	{
 		// (wA - wB) . s is the rate at which the swing shrinks.
@@ -318,7 +317,7 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 		if (!m_solveTwistLimit)
 		{
 			const btScalar twistRate = -relativeAngularVelocity.dot(m_twistAxis);
-			const bool towardsPlus = info->m_isPositionPass ? m_twistAngle >= 0 : twistRate >= 0;
+			const bool towardsPlus = caliber::inJointPositionPass() ? m_twistAngle >= 0 : twistRate >= 0;
 			sign = towardsPlus ? btScalar(-1) : btScalar(1);
 		}
 		const btVector3 axis = m_twistAxis * -sign;

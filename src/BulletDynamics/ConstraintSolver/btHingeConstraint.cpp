@@ -63,7 +63,6 @@ void btHingeConstraint::initDefaults(bool useReferenceFrameA)
 	m_motorTargetVelocity = m_maxMotorImpulse = m_hingeAngle = 0;
 	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
 	m_flags = 0;
-	m_correctsPosition = true;
 	m_limitRowNeeded = false;
 	m_lastTimeStep = btScalar(1) / btScalar(60);
 	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
@@ -253,8 +252,8 @@ void btHingeConstraint::getInfo2Internal(btConstraintInfo2* info, const btTransf
 	// Rows about the hinge axis, oriented so that J v is the hinge angle's rate.
 	const btVector3 angleAxis = axisA * m_referenceSign;
 	// The position pass asks for position errors only: no velocity terms there.
-	const btScalar angleRate = info->m_isPositionPass ? btScalar(0) : (angVelA - angVelB).dot(angleAxis);
-	if (!info->m_isPositionPass && info->fps > btScalar(0)) m_lastTimeStep = btScalar(1) / info->fps;
+	const btScalar angleRate = caliber::inJointPositionPass() ? btScalar(0) : (angVelA - angVelB).dot(angleAxis);
+	if (!caliber::inJointPositionPass() && info->fps > btScalar(0)) m_lastTimeStep = btScalar(1) / info->fps;
 	if (m_limitRowNeeded)
 	{
 		// The limit row is there while the hinge is past or near a limit. Past the limit it pushes back (bias) and
@@ -274,7 +273,7 @@ void btHingeConstraint::getInfo2Internal(btConstraintInfo2* info, const btTransf
 		{
 			const btScalar deviation = btNormalizeAngle(m_hingeAngle - m_limit.getCenter());
 			// Guard the limit the hinge is heading for (the nearer one in the position pass).
-			const bool towardsHigh = info->m_isPositionPass ? deviation >= 0 : angleRate >= 0;
+			const bool towardsHigh = caliber::inJointPositionPass() ? deviation >= 0 : angleRate >= 0;
 			const btScalar sign = towardsHigh ? btScalar(-1) : btScalar(1);
 			const btScalar room = sign < 0 ? m_limit.getHalfRange() - deviation : deviation + m_limit.getHalfRange();
 			r.setAngular(angleAxis * sign);

@@ -6,6 +6,7 @@
 // rows from two kinds: a linear row (the relative velocity of two anchor points along a direction) and
 // an angular row (the relative angular velocity about an axis).
 
+#include "BulletDynamics/ConstraintSolver/btJointPositionPass.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 
 namespace caliber
@@ -36,7 +37,7 @@ inline btVector3 linearRowTargets(const btTypedConstraint::btConstraintInfo2& in
                                   const btVector3& armA, const btVector3& angularVelocityA, const btVector3& armB,
                                   const btVector3& angularVelocityB)
 {
-	if (info.m_isPositionPass) return gap * (erp * info.fps);
+	if (inJointPositionPass()) return gap * (erp * info.fps);
 	const btScalar h = btScalar(1) / info.fps;
 	const btVector3 drift = turningDrift(armB, angularVelocityB, h) - turningDrift(armA, angularVelocityA, h);
 	return (gap * erp + drift) * info.fps;

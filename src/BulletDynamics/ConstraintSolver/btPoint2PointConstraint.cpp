@@ -13,7 +13,6 @@ btPoint2PointConstraint::btPoint2PointConstraint(btRigidBody& rbA, btRigidBody& 
       m_cfm(btScalar(0)),
       m_useSolveConstraintObsolete(false)
 {
-	m_correctsPosition = true;
 }
 
 btPoint2PointConstraint::btPoint2PointConstraint(btRigidBody& rbA, const btVector3& pivotInA)
@@ -25,7 +24,6 @@ btPoint2PointConstraint::btPoint2PointConstraint(btRigidBody& rbA, const btVecto
       m_cfm(btScalar(0)),
       m_useSolveConstraintObsolete(false)
 {
-	m_correctsPosition = true;
 }
 
 void btPoint2PointConstraint::getInfo1(btConstraintInfo1* info) { getInfo1NonVirtual(info); }

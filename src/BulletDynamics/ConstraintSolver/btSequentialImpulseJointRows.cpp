@@ -128,7 +128,6 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 	info2.m_upperLimit = &firstRow->m_upperLimit;
 	info2.m_numIterations = infoGlobal.m_numIterations;
 	info2.m_damping = infoGlobal.m_damping;
-	info2.m_isPositionPass = false;
 	constraint->getInfo2(&info2);
 
 	btRigidBody& rbA = constraint->getRigidBodyA();

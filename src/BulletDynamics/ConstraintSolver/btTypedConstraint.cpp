@@ -25,8 +25,7 @@ btTypedConstraint::btTypedConstraint(btTypedConstraintType type, btRigidBody& rb
       m_rbB(getFixedBody()),
       m_appliedImpulse(btScalar(0)),
       m_dbgDrawSize(kDefaultDebugDrawSize),
-      m_jointFeedback(0),
-      m_correctsPosition(false)
+      m_jointFeedback(0)
 {
 }
 
@@ -42,8 +41,7 @@ btTypedConstraint::btTypedConstraint(btTypedConstraintType type, btRigidBody& rb
       m_rbB(rbB),
       m_appliedImpulse(btScalar(0)),
       m_dbgDrawSize(kDefaultDebugDrawSize),
-      m_jointFeedback(0),
-      m_correctsPosition(false)
+      m_jointFeedback(0)
 {
 }
 

@@ -9,8 +9,8 @@
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btActionInterface.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
-#include "BulletDynamics/Dynamics/btJointAnchorTree.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btAlignedObject.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btMotionState.h"
@@ -114,10 +114,9 @@ btDiscreteDynamicsWorld::btDiscreteDynamicsWorld(btDispatcher* dispatcher, btBro
       m_synchronizeAllMotionStates(false),
       m_applySpeculativeContactRestitution(false),
       m_profileTimings(0),
-      m_latencyMotionStateInterpolation(true),
-      m_reportedNonFiniteBody(false),
-      m_jointAnchorTree(new caliber::JointAnchorTree())
+      m_latencyMotionStateInterpolation(true)
 {
+	caliber::stepContextOf(*this);
 	// Declared before the solver it feeds, so made here rather than in the list above.
 	m_solverIslandCallback = caliber::alignedNew<InplaceSolverIslandCallback>(m_constraintSolver, dispatcher);
 }
@@ -127,7 +126,7 @@ btDiscreteDynamicsWorld::~btDiscreteDynamicsWorld()
 	caliber::alignedDelete(m_solverIslandCallback);
 	if (m_ownsIslandManager) caliber::alignedDelete(m_islandManager);
 	if (m_ownsConstraintSolver) caliber::alignedDelete(m_constraintSolver);
-	delete m_jointAnchorTree;
+	caliber::releaseStepContext(*this);
 }
 
 int btDiscreteDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, btScalar fixedTimeStep)
@@ -177,7 +176,10 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	BT_PROFILE("internalSingleStepSimulation");
 	if (m_internalPreTickCallback) (*m_internalPreTickCallback)(this, timeStep);
 
-	quarantineNonFiniteBodies();
+	// Caliber's own stages (quarantine, joint position correction) run from here, so a subclass that
+	// replaces this function gets Bullet's pipeline (docs/architecture.md).
+	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
+	caliber::quarantineNonFiniteBodies(*this, m_nonStaticRigidBodies, context);
 	predictUnconstraintMotion(timeStep);
 
 	btDispatcherInfo& dispatchInfo = getDispatchInfo();
@@ -192,8 +194,8 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	solveConstraints(getSolverInfo());
 
 	integrateTransforms(timeStep);
-	correctJointPositions();
-	quarantineNonFiniteBodies();
+	caliber::correctJointPositions(*this, m_constraints, context);
+	caliber::quarantineNonFiniteBodies(*this, m_nonStaticRigidBodies, context);
 
 	updateActions(timeStep);
 	updateActivationState(timeStep);

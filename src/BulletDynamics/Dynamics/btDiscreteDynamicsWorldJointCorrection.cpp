@@ -7,9 +7,10 @@
 // joint's equality rows solved as one block at the bodies' current poses (nonlinear Gauss-Seidel on
 // positions). Velocities are left alone, so no energy is added.
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btJointPositionPass.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
-#include "BulletDynamics/Dynamics/btJointAnchorTree.h"
+#include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btQuickprof.h"
 
 namespace
@@ -161,59 +162,61 @@ bool closeAnchors(btRigidBody& a, btRigidBody& b, const btVector3& anchorInA, co
 }
 }  // namespace
 
-void btDiscreteDynamicsWorld::correctJointPositions()
+void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
+                                    const btAlignedObjectArray<btTypedConstraint*>& constraints,
+                                    WorldStepContext& context)
 {
-	const int sweeps = getSolverInfo().m_jointPositionIterations;
-	if (sweeps <= 0 || m_constraints.size() == 0) return;
+	const int sweeps = context.jointPositionIterations;
+	if (sweeps <= 0 || constraints.size() == 0) return;
 	BT_PROFILE("correctJointPositions");
 	const int S = btSolverJointBlock::MAX_ROWS;
+	btAlignedObjectArray<btRigidBody*>& correctedBodies = context.jointCorrectedBodies;
+	btAlignedObjectArray<btTypedConstraint*>& joints = context.jointCorrectionJoints;
+	btAlignedObjectArray<btTypedConstraint*>& leftOver = context.jointCorrectionLeftOver;
 	bool anyMoved = false;
-	m_jointCorrectedBodies.resize(0);
+	correctedBodies.resize(0);
 
 	// Each iteration solves every long articulation of anchor joints (chains, ropes) exactly, in linear
 	// time, as one (damped) Newton step. The joints the trees leave out (short articulations such as
 	// ragdolls, joints that close loops, joints without a single anchor, bodies with scaled factors) get
 	// one Gauss-Seidel sweep, in the first iteration: measured on ragdolls136, a second sweep costs 0.4
 	// ms per step and gains nothing visible (pivot errors 2.4 mm max, 0.1 mm mean, after one).
-	m_jointCorrectionJoints.resize(0);
-	for (int c = 0; c < m_constraints.size(); ++c)
+	joints.resize(0);
+	for (int c = 0; c < constraints.size(); ++c)
 	{
-		btTypedConstraint* constraint = m_constraints[c];
-		if (constraint->isEnabled() && constraint->internalCorrectsPosition())
-			m_jointCorrectionJoints.push_back(constraint);
+		btTypedConstraint* constraint = constraints[c];
+		if (constraint->isEnabled() && caliber::correctsPosition(*constraint)) joints.push_back(constraint);
 	}
-	if (m_jointCorrectionJoints.size() == 0) return;
+	if (joints.size() == 0) return;
 	bool treeMoved = true;
 	for (int sweep = 0; sweep < sweeps; ++sweep)
 	{
 		// When no long articulation needed a correction, further iterations would find none either.
 		if (!treeMoved) break;
-		m_jointCorrectionLeftOver.resize(0);
-		treeMoved =
-		    m_jointAnchorTree->solve(&m_jointCorrectionJoints[0], m_jointCorrectionJoints.size(), kTreeMinJoints,
-		                             kNegligibleGap, m_jointCorrectionLeftOver, m_jointCorrectedBodies);
+		leftOver.resize(0);
+		treeMoved = context.jointAnchorTree.solve(&joints[0], joints.size(), kTreeMinJoints, kNegligibleGap, leftOver,
+		                                          correctedBodies);
 		anyMoved = anyMoved || treeMoved;
 		if (sweep > 0) continue;
-		for (int c = 0; c < m_jointCorrectionJoints.size(); ++c)
+		for (int c = 0; c < joints.size(); ++c)
 		{
 			btVector3 unusedA, unusedB;
-			if (!m_jointCorrectionJoints[c]->internalGetAnchors(unusedA, unusedB))
-				m_jointCorrectionLeftOver.push_back(m_jointCorrectionJoints[c]);
+			if (!caliber::jointAnchors(*joints[c], unusedA, unusedB)) leftOver.push_back(joints[c]);
 		}
-		for (int c = 0; c < m_jointCorrectionLeftOver.size(); ++c)
+		for (int c = 0; c < leftOver.size(); ++c)
 		{
-			btTypedConstraint* constraint = m_jointCorrectionLeftOver[c];
+			btTypedConstraint* constraint = leftOver[c];
 			btRigidBody& a = constraint->getRigidBodyA();
 			btRigidBody& b = constraint->getRigidBodyB();
 			if (!movable(a) && !movable(b)) continue;
 			btVector3 anchorInA, anchorInB;
-			if (constraint->internalGetAnchors(anchorInA, anchorInB))
+			if (caliber::jointAnchors(*constraint, anchorInA, anchorInB))
 			{
 				if (closeAnchors(a, b, anchorInA, anchorInB))
 				{
 					anyMoved = true;
-					m_jointCorrectedBodies.push_back(&a);
-					m_jointCorrectedBodies.push_back(&b);
+					correctedBodies.push_back(&a);
+					correctedBodies.push_back(&b);
 				}
 				continue;
 			}
@@ -223,8 +226,8 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 			constraint->getInfo1(&info1);
 			if (info1.m_numConstraintRows <= 0) continue;
 
-			m_jointCorrectionRows.resizeNoInitialize(info1.m_numConstraintRows);
-			btSolverConstraint* rows = &m_jointCorrectionRows[0];
+			context.jointCorrectionRows.resizeNoInitialize(info1.m_numConstraintRows);
+			btSolverConstraint* rows = &context.jointCorrectionRows[0];
 			for (int j = 0; j < info1.m_numConstraintRows; ++j)
 			{
 				btSolverConstraint& row = rows[j];
@@ -250,10 +253,12 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 			info2.cfm = &rows->m_cfm;
 			info2.m_lowerLimit = &rows->m_lowerLimit;
 			info2.m_upperLimit = &rows->m_upperLimit;
-			info2.m_numIterations = getSolverInfo().m_numIterations;
+			info2.m_numIterations = world.getSolverInfo().m_numIterations;
 			info2.m_damping = btScalar(1);
-			info2.m_isPositionPass = true;
-			constraint->getInfo2(&info2);
+			{
+				caliber::JointPositionPassScope positionPass;
+				constraint->getInfo2(&info2);
+			}
 
 			// The equality rows (leading, unbounded), solved exactly as a block, and the one-sided limit rows
 			// ([0, inf) bounds), which must not be pushed through by the block's correction. Motor rows
@@ -292,21 +297,21 @@ void btDiscreteDynamicsWorld::correctJointPositions()
 			if (movable(a)) displace(a, linearA, turnA);
 			if (movable(b)) displace(b, linearB, turnB);
 			anyMoved = true;
-			m_jointCorrectedBodies.push_back(&a);
-			m_jointCorrectedBodies.push_back(&b);
+			correctedBodies.push_back(&a);
+			correctedBodies.push_back(&b);
 		}
 	}
 	if (!anyMoved) return;
 	// The moved poses are the step's result: interpolation starts from them and inertia follows them.
 	// A body is listed once per joint that moved it; the companion id (free outside the solver) marks
 	// the ones done.
-	for (int i = 0; i < m_jointCorrectedBodies.size(); ++i)
+	for (int i = 0; i < correctedBodies.size(); ++i)
 	{
-		btRigidBody* body = m_jointCorrectedBodies[i];
+		btRigidBody* body = correctedBodies[i];
 		if (!movable(*body) || body->getCompanionId() == kCorrectedMark) continue;
 		body->setCompanionId(kCorrectedMark);
 		body->setInterpolationWorldTransform(body->getWorldTransform());
 		body->updateInertiaTensor();
 	}
-	for (int i = 0; i < m_jointCorrectedBodies.size(); ++i) m_jointCorrectedBodies[i]->setCompanionId(-1);
+	for (int i = 0; i < correctedBodies.size(); ++i) correctedBodies[i]->setCompanionId(-1);
 }

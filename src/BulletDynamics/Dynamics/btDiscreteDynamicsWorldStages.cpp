@@ -12,6 +12,7 @@
 #include "BulletDynamics/Dynamics/btSpinMomentum.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btQuickprof.h"
 #include "LinearMath/btWarningHook.h"
 
@@ -92,24 +93,25 @@ void btDiscreteDynamicsWorld::saveKinematicState(btScalar timeStep)
 	}
 }
 
-void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
+void caliber::quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world,
+                                        const btAlignedObjectArray<btRigidBody*>& bodies, WorldStepContext& context)
 {
-	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+	for (int i = 0; i < bodies.size(); ++i)
 	{
-		btRigidBody* body = m_nonStaticRigidBodies[i];
+		btRigidBody* body = bodies[i];
 		if (body->getActivationState() == DISABLE_SIMULATION) continue;
 		if (caliber::isFinite(body->getWorldTransform()) && caliber::isFinite(body->getLinearVelocity()) &&
 		    caliber::isFinite(body->getAngularVelocity()))
 			continue;
 		// A body whose state is no longer a number would hand NaN to everything it touches: it leaves the
 		// broadphase (so it has no pairs) and the simulation, at its last finite pose when there is one.
-		if (!m_reportedNonFiniteBody)
+		if (!context.reportedNonFiniteBody)
 		{
-			m_reportedNonFiniteBody = true;
+			context.reportedNonFiniteBody = true;
 			btReportWarning(
 			    "Caliber: a rigid body's transform or velocity is not finite; the body is taken out "
 			    "of the simulation (DISABLE_SIMULATION)\n",
-			    getDebugDrawer());
+			    world.getDebugDrawer());
 		}
 		if (!caliber::isFinite(body->getWorldTransform()))
 		{
@@ -126,10 +128,11 @@ void btDiscreteDynamicsWorld::quarantineNonFiniteBodies()
 		body->clearForces();
 		body->forceActivationState(DISABLE_SIMULATION);
 		btBroadphaseProxy* proxy = body->getBroadphaseHandle();
-		if (proxy && getBroadphase())
+		btBroadphaseInterface* broadphase = world.getBroadphase();
+		if (proxy && broadphase)
 		{
-			getBroadphase()->getOverlappingPairCache()->cleanProxyFromPairs(proxy, getDispatcher());
-			getBroadphase()->destroyProxy(proxy, getDispatcher());
+			broadphase->getOverlappingPairCache()->cleanProxyFromPairs(proxy, world.getDispatcher());
+			broadphase->destroyProxy(proxy, world.getDispatcher());
 			body->setBroadphaseHandle(0);
 		}
 	}
@@ -184,7 +187,7 @@ void btDiscreteDynamicsWorld::calculateSimulationIslands()
 		if (!constraint->isEnabled()) continue;
 		const btRigidBody& a = constraint->getRigidBodyA();
 		const btRigidBody& b = constraint->getRigidBodyB();
-		if (!isSimulatedHere(a) || !isSimulatedHere(b)) continue;
+		if (!caliber::isSimulatedIn(*this, a) || !caliber::isSimulatedIn(*this, b)) continue;
 		const int tagA = a.getIslandTag(), tagB = b.getIslandTag();
 		if (tagA >= 0 && tagB >= 0 && tagA < unionFind.getNumElements() && tagB < unionFind.getNumElements())
 			unionFind.unite(tagA, tagB);
@@ -192,52 +195,59 @@ void btDiscreteDynamicsWorld::calculateSimulationIslands()
 	getSimulationIslandManager()->storeIslandActivationState(getCollisionWorld());
 }
 
-bool btDiscreteDynamicsWorld::isSimulatedHere(const btRigidBody& body) const
+bool caliber::isSimulatedIn(const btCollisionWorld& world, const btRigidBody& body)
 {
 	if (body.isStaticOrKinematicObject()) return false;
 	const int index = body.getWorldArrayIndex();
-	return index >= 0 && index < m_collisionObjects.size() && m_collisionObjects[index] == &body;
+	const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+	return index >= 0 && index < objects.size() && objects[index] == &body;
 }
 
-void btDiscreteDynamicsWorld::sortConstraintsByIsland()
+void caliber::sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
+                                      const btAlignedObjectArray<btTypedConstraint*>& constraints,
+                                      btAlignedObjectArray<btTypedConstraint*>& sorted, WorldStepContext& context)
 {
 	// A joint belongs to the island of its simulated body (A, or B when A is static, kinematic or the
 	// fixed body). Joints whose bodies are both outside the simulation have nothing to move.
-	const int numIslands = getSimulationIslandManager()->getUnionFind().getNumElements();
-	m_constraintIslandStart.resize(0);
-	m_constraintIslandStart.resize(numIslands + 1, 0);
-	m_sortedConstraints.resize(0);
-	const bool splitIslands = getSimulationIslandManager()->getSplitIslands();
-	for (int i = 0; i < m_constraints.size(); ++i)
+	const int numIslands = world.getSimulationIslandManager()->getUnionFind().getNumElements();
+	btAlignedObjectArray<int>& islandStart = context.constraintIslandStart;
+	btAlignedObjectArray<int>& islandFill = context.islandFill;
+	islandStart.resize(0);
+	islandStart.resize(numIslands + 1, 0);
+	sorted.resize(0);
+	const bool splitIslands = world.getSimulationIslandManager()->getSplitIslands();
+	for (int i = 0; i < constraints.size(); ++i)
 	{
-		btTypedConstraint* constraint = m_constraints[i];
+		btTypedConstraint* constraint = constraints[i];
 		if (!constraint->isEnabled()) continue;
 		const btRigidBody& a = constraint->getRigidBodyA();
 		const btRigidBody& b = constraint->getRigidBodyB();
-		const int island = isSimulatedHere(a) ? a.getIslandTag() : (isSimulatedHere(b) ? b.getIslandTag() : -1);
+		const int island =
+		    isSimulatedIn(world, a) ? a.getIslandTag() : (isSimulatedIn(world, b) ? b.getIslandTag() : -1);
 		if (island < 0 || island >= numIslands) continue;
 		if (!splitIslands)
 		{
-			m_sortedConstraints.push_back(constraint);
+			sorted.push_back(constraint);
 			continue;
 		}
-		++m_constraintIslandStart[island + 1];
+		++islandStart[island + 1];
 	}
 	if (!splitIslands) return;
-	for (int i = 0; i < numIslands; ++i) m_constraintIslandStart[i + 1] += m_constraintIslandStart[i];
-	m_sortedConstraints.resize(m_constraintIslandStart[numIslands]);
+	for (int i = 0; i < numIslands; ++i) islandStart[i + 1] += islandStart[i];
+	sorted.resize(islandStart[numIslands]);
 	// Second pass: place each joint after those of its island already placed (stable: insertion order).
-	m_islandFill.resize(0);
-	m_islandFill.resize(numIslands, 0);
-	for (int i = 0; i < m_constraints.size(); ++i)
+	islandFill.resize(0);
+	islandFill.resize(numIslands, 0);
+	for (int i = 0; i < constraints.size(); ++i)
 	{
-		btTypedConstraint* constraint = m_constraints[i];
+		btTypedConstraint* constraint = constraints[i];
 		if (!constraint->isEnabled()) continue;
 		const btRigidBody& a = constraint->getRigidBodyA();
 		const btRigidBody& b = constraint->getRigidBodyB();
-		const int island = isSimulatedHere(a) ? a.getIslandTag() : (isSimulatedHere(b) ? b.getIslandTag() : -1);
+		const int island =
+		    isSimulatedIn(world, a) ? a.getIslandTag() : (isSimulatedIn(world, b) ? b.getIslandTag() : -1);
 		if (island < 0 || island >= numIslands) continue;
-		m_sortedConstraints[m_constraintIslandStart[island] + m_islandFill[island]++] = constraint;
+		sorted[islandStart[island] + islandFill[island]++] = constraint;
 	}
 }
 
@@ -245,11 +255,12 @@ void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
 {
 	BT_PROFILE("solveConstraints");
 	const int numManifolds = getDispatcher()->getNumManifolds();
-	sortConstraintsByIsland();
+	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
+	caliber::sortConstraintsByIsland(*this, m_constraints, m_sortedConstraints, context);
 	m_solverIslandCallback->setup(&solverInfo, getDebugDrawer());
 	m_solverIslandCallback->setConstraints(m_sortedConstraints.size() ? &m_sortedConstraints[0] : 0,
-	                                       m_sortedConstraints.size(), &m_constraintIslandStart[0],
-	                                       m_constraintIslandStart.size() - 1);
+	                                       m_sortedConstraints.size(), &context.constraintIslandStart[0],
+	                                       context.constraintIslandStart.size() - 1);
 	m_constraintSolver->prepareSolve(getCollisionWorld()->getNumCollisionObjects(), numManifolds);
 	m_islandManager->buildAndProcessIslands(getCollisionWorld()->getDispatcher(), getCollisionWorld(),
 	                                        m_solverIslandCallback);

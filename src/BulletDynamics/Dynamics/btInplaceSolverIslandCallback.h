@@ -26,7 +26,7 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 	btAlignedObjectArray<btCollisionObject*> m_bodies;
 	btAlignedObjectArray<btPersistentManifold*> m_manifolds;
 	btAlignedObjectArray<btTypedConstraint*> m_gatheredConstraints;
-	// The step's joints grouped by island (see btDiscreteDynamicsWorld::sortConstraintsByIsland).
+	// The step's joints grouped by island (see caliber::sortConstraintsByIsland).
 	btTypedConstraint** m_sortedConstraints;
 	int m_numConstraints;
 	const int* m_islandConstraintStart;

@@ -2,6 +2,7 @@
 #include "btJointAnchorTree.h"
 
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btJointPositionPass.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
 namespace caliber
@@ -60,6 +61,26 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
                             btAlignedObjectArray<btTypedConstraint*>& leftOver,
                             btAlignedObjectArray<btRigidBody*>& movedBodies)
 {
+	gatherEdges(joints, numJoints, leftOver);
+	if (m_edges.size() == 0) return false;
+	chooseArticulations(minJoints, minGap);
+	if (!buildSpanningForest(leftOver)) return false;
+	orderNodesFromRoots();
+	assembleBlocks();
+	if (!eliminateLeavesFirst())
+	{
+		for (int e = 0; e < m_edges.size(); ++e)
+			if (m_edgeUsed[e]) leftOver.push_back(m_edges[e].joint);
+		return false;
+	}
+	substituteRootsFirst();
+	moveBodies(movedBodies);
+	return true;
+}
+
+void JointAnchorTree::gatherEdges(btTypedConstraint** joints, int numJoints,
+                                  btAlignedObjectArray<btTypedConstraint*>& leftOver)
+{
 	m_bodies.resize(0);
 	m_edges.resize(0);
 	// Bodies get consecutive indices through their companion id (free outside the solver), reset at the end.
@@ -77,7 +98,7 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 	{
 		btTypedConstraint* joint = joints[j];
 		btVector3 anchorInA, anchorInB;
-		if (!joint->internalGetAnchors(anchorInA, anchorInB)) continue;
+		if (!caliber::jointAnchors(*joint, anchorInA, anchorInB)) continue;
 		btRigidBody& a = joint->getRigidBodyA();
 		btRigidBody& b = joint->getRigidBodyB();
 		const int ia = indexOf(a), ib = indexOf(b);
@@ -98,10 +119,12 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 		e.gap = worldA - worldB;
 		m_edges.push_back(e);
 	}
-	const int numBodies = m_bodies.size(), numEdges = m_edges.size();
-	for (int i = 0; i < numBodies; ++i) m_bodies[i]->setCompanionId(-1);
-	if (numEdges == 0) return false;
+	for (int i = 0; i < m_bodies.size(); ++i) m_bodies[i]->setCompanionId(-1);
+}
 
+void JointAnchorTree::chooseArticulations(int minJoints, btScalar minGap)
+{
+	const int numBodies = m_bodies.size(), numEdges = m_edges.size();
 	// Which articulations are worth an exact solve: those with at least minJoints joints (shorter ones
 	// converge in a Gauss-Seidel sweep or two) and a gap above minGap. Components of bodies here do
 	// not pass through the world.
@@ -132,6 +155,11 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 		const int root = find(m_edges[e].bodyA >= 0 ? m_edges[e].bodyA : m_edges[e].bodyB);
 		m_edgeUsed[e] = m_componentJoints[root] >= minJoints && m_componentGap[root] > minGap * minGap;
 	}
+}
+
+bool JointAnchorTree::buildSpanningForest(btAlignedObjectArray<btTypedConstraint*>& leftOver)
+{
+	const int numBodies = m_bodies.size(), numEdges = m_edges.size();
 	for (int i = 0; i <= numBodies; ++i) m_unionFind[i] = i;
 	m_edgeStart.resize(0);
 	m_edgeStart.resize(numBodies + 1, 0);
@@ -169,8 +197,12 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 
 	bool anyUsed = false;
 	for (int e = 0; e < numEdges && !anyUsed; ++e) anyUsed = m_edgeUsed[e] != 0;
-	if (!anyUsed) return false;
+	return anyUsed;
+}
 
+void JointAnchorTree::orderNodesFromRoots()
+{
+	const int numBodies = m_bodies.size(), numEdges = m_edges.size();
 	// Breadth-first from the roots: a tree hanging from the world starts at its world joint, a free one
 	// at its first body. Parents come before children, so the reverse order eliminates leaves first.
 	m_nodes.resize(0);
@@ -223,7 +255,10 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 			}
 		}
 	}
+}
 
+void JointAnchorTree::assembleBlocks()
+{
 	// Diagonal blocks and right-hand sides: bodies M (mass, world inertia) and 0; joints 0 and the gap.
 	const int numNodes = m_nodes.size();
 	m_d.resize(numNodes * S * S);
@@ -256,7 +291,21 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 			for (int k = 0; k < 3; ++k) z[k] = gap[k];
 		}
 	}
+}
 
+void JointAnchorTree::couplingToParent(int i, btScalar* g) const
+{
+	const Node& node = m_nodes[i];
+	const Node& parent = m_nodes[node.parent];
+	const Edge& edge = m_edges[node.edge >= 0 ? node.edge : parent.edge];
+	const int body = node.body >= 0 ? node.body : parent.body;
+	const bool isA = edge.bodyA == body;
+	coupling(isA ? btScalar(1) : btScalar(-1), isA ? edge.armA : edge.armB, g);
+}
+
+bool JointAnchorTree::eliminateLeavesFirst()
+{
+	const int numNodes = m_nodes.size();
 	// Elimination, leaves first: each node's Schur complement goes to its parent.
 	btScalar g[3 * S], product[S * S];
 	for (int i = numNodes - 1; i >= 0; --i)
@@ -264,18 +313,9 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 		const Node& node = m_nodes[i];
 		const int dim = node.body >= 0 ? 6 : 3;
 		btScalar* inverse = &m_dInverse[i * S * S];
-		if (!invert(&m_d[i * S * S], dim, inverse))
-		{
-			for (int e = 0; e < numEdges; ++e)
-				if (m_edgeUsed[e]) leftOver.push_back(m_edges[e].joint);
-			return false;
-		}
+		if (!invert(&m_d[i * S * S], dim, inverse)) return false;
 		if (node.parent < 0) continue;
-		const Node& parent = m_nodes[node.parent];
-		const Edge& edge = m_edges[node.edge >= 0 ? node.edge : parent.edge];
-		const int body = node.body >= 0 ? node.body : parent.body;
-		const bool isA = edge.bodyA == body;
-		coupling(isA ? btScalar(1) : btScalar(-1), isA ? edge.armA : edge.armB, g);
+		couplingToParent(i, g);
 		btScalar* dParent = &m_d[node.parent * S * S];
 		btScalar* zParent = &m_z[node.parent * S];
 		const btScalar* z = &m_z[i * S];
@@ -326,7 +366,13 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 				for (int k = 0; k < 6; ++k) zParent[r] -= product[r * S + k] * z[k];
 		}
 	}
+	return true;
+}
 
+void JointAnchorTree::substituteRootsFirst()
+{
+	const int numNodes = m_nodes.size();
+	btScalar g[3 * S];
 	// Back substitution, roots first: y = D^-1 (z - H_{i,parent} y_parent).
 	for (int i = 0; i < numNodes; ++i)
 	{
@@ -336,11 +382,7 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 		for (int k = 0; k < dim; ++k) rhs[k] = m_z[i * S + k];
 		if (node.parent >= 0)
 		{
-			const Node& parent = m_nodes[node.parent];
-			const Edge& edge = m_edges[node.edge >= 0 ? node.edge : parent.edge];
-			const int body = node.body >= 0 ? node.body : parent.body;
-			const bool isA = edge.bodyA == body;
-			coupling(isA ? btScalar(1) : btScalar(-1), isA ? edge.armA : edge.armB, g);
+			couplingToParent(i, g);
 			const btScalar* yParent = &m_y[node.parent * S];
 			if (node.edge >= 0)
 				for (int r = 0; r < 3; ++r)
@@ -357,7 +399,11 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 			m_y[i * S + r] = sum;
 		}
 	}
+}
 
+void JointAnchorTree::moveBodies(btAlignedObjectArray<btRigidBody*>& movedBodies)
+{
+	const int numNodes = m_nodes.size();
 	// A linearised step is only trusted for small turns: if some body would turn by more than
 	// kMaxTurn, the whole step is shortened (a damped Newton step), the Gauss-Seidel sweeps do the rest.
 	btScalar largestTurn = 0;
@@ -388,6 +434,5 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
 		}
 		movedBodies.push_back(&body);
 	}
-	return true;
 }
 }  // namespace caliber

@@ -52,6 +52,28 @@ private:
 	btAlignedObjectArray<btScalar> m_d, m_dInverse, m_z, m_y;  // 36, 36, 6, 6 per node
 
 	int find(int i);
+
+	// The steps of solve, in order.
+	/// One edge per anchor joint with a movable body (bodies indexed in m_bodies); joints touching a body
+	/// the tree cannot take go to leftOver.
+	void gatherEdges(btTypedConstraint** joints, int numJoints, btAlignedObjectArray<btTypedConstraint*>& leftOver);
+	/// Marks (m_edgeUsed) the edges of the articulations worth an exact solve.
+	void chooseArticulations(int minJoints, btScalar minGap);
+	/// Keeps a spanning forest of the marked edges (the world as one more vertex) and lists each body's
+	/// forest edges; loop-closing and unmarked joints go to leftOver. False if no edge is kept.
+	bool buildSpanningForest(btAlignedObjectArray<btTypedConstraint*>& leftOver);
+	/// Lays out m_nodes breadth-first from the roots, parents before children.
+	void orderNodesFromRoots();
+	/// Fills each node's diagonal block (bodies: mass and world inertia) and right-hand side (joints: gap).
+	void assembleBlocks();
+	/// The 3 x 6 coupling block between node i and its parent, into g (stride 6).
+	void couplingToParent(int i, btScalar* g) const;
+	/// Eliminates leaves first, each node's Schur complement into its parent; false on a singular block.
+	bool eliminateLeavesFirst();
+	/// Back substitution, roots first, into m_y.
+	void substituteRootsFirst();
+	/// Moves the bodies by m_y, the whole step shortened if some body would turn too far.
+	void moveBodies(btAlignedObjectArray<btRigidBody*>& movedBodies);
 };
 }  // namespace caliber
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "Caliber/JointPositionCorrection.h"
 #include "JointTestUtil.h"
 
 using caliber_test::CrossingTimer;
@@ -275,7 +276,7 @@ TEST(TypedConstraint, OverrideIterationsTightenOneJoint)
 		TestWorld w(btVector3(0, -kG, 0));
 		w.world()->getSolverInfo().m_numIterations = 1;
 		// The velocity solve alone: the position correction would close the chain in either case.
-		w.world()->getSolverInfo().m_jointPositionIterations = 0;
+		caliber::setJointPositionIterations(*w.world(), 0);
 		btCollisionShape* ball = w.shape<btSphereShape>(btScalar(0.05));
 		btRigidBody* previous = 0;
 		std::vector<btPoint2PointConstraint*> joints;

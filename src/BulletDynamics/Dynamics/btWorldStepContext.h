@@ -1,0 +1,64 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_WORLD_STEP_CONTEXT_H
+#define CALIBER_WORLD_STEP_CONTEXT_H
+
+// The state and the stages Caliber adds to btDiscreteDynamicsWorld's step. btDiscreteDynamicsWorld
+// declares exactly Bullet's members; what Caliber needs besides lives in a WorldStepContext, one per
+// world, found through a side table (LinearMath/btSideTable.h) once per substep. The stages here are
+// called from Bullet's stages (internalSingleStepSimulation, solveConstraints), so a subclass that
+// replaces one of those gets Bullet's behaviour for it (docs/architecture.md).
+
+#include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
+#include "BulletDynamics/Dynamics/btJointAnchorTree.h"
+#include "LinearMath/btAlignedObjectArray.h"
+
+class btCollisionWorld;
+class btDiscreteDynamicsWorld;
+class btRigidBody;
+class btTypedConstraint;
+
+namespace caliber
+{
+/// One world's Caliber-only step state, reused from step to step.
+struct WorldStepContext
+{
+	/// Set once the "non-finite body" warning has been given (it is given once per world).
+	bool reportedNonFiniteBody = false;
+	/// Where each island's joints start in the world's m_sortedConstraints (plus one past the last), and
+	/// the counting sort's fill cursor per island.
+	btAlignedObjectArray<int> constraintIslandStart;
+	btAlignedObjectArray<int> islandFill;
+	/// Scratch of the joint position correction.
+	btConstraintArray jointCorrectionRows;
+	btAlignedObjectArray<btRigidBody*> jointCorrectedBodies;
+	btAlignedObjectArray<btTypedConstraint*> jointCorrectionJoints;
+	btAlignedObjectArray<btTypedConstraint*> jointCorrectionLeftOver;
+	/// The exact tree solve of the position correction.
+	JointAnchorTree jointAnchorTree;
+	/// Sweeps of the joint position correction after each substep (0: off); see
+	/// include/Caliber/JointPositionCorrection.h.
+	int jointPositionIterations = 3;
+};
+
+/// world's step context, made on first use.
+WorldStepContext& stepContextOf(const btDiscreteDynamicsWorld& world);
+/// Drops world's step context (from the world's destructor).
+void releaseStepContext(const btDiscreteDynamicsWorld& world);
+
+/// Whether body takes part in world's islands (in the world, not static or kinematic).
+bool isSimulatedIn(const btCollisionWorld& world, const btRigidBody& body);
+/// Takes bodies whose state became non-finite out of the simulation, with a warning (once per world).
+void quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world, const btAlignedObjectArray<btRigidBody*>& bodies,
+                               WorldStepContext& context);
+/// Groups the enabled joints by island into sorted (counting sort, stable), with each island's start in
+/// context.constraintIslandStart.
+void sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
+                             const btAlignedObjectArray<btTypedConstraint*>& constraints,
+                             btAlignedObjectArray<btTypedConstraint*>& sorted, WorldStepContext& context);
+/// Moves jointed bodies so that their joints' equality rows hold at the new positions (velocities are
+/// left alone): context.jointPositionIterations sweeps.
+void correctJointPositions(btDiscreteDynamicsWorld& world, const btAlignedObjectArray<btTypedConstraint*>& constraints,
+                           WorldStepContext& context);
+}  // namespace caliber
+
+#endif  // CALIBER_WORLD_STEP_CONTEXT_H
