@@ -10,6 +10,7 @@
 
 #include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
 #include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
 namespace
@@ -33,6 +34,16 @@ struct PairIdLess
 		return caliberPairKey(a.m_pProxy0, a.m_pProxy1) < caliberPairKey(b.m_pProxy0, b.m_pProxy1);
 	}
 };
+
+// The first manifold an algorithm reports (the one its processCollision reads first), or 0. The pair loop
+// asks through getAllContactManifolds, which every algorithm has, so that a prefetch needs nothing from
+// the algorithm classes beyond Bullet's interface.
+const btPersistentManifold* firstManifoldOf(btCollisionAlgorithm* algorithm, btManifoldArray& scratch)
+{
+	scratch.resize(0);
+	algorithm->getAllContactManifolds(scratch);
+	return scratch.size() ? scratch[0] : 0;
+}
 }  // namespace
 
 btHashedOverlappingPairCache::btHashedOverlappingPairCache() : m_overlapFilterCallback(0), m_ghostPairCallback(0)
@@ -198,6 +209,7 @@ btBroadphasePair* btHashedOverlappingPairCache::findPair(btBroadphaseProxy* prox
 void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher)
 {
 	if (!callback) return;
+	btManifoldArray aheadManifolds;  // scratch for firstManifoldOf
 	for (int i = 0; i < m_pairs.size();)
 	{
 		// The callback may add or remove pairs (reallocating or reordering the array), so nothing is held
@@ -228,15 +240,13 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 				__builtin_prefetch(object);
 				__builtin_prefetch(object + 64);
 			}
-			const btPersistentManifold* manifold =
-			    static_cast<const btPersistentManifold*>(ahead.m_algorithm->caliberPrefetchHint());
-			if (manifold) manifold->caliberPrefetchHeader();
+			if (const btPersistentManifold* manifold = firstManifoldOf(ahead.m_algorithm, aheadManifolds))
+				caliber::prefetchManifoldHeader(manifold);
 		}
 		if (i + 2 < m_pairs.size() && m_pairs[i + 2].m_algorithm)
 		{
-			const btPersistentManifold* manifold =
-			    static_cast<const btPersistentManifold*>(m_pairs[i + 2].m_algorithm->caliberPrefetchHint());
-			if (manifold) manifold->caliberPrefetchPoints();
+			if (const btPersistentManifold* manifold = firstManifoldOf(m_pairs[i + 2].m_algorithm, aheadManifolds))
+				caliber::prefetchManifoldPoints(manifold);
 		}
 #endif
 		if (callback->processOverlap(pair)) removeOverlappingPair(proxy0, proxy1, dispatcher);

@@ -19,7 +19,6 @@ btBoxBoxCollisionAlgorithm::btBoxBoxCollisionAlgorithm(btPersistentManifold* mf,
 		m_manifoldPtr = m_dispatcher->getNewManifold(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
 		m_ownManifold = true;
 	}
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btBoxBoxCollisionAlgorithm::~btBoxBoxCollisionAlgorithm()

@@ -163,7 +163,6 @@ btConvexConvexAlgorithm::btConvexConvexAlgorithm(btPersistentManifold* mf,
       m_lastSeparatingAxis(btScalar(0), btScalar(1), btScalar(0)),
       m_haveLastSeparatingAxis(false)
 {
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btConvexConvexAlgorithm::~btConvexConvexAlgorithm()
@@ -183,7 +182,6 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		// A full manifold pool without dynamic allocation gives none: the pair is skipped this step.
 		if (!m_manifoldPtr) return;
 		m_ownManifold = true;
-		m_caliberPrefetchHint = m_manifoldPtr;
 	}
 	caliberPrefetchManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
