@@ -2,6 +2,7 @@
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxDetector.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
@@ -31,7 +32,7 @@ void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper
                                                   const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
 	if (!m_manifoldPtr || !resultOut) return;
-	caliberPrefetchManifold(m_manifoldPtr);
+	caliber::prefetchWholeManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{

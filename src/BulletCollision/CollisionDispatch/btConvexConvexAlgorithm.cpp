@@ -2,6 +2,7 @@
 #include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
@@ -183,7 +184,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		if (!m_manifoldPtr) return;
 		m_ownManifold = true;
 	}
-	caliberPrefetchManifold(m_manifoldPtr);
+	caliber::prefetchWholeManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{
