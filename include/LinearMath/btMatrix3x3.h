@@ -269,9 +269,9 @@ SIMD_FORCE_INLINE btVector3 operator*(const btVector3& v, const btMatrix3x3& m)
 	// v.x row0 + v.y row1 + v.z row2, summed in the order of tdotx: no transpose through memory.
 	const __m128 a = v.get128();
 	const __m128 sum = _mm_add_ps(
-	    _mm_add_ps(_mm_mul_ps(m[0].get128(), caliberSplat(a, 0)), _mm_mul_ps(m[1].get128(), caliberSplat(a, 1))),
-	    _mm_mul_ps(m[2].get128(), caliberSplat(a, 2)));
-	return btVector3(caliberClearW(sum));
+	    _mm_add_ps(_mm_mul_ps(m[0].get128(), CALIBER_SPLAT(a, 0)), _mm_mul_ps(m[1].get128(), CALIBER_SPLAT(a, 1))),
+	    _mm_mul_ps(m[2].get128(), CALIBER_SPLAT(a, 2)));
+	return btVector3(CALIBER_CLEAR_W(sum));
 #else
 	return btVector3(m.tdotx(v), m.tdoty(v), m.tdotz(v));
 #endif
@@ -286,9 +286,9 @@ SIMD_FORCE_INLINE btMatrix3x3 operator*(const btMatrix3x3& m1, const btMatrix3x3
 	for (int i = 0; i < 3; ++i)
 	{
 		const __m128 row = m1[i].get128();
-		const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(caliberSplat(row, 0), m2[0].get128()),
-		                                         _mm_mul_ps(caliberSplat(row, 1), m2[1].get128())),
-		                              _mm_mul_ps(caliberSplat(row, 2), m2[2].get128()));
+		const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(CALIBER_SPLAT(row, 0), m2[0].get128()),
+		                                         _mm_mul_ps(CALIBER_SPLAT(row, 1), m2[1].get128())),
+		                              _mm_mul_ps(CALIBER_SPLAT(row, 2), m2[2].get128()));
 		result[i] = btVector3(sum);
 	}
 	return result;
@@ -374,7 +374,7 @@ SIMD_FORCE_INLINE btMatrix3x3 btMatrix3x3::transposeTimes(const btMatrix3x3& m) 
 		const __m128 sum = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(m_el[0][i]), m[0].get128()),
 		                                         _mm_mul_ps(_mm_set1_ps(m_el[1][i]), m[1].get128())),
 		                              _mm_mul_ps(_mm_set1_ps(m_el[2][i]), m[2].get128()));
-		result[i] = btVector3(caliberClearW(sum));
+		result[i] = btVector3(CALIBER_CLEAR_W(sum));
 	}
 #else
 	for (int i = 0; i < 3; ++i)

@@ -26,9 +26,10 @@
 typedef __m128 btSimdFloat4;
 // Lane selector for _mm_shuffle_ps: result lanes take (a, b, c, d).
 #define CALIBER_SHUFFLE(a, b, c, d) (((d) << 6) | ((c) << 4) | ((b) << 2) | (a))
-#define caliberSplat(v, lane) _mm_shuffle_ps((v), (v), CALIBER_SHUFFLE(lane, lane, lane, lane))
+// Broadcasts one lane of v to all four.
+#define CALIBER_SPLAT(v, lane) _mm_shuffle_ps((v), (v), CALIBER_SHUFFLE(lane, lane, lane, lane))
 // Clears the w lane in registers (writing m_floats[3] instead would stall on store forwarding).
-#define caliberClearW(v) _mm_and_ps((v), _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)))
+#define CALIBER_CLEAR_W(v) _mm_and_ps((v), _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)))
 #endif
 
 struct btVector3FloatData;
@@ -114,7 +115,7 @@ public:
 	{
 		btAssert(s != btScalar(0.0));
 #ifdef BT_USE_SSE
-		mVec128 = caliberClearW(_mm_div_ps(mVec128, _mm_set1_ps(s)));
+		mVec128 = CALIBER_CLEAR_W(_mm_div_ps(mVec128, _mm_set1_ps(s)));
 #else
 		m_floats[0] /= s;
 		m_floats[1] /= s;
@@ -141,8 +142,8 @@ public:
 	{
 #ifdef BT_USE_SSE
 		const __m128 products = _mm_mul_ps(mVec128, v.mVec128);
-		__m128 sum = _mm_add_ss(products, caliberSplat(products, 1));
-		sum = _mm_add_ss(sum, caliberSplat(products, 2));
+		__m128 sum = _mm_add_ss(products, CALIBER_SPLAT(products, 1));
+		sum = _mm_add_ss(sum, CALIBER_SPLAT(products, 2));
 		return _mm_cvtss_f32(sum);
 #else
 		return m_floats[0] * v.m_floats[0] + m_floats[1] * v.m_floats[1] + m_floats[2] * v.m_floats[2];
@@ -220,7 +221,7 @@ public:
 		const __m128 a_yzx = _mm_shuffle_ps(mVec128, mVec128, CALIBER_SHUFFLE(1, 2, 0, 3));
 		const __m128 b_yzx = _mm_shuffle_ps(v.mVec128, v.mVec128, CALIBER_SHUFFLE(1, 2, 0, 3));
 		const __m128 c = _mm_sub_ps(_mm_mul_ps(mVec128, b_yzx), _mm_mul_ps(a_yzx, v.mVec128));
-		const btVector3 result(caliberClearW(_mm_shuffle_ps(c, c, CALIBER_SHUFFLE(1, 2, 0, 3))));
+		const btVector3 result(CALIBER_CLEAR_W(_mm_shuffle_ps(c, c, CALIBER_SHUFFLE(1, 2, 0, 3))));
 		return result;
 #else
 		return btVector3(m_floats[1] * v.m_floats[2] - m_floats[2] * v.m_floats[1],
@@ -392,7 +393,7 @@ SIMD_FORCE_INLINE btVector3 operator-(const btVector3& v)
 {
 #ifdef BT_USE_SSE
 	const __m128 signBit = _mm_castsi128_ps(_mm_set1_epi32(int(0x80000000u)));
-	return btVector3(caliberClearW(_mm_xor_ps(v.mVec128, signBit)));
+	return btVector3(CALIBER_CLEAR_W(_mm_xor_ps(v.mVec128, signBit)));
 #else
 	return btVector3(-v.m_floats[0], -v.m_floats[1], -v.m_floats[2]);
 #endif
@@ -413,7 +414,7 @@ SIMD_FORCE_INLINE btVector3 operator/(const btVector3& v, const btScalar& s)
 SIMD_FORCE_INLINE btVector3 operator/(const btVector3& v1, const btVector3& v2)
 {
 #ifdef BT_USE_SSE
-	return btVector3(caliberClearW(_mm_div_ps(v1.mVec128, v2.mVec128)));
+	return btVector3(CALIBER_CLEAR_W(_mm_div_ps(v1.mVec128, v2.mVec128)));
 #else
 	return btVector3(v1.m_floats[0] / v2.m_floats[0], v1.m_floats[1] / v2.m_floats[1], v1.m_floats[2] / v2.m_floats[2]);
 #endif

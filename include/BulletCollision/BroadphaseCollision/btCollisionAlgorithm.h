@@ -42,15 +42,10 @@ class btCollisionAlgorithm
 protected:
 	/// The dispatcher that made the algorithm.
 	btDispatcher* m_dispatcher;
-	/// Caliber: the memory processCollision reads first (its manifold), or 0. The pair loop prefetches it
-	/// a few pairs ahead, since manifolds are scattered over the heap.
-	const void* m_caliberPrefetchHint;
 
 public:
 	/// An algorithm without a dispatcher.
-	btCollisionAlgorithm() : m_dispatcher(0), m_caliberPrefetchHint(0) {}
-	/// Caliber: see m_caliberPrefetchHint.
-	const void* caliberPrefetchHint() const { return m_caliberPrefetchHint; }
+	btCollisionAlgorithm() : m_dispatcher(0) {}
 	/// An algorithm bound to ci's dispatcher.
 	btCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci);
 	/// Algorithms are destroyed through base pointers.

@@ -121,13 +121,19 @@ public:
 	                                const btDispatcherInfo& dispatchInfo) override;
 
 	/// First pair (0 when empty).
-	btBroadphasePair* getOverlappingPairArrayPtr() override { return m_pairs.size() ? &m_pairs[0] : 0; }
+	btBroadphasePair* getOverlappingPairArrayPtr() override
+	{
+		return m_overlappingPairArray.size() ? &m_overlappingPairArray[0] : 0;
+	}
 	/// First pair (0 when empty).
-	const btBroadphasePair* getOverlappingPairArrayPtr() const override { return m_pairs.size() ? &m_pairs[0] : 0; }
+	const btBroadphasePair* getOverlappingPairArrayPtr() const override
+	{
+		return m_overlappingPairArray.size() ? &m_overlappingPairArray[0] : 0;
+	}
 	/// The pair array (do not add or remove through it; edit m_algorithm and m_internalInfo1 freely).
-	btBroadphasePairArray& getOverlappingPairArray() override { return m_pairs; }
+	btBroadphasePairArray& getOverlappingPairArray() override { return m_overlappingPairArray; }
 	/// The pair array.
-	const btBroadphasePairArray& getOverlappingPairArray() const { return m_pairs; }
+	const btBroadphasePairArray& getOverlappingPairArray() const { return m_overlappingPairArray; }
 
 	/// Destroys the pair's algorithm and returns its memory to the dispatcher (nothing without a dispatcher).
 	void cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher) override;
@@ -135,9 +141,9 @@ public:
 	btBroadphasePair* findPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) override;
 
 	/// Number of pairs (Bullet's name).
-	int GetCount() const { return m_pairs.size(); }
+	int GetCount() const { return m_overlappingPairArray.size(); }
 	/// Number of pairs.
-	int getNumOverlappingPairs() const override { return m_pairs.size(); }
+	int getNumOverlappingPairs() const override { return m_overlappingPairArray.size(); }
 
 	/// The user's filter, or 0.
 	btOverlapFilterCallback* getOverlapFilterCallback() override { return m_overlapFilterCallback; }
@@ -154,25 +160,24 @@ public:
 	bool hasDeferredRemoval() override { return false; }
 
 protected:
-	/// Index of the stored pair with this key and these (ordered) proxies, or -1.
-	int findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1) const;
-	/// The hash table slot holding pair index pairIndex (which must be stored).
-	int findSlotOfPair(int pairIndex) const;
-	/// Removes the pair at index (table and array); the algorithm must already be freed.
-	void removePairAt(int index);
-	/// Rebuilds the hash table with at least minSlots slots (a power of two) from m_pairKeys.
-	void rebuildTable(int minSlots);
-
 	/// The pairs, contiguous.
-	btBroadphasePairArray m_pairs;
-	/// m_pairKeys[i] = (proxy0 id << 32) | proxy1 id of m_pairs[i], so that probing never touches proxies.
-	btAlignedObjectArray<unsigned long long> m_pairKeys;
+	btBroadphasePairArray m_overlappingPairArray;
 	/// Open-addressing table (linear probing): pair index or BT_NULL_PAIR; size is a power of two.
 	btAlignedObjectArray<int> m_hashTable;
 	/// The user's filter, or 0.
 	btOverlapFilterCallback* m_overlapFilterCallback;
 	/// Told about every pair added or removed, or 0.
 	btOverlappingPairCallback* m_ghostPairCallback;
+
+private:
+	// Caliber's own bookkeeping, hidden from derived classes.
+	int findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1) const;
+	int findSlotOfPair(int pairIndex) const;
+	void removePairAt(int index);
+	void rebuildTable(int minSlots);
+
+	// m_pairKeys[i] = (proxy0 id << 32) | proxy1 id of pair i, so that probing never touches proxies.
+	btAlignedObjectArray<unsigned long long> m_pairKeys;
 };
 
 /// A pair cache kept sorted by (proxy0 id, proxy1 id): iteration order is always deterministic, lookup
@@ -204,13 +209,19 @@ public:
 	using btOverlappingPairCache::processAllOverlappingPairs;
 
 	/// First pair (0 when empty).
-	btBroadphasePair* getOverlappingPairArrayPtr() override { return m_pairs.size() ? &m_pairs[0] : 0; }
+	btBroadphasePair* getOverlappingPairArrayPtr() override
+	{
+		return m_overlappingPairArray.size() ? &m_overlappingPairArray[0] : 0;
+	}
 	/// First pair (0 when empty).
-	const btBroadphasePair* getOverlappingPairArrayPtr() const override { return m_pairs.size() ? &m_pairs[0] : 0; }
+	const btBroadphasePair* getOverlappingPairArrayPtr() const override
+	{
+		return m_overlappingPairArray.size() ? &m_overlappingPairArray[0] : 0;
+	}
 	/// The pair array (do not add, remove or reorder through it).
-	btBroadphasePairArray& getOverlappingPairArray() override { return m_pairs; }
+	btBroadphasePairArray& getOverlappingPairArray() override { return m_overlappingPairArray; }
 	/// The pair array.
-	const btBroadphasePairArray& getOverlappingPairArray() const { return m_pairs; }
+	const btBroadphasePairArray& getOverlappingPairArray() const { return m_overlappingPairArray; }
 
 	/// Destroys the pair's algorithm and returns its memory to the dispatcher (nothing without a dispatcher).
 	void cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher) override;
@@ -218,7 +229,7 @@ public:
 	btBroadphasePair* findPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) override;
 
 	/// Number of pairs.
-	int getNumOverlappingPairs() const override { return m_pairs.size(); }
+	int getNumOverlappingPairs() const override { return m_overlappingPairArray.size(); }
 	/// The user's filter, or 0.
 	btOverlapFilterCallback* getOverlapFilterCallback() override { return m_overlapFilterCallback; }
 	/// Installs a user filter (0: group/mask test). Existing pairs are kept.
@@ -234,15 +245,8 @@ public:
 	bool hasDeferredRemoval() override { return m_hasDeferredRemoval; }
 
 protected:
-	/// Index of the first stored key >= key (binary search).
-	int lowerBound(unsigned long long key) const;
-	/// Index of the stored pair of these (ordered) proxies, or -1.
-	int findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1) const;
-
-	/// The pairs, sorted by key.
-	btBroadphasePairArray m_pairs;
-	/// The key of each pair (see btHashedOverlappingPairCache::m_pairKeys), increasing.
-	btAlignedObjectArray<unsigned long long> m_pairKeys;
+	/// The pairs, sorted by (proxy0 id, proxy1 id).
+	btBroadphasePairArray m_overlappingPairArray;
 	/// Kept for source compatibility (Bullet's flag; never set by Caliber).
 	bool m_blockedForChanges;
 	/// Always true.
@@ -251,6 +255,13 @@ protected:
 	btOverlapFilterCallback* m_overlapFilterCallback;
 	/// Told about every pair added or removed, or 0.
 	btOverlappingPairCallback* m_ghostPairCallback;
+
+private:
+	// Caliber's own bookkeeping, hidden from derived classes: the first stored key >= key (binary
+	// search), the index of a stored pair or -1, and the key of each pair (as in the hashed cache), increasing.
+	int lowerBound(unsigned long long key) const;
+	int findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1) const;
+	btAlignedObjectArray<unsigned long long> m_pairKeys;
 };
 
 /// A cache that stores nothing: for broadphases used only for queries (rayTest, aabbTest).

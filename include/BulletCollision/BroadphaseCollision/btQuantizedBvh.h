@@ -213,11 +213,9 @@ public:
 
 	/// Calls nodeCallback for every leaf whose box is touched by the box [aabbMin, aabbMax] (relative to
 	/// the moving point) swept from raySource to rayTarget.
-	/// With maxFraction (Caliber), boxes the sweep only reaches beyond *maxFraction are skipped; the value
-	/// is read at every box, so a callback may lower it as it finds closer hits.
 	void reportBoxCastOverlappingNodex(btNodeOverlapCallback * nodeCallback, const btVector3& raySource,
-	                                   const btVector3& rayTarget, const btVector3& aabbMin, const btVector3& aabbMax,
-	                                   const btScalar* maxFraction = 0) const;
+	                                   const btVector3& rayTarget, const btVector3& aabbMin, const btVector3& aabbMax)
+	    const;
 
 	/// Quantizes point (which should lie in the quantization box) conservatively: a minimum corner
 	/// (isMax == 0) rounds down to an even value, a maximum corner rounds up to an odd value, both with

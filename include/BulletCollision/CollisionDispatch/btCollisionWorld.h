@@ -40,8 +40,6 @@ protected:
 	btIDebugDraw* m_debugDrawer;
 	/// When true (the default, as in Bullet) updateAabbs updates every object, not only active ones.
 	bool m_forceUpdateAllAabbs;
-	/// Set once the "AABB overflow" warning has been given, so that it is given only once per world.
-	bool m_reportedAabbOverflow;
 
 	/// Kept for source compatibility: serialization of collision objects is not provided yet.
 	void serializeCollisionObjects(btSerializer* serializer);

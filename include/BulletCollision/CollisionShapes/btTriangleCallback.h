@@ -12,9 +12,6 @@ public:
 	virtual ~btTriangleCallback();
 	/// One triangle: triangle[0..2] are its vertices, partId the mesh part, triangleIndex its index there.
 	virtual void processTriangle(btVector3* triangle, int partId, int triangleIndex) = 0;
-	/// Caliber: for a callback that only wants triangles up to a fraction of a ray or sweep (a ray test
-	/// keeping the closest hit), that fraction, so tree traversal can skip what lies beyond; 0 otherwise.
-	virtual const btScalar* caliberMaxFraction() const { return 0; }
 };
 
 /// Receives triangles with their indices from a mesh interface (used to build BVHs over meshes).

@@ -95,24 +95,6 @@ public:
 	/// Number of points in the cache.
 	SIMD_FORCE_INLINE int getNumContacts() const { return m_cachedPoints; }
 
-	/// Caliber: requests the cache line with the point count, bodies and thresholds (a prefetch; it never
-	/// faults). Loops over scattered manifolds call this a few manifolds ahead, then
-	/// caliberPrefetchPoints closer, once the count has arrived.
-	SIMD_FORCE_INLINE void caliberPrefetchHeader() const
-	{
-#if defined(__GNUC__)
-		__builtin_prefetch(&m_cachedPoints);
-#endif
-	}
-	/// Caliber: requests the cache lines of the points held (none for an empty manifold).
-	SIMD_FORCE_INLINE void caliberPrefetchPoints() const
-	{
-#if defined(__GNUC__)
-		const char* first = reinterpret_cast<const char*>(m_pointCache);
-		const char* end = reinterpret_cast<const char*>(m_pointCache + m_cachedPoints);
-		for (const char* line = first; line < end; line += 64) __builtin_prefetch(line);
-#endif
-	}
 	/// Sets the number of points; outside [0, MANIFOLD_CACHE_SIZE] asserts and is clamped in release.
 	void setNumContacts(int cachedPoints);
 

@@ -45,8 +45,6 @@ public:
 
 	/// Hits at or beyond this fraction are ignored; starts at 1 and follows reportHit's return value.
 	btScalar m_hitFraction;
-	/// Hits beyond m_hitFraction are not wanted: tree traversal skips boxes past it.
-	const btScalar* caliberMaxFraction() const override { return &m_hitFraction; }
 
 	/// A ray from from to to (triangle frame) with EFlags bits.
 	btTriangleRaycastCallback(const btVector3& from, const btVector3& to, unsigned int flags = 0);

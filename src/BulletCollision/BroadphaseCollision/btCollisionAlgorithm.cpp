@@ -2,6 +2,6 @@
 #include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
 
 btCollisionAlgorithm::btCollisionAlgorithm(const btCollisionAlgorithmConstructionInfo& ci)
-    : m_dispatcher(ci.m_dispatcher1), m_caliberPrefetchHint(0)
+    : m_dispatcher(ci.m_dispatcher1)
 {
 }

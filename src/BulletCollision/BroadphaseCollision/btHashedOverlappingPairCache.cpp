@@ -10,6 +10,7 @@
 
 #include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
 #include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
 namespace
@@ -33,6 +34,16 @@ struct PairIdLess
 		return caliberPairKey(a.m_pProxy0, a.m_pProxy1) < caliberPairKey(b.m_pProxy0, b.m_pProxy1);
 	}
 };
+
+// The first manifold an algorithm reports (the one its processCollision reads first), or 0. The pair loop
+// asks through getAllContactManifolds, which every algorithm has, so that a prefetch needs nothing from
+// the algorithm classes beyond Bullet's interface.
+const btPersistentManifold* firstManifoldOf(btCollisionAlgorithm* algorithm, btManifoldArray& scratch)
+{
+	scratch.resize(0);
+	algorithm->getAllContactManifolds(scratch);
+	return scratch.size() ? scratch[0] : 0;
+}
 }  // namespace
 
 btHashedOverlappingPairCache::btHashedOverlappingPairCache() : m_overlapFilterCallback(0), m_ghostPairCallback(0)
@@ -71,7 +82,8 @@ int btHashedOverlappingPairCache::findPairIndex(unsigned long long key, const bt
 		const int index = m_hashTable[slot];
 		if (index == BT_NULL_PAIR) return -1;
 		// Comparing the proxies as well keeps two broadphases that reuse ids from aliasing each other.
-		if (m_pairKeys[index] == key && m_pairs[index].m_pProxy0 == proxy0 && m_pairs[index].m_pProxy1 == proxy1)
+		if (m_pairKeys[index] == key && m_overlappingPairArray[index].m_pProxy0 == proxy0 &&
+		    m_overlappingPairArray[index].m_pProxy1 == proxy1)
 		{
 			return index;
 		}
@@ -105,14 +117,14 @@ void btHashedOverlappingPairCache::removePairAt(int index)
 	}
 	m_hashTable[hole] = BT_NULL_PAIR;
 
-	const int last = m_pairs.size() - 1;
+	const int last = m_overlappingPairArray.size() - 1;
 	if (index != last)
 	{
 		m_hashTable[findSlotOfPair(last)] = index;
-		m_pairs[index] = m_pairs[last];
+		m_overlappingPairArray[index] = m_overlappingPairArray[last];
 		m_pairKeys[index] = m_pairKeys[last];
 	}
-	m_pairs.pop_back();
+	m_overlappingPairArray.pop_back();
 	m_pairKeys.pop_back();
 }
 
@@ -124,11 +136,11 @@ btBroadphasePair* btHashedOverlappingPairCache::addOverlappingPair(btBroadphaseP
 	caliberOrderPair(proxy0, proxy1);
 	const unsigned long long key = caliberPairKey(proxy0, proxy1);
 	const int existing = findPairIndex(key, proxy0, proxy1);
-	if (existing >= 0) return &m_pairs[existing];
+	if (existing >= 0) return &m_overlappingPairArray[existing];
 
-	if ((m_pairs.size() + 1) * 2 > m_hashTable.size()) rebuildTable(m_hashTable.size() * 2);
-	const int index = m_pairs.size();
-	m_pairs.push_back(btBroadphasePair(*proxy0, *proxy1));
+	if ((m_overlappingPairArray.size() + 1) * 2 > m_hashTable.size()) rebuildTable(m_hashTable.size() * 2);
+	const int index = m_overlappingPairArray.size();
+	m_overlappingPairArray.push_back(btBroadphasePair(*proxy0, *proxy1));
 	m_pairKeys.push_back(key);
 	const int mask = m_hashTable.size() - 1;
 	int slot = homeSlot(key, mask);
@@ -136,7 +148,7 @@ btBroadphasePair* btHashedOverlappingPairCache::addOverlappingPair(btBroadphaseP
 	m_hashTable[slot] = index;
 
 	if (m_ghostPairCallback) m_ghostPairCallback->addOverlappingPair(proxy0, proxy1);
-	return &m_pairs[index];
+	return &m_overlappingPairArray[index];
 }
 
 void* btHashedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1,
@@ -148,8 +160,8 @@ void* btHashedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* pro
 	const unsigned long long key = caliberPairKey(proxy0, proxy1);
 	int index = findPairIndex(key, proxy0, proxy1);
 	if (index < 0) return 0;
-	caliberReleasePairAlgorithm(m_pairs[index], dispatcher);
-	void* userInfo = m_pairs[index].m_internalInfo1;
+	caliberReleasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
+	void* userInfo = m_overlappingPairArray[index].m_internalInfo1;
 	removePairAt(index);
 	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
 	return userInfo;
@@ -159,12 +171,12 @@ void btHashedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
                                                                          btDispatcher* dispatcher)
 {
 	if (!proxy) return;
-	for (int i = 0; i < m_pairs.size();)
+	for (int i = 0; i < m_overlappingPairArray.size();)
 	{
-		if (caliberPairContains(m_pairs[i], proxy))
+		if (caliberPairContains(m_overlappingPairArray[i], proxy))
 		{
 			// The last pair moves into slot i, so i is examined again.
-			removeOverlappingPair(m_pairs[i].m_pProxy0, m_pairs[i].m_pProxy1, dispatcher);
+			removeOverlappingPair(m_overlappingPairArray[i].m_pProxy0, m_overlappingPairArray[i].m_pProxy1, dispatcher);
 		}
 		else
 		{
@@ -181,9 +193,10 @@ void btHashedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, 
 void btHashedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy, btDispatcher* dispatcher)
 {
 	if (!proxy) return;
-	for (int i = 0; i < m_pairs.size(); ++i)
+	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
 	{
-		if (caliberPairContains(m_pairs[i], proxy)) caliberReleasePairAlgorithm(m_pairs[i], dispatcher);
+		if (caliberPairContains(m_overlappingPairArray[i], proxy))
+			caliberReleasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 	}
 }
 
@@ -192,17 +205,18 @@ btBroadphasePair* btHashedOverlappingPairCache::findPair(btBroadphaseProxy* prox
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	caliberOrderPair(proxy0, proxy1);
 	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
-	return index >= 0 ? &m_pairs[index] : 0;
+	return index >= 0 ? &m_overlappingPairArray[index] : 0;
 }
 
 void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher)
 {
 	if (!callback) return;
-	for (int i = 0; i < m_pairs.size();)
+	btManifoldArray aheadManifolds;  // scratch for firstManifoldOf
+	for (int i = 0; i < m_overlappingPairArray.size();)
 	{
 		// The callback may add or remove pairs (reallocating or reordering the array), so nothing is held
 		// across the call except the two proxies, and the pair is removed by identity, not by index.
-		btBroadphasePair& pair = m_pairs[i];
+		btBroadphasePair& pair = m_overlappingPairArray[i];
 		btBroadphaseProxy* proxy0 = pair.m_pProxy0;
 		btBroadphaseProxy* proxy1 = pair.m_pProxy1;
 		// The narrowphase of a pair starts by reading its algorithm and the two objects, which live all
@@ -211,16 +225,16 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 		// A three-stage pipeline: eight pairs ahead the pair's algorithm and proxies; four ahead (the
 		// algorithm is in cache by then) the objects' transforms and the manifold's last line, which holds
 		// its point count; two ahead the lines of the points it holds (an empty manifold needs none).
-		if (i + 8 < m_pairs.size())
+		if (i + 8 < m_overlappingPairArray.size())
 		{
-			const btBroadphasePair& ahead = m_pairs[i + 8];
+			const btBroadphasePair& ahead = m_overlappingPairArray[i + 8];
 			if (ahead.m_algorithm) __builtin_prefetch(ahead.m_algorithm);
 			__builtin_prefetch(ahead.m_pProxy0);
 			__builtin_prefetch(ahead.m_pProxy1);
 		}
-		if (i + 4 < m_pairs.size() && m_pairs[i + 4].m_algorithm)
+		if (i + 4 < m_overlappingPairArray.size() && m_overlappingPairArray[i + 4].m_algorithm)
 		{
-			const btBroadphasePair& ahead = m_pairs[i + 4];
+			const btBroadphasePair& ahead = m_overlappingPairArray[i + 4];
 			for (const btBroadphaseProxy* proxy : {ahead.m_pProxy0, ahead.m_pProxy1})
 			{
 				if (!proxy) continue;
@@ -228,20 +242,21 @@ void btHashedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback*
 				__builtin_prefetch(object);
 				__builtin_prefetch(object + 64);
 			}
-			const btPersistentManifold* manifold =
-			    static_cast<const btPersistentManifold*>(ahead.m_algorithm->caliberPrefetchHint());
-			if (manifold) manifold->caliberPrefetchHeader();
+			if (const btPersistentManifold* manifold = firstManifoldOf(ahead.m_algorithm, aheadManifolds))
+				caliber::prefetchManifoldHeader(manifold);
 		}
-		if (i + 2 < m_pairs.size() && m_pairs[i + 2].m_algorithm)
+		if (i + 2 < m_overlappingPairArray.size() && m_overlappingPairArray[i + 2].m_algorithm)
 		{
-			const btPersistentManifold* manifold =
-			    static_cast<const btPersistentManifold*>(m_pairs[i + 2].m_algorithm->caliberPrefetchHint());
-			if (manifold) manifold->caliberPrefetchPoints();
+			if (const btPersistentManifold* manifold =
+			        firstManifoldOf(m_overlappingPairArray[i + 2].m_algorithm, aheadManifolds))
+				caliber::prefetchManifoldPoints(manifold);
 		}
 #endif
 		if (callback->processOverlap(pair)) removeOverlappingPair(proxy0, proxy1, dispatcher);
 		// Slot i holds an unvisited pair when this one left it (the last pair moved in); else move on.
-		if (i < m_pairs.size() && m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) ++i;
+		if (i < m_overlappingPairArray.size() && m_overlappingPairArray[i].m_pProxy0 == proxy0 &&
+		    m_overlappingPairArray[i].m_pProxy1 == proxy1)
+			++i;
 	}
 }
 
@@ -256,7 +271,8 @@ void btHashedOverlappingPairCache::sortOverlappingPairs(btDispatcher* dispatcher
 {
 	(void)dispatcher;
 	// Sorting in place keeps each pair's algorithm and user info; only the index table changes.
-	m_pairs.quickSort(PairIdLess());
-	for (int i = 0; i < m_pairs.size(); ++i) m_pairKeys[i] = caliberPairKey(m_pairs[i].m_pProxy0, m_pairs[i].m_pProxy1);
+	m_overlappingPairArray.quickSort(PairIdLess());
+	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
+		m_pairKeys[i] = caliberPairKey(m_overlappingPairArray[i].m_pProxy0, m_overlappingPairArray[i].m_pProxy1);
 	rebuildTable(m_hashTable.size());
 }

@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/BroadphaseCollision/btQuantizedBvh.h"
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
+
 #include "LinearMath/btAabbUtil2.h"
 
 namespace
@@ -406,14 +408,22 @@ void btQuantizedBvh::reportRayOverlappingNodex(btNodeOverlapCallback* nodeCallba
 
 void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& raySource,
                                                    const btVector3& rayTarget, const btVector3& aabbMin,
-                                                   const btVector3& aabbMax, const btScalar* maxFraction) const
+                                                   const btVector3& aabbMax) const
+{
+	caliber::reportBoxCastOverlappingNodes(*this, nodeCallback, raySource, rayTarget, aabbMin, aabbMax, 0);
+}
+
+void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
+                                            const btVector3& raySource, const btVector3& rayTarget,
+                                            const btVector3& aabbMin, const btVector3& aabbMax,
+                                            const btScalar* maxFraction)
 {
 	btAssert(nodeCallback != 0);
 	const bool finite = caliber::isFinite(raySource) && caliber::isFinite(rayTarget) && caliber::isFinite(aabbMin) &&
 	                    caliber::isFinite(aabbMax);
 	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
-	if (!nodeCallback || !finite || m_curNodeIndex == 0) return;
-	const int numNodes = m_curNodeIndex;
+	if (!nodeCallback || !finite || bvh.getNumNodes() == 0) return;
+	const int numNodes = bvh.getNumNodes();
 
 	Sweep sweep;
 	sweep.maxFraction = maxFraction;
@@ -423,15 +433,15 @@ void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCa
 	// The tolerance covers the rounding of t and of the node bounds (relative to the coordinates involved),
 	// so a segment exactly on a box face (a flat triangle's box) is not missed.
 	btVector3 rootMin, rootMax;
-	if (m_useQuantization)
+	if (bvh.isQuantized())
 	{
-		rootMin = m_bvhAabbMin;
-		rootMax = m_bvhAabbMax;
+		rootMin = bvh.getBvhAabbMin();
+		rootMax = bvh.getBvhAabbMax();
 	}
 	else
 	{
-		rootMin = m_contiguousNodes[0].m_aabbMinOrg;
-		rootMax = m_contiguousNodes[0].m_aabbMaxOrg;
+		rootMin = bvh.getNodeArray()[0].m_aabbMinOrg;
+		rootMax = bvh.getNodeArray()[0].m_aabbMaxOrg;
 	}
 	btScalar scale = 0;
 	const bool rootValid = rootMin.x() <= rootMax.x() && rootMin.y() <= rootMax.y() && rootMin.z() <= rootMax.z();
@@ -450,16 +460,19 @@ void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCa
 	sweep.sweepMin += aabbMin - tol;
 	sweep.sweepMax += aabbMax + tol;
 
-	if (m_useQuantization)
+	if (bvh.isQuantized())
 	{
-		if (!TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, m_bvhAabbMin, m_bvhAabbMax)) return;
+		if (!TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, bvh.getBvhAabbMin(), bvh.getBvhAabbMax())) return;
 		unsigned short qMin[3], qMax[3];
-		quantizeWithClamp(qMin, sweep.sweepMin, 0);
-		quantizeWithClamp(qMax, sweep.sweepMax, 1);
+		bvh.quantizeWithClamp(qMin, sweep.sweepMin, 0);
+		bvh.quantizeWithClamp(qMax, sweep.sweepMax, 1);
 		// Multiplying by the inverse instead of dividing (unQuantize) rounds once more; the tolerance covers it.
-		const btVector3 invQuantization(btScalar(1) / m_bvhQuantization.x(), btScalar(1) / m_bvhQuantization.y(),
-		                                btScalar(1) / m_bvhQuantization.z());
-		const btQuantizedBvhNode* nodes = &m_quantizedContiguousNodes[0];
+		const btVector3& quantization = bvh.getBvhQuantization();
+		const btVector3 invQuantization(btScalar(1) / quantization.x(), btScalar(1) / quantization.y(),
+		                                btScalar(1) / quantization.z());
+		const btVector3 bvhMin = bvh.getBvhAabbMin();
+		// Bullet declares only a non-const accessor of the quantized nodes; they are only read here.
+		const btQuantizedBvhNode* nodes = &const_cast<btQuantizedBvh&>(bvh).getQuantizedNodeArray()[0];
 		int i = 0;
 		while (i < numNodes)
 		{
@@ -471,9 +484,9 @@ void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCa
 				const unsigned short* lo = node.m_quantizedAabbMin;
 				const unsigned short* hi = node.m_quantizedAabbMax;
 				const btVector3 nodeMin =
-				    btVector3(btScalar(lo[0]), btScalar(lo[1]), btScalar(lo[2])) * invQuantization + m_bvhAabbMin;
+				    btVector3(btScalar(lo[0]), btScalar(lo[1]), btScalar(lo[2])) * invQuantization + bvhMin;
 				const btVector3 nodeMax =
-				    btVector3(btScalar(hi[0]), btScalar(hi[1]), btScalar(hi[2])) * invQuantization + m_bvhAabbMin;
+				    btVector3(btScalar(hi[0]), btScalar(hi[1]), btScalar(hi[2])) * invQuantization + bvhMin;
 				overlap = sweep.hits(nodeMin, nodeMax);
 			}
 			if (node.isLeafNode())
@@ -486,7 +499,7 @@ void btQuantizedBvh::reportBoxCastOverlappingNodex(btNodeOverlapCallback* nodeCa
 		}
 		return;
 	}
-	const btOptimizedBvhNode* nodes = &m_contiguousNodes[0];
+	const btOptimizedBvhNode* nodes = &bvh.getNodeArray()[0];
 	int i = 0;
 	while (i < numNodes)
 	{

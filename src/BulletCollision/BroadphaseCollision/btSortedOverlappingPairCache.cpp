@@ -38,7 +38,7 @@ int btSortedOverlappingPairCache::findPairIndex(unsigned long long key, const bt
 	// Equal keys (proxies of two broadphases sharing ids) sit side by side; the proxies tell them apart.
 	for (int i = lowerBound(key); i < m_pairKeys.size() && m_pairKeys[i] == key; ++i)
 	{
-		if (m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) return i;
+		if (m_overlappingPairArray[i].m_pProxy0 == proxy0 && m_overlappingPairArray[i].m_pProxy1 == proxy1) return i;
 	}
 	return -1;
 }
@@ -51,22 +51,22 @@ btBroadphasePair* btSortedOverlappingPairCache::addOverlappingPair(btBroadphaseP
 	caliberOrderPair(proxy0, proxy1);
 	const unsigned long long key = caliberPairKey(proxy0, proxy1);
 	const int existing = findPairIndex(key, proxy0, proxy1);
-	if (existing >= 0) return &m_pairs[existing];
+	if (existing >= 0) return &m_overlappingPairArray[existing];
 
 	const int index = lowerBound(key);
-	const int count = m_pairs.size();
-	m_pairs.push_back(btBroadphasePair());
+	const int count = m_overlappingPairArray.size();
+	m_overlappingPairArray.push_back(btBroadphasePair());
 	m_pairKeys.push_back(0);
 	for (int i = count; i > index; --i)
 	{
-		m_pairs[i] = m_pairs[i - 1];
+		m_overlappingPairArray[i] = m_overlappingPairArray[i - 1];
 		m_pairKeys[i] = m_pairKeys[i - 1];
 	}
-	m_pairs[index] = btBroadphasePair(*proxy0, *proxy1);
+	m_overlappingPairArray[index] = btBroadphasePair(*proxy0, *proxy1);
 	m_pairKeys[index] = key;
 
 	if (m_ghostPairCallback) m_ghostPairCallback->addOverlappingPair(proxy0, proxy1);
-	return &m_pairs[index];
+	return &m_overlappingPairArray[index];
 }
 
 void* btSortedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1,
@@ -77,15 +77,15 @@ void* btSortedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* pro
 	caliberOrderPair(proxy0, proxy1);
 	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
 	if (index < 0) return 0;
-	caliberReleasePairAlgorithm(m_pairs[index], dispatcher);
-	void* userInfo = m_pairs[index].m_internalInfo1;
-	const int count = m_pairs.size();
+	caliberReleasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
+	void* userInfo = m_overlappingPairArray[index].m_internalInfo1;
+	const int count = m_overlappingPairArray.size();
 	for (int i = index + 1; i < count; ++i)
 	{
-		m_pairs[i - 1] = m_pairs[i];
+		m_overlappingPairArray[i - 1] = m_overlappingPairArray[i];
 		m_pairKeys[i - 1] = m_pairKeys[i];
 	}
-	m_pairs.pop_back();
+	m_overlappingPairArray.pop_back();
 	m_pairKeys.pop_back();
 	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
 	return userInfo;
@@ -98,17 +98,17 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 	// One compaction pass instead of one O(n) shift per removed pair. The ghost callback is told once
 	// the kept pairs are compacted, while the removed ones still sit at the end (before the resize).
 	int kept = 0;
-	const int count = m_pairs.size();
+	const int count = m_overlappingPairArray.size();
 	for (int i = 0; i < count; ++i)
 	{
-		if (caliberPairContains(m_pairs[i], proxy))
+		if (caliberPairContains(m_overlappingPairArray[i], proxy))
 		{
-			caliberReleasePairAlgorithm(m_pairs[i], dispatcher);
+			caliberReleasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 			continue;
 		}
 		if (kept != i)
 		{
-			btSwap(m_pairs[kept], m_pairs[i]);
+			btSwap(m_overlappingPairArray[kept], m_overlappingPairArray[i]);
 			btSwap(m_pairKeys[kept], m_pairKeys[i]);
 		}
 		++kept;
@@ -117,9 +117,10 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 	for (int i = kept; i < count; ++i)
 	{
 		if (m_ghostPairCallback)
-			m_ghostPairCallback->removeOverlappingPair(m_pairs[i].m_pProxy0, m_pairs[i].m_pProxy1, dispatcher);
+			m_ghostPairCallback->removeOverlappingPair(m_overlappingPairArray[i].m_pProxy0,
+			                                           m_overlappingPairArray[i].m_pProxy1, dispatcher);
 	}
-	m_pairs.resize(kept);
+	m_overlappingPairArray.resize(kept);
 	m_pairKeys.resize(kept);
 }
 
@@ -131,9 +132,10 @@ void btSortedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, 
 void btSortedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy, btDispatcher* dispatcher)
 {
 	if (!proxy) return;
-	for (int i = 0; i < m_pairs.size(); ++i)
+	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
 	{
-		if (caliberPairContains(m_pairs[i], proxy)) caliberReleasePairAlgorithm(m_pairs[i], dispatcher);
+		if (caliberPairContains(m_overlappingPairArray[i], proxy))
+			caliberReleasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 	}
 }
 
@@ -142,19 +144,21 @@ btBroadphasePair* btSortedOverlappingPairCache::findPair(btBroadphaseProxy* prox
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	caliberOrderPair(proxy0, proxy1);
 	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
-	return index >= 0 ? &m_pairs[index] : 0;
+	return index >= 0 ? &m_overlappingPairArray[index] : 0;
 }
 
 void btSortedOverlappingPairCache::processAllOverlappingPairs(btOverlapCallback* callback, btDispatcher* dispatcher)
 {
 	if (!callback) return;
-	for (int i = 0; i < m_pairs.size();)
+	for (int i = 0; i < m_overlappingPairArray.size();)
 	{
 		// As in the hashed cache: the callback may change the array, so the pair is removed by identity
 		// and index i is visited again when its pair left (the next pair shifted down into it).
-		btBroadphaseProxy* proxy0 = m_pairs[i].m_pProxy0;
-		btBroadphaseProxy* proxy1 = m_pairs[i].m_pProxy1;
-		if (callback->processOverlap(m_pairs[i])) removeOverlappingPair(proxy0, proxy1, dispatcher);
-		if (i < m_pairs.size() && m_pairs[i].m_pProxy0 == proxy0 && m_pairs[i].m_pProxy1 == proxy1) ++i;
+		btBroadphaseProxy* proxy0 = m_overlappingPairArray[i].m_pProxy0;
+		btBroadphaseProxy* proxy1 = m_overlappingPairArray[i].m_pProxy1;
+		if (callback->processOverlap(m_overlappingPairArray[i])) removeOverlappingPair(proxy0, proxy1, dispatcher);
+		if (i < m_overlappingPairArray.size() && m_overlappingPairArray[i].m_pProxy0 == proxy0 &&
+		    m_overlappingPairArray[i].m_pProxy1 == proxy1)
+			++i;
 	}
 }

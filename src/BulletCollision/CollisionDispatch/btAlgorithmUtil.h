@@ -20,19 +20,6 @@ inline bool caliberPairIsUsable(const btCollisionObjectWrapper* body0Wrap, const
 	return usable;
 }
 
-// The manifold of a pair is usually cold (a thousand manifolds do not stay in cache from one step to
-// the next), and the algorithm needs it after reading the shapes and transforms: ask for all of its
-// cache lines first, so that the misses overlap with that work instead of following each other.
-inline void caliberPrefetchManifold(const btPersistentManifold* manifold)
-{
-#if defined(__GNUC__)
-	const char* bytes = reinterpret_cast<const char*>(manifold);
-	for (int offset = 0; offset < int(sizeof(btPersistentManifold)); offset += 64) __builtin_prefetch(bytes + offset);
-#else
-	(void)manifold;
-#endif
-}
-
 // Single-point algorithms (sphere-sphere, sphere-box, sphere-triangle) know the whole contact each frame.
 // After adding the new point, any older point that the new one did not replace is stale: remove it so
 // the manifold holds exactly the current contact (a replaced point keeps its warm-start impulses).

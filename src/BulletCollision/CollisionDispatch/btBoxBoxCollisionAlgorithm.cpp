@@ -2,6 +2,7 @@
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxDetector.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
@@ -19,7 +20,6 @@ btBoxBoxCollisionAlgorithm::btBoxBoxCollisionAlgorithm(btPersistentManifold* mf,
 		m_manifoldPtr = m_dispatcher->getNewManifold(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
 		m_ownManifold = true;
 	}
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btBoxBoxCollisionAlgorithm::~btBoxBoxCollisionAlgorithm()
@@ -32,7 +32,7 @@ void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper
                                                   const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
 	if (!m_manifoldPtr || !resultOut) return;
-	caliberPrefetchManifold(m_manifoldPtr);
+	caliber::prefetchWholeManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{

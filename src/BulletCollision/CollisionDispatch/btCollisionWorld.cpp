@@ -2,6 +2,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 
 #include <cstdio>
+#include <mutex>
 
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
@@ -53,6 +54,39 @@ bool computeBroadphaseAabb(const btCollisionObject* colObj, bool useContinuous, 
 	}
 	return caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 }
+
+// The worlds that have given the "AABB overflow" warning: each world gives it once. Kept here rather than
+// in btCollisionWorld so that the class has Bullet's members only; it is touched only when an object
+// overflows and when a world that warned is destroyed, so a locked list is enough.
+class AabbOverflowReports
+{
+public:
+	// True the first time it is asked for world (until forget(world)).
+	bool firstFor(const btCollisionWorld* world)
+	{
+		std::lock_guard<std::mutex> lock(m_mutex);
+		if (m_worlds.findLinearSearch(world) < m_worlds.size()) return false;
+		m_worlds.push_back(world);
+		return true;
+	}
+	// A destroyed world's address may be reused by a new world, which must warn again.
+	void forget(const btCollisionWorld* world)
+	{
+		std::lock_guard<std::mutex> lock(m_mutex);
+		m_worlds.remove(world);
+	}
+
+private:
+	std::mutex m_mutex;
+	btAlignedObjectArray<const btCollisionWorld*> m_worlds;
+};
+
+// Never destroyed, so that a world destroyed during static destruction can still forget itself.
+AabbOverflowReports& aabbOverflowReports()
+{
+	static AabbOverflowReports* reports = new AabbOverflowReports;
+	return *reports;
+}
 }  // namespace
 
 btCollisionWorld::btCollisionWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphasePairCache,
@@ -60,8 +94,7 @@ btCollisionWorld::btCollisionWorld(btDispatcher* dispatcher, btBroadphaseInterfa
     : m_dispatcher1(dispatcher),
       m_broadphasePairCache(broadphasePairCache),
       m_debugDrawer(0),
-      m_forceUpdateAllAabbs(true),
-      m_reportedAabbOverflow(false)
+      m_forceUpdateAllAabbs(true)
 {
 	(void)collisionConfiguration;
 	btAssert(dispatcher && "btCollisionWorld: null dispatcher");
@@ -70,6 +103,7 @@ btCollisionWorld::btCollisionWorld(btDispatcher* dispatcher, btBroadphaseInterfa
 
 btCollisionWorld::~btCollisionWorld()
 {
+	aabbOverflowReports().forget(this);
 	// The objects belong to the user and may outlive the world; their proxies belong to the broadphase,
 	// which may be reused, so they go now.
 	for (int i = 0; i < m_collisionObjects.size(); i++)
@@ -187,9 +221,8 @@ void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
 	}
 
 	colObj->forceActivationState(DISABLE_SIMULATION);
-	if (!m_reportedAabbOverflow)
+	if (aabbOverflowReports().firstFor(this))
 	{
-		m_reportedAabbOverflow = true;
 		const char* message =
 		    "Caliber: overflow in AABB (non-finite or huge), object removed from simulation (DISABLE_SIMULATION)\n";
 		if (m_debugDrawer)

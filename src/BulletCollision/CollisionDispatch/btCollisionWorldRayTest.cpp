@@ -4,6 +4,7 @@
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/BvhMeshCast.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btCompoundShape.h"
 #include "BulletCollision/CollisionShapes/btConcaveShape.h"
@@ -294,6 +295,15 @@ void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTran
 	resultCallback.addSingleResult(rayResult, true);
 }
 
+// A ray against a BVH mesh: the tree walk skips boxes beyond the closest hit so far (the callback's
+// m_hitFraction, which its reportHit lowers), which leaves the hits found unchanged.
+void castRayAgainstBvhMesh(btBvhTriangleMeshShape& mesh, btTriangleRaycastCallback& callback, const btVector3& from,
+                           const btVector3& to)
+{
+	const btVector3 zero(0, 0, 0);
+	caliber::castAgainstBvhMesh(mesh, &callback, from, to, zero, zero, &callback.m_hitFraction);
+}
+
 void rayTestConcave(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConcaveShape* concave,
                     const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
 {
@@ -317,7 +327,7 @@ void rayTestConcave(const btTransform& rayFromTrans, const btTransform& rayToTra
 		btBvhTriangleMeshShape* mesh =
 		    const_cast<btBvhTriangleMeshShape*>(static_cast<const btBvhTriangleMeshShape*>(concave));
 		BridgeTriangleRaycastCallback callback(fromLocal, toLocal, resultCallback, object, worldTransform, unitScale);
-		mesh->performRaycast(&callback, fromLocal, toLocal);
+		castRayAgainstBvhMesh(*mesh, callback, fromLocal, toLocal);
 		return;
 	}
 	if (shapeType == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE)
@@ -334,7 +344,8 @@ void rayTestConcave(const btTransform& rayFromTrans, const btTransform& rayToTra
 			const btVector3 toChild = toLocal * inverseScale;
 			BridgeTriangleRaycastCallback callback(fromChild, toChild, resultCallback, object, worldTransform,
 			                                       inverseScale);
-			const_cast<btBvhTriangleMeshShape*>(scaled->getChildShape())->performRaycast(&callback, fromChild, toChild);
+			castRayAgainstBvhMesh(*const_cast<btBvhTriangleMeshShape*>(scaled->getChildShape()), callback, fromChild,
+			                      toChild);
 			return;
 		}
 	}

@@ -207,8 +207,6 @@ btConvexConcaveCollisionAlgorithm::btConvexConcaveCollisionAlgorithm(const btCol
       m_btConvexTriangleCallback(ci.m_dispatcher1, body0Wrap, body1Wrap, isSwapped),
       m_isSwapped(isSwapped)
 {
-	// The callback's manifold lives exactly as long as this algorithm.
-	m_caliberPrefetchHint = m_btConvexTriangleCallback.m_manifoldPtr;
 }
 
 btConvexConcaveCollisionAlgorithm::~btConvexConcaveCollisionAlgorithm() {}

@@ -2,6 +2,7 @@
 #include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
@@ -163,7 +164,6 @@ btConvexConvexAlgorithm::btConvexConvexAlgorithm(btPersistentManifold* mf,
       m_lastSeparatingAxis(btScalar(0), btScalar(1), btScalar(0)),
       m_haveLastSeparatingAxis(false)
 {
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btConvexConvexAlgorithm::~btConvexConvexAlgorithm()
@@ -183,9 +183,8 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		// A full manifold pool without dynamic allocation gives none: the pair is skipped this step.
 		if (!m_manifoldPtr) return;
 		m_ownManifold = true;
-		m_caliberPrefetchHint = m_manifoldPtr;
 	}
-	caliberPrefetchManifold(m_manifoldPtr);
+	caliber::prefetchWholeManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
 	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
 	{

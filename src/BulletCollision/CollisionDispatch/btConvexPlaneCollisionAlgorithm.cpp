@@ -59,7 +59,6 @@ btConvexPlaneCollisionAlgorithm::btConvexPlaneCollisionAlgorithm(btPersistentMan
 		m_manifoldPtr = m_dispatcher->getNewManifold(convexWrap->getCollisionObject(), planeWrap->getCollisionObject());
 		m_ownManifold = true;
 	}
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btConvexPlaneCollisionAlgorithm::~btConvexPlaneCollisionAlgorithm()

@@ -25,7 +25,6 @@ btSphereBoxCollisionAlgorithm::btSphereBoxCollisionAlgorithm(btPersistentManifol
 		m_manifoldPtr = m_dispatcher->getNewManifold(sphereWrap->getCollisionObject(), boxWrap->getCollisionObject());
 		m_ownManifold = true;
 	}
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btSphereBoxCollisionAlgorithm::~btSphereBoxCollisionAlgorithm()

@@ -18,7 +18,6 @@ btSphereSphereCollisionAlgorithm::btSphereSphereCollisionAlgorithm(btPersistentM
 		m_manifoldPtr = m_dispatcher->getNewManifold(body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
 		m_ownManifold = true;
 	}
-	m_caliberPrefetchHint = m_manifoldPtr;
 }
 
 btSphereSphereCollisionAlgorithm::~btSphereSphereCollisionAlgorithm()

@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
+#include "BvhMeshCast.h"
 #include "LinearMath/btAabbUtil2.h"
 #include "btMeshTriangleAccess.h"
 
@@ -112,9 +114,18 @@ void btBvhTriangleMeshShape::performConvexcast(btTriangleCallback* callback, con
                                                const btVector3& boxTarget, const btVector3& boxMin,
                                                const btVector3& boxMax)
 {
+	caliber::castAgainstBvhMesh(*this, callback, boxSource, boxTarget, boxMin, boxMax, 0);
+}
+
+void caliber::castAgainstBvhMesh(btBvhTriangleMeshShape& mesh, btTriangleCallback* callback, const btVector3& boxSource,
+                                 const btVector3& boxTarget, const btVector3& boxMin, const btVector3& boxMax,
+                                 const btScalar* maxFraction)
+{
 	btAssert(callback != 0);
-	if (!callback || !m_meshInterface) return;
-	if (!m_bvh)
+	const btStridingMeshInterface* meshInterface = mesh.getMeshInterface();
+	if (!callback || !meshInterface) return;
+	const btOptimizedBvh* bvh = mesh.getOptimizedBvh();
+	if (!bvh)
 	{
 		const bool finite = caliber::isFinite(boxSource) && caliber::isFinite(boxTarget) && caliber::isFinite(boxMin) &&
 		                    caliber::isFinite(boxMax);
@@ -123,11 +134,11 @@ void btBvhTriangleMeshShape::performConvexcast(btTriangleCallback* callback, con
 		btVector3 sweepMin = boxSource, sweepMax = boxSource;
 		sweepMin.setMin(boxTarget);
 		sweepMax.setMax(boxTarget);
-		bruteForceBoxQuery(*m_meshInterface, callback, sweepMin + boxMin, sweepMax + boxMax);
+		bruteForceBoxQuery(*meshInterface, callback, sweepMin + boxMin, sweepMax + boxMax);
 		return;
 	}
-	MeshNodeCallback nodes(*m_meshInterface, callback);
-	m_bvh->reportBoxCastOverlappingNodex(&nodes, boxSource, boxTarget, boxMin, boxMax, callback->caliberMaxFraction());
+	MeshNodeCallback nodes(*meshInterface, callback);
+	caliber::reportBoxCastOverlappingNodes(*bvh, &nodes, boxSource, boxTarget, boxMin, boxMax, maxFraction);
 }
 
 void btBvhTriangleMeshShape::refitTree(const btVector3& aabbMin, const btVector3& aabbMax)

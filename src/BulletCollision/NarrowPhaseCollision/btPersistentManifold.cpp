@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "LinearMath/btMinMax.h"
 
 btScalar gContactBreakingThreshold = btScalar(0.02);
@@ -55,6 +56,9 @@ btPersistentManifold::btPersistentManifold()
       m_companionIdB(0),
       m_index1a(0)
 {
+	// caliber::prefetchManifoldHeader and prefetchManifoldPoints find these two fields by address.
+	btAssert(reinterpret_cast<const char*>(m_pointCache) == caliber::manifoldPointBytes(this) &&
+	         reinterpret_cast<const char*>(&m_cachedPoints) == caliber::manifoldHeaderBytes(this));
 }
 
 btPersistentManifold::btPersistentManifold(const btCollisionObject* body0, const btCollisionObject* body1, int,
@@ -69,6 +73,9 @@ btPersistentManifold::btPersistentManifold(const btCollisionObject* body0, const
       m_companionIdB(0),
       m_index1a(0)
 {
+	// caliber::prefetchManifoldHeader and prefetchManifoldPoints find these two fields by address.
+	btAssert(reinterpret_cast<const char*>(m_pointCache) == caliber::manifoldPointBytes(this) &&
+	         reinterpret_cast<const char*>(&m_cachedPoints) == caliber::manifoldHeaderBytes(this));
 }
 
 void btPersistentManifold::clearUserCache(btManifoldPoint& pt)

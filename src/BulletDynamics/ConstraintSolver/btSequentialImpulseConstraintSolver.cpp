@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
@@ -169,8 +170,8 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	{
 		// Manifolds are scattered over the heap: the header line (with the point count) four ahead, then
 		// the lines of the points held two ahead.
-		if (i + 4 < numManifolds) manifoldPtr[i + 4]->caliberPrefetchHeader();
-		if (i + 2 < numManifolds) manifoldPtr[i + 2]->caliberPrefetchPoints();
+		if (i + 4 < numManifolds) caliber::prefetchManifoldHeader(manifoldPtr[i + 4]);
+		if (i + 2 < numManifolds) caliber::prefetchManifoldPoints(manifoldPtr[i + 2]);
 		const int firstRow = m_tmpSolverContactConstraintPool.size();
 		convertContact(manifoldPtr[i], infoGlobal);
 		if (m_tmpSolverContactConstraintPool.size() > firstRow) m_manifoldFirstRow.push_back(firstRow);

@@ -1,0 +1,20 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_QUANTIZED_BVH_CAST_H
+#define CALIBER_QUANTIZED_BVH_CAST_H
+
+// Internal: the box-cast walk of a btQuantizedBvh with an optional upper bound on the fraction, for ray
+// tests that keep only the closest hit.
+
+#include "BulletCollision/BroadphaseCollision/btQuantizedBvh.h"
+
+namespace caliber
+{
+// As btQuantizedBvh::reportBoxCastOverlappingNodex; with maxFraction, boxes the sweep only reaches beyond
+// *maxFraction are skipped. The value is read at every box, so the node callback may lower it as it finds
+// closer hits.
+void reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
+                                   const btVector3& raySource, const btVector3& rayTarget, const btVector3& aabbMin,
+                                   const btVector3& aabbMax, const btScalar* maxFraction);
+}  // namespace caliber
+
+#endif  // CALIBER_QUANTIZED_BVH_CAST_H
