@@ -11,6 +11,8 @@ class btDiscreteDynamicsWorld;
 namespace caliber
 {
 /// Sets the sweeps of world's joint position correction after each substep (default 3; 0 turns it off).
+/// A negative count asserts and is ignored in release builds, with a warning; more than 1024 asserts
+/// and is clamped to 1024, with a warning.
 void setJointPositionIterations(btDiscreteDynamicsWorld& world, int iterations);
 /// The sweeps of world's joint position correction after each substep.
 int getJointPositionIterations(const btDiscreteDynamicsWorld& world);

@@ -7,6 +7,7 @@
 
 #include <limits>
 
+#include "Caliber/JointPositionCorrection.h"
 #include "DynamicsWorldTestUtil.h"
 
 using caliber_test::TestWorld;
@@ -152,4 +153,25 @@ TEST(DiscreteDynamicsWorldBadInput, SetGravityRejectsNonFiniteValues)
 	EXPECT_EQ(warnings.count(), 1);
 #endif
 	EXPECT_EQ(w.world()->getGravity(), btVector3(0, -10, 0));
+}
+
+TEST(DiscreteDynamicsWorldBadInput, JointPositionIterationsOutOfRangeAreReported)
+{
+	WarningCounter warnings;
+	TestWorld w;
+	caliber::setJointPositionIterations(*w.world(), 5);
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(caliber::setJointPositionIterations(*w.world(), -1), "out of range");
+	EXPECT_DEATH(caliber::setJointPositionIterations(*w.world(), 1 << 30), "out of range");
+#else
+	// Negative: ignored, the last good count stays. Huge: clamped, so a garbage count cannot stall the step.
+	caliber::setJointPositionIterations(*w.world(), -1);
+	EXPECT_EQ(caliber::getJointPositionIterations(*w.world()), 5);
+	caliber::setJointPositionIterations(*w.world(), 1 << 30);
+	EXPECT_EQ(caliber::getJointPositionIterations(*w.world()), 1024);
+	EXPECT_EQ(warnings.count(), 2);
+#endif
+	// Each world has its own setting.
+	TestWorld other;
+	EXPECT_EQ(caliber::getJointPositionIterations(*other.world()), 3);
 }
