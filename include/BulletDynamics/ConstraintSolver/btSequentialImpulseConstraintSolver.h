@@ -15,18 +15,6 @@
 
 class btManifoldPoint;
 
-namespace caliber
-{
-/// A contact row that rebounds this step if its contact is met (see the solver's restitution pass).
-struct SolverBounceRow
-{
-	int row;                      ///< index into the contact row pool
-	btScalar startVelocity;       ///< J v at setup (the solver bodies' velocities, before any impulse)
-	btScalar targetVelocity;      ///< J v the rebound leaves the step with
-	btScalar targetPushVelocity;  ///< position correction over the step, as a push velocity (<= 0; 0: none)
-};
-}  // namespace caliber
-
 /// The default solver of btDiscreteDynamicsWorld. Each solveGroup copies the bodies into a contiguous
 /// pool of btSolverBody, turns every manifold point within the contact processing threshold into one
 /// normal row, two friction rows and optional rolling/spinning rows (contiguous arrays, indices into
@@ -39,43 +27,17 @@ btSequentialImpulseConstraintSolver : public btConstraintSolver
 protected:
 	btAlignedObjectArray<btSolverBody> m_tmpSolverBodyPool;
 	btConstraintArray m_tmpSolverContactConstraintPool;
-	/// Joint rows, constraint after constraint (see m_tmpJoints).
+	/// Joint rows, constraint after constraint.
 	btConstraintArray m_tmpSolverNonContactConstraintPool;
 	btConstraintArray m_tmpSolverContactFrictionConstraintPool;
 	btConstraintArray m_tmpSolverContactRollingFrictionConstraintPool;
 	btAlignedObjectArray<int> m_orderTmpConstraintPool;
-	/// Sweep order of the joints (indices into m_tmpJoints).
+	/// Sweep order of the joints of this solve.
 	btAlignedObjectArray<int> m_orderNonContactConstraintPool;
-	/// Rows per joint in this solve (Bullet's name); m_tmpJoints holds the joint, m_tmpJointFirstRow
-	/// its first row in m_tmpSolverNonContactConstraintPool.
+	/// Rows per joint in this solve.
 	btAlignedObjectArray<btTypedConstraint::btConstraintInfo1> m_tmpConstraintSizesPool;
-	btAlignedObjectArray<btTypedConstraint*> m_tmpJoints;
-	btAlignedObjectArray<int> m_tmpJointFirstRow;
-	/// Each joint's block of equality rows (see btSolverJointBlock).
-	btAlignedObjectArray<btSolverJointBlock> m_tmpJointBlocks;
 	btAlignedObjectArray<int> m_orderFrictionConstraintPool;
 	btAlignedObjectArray<int> m_orderRollingFrictionConstraintPool;
-	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
-	/// of the points within a manifold.
-	btAlignedObjectArray<int> m_manifoldFirstRow;
-	/// Contact rows (in solving order) with a split-impulse target: the only ones the push pass visits.
-	btAlignedObjectArray<int> m_pushRows;
-	/// Contact rows whose restitution applies if they are met this step (in setup order).
-	btAlignedObjectArray<caliber::SolverBounceRow> m_bounceRows;
-	/// Shock propagation's scratch (see propagateShock): set when a contact holds bodies of very
-	/// different masses; the contact graph, each body's level above the ground, the rows bottom up.
-	bool m_shockPropagationNeeded;
-	btAlignedObjectArray<int> m_shockAdjacencyStart;
-	btAlignedObjectArray<int> m_shockAdjacency;
-	btAlignedObjectArray<int> m_shockCursor;
-	btAlignedObjectArray<int> m_shockBodyLevel;
-	btAlignedObjectArray<int> m_shockQueue;
-	btAlignedObjectArray<int> m_shockRowOrder;
-	/// Counts solveGroup calls, so that the in-manifold order also changes from step to step.
-	unsigned int m_solveCount;
-	/// Friction rows per contact row in this solve: 2 with SOLVER_USE_2_FRICTION_DIRECTIONS, else 1. The
-	/// friction rows of contact row j are [j * m_frictionRowsPerContact, (j + 1) * m_frictionRowsPerContact).
-	int m_frictionRowsPerContact;
 	/// Index of the shared entry for static bodies in m_tmpSolverBodyPool (-1 until needed).
 	int m_fixedBodyId;
 	unsigned long m_btSeed2;
@@ -107,13 +69,6 @@ protected:
 
 	/// Adds the rows of every enabled joint, warm started from the joint's last step.
 	void convertJoints(btTypedConstraint * *constraints, int numConstraints, const btContactSolverInfo& infoGlobal);
-	/// Fills the info1.m_numConstraintRows rows at firstRow for one joint; false if the joint produced
-	/// non-finite rows (it is then disabled, with a warning).
-	bool convertJoint(btSolverConstraint * firstRow, btTypedConstraint * constraint,
-	                  const btTypedConstraint::btConstraintInfo1& info1, int solverBodyIdA, int solverBodyIdB,
-	                  const btContactSolverInfo& infoGlobal, btSolverJointBlock& block);
-	/// One sweep over the rows of joint i (its block, then its other rows); returns the squared impulse change.
-	btScalar solveJoint(btSolverBody * solverBodies, int jointIndex);
 	/// Stores the joints' row impulses (warm start, applied impulse, feedback) and breaks overloaded ones.
 	void writeBackJoints(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal);
 
@@ -122,8 +77,6 @@ protected:
 	                                              btPersistentManifold** manifoldPtr, int numManifolds,
 	                                              btTypedConstraint** constraints, int numConstraints,
 	                                              const btContactSolverInfo& infoGlobal, btIDebugDraw* debugDrawer);
-	/// Solves friction row rowIndex within the bounds its normal row's impulse allows.
-	btScalar solveFrictionRow(btSolverBody * solverBodies, int rowIndex);
 	/// One sweep over all rows; returns the squared velocity change of the sweep.
 	virtual btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
 	                                      btPersistentManifold** manifoldPtr, int numManifolds,
@@ -139,16 +92,6 @@ protected:
 	    btCollisionObject * *bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
 	    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
 	    btIDebugDraw* debugDrawer);
-	/// The restitution pass, after the velocity sweeps: every bouncing row that took an impulse is driven
-	/// to its rebound velocity (accumulated impulse kept >= 0).
-	void solveRestitution(const btContactSolverInfo& infoGlobal);
-	/// Whether any row of the manifold that contact row `row` belongs to took an impulse this step.
-	bool manifoldWasMet(int row) const;
-	/// One last sweep from the ground up, each contact holding its lower body fixed, in islands where a
-	/// contact joins bodies of very different masses (heavy on light).
-	void propagateShock(const btContactSolverInfo& infoGlobal);
-	/// Contact row r and its friction rows in the shock sweep (the lower body held fixed).
-	void propagateShockRow(btSolverBody * bodies, int r);
 	/// Writes impulses to the manifold points and velocities and transforms to the bodies.
 	virtual btScalar solveGroupCacheFriendlyFinish(btCollisionObject * *bodies, int numBodies,
 	                                               const btContactSolverInfo& infoGlobal);

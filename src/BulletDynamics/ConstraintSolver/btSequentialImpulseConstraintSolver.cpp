@@ -4,6 +4,7 @@
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btSpinMomentum.h"
 #include "LinearMath/btQuickprof.h"
@@ -39,22 +40,17 @@ void identityOrder(btAlignedObjectArray<int>& order, int count)
 }  // namespace
 
 btSequentialImpulseConstraintSolver::btSequentialImpulseConstraintSolver()
-    : m_solveCount(0),
-      m_frictionRowsPerContact(2),
-      m_fixedBodyId(-1),
-      m_btSeed2(kDefaultSeed),
-      m_leastSquaresResidual(0),
-      m_maxOverrideNumSolverIterations(0)
+    : m_fixedBodyId(-1), m_btSeed2(kDefaultSeed), m_leastSquaresResidual(0), m_maxOverrideNumSolverIterations(0)
 {
-	m_shockPropagationNeeded = false;
+	caliber::solverScratchOf(*this);
 }
 
-btSequentialImpulseConstraintSolver::~btSequentialImpulseConstraintSolver() {}
+btSequentialImpulseConstraintSolver::~btSequentialImpulseConstraintSolver() { caliber::releaseSolverScratch(*this); }
 
 void btSequentialImpulseConstraintSolver::reset()
 {
 	m_btSeed2 = kDefaultSeed;
-	m_solveCount = 0;
+	caliber::solverScratchOf(*this).solveCount = 0;
 }
 
 unsigned long btSequentialImpulseConstraintSolver::btRand2()
@@ -148,8 +144,9 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	m_tmpSolverContactConstraintPool.resize(0);
 	m_tmpSolverContactFrictionConstraintPool.resize(0);
 	m_tmpSolverContactRollingFrictionConstraintPool.resize(0);
-	m_bounceRows.resize(0);
-	m_shockPropagationNeeded = false;
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	scratch.bounceRows.resize(0);
+	scratch.shockPropagationNeeded = false;
 	// Rough upper bound, so the pool grows at most once per new record scene size.
 	m_tmpSolverBodyPool.reserve(numBodies + 1);
 
@@ -164,8 +161,8 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	// Joints first: their warm-start impulses are in the bodies before the contacts measure velocities.
 	convertJoints(constraints, numConstraints, infoGlobal);
 
-	m_frictionRowsPerContact = (infoGlobal.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 2 : 1;
-	m_manifoldFirstRow.resize(0);
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	scratch.manifoldFirstRow.resize(0);
 	for (int i = 0; i < numManifolds; ++i)
 	{
 		// Manifolds are scattered over the heap: the header line (with the point count) four ahead, then
@@ -174,12 +171,13 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 		if (i + 2 < numManifolds) caliber::prefetchManifoldPoints(manifoldPtr[i + 2]);
 		const int firstRow = m_tmpSolverContactConstraintPool.size();
 		convertContact(manifoldPtr[i], infoGlobal);
-		if (m_tmpSolverContactConstraintPool.size() > firstRow) m_manifoldFirstRow.push_back(firstRow);
+		if (m_tmpSolverContactConstraintPool.size() > firstRow) scratch.manifoldFirstRow.push_back(firstRow);
 	}
-	m_manifoldFirstRow.push_back(m_tmpSolverContactConstraintPool.size());
-	++m_solveCount;
+	scratch.manifoldFirstRow.push_back(m_tmpSolverContactConstraintPool.size());
+	++scratch.solveCount;
+	caliber::findBouncesAndMassRatios(scratch, m_tmpSolverBodyPool, m_tmpSolverContactConstraintPool, infoGlobal);
 
-	identityOrder(m_orderNonContactConstraintPool, m_tmpJoints.size());
+	identityOrder(m_orderNonContactConstraintPool, scratch.joints.size());
 	identityOrder(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
 	identityOrder(m_orderFrictionConstraintPool, m_tmpSolverContactFrictionConstraintPool.size());
 	identityOrder(m_orderRollingFrictionConstraintPool, m_tmpSolverContactRollingFrictionConstraintPool.size());
@@ -193,7 +191,8 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 		// The points of one manifold share both bodies, so solving them back to back makes every row wait
 		// for the previous one's body update. Taking the manifolds' k-th points in turn, in blocks of a
 		// few manifolds, gives the processor independent rows to overlap while the sweep stays local.
-		const int numManifoldsWithRows = m_manifoldFirstRow.size() - 1;
+		const btAlignedObjectArray<int>& manifoldFirstRow = scratch.manifoldFirstRow;
+		const int numManifoldsWithRows = manifoldFirstRow.size() - 1;
 		const int kInterleave = 8;
 		int next = 0;
 		for (int blockStart = 0; blockStart < numManifoldsWithRows; blockStart += kInterleave)
@@ -201,15 +200,15 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 			const int blockEnd = btMin(blockStart + kInterleave, numManifoldsWithRows);
 			int maxCount = 0;
 			for (int m = blockStart; m < blockEnd; ++m)
-				maxCount = btMax(maxCount, m_manifoldFirstRow[m + 1] - m_manifoldFirstRow[m]);
+				maxCount = btMax(maxCount, manifoldFirstRow[m + 1] - manifoldFirstRow[m]);
 			for (int p = 0; p < maxCount; ++p)
 			{
 				for (int m = blockStart; m < blockEnd; ++m)
 				{
-					const int first = m_manifoldFirstRow[m];
-					const int count = m_manifoldFirstRow[m + 1] - first;
+					const int first = manifoldFirstRow[m];
+					const int count = manifoldFirstRow[m + 1] - first;
 					if (p >= count) continue;
-					int offset = p + int(m_solveCount % unsigned(count));
+					int offset = p + int(scratch.solveCount % unsigned(count));
 					if (offset >= count) offset -= count;
 					m_orderTmpConstraintPool[next++] = first + offset;
 				}
@@ -217,17 +216,18 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 		}
 		btAssert(next == m_orderTmpConstraintPool.size());
 		for (int j = 0; j < m_orderTmpConstraintPool.size(); ++j)
-			for (int f = 0; f < m_frictionRowsPerContact; ++f)
-				m_orderFrictionConstraintPool[j * m_frictionRowsPerContact + f] =
-				    m_orderTmpConstraintPool[j] * m_frictionRowsPerContact + f;
+			for (int f = 0; f < frictionRowsPerContact; ++f)
+				m_orderFrictionConstraintPool[j * frictionRowsPerContact + f] =
+				    m_orderTmpConstraintPool[j] * frictionRowsPerContact + f;
 	}
 	return btScalar(0);
 }
 
-btScalar btSequentialImpulseConstraintSolver::solveFrictionRow(btSolverBody* solverBodies, int rowIndex)
+btScalar caliber::solveFrictionRow(btSolverBody* solverBodies, btConstraintArray& contacts, btConstraintArray& friction,
+                                   int rowIndex)
 {
-	btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[rowIndex];
-	const btScalar normalImpulse = m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse;
+	btSolverConstraint& row = friction[rowIndex];
+	const btScalar normalImpulse = contacts[row.m_frictionIndex].m_appliedImpulse;
 	// A contact that carries no normal impulse (a speculative one, say) carries no friction either: skip
 	// it, unless it holds a warm-started friction impulse, which the zero bound then takes back.
 	if (!(normalImpulse > btScalar(0)) && row.m_appliedImpulse == btScalar(0)) return btScalar(0);
@@ -260,19 +260,21 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 
 	btSolverBody* solverBodies = m_tmpSolverBodyPool.size() ? &m_tmpSolverBodyPool[0] : 0;
 	btScalar residual = btScalar(0);
+	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 
 	// Every other sweep runs backwards, starting with the other direction on every other step so that an
 	// odd iteration count is balanced too (not in Bullet's shuffled mode).
 	const bool reverse =
-	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && ((unsigned(iteration) + m_solveCount) & 1u) != 0;
+	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && ((unsigned(iteration) + scratch.solveCount) & 1u) != 0;
 	// Joint rows first (as in Bullet); a joint with its own iteration count stops when it is used up.
-	const int numJoints = m_tmpJoints.size();
+	const int numJoints = scratch.joints.size();
 	for (int k = 0; k < numJoints; ++k)
 	{
 		const int j = m_orderNonContactConstraintPool[reverse ? numJoints - 1 - k : k];
-		if (iteration >= m_tmpSolverNonContactConstraintPool[m_tmpJointFirstRow[j]].m_overrideNumSolverIterations)
+		if (iteration >= m_tmpSolverNonContactConstraintPool[scratch.jointFirstRow[j]].m_overrideNumSolverIterations)
 			continue;
-		residual += solveJoint(solverBodies, j);
+		residual += caliber::solveJoint(scratch, solverBodies, m_tmpSolverNonContactConstraintPool,
+		                                m_tmpConstraintSizesPool, j);
 	}
 	// Contacts run the world's iteration count; only joints that ask for more go on beyond it.
 	if (iteration >= infoGlobal.m_numIterations) return residual;
@@ -303,7 +305,9 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 			const int ahead = reverse ? j - kRowPrefetchDistance : j + kRowPrefetchDistance;
 			prefetchRow(&m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[ahead]]);
 		}
-		residual += solveFrictionRow(solverBodies, m_orderFrictionConstraintPool[j]);
+		residual +=
+		    caliber::solveFrictionRow(solverBodies, m_tmpSolverContactConstraintPool,
+		                              m_tmpSolverContactFrictionConstraintPool, m_orderFrictionConstraintPool[j]);
 	}
 
 	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
@@ -340,23 +344,24 @@ void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIte
 	// A row without a push target starts with no push impulse and is never given one, so only the rows
 	// with a target are visited (in the normal rows' order), instead of every row in every sweep.
 	const int numContacts = m_tmpSolverContactConstraintPool.size();
-	m_pushRows.resize(0);
+	btAlignedObjectArray<int>& pushRows = caliber::solverScratchOf(*this).pushRows;
+	pushRows.resize(0);
 	for (int j = 0; j < numContacts; ++j)
 	{
 		const int index = m_orderTmpConstraintPool[j];
-		if (m_tmpSolverContactConstraintPool[index].m_rhsPenetration != btScalar(0)) m_pushRows.push_back(index);
+		if (m_tmpSolverContactConstraintPool[index].m_rhsPenetration != btScalar(0)) pushRows.push_back(index);
 	}
-	if (m_pushRows.size() == 0) return;
+	if (pushRows.size() == 0) return;
 
 	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
-	const int numPushRows = m_pushRows.size();
+	const int numPushRows = pushRows.size();
 	for (int iteration = 0; iteration < infoGlobal.m_numIterations; ++iteration)
 	{
 		btScalar residual = btScalar(0);
 		for (int k = 0; k < numPushRows; ++k)
 		{
-			if (k + 8 < numPushRows) prefetchRow(&m_tmpSolverContactConstraintPool[m_pushRows[k + 8]]);
-			btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_pushRows[k]];
+			if (k + 8 < numPushRows) prefetchRow(&m_tmpSolverContactConstraintPool[pushRows[k + 8]]);
+			btSolverConstraint& row = m_tmpSolverContactConstraintPool[pushRows[k]];
 			residual +=
 			    caliber::resolvePushRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row);
 		}
@@ -380,46 +385,55 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
 		                                              constraints, numConstraints, infoGlobal, debugDrawer);
 		if (m_leastSquaresResidual <= infoGlobal.m_leastSquaresResidualThreshold) break;
 	}
-	propagateShock(infoGlobal);
-	solveRestitution(infoGlobal);
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	caliber::propagateShock(scratch, m_tmpSolverBodyPool, m_tmpSolverContactConstraintPool,
+	                        m_tmpSolverContactFrictionConstraintPool, infoGlobal);
+	if (m_tmpSolverBodyPool.size())
+		caliber::solveRestitution(scratch, &m_tmpSolverBodyPool[0], m_tmpSolverContactConstraintPool, infoGlobal);
 	return m_leastSquaresResidual;
 }
 
-bool btSequentialImpulseConstraintSolver::manifoldWasMet(int row) const
+namespace
 {
-	// m_manifoldFirstRow is ascending, with one past the last row at the end: find the range of row.
-	int lo = 0, hi = m_manifoldFirstRow.size() - 1;
+// Whether any row of the manifold that contact row `row` belongs to took an impulse this step.
+bool manifoldWasMet(const btAlignedObjectArray<int>& manifoldFirstRow, const btConstraintArray& contacts, int row)
+{
+	// manifoldFirstRow is ascending, with one past the last row at the end: find the range of row.
+	int lo = 0, hi = manifoldFirstRow.size() - 1;
 	while (hi - lo > 1)
 	{
 		const int mid = (lo + hi) / 2;
-		if (m_manifoldFirstRow[mid] <= row)
+		if (manifoldFirstRow[mid] <= row)
 			lo = mid;
 		else
 			hi = mid;
 	}
-	for (int r = m_manifoldFirstRow[lo]; r < m_manifoldFirstRow[hi]; ++r)
-		if (m_tmpSolverContactConstraintPool[r].m_appliedImpulse > btScalar(0)) return true;
+	for (int r = manifoldFirstRow[lo]; r < manifoldFirstRow[hi]; ++r)
+		if (contacts[r].m_appliedImpulse > btScalar(0)) return true;
 	return false;
 }
+}  // namespace
 
-void btSequentialImpulseConstraintSolver::solveRestitution(const btContactSolverInfo& infoGlobal)
+void caliber::solveRestitution(SolverScratch& scratch, btSolverBody* solverBodies, btConstraintArray& contacts,
+                               const btContactSolverInfo& infoGlobal)
 {
+	btAlignedObjectArray<SolverBounceRow>& bounceRows = scratch.bounceRows;
 	// Only contacts that were met this step bounce: a manifold none of whose rows took an impulse was not
 	// reached (a speculative gap that was never closed) or was held apart by others. The whole manifold
 	// counts, not each row: a face landing flat is often stopped by one or two of its points, and a
 	// rebound from those alone would turn the body.
 	int numBouncing = 0;
-	for (int i = 0; i < m_bounceRows.size(); ++i)
+	for (int i = 0; i < bounceRows.size(); ++i)
 	{
-		if (manifoldWasMet(m_bounceRows[i].row)) m_bounceRows[numBouncing++] = m_bounceRows[i];
+		if (manifoldWasMet(scratch.manifoldFirstRow, contacts, bounceRows[i].row))
+			bounceRows[numBouncing++] = bounceRows[i];
 	}
-	m_bounceRows.resize(numBouncing);
+	bounceRows.resize(numBouncing);
 	if (numBouncing == 0) return;
 	BT_PROFILE("solveRestitution");
 
 	// Several points of one body (a box landing flat) rebound together: sweeps in alternating directions
 	// until the impulses settle, as in the velocity sweeps.
-	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
 	// The points of one landing face form a singular system (eight coplanar points of a compound hold
 	// three degrees of freedom), on which Gauss-Seidel converges slowly; an unconverged pass tilts the
 	// body. Bouncing rows are few and live one step, so they get more sweeps than the velocity pass.
@@ -429,8 +443,8 @@ void btSequentialImpulseConstraintSolver::solveRestitution(const btContactSolver
 		btScalar residual = btScalar(0);
 		for (int k = 0; k < numBouncing; ++k)
 		{
-			const caliber::SolverBounceRow& bounce = m_bounceRows[(iteration & 1) ? numBouncing - 1 - k : k];
-			btSolverConstraint& row = m_tmpSolverContactConstraintPool[bounce.row];
+			const SolverBounceRow& bounce = bounceRows[(iteration & 1) ? numBouncing - 1 - k : k];
+			btSolverConstraint& row = contacts[bounce.row];
 			btSolverBody& bodyA = solverBodies[row.m_solverBodyIdA];
 			btSolverBody& bodyB = solverBodies[row.m_solverBodyIdB];
 			const btScalar velocity = bounce.startVelocity + caliber::rowDeltaVelocity(bodyA, bodyB, row);
@@ -460,7 +474,7 @@ void btSequentialImpulseConstraintSolver::solveRestitution(const btContactSolver
 
 void btSequentialImpulseConstraintSolver::writeBackContacts(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal)
 {
-	(void)infoGlobal;
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	for (int j = iBegin; j < iEnd; ++j)
 	{
 		const btSolverConstraint& row = m_tmpSolverContactConstraintPool[j];
@@ -468,11 +482,11 @@ void btSequentialImpulseConstraintSolver::writeBackContacts(int iBegin, int iEnd
 		btAssert(point);
 		point->m_appliedImpulse = row.m_appliedImpulse;
 		// Friction rows follow the order of their contact rows, one or two per contact.
-		const int firstFriction = j * m_frictionRowsPerContact;
+		const int firstFriction = j * frictionRowsPerContact;
 		point->m_appliedImpulseLateral1 = m_tmpSolverContactFrictionConstraintPool[firstFriction].m_appliedImpulse;
 		point->m_appliedImpulseLateral2 =
-		    m_frictionRowsPerContact == 2 ? m_tmpSolverContactFrictionConstraintPool[firstFriction + 1].m_appliedImpulse
-		                                  : btScalar(0);
+		    frictionRowsPerContact == 2 ? m_tmpSolverContactFrictionConstraintPool[firstFriction + 1].m_appliedImpulse
+		                                : btScalar(0);
 	}
 }
 
@@ -511,7 +525,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(btCo
 	(void)bodies;
 	(void)numBodies;
 	writeBackContacts(0, m_tmpSolverContactConstraintPool.size(), infoGlobal);
-	writeBackJoints(0, m_tmpJoints.size(), infoGlobal);
+	writeBackJoints(0, caliber::solverScratchOf(*this).joints.size(), infoGlobal);
 	writeBackBodies(0, m_tmpSolverBodyPool.size(), infoGlobal);
 	return btScalar(0);
 }

@@ -5,6 +5,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
 namespace
@@ -187,6 +188,31 @@ bool slidesPastWithoutTouching(const btCollisionObject& objectA, const btCollisi
 	return !cast.calcTimeOfImpact(objectA.getWorldTransform(), toA, objectB.getWorldTransform(), toB, result);
 }
 
+// Whether a contact row rebounds if it is met this step, and how (its J v at setup, the target J v and
+// the push velocity of a weak rebound); bounce.row is left to the caller.
+bool rowBounce(const btSolverConstraint& row, const RowBody& a, const RowBody& b, const btManifoldPoint& cp,
+               const btContactSolverInfo& infoGlobal, caliber::SolverBounceRow& bounce)
+{
+	if (!(cp.m_combinedRestitution > btScalar(0))) return false;
+	const btScalar relativeVelocity = rowVelocity(row, a, b);
+	const btScalar penetration = cp.getDistance() + infoGlobal.m_linearSlop;
+	// The velocity change this step's forces gave the pair (the world adds them before the solve).
+	const btScalar forceVelocity = row.m_contactNormal1.dot(a.forceVelocityChange(infoGlobal.m_timeStep)) +
+	                               row.m_relpos1CrossNormal.dot(a.torqueVelocityChange(infoGlobal.m_timeStep)) +
+	                               row.m_contactNormal2.dot(b.forceVelocityChange(infoGlobal.m_timeStep)) +
+	                               row.m_relpos2CrossNormal.dot(b.torqueVelocityChange(infoGlobal.m_timeStep));
+	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
+	Bounce target;
+	if (!bounceTarget(relativeVelocity - forceVelocity, forceVelocity * invTimeStep, btMax(btScalar(0), penetration),
+	                  cp.m_combinedRestitution, infoGlobal.m_restitutionVelocityThreshold, infoGlobal.m_timeStep,
+	                  target))
+		return false;
+	bounce.startVelocity = relativeVelocity;
+	bounce.targetVelocity = target.velocity;
+	bounce.targetPushVelocity = target.pushGap * invTimeStep;
+	return true;
+}
+
 // One test on the sum rather than caliber::isFinite per vector: cheaper per contact, and a sum that
 // overflows (a point near the float range) is refused too.
 bool isFinitePoint(const btManifoldPoint& cp)
@@ -234,28 +260,8 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
 	// bouncing contact like any other (close the gap, stop), and the pass then gives every contact that
 	// was really met this step (it took an impulse) its rebound. Deciding the bounce here instead would
 	// bounce contacts that other rows keep apart, or miss impacts that fall between two steps.
-	bool bounces = false;
-	if (cp.m_combinedRestitution > btScalar(0))
-	{
-		// The velocity change this step's forces gave the pair (the world adds them before the solve).
-		const btScalar forceVelocity = row.m_contactNormal1.dot(a.forceVelocityChange(infoGlobal.m_timeStep)) +
-		                               row.m_relpos1CrossNormal.dot(a.torqueVelocityChange(infoGlobal.m_timeStep)) +
-		                               row.m_contactNormal2.dot(b.forceVelocityChange(infoGlobal.m_timeStep)) +
-		                               row.m_relpos2CrossNormal.dot(b.torqueVelocityChange(infoGlobal.m_timeStep));
-		Bounce target;
-		bounces = bounceTarget(relativeVelocity - forceVelocity, forceVelocity * invTimeStep,
-		                       btMax(btScalar(0), penetration), cp.m_combinedRestitution,
-		                       infoGlobal.m_restitutionVelocityThreshold, infoGlobal.m_timeStep, target);
-		if (bounces)
-		{
-			caliber::SolverBounceRow bounce;
-			bounce.row = int(&row - &m_tmpSolverContactConstraintPool[0]);
-			bounce.startVelocity = relativeVelocity;
-			bounce.targetVelocity = target.velocity;
-			bounce.targetPushVelocity = target.pushGap * invTimeStep;
-			m_bounceRows.push_back(bounce);
-		}
-	}
+	caliber::SolverBounceRow bounce;
+	const bool bounces = rowBounce(row, a, b, cp, infoGlobal, bounce);
 	btScalar velocityError = -relativeVelocity;
 	btScalar positionalError = btScalar(0);
 	// Deep penetrations are resolved by the split-impulse pass, which moves the bodies without adding
@@ -341,6 +347,7 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 	btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
 	btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
 	if (!colObj0 || !colObj1) return;
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
 	const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
 	// Two bodies that nothing can move (static or kinematic against each other) need no rows.
@@ -350,14 +357,6 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		const bool aMoves = a.m_originalBody && !a.m_originalBody->isStaticOrKinematicObject();
 		const bool bMoves = b.m_originalBody && !b.m_originalBody->isStaticOrKinematicObject();
 		if (!aMoves && !bMoves) return;
-		// A heavy body on a light one needs the shock-propagation sweep (see propagateShock).
-		const btScalar kShockMassRatio = 4;
-		if (aMoves && bMoves && a.m_originalBody->getInvMass() > btScalar(0) &&
-		    b.m_originalBody->getInvMass() > btScalar(0))
-		{
-			const btScalar ratio = a.m_originalBody->getInvMass() / b.m_originalBody->getInvMass();
-			if (ratio > kShockMassRatio || ratio * kShockMassRatio < btScalar(1)) m_shockPropagationNeeded = true;
-		}
 	}
 
 	for (int j = 0; j < manifold->getNumContacts(); ++j)
@@ -458,7 +457,7 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		const int friction1Index = m_tmpSolverContactFrictionConstraintPool.size();
 		addFrictionConstraint(cp.m_lateralFrictionDir1, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
 		                      rel_pos2, colObj0, colObj1, cp.m_contactMotion1);
-		if (m_frictionRowsPerContact == 2)
+		if (frictionRowsPerContact == 2)
 			addFrictionConstraint(cp.m_lateralFrictionDir2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
 			                      rel_pos2, colObj0, colObj1, cp.m_contactMotion2);
 		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
@@ -466,13 +465,44 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 			// Indices, not references: the second row may have grown the pool.
 			btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
 			btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
-			for (int f = 0; f < m_frictionRowsPerContact; ++f)
+			for (int f = 0; f < frictionRowsPerContact; ++f)
 			{
 				btSolverConstraint& friction = m_tmpSolverContactFrictionConstraintPool[friction1Index + f];
 				const btVector3& direction = f == 0 ? cp.m_lateralFrictionDir1 : cp.m_lateralFrictionDir2;
 				friction.m_appliedImpulse = previousFrictionImpulse.dot(direction) * infoGlobal.m_warmstartingFactor;
 				applyWarmStart(friction, bodyA, bodyB);
 			}
+		}
+	}
+}
+
+void caliber::findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodies,
+                                       const btConstraintArray& contacts, const btContactSolverInfo& infoGlobal)
+{
+	// A heavy body on a light one needs the shock-propagation sweeps (see propagateShock).
+	const btScalar kShockMassRatio = 4;
+	for (int r = 0; r < contacts.size(); ++r)
+	{
+		const btSolverConstraint& row = contacts[r];
+		const btSolverBody& bodyA = bodies[row.m_solverBodyIdA];
+		const btSolverBody& bodyB = bodies[row.m_solverBodyIdB];
+		const RowBody a = {&bodyA, bodyA.m_originalBody};
+		const RowBody b = {&bodyB, bodyB.m_originalBody};
+		const btManifoldPoint& cp = *static_cast<const btManifoldPoint*>(row.m_originalContactPoint);
+		SolverBounceRow bounce;
+		if (rowBounce(row, a, b, cp, infoGlobal, bounce))
+		{
+			bounce.row = r;
+			scratch.bounceRows.push_back(bounce);
+		}
+		const btRigidBody* rigidA = bodyA.m_originalBody;
+		const btRigidBody* rigidB = bodyB.m_originalBody;
+		if (!scratch.shockPropagationNeeded && rigidA && rigidB && !rigidA->isStaticOrKinematicObject() &&
+		    !rigidB->isStaticOrKinematicObject() && rigidA->getInvMass() > btScalar(0) &&
+		    rigidB->getInvMass() > btScalar(0))
+		{
+			const btScalar ratio = rigidA->getInvMass() / rigidB->getInvMass();
+			if (ratio > kShockMassRatio || ratio * kShockMassRatio < btScalar(1)) scratch.shockPropagationNeeded = true;
 		}
 	}
 }

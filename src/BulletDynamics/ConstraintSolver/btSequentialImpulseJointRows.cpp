@@ -4,6 +4,7 @@
 // like contact rows (btSolverRowKernels.h).
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btQuickprof.h"
@@ -94,10 +95,10 @@ void clearRow(btSolverConstraint& row, btScalar cfm)
 }
 }  // namespace
 
-bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* firstRow, btTypedConstraint* constraint,
-                                                       const btTypedConstraint::btConstraintInfo1& info1,
-                                                       int solverBodyIdA, int solverBodyIdB,
-                                                       const btContactSolverInfo& infoGlobal, btSolverJointBlock& block)
+bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
+                           btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1,
+                           int solverBodyIdA, int solverBodyIdB, const btContactSolverInfo& infoGlobal,
+                           btSolverJointBlock& block)
 {
 	const int numRows = info1.m_numConstraintRows;
 	block.m_size = 0;
@@ -132,8 +133,8 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 
 	btRigidBody& rbA = constraint->getRigidBodyA();
 	btRigidBody& rbB = constraint->getRigidBodyB();
-	const btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
-	const btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	const btSolverBody& bodyA = bodies[solverBodyIdA];
+	const btSolverBody& bodyB = bodies[solverBodyIdB];
 	const btScalar threshold = constraint->getBreakingImpulseThreshold();
 
 	btAlignedObjectArray<btScalar>& warm = constraint->internalGetWarmStartImpulses();
@@ -209,8 +210,8 @@ bool btSequentialImpulseConstraintSolver::convertJoint(btSolverConstraint* first
 			const btScalar impulse =
 			    btMax(row.m_lowerLimit, btMin(row.m_upperLimit, warm[j] * infoGlobal.m_warmstartingFactor));
 			row.m_appliedImpulse = impulse;
-			m_tmpSolverBodyPool[solverBodyIdA].applyImpulse(row.m_contactNormal1, row.m_angularComponentA, impulse);
-			m_tmpSolverBodyPool[solverBodyIdB].applyImpulse(row.m_contactNormal2, row.m_angularComponentB, impulse);
+			bodies[solverBodyIdA].applyImpulse(row.m_contactNormal1, row.m_angularComponentA, impulse);
+			bodies[solverBodyIdB].applyImpulse(row.m_contactNormal2, row.m_angularComponentB, impulse);
 		}
 	}
 	return true;
@@ -220,11 +221,12 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
                                                         const btContactSolverInfo& infoGlobal)
 {
 	BT_PROFILE("convertJoints");
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	m_tmpSolverNonContactConstraintPool.resize(0);
 	m_tmpConstraintSizesPool.resize(0);
-	m_tmpJoints.resize(0);
-	m_tmpJointFirstRow.resize(0);
-	m_tmpJointBlocks.resize(0);
+	scratch.joints.resize(0);
+	scratch.jointFirstRow.resize(0);
+	scratch.jointBlocks.resize(0);
 	if (numConstraints <= 0 || !constraints) return;
 
 	int totalRows = 0;
@@ -243,20 +245,20 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 			constraint->internalSetAppliedImpulse(0);
 			continue;
 		}
-		m_tmpJoints.push_back(constraint);
+		scratch.joints.push_back(constraint);
 		m_tmpConstraintSizesPool.push_back(info1);
-		m_tmpJointFirstRow.push_back(totalRows);
+		scratch.jointFirstRow.push_back(totalRows);
 		totalRows += info1.m_numConstraintRows;
 		if (constraint->getOverrideNumSolverIterations() > m_maxOverrideNumSolverIterations)
 			m_maxOverrideNumSolverIterations = constraint->getOverrideNumSolverIterations();
 	}
 	m_tmpSolverNonContactConstraintPool.resizeNoInitialize(totalRows);
-	m_tmpJointBlocks.resizeNoInitialize(m_tmpJoints.size());
+	scratch.jointBlocks.resizeNoInitialize(scratch.joints.size());
 
 	int kept = 0;
-	for (int i = 0; i < m_tmpJoints.size(); ++i)
+	for (int i = 0; i < scratch.joints.size(); ++i)
 	{
-		btTypedConstraint* constraint = m_tmpJoints[i];
+		btTypedConstraint* constraint = scratch.joints[i];
 		if (constraint->needsFeedback() && constraint->getJointFeedback())
 		{
 			btJointFeedback* feedback = constraint->getJointFeedback();
@@ -270,10 +272,10 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 		// Rows of dropped joints are squeezed out, so the row array stays dense.
 		const int firstRow =
 		    kept == i
-		        ? m_tmpJointFirstRow[i]
-		        : (kept ? m_tmpJointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0);
-		if (!convertJoint(&m_tmpSolverNonContactConstraintPool[firstRow], constraint, m_tmpConstraintSizesPool[i], idA,
-		                  idB, infoGlobal, m_tmpJointBlocks[kept]))
+		        ? scratch.jointFirstRow[i]
+		        : (kept ? scratch.jointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0);
+		if (!caliber::convertJoint(m_tmpSolverBodyPool, &m_tmpSolverNonContactConstraintPool[firstRow], constraint,
+		                           m_tmpConstraintSizesPool[i], idA, idB, infoGlobal, scratch.jointBlocks[kept]))
 		{
 			constraint->setEnabled(false);
 			constraint->internalGetWarmStartImpulses().resize(0);
@@ -283,31 +285,32 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 			    0);
 			continue;
 		}
-		m_tmpJoints[kept] = constraint;
+		scratch.joints[kept] = constraint;
 		m_tmpConstraintSizesPool[kept] = m_tmpConstraintSizesPool[i];
-		m_tmpJointFirstRow[kept] = firstRow;
-		m_tmpJointBlocks[kept].m_firstRow = firstRow;
+		scratch.jointFirstRow[kept] = firstRow;
+		scratch.jointBlocks[kept].m_firstRow = firstRow;
 		++kept;
 	}
-	m_tmpJoints.resize(kept);
+	scratch.joints.resize(kept);
 	m_tmpConstraintSizesPool.resize(kept);
-	m_tmpJointFirstRow.resize(kept);
-	m_tmpJointBlocks.resize(kept);
+	scratch.jointFirstRow.resize(kept);
+	scratch.jointBlocks.resize(kept);
 	const int usedRows =
-	    kept ? m_tmpJointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0;
+	    kept ? scratch.jointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0;
 	m_tmpSolverNonContactConstraintPool.resize(usedRows);
 }
 
-btScalar btSequentialImpulseConstraintSolver::solveJoint(btSolverBody* solverBodies, int jointIndex)
+btScalar caliber::solveJoint(const SolverScratch& scratch, btSolverBody* solverBodies, btConstraintArray& jointRows,
+                             const btAlignedObjectArray<btTypedConstraint::btConstraintInfo1>& sizes, int jointIndex)
 {
-	const int first = m_tmpJointFirstRow[jointIndex];
-	const int end = first + m_tmpConstraintSizesPool[jointIndex].m_numConstraintRows;
-	btSolverConstraint* rows = &m_tmpSolverNonContactConstraintPool[0];
+	const int first = scratch.jointFirstRow[jointIndex];
+	const int end = first + sizes[jointIndex].m_numConstraintRows;
+	btSolverConstraint* rows = &jointRows[0];
 	btSolverBody& bodyA = solverBodies[rows[first].m_solverBodyIdA];
 	btSolverBody& bodyB = solverBodies[rows[first].m_solverBodyIdB];
 	btScalar residual = 0;
 	int r = first;
-	const btSolverJointBlock& block = m_tmpJointBlocks[jointIndex];
+	const btSolverJointBlock& block = scratch.jointBlocks[jointIndex];
 	if (block.m_size)
 	{
 		const int S = btSolverJointBlock::MAX_ROWS;
@@ -337,10 +340,11 @@ btScalar btSequentialImpulseConstraintSolver::solveJoint(btSolverBody* solverBod
 void btSequentialImpulseConstraintSolver::writeBackJoints(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal)
 {
 	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
+	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	for (int i = iBegin; i < iEnd; ++i)
 	{
-		btTypedConstraint* constraint = m_tmpJoints[i];
-		const int first = m_tmpJointFirstRow[i];
+		btTypedConstraint* constraint = scratch.joints[i];
+		const int first = scratch.jointFirstRow[i];
 		const int numRows = m_tmpConstraintSizesPool[i].m_numConstraintRows;
 		btAlignedObjectArray<btScalar>& warm = constraint->internalGetWarmStartImpulses();
 		warm.resizeNoInitialize(numRows);

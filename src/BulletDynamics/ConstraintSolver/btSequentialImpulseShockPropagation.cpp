@@ -12,6 +12,7 @@
 
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btQuickprof.h"
 
@@ -48,108 +49,115 @@ void resolveRowOneSided(btSolverBody& bodyA, btSolverBody& bodyB, btSolverConstr
 	else
 		bodyB.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, deltaImpulse);
 }
-}  // namespace
-
-void btSequentialImpulseConstraintSolver::propagateShock(const btContactSolverInfo& infoGlobal)
+// Contact row r and its friction rows in a shock sweep: the lower body held fixed.
+void propagateShockRow(const caliber::SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& contacts,
+                       btConstraintArray& friction, int frictionRowsPerContact, int r)
 {
-	if (!m_shockPropagationNeeded) return;
-	BT_PROFILE("propagateShock");
-	const int numBodies = m_tmpSolverBodyPool.size();
-	const int numRows = m_tmpSolverContactConstraintPool.size();
-
-	// Contact graph in compressed rows: the rows touching each body.
-	m_shockAdjacencyStart.resize(0);
-	m_shockAdjacencyStart.resize(numBodies + 1, 0);
-	for (int r = 0; r < numRows; ++r)
-	{
-		const btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
-		++m_shockAdjacencyStart[row.m_solverBodyIdA + 1];
-		++m_shockAdjacencyStart[row.m_solverBodyIdB + 1];
-	}
-	for (int b = 0; b < numBodies; ++b) m_shockAdjacencyStart[b + 1] += m_shockAdjacencyStart[b];
-	m_shockAdjacency.resizeNoInitialize(2 * numRows);
-	m_shockCursor.resizeNoInitialize(numBodies);
-	for (int b = 0; b < numBodies; ++b) m_shockCursor[b] = m_shockAdjacencyStart[b];
-	for (int r = 0; r < numRows; ++r)
-	{
-		const btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
-		m_shockAdjacency[m_shockCursor[row.m_solverBodyIdA]++] = r;
-		m_shockAdjacency[m_shockCursor[row.m_solverBodyIdB]++] = r;
-	}
-
-	// Levels by breadth-first search from everything that does not move (level 0); bodies that no chain
-	// of contacts connects to the ground keep INT_MAX and are left alone.
-	m_shockBodyLevel.resizeNoInitialize(numBodies);
-	m_shockQueue.resizeNoInitialize(numBodies);
-	int queueEnd = 0;
-	for (int b = 0; b < numBodies; ++b)
-	{
-		const bool fixed = !isDynamic(m_tmpSolverBodyPool[b]);
-		m_shockBodyLevel[b] = fixed ? 0 : INT_MAX;
-		if (fixed) m_shockQueue[queueEnd++] = b;
-	}
-	for (int head = 0; head < queueEnd; ++head)
-	{
-		const int body = m_shockQueue[head];
-		const int next = m_shockBodyLevel[body] + 1;
-		for (int k = m_shockAdjacencyStart[body]; k < m_shockAdjacencyStart[body + 1]; ++k)
-		{
-			const btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_shockAdjacency[k]];
-			const int other = row.m_solverBodyIdA == body ? row.m_solverBodyIdB : row.m_solverBodyIdA;
-			if (m_shockBodyLevel[other] != INT_MAX) continue;
-			m_shockBodyLevel[other] = next;
-			m_shockQueue[queueEnd++] = other;
-		}
-	}
-
-	// The rows in the order their upper bodies were reached: ground contacts first, then level by level.
-	m_shockRowOrder.resize(0);
-	for (int head = 0; head < queueEnd; ++head)
-	{
-		const int body = m_shockQueue[head];
-		for (int k = m_shockAdjacencyStart[body]; k < m_shockAdjacencyStart[body + 1]; ++k)
-		{
-			const int r = m_shockAdjacency[k];
-			const btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
-			const int other = row.m_solverBodyIdA == body ? row.m_solverBodyIdB : row.m_solverBodyIdA;
-			// Each row once, from its lower body (ties: from the smaller index).
-			const int levelHere = m_shockBodyLevel[body], levelOther = m_shockBodyLevel[other];
-			if (levelOther < levelHere || (levelOther == levelHere && other < body)) continue;
-			m_shockRowOrder.push_back(r);
-		}
-	}
-
-	btSolverBody* bodies = &m_tmpSolverBodyPool[0];
-	// Several points hold each upper body (a box on a box has four): one sweep leaves the first point of
-	// each manifold with most of the correction and tilts the body, so the bottom-up pass is repeated,
-	// as many times as the velocity sweeps. Each body then converges against a fixed base, which takes
-	// a few sweeps whatever the mass ratio.
-	for (int sweep = 0; sweep < infoGlobal.m_numIterations; ++sweep)
-	{
-		for (int k = 0; k < m_shockRowOrder.size(); ++k) propagateShockRow(bodies, m_shockRowOrder[k]);
-	}
-}
-
-void btSequentialImpulseConstraintSolver::propagateShockRow(btSolverBody* bodies, int r)
-{
-	btSolverConstraint& row = m_tmpSolverContactConstraintPool[r];
+	btSolverConstraint& row = contacts[r];
 	btSolverBody& bodyA = bodies[row.m_solverBodyIdA];
 	btSolverBody& bodyB = bodies[row.m_solverBodyIdB];
-	const int levelA = m_shockBodyLevel[row.m_solverBodyIdA], levelB = m_shockBodyLevel[row.m_solverBodyIdB];
+	const int levelA = scratch.shockBodyLevel[row.m_solverBodyIdA],
+	          levelB = scratch.shockBodyLevel[row.m_solverBodyIdB];
 	if (levelA == levelB)
 	{
 		// Side by side: ordinary rows.
 		caliber::resolveRow(bodyA, bodyB, row, row.m_lowerLimit, row.m_upperLimit);
-		for (int f = 0; f < m_frictionRowsPerContact; ++f) solveFrictionRow(bodies, r * m_frictionRowsPerContact + f);
+		for (int f = 0; f < frictionRowsPerContact; ++f)
+			caliber::solveFrictionRow(bodies, contacts, friction, r * frictionRowsPerContact + f);
 		return;
 	}
 	const bool upperIsA = levelA > levelB;
 	resolveRowOneSided(bodyA, bodyB, row, upperIsA, row.m_lowerLimit, row.m_upperLimit);
 	// Its friction too: the upper body must not slide on what holds it either.
 	const btScalar bound = row.m_friction * btMax(btScalar(0), row.m_appliedImpulse);
-	for (int f = 0; f < m_frictionRowsPerContact; ++f)
+	for (int f = 0; f < frictionRowsPerContact; ++f)
 	{
-		btSolverConstraint& friction = m_tmpSolverContactFrictionConstraintPool[r * m_frictionRowsPerContact + f];
-		resolveRowOneSided(bodyA, bodyB, friction, upperIsA, -bound, bound);
+		btSolverConstraint& frictionRow = friction[r * frictionRowsPerContact + f];
+		resolveRowOneSided(bodyA, bodyB, frictionRow, upperIsA, -bound, bound);
+	}
+}
+}  // namespace
+
+void caliber::propagateShock(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodyPool,
+                             btConstraintArray& contacts, btConstraintArray& friction,
+                             const btContactSolverInfo& infoGlobal)
+{
+	if (!scratch.shockPropagationNeeded) return;
+	BT_PROFILE("propagateShock");
+	const int numBodies = bodyPool.size();
+	const int numRows = contacts.size();
+
+	// Contact graph in compressed rows: the rows touching each body.
+	scratch.shockAdjacencyStart.resize(0);
+	scratch.shockAdjacencyStart.resize(numBodies + 1, 0);
+	for (int r = 0; r < numRows; ++r)
+	{
+		const btSolverConstraint& row = contacts[r];
+		++scratch.shockAdjacencyStart[row.m_solverBodyIdA + 1];
+		++scratch.shockAdjacencyStart[row.m_solverBodyIdB + 1];
+	}
+	for (int b = 0; b < numBodies; ++b) scratch.shockAdjacencyStart[b + 1] += scratch.shockAdjacencyStart[b];
+	scratch.shockAdjacency.resizeNoInitialize(2 * numRows);
+	scratch.shockCursor.resizeNoInitialize(numBodies);
+	for (int b = 0; b < numBodies; ++b) scratch.shockCursor[b] = scratch.shockAdjacencyStart[b];
+	for (int r = 0; r < numRows; ++r)
+	{
+		const btSolverConstraint& row = contacts[r];
+		scratch.shockAdjacency[scratch.shockCursor[row.m_solverBodyIdA]++] = r;
+		scratch.shockAdjacency[scratch.shockCursor[row.m_solverBodyIdB]++] = r;
+	}
+
+	// Levels by breadth-first search from everything that does not move (level 0); bodies that no chain
+	// of contacts connects to the ground keep INT_MAX and are left alone.
+	scratch.shockBodyLevel.resizeNoInitialize(numBodies);
+	scratch.shockQueue.resizeNoInitialize(numBodies);
+	int queueEnd = 0;
+	for (int b = 0; b < numBodies; ++b)
+	{
+		const bool fixed = !isDynamic(bodyPool[b]);
+		scratch.shockBodyLevel[b] = fixed ? 0 : INT_MAX;
+		if (fixed) scratch.shockQueue[queueEnd++] = b;
+	}
+	for (int head = 0; head < queueEnd; ++head)
+	{
+		const int body = scratch.shockQueue[head];
+		const int next = scratch.shockBodyLevel[body] + 1;
+		for (int k = scratch.shockAdjacencyStart[body]; k < scratch.shockAdjacencyStart[body + 1]; ++k)
+		{
+			const btSolverConstraint& row = contacts[scratch.shockAdjacency[k]];
+			const int other = row.m_solverBodyIdA == body ? row.m_solverBodyIdB : row.m_solverBodyIdA;
+			if (scratch.shockBodyLevel[other] != INT_MAX) continue;
+			scratch.shockBodyLevel[other] = next;
+			scratch.shockQueue[queueEnd++] = other;
+		}
+	}
+
+	// The rows in the order their upper bodies were reached: ground contacts first, then level by level.
+	scratch.shockRowOrder.resize(0);
+	for (int head = 0; head < queueEnd; ++head)
+	{
+		const int body = scratch.shockQueue[head];
+		for (int k = scratch.shockAdjacencyStart[body]; k < scratch.shockAdjacencyStart[body + 1]; ++k)
+		{
+			const int r = scratch.shockAdjacency[k];
+			const btSolverConstraint& row = contacts[r];
+			const int other = row.m_solverBodyIdA == body ? row.m_solverBodyIdB : row.m_solverBodyIdA;
+			// Each row once, from its lower body (ties: from the smaller index).
+			const int levelHere = scratch.shockBodyLevel[body], levelOther = scratch.shockBodyLevel[other];
+			if (levelOther < levelHere || (levelOther == levelHere && other < body)) continue;
+			scratch.shockRowOrder.push_back(r);
+		}
+	}
+
+	btSolverBody* bodies = &bodyPool[0];
+	// Several points hold each upper body (a box on a box has four): one sweep leaves the first point of
+	// each manifold with most of the correction and tilts the body, so the bottom-up pass is repeated,
+	// as many times as the velocity sweeps. Each body then converges against a fixed base, which takes
+	// a few sweeps whatever the mass ratio.
+	for (int sweep = 0; sweep < infoGlobal.m_numIterations; ++sweep)
+	{
+		for (int k = 0; k < scratch.shockRowOrder.size(); ++k)
+			propagateShockRow(scratch, bodies, contacts, friction, frictionRowsPerContact(infoGlobal),
+			                  scratch.shockRowOrder[k]);
 	}
 }

@@ -1,0 +1,99 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_SOLVER_SCRATCH_H
+#define CALIBER_SOLVER_SCRATCH_H
+
+// The sequential-impulse solver's own per-solve state and stages, beside Bullet's class rather than in
+// it: btSequentialImpulseConstraintSolver declares only Bullet's members, and what Caliber adds lives
+// in a SolverScratch found by the solver's address (a side table, looked up once per solve or sweep,
+// never per row), with the stages Bullet does not have as free functions over the solver's pools.
+
+#include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
+#include "BulletDynamics/ConstraintSolver/btSolverBody.h"
+#include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
+#include "LinearMath/btAlignedObjectArray.h"
+
+class btManifoldPoint;
+class btSequentialImpulseConstraintSolver;
+
+namespace caliber
+{
+/// A contact row that rebounds this step if its contact is met (see solveRestitution).
+struct SolverBounceRow
+{
+	int row;                      ///< index into the contact row pool
+	btScalar startVelocity;       ///< J v at setup (the solver bodies' velocities, before any impulse)
+	btScalar targetVelocity;      ///< J v the rebound leaves the step with
+	btScalar targetPushVelocity;  ///< position correction over the step, as a push velocity (<= 0; 0: none)
+};
+
+/// One solver's Caliber-only state. The arrays keep their capacity between solves.
+struct SolverScratch
+{
+	/// The joints of this solve, each joint's first row in the joint row pool, and its block of
+	/// equality rows (see btSolverJointBlock).
+	btAlignedObjectArray<btTypedConstraint*> joints;
+	btAlignedObjectArray<int> jointFirstRow;
+	btAlignedObjectArray<btSolverJointBlock> jointBlocks;
+	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
+	/// of the points within a manifold.
+	btAlignedObjectArray<int> manifoldFirstRow;
+	/// Contact rows (in solving order) with a split-impulse target: the only ones the push pass visits.
+	btAlignedObjectArray<int> pushRows;
+	/// Contact rows whose restitution applies if they are met this step (in setup order).
+	btAlignedObjectArray<SolverBounceRow> bounceRows;
+	/// Shock propagation (see propagateShock): whether a contact of this solve holds bodies of very
+	/// different masses; the contact graph, each body's level above the ground, the rows bottom up.
+	bool shockPropagationNeeded = false;
+	btAlignedObjectArray<int> shockAdjacencyStart;
+	btAlignedObjectArray<int> shockAdjacency;
+	btAlignedObjectArray<int> shockCursor;
+	btAlignedObjectArray<int> shockBodyLevel;
+	btAlignedObjectArray<int> shockQueue;
+	btAlignedObjectArray<int> shockRowOrder;
+	/// Counts solves, so that the in-manifold order also changes from step to step (reset() clears it).
+	unsigned int solveCount = 0;
+};
+
+/// solver's scratch (made on first use).
+SolverScratch& solverScratchOf(const btSequentialImpulseConstraintSolver& solver);
+/// Drops solver's scratch (its destructor calls this).
+void releaseSolverScratch(const btSequentialImpulseConstraintSolver& solver);
+
+/// Friction rows per contact row: 2 with SOLVER_USE_2_FRICTION_DIRECTIONS, else 1. The friction rows of
+/// contact row j are [j * rows, (j + 1) * rows).
+inline int frictionRowsPerContact(const btContactSolverInfo& info)
+{
+	return (info.m_solverMode & SOLVER_USE_2_FRICTION_DIRECTIONS) ? 2 : 1;
+}
+
+/// After the contact rows are set up: lists the rows that rebound if met (see bounceTarget in
+/// btSequentialImpulseContactRows.cpp), and notes whether a row joins dynamic bodies more than 4 times
+/// apart in mass (shock propagation).
+void findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodies,
+                              const btConstraintArray& contacts, const btContactSolverInfo& infoGlobal);
+
+/// Solves friction row rowIndex within the bounds its normal row's impulse allows.
+btScalar solveFrictionRow(btSolverBody* bodies, btConstraintArray& contacts, btConstraintArray& friction, int rowIndex);
+
+/// Fills the info1.m_numConstraintRows rows at firstRow for one joint; false if the joint produced
+/// non-finite rows (it is then disabled, with a warning).
+bool convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
+                  btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1, int solverBodyIdA,
+                  int solverBodyIdB, const btContactSolverInfo& infoGlobal, btSolverJointBlock& block);
+/// One sweep over the rows of joint jointIndex (its block, then its other rows); returns the squared
+/// impulse change.
+btScalar solveJoint(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,
+                    const btAlignedObjectArray<btTypedConstraint::btConstraintInfo1>& sizes, int jointIndex);
+
+/// The restitution pass, after the velocity sweeps: every bouncing row of a manifold that was met is
+/// driven to its rebound velocity (accumulated impulse kept >= 0).
+void solveRestitution(SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& contacts,
+                      const btContactSolverInfo& infoGlobal);
+/// The bottom-up sweeps, each contact holding its lower body fixed, in solves where a contact joins bodies
+/// of very different masses (heavy on light).
+void propagateShock(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodies, btConstraintArray& contacts,
+                    btConstraintArray& friction, const btContactSolverInfo& infoGlobal);
+}  // namespace caliber
+
+#endif  // CALIBER_SOLVER_SCRATCH_H
