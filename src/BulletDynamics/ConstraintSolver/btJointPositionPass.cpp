@@ -5,6 +5,22 @@
 #include "BulletDynamics/ConstraintSolver/btHingeConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btPoint2PointConstraint.h"
 
+#include <typeinfo>
+
+namespace
+{
+// joint as a Joint (Caliber's own class or a subclass of it), or 0. The type tag alone is not enough:
+// a user's joint written straight on btTypedConstraint may borrow a tag (Bullet's tests and examples do),
+// and must then be left alone. The exact type is compared first, which is cheap; only other classes pay
+// for the dynamic cast.
+template <class Joint>
+const Joint* asJoint(const btTypedConstraint& joint)
+{
+	if (typeid(joint) == typeid(Joint)) return static_cast<const Joint*>(&joint);
+	return dynamic_cast<const Joint*>(&joint);
+}
+}  // namespace
+
 namespace caliber
 {
 bool correctsPosition(const btTypedConstraint& joint)
@@ -12,9 +28,11 @@ bool correctsPosition(const btTypedConstraint& joint)
 	switch (joint.getConstraintType())
 	{
 		case POINT2POINT_CONSTRAINT_TYPE:
+			return asJoint<btPoint2PointConstraint>(joint) != 0;
 		case HINGE_CONSTRAINT_TYPE:
+			return asJoint<btHingeConstraint>(joint) != 0;
 		case CONETWIST_CONSTRAINT_TYPE:
-			return true;
+			return asJoint<btConeTwistConstraint>(joint) != 0;
 		default:
 			return false;
 	}
@@ -26,25 +44,26 @@ bool jointAnchors(const btTypedConstraint& joint, btVector3& anchorInA, btVector
 	{
 		case POINT2POINT_CONSTRAINT_TYPE:
 		{
-			const btPoint2PointConstraint& ball = static_cast<const btPoint2PointConstraint&>(joint);
-			anchorInA = ball.getPivotInA();
-			anchorInB = ball.getPivotInB();
+			const btPoint2PointConstraint* ball = asJoint<btPoint2PointConstraint>(joint);
+			if (!ball) return false;
+			anchorInA = ball->getPivotInA();
+			anchorInB = ball->getPivotInB();
 			return true;
 		}
 		case HINGE_CONSTRAINT_TYPE:
 		{
-			const btHingeConstraint& hinge = static_cast<const btHingeConstraint&>(joint);
-			if (hinge.getAngularOnly()) return false;
-			anchorInA = hinge.getAFrame().getOrigin();
-			anchorInB = hinge.getBFrame().getOrigin();
+			const btHingeConstraint* hinge = asJoint<btHingeConstraint>(joint);
+			if (!hinge || hinge->getAngularOnly()) return false;
+			anchorInA = hinge->getAFrame().getOrigin();
+			anchorInB = hinge->getBFrame().getOrigin();
 			return true;
 		}
 		case CONETWIST_CONSTRAINT_TYPE:
 		{
-			const btConeTwistConstraint& cone = static_cast<const btConeTwistConstraint&>(joint);
-			if (cone.getAngularOnly()) return false;
-			anchorInA = cone.getAFrame().getOrigin();
-			anchorInB = cone.getBFrame().getOrigin();
+			const btConeTwistConstraint* cone = asJoint<btConeTwistConstraint>(joint);
+			if (!cone || cone->getAngularOnly()) return false;
+			anchorInA = cone->getAFrame().getOrigin();
+			anchorInB = cone->getBFrame().getOrigin();
 			return true;
 		}
 		default:

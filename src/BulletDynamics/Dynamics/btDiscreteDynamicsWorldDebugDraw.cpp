@@ -58,7 +58,8 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 	{
 		case POINT2POINT_CONSTRAINT_TYPE:
 		{
-			btPoint2PointConstraint* p2p = static_cast<btPoint2PointConstraint*>(constraint);
+			btPoint2PointConstraint* p2p = dynamic_cast<btPoint2PointConstraint*>(constraint);
+			if (!p2p) goto bodiesOnly;  // a user joint that borrows the tag
 			btTransform pivotA(btQuaternion::getIdentity(), bodyA(p2p->getPivotInA()));
 			btTransform pivotB(btQuaternion::getIdentity(), bodyB(p2p->getPivotInB()));
 			if (drawFramesToo) drawFrames(drawer, pivotA, pivotB, size);
@@ -66,7 +67,8 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 		}
 		case HINGE_CONSTRAINT_TYPE:
 		{
-			btHingeConstraint* hinge = static_cast<btHingeConstraint*>(constraint);
+			btHingeConstraint* hinge = dynamic_cast<btHingeConstraint*>(constraint);
+			if (!hinge) goto bodiesOnly;  // a user joint that borrows the tag
 			const btTransform frameA = bodyA * hinge->getAFrame();
 			if (drawFramesToo) drawFrames(drawer, frameA, bodyB * hinge->getBFrame(), size);
 			if (drawLimits && hinge->hasLimit())
@@ -81,7 +83,8 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 		}
 		case CONETWIST_CONSTRAINT_TYPE:
 		{
-			btConeTwistConstraint* cone = static_cast<btConeTwistConstraint*>(constraint);
+			btConeTwistConstraint* cone = dynamic_cast<btConeTwistConstraint*>(constraint);
+			if (!cone) goto bodiesOnly;  // a user joint that borrows the tag
 			const btTransform frameA = bodyA * cone->getAFrame();
 			if (drawFramesToo) drawFrames(drawer, frameA, bodyB * cone->getBFrame(), size);
 			if (drawLimits && cone->getSwingSpan1() < SIMD_PI && cone->getSwingSpan2() < SIMD_PI)
@@ -102,7 +105,8 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 		}
 		case SLIDER_CONSTRAINT_TYPE:
 		{
-			btSliderConstraint* slider = static_cast<btSliderConstraint*>(constraint);
+			btSliderConstraint* slider = dynamic_cast<btSliderConstraint*>(constraint);
+			if (!slider) goto bodiesOnly;  // a user joint that borrows the tag
 			const btTransform& frameA = slider->getCalculatedTransformA();
 			if (drawFramesToo) drawFrames(drawer, frameA, slider->getCalculatedTransformB(), size);
 			if (drawLimits && slider->getLowerLinLimit() <= slider->getUpperLinLimit())
@@ -116,14 +120,22 @@ void btDiscreteDynamicsWorld::debugDrawConstraint(btTypedConstraint* constraint)
 		}
 		case D6_CONSTRAINT_TYPE:
 		case D6_SPRING_CONSTRAINT_TYPE:
-			drawSixDof(drawer, static_cast<btGeneric6DofConstraint*>(constraint), size, drawFramesToo, drawLimits);
-			break;
+			if (btGeneric6DofConstraint* sixDof = dynamic_cast<btGeneric6DofConstraint*>(constraint))
+			{
+				drawSixDof(drawer, sixDof, size, drawFramesToo, drawLimits);
+				break;
+			}
+			goto bodiesOnly;
 		case D6_SPRING_2_CONSTRAINT_TYPE:
 			// Also btHinge2Constraint and btFixedConstraint.
-			drawSixDof(drawer, static_cast<btGeneric6DofSpring2Constraint*>(constraint), size, drawFramesToo,
-			           drawLimits);
-			break;
+			if (btGeneric6DofSpring2Constraint* spring2 = dynamic_cast<btGeneric6DofSpring2Constraint*>(constraint))
+			{
+				drawSixDof(drawer, spring2, size, drawFramesToo, drawLimits);
+				break;
+			}
+			goto bodiesOnly;
 		default:
+		bodiesOnly:
 			// Other joints: the two bodies' centres, linked.
 			if (drawFramesToo) drawer->drawLine(bodyA.getOrigin(), bodyB.getOrigin(), btVector3(1, 1, 0));
 			break;

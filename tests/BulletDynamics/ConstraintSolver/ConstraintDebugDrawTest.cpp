@@ -70,3 +70,38 @@ TEST(ConstraintDebugDraw, SixDofSpring2DrawsItsFramesAndItsLinearLimitBox)
 	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraints), 2 * 3);
 	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraintLimits), 12) << "the edges of one box";
 }
+
+namespace
+{
+// A joint written straight on btTypedConstraint that borrows Bullet's ball-joint tag, as Bullet's own
+// examples of user joints do; it has no rows of its own.
+class TaggedUserJoint : public btTypedConstraint
+{
+public:
+	TaggedUserJoint(btRigidBody& a, btRigidBody& b) : btTypedConstraint(POINT2POINT_CONSTRAINT_TYPE, a, b) {}
+	void getInfo1(btConstraintInfo1* info) override
+	{
+		info->m_numConstraintRows = 0;
+		info->nub = 0;
+	}
+	void getInfo2(btConstraintInfo2*) override {}
+	void setParam(int, btScalar, int) override {}
+	btScalar getParam(int, int) const override { return 0; }
+};
+}  // namespace
+
+TEST(ConstraintDebugDraw, UserJointThatBorrowsATagIsDrawnAsALinkNotReadAsThatJoint)
+{
+	// Drawing (and the joint position correction) must not read such a joint as a btPoint2PointConstraint:
+	// that would be undefined behaviour (the sanitizer build checks). It is drawn as a link between the
+	// bodies' centres, the stepping leaves it alone.
+	TestWorld w(btVector3(0, -10, 0));
+	btCollisionShape* ball = w.shape<btSphereShape>(btScalar(0.2));
+	btRigidBody* a = w.addBody(ball, 1, btVector3(0, 0, 0));
+	btRigidBody* b = w.addBody(ball, 1, btVector3(3, 0, 0));
+	w.addJoint<TaggedUserJoint>(false, *a, *b);
+	EXPECT_EQ(linesDrawn(w, btIDebugDraw::DBG_DrawConstraints), 1);
+	w.run(10);
+	EXPECT_NEAR(a->getCenterOfMassPosition().x(), 0, 1e-5) << "no correction pulled the bodies together";
+	EXPECT_NEAR(b->getCenterOfMassPosition().x(), 3, 1e-5);
+}
