@@ -31,7 +31,7 @@ struct PairIdLess
 {
 	bool operator()(const btBroadphasePair& a, const btBroadphasePair& b) const
 	{
-		return caliberPairKey(a.m_pProxy0, a.m_pProxy1) < caliberPairKey(b.m_pProxy0, b.m_pProxy1);
+		return caliber::pairKey(a.m_pProxy0, a.m_pProxy1) < caliber::pairKey(b.m_pProxy0, b.m_pProxy1);
 	}
 };
 
@@ -55,7 +55,7 @@ btHashedOverlappingPairCache::~btHashedOverlappingPairCache() {}
 
 bool btHashedOverlappingPairCache::needsBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const
 {
-	return caliberNeedsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
+	return caliber::needsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
 }
 
 void btHashedOverlappingPairCache::rebuildTable(int minSlots)
@@ -133,8 +133,8 @@ btBroadphasePair* btHashedOverlappingPairCache::addOverlappingPair(btBroadphaseP
 	btAssert(proxy0 && proxy1 && proxy0 != proxy1 && "addOverlappingPair: null or identical proxies");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	if (!needsBroadphaseCollision(proxy0, proxy1)) return 0;
-	caliberOrderPair(proxy0, proxy1);
-	const unsigned long long key = caliberPairKey(proxy0, proxy1);
+	caliber::orderPair(proxy0, proxy1);
+	const unsigned long long key = caliber::pairKey(proxy0, proxy1);
 	const int existing = findPairIndex(key, proxy0, proxy1);
 	if (existing >= 0) return &m_overlappingPairArray[existing];
 
@@ -156,11 +156,11 @@ void* btHashedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* pro
 {
 	btAssert(proxy0 && proxy1 && "removeOverlappingPair: null proxy");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
-	caliberOrderPair(proxy0, proxy1);
-	const unsigned long long key = caliberPairKey(proxy0, proxy1);
+	caliber::orderPair(proxy0, proxy1);
+	const unsigned long long key = caliber::pairKey(proxy0, proxy1);
 	int index = findPairIndex(key, proxy0, proxy1);
 	if (index < 0) return 0;
-	caliberReleasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
+	caliber::releasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
 	void* userInfo = m_overlappingPairArray[index].m_internalInfo1;
 	removePairAt(index);
 	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
@@ -173,7 +173,7 @@ void btHashedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 	if (!proxy) return;
 	for (int i = 0; i < m_overlappingPairArray.size();)
 	{
-		if (caliberPairContains(m_overlappingPairArray[i], proxy))
+		if (caliber::pairContains(m_overlappingPairArray[i], proxy))
 		{
 			// The last pair moves into slot i, so i is examined again.
 			removeOverlappingPair(m_overlappingPairArray[i].m_pProxy0, m_overlappingPairArray[i].m_pProxy1, dispatcher);
@@ -187,7 +187,7 @@ void btHashedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 
 void btHashedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher)
 {
-	caliberReleasePairAlgorithm(pair, dispatcher);
+	caliber::releasePairAlgorithm(pair, dispatcher);
 }
 
 void btHashedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy, btDispatcher* dispatcher)
@@ -195,16 +195,16 @@ void btHashedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy,
 	if (!proxy) return;
 	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
 	{
-		if (caliberPairContains(m_overlappingPairArray[i], proxy))
-			caliberReleasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
+		if (caliber::pairContains(m_overlappingPairArray[i], proxy))
+			caliber::releasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 	}
 }
 
 btBroadphasePair* btHashedOverlappingPairCache::findPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
 {
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
-	caliberOrderPair(proxy0, proxy1);
-	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
+	caliber::orderPair(proxy0, proxy1);
+	const int index = findPairIndex(caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
 	return index >= 0 ? &m_overlappingPairArray[index] : 0;
 }
 
@@ -273,6 +273,6 @@ void btHashedOverlappingPairCache::sortOverlappingPairs(btDispatcher* dispatcher
 	// Sorting in place keeps each pair's algorithm and user info; only the index table changes.
 	m_overlappingPairArray.quickSort(PairIdLess());
 	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
-		m_pairKeys[i] = caliberPairKey(m_overlappingPairArray[i].m_pProxy0, m_overlappingPairArray[i].m_pProxy1);
+		m_pairKeys[i] = caliber::pairKey(m_overlappingPairArray[i].m_pProxy0, m_overlappingPairArray[i].m_pProxy1);
 	rebuildTable(m_hashTable.size());
 }

@@ -14,7 +14,7 @@ btSortedOverlappingPairCache::~btSortedOverlappingPairCache() {}
 
 bool btSortedOverlappingPairCache::needsBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const
 {
-	return caliberNeedsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
+	return caliber::needsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
 }
 
 int btSortedOverlappingPairCache::lowerBound(unsigned long long key) const
@@ -48,8 +48,8 @@ btBroadphasePair* btSortedOverlappingPairCache::addOverlappingPair(btBroadphaseP
 	btAssert(proxy0 && proxy1 && proxy0 != proxy1 && "addOverlappingPair: null or identical proxies");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	if (!needsBroadphaseCollision(proxy0, proxy1)) return 0;
-	caliberOrderPair(proxy0, proxy1);
-	const unsigned long long key = caliberPairKey(proxy0, proxy1);
+	caliber::orderPair(proxy0, proxy1);
+	const unsigned long long key = caliber::pairKey(proxy0, proxy1);
 	const int existing = findPairIndex(key, proxy0, proxy1);
 	if (existing >= 0) return &m_overlappingPairArray[existing];
 
@@ -74,10 +74,10 @@ void* btSortedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* pro
 {
 	btAssert(proxy0 && proxy1 && "removeOverlappingPair: null proxy");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
-	caliberOrderPair(proxy0, proxy1);
-	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
+	caliber::orderPair(proxy0, proxy1);
+	const int index = findPairIndex(caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
 	if (index < 0) return 0;
-	caliberReleasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
+	caliber::releasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
 	void* userInfo = m_overlappingPairArray[index].m_internalInfo1;
 	const int count = m_overlappingPairArray.size();
 	for (int i = index + 1; i < count; ++i)
@@ -101,9 +101,9 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 	const int count = m_overlappingPairArray.size();
 	for (int i = 0; i < count; ++i)
 	{
-		if (caliberPairContains(m_overlappingPairArray[i], proxy))
+		if (caliber::pairContains(m_overlappingPairArray[i], proxy))
 		{
-			caliberReleasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
+			caliber::releasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 			continue;
 		}
 		if (kept != i)
@@ -126,7 +126,7 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 
 void btSortedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher)
 {
-	caliberReleasePairAlgorithm(pair, dispatcher);
+	caliber::releasePairAlgorithm(pair, dispatcher);
 }
 
 void btSortedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy, btDispatcher* dispatcher)
@@ -134,16 +134,16 @@ void btSortedOverlappingPairCache::cleanProxyFromPairs(btBroadphaseProxy* proxy,
 	if (!proxy) return;
 	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
 	{
-		if (caliberPairContains(m_overlappingPairArray[i], proxy))
-			caliberReleasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
+		if (caliber::pairContains(m_overlappingPairArray[i], proxy))
+			caliber::releasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 	}
 }
 
 btBroadphasePair* btSortedOverlappingPairCache::findPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
 {
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
-	caliberOrderPair(proxy0, proxy1);
-	const int index = findPairIndex(caliberPairKey(proxy0, proxy1), proxy0, proxy1);
+	caliber::orderPair(proxy0, proxy1);
+	const int index = findPairIndex(caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
 	return index >= 0 ? &m_overlappingPairArray[index] : 0;
 }
 

@@ -8,10 +8,13 @@
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
+namespace caliber
+{
+
 // True when both wrappers place their shapes with finite transforms. A non-finite transform asserts; in
 // release the algorithm then reports nothing (and empties a manifold it owns) so that no NaN reaches
 // the manifold or the solver.
-inline bool caliberPairIsUsable(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap)
+inline bool pairIsUsable(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap)
 {
 	const bool usable = body0Wrap && body1Wrap && body0Wrap->getCollisionShape() && body1Wrap->getCollisionShape() &&
 	                    caliber::isFinite(body0Wrap->getWorldTransform()) &&
@@ -23,7 +26,7 @@ inline bool caliberPairIsUsable(const btCollisionObjectWrapper* body0Wrap, const
 // Single-point algorithms (sphere-sphere, sphere-box, sphere-triangle) know the whole contact each frame.
 // After adding the new point, any older point that the new one did not replace is stale: remove it so
 // the manifold holds exactly the current contact (a replaced point keeps its warm-start impulses).
-inline void caliberKeepOnlyNewestPoint(btPersistentManifold* manifold, int countBeforeAdd)
+inline void keepOnlyNewestPoint(btPersistentManifold* manifold, int countBeforeAdd)
 {
 	if (manifold->getNumContacts() <= countBeforeAdd) return;  // the new point replaced an old one (or none)
 	// The new point is last; removing from the highest old index down moves it forwards each time.
@@ -36,8 +39,8 @@ inline void caliberKeepOnlyNewestPoint(btPersistentManifold* manifold, int count
 // further than the threshold per step finds its manifold full of last frame's points, and the area rule
 // would keep a lopsided mix of old and new ones. Lifetimes and callbacks are left to the
 // refreshContactPoints that follows the detection.
-inline void caliberDropStalePoints(btPersistentManifold* manifold, const btCollisionObjectWrapper* body0Wrap,
-                                   const btCollisionObjectWrapper* body1Wrap)
+inline void dropStalePoints(btPersistentManifold* manifold, const btCollisionObjectWrapper* body0Wrap,
+                            const btCollisionObjectWrapper* body1Wrap)
 {
 	const bool inOrder = manifold->getBody0() == body0Wrap->getCollisionObject();
 	const btTransform& trA = inOrder ? body0Wrap->getWorldTransform() : body1Wrap->getWorldTransform();
@@ -53,5 +56,7 @@ inline void caliberDropStalePoints(btPersistentManifold* manifold, const btColli
 		if (distance > threshold || drift.length2() > threshold * threshold) manifold->removeContactPoint(i);
 	}
 }
+
+}  // namespace caliber
 
 #endif  // CALIBER_ALGORITHM_UTIL_H

@@ -34,7 +34,7 @@ void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper
 	if (!m_manifoldPtr || !resultOut) return;
 	caliber::prefetchWholeManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		if (m_ownManifold) m_manifoldPtr->clearManifold();
 		return;
@@ -48,7 +48,7 @@ void btBoxBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrapper
 	const btScalar reach = m_manifoldPtr->getContactBreakingThreshold() + resultOut->m_closestPointDistanceThreshold;
 	input.m_maximumDistanceSquared = reach * reach;
 
-	if (m_ownManifold) caliberDropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
+	if (m_ownManifold) caliber::dropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
 	btBoxBoxDetector detector(box0, box1);
 	detector.getClosestPoints(input, *resultOut, dispatchInfo.m_debugDraw);
 

@@ -126,7 +126,7 @@ void btCompoundCollisionAlgorithm::processCollision(const btCollisionObjectWrapp
                                                     const btCollisionObjectWrapper* body1Wrap,
                                                     const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
-	if (!resultOut || !caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!resultOut || !caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		removeChildAlgorithms();
 		return;

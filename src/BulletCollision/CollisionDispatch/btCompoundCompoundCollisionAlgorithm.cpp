@@ -73,7 +73,7 @@ void btCompoundCompoundCollisionAlgorithm::processCollision(const btCollisionObj
                                                             const btDispatcherInfo& dispatchInfo,
                                                             btManifoldResult* resultOut)
 {
-	if (!resultOut || !caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!resultOut || !caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		removeChildAlgorithms();
 		return;

@@ -227,7 +227,7 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	// A full manifold pool without dynamic allocation gives none: the pair is skipped.
 	if (!resultOut || !manifold) return;
 	resultOut->setPersistentManifold(manifold);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		manifold->clearManifold();
 		return;

@@ -186,7 +186,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	}
 	caliber::prefetchWholeManifold(m_manifoldPtr);
 	resultOut->setPersistentManifold(m_manifoldPtr);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		if (m_ownManifold) m_manifoldPtr->clearManifold();
 		return;
@@ -259,7 +259,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		}
 		if (haveAxis)
 		{
-			if (m_ownManifold) caliberDropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
+			if (m_ownManifold) caliber::dropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
 			MarginRestoringResult clipped(*resultOut, clippingMargin(shapeA), clippingMargin(shapeB));
 			// The margins are added back after clipping, so clipping may keep points up to reach + margins.
 			btPolyhedralContactClipping::clipHullAgainstHull(

@@ -97,7 +97,7 @@ void btConvexPlaneCollisionAlgorithm::processCollision(const btCollisionObjectWr
 {
 	if (!m_manifoldPtr || !resultOut) return;
 	resultOut->setPersistentManifold(m_manifoldPtr);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		if (m_ownManifold) m_manifoldPtr->clearManifold();
 		return;

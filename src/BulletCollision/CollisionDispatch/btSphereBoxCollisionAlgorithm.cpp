@@ -38,7 +38,7 @@ void btSphereBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrap
 {
 	if (!m_manifoldPtr || !resultOut) return;
 	resultOut->setPersistentManifold(m_manifoldPtr);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		if (m_ownManifold) m_manifoldPtr->clearManifold();
 		return;
@@ -61,7 +61,7 @@ void btSphereBoxCollisionAlgorithm::processCollision(const btCollisionObjectWrap
 	resultOut->addContactPoint(normal, pointOnBox, distance);
 	if (m_ownManifold)
 	{
-		caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+		caliber::keepOnlyNewestPoint(m_manifoldPtr, countBefore);
 		// Ages the point (lifetime) and reports it to gContactProcessedCallback, as for every other shape.
 		resultOut->refreshContactPoints();
 	}

@@ -31,7 +31,7 @@ void btSphereSphereCollisionAlgorithm::processCollision(const btCollisionObjectW
 {
 	if (!m_manifoldPtr || !resultOut) return;
 	resultOut->setPersistentManifold(m_manifoldPtr);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		if (m_ownManifold) m_manifoldPtr->clearManifold();
 		return;
@@ -60,7 +60,7 @@ void btSphereSphereCollisionAlgorithm::processCollision(const btCollisionObjectW
 	resultOut->addContactPoint(normalOnB, pointOnB, centreDistance - radius0 - radius1);
 	if (m_ownManifold)
 	{
-		caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+		caliber::keepOnlyNewestPoint(m_manifoldPtr, countBefore);
 		// Ages the point (lifetime) and reports it to gContactProcessedCallback, as for every other shape.
 		resultOut->refreshContactPoints();
 	}

@@ -38,7 +38,7 @@ void btSphereTriangleCollisionAlgorithm::processCollision(const btCollisionObjec
 {
 	if (!m_manifoldPtr || !resultOut) return;
 	resultOut->setPersistentManifold(m_manifoldPtr);
-	if (!caliberPairIsUsable(body0Wrap, body1Wrap))
+	if (!caliber::pairIsUsable(body0Wrap, body1Wrap))
 	{
 		if (m_ownManifold) m_manifoldPtr->clearManifold();
 		return;
@@ -65,7 +65,7 @@ void btSphereTriangleCollisionAlgorithm::processCollision(const btCollisionObjec
 		if (m_manifoldPtr->getNumContacts() == countBefore && countBefore > 0)
 			resultOut->refreshContactPoints();  // nothing new: drop what separated
 		else
-			caliberKeepOnlyNewestPoint(m_manifoldPtr, countBefore);
+			caliber::keepOnlyNewestPoint(m_manifoldPtr, countBefore);
 	}
 }
 

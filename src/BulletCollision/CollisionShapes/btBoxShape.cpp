@@ -16,7 +16,7 @@ SIMD_FORCE_INLINE btVector3 boxCorner(const btVector3& h, const btVector3& vec)
 btBoxShape::btBoxShape(const btVector3& boxHalfExtents)
 {
 	m_shapeType = BOX_SHAPE_PROXYTYPE;
-	const btVector3 outer = caliberCheckSize(boxHalfExtents) * m_localScaling;
+	const btVector3 outer = caliber::checkSize(boxHalfExtents) * m_localScaling;
 	setSafeMargin(outer);
 	const btScalar m = getMargin();
 	m_implicitShapeDimensions = outer - btVector3(m, m, m);
@@ -67,7 +67,7 @@ void btBoxShape::setLocalScaling(const btVector3& scaling)
 
 void btBoxShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	btTransformAabb(getHalfExtentsWithMargin(), btScalar(0), t, aabbMin, aabbMax);
 }
 
@@ -79,7 +79,7 @@ void btBoxShape::getBoundingSphere(btVector3& center, btScalar& radius) const
 
 void btBoxShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	const btVector3 sides = btScalar(2) * getHalfExtentsWithMargin();
 	const btScalar x2 = sides.x() * sides.x(), y2 = sides.y() * sides.y(), z2 = sides.z() * sides.z();
 	const btScalar k = mass / btScalar(12);

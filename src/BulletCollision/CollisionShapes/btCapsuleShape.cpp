@@ -14,8 +14,8 @@ btCapsuleShape::btCapsuleShape(btScalar radius, btScalar height) : m_upAxis(1), 
 void btCapsuleShape::setDimensions(int upAxis, btScalar radius, btScalar height)
 {
 	m_upAxis = upAxis;
-	const btScalar r = caliberCheckSize(radius);
-	const btScalar halfHeight = btScalar(0.5) * caliberCheckSize(height);
+	const btScalar r = caliber::checkSize(radius);
+	const btScalar halfHeight = btScalar(0.5) * caliber::checkSize(height);
 	m_unscaledDimensions.setValue(r, r, r);
 	m_unscaledDimensions[upAxis] = halfHeight;
 	btCapsuleShape::setLocalScaling(m_localScaling);
@@ -46,7 +46,7 @@ void btCapsuleShape::batchedUnitVectorGetSupportingVertexWithoutMargin(const btV
 
 void btCapsuleShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	const btScalar r = getRadius();
 	const btScalar h = btScalar(2) * getHalfHeight();  // cylinder length
 	const btScalar cylinderVolume = SIMD_PI * r * r * h;
@@ -72,7 +72,7 @@ void btCapsuleShape::calculateLocalInertia(btScalar mass, btVector3& inertia) co
 
 void btCapsuleShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	// The segment end points are +-halfHeight * (world up axis): their box, grown by the radius sphere.
 	const btVector3 up = t.getBasis().getColumn(m_upAxis);
 	const btScalar r = getRadius();

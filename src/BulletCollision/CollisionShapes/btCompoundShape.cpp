@@ -199,7 +199,7 @@ void btCompoundShape::recalculateLocalAabb()
 
 void btCompoundShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	btTransformAabb(m_localAabbMin, m_localAabbMax, m_collisionMargin, t, aabbMin, aabbMax);
 }
 
@@ -222,7 +222,7 @@ void btCompoundShape::setLocalScaling(const btVector3& scaling)
 
 void btCompoundShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	if (m_children.size() == 0)
 	{
 		inertia.setValue(0, 0, 0);

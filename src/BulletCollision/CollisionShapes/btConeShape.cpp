@@ -10,8 +10,8 @@ btConeShape::btConeShape(btScalar radius, btScalar height)
 	m_coneIndices[0] = 0;
 	m_coneIndices[1] = 1;
 	m_coneIndices[2] = 2;
-	m_unscaledRadius = caliberCheckSize(radius);
-	m_unscaledHeight = caliberCheckSize(height);
+	m_unscaledRadius = caliber::checkSize(radius);
+	m_unscaledHeight = caliber::checkSize(height);
 	updateDerived();
 }
 
@@ -29,7 +29,7 @@ void btConeShape::updateDerived()
 
 void btConeShape::setRadius(btScalar radius)
 {
-	const btScalar r = caliberCheckSize(radius);
+	const btScalar r = caliber::checkSize(radius);
 	const btScalar radialScale = btScalar(0.5) * (m_localScaling[m_coneIndices[0]] + m_localScaling[m_coneIndices[2]]);
 	m_unscaledRadius = radialScale > btScalar(0) ? r / radialScale : r;
 	updateDerived();
@@ -38,7 +38,7 @@ void btConeShape::setRadius(btScalar radius)
 
 void btConeShape::setHeight(btScalar height)
 {
-	const btScalar h = caliberCheckSize(height);
+	const btScalar h = caliber::checkSize(height);
 	const btScalar axialScale = m_localScaling[m_coneIndices[1]];
 	m_unscaledHeight = axialScale > btScalar(0) ? h / axialScale : h;
 	updateDerived();
@@ -110,7 +110,7 @@ void btConeShape::batchedUnitVectorGetSupportingVertexWithoutMargin(const btVect
 
 void btConeShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	const btScalar r = m_radius, h = m_height;
 	const btScalar axial = btScalar(0.3) * mass * r * r;
 	const btScalar across = mass * (btScalar(0.15) * r * r + btScalar(0.0375) * h * h);

@@ -168,7 +168,7 @@ btVector3 btConvexHullShape::localGetSupportingVertexWithoutMargin(const btVecto
 {
 	if (m_unscaledPoints.size() == 0) return btVector3(0, 0, 0);
 	// The support of S P along d is S times the support of P along S d (S diagonal).
-	const btVector3 scaledDir = caliberSupportDirection(vec) * m_localScaling;
+	const btVector3 scaledDir = caliber::supportDirection(vec) * m_localScaling;
 	// The distinct points give maxDot's answer over all of them bitwise: ties keep the first point, and
 	// a later copy of a point never beats it.
 	if (m_supportLanesValid && m_supportCount > 0)

@@ -15,7 +15,7 @@ btConvexInternalShape::~btConvexInternalShape() {}
 
 btVector3 btConvexInternalShape::localGetSupportingVertex(const btVector3& vec) const
 {
-	btVector3 dir = caliberSupportDirection(vec);
+	btVector3 dir = caliber::supportDirection(vec);
 	const btVector3 core = localGetSupportingVertexWithoutMargin(dir);
 	return core + getMargin() * dir.safeNormalize();
 }
@@ -34,7 +34,7 @@ void btConvexInternalShape::setSafeMargin(const btVector3& halfExtents, btScalar
 
 void btConvexInternalShape::getAabbSlow(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	const btMatrix3x3& basis = t.getBasis();
 	for (int axis = 0; axis < 3; ++axis)
 	{
@@ -78,7 +78,7 @@ btConvexInternalAabbCachingShape::btConvexInternalAabbCachingShape()
 void btConvexInternalAabbCachingShape::getNonvirtualAabb(const btTransform& trans, btVector3& aabbMin,
                                                          btVector3& aabbMax, btScalar margin) const
 {
-	if (!caliberCheckAabbTransform(trans, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(trans, aabbMin, aabbMax)) return;
 	btAssert(m_isLocalAabbValid);
 	if (!m_isLocalAabbValid)
 	{
@@ -103,6 +103,6 @@ void btConvexInternalAabbCachingShape::getAabb(const btTransform& t, btVector3& 
 void btConvexInternalAabbCachingShape::recalcLocalAabb()
 {
 	btVector3 aabbMin, aabbMax;
-	caliberLocalAabbFromSupports(*this, aabbMin, aabbMax);
+	caliber::localAabbFromSupports(*this, aabbMin, aabbMax);
 	setCachedLocalAabb(aabbMin, aabbMax);
 }

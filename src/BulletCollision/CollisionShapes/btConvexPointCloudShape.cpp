@@ -41,7 +41,7 @@ btVector3 btConvexPointCloudShape::getScaledPoint(int index) const
 btVector3 btConvexPointCloudShape::localGetSupportingVertexWithoutMargin(const btVector3& vec) const
 {
 	if (m_numPoints <= 0) return btVector3(0, 0, 0);
-	const btVector3 scaledDir = caliberSupportDirection(vec) * m_localScaling;
+	const btVector3 scaledDir = caliber::supportDirection(vec) * m_localScaling;
 	btScalar best;
 	const long index = scaledDir.maxDot(m_unscaledPoints, m_numPoints, best);
 	if (index >= 0 && btIsFinite(best) && caliber::isFinite(m_unscaledPoints[index]))

@@ -50,7 +50,7 @@ btVector3 btConvexShape::localGetSupportVertexWithoutMarginNonVirtual(const btVe
 
 btVector3 btConvexShape::localGetSupportVertexNonVirtual(const btVector3& vec) const
 {
-	btVector3 dir = caliberSupportDirection(vec);
+	btVector3 dir = caliber::supportDirection(vec);
 	const btVector3 core = localGetSupportVertexWithoutMarginNonVirtual(dir);
 	return core + getMarginNonVirtual() * dir.safeNormalize();
 }

@@ -44,7 +44,7 @@ void btConvexTriangleMeshShape::batchedUnitVectorGetSupportingVertexWithoutMargi
 	                             {
 		                             for (int j = 0; j < numVectors; ++j)
 		                             {
-			                             const btVector3 dir = caliberSupportDirection(vectors[j]);
+			                             const btVector3 dir = caliber::supportDirection(vectors[j]);
 			                             for (int k = 0; k < 3; ++k)
 			                             {
 				                             const btScalar d = dir.dot(triangle[k]);
@@ -167,7 +167,7 @@ void btConvexTriangleMeshShape::calculatePrincipalAxisTransform(btTransform& pri
 
 void btConvexTriangleMeshShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	btAlignedObjectArray<btVector3> points;
 	if (m_stridingMesh)
 		caliber::forEachMeshTriangle(*m_stridingMesh,

@@ -12,7 +12,7 @@ btCylinderShape::btCylinderShape(const btVector3& halfExtents) : m_upAxis(1)
 void btCylinderShape::setDimensions(int upAxis, const btVector3& halfExtents)
 {
 	m_upAxis = upAxis;
-	const btVector3 outer = caliberCheckSize(halfExtents) * m_localScaling;
+	const btVector3 outer = caliber::checkSize(halfExtents) * m_localScaling;
 	m_collisionMargin = CONVEX_DISTANCE_MARGIN;
 	// A thin cylinder gets a margin of at most a tenth of its smallest used dimension.
 	const btScalar smallest = btMin(outer[m_upAxis], outer[radiusAxis()]);
@@ -81,7 +81,7 @@ void btCylinderShape::batchedUnitVectorGetSupportingVertexWithoutMargin(const bt
 
 void btCylinderShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	// Core disc of radius r at +-h along the world axis u: on world axis i it reaches h |u_i| + r sqrt(1 - u_i^2);
 	// the margin sphere adds m on every axis.
 	const btVector3 up = t.getBasis().getColumn(m_upAxis);
@@ -101,7 +101,7 @@ void btCylinderShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector
 
 void btCylinderShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	const btVector3 outer = getHalfExtentsWithMargin();
 	const btScalar r = outer[radiusAxis()];
 	const btScalar fullHeight = btScalar(2) * outer[m_upAxis];

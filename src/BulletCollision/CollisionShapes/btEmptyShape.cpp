@@ -12,7 +12,7 @@ btEmptyShape::~btEmptyShape() {}
 
 void btEmptyShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	const btScalar m = getMargin();
 	const btVector3 margin(m, m, m);
 	aabbMin = t.getOrigin() - margin;

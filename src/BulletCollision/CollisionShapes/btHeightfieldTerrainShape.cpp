@@ -397,7 +397,7 @@ void btHeightfieldTerrainShape::performRaycast(btTriangleCallback* callback, con
 
 void btHeightfieldTerrainShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	const btVector3 halfExtents = ((m_localAabbMax - m_localAabbMin) * m_localScaling).absolute() * btScalar(0.5);
 	const btMatrix3x3 absoluteBasis = t.getBasis().absolute();
 	const btScalar margin = getMargin();

@@ -13,7 +13,7 @@ btMinkowskiSumShape::btMinkowskiSumShape(const btConvexShape* shapeA, const btCo
 
 btVector3 btMinkowskiSumShape::localGetSupportingVertexWithoutMargin(const btVector3& vec) const
 {
-	const btVector3 dir = caliberSupportDirection(vec);
+	const btVector3 dir = caliber::supportDirection(vec);
 	// A child's support is queried in its own frame: the direction rotated by the inverse basis.
 	const btVector3 supportA =
 	    m_shapeA ? m_transA(m_shapeA->localGetSupportingVertexWithoutMargin(dir * m_transA.getBasis()))

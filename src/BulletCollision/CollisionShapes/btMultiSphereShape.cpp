@@ -17,7 +17,7 @@ btMultiSphereShape::btMultiSphereShape(const btVector3* positions, const btScala
 			btAssert(radi[i] >= 0 && btIsFinite(radi[i]) && "btMultiSphereShape: bad radius");
 			if (!caliber::isFinite(positions[i])) continue;
 			m_localPositionArray.push_back(positions[i]);
-			m_radiArray.push_back(caliberSanitizeDimension(radi[i]));
+			m_radiArray.push_back(caliber::sanitizeDimension(radi[i]));
 		}
 	}
 	recalcLocalAabb();
@@ -42,7 +42,7 @@ btVector3 btMultiSphereShape::localGetSupportingVertexWithoutMargin(const btVect
 {
 	const int count = m_localPositionArray.size();
 	if (count == 0) return btVector3(0, 0, 0);
-	const btVector3 dir = caliberSupportDirection(vec).normalized();
+	const btVector3 dir = caliber::supportDirection(vec).normalized();
 	// Support of the ellipsoid c S + r S B along d: c S + r S (S d) / |S d|.
 	const btVector3 scaledDir = dir * m_localScaling;
 	const btScalar scaledLength = scaledDir.length();

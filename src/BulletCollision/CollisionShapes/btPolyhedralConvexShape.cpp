@@ -70,7 +70,7 @@ void btPolyhedralConvexShape::setPolyhedralFeatures(btConvexPolyhedron& polyhedr
 
 btVector3 btPolyhedralConvexShape::localGetSupportingVertexWithoutMargin(const btVector3& vec) const
 {
-	const btVector3 dir = caliberSupportDirection(vec);
+	const btVector3 dir = caliber::supportDirection(vec);
 	btVector3 best(0, 0, 0);
 	btScalar bestDot = -SIMD_INFINITY;
 	bool found = false;
@@ -139,7 +139,7 @@ btPolyhedralConvexAabbCachingShape::btPolyhedralConvexAabbCachingShape()
 void btPolyhedralConvexAabbCachingShape::getNonvirtualAabb(const btTransform& trans, btVector3& aabbMin,
                                                            btVector3& aabbMax, btScalar margin) const
 {
-	if (!caliberCheckAabbTransform(trans, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(trans, aabbMin, aabbMax)) return;
 	btAssert(m_isLocalAabbValid);
 	if (!m_isLocalAabbValid)
 	{
@@ -163,6 +163,6 @@ void btPolyhedralConvexAabbCachingShape::getAabb(const btTransform& t, btVector3
 void btPolyhedralConvexAabbCachingShape::recalcLocalAabb()
 {
 	btVector3 aabbMin, aabbMax;
-	caliberLocalAabbFromSupports(*this, aabbMin, aabbMax);
+	caliber::localAabbFromSupports(*this, aabbMin, aabbMax);
 	setCachedLocalAabb(aabbMin, aabbMax);
 }

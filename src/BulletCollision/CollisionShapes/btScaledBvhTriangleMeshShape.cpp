@@ -56,7 +56,7 @@ void btScaledBvhTriangleMeshShape::setLocalScaling(const btVector3& scaling)
 
 void btScaledBvhTriangleMeshShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	btVector3 localMin(0, 0, 0), localMax(0, 0, 0);
 	btScalar margin = 0;
 	if (m_bvhTriMeshShape)

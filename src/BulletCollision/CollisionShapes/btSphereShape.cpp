@@ -11,14 +11,14 @@ btSphereShape::btSphereShape(btScalar radius)
 
 void btSphereShape::setUnscaledRadius(btScalar radius)
 {
-	const btScalar r = caliberCheckSize(radius);
+	const btScalar r = caliber::checkSize(radius);
 	m_implicitShapeDimensions.setValue(r, btScalar(0), btScalar(0));
 	btConvexInternalShape::setMargin(r);
 }
 
 btVector3 btSphereShape::localGetSupportingVertex(const btVector3& vec) const
 {
-	btVector3 dir = caliberSupportDirection(vec);
+	btVector3 dir = caliber::supportDirection(vec);
 	return getRadius() * dir.safeNormalize();
 }
 
@@ -38,7 +38,7 @@ void btSphereShape::batchedUnitVectorGetSupportingVertexWithoutMargin(const btVe
 
 void btSphereShape::calculateLocalInertia(btScalar mass, btVector3& inertia) const
 {
-	if (!caliberCheckMass(mass, inertia)) return;
+	if (!caliber::checkMass(mass, inertia)) return;
 	const btScalar r = getRadius();
 	const btScalar i = btScalar(0.4) * mass * r * r;
 	inertia.setValue(i, i, i);
@@ -46,7 +46,7 @@ void btSphereShape::calculateLocalInertia(btScalar mass, btVector3& inertia) con
 
 void btSphereShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	const btScalar r = getRadius();
 	const btVector3 extent(r, r, r);
 	aabbMin = t.getOrigin() - extent;

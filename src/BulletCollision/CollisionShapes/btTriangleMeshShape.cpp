@@ -21,7 +21,7 @@ btVector3 btTriangleMeshShape::localGetSupportingVertex(const btVector3& vec) co
 {
 	btVector3 best(0, 0, 0);
 	if (!m_meshInterface) return best;
-	const btVector3 dir = caliberSupportDirection(vec);
+	const btVector3 dir = caliber::supportDirection(vec);
 	btScalar bestDot = -BT_LARGE_FLOAT;
 	bool any = false;
 	caliber::forEachMeshTriangle(*m_meshInterface,
@@ -50,7 +50,7 @@ void btTriangleMeshShape::recalcLocalAabb()
 
 void btTriangleMeshShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	btTransformAabb(m_localAabbMin, m_localAabbMax, getMargin(), t, aabbMin, aabbMax);
 }
 

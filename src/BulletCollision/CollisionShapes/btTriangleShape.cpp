@@ -33,7 +33,7 @@ void btTriangleShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector
 
 btVector3 btTriangleShape::localGetSupportingVertexWithoutMargin(const btVector3& dir) const
 {
-	const btVector3 d = caliberSupportDirection(dir);
+	const btVector3 d = caliber::supportDirection(dir);
 	const btVector3 dots = d.dot3(m_vertices1[0], m_vertices1[1], m_vertices1[2]);
 	int best = 0;
 	if (dots.y() > dots[best]) best = 1;

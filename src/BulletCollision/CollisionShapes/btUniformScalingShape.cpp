@@ -4,7 +4,7 @@
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 
 btUniformScalingShape::btUniformScalingShape(btConvexShape* convexChildShape, btScalar uniformScalingFactor)
-    : m_childConvexShape(convexChildShape), m_uniformScalingFactor(caliberSanitizeDimension(uniformScalingFactor))
+    : m_childConvexShape(convexChildShape), m_uniformScalingFactor(caliber::sanitizeDimension(uniformScalingFactor))
 {
 	m_shapeType = UNIFORM_SCALING_SHAPE_PROXYTYPE;
 	btAssert(convexChildShape != 0);
@@ -16,14 +16,14 @@ btUniformScalingShape::~btUniformScalingShape() {}
 btVector3 btUniformScalingShape::localGetSupportingVertexWithoutMargin(const btVector3& vec) const
 {
 	if (!m_childConvexShape) return btVector3(0, 0, 0);
-	return m_childConvexShape->localGetSupportingVertexWithoutMargin(caliberSupportDirection(vec)) *
+	return m_childConvexShape->localGetSupportingVertexWithoutMargin(caliber::supportDirection(vec)) *
 	       m_uniformScalingFactor;
 }
 
 btVector3 btUniformScalingShape::localGetSupportingVertex(const btVector3& vec) const
 {
 	if (!m_childConvexShape) return btVector3(0, 0, 0);
-	return m_childConvexShape->localGetSupportingVertex(caliberSupportDirection(vec)) * m_uniformScalingFactor;
+	return m_childConvexShape->localGetSupportingVertex(caliber::supportDirection(vec)) * m_uniformScalingFactor;
 }
 
 void btUniformScalingShape::batchedUnitVectorGetSupportingVertexWithoutMargin(const btVector3* vectors,
@@ -50,7 +50,7 @@ void btUniformScalingShape::calculateLocalInertia(btScalar mass, btVector3& iner
 
 void btUniformScalingShape::getAabb(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	if (!m_childConvexShape)
 	{
 		aabbMin = aabbMax = t.getOrigin();
@@ -66,7 +66,7 @@ void btUniformScalingShape::getAabb(const btTransform& t, btVector3& aabbMin, bt
 
 void btUniformScalingShape::getAabbSlow(const btTransform& t, btVector3& aabbMin, btVector3& aabbMax) const
 {
-	if (!caliberCheckAabbTransform(t, aabbMin, aabbMax)) return;
+	if (!caliber::checkAabbTransform(t, aabbMin, aabbMax)) return;
 	if (!m_childConvexShape)
 	{
 		aabbMin = aabbMax = t.getOrigin();

@@ -83,7 +83,7 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 	const void* shapeB = m_convexB1 ? static_cast<const void*>(m_convexB1) : static_cast<const void*>(m_planeShape);
 	// The plane case needs no simplex solver.
 	const void* solver = m_convexB1 ? static_cast<const void*>(m_simplexSolver) : shapeB;
-	if (!caliberCastInputsValid(m_convexA, shapeB, solver, fromA, toA, fromB, toB)) return false;
+	if (!caliber::castInputsValid(m_convexA, shapeB, solver, fromA, toA, fromB, toB)) return false;
 
 	btVector3 linVelA, angVelA, linVelB, angVelB;
 	btTransformUtil::calculateVelocity(fromA, toA, btScalar(1), linVelA, angVelA);
@@ -100,7 +100,7 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 
 	btTransform transA = fromA, transB = fromB;
 	btScalar lambda = btScalar(0);
-	btVector3 lastNormal = caliberFallbackNormal(relativeLinVel);
+	btVector3 lastNormal = caliber::fallbackNormal(relativeLinVel);
 	m_separatingAxisHint = lastNormal;
 	btVector3 lastPoint = fromB.getOrigin();
 	for (int iteration = 0;; ++iteration)
@@ -112,7 +112,7 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 		{
 			// Overlapping cores without a (working) depth solver: advancement never gets here from a
 			// separated start, so the shapes overlapped already; this is the contact.
-			caliberWriteCastHit(result, lambda, lastNormal, lastPoint, transA, transB);
+			caliber::writeCastHit(result, lambda, lastNormal, lastPoint, transA, transB);
 			return true;
 		}
 		const btVector3 normal = collector.m_normalOnBInWorld;
@@ -120,16 +120,16 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 		m_separatingAxisHint = normal;
 		lastPoint = collector.m_pointInWorld;
 		const btScalar gap = collector.m_distance + allowedPenetration;
-		if (gap <= kCaliberCastDistanceTolerance)
+		if (gap <= caliber::kCastDistanceTolerance)
 		{
-			caliberWriteCastHit(result, lambda, normal, collector.m_pointInWorld, transA, transB);
+			caliber::writeCastHit(result, lambda, normal, collector.m_pointInWorld, transA, transB);
 			return true;
 		}
-		if (iteration + 1 >= kCaliberCastMaxIterations)
+		if (iteration + 1 >= caliber::kCastMaxIterations)
 		{
 			result.reportFailure(-2, iteration + 1);
-			if (gap > kCaliberCastExhaustedAcceptDistance) return false;
-			caliberWriteCastHit(result, lambda, normal, collector.m_pointInWorld, transA, transB);
+			if (gap > caliber::kCastExhaustedAcceptDistance) return false;
+			caliber::writeCastHit(result, lambda, normal, collector.m_pointInWorld, transA, transB);
 			return true;
 		}
 		const btScalar approachBound = -normal.dot(relativeLinVel) + angularBound;
@@ -138,7 +138,7 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 		if (next > btScalar(1))
 		{
 			// The end of the motion may still come within the tolerance: look there once.
-			if (lambda < btScalar(1) && lambda + (gap - kCaliberCastDistanceTolerance) / approachBound <= btScalar(1))
+			if (lambda < btScalar(1) && lambda + (gap - caliber::kCastDistanceTolerance) / approachBound <= btScalar(1))
 				next = btScalar(1);
 			else
 				return false;

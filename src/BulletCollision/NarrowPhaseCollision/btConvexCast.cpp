@@ -8,10 +8,10 @@
 
 btConvexCast::~btConvexCast() {}
 
-bool caliberCastClosestPoints(const btConvexShape* shapeA, const btConvexShape* shapeB, const btTransform& transA,
-                              const btTransform& transB, btSimplexSolverInterface* simplexSolver,
-                              btConvexPenetrationDepthSolver* depthSolver, const btVector3& axisHint, btVector3& normal,
-                              btVector3& pointOnB, btScalar& distance)
+bool caliber::castClosestPoints(const btConvexShape* shapeA, const btConvexShape* shapeB, const btTransform& transA,
+                                const btTransform& transB, btSimplexSolverInterface* simplexSolver,
+                                btConvexPenetrationDepthSolver* depthSolver, const btVector3& axisHint,
+                                btVector3& normal, btVector3& pointOnB, btScalar& distance)
 {
 	btGjkPairDetector detector(shapeA, shapeB, simplexSolver, depthSolver);
 	if (!axisHint.fuzzyZero() && caliber::isFinite(axisHint)) detector.setCachedSeperatingAxis(axisHint);

@@ -19,7 +19,7 @@ btGjkConvexCast::btGjkConvexCast(const btConvexShape* convexA, const btConvexSha
 bool btGjkConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransform& toA, const btTransform& fromB,
                                        const btTransform& toB, CastResult& result)
 {
-	if (!caliberCastInputsValid(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB)) return false;
+	if (!caliber::castInputsValid(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB)) return false;
 
 	const btVector3 motionA = toA.getOrigin() - fromA.getOrigin();
 	const btVector3 motionB = toB.getOrigin() - fromB.getOrigin();
@@ -30,30 +30,30 @@ bool btGjkConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransfo
 	btGjkEpaPenetrationDepthSolver epa;
 	btTransform transA = fromA, transB = fromB;
 	btScalar lambda = btScalar(0);
-	btVector3 lastNormal = caliberFallbackNormal(relativeMotion);
+	btVector3 lastNormal = caliber::fallbackNormal(relativeMotion);
 	for (int iteration = 0;; ++iteration)
 	{
 		btVector3 normal, pointOnB;
 		btScalar distance;
-		if (!caliberCastClosestPoints(m_convexA, m_convexB, transA, transB, m_simplexSolver, &epa, lastNormal, normal,
-		                              pointOnB, distance))
+		if (!caliber::castClosestPoints(m_convexA, m_convexB, transA, transB, m_simplexSolver, &epa, lastNormal, normal,
+		                                pointOnB, distance))
 		{
 			// Only a failed depth solver gets here; the shapes overlap, so this is the contact.
-			caliberWriteCastHit(result, lambda, lastNormal, transB.getOrigin(), transA, transB);
+			caliber::writeCastHit(result, lambda, lastNormal, transB.getOrigin(), transA, transB);
 			return true;
 		}
 		lastNormal = normal;
 		const btScalar gap = distance + allowedPenetration;
-		if (gap <= kCaliberCastDistanceTolerance)
+		if (gap <= caliber::kCastDistanceTolerance)
 		{
-			caliberWriteCastHit(result, lambda, normal, pointOnB, transA, transB);
+			caliber::writeCastHit(result, lambda, normal, pointOnB, transA, transB);
 			return true;
 		}
-		if (iteration + 1 >= kCaliberCastMaxIterations)
+		if (iteration + 1 >= caliber::kCastMaxIterations)
 		{
 			result.reportFailure(-2, iteration + 1);
-			if (gap > kCaliberCastExhaustedAcceptDistance) return false;
-			caliberWriteCastHit(result, lambda, normal, pointOnB, transA, transB);
+			if (gap > caliber::kCastExhaustedAcceptDistance) return false;
+			caliber::writeCastHit(result, lambda, normal, pointOnB, transA, transB);
 			return true;
 		}
 		const btScalar approachSpeed = -normal.dot(relativeMotion);
@@ -62,7 +62,7 @@ bool btGjkConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransfo
 		if (next > btScalar(1))
 		{
 			// The end of the motion may still come within the tolerance: look there once.
-			if (lambda < btScalar(1) && lambda + (gap - kCaliberCastDistanceTolerance) / approachSpeed <= btScalar(1))
+			if (lambda < btScalar(1) && lambda + (gap - caliber::kCastDistanceTolerance) / approachSpeed <= btScalar(1))
 				next = btScalar(1);
 			else
 				return false;

@@ -45,7 +45,7 @@ SupportPair supportC(const btConvexShape* a, const btTransform& ta, btScalar mar
 bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransform& toA,
                                               const btTransform& fromB, const btTransform& toB, CastResult& result)
 {
-	if (!caliberCastInputsValid(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB)) return false;
+	if (!caliber::castInputsValid(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB)) return false;
 
 	// Work relative to the midpoint of the start origins so that far-away pairs keep their precision.
 	const btVector3 offset = (fromA.getOrigin() + fromB.getOrigin()) * btScalar(0.5);
@@ -82,7 +82,7 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 		{
 			result.reportFailure(-1, iteration - 1);
 			if (advanced &&
-			    distanceSquared <= kCaliberCastExhaustedAcceptDistance * kCaliberCastExhaustedAcceptDistance)
+			    distanceSquared <= caliber::kCastExhaustedAcceptDistance * caliber::kCastExhaustedAcceptDistance)
 				break;
 			return false;
 		}
@@ -127,14 +127,14 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 		if (!simplex.emptySimplex()) simplex.compute_points(onA, fallbackPoint);
 		btGjkEpaPenetrationDepthSolver epa;
 		btScalar distance;
-		if (!caliberCastClosestPoints(m_convexA, m_convexB, transA, transB, m_simplexSolver, &epa,
-		                              caliberFallbackNormal(relativeMotion), normal, pointOnB, distance))
+		if (!caliber::castClosestPoints(m_convexA, m_convexB, transA, transB, m_simplexSolver, &epa,
+		                                caliber::fallbackNormal(relativeMotion), normal, pointOnB, distance))
 		{
-			normal = caliberFallbackNormal(relativeMotion);
+			normal = caliber::fallbackNormal(relativeMotion);
 			pointOnB = fallbackPoint;
 		}
 		pointOnB += offset;
-		caliberWriteCastHit(result, btScalar(0), normal, pointOnB, fromA, fromB);
+		caliber::writeCastHit(result, btScalar(0), normal, pointOnB, fromA, fromB);
 		return true;
 	}
 
@@ -149,8 +149,8 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 	queryB.getOrigin() += motionB * lambda;
 	btGjkEpaPenetrationDepthSolver epa;
 	btScalar distance;
-	if (caliberCastClosestPoints(m_convexA, m_convexB, queryA, queryB, m_simplexSolver, &epa, -lastPlaneNormal, normal,
-	                             pointOnB, distance))
+	if (caliber::castClosestPoints(m_convexA, m_convexB, queryA, queryB, m_simplexSolver, &epa, -lastPlaneNormal,
+	                               normal, pointOnB, distance))
 	{
 		pointOnB += offset;
 	}
@@ -163,6 +163,6 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 	hitA.getOrigin() += motionA * lambda;
 	hitB.getOrigin() += motionB * lambda;
 	if (result.m_debugDrawer) result.drawCoordSystem(hitA);
-	caliberWriteCastHit(result, lambda, normal, pointOnB, hitA, hitB);
+	caliber::writeCastHit(result, lambda, normal, pointOnB, hitA, hitB);
 	return true;
 }

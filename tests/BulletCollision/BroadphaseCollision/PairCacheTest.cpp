@@ -38,7 +38,7 @@ struct ProxySet
 	std::vector<btBroadphaseProxy> proxies;
 };
 
-bool caliberGroupMaskAcceptsForTest(const btBroadphaseProxy* a, const btBroadphaseProxy* b)
+bool groupMaskAcceptsForTest(const btBroadphaseProxy* a, const btBroadphaseProxy* b)
 {
 	return groupMaskAccepts(a->m_collisionFilterGroup, a->m_collisionFilterMask, b->m_collisionFilterGroup,
 	                        b->m_collisionFilterMask);
@@ -142,10 +142,10 @@ TYPED_TEST(PairCacheTest, GroupMaskFilterRejectsPairsEitherWayAndUserFilterRepla
 	cache.setOverlapFilterCallback(&filter);
 	EXPECT_EQ(cache.getOverlapFilterCallback(), &filter);
 	// (1, 4): group/mask accepts (4 is group 1, mask all), the user filter rejects.
-	EXPECT_TRUE(caliberGroupMaskAcceptsForTest(proxies[1], proxies[4]));
+	EXPECT_TRUE(groupMaskAcceptsForTest(proxies[1], proxies[4]));
 	EXPECT_EQ(cache.addOverlappingPair(proxies[1], proxies[4]), nullptr);
 	// (2, 3): group/mask rejects (3 is group 1, 2's mask is 4), the user filter accepts.
-	EXPECT_FALSE(caliberGroupMaskAcceptsForTest(proxies[2], proxies[3]));
+	EXPECT_FALSE(groupMaskAcceptsForTest(proxies[2], proxies[3]));
 	EXPECT_NE(cache.addOverlappingPair(proxies[2], proxies[3]), nullptr);
 	EXPECT_EQ(cache.getNumOverlappingPairs(), 2);
 	cache.setOverlapFilterCallback(0);
