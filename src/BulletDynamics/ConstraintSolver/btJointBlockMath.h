@@ -7,6 +7,7 @@
 
 #include "BulletDynamics/ConstraintSolver/btSolverBody.h"
 #include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btSolverJointBlock.h"
 
 namespace caliber
 {
@@ -45,12 +46,12 @@ inline bool invertDense(const btScalar* a, int n, int stride, btScalar tiny, btS
 }
 
 // Inverts the n x n matrix J M^-1 J^T of rows [0, n) by Gauss-Jordan elimination with partial pivoting
-// into invK (stride btSolverJointBlock::MAX_ROWS); false when it is singular (redundant rows, or both
+// into invK (stride caliber::SolverJointBlock::MAX_ROWS); false when it is singular (redundant rows, or both
 // bodies immovable), in which case the rows are solved one by one.
 inline bool buildBlockInverse(const btSolverConstraint* rows, int n, const btSolverBody& a, const btSolverBody& b,
                               btScalar* invK)
 {
-	const int S = btSolverJointBlock::MAX_ROWS;
+	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	btScalar k[S][2 * S];
 	btScalar largestDiagonal = 0;
 	// K is symmetric: each pair once. Rows carry I^-1 J in m_angularComponent, so K_ij = J_i . M^-1 J_j.

@@ -28,11 +28,11 @@ const btScalar kUnboundedImpulse = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e3
 // the solution is the same; but solving the row no longer disturbs the block and the block no longer
 // undoes the row, so a limit strongly coupled to its joint's pivot (a limb swinging into its cone) settles
 // in one sweep instead of opening the pivot while Gauss-Seidel goes back and forth.
-void decoupleFromBlock(const btSolverConstraint* blockRows, const btSolverJointBlock& block,
+void decoupleFromBlock(const btSolverConstraint* blockRows, const caliber::SolverJointBlock& block,
                        const btScalar* blockTargets, btSolverConstraint& row, btScalar& target, const btRigidBody& rbA,
                        const btRigidBody& rbB, const btSolverBody& bodyA, const btSolverBody& bodyB)
 {
-	const int S = btSolverJointBlock::MAX_ROWS;
+	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	const int n = block.m_size;
 	btScalar coupling[S];
 	bool coupled = false;
@@ -98,7 +98,7 @@ void clearRow(btSolverConstraint& row, btScalar cfm)
 bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
                            btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1,
                            int solverBodyIdA, int solverBodyIdB, const btContactSolverInfo& infoGlobal,
-                           btSolverJointBlock& block)
+                           caliber::SolverJointBlock& block)
 {
 	const int numRows = info1.m_numConstraintRows;
 	block.m_size = 0;
@@ -142,7 +142,7 @@ bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverC
 
 	// The leading equality rows (no bounds, no softness) can be solved as one block.
 	int equalityRows = 0;
-	while (equalityRows < numRows && equalityRows < btSolverJointBlock::MAX_ROWS &&
+	while (equalityRows < numRows && equalityRows < caliber::SolverJointBlock::MAX_ROWS &&
 	       firstRow[equalityRows].m_lowerLimit <= -kUnboundedImpulse &&
 	       firstRow[equalityRows].m_upperLimit >= kUnboundedImpulse && firstRow[equalityRows].m_cfm == btScalar(0))
 		++equalityRows;
@@ -310,10 +310,10 @@ btScalar caliber::solveJoint(const SolverScratch& scratch, btSolverBody* solverB
 	btSolverBody& bodyB = solverBodies[rows[first].m_solverBodyIdB];
 	btScalar residual = 0;
 	int r = first;
-	const btSolverJointBlock& block = scratch.jointBlocks[jointIndex];
+	const caliber::SolverJointBlock& block = scratch.jointBlocks[jointIndex];
 	if (block.m_size)
 	{
-		const int S = btSolverJointBlock::MAX_ROWS;
+		const int S = caliber::SolverJointBlock::MAX_ROWS;
 		const int n = block.m_size;
 		btScalar error[S];
 		for (int i = 0; i < n; ++i)

@@ -10,6 +10,7 @@
 #include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
 #include "BulletDynamics/ConstraintSolver/btSolverBody.h"
 #include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btSolverJointBlock.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btAlignedObjectArray.h"
 
@@ -31,10 +32,10 @@ struct SolverBounceRow
 struct SolverScratch
 {
 	/// The joints of this solve, each joint's first row in the joint row pool, and its block of
-	/// equality rows (see btSolverJointBlock).
+	/// equality rows (see SolverJointBlock).
 	btAlignedObjectArray<btTypedConstraint*> joints;
 	btAlignedObjectArray<int> jointFirstRow;
-	btAlignedObjectArray<btSolverJointBlock> jointBlocks;
+	btAlignedObjectArray<SolverJointBlock> jointBlocks;
 	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
 	/// of the points within a manifold.
 	btAlignedObjectArray<int> manifoldFirstRow;
@@ -80,7 +81,7 @@ btScalar solveFrictionRow(btSolverBody* bodies, btConstraintArray& contacts, btC
 /// non-finite rows (it is then disabled, with a warning).
 bool convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
                   btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1, int solverBodyIdA,
-                  int solverBodyIdB, const btContactSolverInfo& infoGlobal, btSolverJointBlock& block);
+                  int solverBodyIdB, const btContactSolverInfo& infoGlobal, SolverJointBlock& block);
 /// One sweep over the rows of joint jointIndex (its block, then its other rows); returns the squared
 /// impulse change.
 btScalar solveJoint(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,

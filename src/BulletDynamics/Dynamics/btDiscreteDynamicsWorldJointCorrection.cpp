@@ -51,7 +51,7 @@ btScalar coupling(const btSolverConstraint& ri, const btSolverConstraint& rj, co
 void solvePositionRows(const btSolverConstraint* rows, int n, int m, const btSolverBody& a, const btSolverBody& b,
                        const btScalar* invK, btScalar* lambda)
 {
-	const int S = btSolverJointBlock::MAX_ROWS;
+	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	btScalar k[kMaxRows][kMaxRows];
 	for (int i = 0; i < m; ++i)
 		for (int j = 0; j < m; ++j) k[i][j] = (i < n && j < n) ? btScalar(0) : coupling(rows[i], rows[j], a, b);
@@ -169,7 +169,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 	const int sweeps = context.jointPositionIterations;
 	if (sweeps <= 0 || constraints.size() == 0) return;
 	BT_PROFILE("correctJointPositions");
-	const int S = btSolverJointBlock::MAX_ROWS;
+	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	btAlignedObjectArray<btRigidBody*>& correctedBodies = context.jointCorrectedBodies;
 	btAlignedObjectArray<btTypedConstraint*>& joints = context.jointCorrectionJoints;
 	btAlignedObjectArray<btTypedConstraint*>& leftOver = context.jointCorrectionLeftOver;
