@@ -94,6 +94,18 @@ struct Candidate
 	btScalar distance;
 	btVector3 normalInB, pointOnA, pointOnB;
 	int method;  // GjkMethod
+
+	// Takes the depth solver's witnesses (already on the shapes' surfaces) as the contact.
+	void takeWitnesses(const btVector3& normal, btScalar signedDistance, const btVector3& onA, const btVector3& onB,
+	                   int how)
+	{
+		normalInB = normal;
+		distance = signedDistance;
+		pointOnA = onA;
+		pointOnB = onB;
+		isValid = true;
+		method = how;
+	}
 };
 
 // GJK on the margin-free cores from the axis start: each step asks both shapes for their support
@@ -252,14 +264,7 @@ void consultDepthSolver(const CentredPair& pair, btConvexPenetrationDepthSolver&
 			depthDistance = -length;
 		}
 		if (normal.length2() > SIMD_EPSILON && (!contact.isValid || depthDistance < contact.distance))
-		{
-			contact.normalInB = normal.normalized();
-			contact.distance = depthDistance;
-			contact.pointOnA = solverA;
-			contact.pointOnB = solverB;
-			contact.isValid = true;
-			contact.method = kDepthSolver;
-		}
+			contact.takeWitnesses(normal.normalized(), depthDistance, solverA, solverB, kDepthSolver);
 		else
 		{
 			contact.method = kGjkKeptOverDepthSolver;
@@ -268,14 +273,7 @@ void consultDepthSolver(const CentredPair& pair, btConvexPenetrationDepthSolver&
 	}
 	const btScalar length = btSqrt(lengthSquared);
 	if (!contact.isValid && caliber::isFinite(delta) && length > SIMD_EPSILON)
-	{
-		contact.normalInB = -delta / length;
-		contact.distance = length;
-		contact.pointOnA = solverA;
-		contact.pointOnB = solverB;
-		contact.isValid = true;
-		contact.method = kDepthSolverGap;
-	}
+		contact.takeWitnesses(-delta / length, length, solverA, solverB, kDepthSolverGap);
 	else
 	{
 		contact.method = kDepthSolverFailed;

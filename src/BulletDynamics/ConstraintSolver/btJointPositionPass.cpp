@@ -19,6 +19,18 @@ const Joint* asJoint(const btTypedConstraint& joint)
 	if (typeid(joint) == typeid(Joint)) return static_cast<const Joint*>(&joint);
 	return dynamic_cast<const Joint*>(&joint);
 }
+
+// The anchors of a joint placed by two frames (hinge, cone-twist): their origins. None when the joint
+// is not really a Joint, or holds angles only.
+template <class Joint>
+bool frameAnchors(const btTypedConstraint& joint, btVector3& anchorInA, btVector3& anchorInB)
+{
+	const Joint* framed = asJoint<Joint>(joint);
+	if (!framed || framed->getAngularOnly()) return false;
+	anchorInA = framed->getAFrame().getOrigin();
+	anchorInB = framed->getBFrame().getOrigin();
+	return true;
+}
 }  // namespace
 
 namespace caliber
@@ -51,21 +63,9 @@ bool jointAnchors(const btTypedConstraint& joint, btVector3& anchorInA, btVector
 			return true;
 		}
 		case HINGE_CONSTRAINT_TYPE:
-		{
-			const btHingeConstraint* hinge = asJoint<btHingeConstraint>(joint);
-			if (!hinge || hinge->getAngularOnly()) return false;
-			anchorInA = hinge->getAFrame().getOrigin();
-			anchorInB = hinge->getBFrame().getOrigin();
-			return true;
-		}
+			return frameAnchors<btHingeConstraint>(joint, anchorInA, anchorInB);
 		case CONETWIST_CONSTRAINT_TYPE:
-		{
-			const btConeTwistConstraint* cone = asJoint<btConeTwistConstraint>(joint);
-			if (!cone || cone->getAngularOnly()) return false;
-			anchorInA = cone->getAFrame().getOrigin();
-			anchorInB = cone->getBFrame().getOrigin();
-			return true;
-		}
+			return frameAnchors<btConeTwistConstraint>(joint, anchorInA, anchorInB);
 		default:
 			return false;
 	}
