@@ -241,40 +241,25 @@ public:
 		return state != FIXED_BASE_MULTI_BODY && state != ISLAND_SLEEPING && state != DISABLE_SIMULATION;
 	}
 
-	/// Sets the restitution coefficient.
-	void setRestitution(btScalar rest)
-	{
-		m_updateRevision++;
-		m_restitution = rest;
-	}
+	/// Sets the restitution coefficient (finite and >= 0; anything else is reported and ignored).
+	void setRestitution(btScalar rest);
 	/// Restitution coefficient.
 	btScalar getRestitution() const { return m_restitution; }
-	/// Sets the friction coefficient.
-	void setFriction(btScalar frict)
-	{
-		m_updateRevision++;
-		m_friction = frict;
-	}
+	/// Sets the friction coefficient (finite and >= 0; anything else is reported and ignored).
+	void setFriction(btScalar frict);
 	/// Friction coefficient.
 	btScalar getFriction() const { return m_friction; }
-	/// Sets the rolling friction coefficient.
-	void setRollingFriction(btScalar frict)
-	{
-		m_updateRevision++;
-		m_rollingFriction = frict;
-	}
+	/// Sets the rolling friction coefficient (finite and >= 0; anything else is reported and ignored).
+	void setRollingFriction(btScalar frict);
 	/// Rolling friction coefficient.
 	btScalar getRollingFriction() const { return m_rollingFriction; }
-	/// Sets the spinning friction coefficient.
-	void setSpinningFriction(btScalar frict)
-	{
-		m_updateRevision++;
-		m_spinningFriction = frict;
-	}
+	/// Sets the spinning friction coefficient (finite and >= 0; anything else is reported and ignored).
+	void setSpinningFriction(btScalar frict);
 	/// Spinning friction coefficient.
 	btScalar getSpinningFriction() const { return m_spinningFriction; }
 	/// Sets contact stiffness and damping and turns on CF_HAS_CONTACT_STIFFNESS_DAMPING; a stiffness below
-	/// SIMD_EPSILON is raised to SIMD_EPSILON because the combination divides by it.
+	/// SIMD_EPSILON is raised to SIMD_EPSILON because the combination divides by it. A non-finite value or
+	/// a negative damping is reported and the call ignored.
 	void setContactStiffnessAndDamping(btScalar stiffness, btScalar damping);
 	/// Contact stiffness.
 	btScalar getContactStiffness() const { return m_contactStiffness; }
@@ -350,14 +335,15 @@ public:
 
 	/// Radius of the sphere swept for CCD.
 	btScalar getCcdSweptSphereRadius() const { return m_ccdSweptSphereRadius; }
-	/// Sets the radius of the sphere swept for CCD.
-	void setCcdSweptSphereRadius(btScalar radius) { m_ccdSweptSphereRadius = radius; }
+	/// Sets the radius of the sphere swept for CCD (finite and >= 0; anything else is reported and ignored).
+	void setCcdSweptSphereRadius(btScalar radius);
 	/// Motion per step above which CCD is used.
 	btScalar getCcdMotionThreshold() const { return m_ccdMotionThreshold; }
 	/// Square of the CCD motion threshold.
 	btScalar getCcdSquareMotionThreshold() const { return m_ccdMotionThreshold * m_ccdMotionThreshold; }
-	/// Sets the motion per step above which CCD is used (0 disables CCD).
-	void setCcdMotionThreshold(btScalar ccdMotionThreshold) { m_ccdMotionThreshold = ccdMotionThreshold; }
+	/// Sets the motion per step above which CCD is used (0 disables CCD; finite and >= 0, anything else is
+	/// reported and ignored).
+	void setCcdMotionThreshold(btScalar ccdMotionThreshold);
 
 	/// User pointer.
 	void* getUserPointer() const { return m_userObjectPointer; }

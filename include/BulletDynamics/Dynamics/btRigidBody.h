@@ -165,7 +165,7 @@ public:
 	void setGravity(const btVector3& acceleration);
 	const btVector3& getGravity() const { return m_gravity_acceleration; }
 
-	/// Damping fractions per second, clamped to [0, 1].
+	/// Damping fractions per second, clamped to [0, 1] (a non-finite value is reported and the call ignored).
 	void setDamping(btScalar lin_damping, btScalar ang_damping);
 	btScalar getLinearDamping() const { return m_linearDamping; }
 	btScalar getAngularDamping() const { return m_angularDamping; }
@@ -182,7 +182,7 @@ public:
 	void setMassProps(btScalar mass, const btVector3& inertia);
 
 	const btVector3& getLinearFactor() const { return m_linearFactor; }
-	/// Per-axis scale of linear motion (0 locks an axis).
+	/// Per-axis scale of linear motion (0 locks an axis; negative or non-finite: reported, ignored).
 	void setLinearFactor(const btVector3& linearFactor);
 
 	btScalar getInvMass() const { return m_inverseMass; }
@@ -289,7 +289,7 @@ public:
 	int m_contactSolverType;
 	int m_frictionSolverType;
 
-	/// Per-axis scale of rotation (0 locks an axis).
+	/// Per-axis scale of rotation (0 locks an axis; negative or non-finite: reported, ignored).
 	void setAngularFactor(const btVector3& angFac);
 	void setAngularFactor(btScalar angFac);
 	const btVector3& getAngularFactor() const { return m_angularFactor; }

@@ -2,6 +2,20 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
+#include "LinearMath/btWarningHook.h"
+
+namespace
+{
+// Material and CCD coefficients are finite and never negative; anything else would spread NaN or
+// turn friction into a driving force. Reports and returns false for such a value (release builds).
+bool acceptCoefficient(btScalar value, const char* warning)
+{
+	const bool valid = value >= btScalar(0) && btIsFinite(value);
+	btAssert(valid && "btCollisionObject: a material or CCD coefficient must be finite and >= 0");
+	if (!valid) btReportWarning(warning);
+	return valid;
+}
+}  // namespace
 
 btCollisionObject::btCollisionObject()
     : m_interpolationLinearVelocity(0, 0, 0),
@@ -83,8 +97,56 @@ void btCollisionObject::activate(bool forceActivation) const
 	}
 }
 
+void btCollisionObject::setRestitution(btScalar rest)
+{
+	if (!acceptCoefficient(rest, "Caliber: setRestitution: negative or non-finite; ignored\n")) return;
+	m_updateRevision++;
+	m_restitution = rest;
+}
+
+void btCollisionObject::setFriction(btScalar frict)
+{
+	if (!acceptCoefficient(frict, "Caliber: setFriction: negative or non-finite; ignored\n")) return;
+	m_updateRevision++;
+	m_friction = frict;
+}
+
+void btCollisionObject::setRollingFriction(btScalar frict)
+{
+	if (!acceptCoefficient(frict, "Caliber: setRollingFriction: negative or non-finite; ignored\n")) return;
+	m_updateRevision++;
+	m_rollingFriction = frict;
+}
+
+void btCollisionObject::setSpinningFriction(btScalar frict)
+{
+	if (!acceptCoefficient(frict, "Caliber: setSpinningFriction: negative or non-finite; ignored\n")) return;
+	m_updateRevision++;
+	m_spinningFriction = frict;
+}
+
+void btCollisionObject::setCcdSweptSphereRadius(btScalar radius)
+{
+	if (!acceptCoefficient(radius, "Caliber: setCcdSweptSphereRadius: negative or non-finite; ignored\n")) return;
+	m_ccdSweptSphereRadius = radius;
+}
+
+void btCollisionObject::setCcdMotionThreshold(btScalar ccdMotionThreshold)
+{
+	if (!acceptCoefficient(ccdMotionThreshold, "Caliber: setCcdMotionThreshold: negative or non-finite; ignored\n"))
+		return;
+	m_ccdMotionThreshold = ccdMotionThreshold;
+}
+
 void btCollisionObject::setContactStiffnessAndDamping(btScalar stiffness, btScalar damping)
 {
+	if (!btIsFinite(stiffness) ||
+	    !acceptCoefficient(damping, "Caliber: setContactStiffnessAndDamping: bad damping; ignored\n"))
+	{
+		btAssert(btIsFinite(stiffness) && "setContactStiffnessAndDamping: non-finite stiffness");
+		if (!btIsFinite(stiffness)) btReportWarning("Caliber: setContactStiffnessAndDamping: non-finite stiffness; ignored\n");
+		return;
+	}
 	m_updateRevision++;
 	m_contactStiffness = stiffness < SIMD_EPSILON ? SIMD_EPSILON : stiffness;
 	m_contactDamping = damping;

@@ -6,6 +6,7 @@
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "LinearMath/btMotionState.h"
 #include "LinearMath/btTransformUtil.h"
+#include "LinearMath/btWarningHook.h"
 
 btScalar gDeactivationTime = btScalar(2);
 bool gDisableDeactivation = false;
@@ -69,10 +70,6 @@ void btRigidBody::setupRigidBody(const btRigidBodyConstructionInfo& info)
 		btScalar btRigidBodyConstructionInfo::*info;
 	};
 	static const CopiedSetting kCopied[] = {
-	    {&btRigidBody::m_friction, &btRigidBodyConstructionInfo::m_friction},
-	    {&btRigidBody::m_rollingFriction, &btRigidBodyConstructionInfo::m_rollingFriction},
-	    {&btRigidBody::m_spinningFriction, &btRigidBodyConstructionInfo::m_spinningFriction},
-	    {&btRigidBody::m_restitution, &btRigidBodyConstructionInfo::m_restitution},
 	    {&btRigidBody::m_linearSleepingThreshold, &btRigidBodyConstructionInfo::m_linearSleepingThreshold},
 	    {&btRigidBody::m_angularSleepingThreshold, &btRigidBodyConstructionInfo::m_angularSleepingThreshold},
 	    {&btRigidBody::m_additionalDampingFactor, &btRigidBodyConstructionInfo::m_additionalDampingFactor},
@@ -88,6 +85,12 @@ void btRigidBody::setupRigidBody(const btRigidBodyConstructionInfo& info)
 	m_optionalMotionState = info.m_motionState;
 	m_contactSolverType = 0;
 	m_frictionSolverType = 0;
+	// The material setters reject negative and non-finite values (the object's defaults stay).
+	setFriction(info.m_friction);
+	setRollingFriction(info.m_rollingFriction);
+	setSpinningFriction(info.m_spinningFriction);
+	setRestitution(info.m_restitution);
+	m_linearDamping = m_angularDamping = btScalar(0);
 	setDamping(info.m_linearDamping, info.m_angularDamping);  // clamped to [0, 1]
 
 	// The motion state, when there is one, knows where the body starts; the info's transform otherwise.
@@ -136,26 +139,45 @@ void btRigidBody::setMassProps(btScalar mass, const btVector3& inertia)
 	m_invMass = m_linearFactor * m_inverseMass;
 }
 
+namespace
+{
+// A factor scales the response along an axis: 0 locks it, 1 is free. Negative or non-finite
+// factors would invert or poison the response; they are reported and the call ignored.
+bool acceptFactor(const btVector3& factor, const char* warning)
+{
+	const bool valid = caliber::isFinite(factor) && factor.x() >= btScalar(0) && factor.y() >= btScalar(0) &&
+	                   factor.z() >= btScalar(0);
+	btAssert(valid && "btRigidBody: linear and angular factors must be finite and >= 0");
+	if (!valid) btReportWarning(warning);
+	return valid;
+}
+}  // namespace
+
 void btRigidBody::setLinearFactor(const btVector3& linearFactor)
 {
+	if (!acceptFactor(linearFactor, "Caliber: setLinearFactor: negative or non-finite; ignored\n")) return;
 	m_linearFactor = linearFactor;
 	m_invMass = m_linearFactor * m_inverseMass;
 }
 
 void btRigidBody::setAngularFactor(const btVector3& angFac)
 {
+	if (!acceptFactor(angFac, "Caliber: setAngularFactor: negative or non-finite; ignored\n")) return;
 	m_updateRevision++;
 	m_angularFactor = angFac;
 }
 
-void btRigidBody::setAngularFactor(btScalar angFac)
-{
-	m_updateRevision++;
-	m_angularFactor.setValue(angFac, angFac, angFac);
-}
+void btRigidBody::setAngularFactor(btScalar angFac) { setAngularFactor(btVector3(angFac, angFac, angFac)); }
 
 void btRigidBody::setDamping(btScalar lin_damping, btScalar ang_damping)
 {
+	const bool finite = btIsFinite(lin_damping) && btIsFinite(ang_damping);
+	btAssert(finite && "btRigidBody::setDamping: non-finite damping");
+	if (!finite)
+	{
+		btReportWarning("Caliber: setDamping: non-finite damping; ignored\n");
+		return;
+	}
 	m_linearDamping = btClamped(lin_damping, btScalar(0), btScalar(1));
 	m_angularDamping = btClamped(ang_damping, btScalar(0), btScalar(1));
 }

@@ -6,6 +6,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "LinearMath/btQuaternion.h"
+#include "LinearMath/btWarningHook.h"
 
 TEST(CollisionObject, DefaultsAreBulletsDefaults)
 {
@@ -164,4 +165,48 @@ TEST(CollisionObject, NonFiniteWorldTransformIsRejected)
 	object.setWorldTransform(bad);
 	EXPECT_EQ(object.getWorldTransform().getOrigin(), good.getOrigin()) << "release keeps the old transform";
 #endif
+}
+
+TEST(CollisionObject, NegativeOrNonFiniteMaterialAndCcdValuesAreReportedAndIgnored)
+{
+	const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+	const btScalar inf = std::numeric_limits<btScalar>::infinity();
+	btCollisionObject object;
+	object.setFriction(btScalar(0.7));
+	object.setRestitution(btScalar(0.2));
+	object.setRollingFriction(btScalar(0.05));
+	object.setSpinningFriction(btScalar(0.03));
+	object.setCcdMotionThreshold(btScalar(0.5));
+	object.setCcdSweptSphereRadius(btScalar(0.2));
+	object.setContactStiffnessAndDamping(btScalar(1000), btScalar(0.3));
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(object.setFriction(-1), "finite and >= 0");
+	EXPECT_DEATH(object.setRestitution(nan), "finite and >= 0");
+	EXPECT_DEATH(object.setContactStiffnessAndDamping(inf, 0), "non-finite stiffness");
+#else
+	int warnings = 0;
+	btSetWarningHook([](const char*, void* count) { ++*static_cast<int*>(count); }, &warnings);
+	object.setFriction(-1);
+	object.setFriction(nan);
+	object.setRestitution(-btScalar(0.5));
+	object.setRestitution(inf);
+	object.setRollingFriction(nan);
+	object.setSpinningFriction(-inf);
+	object.setCcdMotionThreshold(nan);
+	object.setCcdSweptSphereRadius(-1);
+	object.setContactStiffnessAndDamping(nan, 0);
+	object.setContactStiffnessAndDamping(1, -1);
+	btSetWarningHook(0, 0);
+	EXPECT_EQ(warnings, 10) << "every rejected call is reported once";
+#endif
+	EXPECT_EQ(object.getFriction(), btScalar(0.7)) << "the last valid values stay";
+	EXPECT_EQ(object.getRestitution(), btScalar(0.2));
+	EXPECT_EQ(object.getRollingFriction(), btScalar(0.05));
+	EXPECT_EQ(object.getSpinningFriction(), btScalar(0.03));
+	EXPECT_EQ(object.getCcdMotionThreshold(), btScalar(0.5));
+	EXPECT_EQ(object.getCcdSweptSphereRadius(), btScalar(0.2));
+	EXPECT_EQ(object.getContactStiffness(), btScalar(1000));
+	EXPECT_EQ(object.getContactDamping(), btScalar(0.3));
+	object.setRestitution(btScalar(1.5));
+	EXPECT_EQ(object.getRestitution(), btScalar(1.5)) << "restitution above 1 (a bumper) is allowed";
 }

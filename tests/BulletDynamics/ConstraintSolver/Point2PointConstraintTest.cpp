@@ -245,6 +245,33 @@ TEST(TypedConstraint, JointBetweenABodyAndItselfIsReportedAndIgnored)
 #endif
 }
 
+TEST(TypedConstraint, NullOrDuplicateJointIsReportedAndIgnored)
+{
+	TestWorld w(btVector3(0, -kG, 0));
+	btCollisionShape* ball = w.shape<btSphereShape>(btScalar(0.2));
+	btRigidBody* a = w.addBody(ball, 0, btVector3(0, 0, 0));
+	btRigidBody* b = w.addBody(ball, 1, btVector3(0, -1, 0));
+	btPoint2PointConstraint* joint =
+	    w.addJoint<btPoint2PointConstraint>(true, *a, *b, btVector3(0, -0.5, 0), btVector3(0, 0.5, 0));
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(w.world()->addConstraint(0), "null constraint");
+	EXPECT_DEATH(w.world()->addConstraint(joint), "added twice");
+#else
+	WarningCounter warnings;
+	w.world()->addConstraint(0);
+	w.world()->addConstraint(joint, true);
+	EXPECT_EQ(warnings.count(), 2);
+	EXPECT_EQ(w.world()->getNumConstraints(), 1) << "the joint is in the world once";
+	EXPECT_EQ(b->getNumConstraintRefs(), 1) << "and referenced once by its body";
+#endif
+	w.run(60);
+	// The joint still holds b one metre below the static anchor (pivot drift well under a millimetre).
+	EXPECT_NEAR(b->getCenterOfMassPosition().y(), -1, 1e-3);
+	w.world()->removeConstraint(joint);
+	EXPECT_EQ(w.world()->getNumConstraints(), 0);
+	EXPECT_EQ(b->getNumConstraintRefs(), 0);
+}
+
 TEST(TypedConstraint, NonFinitePivotDisablesTheJointWithAWarningAndTheWorldGoesOn)
 {
 	WarningCounter warnings;

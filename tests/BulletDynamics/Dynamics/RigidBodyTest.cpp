@@ -12,6 +12,7 @@
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btDefaultMotionState.h"
 #include "LinearMath/btTransformUtil.h"
+#include "LinearMath/btWarningHook.h"
 
 namespace
 {
@@ -287,4 +288,46 @@ TEST(RigidBody, BadInputIsRejectedAndLeavesTheBodyUsable)
 	EXPECT_EQ(body.getTotalForce(), btVector3(0, 0, 0));
 	body.applyCentralImpulse(btVector3(1, 0, 0));
 	EXPECT_EQ(body.getLinearVelocity(), btVector3(2, 0, 0)) << "and the body still works";
+}
+
+TEST(RigidBody, NonFiniteDampingAndBadFactorsAreReportedAndIgnored)
+{
+	const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+	const btScalar inf = std::numeric_limits<btScalar>::infinity();
+	btSphereShape sphere(1);
+	btRigidBody body(1, 0, &sphere, btVector3(1, 1, 1));
+	body.setDamping(btScalar(0.1), btScalar(0.2));
+	body.setLinearFactor(btVector3(1, 0, 1));
+	body.setAngularFactor(btVector3(0, 1, 0));
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(body.setDamping(nan, 0), "non-finite damping");
+	EXPECT_DEATH(body.setLinearFactor(btVector3(-1, 1, 1)), "factors must be finite");
+	EXPECT_DEATH(body.setAngularFactor(inf), "factors must be finite");
+#else
+	int warnings = 0;
+	btSetWarningHook([](const char*, void* count) { ++*static_cast<int*>(count); }, &warnings);
+	body.setDamping(nan, 0);
+	body.setDamping(0, inf);
+	body.setLinearFactor(btVector3(-1, 1, 1));
+	body.setLinearFactor(btVector3(1, nan, 1));
+	body.setAngularFactor(inf);
+	body.setAngularFactor(btVector3(0, -2, 0));
+	btSetWarningHook(0, 0);
+	EXPECT_EQ(warnings, 6) << "every rejected call is reported once";
+	btRigidBody::btRigidBodyConstructionInfo info(1, 0, &sphere, btVector3(1, 1, 1));
+	info.m_linearDamping = nan;
+	info.m_friction = -1;
+	info.m_restitution = nan;
+	btRigidBody fromInfo(info);
+	EXPECT_EQ(fromInfo.getLinearDamping(), btScalar(0)) << "a rejected damping leaves none";
+	EXPECT_EQ(fromInfo.getFriction(), btScalar(0.5)) << "a rejected material keeps the default";
+	EXPECT_EQ(fromInfo.getRestitution(), btScalar(0));
+#endif
+	EXPECT_EQ(body.getLinearDamping(), btScalar(0.1)) << "the last valid settings stay";
+	EXPECT_EQ(body.getAngularDamping(), btScalar(0.2));
+	EXPECT_EQ(body.getLinearFactor(), btVector3(1, 0, 1));
+	EXPECT_EQ(body.getAngularFactor(), btVector3(0, 1, 0));
+	// The locked axes still lock: an impulse along y moves nothing, one along x does.
+	body.applyCentralImpulse(btVector3(1, 1, 0));
+	EXPECT_EQ(body.getLinearVelocity(), btVector3(1, 0, 0));
 }
