@@ -272,7 +272,8 @@ public:
 	void getAngularUpperLimit(btVector3 & angularUpper) const;
 
 	/// The limit and motor of angle index (0..2).
-	btRotationalLimitMotor* getRotationalLimitMotor(int index) { return &m_angularLimits[index]; }
+	/// The motor of angle index (0..2); an index out of range is reported and clamped into 0..2.
+	btRotationalLimitMotor* getRotationalLimitMotor(int index);
 	/// The limits and motors of the linear coordinates.
 	btTranslationalLimitMotor* getTranslationalLimitMotor() { return &m_linearLimits; }
 

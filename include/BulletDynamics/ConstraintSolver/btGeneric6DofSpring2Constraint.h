@@ -262,7 +262,8 @@ public:
 	void getInfo2(btConstraintInfo2 * info) override;
 
 	/// The settings of angular coordinate index (0..2).
-	btRotationalLimitMotor2* getRotationalLimitMotor(int index) { return &m_angularLimits[index]; }
+	/// The motor of angle index (0..2); an index out of range is reported and clamped into 0..2.
+	btRotationalLimitMotor2* getRotationalLimitMotor(int index);
 	/// The settings of the three linear coordinates.
 	btTranslationalLimitMotor2* getTranslationalLimitMotor() { return &m_linearLimits; }
 
@@ -283,12 +284,13 @@ public:
 	btTransform& getFrameOffsetA() { return m_frameInA; }
 	btTransform& getFrameOffsetB() { return m_frameInB; }
 
-	/// Unit world direction about which angle axis_index (0..2) is measured (after calculateTransforms).
-	btVector3 getAxis(int axis_index) const { return m_calculatedAxis[axis_index]; }
+	/// Unit world direction about which angle axis_index (0..2) is measured (after calculateTransforms);
+	/// an index out of range is reported and gives zero, as do the two getters below.
+	btVector3 getAxis(int axis_index) const;
 	/// Euler angle axis_index (0..2) in radians (after calculateTransforms).
-	btScalar getAngle(int axis_index) const { return m_calculatedAxisAngleDiff[axis_index]; }
+	btScalar getAngle(int axis_index) const;
 	/// Coordinate axis_index (0..2) of B's frame origin in A's frame (after calculateTransforms).
-	btScalar getRelativePivotPosition(int axis_index) const { return m_calculatedLinearDiff[axis_index]; }
+	btScalar getRelativePivotPosition(int axis_index) const;
 
 	/// Replaces both joint frames (non-finite frames are reported and disable the joint).
 	void setFrames(const btTransform& frameA, const btTransform& frameB);

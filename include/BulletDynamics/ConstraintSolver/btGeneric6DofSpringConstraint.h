@@ -49,10 +49,11 @@ public:
 	/// Sets the rest position of coordinate index's spring (radians for angles).
 	void setEquilibriumPoint(int index, btScalar val);
 
-	bool isSpringEnabled(int index) const { return m_springEnabled[index]; }
-	btScalar getStiffness(int index) const { return m_springStiffness[index]; }
-	btScalar getDamping(int index) const { return m_springDamping[index]; }
-	btScalar getEquilibriumPoint(int index) const { return m_equilibriumPoint[index]; }
+	/// The spring settings of coordinate index (0..5); an index out of range is reported and reads false / 0.
+	bool isSpringEnabled(int index) const;
+	btScalar getStiffness(int index) const;
+	btScalar getDamping(int index) const;
+	btScalar getEquilibriumPoint(int index) const;
 
 	/// As btGeneric6DofConstraint::setAxis; the springs keep their rest positions.
 	void setAxis(const btVector3& axis1, const btVector3& axis2) override;

@@ -9,6 +9,7 @@
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "LinearMath/btAabbUtil2.h"
 #include "LinearMath/btAlignedObject.h"
+#include "LinearMath/btWarningHook.h"
 
 namespace
 {
@@ -210,10 +211,9 @@ void btAxisSweep3Internal<BP_FP_INT_TYPE>::clampToWorld(const btVector3& aabbMin
 	if (clamped && !m_warnedOutsideBounds)
 	{
 		m_warnedOutsideBounds = true;
-		fputs(
+		btReportWarning(
 		    "Caliber: btAxisSweep3: a box outside the world bounds was clamped to them; objects there may be "
-		    "paired although they do not touch\n",
-		    stderr);
+		    "paired although they do not touch\n");
 	}
 }
 

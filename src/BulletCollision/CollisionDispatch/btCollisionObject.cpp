@@ -11,8 +11,8 @@ namespace
 bool acceptCoefficient(btScalar value, const char* warning)
 {
 	const bool valid = value >= btScalar(0) && btIsFinite(value);
-	btAssert(valid && "btCollisionObject: a material or CCD coefficient must be finite and >= 0");
 	if (!valid) btReportWarning(warning);
+	btAssert(valid && "btCollisionObject: a material or CCD coefficient must be finite and >= 0");
 	return valid;
 }
 }  // namespace
@@ -143,8 +143,8 @@ void btCollisionObject::setContactStiffnessAndDamping(btScalar stiffness, btScal
 	if (!btIsFinite(stiffness) ||
 	    !acceptCoefficient(damping, "Caliber: setContactStiffnessAndDamping: bad damping; ignored\n"))
 	{
-		btAssert(btIsFinite(stiffness) && "setContactStiffnessAndDamping: non-finite stiffness");
 		if (!btIsFinite(stiffness)) btReportWarning("Caliber: setContactStiffnessAndDamping: non-finite stiffness; ignored\n");
+		btAssert(btIsFinite(stiffness) && "setContactStiffnessAndDamping: non-finite stiffness");
 		return;
 	}
 	m_updateRevision++;

@@ -1,7 +1,6 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 
-#include <cstdio>
 #include <mutex>
 
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
@@ -9,6 +8,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btQuickprof.h"
+#include "LinearMath/btWarningHook.h"
 
 // The world's bookkeeping: objects, proxies, AABBs and the discrete collision step. The queries live in
 // btCollisionWorldRayTest.cpp, btCollisionWorldConvexSweep.cpp and btCollisionWorldContactTest.cpp, debug
@@ -225,10 +225,7 @@ void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
 	{
 		const char* message =
 		    "Caliber: overflow in AABB (non-finite or huge), object removed from simulation (DISABLE_SIMULATION)\n";
-		if (m_debugDrawer)
-			m_debugDrawer->reportErrorWarning(message);
-		else
-			fputs(message, stderr);
+		btReportWarning(message, m_debugDrawer);
 	}
 }
 

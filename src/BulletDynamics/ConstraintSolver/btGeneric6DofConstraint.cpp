@@ -239,22 +239,46 @@ void btGeneric6DofConstraint::calculateAngleInfo()
 	for (int i = 0; i < 3; ++i) m_angularLimits[i].testLimitValue(m_calculatedAxisAngleDiff[i]);
 }
 
+namespace
+{
+// Public accessors take an index from the user: out of range is reported (and asserted), never read.
+bool indexInRange(int index, int count, const char* warning)
+{
+	const bool valid = index >= 0 && index < count;
+	if (!valid) btReportWarning(warning);
+	btAssert(valid && "btGeneric6DofConstraint: index out of range");
+	return valid;
+}
+}  // namespace
+
 btVector3 btGeneric6DofConstraint::getAxis(int axis_index) const
 {
-	btAssert(axis_index >= 0 && axis_index < 3);
+	if (!indexInRange(axis_index, 3, "Caliber: btGeneric6DofConstraint::getAxis: index outside 0..2; zero\n"))
+		return btVector3(0, 0, 0);
 	return m_calculatedAxis[axis_index];
 }
 
 btScalar btGeneric6DofConstraint::getAngle(int axis_index) const
 {
-	btAssert(axis_index >= 0 && axis_index < 3);
+	if (!indexInRange(axis_index, 3, "Caliber: btGeneric6DofConstraint::getAngle: index outside 0..2; zero\n"))
+		return btScalar(0);
 	return m_calculatedAxisAngleDiff[axis_index];
 }
 
 btScalar btGeneric6DofConstraint::getRelativePivotPosition(int axis_index) const
 {
-	btAssert(axis_index >= 0 && axis_index < 3);
+	if (!indexInRange(axis_index, 3,
+	                  "Caliber: btGeneric6DofConstraint::getRelativePivotPosition: index outside 0..2; zero\n"))
+		return btScalar(0);
 	return m_calculatedLinearDiff[axis_index];
+}
+
+btRotationalLimitMotor* btGeneric6DofConstraint::getRotationalLimitMotor(int index)
+{
+	if (!indexInRange(index, 3,
+	                  "Caliber: btGeneric6DofConstraint::getRotationalLimitMotor: index outside 0..2; clamped\n"))
+		index = index < 0 ? 0 : 2;
+	return &m_angularLimits[index];
 }
 
 void btGeneric6DofConstraint::setFrames(const btTransform& frameA, const btTransform& frameB)
@@ -293,8 +317,7 @@ void btGeneric6DofConstraint::getAngularUpperLimit(btVector3& angularUpper) cons
 
 void btGeneric6DofConstraint::setLimit(int axis, btScalar lo, btScalar hi)
 {
-	btAssert(axis >= 0 && axis < 6);
-	if (axis < 0 || axis >= 6) return;
+	if (!indexInRange(axis, 6, "Caliber: btGeneric6DofConstraint::setLimit: axis outside 0..5; ignored\n")) return;
 	if (axis < 3)
 	{
 		m_linearLimits.m_lowerLimit[axis] = lo;
@@ -309,7 +332,8 @@ void btGeneric6DofConstraint::setLimit(int axis, btScalar lo, btScalar hi)
 
 bool btGeneric6DofConstraint::isLimited(int limitIndex) const
 {
-	btAssert(limitIndex >= 0 && limitIndex < 6);
+	if (!indexInRange(limitIndex, 6, "Caliber: btGeneric6DofConstraint::isLimited: index outside 0..5; false\n"))
+		return false;
 	if (limitIndex < 3) return m_linearLimits.isLimited(limitIndex);
 	return m_angularLimits[limitIndex - 3].isLimited();
 }
@@ -655,8 +679,7 @@ void btGeneric6DofConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const 
 
 void btGeneric6DofConstraint::setParam(int num, btScalar value, int axis)
 {
-	btAssertConstrParams(axis >= 0 && axis < 6);
-	if (axis < 0 || axis >= 6) return;
+	if (!indexInRange(axis, 6, "Caliber: btGeneric6DofConstraint::setParam: axis outside 0..5; ignored\n")) return;
 	const int shift = axis * BT_6DOF_FLAGS_AXIS_SHIFT;
 	btRotationalLimitMotor* angular = axis >= 3 ? &m_angularLimits[axis - 3] : 0;
 	switch (num)
@@ -690,8 +713,8 @@ void btGeneric6DofConstraint::setParam(int num, btScalar value, int axis)
 
 btScalar btGeneric6DofConstraint::getParam(int num, int axis) const
 {
-	btAssertConstrParams(axis >= 0 && axis < 6);
-	if (axis < 0 || axis >= 6) return SIMD_INFINITY;
+	if (!indexInRange(axis, 6, "Caliber: btGeneric6DofConstraint::getParam: axis outside 0..5; infinity\n"))
+		return SIMD_INFINITY;
 	const int shift = axis * BT_6DOF_FLAGS_AXIS_SHIFT;
 	const btRotationalLimitMotor* angular = axis >= 3 ? &m_angularLimits[axis - 3] : 0;
 	switch (num)

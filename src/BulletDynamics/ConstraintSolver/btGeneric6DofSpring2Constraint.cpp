@@ -590,11 +590,45 @@ int btGeneric6DofSpring2Constraint::writeRows(btConstraintInfo2* info)
 
 // ---- settings -----------------------------------------------------------------------------------
 
+namespace
+{
+// The per-angle accessors take 0..2; a user's index outside is reported, never read.
+bool angleIndexInRange(int index, const char* function)
+{
+	const bool valid = index >= 0 && index < 3;
+	if (!valid) warn(function, "index outside 0..2");
+	btAssert(valid && "btGeneric6DofSpring2Constraint: axis index must be 0..2");
+	return valid;
+}
+}  // namespace
+
+btRotationalLimitMotor2* btGeneric6DofSpring2Constraint::getRotationalLimitMotor(int index)
+{
+	if (!angleIndexInRange(index, "getRotationalLimitMotor")) index = index < 0 ? 0 : 2;
+	return &m_angularLimits[index];
+}
+
+btVector3 btGeneric6DofSpring2Constraint::getAxis(int axis_index) const
+{
+	return angleIndexInRange(axis_index, "getAxis") ? m_calculatedAxis[axis_index] : btVector3(0, 0, 0);
+}
+
+btScalar btGeneric6DofSpring2Constraint::getAngle(int axis_index) const
+{
+	return angleIndexInRange(axis_index, "getAngle") ? m_calculatedAxisAngleDiff[axis_index] : btScalar(0);
+}
+
+btScalar btGeneric6DofSpring2Constraint::getRelativePivotPosition(int axis_index) const
+{
+	return angleIndexInRange(axis_index, "getRelativePivotPosition") ? m_calculatedLinearDiff[axis_index]
+	                                                                  : btScalar(0);
+}
+
 bool btGeneric6DofSpring2Constraint::checkIndex(int index, const char* function) const
 {
 	const bool valid = index >= 0 && index < 6;
-	btAssert(valid && "btGeneric6DofSpring2Constraint: coordinate index must be 0..5");
 	if (!valid) warn(function, "coordinate index outside 0..5; call ignored");
+	btAssert(valid && "btGeneric6DofSpring2Constraint: coordinate index must be 0..5");
 	return valid;
 }
 

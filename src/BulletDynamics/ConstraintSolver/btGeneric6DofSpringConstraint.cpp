@@ -45,17 +45,47 @@ void btGeneric6DofSpringConstraint::init()
 	}
 }
 
+namespace
+{
+// Spring coordinates are 0..5 (three linear, three angular); a user's index outside is reported, never used.
+bool springIndexInRange(int index)
+{
+	const bool valid = index >= 0 && index < 6;
+	if (!valid) btReportWarning("Caliber: btGeneric6DofSpringConstraint: spring index outside 0..5; ignored\n");
+	btAssert(valid && "btGeneric6DofSpringConstraint: spring index must be 0..5");
+	return valid;
+}
+}  // namespace
+
+bool btGeneric6DofSpringConstraint::isSpringEnabled(int index) const
+{
+	return springIndexInRange(index) && m_springEnabled[index];
+}
+
+btScalar btGeneric6DofSpringConstraint::getStiffness(int index) const
+{
+	return springIndexInRange(index) ? m_springStiffness[index] : btScalar(0);
+}
+
+btScalar btGeneric6DofSpringConstraint::getDamping(int index) const
+{
+	return springIndexInRange(index) ? m_springDamping[index] : btScalar(0);
+}
+
+btScalar btGeneric6DofSpringConstraint::getEquilibriumPoint(int index) const
+{
+	return springIndexInRange(index) ? m_equilibriumPoint[index] : btScalar(0);
+}
+
 void btGeneric6DofSpringConstraint::enableSpring(int index, bool onOff)
 {
-	btAssert(index >= 0 && index < 6);
-	if (index < 0 || index >= 6) return;
+	if (!springIndexInRange(index)) return;
 	m_springEnabled[index] = onOff;
 }
 
 void btGeneric6DofSpringConstraint::setStiffness(int index, btScalar stiffness)
 {
-	btAssert(index >= 0 && index < 6);
-	if (index < 0 || index >= 6) return;
+	if (!springIndexInRange(index)) return;
 	if (!(stiffness >= btScalar(0)) || !btIsFinite(stiffness))
 	{
 		btReportWarning("Caliber: btGeneric6DofSpringConstraint::setStiffness: negative or non-finite; ignored\n", 0);
@@ -66,8 +96,7 @@ void btGeneric6DofSpringConstraint::setStiffness(int index, btScalar stiffness)
 
 void btGeneric6DofSpringConstraint::setDamping(int index, btScalar damping)
 {
-	btAssert(index >= 0 && index < 6);
-	if (index < 0 || index >= 6) return;
+	if (!springIndexInRange(index)) return;
 	if (!(damping >= btScalar(0)) || !btIsFinite(damping))
 	{
 		btReportWarning("Caliber: btGeneric6DofSpringConstraint::setDamping: negative or non-finite; ignored\n", 0);
@@ -84,16 +113,14 @@ void btGeneric6DofSpringConstraint::setEquilibriumPoint()
 
 void btGeneric6DofSpringConstraint::setEquilibriumPoint(int index)
 {
-	btAssert(index >= 0 && index < 6);
-	if (index < 0 || index >= 6) return;
+	if (!springIndexInRange(index)) return;
 	calculateTransforms();
 	m_equilibriumPoint[index] = getCoordinate(index);
 }
 
 void btGeneric6DofSpringConstraint::setEquilibriumPoint(int index, btScalar val)
 {
-	btAssert(index >= 0 && index < 6);
-	if (index < 0 || index >= 6) return;
+	if (!springIndexInRange(index)) return;
 	m_equilibriumPoint[index] = val;
 }
 

@@ -147,8 +147,8 @@ bool acceptFactor(const btVector3& factor, const char* warning)
 {
 	const bool valid = caliber::isFinite(factor) && factor.x() >= btScalar(0) && factor.y() >= btScalar(0) &&
 	                   factor.z() >= btScalar(0);
-	btAssert(valid && "btRigidBody: linear and angular factors must be finite and >= 0");
 	if (!valid) btReportWarning(warning);
+	btAssert(valid && "btRigidBody: linear and angular factors must be finite and >= 0");
 	return valid;
 }
 }  // namespace
@@ -172,12 +172,9 @@ void btRigidBody::setAngularFactor(btScalar angFac) { setAngularFactor(btVector3
 void btRigidBody::setDamping(btScalar lin_damping, btScalar ang_damping)
 {
 	const bool finite = btIsFinite(lin_damping) && btIsFinite(ang_damping);
+	if (!finite) btReportWarning("Caliber: setDamping: non-finite damping; ignored\n");
 	btAssert(finite && "btRigidBody::setDamping: non-finite damping");
-	if (!finite)
-	{
-		btReportWarning("Caliber: setDamping: non-finite damping; ignored\n");
-		return;
-	}
+	if (!finite) return;
 	m_linearDamping = btClamped(lin_damping, btScalar(0), btScalar(1));
 	m_angularDamping = btClamped(ang_damping, btScalar(0), btScalar(1));
 }

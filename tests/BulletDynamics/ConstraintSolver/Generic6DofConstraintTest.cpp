@@ -487,7 +487,44 @@ TEST(Generic6DofConstraint, ParamsArePerAxisAndSoftenTheirRows)
 #if CALIBER_ASSERTS_ENABLED
 	EXPECT_DEATH(joint.setParam(BT_CONSTRAINT_CFM, 1, 6), "axis");
 	EXPECT_DEATH(joint.getParam(BT_CONSTRAINT_CFM, 0), "m_flags");
+#else
+	const int flags = joint.getFlags();
+	WarningCounter warnings;
+	joint.setParam(BT_CONSTRAINT_CFM, 1, 6);
+	joint.setParam(BT_CONSTRAINT_STOP_ERP, 1, -1);
+	EXPECT_EQ(joint.getParam(BT_CONSTRAINT_CFM, 6), SIMD_INFINITY);
+	EXPECT_EQ(warnings.count(), 3);
+	EXPECT_EQ(joint.getFlags(), flags) << "an axis out of range changes nothing";
+	EXPECT_EQ(joint.getParam(BT_CONSTRAINT_CFM, 0), btScalar(0)) << "a parameter never set reads its default";
+	EXPECT_EQ(joint.getParam(BT_CONSTRAINT_STOP_ERP, 0), btScalar(0.2));
 #endif
+}
+
+TEST(Generic6DofConstraint, IndexedAccessorsOutOfRangeAreReportedNeverRead)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* box = w.addBody(w.shape<btBoxShape>(btVector3(0.2, 0.2, 0.2)), 1, btVector3(0, 0, 0));
+	btGeneric6DofConstraint joint(*box, btTransform::getIdentity(), true);
+	joint.setLimit(0, -1, 1);
+	joint.calculateTransforms();
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(joint.getAxis(3), "index out of range");
+	EXPECT_DEATH(joint.getRotationalLimitMotor(-1), "index out of range");
+	EXPECT_DEATH(joint.setLimit(6, 0, 1), "index out of range");
+#else
+	WarningCounter warnings;
+	EXPECT_EQ(joint.getAxis(3), btVector3(0, 0, 0));
+	EXPECT_EQ(joint.getAngle(-1), btScalar(0));
+	EXPECT_EQ(joint.getRelativePivotPosition(7), btScalar(0));
+	EXPECT_FALSE(joint.isLimited(6));
+	EXPECT_EQ(joint.getRotationalLimitMotor(-1), joint.getRotationalLimitMotor(0)) << "clamped to the first angle";
+	EXPECT_EQ(joint.getRotationalLimitMotor(3), joint.getRotationalLimitMotor(2)) << "clamped to the last angle";
+	joint.setLimit(6, 0, 1);
+	joint.setLimit(-1, 0, 1);
+	EXPECT_EQ(warnings.count(), 8);
+#endif
+	EXPECT_TRUE(joint.isLimited(0)) << "valid settings are untouched";
+	EXPECT_EQ(joint.getAxis(0), btVector3(1, 0, 0));
 }
 
 TEST(Generic6DofConstraint, StopErpSetsHowFastALockedAxisIsPulledBack)

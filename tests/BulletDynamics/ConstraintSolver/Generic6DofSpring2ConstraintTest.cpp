@@ -821,3 +821,24 @@ TEST(Generic6DofSpring2Constraint, CoordinateIndexOutsideZeroToFiveIsAProgrammin
 	EXPECT_EQ(info.m_numConstraintRows, 3) << "still the default: three locked positions, free angles";
 #endif
 }
+
+TEST(Generic6DofSpring2Constraint, AngleAccessorsOutsideZeroToTwoAreReportedNeverRead)
+{
+	TestWorld w(kZero);
+	btRigidBody* body = w.addBody(w.shape<btSphereShape>(btScalar(0.1)), 1, btVector3(0, 0, 0));
+	btGeneric6DofSpring2Constraint joint(*body, btTransform::getIdentity());
+	joint.calculateTransforms();
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(joint.getAxis(3), "index must be 0..2");
+	EXPECT_DEATH(joint.getRotationalLimitMotor(5), "index must be 0..2");
+#else
+	WarningCounter warnings;
+	EXPECT_EQ(joint.getAxis(3), btVector3(0, 0, 0));
+	EXPECT_EQ(joint.getAngle(-1), btScalar(0));
+	EXPECT_EQ(joint.getRelativePivotPosition(3), btScalar(0));
+	EXPECT_EQ(joint.getRotationalLimitMotor(5), joint.getRotationalLimitMotor(2)) << "clamped to the last angle";
+	EXPECT_EQ(joint.getRotationalLimitMotor(-2), joint.getRotationalLimitMotor(0)) << "clamped to the first angle";
+	EXPECT_EQ(warnings.count(), 5);
+#endif
+	EXPECT_EQ(joint.getAxis(2), btVector3(0, 0, 1)) << "valid indices read as before";
+}

@@ -202,5 +202,17 @@ TEST(Generic6DofSpringConstraint, SpringOnALockedCoordinateDoesNothingAndSetters
 	EXPECT_EQ(spring->getDamping(0), btScalar(0));
 #if CALIBER_ASSERTS_ENABLED
 	EXPECT_DEATH(spring->enableSpring(6, true), "index");
+	EXPECT_DEATH(spring->getStiffness(-1), "index");
+#else
+	spring->enableSpring(6, true);
+	spring->setStiffness(-1, 5);
+	spring->setDamping(6, 5);
+	spring->setEquilibriumPoint(9, 1);
+	EXPECT_FALSE(spring->isSpringEnabled(6));
+	EXPECT_EQ(spring->getStiffness(-1), btScalar(0));
+	EXPECT_EQ(spring->getDamping(6), btScalar(0));
+	EXPECT_EQ(spring->getEquilibriumPoint(9), btScalar(0));
+	EXPECT_EQ(warnings.count(), 2 + 8) << "each out-of-range index is reported";
+	EXPECT_EQ(spring->getStiffness(0), btScalar(100)) << "and changes nothing";
 #endif
 }
