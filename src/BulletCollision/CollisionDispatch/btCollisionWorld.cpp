@@ -9,6 +9,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btQuickprof.h"
+#include "LinearMath/btWarningHook.h"
 
 // The world's bookkeeping: objects, proxies, AABBs and the discrete collision step. The queries live in
 // btCollisionWorldRayTest.cpp, btCollisionWorldConvexSweep.cpp and btCollisionWorldContactTest.cpp, debug
@@ -269,7 +270,9 @@ void btCollisionWorld::serializeContactManifolds(btSerializer* serializer) { (vo
 
 void btCollisionWorld::serialize(btSerializer* serializer)
 {
-	// Caliber has no btSerializer yet; the call is accepted and writes nothing.
+	// Caliber has no btSerializer yet: the caller is told that nothing was written.
 	serializeCollisionObjects(serializer);
 	serializeContactManifolds(serializer);
+	btReportWarning("Caliber: btCollisionWorld::serialize: serialization is not supported yet; nothing was written\n",
+	                getDebugDrawer());
 }
