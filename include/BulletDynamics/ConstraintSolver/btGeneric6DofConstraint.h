@@ -150,7 +150,17 @@ protected:
 	bool m_useOffsetForConstraintFrame;
 	int m_flags;
 
-	/// Caliber: the row directions of the last calculation. Linear coordinate i's rate is measured along
+	/// Fills the linear coordinates and row directions from the calculated transforms.
+	void calculateLinearInfo();
+	/// Fills the Euler angles and angular row directions from the calculated transforms.
+	void calculateAngleInfo();
+
+private:
+	// Caliber's own row machinery; the spring and universal joints build their rows and frames with it.
+	friend class btGeneric6DofSpringConstraint;
+	friend class btUniversalConstraint;
+
+	/// The row directions of the last calculation. Linear coordinate i's rate is measured along
 	/// m_linearRowAxis[i] at m_linearRowPoint; angular coordinate i's rate is
 	/// (angular velocity of B - that of A) . m_angularRowAxis[i] (not unit length away from y = 0).
 	btVector3 m_linearRowAxis[3];
@@ -160,10 +170,6 @@ protected:
 	btVector3 m_centerOfMassA;
 	btVector3 m_centerOfMassB;
 
-	/// Fills the linear coordinates and row directions from the calculated transforms.
-	void calculateLinearInfo();
-	/// Fills the Euler angles and angular row directions from the calculated transforms.
-	void calculateAngleInfo();
 	/// Warns and disables the joint when a frame is not finite; true when both are.
 	bool checkFrames();
 
@@ -194,7 +200,7 @@ protected:
 	/// the inverse of the coordinate's effective mass (0 if nothing can move it).
 	btScalar getCoordinateInverseMass(int coordinate) const;
 
-	/// Caliber: the hard locked rows of the last getInfo2 (the solver's block), which the other rows are
+	/// The hard locked rows of the last getInfo2 (the solver's block), which the other rows are
 	/// projected against: their Jacobians (linear A, angular A, linear B, angular B), targets and the
 	/// inverse of their J M^-1 J^T (row-major, stride 6).
 	btVector3 m_blockRowJacobian[6][4];
