@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
+#include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleMesh.h"
 #include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
@@ -16,6 +18,14 @@ class PairCountingCache : public btSortedOverlappingPairCache
 {
 public:
 	int storedPairs() const { return m_overlappingPairArray.size(); }
+};
+
+// Bullet's dispatcher gives subclasses a spare manifold result, m_defaultManifoldResult.
+class SpareResultDispatcher : public btCollisionDispatcher
+{
+public:
+	using btCollisionDispatcher::btCollisionDispatcher;
+	btManifoldResult& spareResult() { return m_defaultManifoldResult; }
 };
 
 // A plain Bullet ray callback: counts the triangles it is given and keeps every hit it is told about.
@@ -84,4 +94,13 @@ TEST(BulletSubclassFacade, PerformRaycastGivesEveryTriangleOnTheRayToABulletCall
 		// start of the upward one; the ray is levels + 2 long.
 		EXPECT_NEAR(ray.m_hitFraction, btScalar(upwards ? 1 : 2) / btScalar(levels + 2), 1e-5) << "upwards " << upwards;
 	}
+}
+
+TEST(BulletSubclassFacade, DispatcherSubclassReachesItsSpareManifoldResult)
+{
+	btDefaultCollisionConfiguration configuration;
+	SpareResultDispatcher dispatcher(&configuration);
+	// Default-built: no manifold, no bodies; the dispatcher never writes through it.
+	EXPECT_EQ(dispatcher.spareResult().getPersistentManifold(), nullptr);
+	EXPECT_EQ(dispatcher.spareResult().getBody0Wrap(), nullptr);
 }

@@ -168,17 +168,6 @@ protected:
 	/// Number of subtree headers.
 	mutable int m_subtreeHeaderCount;
 
-	/// Builds the tree from the leaf array matching m_useQuantization (the leaf order is not kept).
-	void buildTreeFromLeaves();
-	/// Recomputes the boxes of internal nodes from their children, from the last node to the first.
-	void refitInternalNodes();
-	/// Recomputes the headers of the cache-sized subtrees.
-	void updateSubtreeHeaders();
-	/// Merges the box of child into node (internal nodes; both in the current format).
-	void mergeChildIntoNode(int nodeIndex, int childIndex);
-	/// Sets node nodeIndex to the union of its two children.
-	void setInternalNodeFromChildren(int nodeIndex);
-
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 
@@ -261,18 +250,8 @@ public:
 
 	/// The quantized tree.
 	QuantizedNodeArray& getQuantizedNodeArray() { return m_quantizedContiguousNodes; }
-	/// The unquantized tree (Caliber addition, for inspection).
-	const NodeArray& getNodeArray() const { return m_contiguousNodes; }
 	/// The subtree headers.
 	BvhSubtreeInfoArray& getSubtreeInfoArray() { return m_SubtreeHeaders; }
-	/// Number of nodes in the tree (0 when empty; 2n - 1 for n leaves).
-	int getNumNodes() const { return m_curNodeIndex; }
-	/// Minimum corner of the quantization box.
-	const btVector3& getBvhAabbMin() const { return m_bvhAabbMin; }
-	/// Maximum corner of the quantization box.
-	const btVector3& getBvhAabbMax() const { return m_bvhAabbMax; }
-	/// Quantized units per length unit.
-	const btVector3& getBvhQuantization() const { return m_bvhQuantization; }
 
 	/// True when the boxes are quantized.
 	bool isQuantized() { return m_useQuantization; }

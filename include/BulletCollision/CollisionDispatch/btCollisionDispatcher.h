@@ -37,6 +37,9 @@ protected:
 	int m_dispatcherFlags;
 	/// Live manifolds; each manifold's m_index1a is its index here.
 	btAlignedObjectArray<btPersistentManifold*> m_manifoldsPtr;
+	/// A spare result for subclasses written for Bullet; the dispatcher itself does not use it (each
+	/// algorithm call writes through a btManifoldResult of its own).
+	btManifoldResult m_defaultManifoldResult;
 	/// Function run for every overlapping pair.
 	btNearCallback m_nearCallback;
 	/// Pool algorithms are allocated from (the configuration's).

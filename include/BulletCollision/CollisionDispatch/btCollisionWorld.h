@@ -431,7 +431,7 @@ public:
 	/// Sets whether updateAabbs updates every object, or only active non-static ones.
 	void setForceUpdateAllAabbs(bool forceUpdateAllAabbs) { m_forceUpdateAllAabbs = forceUpdateAllAabbs; }
 
-	/// Kept for source compatibility: a no-op until Caliber has a serializer.
+	/// Serialization is not supported yet: reports a warning and writes nothing.
 	virtual void serialize(btSerializer* serializer);
 };
 

@@ -150,7 +150,17 @@ protected:
 	bool m_useOffsetForConstraintFrame;
 	int m_flags;
 
-	/// Caliber: the row directions of the last calculation. Linear coordinate i's rate is measured along
+	/// Fills the linear coordinates and row directions from the calculated transforms.
+	void calculateLinearInfo();
+	/// Fills the Euler angles and angular row directions from the calculated transforms.
+	void calculateAngleInfo();
+
+private:
+	// Caliber's own row machinery; the spring and universal joints build their rows and frames with it.
+	friend class btGeneric6DofSpringConstraint;
+	friend class btUniversalConstraint;
+
+	/// The row directions of the last calculation. Linear coordinate i's rate is measured along
 	/// m_linearRowAxis[i] at m_linearRowPoint; angular coordinate i's rate is
 	/// (angular velocity of B - that of A) . m_angularRowAxis[i] (not unit length away from y = 0).
 	btVector3 m_linearRowAxis[3];
@@ -160,10 +170,6 @@ protected:
 	btVector3 m_centerOfMassA;
 	btVector3 m_centerOfMassB;
 
-	/// Fills the linear coordinates and row directions from the calculated transforms.
-	void calculateLinearInfo();
-	/// Fills the Euler angles and angular row directions from the calculated transforms.
-	void calculateAngleInfo();
 	/// Warns and disables the joint when a frame is not finite; true when both are.
 	bool checkFrames();
 
@@ -187,20 +193,13 @@ protected:
 	void getCoordinateJacobian(int coordinate, btVector3& linearA, btVector3& angularA, btVector3& linearB,
 	                           btVector3& angularB) const;
 	/// Writes into row a row that drives coordinate i's rate to targetRate, projected so that its impulses
-	/// leave the locked rows' velocities alone (see the .cpp); its impulse is the coordinate's generalised
-	/// force times the step.
+	/// leave the locked rows' velocities alone (the rows writeLimitMotorRows wrote earlier in the same
+	/// getInfo2; see the .cpp); its impulse is the coordinate's generalised force times the step.
 	void writeCoordinateRow(btConstraintInfo2 * info, int row, int coordinate, btScalar targetRate) const;
-	/// The rate change of coordinate i per unit impulse of its row, with the locked coordinates held:
-	/// the inverse of the coordinate's effective mass (0 if nothing can move it).
+	/// The rate change of coordinate i per unit impulse of its row, with the locked coordinates held (as
+	/// writeLimitMotorRows found them earlier in the same getInfo2): the inverse of the coordinate's
+	/// effective mass (0 if nothing can move it).
 	btScalar getCoordinateInverseMass(int coordinate) const;
-
-	/// Caliber: the hard locked rows of the last getInfo2 (the solver's block), which the other rows are
-	/// projected against: their Jacobians (linear A, angular A, linear B, angular B), targets and the
-	/// inverse of their J M^-1 J^T (row-major, stride 6).
-	btVector3 m_blockRowJacobian[6][4];
-	btScalar m_blockRowTarget[6];
-	btScalar m_blockRowInverse[36];
-	int m_blockRowCount;
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -34,11 +34,14 @@ protected:
 	/// +1 measures the angle of A relative to B (Bullet's default), -1 of B relative to A.
 	btScalar m_referenceSign;
 
-	/// Whether this step has a limit row (past the limit, or close enough to reach it soon).
+private:
+	/// Whether this step has a limit row (past the limit, or close enough to reach it soon): decided in
+	/// getInfo1, read by getInfo2 (Bullet's hinge keeps the same decision in its limit).
 	bool m_limitRowNeeded;
-	/// The solver's last time step, for judging in getInfo1 whether a limit can be reached soon.
+	/// The time step of the joint's last rows, for judging in getInfo1 whether a limit can be reached soon.
 	btScalar m_lastTimeStep;
 
+protected:
 	bool m_angularOnly;
 	bool m_enableAngularMotor;
 	bool m_useReferenceFrameA;
@@ -49,6 +52,7 @@ protected:
 	btScalar m_stopCFM;
 	btScalar m_stopERP;
 
+private:
 	/// Builds both frames from pivots and axes given in each body's frame (see the constructors).
 	void initFromPivotsAndAxes(const btVector3& pivotInA, const btVector3& pivotInB, const btVector3& axisInA,
 	                           const btVector3& axisInB);

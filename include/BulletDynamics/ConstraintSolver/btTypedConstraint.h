@@ -89,10 +89,6 @@ protected:
 	btScalar m_dbgDrawSize;
 	btJointFeedback* m_jointFeedback;
 
-	/// The row impulses of the last step, kept by the solver to warm start the next one (a Caliber
-	/// addition: joints converge faster when they start from last step's answer, as contacts do).
-	btAlignedObjectArray<btScalar> m_warmStartImpulses;
-
 	/// How strongly a motor may still push at position pos between lowLim and uppLim: 1 well inside,
 	/// falling to 0 at the limit it is driving towards (so a motor does not fight its own limit).
 	btScalar getMotorFactor(btScalar pos, btScalar lowLim, btScalar uppLim, btScalar vel, btScalar timeFact);
@@ -100,7 +96,8 @@ protected:
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 
-	virtual ~btTypedConstraint() {}
+	/// Also drops the row impulses solvers keep to warm start the joint.
+	virtual ~btTypedConstraint();
 	/// A joint between rbA and the world (the fixed body).
 	btTypedConstraint(btTypedConstraintType type, btRigidBody & rbA);
 	btTypedConstraint(btTypedConstraintType type, btRigidBody & rbA, btRigidBody & rbB);
@@ -160,9 +157,6 @@ public:
 
 	void internalSetAppliedImpulse(btScalar appliedImpulse) { m_appliedImpulse = appliedImpulse; }
 	btScalar internalGetAppliedImpulse() { return m_appliedImpulse; }
-
-	/// The solver's warm-start store for this joint's rows (internal).
-	btAlignedObjectArray<btScalar>& internalGetWarmStartImpulses() { return m_warmStartImpulses; }
 
 	btScalar getBreakingImpulseThreshold() const { return m_breakingImpulseThreshold; }
 	/// The joint breaks (is disabled) in the step in which one of its rows needs an impulse of at least

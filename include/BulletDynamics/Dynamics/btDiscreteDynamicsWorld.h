@@ -7,12 +7,14 @@
 
 #include "BulletDynamics/Dynamics/btDynamicsWorld.h"
 #include "LinearMath/btAlignedObjectArray.h"
+#include "LinearMath/btThreads.h"
 
 class btCollisionConfiguration;
 class btConstraintSolver;
 class btSimulationIslandManager;
 class btTypedConstraint;
 class btPersistentManifold;
+class btSerializer;
 struct InplaceSolverIslandCallback;
 
 /// Steps rigid bodies in fixed substeps: predict motion, find contacts, build islands, solve, integrate
@@ -44,6 +46,14 @@ protected:
 	bool m_latencyMotionStateInterpolation;
 	/// The joints, in the order they were added.
 	btAlignedObjectArray<btTypedConstraint*> m_constraints;
+	/// Manifolds made for one step by createPredictiveContacts, released at the start of the next.
+	/// Caliber makes none (its speculative contacts and the time-of-impact clamp of integrateTransforms
+	/// cover fast bodies), so the array stays empty unless a subclass fills it with manifolds from the
+	/// dispatcher's getNewManifold; those are solved with the others and released by
+	/// releasePredictiveContacts.
+	btAlignedObjectArray<btPersistentManifold*> m_predictiveManifolds;
+	/// Held while m_predictiveManifolds is changed from several threads.
+	btSpinMutex m_predictiveManifoldsMutex;
 
 	/// Integrates forces into velocities, applies damping and predicts the end-of-step transforms.
 	virtual void predictUnconstraintMotion(btScalar timeStep);
@@ -60,8 +70,21 @@ protected:
 	void startProfiling(btScalar timeStep);
 	/// One fixed substep: the whole pipeline.
 	virtual void internalSingleStepSimulation(btScalar timeStep);
+	/// Releases every manifold of m_predictiveManifolds through the dispatcher and empties the array.
+	void releasePredictiveContacts();
+	/// Predictive contacts for fast bodies among bodies[0..numBodies): Caliber makes none (see
+	/// m_predictiveManifolds); kept for subclasses that call it.
+	void createPredictiveContactsInternal(btRigidBody * *bodies, int numBodies, btScalar timeStep);
+	/// Each substep before collision detection: releases last step's predictive manifolds, then, with
+	/// continuous collision on (getDispatchInfo().m_useContinuous), calls createPredictiveContactsInternal
+	/// for the non-static bodies. Override it to make predictive contacts of your own.
+	virtual void createPredictiveContacts(btScalar timeStep);
 	/// Reads kinematic bodies' motion states and derives their velocities.
 	virtual void saveKinematicState(btScalar timeStep);
+	/// Serialization is not supported yet: reports a warning and writes nothing.
+	void serializeRigidBodies(btSerializer * serializer);
+	/// Serialization is not supported yet: reports a warning and writes nothing.
+	void serializeDynamicsWorldInfo(btSerializer * serializer);
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
@@ -136,6 +159,9 @@ public:
 
 	/// Older name for updating the actions.
 	virtual void updateVehicles(btScalar timeStep) { updateActions(timeStep); }
+
+	/// Serialization is not supported yet: reports a warning and writes nothing.
+	void serialize(btSerializer * serializer) override;
 
 	void addVehicle(btActionInterface * vehicle) override;
 	void removeVehicle(btActionInterface * vehicle) override;

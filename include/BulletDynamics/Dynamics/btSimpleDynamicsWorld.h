@@ -18,8 +18,6 @@ protected:
 	btConstraintSolver* m_constraintSolver;
 	bool m_ownsConstraintSolver;
 	btVector3 m_gravity;
-	/// The moving bodies handed to the solver, gathered each step.
-	btAlignedObjectArray<btCollisionObject*> m_solverBodies;
 
 	void predictUnconstraintMotion(btScalar timeStep);
 	void integrateTransforms(btScalar timeStep);

@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/BroadphaseCollision/btQuantizedBvh.h"
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
 
 #include "LinearMath/btAabbUtil2.h"
@@ -111,16 +112,17 @@ void btQuantizedBvh::setQuantizationValues(const btVector3& bvhAabbMin, const bt
 	m_useQuantization = true;
 }
 
-void btQuantizedBvh::buildInternal() { buildTreeFromLeaves(); }
+void btQuantizedBvh::buildInternal() { caliber::buildQuantizedBvhTree(*this); }
 
-void btQuantizedBvh::buildTreeFromLeaves()
+void caliber::buildQuantizedBvhTree(btQuantizedBvh& bvh)
 {
-	const int numLeaves = m_useQuantization ? m_quantizedLeafNodes.size() : m_leafNodes.size();
-	m_contiguousNodes.resize(0);
-	m_quantizedContiguousNodes.resize(0);
-	m_SubtreeHeaders.resize(0);
-	m_subtreeHeaderCount = 0;
-	m_curNodeIndex = 0;
+	const QuantizedBvhParts p = QuantizedBvhAccess::parts(bvh);
+	const int numLeaves = p.useQuantization ? p.quantizedLeafNodes.size() : p.leafNodes.size();
+	p.contiguousNodes.resize(0);
+	p.quantizedContiguousNodes.resize(0);
+	p.subtreeHeaders.resize(0);
+	p.subtreeHeaderCount = 0;
+	p.curNodeIndex = 0;
 	if (numLeaves == 0) return;
 
 	// Leaf boxes and centroids drive the split choice (quantized leaves are unquantized for it).
@@ -132,25 +134,25 @@ void btQuantizedBvh::buildTreeFromLeaves()
 	order.resize(numLeaves);
 	for (int i = 0; i < numLeaves; ++i)
 	{
-		if (m_useQuantization)
+		if (p.useQuantization)
 		{
-			leafMin[i] = unQuantize(m_quantizedLeafNodes[i].m_quantizedAabbMin);
-			leafMax[i] = unQuantize(m_quantizedLeafNodes[i].m_quantizedAabbMax);
+			leafMin[i] = bvh.unQuantize(p.quantizedLeafNodes[i].m_quantizedAabbMin);
+			leafMax[i] = bvh.unQuantize(p.quantizedLeafNodes[i].m_quantizedAabbMax);
 		}
 		else
 		{
-			leafMin[i] = m_leafNodes[i].m_aabbMinOrg;
-			leafMax[i] = m_leafNodes[i].m_aabbMaxOrg;
+			leafMin[i] = p.leafNodes[i].m_aabbMinOrg;
+			leafMax[i] = p.leafNodes[i].m_aabbMaxOrg;
 		}
 		centroid[i] = btScalar(0.5) * (leafMin[i] + leafMax[i]);
 		order[i] = i;
 	}
 
 	const int numNodes = 2 * numLeaves - 1;
-	if (m_useQuantization)
-		m_quantizedContiguousNodes.resize(numNodes);
+	if (p.useQuantization)
+		p.quantizedContiguousNodes.resize(numNodes);
 	else
-		m_contiguousNodes.resize(numNodes);
+		p.contiguousNodes.resize(numNodes);
 
 	btAlignedObjectArray<BuildTask> stack;
 	stack.reserve(64);
@@ -163,10 +165,10 @@ void btQuantizedBvh::buildTreeFromLeaves()
 		const int count = task.end - task.begin;
 		if (count == 1)
 		{
-			if (m_useQuantization)
-				m_quantizedContiguousNodes[task.node] = m_quantizedLeafNodes[order[task.begin]];
+			if (p.useQuantization)
+				p.quantizedContiguousNodes[task.node] = p.quantizedLeafNodes[order[task.begin]];
 			else
-				m_contiguousNodes[task.node] = m_leafNodes[order[task.begin]];
+				p.contiguousNodes[task.node] = p.leafNodes[order[task.begin]];
 			continue;
 		}
 
@@ -245,11 +247,11 @@ void btQuantizedBvh::buildTreeFromLeaves()
 		}
 
 		const int leftLeaves = mid - task.begin;
-		if (m_useQuantization)
-			m_quantizedContiguousNodes[task.node].m_escapeIndexOrTriangleIndex = -(2 * count - 1);
+		if (p.useQuantization)
+			p.quantizedContiguousNodes[task.node].m_escapeIndexOrTriangleIndex = -(2 * count - 1);
 		else
 		{
-			btOptimizedBvhNode& node = m_contiguousNodes[task.node];
+			btOptimizedBvhNode& node = p.contiguousNodes[task.node];
 			node.m_escapeIndex = 2 * count - 1;
 			node.m_subPart = -1;
 			node.m_triangleIndex = -1;
@@ -260,17 +262,20 @@ void btQuantizedBvh::buildTreeFromLeaves()
 		stack.push_back(right);
 		stack.push_back(left);
 	}
-	m_curNodeIndex = numNodes;
-	refitInternalNodes();
-	updateSubtreeHeaders();
+	p.curNodeIndex = numNodes;
+	refitQuantizedBvhInternalNodes(bvh);
+	updateQuantizedBvhSubtreeHeaders(bvh);
 }
 
-void btQuantizedBvh::mergeChildIntoNode(int nodeIndex, int childIndex)
+namespace
 {
-	if (m_useQuantization)
+// Grows node nodeIndex's box by its child childIndex's (both in the tree's current format).
+void mergeChildIntoNode(const caliber::QuantizedBvhParts& p, int nodeIndex, int childIndex)
+{
+	if (p.useQuantization)
 	{
-		btQuantizedBvhNode& node = m_quantizedContiguousNodes[nodeIndex];
-		const btQuantizedBvhNode& child = m_quantizedContiguousNodes[childIndex];
+		btQuantizedBvhNode& node = p.quantizedContiguousNodes[nodeIndex];
+		const btQuantizedBvhNode& child = p.quantizedContiguousNodes[childIndex];
 		for (int a = 0; a < 3; ++a)
 		{
 			node.m_quantizedAabbMin[a] = btMin(node.m_quantizedAabbMin[a], child.m_quantizedAabbMin[a]);
@@ -279,61 +284,66 @@ void btQuantizedBvh::mergeChildIntoNode(int nodeIndex, int childIndex)
 	}
 	else
 	{
-		btOptimizedBvhNode& node = m_contiguousNodes[nodeIndex];
-		const btOptimizedBvhNode& child = m_contiguousNodes[childIndex];
+		btOptimizedBvhNode& node = p.contiguousNodes[nodeIndex];
+		const btOptimizedBvhNode& child = p.contiguousNodes[childIndex];
 		node.m_aabbMinOrg.setMin(child.m_aabbMinOrg);
 		node.m_aabbMaxOrg.setMax(child.m_aabbMaxOrg);
 	}
 }
 
-void btQuantizedBvh::setInternalNodeFromChildren(int nodeIndex)
+}  // namespace
+
+void caliber::setQuantizedBvhNodeFromChildren(btQuantizedBvh& bvh, int nodeIndex)
 {
+	const QuantizedBvhParts p = QuantizedBvhAccess::parts(bvh);
 	const int left = nodeIndex + 1;
 	int leftSize;
-	if (m_useQuantization)
+	if (p.useQuantization)
 	{
-		btQuantizedBvhNode& node = m_quantizedContiguousNodes[nodeIndex];
+		btQuantizedBvhNode& node = p.quantizedContiguousNodes[nodeIndex];
 		// Start from the empty box (min above max) so that the merge is a plain union.
 		for (int a = 0; a < 3; ++a)
 		{
 			node.m_quantizedAabbMin[a] = 0xFFFE;
 			node.m_quantizedAabbMax[a] = 1;
 		}
-		const btQuantizedBvhNode& l = m_quantizedContiguousNodes[left];
+		const btQuantizedBvhNode& l = p.quantizedContiguousNodes[left];
 		leftSize = l.isLeafNode() ? 1 : l.getEscapeIndex();
 	}
 	else
 	{
-		btOptimizedBvhNode& node = m_contiguousNodes[nodeIndex];
+		btOptimizedBvhNode& node = p.contiguousNodes[nodeIndex];
 		node.m_aabbMinOrg.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
 		node.m_aabbMaxOrg.setValue(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
-		const btOptimizedBvhNode& l = m_contiguousNodes[left];
+		const btOptimizedBvhNode& l = p.contiguousNodes[left];
 		leftSize = l.m_escapeIndex < 0 ? 1 : l.m_escapeIndex;
 	}
-	mergeChildIntoNode(nodeIndex, left);
-	mergeChildIntoNode(nodeIndex, left + leftSize);
+	mergeChildIntoNode(p, nodeIndex, left);
+	mergeChildIntoNode(p, nodeIndex, left + leftSize);
 }
 
-void btQuantizedBvh::refitInternalNodes()
+void caliber::refitQuantizedBvhInternalNodes(btQuantizedBvh& bvh)
 {
-	for (int i = m_curNodeIndex - 1; i >= 0; --i)
+	const QuantizedBvhParts p = QuantizedBvhAccess::parts(bvh);
+	for (int i = p.curNodeIndex - 1; i >= 0; --i)
 	{
 		const bool leaf =
-		    m_useQuantization ? m_quantizedContiguousNodes[i].isLeafNode() : m_contiguousNodes[i].m_escapeIndex < 0;
-		if (!leaf) setInternalNodeFromChildren(i);
+		    p.useQuantization ? p.quantizedContiguousNodes[i].isLeafNode() : p.contiguousNodes[i].m_escapeIndex < 0;
+		if (!leaf) setQuantizedBvhNodeFromChildren(bvh, i);
 	}
 }
 
-void btQuantizedBvh::updateSubtreeHeaders()
+void caliber::updateQuantizedBvhSubtreeHeaders(btQuantizedBvh& bvh)
 {
-	m_SubtreeHeaders.resize(0);
-	if (m_useQuantization)
+	const QuantizedBvhParts p = QuantizedBvhAccess::parts(bvh);
+	p.subtreeHeaders.resize(0);
+	if (p.useQuantization)
 	{
 		const int maxNodes = MAX_SUBTREE_SIZE_IN_BYTES / int(sizeof(btQuantizedBvhNode));
 		int i = 0;
-		while (i < m_curNodeIndex)
+		while (i < p.curNodeIndex)
 		{
-			const btQuantizedBvhNode& node = m_quantizedContiguousNodes[i];
+			const btQuantizedBvhNode& node = p.quantizedContiguousNodes[i];
 			const int size = node.isLeafNode() ? 1 : node.getEscapeIndex();
 			if (size > maxNodes)
 			{
@@ -344,11 +354,11 @@ void btQuantizedBvh::updateSubtreeHeaders()
 			header.setAabbFromQuantizeNode(node);
 			header.m_rootNodeIndex = i;
 			header.m_subtreeSize = size;
-			m_SubtreeHeaders.push_back(header);
+			p.subtreeHeaders.push_back(header);
 			i += size;
 		}
 	}
-	m_subtreeHeaderCount = m_SubtreeHeaders.size();
+	p.subtreeHeaderCount = p.subtreeHeaders.size();
 }
 
 void btQuantizedBvh::reportAabbOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& aabbMin,
@@ -422,8 +432,8 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
 	const bool finite = caliber::isFinite(raySource) && caliber::isFinite(rayTarget) && caliber::isFinite(aabbMin) &&
 	                    caliber::isFinite(aabbMax);
 	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
-	if (!nodeCallback || !finite || bvh.getNumNodes() == 0) return;
-	const int numNodes = bvh.getNumNodes();
+	if (!nodeCallback || !finite || caliber::bvhNodeCount(bvh) == 0) return;
+	const int numNodes = caliber::bvhNodeCount(bvh);
 
 	Sweep sweep;
 	sweep.maxFraction = maxFraction;
@@ -435,13 +445,13 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
 	btVector3 rootMin, rootMax;
 	if (bvh.isQuantized())
 	{
-		rootMin = bvh.getBvhAabbMin();
-		rootMax = bvh.getBvhAabbMax();
+		rootMin = caliber::bvhAabbMin(bvh);
+		rootMax = caliber::bvhAabbMax(bvh);
 	}
 	else
 	{
-		rootMin = bvh.getNodeArray()[0].m_aabbMinOrg;
-		rootMax = bvh.getNodeArray()[0].m_aabbMaxOrg;
+		rootMin = caliber::bvhNodeArray(bvh)[0].m_aabbMinOrg;
+		rootMax = caliber::bvhNodeArray(bvh)[0].m_aabbMaxOrg;
 	}
 	btScalar scale = 0;
 	const bool rootValid = rootMin.x() <= rootMax.x() && rootMin.y() <= rootMax.y() && rootMin.z() <= rootMax.z();
@@ -462,15 +472,16 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
 
 	if (bvh.isQuantized())
 	{
-		if (!TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, bvh.getBvhAabbMin(), bvh.getBvhAabbMax())) return;
+		if (!TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, caliber::bvhAabbMin(bvh), caliber::bvhAabbMax(bvh)))
+			return;
 		unsigned short qMin[3], qMax[3];
 		bvh.quantizeWithClamp(qMin, sweep.sweepMin, 0);
 		bvh.quantizeWithClamp(qMax, sweep.sweepMax, 1);
 		// Multiplying by the inverse instead of dividing (unQuantize) rounds once more; the tolerance covers it.
-		const btVector3& quantization = bvh.getBvhQuantization();
+		const btVector3& quantization = caliber::bvhQuantization(bvh);
 		const btVector3 invQuantization(btScalar(1) / quantization.x(), btScalar(1) / quantization.y(),
 		                                btScalar(1) / quantization.z());
-		const btVector3 bvhMin = bvh.getBvhAabbMin();
+		const btVector3 bvhMin = caliber::bvhAabbMin(bvh);
 		// Bullet declares only a non-const accessor of the quantized nodes; they are only read here.
 		const btQuantizedBvhNode* nodes = &const_cast<btQuantizedBvh&>(bvh).getQuantizedNodeArray()[0];
 		int i = 0;
@@ -499,7 +510,7 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
 		}
 		return;
 	}
-	const btOptimizedBvhNode* nodes = &bvh.getNodeArray()[0];
+	const btOptimizedBvhNode* nodes = &caliber::bvhNodeArray(bvh)[0];
 	int i = 0;
 	while (i < numNodes)
 	{

@@ -266,7 +266,9 @@ void btCollisionWorld::serializeContactManifolds(btSerializer* serializer) { (vo
 
 void btCollisionWorld::serialize(btSerializer* serializer)
 {
-	// Caliber has no btSerializer yet; the call is accepted and writes nothing.
+	// Caliber has no btSerializer yet: the caller is told that nothing was written.
 	serializeCollisionObjects(serializer);
 	serializeContactManifolds(serializer);
+	btReportWarning("Caliber: btCollisionWorld::serialize: serialization is not supported yet; nothing was written\n",
+	                getDebugDrawer());
 }

@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionShapes/btOptimizedBvh.h"
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/CollisionShapes/btStridingMeshInterface.h"
 #include "LinearMath/btAabbUtil2.h"
 #include "btMeshTriangleAccess.h"
@@ -145,7 +146,7 @@ void btOptimizedBvh::build(btStridingMeshInterface* triangles, bool useQuantized
 		}
 		m_leafNodes.resize(0);
 	}
-	buildTreeFromLeaves();
+	caliber::buildQuantizedBvhTree(*this);
 	// The leaves now live in the tree; the input arrays are not needed any more.
 	m_leafNodes.resize(0);
 	m_quantizedLeafNodes.resize(0);
@@ -166,7 +167,7 @@ void btOptimizedBvh::refit(btStridingMeshInterface* meshInterface, const btVecto
 			const bool valid = readLeafBox(part, *meshInterface, node.m_subPart, node.m_triangleIndex, boxMin, boxMax);
 			setLeafBox(i, valid, boxMin, boxMax);
 		}
-		refitInternalNodes();
+		caliber::refitQuantizedBvhInternalNodes(*this);
 		return;
 	}
 
@@ -194,8 +195,8 @@ void btOptimizedBvh::refit(btStridingMeshInterface* meshInterface, const btVecto
 	setQuantizationValues(boxMin, boxMax);
 	for (int i = 0; i < m_curNodeIndex; ++i)
 		if (m_quantizedContiguousNodes[i].isLeafNode()) setLeafBox(i, valid[i] != 0, boxes[2 * i], boxes[2 * i + 1]);
-	refitInternalNodes();
-	updateSubtreeHeaders();
+	caliber::refitQuantizedBvhInternalNodes(*this);
+	caliber::updateQuantizedBvhSubtreeHeaders(*this);
 }
 
 void btOptimizedBvh::refitPartial(btStridingMeshInterface* meshInterface, const btVector3& aabbMin,
@@ -268,8 +269,9 @@ void btOptimizedBvh::refitPartial(btStridingMeshInterface* meshInterface, const 
 		return;
 	}
 	// Preorder puts children after parents, so the reverse order refits bottom-up.
-	for (int k = visitedInternal.size() - 1; k >= 0; --k) setInternalNodeFromChildren(visitedInternal[k]);
-	updateSubtreeHeaders();
+	for (int k = visitedInternal.size() - 1; k >= 0; --k)
+		caliber::setQuantizedBvhNodeFromChildren(*this, visitedInternal[k]);
+	caliber::updateQuantizedBvhSubtreeHeaders(*this);
 }
 
 void btOptimizedBvh::updateBvhNodes(btStridingMeshInterface* meshInterface, int firstNode, int endNode, int index)
@@ -288,7 +290,7 @@ void btOptimizedBvh::updateBvhNodes(btStridingMeshInterface* meshInterface, int 
 			const btQuantizedBvhNode& node = m_quantizedContiguousNodes[i];
 			if (!node.isLeafNode())
 			{
-				setInternalNodeFromChildren(i);
+				caliber::setQuantizedBvhNodeFromChildren(*this, i);
 				continue;
 			}
 			partId = node.getPartId();
@@ -299,7 +301,7 @@ void btOptimizedBvh::updateBvhNodes(btStridingMeshInterface* meshInterface, int 
 			const btOptimizedBvhNode& node = m_contiguousNodes[i];
 			if (node.m_escapeIndex >= 0)
 			{
-				setInternalNodeFromChildren(i);
+				caliber::setQuantizedBvhNodeFromChildren(*this, i);
 				continue;
 			}
 			partId = node.m_subPart;
@@ -309,5 +311,5 @@ void btOptimizedBvh::updateBvhNodes(btStridingMeshInterface* meshInterface, int 
 		const bool valid = readLeafBox(part, *meshInterface, partId, triangleIndex, boxMin, boxMax);
 		setLeafBox(i, valid, boxMin, boxMax);
 	}
-	updateSubtreeHeaders();
+	caliber::updateQuantizedBvhSubtreeHeaders(*this);
 }

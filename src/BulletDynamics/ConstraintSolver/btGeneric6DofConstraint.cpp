@@ -130,7 +130,6 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbA, btRigidBody& 
       m_useLinearReferenceFrameA(useLinearReferenceFrameA),
       m_useOffsetForConstraintFrame(true),
       m_flags(0),
-      m_blockRowCount(0),
       m_useSolveConstraintObsolete(false)
 {
 	if (checkFrames()) calculateTransforms();
@@ -144,7 +143,6 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbB, const btTrans
       m_useLinearReferenceFrameA(useLinearReferenceFrameB),
       m_useOffsetForConstraintFrame(true),
       m_flags(0),
-      m_blockRowCount(0),
       m_useSolveConstraintObsolete(false)
 {
 	if (checkFrames()) calculateTransforms();
@@ -480,17 +478,42 @@ void writeJacobian(btTypedConstraint::btConstraintInfo2& info, int row, const Ro
 // The impulse along J_c' is still the coordinate's generalised force (the J_e part is the reaction the
 // block would have supplied), so motor and spring forces keep their meaning.
 
+namespace
+{
+// The hard locked rows of the joint whose rows are being written, which the rows after them are projected
+// against: filled by writeLimitMotorRows, read by the rows written after it in the same getInfo2 (the
+// spring joint's too), on the same thread. Scratch of one call, so it lives with the thread rather than
+// in every joint.
+struct LockedBlock
+{
+	const btGeneric6DofConstraint* joint;
+	btVector3 jacobian[6][4];  // linear A, angular A, linear B, angular B
+	btScalar target[6];
+	btScalar inverse[36];  // of their J M^-1 J^T, row-major, stride 6
+	int count;
+};
+thread_local LockedBlock t_lockedBlock = {};
+
+// joint's block, or an empty one if the block on this thread belongs to another joint.
+const LockedBlock& lockedBlockOf(const btGeneric6DofConstraint* joint)
+{
+	static const LockedBlock kNone = {};
+	return t_lockedBlock.joint == joint ? t_lockedBlock : kNone;
+}
+}  // namespace
+
 btScalar btGeneric6DofConstraint::getCoordinateInverseMass(int coordinate) const
 {
 	RowJacobian j;
 	getCoordinateJacobian(coordinate, j.part[0], j.part[1], j.part[2], j.part[3]);
 	const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, j);
 	btScalar k = j.dot(weighted);
-	const int n = m_blockRowCount;
+	const LockedBlock& block = lockedBlockOf(this);
+	const int n = block.count;
 	btScalar coupling[6];
-	for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(m_blockRowJacobian[e]));
+	for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(block.jacobian[e]));
 	for (int e = 0; e < n; ++e)
-		for (int f = 0; f < n; ++f) k -= coupling[e] * m_blockRowInverse[e * 6 + f] * coupling[f];
+		for (int f = 0; f < n; ++f) k -= coupling[e] * block.inverse[e * 6 + f] * coupling[f];
 	return btMax(k, btScalar(0));
 }
 
@@ -499,18 +522,19 @@ void btGeneric6DofConstraint::writeCoordinateRow(btConstraintInfo2* info, int ro
 {
 	RowJacobian j;
 	getCoordinateJacobian(coordinate, j.part[0], j.part[1], j.part[2], j.part[3]);
-	const int n = m_blockRowCount;
+	const LockedBlock& block = lockedBlockOf(this);
+	const int n = block.count;
 	if (n > 0)
 	{
 		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, j);
 		btScalar coupling[6];
-		for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(m_blockRowJacobian[e]));
+		for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(block.jacobian[e]));
 		for (int f = 0; f < n; ++f)
 		{
 			btScalar a = 0;
-			for (int e = 0; e < n; ++e) a += coupling[e] * m_blockRowInverse[e * 6 + f];
-			j.addScaled(blockRow(m_blockRowJacobian[f]), -a);
-			targetRate -= a * m_blockRowTarget[f];
+			for (int e = 0; e < n; ++e) a += coupling[e] * block.inverse[e * 6 + f];
+			j.addScaled(blockRow(block.jacobian[f]), -a);
+			targetRate -= a * block.target[f];
 		}
 	}
 	writeJacobian(*info, row, j);
@@ -553,7 +577,9 @@ int btGeneric6DofConstraint::writeLimitMotorRows(btConstraintInfo2* info, const 
 	// Hard locked coordinates first: the solver solves the leading rows without bounds or softness as one
 	// exact block. They are kept to project the rows after them against.
 	int row = 0;
-	m_blockRowCount = 0;
+	LockedBlock& block = t_lockedBlock;
+	block.joint = this;
+	block.count = 0;
 	bool softLocked[6] = {false, false, false, false, false, false};
 	btScalar lockedTarget[6];
 	for (int c = 0; c < 6; ++c)
@@ -568,22 +594,22 @@ int btGeneric6DofConstraint::writeLimitMotorRows(btConstraintInfo2* info, const 
 			softLocked[c] = true;
 			continue;
 		}
-		btVector3(&jacobian)[4] = m_blockRowJacobian[m_blockRowCount];
+		btVector3(&jacobian)[4] = block.jacobian[block.count];
 		getCoordinateJacobian(c, jacobian[0], jacobian[1], jacobian[2], jacobian[3]);
-		m_blockRowTarget[m_blockRowCount] = lockedTarget[c];
+		block.target[block.count] = lockedTarget[c];
 		writeJacobian(*info, row, blockRow(jacobian));
 		info->m_constraintError[row * info->rowskip] = lockedTarget[c];
-		++m_blockRowCount;
+		++block.count;
 		++row;
 	}
 	btScalar k[36];
-	for (int e = 0; e < m_blockRowCount; ++e)
+	for (int e = 0; e < block.count; ++e)
 	{
-		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, blockRow(m_blockRowJacobian[e]));
-		for (int f = 0; f < m_blockRowCount; ++f) k[e * 6 + f] = weighted.dot(blockRow(m_blockRowJacobian[f]));
+		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, blockRow(block.jacobian[e]));
+		for (int f = 0; f < block.count; ++f) k[e * 6 + f] = weighted.dot(blockRow(block.jacobian[f]));
 	}
 	// A singular block (both bodies immovable, or a degenerate frame) leaves the other rows unprojected.
-	if (!invertSmall(k, m_blockRowCount, m_blockRowInverse)) m_blockRowCount = 0;
+	if (!invertSmall(k, block.count, block.inverse)) block.count = 0;
 
 	for (int c = 0; c < 6; ++c)
 	{

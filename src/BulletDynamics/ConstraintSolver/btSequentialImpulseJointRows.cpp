@@ -98,7 +98,7 @@ void clearRow(btSolverConstraint& row, btScalar cfm)
 bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
                            btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1,
                            int solverBodyIdA, int solverBodyIdB, const btContactSolverInfo& infoGlobal,
-                           caliber::SolverJointBlock& block)
+                           caliber::SolverJointBlock& block, const caliber::JointImpulses& warm)
 {
 	const int numRows = info1.m_numConstraintRows;
 	block.m_size = 0;
@@ -137,7 +137,6 @@ bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverC
 	const btSolverBody& bodyB = bodies[solverBodyIdB];
 	const btScalar threshold = constraint->getBreakingImpulseThreshold();
 
-	btAlignedObjectArray<btScalar>& warm = constraint->internalGetWarmStartImpulses();
 	const bool warmStart = (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING) && warm.size() == numRows;
 
 	// The leading equality rows (no bounds, no softness) can be solved as one block.
@@ -227,6 +226,8 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 	scratch.joints.resize(0);
 	scratch.jointFirstRow.resize(0);
 	scratch.jointBlocks.resize(0);
+	scratch.jointWarmStart.resize(0);
+	scratch.idleJoints.resize(0);
 	if (numConstraints <= 0 || !constraints) return;
 
 	int totalRows = 0;
@@ -241,7 +242,7 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 		constraint->getInfo1(&info1);
 		if (info1.m_numConstraintRows <= 0)
 		{
-			constraint->internalGetWarmStartImpulses().resize(0);
+			scratch.idleJoints.push_back(constraint);
 			constraint->internalSetAppliedImpulse(0);
 			continue;
 		}
@@ -254,6 +255,15 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 	}
 	m_tmpSolverNonContactConstraintPool.resizeNoInitialize(totalRows);
 	scratch.jointBlocks.resizeNoInitialize(scratch.joints.size());
+
+	// Each joint's warm-start entry, once per solve (a joint without rows this step starts cold later).
+	scratch.jointWarmStart.resizeNoInitialize(scratch.joints.size());
+	{
+		std::lock_guard<std::mutex> lock(scratch.warmStarts.mutex());
+		for (int i = 0; i < scratch.idleJoints.size(); ++i) scratch.warmStarts.forget(scratch.idleJoints[i]);
+		if (scratch.joints.size())
+			scratch.warmStarts.resolve(&scratch.joints[0], scratch.joints.size(), &scratch.jointWarmStart[0]);
+	}
 
 	int kept = 0;
 	for (int i = 0; i < scratch.joints.size(); ++i)
@@ -275,10 +285,11 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 		        ? scratch.jointFirstRow[i]
 		        : (kept ? scratch.jointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0);
 		if (!caliber::convertJoint(m_tmpSolverBodyPool, &m_tmpSolverNonContactConstraintPool[firstRow], constraint,
-		                           m_tmpConstraintSizesPool[i], idA, idB, infoGlobal, scratch.jointBlocks[kept]))
+		                           m_tmpConstraintSizesPool[i], idA, idB, infoGlobal, scratch.jointBlocks[kept],
+		                           *scratch.jointWarmStart[i]))
 		{
 			constraint->setEnabled(false);
-			constraint->internalGetWarmStartImpulses().resize(0);
+			scratch.jointWarmStart[i]->resize(0);
 			btReportWarning(
 			    "Caliber: a constraint produced non-finite rows (NaN or infinite frames, pivots or body state); "
 			    "it has been disabled\n",
@@ -289,12 +300,14 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 		m_tmpConstraintSizesPool[kept] = m_tmpConstraintSizesPool[i];
 		scratch.jointFirstRow[kept] = firstRow;
 		scratch.jointBlocks[kept].m_firstRow = firstRow;
+		scratch.jointWarmStart[kept] = scratch.jointWarmStart[i];
 		++kept;
 	}
 	scratch.joints.resize(kept);
 	m_tmpConstraintSizesPool.resize(kept);
 	scratch.jointFirstRow.resize(kept);
 	scratch.jointBlocks.resize(kept);
+	scratch.jointWarmStart.resize(kept);
 	const int usedRows =
 	    kept ? scratch.jointFirstRow[kept - 1] + m_tmpConstraintSizesPool[kept - 1].m_numConstraintRows : 0;
 	m_tmpSolverNonContactConstraintPool.resize(usedRows);
@@ -346,7 +359,7 @@ void btSequentialImpulseConstraintSolver::writeBackJoints(int iBegin, int iEnd, 
 		btTypedConstraint* constraint = scratch.joints[i];
 		const int first = scratch.jointFirstRow[i];
 		const int numRows = m_tmpConstraintSizesPool[i].m_numConstraintRows;
-		btAlignedObjectArray<btScalar>& warm = constraint->internalGetWarmStartImpulses();
+		caliber::JointImpulses& warm = *scratch.jointWarmStart[i];
 		warm.resizeNoInitialize(numRows);
 		btJointFeedback* feedback = constraint->needsFeedback() ? constraint->getJointFeedback() : 0;
 		const btRigidBody& rbA = constraint->getRigidBodyA();

@@ -8,6 +8,7 @@
 // never per row), with the stages Bullet does not have as free functions over the solver's pools.
 
 #include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
+#include "BulletDynamics/ConstraintSolver/btJointWarmStart.h"
 #include "BulletDynamics/ConstraintSolver/btSolverBody.h"
 #include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btSolverJointBlock.h"
@@ -36,6 +37,12 @@ struct SolverScratch
 	btAlignedObjectArray<btTypedConstraint*> joints;
 	btAlignedObjectArray<int> jointFirstRow;
 	btAlignedObjectArray<SolverJointBlock> jointBlocks;
+	/// Each joint's warm-start entry in warmStarts, resolved once per solve (see btJointWarmStart.h).
+	btAlignedObjectArray<JointImpulses*> jointWarmStart;
+	/// The joints of this solve that have no rows this step (their warm start is dropped).
+	btAlignedObjectArray<btTypedConstraint*> idleJoints;
+	/// The row impulses of every joint this solver has solved, for warm starting the next solve.
+	JointWarmStartStore warmStarts;
 	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
 	/// of the points within a manifold.
 	btAlignedObjectArray<int> manifoldFirstRow;
@@ -77,11 +84,12 @@ void findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectArray<btSol
 /// Solves friction row rowIndex within the bounds its normal row's impulse allows.
 btScalar solveFrictionRow(btSolverBody* bodies, btConstraintArray& contacts, btConstraintArray& friction, int rowIndex);
 
-/// Fills the info1.m_numConstraintRows rows at firstRow for one joint; false if the joint produced
-/// non-finite rows (it is then disabled, with a warning).
+/// Fills the info1.m_numConstraintRows rows at firstRow for one joint, warm started from warmStart when it
+/// has as many rows; false if the joint produced non-finite rows (it is then disabled, with a warning).
 bool convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
                   btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1, int solverBodyIdA,
-                  int solverBodyIdB, const btContactSolverInfo& infoGlobal, SolverJointBlock& block);
+                  int solverBodyIdB, const btContactSolverInfo& infoGlobal, SolverJointBlock& block,
+                  const JointImpulses& warmStart);
 /// One sweep over the rows of joint jointIndex (its block, then its other rows); returns the squared
 /// impulse change.
 btScalar solveJoint(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,

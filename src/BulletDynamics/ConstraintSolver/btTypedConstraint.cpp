@@ -1,10 +1,15 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 
+#include "BulletDynamics/ConstraintSolver/btJointWarmStart.h"
+
 namespace
 {
 const btScalar kDefaultDebugDrawSize = btScalar(0.3);
 }
+
+// A joint built later at this address must not start from this joint's impulses.
+btTypedConstraint::~btTypedConstraint() { caliber::forgetJoint(this); }
 
 btRigidBody& btTypedConstraint::getFixedBody()
 {

@@ -123,6 +123,8 @@ btDiscreteDynamicsWorld::btDiscreteDynamicsWorld(btDispatcher* dispatcher, btBro
 
 btDiscreteDynamicsWorld::~btDiscreteDynamicsWorld()
 {
+	// The dispatcher outlives the world; a subclass's predictive manifolds must not outlive it in there.
+	releasePredictiveContacts();
 	caliber::alignedDelete(m_solverIslandCallback);
 	if (m_ownsIslandManager) caliber::alignedDelete(m_islandManager);
 	if (m_ownsConstraintSolver) caliber::alignedDelete(m_constraintSolver);
@@ -181,6 +183,7 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
 	caliber::quarantineNonFiniteBodies(*this, m_nonStaticRigidBodies, context);
 	predictUnconstraintMotion(timeStep);
+	createPredictiveContacts(timeStep);
 
 	btDispatcherInfo& dispatchInfo = getDispatchInfo();
 	dispatchInfo.m_timeStep = timeStep;
@@ -201,6 +204,33 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	updateActivationState(timeStep);
 
 	if (m_internalTickCallback) (*m_internalTickCallback)(this, timeStep);
+}
+
+// Caliber has no btSerializer yet: a caller asking for a snapshot is told that none was written.
+void btDiscreteDynamicsWorld::serialize(btSerializer* serializer)
+{
+	(void)serializer;
+	btReportWarning(
+	    "Caliber: btDiscreteDynamicsWorld::serialize: serialization is not supported yet; nothing was written\n",
+	    getDebugDrawer());
+}
+
+void btDiscreteDynamicsWorld::serializeRigidBodies(btSerializer* serializer)
+{
+	(void)serializer;
+	btReportWarning(
+	    "Caliber: btDiscreteDynamicsWorld::serializeRigidBodies: serialization is not supported yet; nothing was "
+	    "written\n",
+	    getDebugDrawer());
+}
+
+void btDiscreteDynamicsWorld::serializeDynamicsWorldInfo(btSerializer* serializer)
+{
+	(void)serializer;
+	btReportWarning(
+	    "Caliber: btDiscreteDynamicsWorld::serializeDynamicsWorldInfo: serialization is not supported yet; nothing "
+	    "was written\n",
+	    getDebugDrawer());
 }
 
 void btDiscreteDynamicsWorld::startProfiling(btScalar timeStep)

@@ -80,6 +80,30 @@ btScalar freeFractionOfStep(btCollisionWorld& world, btRigidBody& body, const bt
 }
 }  // namespace
 
+void btDiscreteDynamicsWorld::releasePredictiveContacts()
+{
+	for (int i = 0; i < m_predictiveManifolds.size(); ++i) getDispatcher()->releaseManifold(m_predictiveManifolds[i]);
+	m_predictiveManifolds.clear();
+}
+
+void btDiscreteDynamicsWorld::createPredictiveContactsInternal(btRigidBody** bodies, int numBodies, btScalar timeStep)
+{
+	// Bullet sweeps a sphere ahead of each fast body and keeps what it would hit as contacts for one step.
+	// Caliber's contacts are speculative already (each pair's contact distance grows with the pair's
+	// closing speed) and integrateTransforms clamps a fast body at its time of impact, so nothing is
+	// left for predictive contacts to catch.
+	(void)bodies;
+	(void)numBodies;
+	(void)timeStep;
+}
+
+void btDiscreteDynamicsWorld::createPredictiveContacts(btScalar timeStep)
+{
+	releasePredictiveContacts();
+	if (getDispatchInfo().m_useContinuous && m_nonStaticRigidBodies.size())
+		createPredictiveContactsInternal(&m_nonStaticRigidBodies[0], m_nonStaticRigidBodies.size(), timeStep);
+}
+
 void btDiscreteDynamicsWorld::saveKinematicState(btScalar timeStep)
 {
 	BT_PROFILE("saveKinematicState");

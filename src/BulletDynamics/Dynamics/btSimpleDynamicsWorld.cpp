@@ -32,26 +32,19 @@ void findContacts(btCollisionWorld& world, btScalar timeStep)
 	world.performDiscreteCollisionDetection();
 }
 
-// The simple world has no islands and no joints: every dynamic body and every manifold go to the
-// solver as one group. bodies is scratch that keeps its capacity from step to step.
+// The simple world has no islands and no joints: every collision object and every manifold go to the
+// solver as one group (the solver gives static and non-rigid objects its shared fixed entry).
 void solveContactsAsOneGroup(btCollisionWorld& world, btConstraintSolver& solver, btContactSolverInfo info,
-                             btScalar timeStep, btAlignedObjectArray<btCollisionObject*>& bodies)
+                             btScalar timeStep)
 {
-	bodies.resize(0);
-	const btCollisionObjectArray& objects = world.getCollisionObjectArray();
-	for (int i = 0; i < objects.size(); ++i)
-	{
-		btRigidBody* body = btRigidBody::upcast(objects[i]);
-		if (body && !body->isStaticOrKinematicObject()) bodies.push_back(body);
-	}
+	btCollisionObjectArray& objects = world.getCollisionObjectArray();
 	btDispatcher* dispatcher = world.getDispatcher();
 	const int numManifolds = dispatcher->getNumManifolds();
 	btPersistentManifold** manifolds = numManifolds ? dispatcher->getInternalManifoldPointer() : 0;
-	btCollisionObject** bodyArray = bodies.size() ? &bodies[0] : 0;
+	btCollisionObject** bodies = objects.size() ? &objects[0] : 0;
 	info.m_timeStep = timeStep;
-	solver.prepareSolve(bodies.size(), numManifolds);
-	solver.solveGroup(bodyArray, bodies.size(), manifolds, numManifolds, 0, 0, info, world.getDebugDrawer(),
-	                  dispatcher);
+	solver.prepareSolve(objects.size(), numManifolds);
+	solver.solveGroup(bodies, objects.size(), manifolds, numManifolds, 0, 0, info, world.getDebugDrawer(), dispatcher);
 	solver.allSolved(info, world.getDebugDrawer());
 }
 }  // namespace
@@ -72,7 +65,7 @@ int btSimpleDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, bt
 
 	predictUnconstraintMotion(timeStep);
 	findContacts(*this, timeStep);
-	solveContactsAsOneGroup(*this, *m_constraintSolver, getSolverInfo(), timeStep, m_solverBodies);
+	solveContactsAsOneGroup(*this, *m_constraintSolver, getSolverInfo(), timeStep);
 	integrateTransforms(timeStep);
 	updateAabbs();
 	synchronizeMotionStates();

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/CollisionShapes/TriangleMeshTestUtil.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleMesh.h"
@@ -36,7 +37,7 @@ const btScalar kQuantizedReachSteps = btScalar(4.25);
 
 btVector3 quantizationStep(const btBvhTriangleMeshShape& shape)
 {
-	const btVector3& q = const_cast<btBvhTriangleMeshShape&>(shape).getOptimizedBvh()->getBvhQuantization();
+	const btVector3& q = caliber::bvhQuantization(*const_cast<btBvhTriangleMeshShape&>(shape).getOptimizedBvh());
 	return btVector3(btScalar(1) / q.x(), btScalar(1) / q.y(), btScalar(1) / q.z());
 }
 
@@ -233,10 +234,10 @@ TEST(BvhQueryTest, TreeHasOneLeafPerTriangleAndParentsContainChildren)
 		btBvhTriangleMeshShape shape(&mesh.array(), quantized != 0);
 		btOptimizedBvh* bvh = shape.getOptimizedBvh();
 		const int numTriangles = int(mesh.allTriangles().size());
-		ASSERT_EQ(2 * numTriangles - 1, bvh->getNumNodes());
+		ASSERT_EQ(2 * numTriangles - 1, caliber::bvhNodeCount(*bvh));
 		TriangleSet leaves;
 		int leafCount = 0;
-		for (int i = 0; i < bvh->getNumNodes(); ++i)
+		for (int i = 0; i < caliber::bvhNodeCount(*bvh); ++i)
 		{
 			if (quantized)
 			{
@@ -270,7 +271,7 @@ TEST(BvhQueryTest, TreeHasOneLeafPerTriangleAndParentsContainChildren)
 			}
 			else
 			{
-				const btOptimizedBvhNode& n = bvh->getNodeArray()[i];
+				const btOptimizedBvhNode& n = caliber::bvhNodeArray(*bvh)[i];
 				if (n.m_escapeIndex < 0)
 				{
 					leaves.insert(TriangleKey(n.m_subPart, n.m_triangleIndex));
@@ -278,11 +279,11 @@ TEST(BvhQueryTest, TreeHasOneLeafPerTriangleAndParentsContainChildren)
 					continue;
 				}
 				const int left = i + 1;
-				const btOptimizedBvhNode& l = bvh->getNodeArray()[left];
+				const btOptimizedBvhNode& l = caliber::bvhNodeArray(*bvh)[left];
 				const int right = left + (l.m_escapeIndex < 0 ? 1 : l.m_escapeIndex);
 				for (int child : {left, right})
 				{
-					const btOptimizedBvhNode& c = bvh->getNodeArray()[child];
+					const btOptimizedBvhNode& c = caliber::bvhNodeArray(*bvh)[child];
 					for (int a = 0; a < 3; ++a)
 					{
 						EXPECT_LE(n.m_aabbMinOrg[a], c.m_aabbMinOrg[a]);
@@ -303,7 +304,7 @@ TEST(BvhQueryTest, TreeHasOneLeafPerTriangleAndParentsContainChildren)
 				EXPECT_LE(info.m_subtreeSize * int(sizeof(btQuantizedBvhNode)), MAX_SUBTREE_SIZE_IN_BYTES);
 				covered += info.m_subtreeSize;
 			}
-			EXPECT_LE(covered, bvh->getNumNodes());
+			EXPECT_LE(covered, caliber::bvhNodeCount(*bvh));
 			EXPECT_GE(covered, numTriangles);
 		}
 	}
@@ -319,7 +320,7 @@ TEST(BvhQueryTest, QuantizeRoundsMinDownAndMaxUpWithinTwoSteps)
 		                                            rng.uniform(btScalar(0.01), 500));
 		bvh.setQuantizationValues(lo, lo + size, 0);
 		ASSERT_TRUE(bvh.isQuantized());
-		const btVector3 q = bvh.getBvhQuantization();
+		const btVector3 q = caliber::bvhQuantization(bvh);
 		for (int i = 0; i < 200; ++i)
 		{
 			const btVector3 p = lo + btVector3(rng.uniform(0, 1) * size.x(), rng.uniform(0, 1) * size.y(),
@@ -330,7 +331,7 @@ TEST(BvhQueryTest, QuantizeRoundsMinDownAndMaxUpWithinTwoSteps)
 			// The exact quantized coordinate, in double precision: quantization must bracket it.
 			for (int a = 0; a < 3; ++a)
 			{
-				const double exact = (double(p[a]) - double(bvh.getBvhAabbMin()[a])) * double(q[a]);
+				const double exact = (double(p[a]) - double(caliber::bvhAabbMin(bvh)[a])) * double(q[a]);
 				EXPECT_EQ(0, qMin[a] & 1);
 				EXPECT_EQ(1, qMax[a] & 1);
 				EXPECT_LE(double(qMin[a]), exact) << "axis " << a;
@@ -418,14 +419,14 @@ TEST(BvhQueryTest, BuildInternalFromUserLeavesMatchesQuantizedBruteForce)
 		copies.push_back(leaf);
 	}
 	bvh.buildInternal();
-	ASSERT_EQ(2 * numLeaves - 1, bvh.getNumNodes());
+	ASSERT_EQ(2 * numLeaves - 1, caliber::bvhNodeCount(bvh));
 	for (int q = 0; q < 100; ++q)
 	{
 		const btVector3 c = rng.vector(55), h(rng.uniform(0, 6), rng.uniform(0, 6), rng.uniform(0, 6));
 		unsigned short qMin[3], qMax[3];
 		bvh.quantizeWithClamp(qMin, c - h, 0);
 		bvh.quantizeWithClamp(qMax, c + h, 1);
-		const bool insideBounds = boxesOverlap(c - h, c + h, bvh.getBvhAabbMin(), bvh.getBvhAabbMax());
+		const bool insideBounds = boxesOverlap(c - h, c + h, caliber::bvhAabbMin(bvh), caliber::bvhAabbMax(bvh));
 		TriangleSet expected;
 		for (const btQuantizedBvhNode& leaf : copies)
 		{

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/CollisionShapes/TriangleMeshTestUtil.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h"
@@ -19,7 +20,7 @@ const btScalar kQuantizedReachSteps = btScalar(4.25);
 btVector3 reachOf(btBvhTriangleMeshShape& shape)
 {
 	if (!shape.usesQuantizedAabbCompression()) return btVector3(0, 0, 0);
-	const btVector3& q = shape.getOptimizedBvh()->getBvhQuantization();
+	const btVector3& q = caliber::bvhQuantization(*shape.getOptimizedBvh());
 	return kQuantizedReachSteps * btVector3(btScalar(1) / q.x(), btScalar(1) / q.y(), btScalar(1) / q.z());
 }
 
@@ -162,7 +163,7 @@ TEST(BvhRefitTest, UpdateBvhNodesOverWholeTreeEqualsRebuild)
 	for (int v = 0; v < mesh.part(1).numVertices; ++v)
 		mesh.part(1).setVertex(v, mesh.part(1).vertex(v) + rng.vector(btScalar(0.7)));
 	btOptimizedBvh* bvh = shape.getOptimizedBvh();
-	bvh->updateBvhNodes(&mesh.array(), 0, bvh->getNumNodes(), 0);
+	bvh->updateBvhNodes(&mesh.array(), 0, caliber::bvhNodeCount(*bvh), 0);
 	EXPECT_TRUE(queriesMatchBruteForce(shape, mesh, btVector3(1, 1, 1), btVector3(0, 0, 0), 27));
 }
 
@@ -259,7 +260,7 @@ TEST(BvhRefitTest, EmptyMeshHasNoNodesAndReportsNothing)
 		for (btStridingMeshInterface* m : meshes)
 		{
 			btBvhTriangleMeshShape shape(m, quantized != 0);
-			EXPECT_EQ(0, shape.getOptimizedBvh()->getNumNodes());
+			EXPECT_EQ(0, caliber::bvhNodeCount(*shape.getOptimizedBvh()));
 			EXPECT_EQ(btVector3(0, 0, 0), shape.getLocalAabbMin());
 			EXPECT_EQ(btVector3(0, 0, 0), shape.getLocalAabbMax());
 			Collector c;
@@ -271,7 +272,7 @@ TEST(BvhRefitTest, EmptyMeshHasNoNodesAndReportsNothing)
 			shape.refitTree(btVector3(0, 0, 0), btVector3(0, 0, 0));
 			shape.partialRefitTree(btVector3(-1, -1, -1), btVector3(1, 1, 1));
 			shape.setLocalScaling(btVector3(2, 2, 2));
-			EXPECT_EQ(0, shape.getOptimizedBvh()->getNumNodes());
+			EXPECT_EQ(0, caliber::bvhNodeCount(*shape.getOptimizedBvh()));
 			btTransform t(btQuaternion(btVector3(0, 0, 1), 1), btVector3(1, 2, 3));
 			btVector3 aabbMin, aabbMax;
 			shape.getAabb(t, aabbMin, aabbMax);
@@ -290,7 +291,7 @@ TEST(BvhRefitTest, ZeroAreaTrianglesAreKeptAndReported)
 		mesh.addTriangle(btVector3(0, 0, 0), btVector3(2, 0, 0), btVector3(1, 0, 0));  // a segment
 		mesh.addTriangle(btVector3(0, 3, 0), btVector3(0, 3, 0), btVector3(0, 3, 2));  // a segment
 		btBvhTriangleMeshShape shape(&mesh, quantized != 0);
-		EXPECT_EQ(5, shape.getOptimizedBvh()->getNumNodes());
+		EXPECT_EQ(5, caliber::bvhNodeCount(*shape.getOptimizedBvh()));
 		Collector all;
 		shape.processAllTriangles(&all, btVector3(-1, -1, -1), btVector3(3, 4, 3));
 		EXPECT_EQ(3u, all.keys.size());
@@ -320,7 +321,7 @@ TEST(BvhRefitTest, NanVertexTriangleIsSkippedAndExcludedFromAabb)
 	for (int quantized = 0; quantized < 2; ++quantized)
 	{
 		btBvhTriangleMeshShape shape(&mesh.array(), quantized != 0);
-		EXPECT_EQ(1, shape.getOptimizedBvh()->getNumNodes());
+		EXPECT_EQ(1, caliber::bvhNodeCount(*shape.getOptimizedBvh()));
 		EXPECT_EQ(btVector3(0, 0, 0), shape.getLocalAabbMin());
 		EXPECT_EQ(btVector3(1, 1, 0), shape.getLocalAabbMax());
 		Collector c;
@@ -357,7 +358,7 @@ TEST(BvhRefitTest, NullMeshInterfaceGivesEmptyShape)
 	EXPECT_DEATH(btBvhTriangleMeshShape(nullptr, true), "assertion failed");
 #else
 	btBvhTriangleMeshShape shape(nullptr, true);
-	EXPECT_EQ(0, shape.getOptimizedBvh()->getNumNodes());
+	EXPECT_EQ(0, caliber::bvhNodeCount(*shape.getOptimizedBvh()));
 	Collector c;
 	shape.processAllTriangles(&c, btVector3(-10, -10, -10), btVector3(10, 10, 10));
 	shape.performRaycast(&c, btVector3(-5, 0, 0), btVector3(5, 0, 0));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "Caliber/JointPositionCorrection.h"
+#include "DynamicsWorldTestUtil.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -98,4 +99,90 @@ TEST(DiscreteDynamicsWorldFacade, BulletStyleSubclassRunsTheWorldWithoutCaliberO
 		correctionMovedSomething = correctionMovedSomething || !(withCorrection[i] == withoutCorrection[i]);
 	}
 	EXPECT_TRUE(correctionMovedSomething) << "the default world corrects joint positions";
+}
+
+namespace
+{
+// Bullet's way of adding predictive contacts from a subclass: each substep the base releases last step's
+// manifolds; the subclass then makes its own through the dispatcher, under m_predictiveManifoldsMutex.
+class PredictiveWorld : public btDiscreteDynamicsWorld
+{
+public:
+	using btDiscreteDynamicsWorld::btDiscreteDynamicsWorld;
+	btRigidBody* pairA = nullptr;
+	btRigidBody* pairB = nullptr;
+	int calls = 0;
+	int predictiveManifolds() const { return m_predictiveManifolds.size(); }
+	bool latencyInterpolation() const { return m_latencyMotionStateInterpolation; }
+	void serializeParts()
+	{
+		serializeDynamicsWorldInfo(nullptr);
+		serializeRigidBodies(nullptr);
+	}
+
+protected:
+	void createPredictiveContacts(btScalar timeStep) override
+	{
+		btDiscreteDynamicsWorld::createPredictiveContacts(timeStep);
+		++calls;
+		if (m_nonStaticRigidBodies.size())
+			createPredictiveContactsInternal(&m_nonStaticRigidBodies[0], m_nonStaticRigidBodies.size(), timeStep);
+		btPersistentManifold* manifold = m_dispatcher1->getNewManifold(pairA, pairB);
+		m_predictiveManifoldsMutex.lock();
+		m_predictiveManifolds.push_back(manifold);
+		m_predictiveManifoldsMutex.unlock();
+	}
+};
+}  // namespace
+
+TEST(DiscreteDynamicsWorldFacade, PredictiveContactsOfASubclassLiveForOneStep)
+{
+	// Caliber makes no predictive contacts of its own (speculative contacts cover fast bodies), but a
+	// subclass that makes them as in Bullet has its override called once per substep, and each step's
+	// manifolds are released at the next step and when the world goes.
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btSphereShape ball(btScalar(0.5));
+	btRigidBody a(1, nullptr, &ball, btVector3(1, 1, 1));
+	btRigidBody b(1, nullptr, &ball, btVector3(1, 1, 1));
+	btTransform far;
+	far.setIdentity();
+	far.setOrigin(btVector3(10, 0, 0));
+	b.setWorldTransform(far);
+	{
+		PredictiveWorld world(&dispatcher, &broadphase, &solver, &configuration);
+		world.setGravity(btVector3(0, 0, 0));
+		world.addRigidBody(&a);
+		world.addRigidBody(&b);
+		world.pairA = &a;
+		world.pairB = &b;
+		EXPECT_TRUE(world.latencyInterpolation());
+		for (int step = 0; step < 5; ++step) world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		EXPECT_EQ(world.calls, 5);
+		EXPECT_EQ(world.predictiveManifolds(), 1) << "last step's manifolds are released before new ones";
+		EXPECT_EQ(dispatcher.getNumManifolds(), 1) << "the bodies are far apart: no other manifold";
+		world.removeRigidBody(&a);
+		world.removeRigidBody(&b);
+	}
+	EXPECT_EQ(dispatcher.getNumManifolds(), 0) << "the world releases its predictive manifolds when it goes";
+}
+
+TEST(DiscreteDynamicsWorldFacade, SerializationWarnsAndWritesNothing)
+{
+	// Caliber has no serializer yet: each serialization entry point reports that it wrote nothing (in
+	// Bullet they would write a .bullet snapshot), rather than failing silently.
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	PredictiveWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	caliber_test::WarningCounter warnings;
+	world.serializeParts();
+	EXPECT_EQ(warnings.count(), 2);
+	world.serialize(nullptr);
+	EXPECT_EQ(warnings.count(), 3) << "serialize reports once";
+	world.btCollisionWorld::serialize(nullptr);
+	EXPECT_EQ(warnings.count(), 4);
 }
