@@ -118,6 +118,12 @@ struct GroundRay : public btCollisionWorld::ClosestRayResultCallback
 	GroundRay(const btCollisionObject* self, const btVector3& from, const btVector3& to)
 	    : ClosestRayResultCallback(from, to), m_self(self)
 	{
+		// The character's own filter: it only stands on what it collides with.
+		if (self->getBroadphaseHandle())
+		{
+			m_collisionFilterGroup = self->getBroadphaseHandle()->m_collisionFilterGroup;
+			m_collisionFilterMask = self->getBroadphaseHandle()->m_collisionFilterMask;
+		}
 	}
 	bool needsCollision(btBroadphaseProxy* proxy) const override
 	{

@@ -14,6 +14,10 @@
 // already accumulated for the step (gravity, the user's forces) are added before the velocity is
 // measured. Actions run after the bodies moved, so a row that aimed at zero now would let gravity
 // creep a parked car down a slope by g sin(slope) h^2 every substep.
+//
+// What the rows cannot anticipate (the impulses of joints on the chassis, a load on a fork) is
+// corrected at the position level: a braked wheel that holds (neither sliding nor at its brake's
+// limit) keeps an anchor on the ground where it took hold, and its rows pull the contact back to it.
 
 #include "BulletDynamics/Vehicle/btRaycastVehicle.h"
 #include "btVehicleInternal.h"
@@ -21,6 +25,8 @@
 namespace
 {
 const int kFrictionSweeps = 10;
+// Share of a held wheel's drift from its anchor removed per substep.
+const btScalar kAnchorCorrection = btScalar(0.2);
 
 struct RowBodies
 {
@@ -48,6 +54,9 @@ void btRaycastVehicle::updateFriction(btScalar timeStep)
 {
 	const int wheelCount = getNumWheels();
 	if (wheelCount == 0 || !m_chassisBody || m_chassisBody->getInvMass() <= 0) return;
+	caliber::VehicleAnchors& anchors = caliber::vehicleAnchors(this);
+	anchors.pointInGround.resize(wheelCount, btVector3(0, 0, 0));
+	anchors.ground.resize(wheelCount, 0);
 	m_forwardWS.resize(wheelCount);
 	m_axle.resize(wheelCount);
 	m_forwardImpulse.resize(wheelCount);
@@ -64,6 +73,9 @@ void btRaycastVehicle::updateFriction(btScalar timeStep)
 		wheel.m_skidInfo = 1;
 		m_forwardWS[i].setValue(0, 0, 0);
 		m_axle[i].setValue(0, 0, 0);
+		if (!wheel.m_raycastInfo.m_isInContact || wheel.m_brake <= 0 ||
+		    anchors.ground[i] != wheel.m_raycastInfo.m_groundObject)
+			anchors.ground[i] = 0;
 		if (!wheel.m_raycastInfo.m_isInContact) continue;
 		const btVector3& normal = wheel.m_raycastInfo.m_contactNormalWS;
 		btVector3 down = wheel.m_raycastInfo.m_wheelDirectionWS;
@@ -108,14 +120,18 @@ void btRaycastVehicle::updateFriction(btScalar timeStep)
 
 			const btVector3& forward = m_forwardWS[i];
 			const btVector3& side = m_axle[i];
-			const btScalar sideWanted =
-			    m_sideImpulse[i] - relative.dot(side) / rowInverseMass(bodies, side, arm, sideArm, groundArm);
+			btVector3 pullBack(0, 0, 0);  // velocity that takes a held wheel back to its anchor
+			if (anchors.ground[i])
+				pullBack = (anchors.ground[i]->getWorldTransform()(anchors.pointInGround[i]) - point) *
+				           (kAnchorCorrection / timeStep);
+			const btScalar sideWanted = m_sideImpulse[i] - (relative - pullBack).dot(side) /
+			                                                   rowInverseMass(bodies, side, arm, sideArm, groundArm);
 			const btScalar drive = wheel.m_engineForce * timeStep;
 			btScalar forwardWanted = drive;
 			if (wheel.m_brake > 0)
 			{
-				const btScalar braking = m_forwardImpulse[i] - drive -
-				                         relative.dot(forward) / rowInverseMass(bodies, forward, arm, arm, groundArm);
+				const btScalar braking = m_forwardImpulse[i] - drive - (relative - pullBack).dot(forward) /
+				                                                           rowInverseMass(bodies, forward, arm, arm, groundArm);
 				forwardWanted = drive + btMax(-wheel.m_brake, btMin(braking, wheel.m_brake));
 			}
 			// The friction circle, applied to both rows whatever their signs.
@@ -139,5 +155,24 @@ void btRaycastVehicle::updateFriction(btScalar timeStep)
 				bodies.ground->applyImpulse(-(forwardDelta + sideDelta), groundArm);
 			}
 		}
+	}
+
+	// A braked wheel that holds takes an anchor where it stands; one that slides or is at its brake's
+	// limit lets go.
+	for (int i = 0; i < wheelCount; ++i)
+	{
+		const btWheelInfo& wheel = m_wheelInfo[i];
+		const btScalar braking = btFabs(m_forwardImpulse[i] - wheel.m_engineForce * timeStep);
+		const bool holds = wheel.m_raycastInfo.m_isInContact && wheel.m_brake > 0 && wheel.m_skidInfo >= 1 &&
+		                   braking < wheel.m_brake * btScalar(0.999) && !m_forwardWS[i].fuzzyZero();
+		if (!holds)
+		{
+			anchors.ground[i] = 0;
+			continue;
+		}
+		if (anchors.ground[i]) continue;
+		const btCollisionObject* ground = static_cast<const btCollisionObject*>(wheel.m_raycastInfo.m_groundObject);
+		anchors.ground[i] = ground;
+		anchors.pointInGround[i] = ground->getWorldTransform().invXform(wheel.m_raycastInfo.m_contactPointWS);
 	}
 }

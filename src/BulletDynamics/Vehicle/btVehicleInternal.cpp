@@ -35,7 +35,13 @@ void warnVehicleOnce(const btRaycastVehicle* vehicle, unsigned kind, const char*
 	btReportWarning(message);
 }
 
-void forgetVehicleWarnings(const btRaycastVehicle* vehicle) { sideTable<VehicleWarnings>().release(vehicle); }
+VehicleAnchors& vehicleAnchors(const btRaycastVehicle* vehicle) { return sideTable<VehicleAnchors>().acquire(vehicle); }
+
+void forgetVehicleWarnings(const btRaycastVehicle* vehicle)
+{
+	sideTable<VehicleWarnings>().release(vehicle);
+	sideTable<VehicleAnchors>().release(vehicle);
+}
 
 btVector3 velocityAtPoint(const btRigidBody* body, const btVector3& worldPoint)
 {

@@ -4,6 +4,7 @@
 
 // What the raycast vehicle's files share and Bullet's classes have no place for.
 
+#include "LinearMath/btAlignedObjectArray.h"
 #include "LinearMath/btVector3.h"
 
 class btCollisionObject;
@@ -32,7 +33,19 @@ private:
 
 /// Reports message once per vehicle and kind (kind: a bit); later reports of the same kind are dropped.
 void warnVehicleOnce(const btRaycastVehicle* vehicle, unsigned kind, const char* message);
-/// Forgets the vehicle's reported kinds (its destructor calls it).
+/// Where each braked wheel holds on to its ground: the contact point when the brake took hold, in the
+/// ground object's frame, so the brake rows can pull a parked car back to where it stopped (drift from
+/// forces the rows cannot anticipate: joints on the chassis, a load).
+struct VehicleAnchors
+{
+	btAlignedObjectArray<btVector3> pointInGround;
+	btAlignedObjectArray<const btCollisionObject*> ground;  // null: the wheel holds no anchor
+};
+
+/// The vehicle's anchors (made empty on first use).
+VehicleAnchors& vehicleAnchors(const btRaycastVehicle* vehicle);
+
+/// Forgets the vehicle's Caliber-only state: reported warnings, anchors (its destructor calls it).
 void forgetVehicleWarnings(const btRaycastVehicle* vehicle);
 
 /// Velocity of body at world point, or zero for a null body.
