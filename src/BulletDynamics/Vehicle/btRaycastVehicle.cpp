@@ -360,6 +360,12 @@ btScalar btRaycastVehicle::rayCast(btWheelInfo& wheel)
 	{
 		Sample low = samples[k], high = samples[k + 1];
 		if (!edgeBetween(low, high)) continue;
+		// The edge matters only if the higher of the two surfaces, reaching in to the point of the
+		// interval nearest the centre, would lift the wheel above what the rays already found.
+		const btScalar higher = (low.hit && high.hit) ? btMin(low.depth, high.depth) : (low.hit ? low.depth : high.depth);
+		const btScalar nearest =
+		    (low.offset <= 0 && high.offset >= 0) ? btScalar(0) : btMin(btFabs(low.offset), btFabs(high.offset));
+		if (higher - btSqrt(btMax(btScalar(0), radius * radius - nearest * nearest)) >= bestLength) continue;
 		for (int i = 0; i < kEdgeBisections; ++i)
 		{
 			const Sample middle = cast((low.offset + high.offset) / 2);
