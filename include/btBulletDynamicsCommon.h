@@ -4,8 +4,8 @@
 
 /// Everything a rigid-body program needs, in one include (as with Bullet): the collision layer plus
 /// the dynamics layer: dynamics worlds, rigid bodies, actions, the sequential-impulse solver and every
-/// joint. Bullet's raycast vehicle and character controller are not implemented yet; their headers
-/// join here when they land.
+/// joint, and the raycast vehicle. (As in Bullet, the character controller is not included here:
+/// include BulletDynamics/Character/btKinematicCharacterController.h.)
 
 #include "btBulletCollisionCommon.h"
 
@@ -27,6 +27,7 @@
 #include "BulletDynamics/ConstraintSolver/btFixedConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
+#include "BulletDynamics/Vehicle/btRaycastVehicle.h"
 
 #include "LinearMath/btVector3.h"
 #include "LinearMath/btQuaternion.h"

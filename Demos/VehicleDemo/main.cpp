@@ -1,0 +1,215 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+//
+// VehicleDemo: a raycast vehicle (800 kg, four wheels of radius 0.4 m) on a 128 m height field with a
+// patch of bumps, a ramp up to a 1 m plateau and down again, headless. The car settles on its springs,
+// drives off over the bumps and the ramp, brakes to a stop, then drives a circle. It prints speed,
+// wheel contacts and suspension lengths as it goes.
+// Checks: at rest each spring is compressed by g / (k n) (stiffness per unit chassis mass, n = 4
+// wheels) within 1 mm; the car climbs onto the plateau with all wheels on the ground; braking stops it
+// within v^2 / (2 mu g) + 10%; the circle's radius is wheelbase / tan(steer) within 5%; the chassis
+// stays upright. Exit 1 when a check fails.
+
+#include <math.h>
+#include <stdio.h>
+
+#include <vector>
+
+#include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
+#include "btBulletDynamicsCommon.h"
+
+namespace
+{
+const int kSamples = 129;        // height field samples per side, 1 m apart
+const btScalar kStep = btScalar(1. / 60.);
+const btScalar kGravity = 10;
+const btScalar kMass = 800;
+const btScalar kStiffness = 20;  // per unit chassis mass, Bullet's convention
+const btScalar kFriction = 1;
+const btScalar kHalfWheelbase = btScalar(1.3), kHalfTrack = btScalar(0.8), kRestLength = btScalar(0.6);
+
+// Terrain height at (x, z): bumps 4 cm high for z in [-35, -20], a ramp from z = -10 up to 1 m at
+// z = 0, a plateau to z = 8 and a ramp down to z = 18.
+btScalar terrain(btScalar x, btScalar z)
+{
+	(void)x;
+	if (z > -35 && z < -20) return btScalar(0.04) * btScalar(0.5 - 0.5 * cos(2 * M_PI * (z + 35) / 3));
+	if (z >= -10 && z < 0) return (z + 10) / 10;
+	if (z >= 0 && z < 8) return 1;
+	if (z >= 8 && z < 18) return 1 - (z - 8) / 10;
+	return 0;
+}
+
+int failures = 0;
+void check(bool ok, const char* what)
+{
+	printf("  check: %s: %s\n", what, ok ? "ok" : "FAILED");
+	if (!ok) ++failures;
+}
+
+int wheelsOnGround(const btRaycastVehicle& car)
+{
+	int n = 0;
+	for (int i = 0; i < car.getNumWheels(); ++i) n += car.getWheelInfo(i).m_raycastInfo.m_isInContact ? 1 : 0;
+	return n;
+}
+
+void printState(const char* phase, btScalar t, const btRaycastVehicle& car)
+{
+	const btVector3 p = car.getChassisWorldTransform().getOrigin();
+	printf("%-8s t %5.2f s  z %7.2f  y %5.2f  speed %6.1f km/h  wheels on ground %d  suspension", phase, t, p.z(),
+	       p.y(), car.getCurrentSpeedKmHour(), wheelsOnGround(car));
+	for (int i = 0; i < car.getNumWheels(); ++i) printf(" %.3f", car.getWheelInfo(i).m_raycastInfo.m_suspensionLength);
+	printf(" m\n");
+}
+
+double fittedRadius(const std::vector<btVector3>& points)
+{
+	// Kasa's algebraic least-squares circle in the ground plane.
+	double m[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+	for (const btVector3& p : points)
+	{
+		const double row[4] = {p.x(), p.z(), 1, p.x() * p.x() + p.z() * p.z()};
+		for (int i = 0; i < 3; ++i)
+			for (int k = 0; k < 4; ++k) m[i][k] += row[i] * row[k];
+	}
+	for (int c = 0; c < 3; ++c)
+		for (int r = c + 1; r < 3; ++r)
+		{
+			const double f = m[r][c] / m[c][c];
+			for (int k = c; k < 4; ++k) m[r][k] -= f * m[c][k];
+		}
+	double s[3];
+	for (int r = 2; r >= 0; --r)
+	{
+		double v = m[r][3];
+		for (int k = r + 1; k < 3; ++k) v -= m[r][k] * s[k];
+		s[r] = v / m[r][r];
+	}
+	return sqrt(s[2] + s[0] * s[0] / 4 + s[1] * s[1] / 4);
+}
+}  // namespace
+
+int main()
+{
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	world.setGravity(btVector3(0, -kGravity, 0));
+
+	// The height field is centred on the origin, between its lowest and highest sample.
+	std::vector<float> heights(kSamples * kSamples);
+	for (int j = 0; j < kSamples; ++j)
+		for (int i = 0; i < kSamples; ++i)
+			heights[j * kSamples + i] = float(terrain(btScalar(i - kSamples / 2), btScalar(j - kSamples / 2)));
+	btHeightfieldTerrainShape terrainShape(kSamples, kSamples, heights.data(), btScalar(0), btScalar(1), 1, false);
+	btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, 0, &terrainShape));
+	ground.getWorldTransform().setOrigin(btVector3(0, btScalar(0.5), 0));
+	world.addRigidBody(&ground);
+
+	btBoxShape chassisShape(btVector3(btScalar(0.9), btScalar(0.3), btScalar(2.0)));
+	btVector3 inertia;
+	chassisShape.calculateLocalInertia(kMass, inertia);
+	btDefaultMotionState chassisMotion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1, -50)));
+	btRigidBody chassis(btRigidBody::btRigidBodyConstructionInfo(kMass, &chassisMotion, &chassisShape, inertia));
+	chassis.setActivationState(DISABLE_DEACTIVATION);
+	world.addRigidBody(&chassis);
+
+	btRaycastVehicle::btVehicleTuning tuning;
+	tuning.m_suspensionStiffness = kStiffness;
+	tuning.m_suspensionCompression = btScalar(2.2);  // near critical damping of the car's bounce
+	tuning.m_suspensionDamping = btScalar(2.2);
+	tuning.m_frictionSlip = kFriction;
+	btDefaultVehicleRaycaster raycaster(&world);
+	btRaycastVehicle car(tuning, &chassis, &raycaster);
+	car.setCoordinateSystem(0, 1, 2);  // x right, y up, z forward
+	for (int i = 0; i < 4; ++i)
+		car.addWheel(btVector3((i & 1) ? -kHalfTrack : kHalfTrack, btScalar(-0.1), i < 2 ? kHalfWheelbase : -kHalfWheelbase),
+		             btVector3(0, -1, 0), btVector3(-1, 0, 0), kRestLength, btScalar(0.4), tuning, i < 2);
+	world.addAction(&car);
+
+	btScalar t = 0;
+	auto run = [&](int steps) {
+		for (int i = 0; i < steps; ++i) world.stepSimulation(kStep, 1, kStep);
+		t += kStep * steps;
+	};
+	bool upright = true;
+	auto watch = [&]() { upright = upright && chassis.getWorldTransform().getBasis().getColumn(1).y() > btScalar(0.9); };
+
+	printf("VehicleDemo: an 800 kg car on a height field (bumps, a 1 m ramp), k = %.0f per kg, mu = %.1f\n",
+	       double(kStiffness), double(kFriction));
+	run(180);
+	printState("settled", t, car);
+	const btScalar sag = kGravity / (kStiffness * 4);
+	bool sagOk = wheelsOnGround(car) == 4;
+	for (int i = 0; i < 4; ++i)
+		sagOk = sagOk && fabs(kRestLength - car.getWheelInfo(i).m_raycastInfo.m_suspensionLength - sag) < 1e-3;
+	printf("  expected static sag g / (k n) = %.4f m\n", double(sag));
+	check(sagOk, "static sag on all four wheels");
+
+	// Drive: rear-wheel drive over the bumps and the ramp, until past the plateau.
+	car.applyEngineForce(1200, 2);
+	car.applyEngineForce(1200, 3);
+	btScalar highest = 0;
+	bool allWheelsOnPlateau = false;
+	for (int i = 0; i < 1200 && chassis.getCenterOfMassPosition().z() < 25; ++i)
+	{
+		run(1);
+		watch();
+		const btVector3 p = chassis.getCenterOfMassPosition();
+		highest = btMax(highest, p.y());
+		if (p.z() > 2 && p.z() < 6 && wheelsOnGround(car) == 4) allWheelsOnPlateau = true;
+		if (i % 60 == 0) printState("drive", t, car);
+	}
+	printState("drive", t, car);
+	check(highest > btScalar(1.8), "the car climbed the ramp onto the 1 m plateau");
+	check(allWheelsOnPlateau, "all four wheels on the ground on the plateau");
+
+	// Brake hard: every tyre slides at its grip.
+	car.applyEngineForce(0, 2);
+	car.applyEngineForce(0, 3);
+	const btScalar v0 = chassis.getLinearVelocity().length();
+	const btScalar z0 = chassis.getCenterOfMassPosition().z();
+	for (int i = 0; i < 4; ++i) car.setBrake(200, i);
+	for (int i = 0; i < 600 && btFabs(chassis.getLinearVelocity().z()) > btScalar(0.01); ++i)
+	{
+		run(1);
+		watch();
+		if (i % 30 == 0) printState("brake", t, car);
+	}
+	const btScalar distance = chassis.getCenterOfMassPosition().z() - z0;
+	const btScalar expected = v0 * v0 / (2 * kFriction * kGravity);
+	printState("stopped", t, car);
+	printf("  braking from %.2f m/s: %.2f m (v^2 / (2 mu g) = %.2f m)\n", double(v0), double(distance), double(expected));
+	check(fabs(distance - expected) < 0.1 * expected, "braking distance");
+
+	// A circle at walking pace, front wheels at Ackermann's angles for the bicycle angle 0.3 rad.
+	for (int i = 0; i < 4; ++i) car.setBrake(0, i);
+	const btScalar steer = btScalar(0.3), wheelbase = 2 * kHalfWheelbase;
+	const btScalar radius = wheelbase / btTan(steer);
+	car.setSteeringValue(btAtan(wheelbase / (radius - kHalfTrack)), 0);
+	car.setSteeringValue(btAtan(wheelbase / (radius + kHalfTrack)), 1);
+	std::vector<btVector3> path;
+	for (int i = 0; i < 1500; ++i)
+	{
+		const btScalar speed = car.getCurrentSpeedKmHour() / btScalar(3.6);
+		const btScalar throttle = btMax(btScalar(-1500), btMin(btScalar(1500), 800 * (4 - speed)));
+		car.applyEngineForce(throttle, 2);
+		car.applyEngineForce(throttle, 3);
+		run(1);
+		watch();
+		if (i >= 300) path.push_back(chassis.getWorldTransform()(btVector3(0, 0, -kHalfWheelbase)));
+		if (i % 150 == 0) printState("circle", t, car);
+	}
+	const double measured = fittedRadius(path);
+	printf("  circle of the rear axle: radius %.2f m (wheelbase / tan(steer) = %.2f m)\n", measured, double(radius));
+	check(fabs(measured - radius) < 0.05 * radius, "cornering radius");
+	check(upright, "the chassis stayed upright");
+
+	world.removeAction(&car);
+	world.removeRigidBody(&chassis);
+	world.removeRigidBody(&ground);
+	printf("VehicleDemo: %s\n", failures ? "FAILED" : "all checks passed");
+	return failures ? 1 : 0;
+}
