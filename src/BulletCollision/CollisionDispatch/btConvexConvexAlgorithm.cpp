@@ -5,6 +5,7 @@
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btConvexTriangleClipping.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
@@ -211,6 +212,34 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		}
 	}
 
+	// A box or hull against a mesh triangle: the contact along the triangle's normal, with the whole
+	// clipped face when the convex is over the face (a body landing flat, or fast on speculative points, is
+	// held at its corners at once). A box's is found in closed form before GJK, which it spares for most
+	// triangles (beyond reach, or under the box); a hull's only after GJK's normal says it lies on the face
+	// (hulls on an edge, like barrels on their side, would pay for both). The mesh collector chooses among
+	// all triangles' points.
+	const bool faceShape = shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE &&
+	                       caliber::canClipAgainstTriangle(shapeA->getShapeType());
+	const btTriangleShape* triangleB = static_cast<const btTriangleShape*>(shapeB);
+	// Mesh triangles report to the mesh collector, which chooses among all their points, unless an object
+	// asks for the raw points (a custom material callback, as in Bullet): those get at most 4 per triangle.
+	const bool fewestPoints = faceShape && ((body0Wrap->getCollisionObject()->getCollisionFlags() |
+	                                         body1Wrap->getCollisionObject()->getCollisionFlags()) &
+	                                        btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) != 0;
+	bool facePointsReported = false;
+	if (faceShape && shapeA->getShapeType() == BOX_SHAPE_PROXYTYPE)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
+		    *shapeA, body0Wrap->getWorldTransform(), *triangleB, body1Wrap->getWorldTransform(), reach, *resultOut,
+		    fewestPoints);
+		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact)
+		{
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
+		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+
 	btVoronoiSimplexSolver simplexSolver;
 	btGjkPairDetector gjk(shapeA, shapeB, &simplexSolver, m_pdSolver);
 	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
@@ -237,9 +266,29 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		m_haveLastSeparatingAxis = true;
 	}
 
+	// A hull resting on a full manifold keeps its face's corners from frame to frame; clipping again only
+	// pays while it lands, slides or turns (closing or turning by more than the breaking threshold a step).
+	if (faceShape && !facePointsReported && shapeA->getShapeType() != BOX_SHAPE_PROXYTYPE &&
+	    (m_manifoldPtr->getNumContacts() < 4 ||
+	     resultOut->m_closestPointDistanceThreshold > m_manifoldPtr->getContactBreakingThreshold()) &&
+	    gjkPoint.found() &&
+	    gjkPoint.m_distance <= reach && caliber::normalIsTriangleFace(*triangleB, input.m_transformB,
+	                                                                  gjkPoint.m_normalOnSurfaceB))
+	{
+		const caliber::TriangleFaceOutcome outcome =
+		    caliber::triangleFaceContact(*shapeA, input.m_transformA, *triangleB, input.m_transformB, reach,
+		                                 *resultOut, fewestPoints);
+		if (outcome == caliber::kTriangleFaceContact)
+		{
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
+		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+
 	const btConvexPolyhedron* polyA = polyhedronOf(shapeA);
 	const btConvexPolyhedron* polyB = polyhedronOf(shapeB);
-	if (polyA && polyB)
+	if (polyA && polyB && !facePointsReported)
 	{
 		bool haveAxis = false;
 		btVector3 separatingAxis(0, 0, 0);
