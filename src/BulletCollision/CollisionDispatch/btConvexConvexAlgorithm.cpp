@@ -221,17 +221,11 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const bool faceShape = shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE &&
 	                       caliber::canClipAgainstTriangle(shapeA->getShapeType());
 	const btTriangleShape* triangleB = static_cast<const btTriangleShape*>(shapeB);
-	// Mesh triangles report to the mesh collector, which chooses among all their points, unless an object
-	// asks for the raw points (a custom material callback, as in Bullet): those get at most 4 per triangle.
-	const bool fewestPoints = faceShape && ((body0Wrap->getCollisionObject()->getCollisionFlags() |
-	                                         body1Wrap->getCollisionObject()->getCollisionFlags()) &
-	                                        btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK) != 0;
 	bool facePointsReported = false;
 	if (faceShape && shapeA->getShapeType() == BOX_SHAPE_PROXYTYPE)
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
-		    *shapeA, body0Wrap->getWorldTransform(), *triangleB, body1Wrap->getWorldTransform(), reach, *resultOut,
-		    fewestPoints);
+		    *shapeA, body0Wrap->getWorldTransform(), *triangleB, body1Wrap->getWorldTransform(), reach, *resultOut);
 		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact)
 		{
 			if (m_ownManifold) resultOut->refreshContactPoints();
@@ -277,7 +271,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		const caliber::TriangleFaceOutcome outcome =
 		    caliber::triangleFaceContact(*shapeA, input.m_transformA, *triangleB, input.m_transformB, reach,
-		                                 *resultOut, fewestPoints);
+		                                 *resultOut);
 		if (outcome == caliber::kTriangleFaceContact)
 		{
 			if (m_ownManifold) resultOut->refreshContactPoints();

@@ -31,9 +31,6 @@ const btScalar kFaceLevelTolerance = btScalar(0.002);
 // higher only gives a point a little farther away.
 const btScalar kHullFaceBand = btScalar(0.02);
 
-// Hulls up to this many points keep their depths along the normal from the first pass to the second.
-const int kStoredHullDepths = 64;
-
 struct Polygon
 {
 	btVector3 corners[kMaxClipped];
@@ -88,30 +85,23 @@ bool hullFace(const btConvexHullShape& hull, const btTransform& transform, const
 	if (!points || numPoints == 0) return true;
 	const btVector3& scaling = hull.getLocalScaling();
 	const btVector3 direction = (-normal * transform.getBasis()) * scaling;
-	// One pass finds each point's depth along the normal; small hulls keep them for the second.
-	btScalar depths[kStoredHullDepths];
-	const bool stored = numPoints <= kStoredHullDepths;
-	btScalar highest = -BT_LARGE_FLOAT, lowest = BT_LARGE_FLOAT;
-	for (int i = 0; i < numPoints; ++i)
-	{
-		const btScalar along = points[i].dot(direction);
-		if (stored) depths[i] = along;
-		highest = btMax(highest, along);
-		lowest = btMin(lowest, along);
-	}
-	// along is the depth below the centre along the normal: the lowest point is at centre - highest.
+	// The hull's own support search (vectorised over its distinct points) finds its extremes along the
+	// normal; depths are measured along `direction` from the centre, positive away from the triangle.
+	const btVector3 down = -normal * transform.getBasis();
+	const btScalar highest = hull.localGetSupportingVertexWithoutMargin(down).dot(down);
+	// The lowest point is at centre - highest along the normal.
 	if (transform.getOrigin().dot(normal) - highest - hull.getMargin() > above) return false;
+	const btScalar lowest = hull.localGetSupportingVertexWithoutMargin(-down).dot(down);
 	const btScalar threshold = highest - kHullFaceBand * (highest - lowest);
 	// A hull on an edge or a vertex (a barrel on its side) has no face there: GJK's point is the contact.
 	int inBand = 0;
-	for (int i = 0; i < numPoints && inBand < 3; ++i)
-		inBand += (stored ? depths[i] : points[i].dot(direction)) >= threshold;
+	for (int i = 0; i < numPoints && inBand < 3; ++i) inBand += points[i].dot(direction) >= threshold;
 	if (inBand < 3) return true;
 	const btVector3 outwards = -normal * hull.getMargin();
 	const btVector3* sources[kMaxFaceCorners];
 	for (int i = 0; i < numPoints && face.count < kMaxFaceCorners; ++i)
 	{
-		if ((stored ? depths[i] : points[i].dot(direction)) < threshold) continue;
+		if (points[i].dot(direction) < threshold) continue;
 		// Hulls often list a point twice (a closed ring, as copies); one copy is enough.
 		const btVector3& point = points[i];
 		bool duplicate = false;
@@ -269,8 +259,7 @@ bool normalIsTriangleFace(const btTriangleShape& triangle, const btTransform& tr
 
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
-                                        btScalar reach, btDiscreteCollisionDetectorInterface::Result& out,
-                                        bool atMostFour)
+                                        btScalar reach, btDiscreteCollisionDetectorInterface::Result& out)
 {
 	const btVector3 corners[3] = {triangleTransform(triangle.m_vertices1[0]),
 	                              triangleTransform(triangle.m_vertices1[1]),
@@ -351,7 +340,8 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 
 	int chosen[kMaxClipped];
 	int numChosen = count;
-	if (atMostFour && count > 4)
+	// At most 4 a triangle: choosing here costs less than handing the collector more points.
+	if (count > 4)
 		numChosen = chooseManifoldPoints(points, distances, count, normal, chosen);
 	else
 		for (int i = 0; i < count; ++i) chosen[i] = i;

@@ -38,13 +38,11 @@ enum TriangleFaceOutcome
 /// The contact of a box or convex hull with a triangle, found along the triangle's normal (turned towards
 /// the convex's centre) without GJK: the convex's face most opposed to the normal (a box's face; a hull's
 /// vertices near its supporting plane, moved out by its margin) is clipped against the triangle's prism,
-/// and its points within reach of the plane are reported to out with the triangle's normal (all of them,
-/// at most 19, or at most 4 spanning the largest area when atMostFour). The outcome says whether GJK must
-/// still look at the pair.
+/// and its points within reach of the plane are reported to out with the triangle's normal (at most 4,
+/// spanning the largest area). The outcome says whether GJK must still look at the pair.
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
-                                        btScalar reach, btDiscreteCollisionDetectorInterface::Result& out,
-                                        bool atMostFour);
+                                        btScalar reach, btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace caliber
 
 #endif  // CALIBER_CONVEX_TRIANGLE_CLIPPING_H

@@ -54,7 +54,7 @@ TEST(ConvexTriangleClipping, BoxOverAFaceGivesItsFourCornersAtTheirExactDistance
 	                     btVector3(0, btScalar(0.03) + btScalar(0.5) * (btCos(angle) + btSin(angle)), 0));
 	Recorder out;
 	const caliber::TriangleFaceOutcome outcome =
-	    caliber::triangleFaceContact(box, at, triangle, btTransform::getIdentity(), kReach, out, true);
+	    caliber::triangleFaceContact(box, at, triangle, btTransform::getIdentity(), kReach, out);
 	EXPECT_EQ(outcome, caliber::kTriangleFaceContact);
 	ASSERT_EQ(out.points.size(), 4u);
 	btScalar lowest = BT_LARGE_FLOAT, highest = -BT_LARGE_FLOAT;
@@ -82,7 +82,7 @@ TEST(ConvexTriangleClipping, FaceIsCutToTheTriangleAndAskForGjkWhenTheLowestCorn
 	const btTransform at(btQuaternion(btVector3(1, 0, -1).normalized(), angle), btVector3(0, btScalar(0.56), 0));
 	Recorder out;
 	const caliber::TriangleFaceOutcome outcome =
-	    caliber::triangleFaceContact(box, at, triangle, btTransform::getIdentity(), kReach, out, false);
+	    caliber::triangleFaceContact(box, at, triangle, btTransform::getIdentity(), kReach, out);
 	EXPECT_EQ(outcome, caliber::kTriangleFacePointsAndGjk);
 	ASSERT_GE(out.points.size(), 3u);
 	const btVector3 lowestCorner = at(btVector3(btScalar(0.5), btScalar(-0.5), btScalar(0.5)));
@@ -100,7 +100,7 @@ TEST(ConvexTriangleClipping, BoxBeyondReachIsRejectedWithoutPoints)
 	const btTriangleShape triangle = bigFloorTriangle();
 	Recorder out;
 	const btTransform at(btQuaternion::getIdentity(), btVector3(0, btScalar(0.5) + 2 * kReach, 0));
-	EXPECT_EQ(caliber::triangleFaceContact(box, at, triangle, btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(box, at, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleOutOfReach);
 	EXPECT_TRUE(out.points.empty());
 }
@@ -112,11 +112,11 @@ TEST(ConvexTriangleClipping, BoxBesideTheTriangleOrDeepInItIsLeftToGjk)
 	Recorder out;
 	// Beside the triangle (x < -10): no point of the face lies over it.
 	const btTransform beside(btQuaternion::getIdentity(), btVector3(-11, btScalar(0.52), 0));
-	EXPECT_EQ(caliber::triangleFaceContact(box, beside, triangle, btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(box, beside, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	// 0.3 m into it: the face normal is not trusted as the way out.
 	const btTransform deep(btQuaternion::getIdentity(), btVector3(0, btScalar(0.2), 0));
-	EXPECT_EQ(caliber::triangleFaceContact(box, deep, triangle, btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(box, deep, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
 }
@@ -132,14 +132,14 @@ TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginAndHullOnA
 	const btTriangleShape triangle = bigFloorTriangle();
 	Recorder out;
 	const btTransform flat(btQuaternion::getIdentity(), btVector3(0, btScalar(0.5) + margin + btScalar(0.02), 0));
-	EXPECT_EQ(caliber::triangleFaceContact(hull, flat, triangle, btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(hull, flat, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleFaceContact);
 	ASSERT_EQ(out.points.size(), 4u);
 	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.02), kTolerance);
 	// Turned 45 degrees about z: it stands on an edge (2 vertices), which is not a face.
 	out.points.clear();
 	const btTransform onEdge(btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4), btVector3(0, btScalar(0.75), 0));
-	EXPECT_EQ(caliber::triangleFaceContact(hull, onEdge, triangle, btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(hull, onEdge, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
 }
@@ -151,10 +151,10 @@ TEST(ConvexTriangleClipping, DegenerateTriangleOrEmptyHullIsLeftToGjkWithoutPoin
 	btTriangleShape line(btVector3(-1, 0, 0), btVector3(0, 0, 0), btVector3(1, 0, 0));
 	Recorder out;
 	const btTransform at(btQuaternion::getIdentity(), btVector3(0, btScalar(0.51), 0));
-	EXPECT_EQ(caliber::triangleFaceContact(box, at, line, btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(box, at, line, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	btConvexHullShape empty;
-	EXPECT_EQ(caliber::triangleFaceContact(empty, at, bigFloorTriangle(), btTransform::getIdentity(), kReach, out, true),
+	EXPECT_EQ(caliber::triangleFaceContact(empty, at, bigFloorTriangle(), btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
 }
