@@ -38,9 +38,10 @@ struct Polygon
 };
 
 // The box's face most opposed to the normal, in world space (boxes carry their margin in their extents).
-void boxFace(const btBoxShape& box, const btTransform& transform, const btVector3& normal, Polygon& face)
+// localNormal is the normal in the box's frame.
+void boxFace(const btBoxShape& box, const btTransform& transform, const btVector3& localNormal, Polygon& face)
 {
-	const btVector3 direction = -normal * transform.getBasis();
+	const btVector3 direction = -localNormal;
 	int axis = 0;
 	for (int i = 1; i < 3; ++i)
 		if (btFabs(direction[i]) > btFabs(direction[axis])) axis = i;
@@ -289,7 +290,7 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 		const btScalar lowestPoint = convexTransform.getOrigin().dot(normal) - btFabs(local.x()) * half.x() -
 		                             btFabs(local.y()) * half.y() - btFabs(local.z()) * half.z();
 		if (lowestPoint - planeOffset > reach) return kTriangleOutOfReach;
-		boxFace(box, convexTransform, normal, face);
+		boxFace(box, convexTransform, local, face);
 	}
 	else
 	{

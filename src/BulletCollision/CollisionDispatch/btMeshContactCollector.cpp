@@ -62,6 +62,8 @@ struct MeshContactScratch
 	btAlignedObjectArray<btScalar> depths;
 	btAlignedObjectArray<int> kept;
 	int faceTriangles = 0;  // how many triangles have a face contact
+	// The concave side of each flushed point: its vertices are set for the point's triangle.
+	btTriangleShape triangle{btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0)};
 };
 
 namespace
@@ -262,7 +264,7 @@ void MeshContactCollector::flush(const btCollisionObjectWrapper* concaveWrap)
 	const btCollisionObjectWrapper* savedWrap =
 	    m_convexIsBody0 ? m_pairResult.getBody1Wrap() : m_pairResult.getBody0Wrap();
 	// One triangle shape serves every point: its vertices are set for each point's triangle.
-	btTriangleShape triangle(btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0));
+	btTriangleShape& triangle = s.triangle;
 	triangle.setMargin(m_triangleMargin);
 	for (int c = 0; c < numChosen; ++c)
 	{
