@@ -212,20 +212,17 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		}
 	}
 
-	// A box or hull against a mesh triangle: the contact along the triangle's normal, with the whole
-	// clipped face when the convex is over the face (a body landing flat, or fast on speculative points, is
-	// held at its corners at once). A box's is found in closed form before GJK, which it spares for most
-	// triangles (beyond reach, or under the box); a hull's only after GJK's normal says it lies on the face
-	// (hulls on an edge, like barrels on their side, would pay for both). The mesh collector chooses among
-	// all triangles' points.
-	const bool faceShape = shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE &&
-	                       caliber::canClipAgainstTriangle(shapeA->getShapeType());
-	const btTriangleShape* triangleB = static_cast<const btTriangleShape*>(shapeB);
+	// A box against a mesh triangle: the contact along the triangle's normal, in closed form before GJK,
+	// with the whole clipped face when the box is over the face (a box landing flat, or fast on
+	// speculative points, is held at its corners at once). GJK is spared for most triangles (beyond reach,
+	// or under the box) and left the edges and vertices. The mesh collector chooses among all triangles'
+	// points.
 	bool facePointsReported = false;
-	if (faceShape && shapeA->getShapeType() == BOX_SHAPE_PROXYTYPE)
+	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && caliber::clipsAgainstMeshTriangles(shapeA->getShapeType()))
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
-		    *shapeA, body0Wrap->getWorldTransform(), *triangleB, body1Wrap->getWorldTransform(), reach, *resultOut);
+		    *shapeA, body0Wrap->getWorldTransform(), *static_cast<const btTriangleShape*>(shapeB),
+		    body1Wrap->getWorldTransform(), reach, *resultOut);
 		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact)
 		{
 			if (m_ownManifold) resultOut->refreshContactPoints();
@@ -258,26 +255,6 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		m_lastSeparatingAxis = gjk.getCachedSeparatingAxis();
 		m_haveLastSeparatingAxis = true;
-	}
-
-	// A hull resting on a full manifold keeps its face's corners from frame to frame; clipping again only
-	// pays while it lands, slides or turns (closing or turning by more than the breaking threshold a step).
-	if (faceShape && !facePointsReported && shapeA->getShapeType() != BOX_SHAPE_PROXYTYPE &&
-	    (m_manifoldPtr->getNumContacts() < 4 ||
-	     resultOut->m_closestPointDistanceThreshold > m_manifoldPtr->getContactBreakingThreshold()) &&
-	    gjkPoint.found() &&
-	    gjkPoint.m_distance <= reach && caliber::normalIsTriangleFace(*triangleB, input.m_transformB,
-	                                                                  gjkPoint.m_normalOnSurfaceB))
-	{
-		const caliber::TriangleFaceOutcome outcome =
-		    caliber::triangleFaceContact(*shapeA, input.m_transformA, *triangleB, input.m_transformB, reach,
-		                                 *resultOut);
-		if (outcome == caliber::kTriangleFaceContact)
-		{
-			if (m_ownManifold) resultOut->refreshContactPoints();
-			return;
-		}
-		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
 	}
 
 	const btConvexPolyhedron* polyA = polyhedronOf(shapeA);

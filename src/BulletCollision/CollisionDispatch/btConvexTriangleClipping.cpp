@@ -12,10 +12,6 @@ namespace
 const int kMaxFaceCorners = 16;
 const int kMaxClipped = kMaxFaceCorners + 3;
 
-// GJK's normal for a convex resting on a face is the face normal to within its tolerance; a normal leaning
-// further (about 2.5 degrees) comes from an edge or a vertex, where one GJK point is the right answer.
-const btScalar kFaceNormalCosine = btScalar(0.999);
-
 // Deeper than this below a triangle's plane the face normal is not trusted as the way out (a triangle's
 // edge may be poking into a side); well beyond what a speculative contact lets a body sink in one step.
 const btScalar kFaceDepthLimit = btScalar(0.1);
@@ -242,20 +238,6 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 			chosen[numChosen - 1] = deepest;
 	}
 	return numChosen;
-}
-
-bool canClipAgainstTriangle(int shapeType)
-{
-	return shapeType == BOX_SHAPE_PROXYTYPE || shapeType == CONVEX_HULL_SHAPE_PROXYTYPE;
-}
-
-bool normalIsTriangleFace(const btTriangleShape& triangle, const btTransform& triangleTransform,
-                          const btVector3& normal)
-{
-	const btVector3* v = triangle.m_vertices1;
-	const btVector3 face = triangleTransform.getBasis() * (v[1] - v[0]).cross(v[2] - v[0]);
-	const btScalar along = face.dot(normal);
-	return along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normal.length2() && along != 0;
 }
 
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
