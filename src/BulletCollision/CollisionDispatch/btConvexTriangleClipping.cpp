@@ -15,6 +15,8 @@ const int kMaxClipped = kMaxFaceCorners + 3;
 // Deeper than this below a triangle's plane the face normal is not trusted as the way out (a triangle's
 // edge may be poking into a side); well beyond what a speculative contact lets a body sink in one step.
 const btScalar kFaceDepthLimit = btScalar(0.1);
+// Beyond the depth limit by this much, rounding cannot bring a box's lowest point back within it.
+const btScalar kDepthSlack = btScalar(0.01);
 
 // When the face's points over the triangle are this close to the convex's lowest point, the lowest point
 // is taken to be over the triangle (a box resting on a face tilted by rounding); farther, the contact is
@@ -138,25 +140,37 @@ bool hullFace(const btConvexHullShape& hull, const btTransform& transform, const
 }
 
 // Sutherland-Hodgman: keeps the part of the closed polygon in on the side (x - origin) . side <= 0.
-void clipBySide(const Polygon& in, Polygon& out, const btVector3& origin, const btVector3& side)
+// Returns false, writing nothing, when all of it is on that side already (no cut needed). Each corner's
+// distance is found once, and the count is kept in a register (out may not alias in, but the compiler
+// cannot know: a count in memory is reloaded after every store).
+bool clipBySide(const Polygon& in, Polygon& out, const btVector3& origin, const btVector3& side)
 {
-	out.count = 0;
-	if (in.count == 0) return;
-	btVector3 previous = in.corners[in.count - 1];
-	btScalar previousDistance = (previous - origin).dot(side);
-	for (int i = 0; i < in.count; ++i)
+	const int count = in.count;
+	btScalar distances[kMaxClipped];
+	bool inside = true;
+	for (int i = 0; i < count; ++i)
 	{
-		const btVector3& current = in.corners[i];
-		const btScalar distance = (current - origin).dot(side);
+		distances[i] = (in.corners[i] - origin).dot(side);
+		inside = inside && distances[i] <= 0;
+	}
+	if (inside) return false;
+	int written = 0;
+	int previous = count - 1;
+	for (int i = 0; i < count; ++i)
+	{
+		const btScalar previousDistance = distances[previous];
+		const btScalar distance = distances[i];
 		if ((previousDistance < 0) != (distance < 0))
 		{
 			const btScalar t = previousDistance / (previousDistance - distance);
-			if (out.count < kMaxClipped) out.corners[out.count++] = previous + (current - previous) * t;
+			const btVector3& from = in.corners[previous];
+			if (written < kMaxClipped) out.corners[written++] = from + (in.corners[i] - from) * t;
 		}
-		if (distance <= 0 && out.count < kMaxClipped) out.corners[out.count++] = current;
-		previous = current;
-		previousDistance = distance;
+		if (distance <= 0 && written < kMaxClipped) out.corners[written++] = in.corners[i];
+		previous = i;
 	}
+	out.count = written;
+	return true;
 }
 }  // namespace
 
@@ -254,6 +268,33 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	// A sliver's cross product is mostly rounding; GJK's point is better there.
 	if (!(normalLength2 > SIMD_EPSILON * edge1.length2() * edge2.length2()) || !btIsFinite(normalLength2))
 		return kTriangleNeedsGjk;
+	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
+	{
+		// Most triangles a mesh query returns are out of reach of a box. Its lowest point along the
+		// unnormalised normal tells, compared squared: no square root or division for them (their latency,
+		// not their count, is what they cost).
+		const btBoxShape& box = static_cast<const btBoxShape&>(convex);
+		const btVector3 local = normal * convexTransform.getBasis();
+		const btVector3 half = box.getHalfExtentsWithMargin();
+		const btScalar centre = normal.dot(convexTransform.getOrigin() - corners[0]);
+		const btScalar clearance = btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() -
+		                           btFabs(local.z()) * half.z();
+		// The exact tests below decide the cases near the limits (rounding differs a little from them here).
+		const btScalar slack = btScalar(1.0001);
+		if (clearance > 0)
+		{
+			const btScalar allowed = reach + triangle.getMargin();
+			if (allowed >= 0 && clearance * clearance > allowed * allowed * normalLength2 * slack)
+				return kTriangleOutOfReach;
+		}
+		else
+		{
+			// Far below the plane (the plane of a neighbour of the triangle the box is on): GJK's, as
+			// below, found without building the face.
+			const btScalar below = kFaceDepthLimit + kDepthSlack - triangle.getMargin();
+			if (below > 0 && clearance * clearance > below * below * normalLength2 * slack) return kTriangleNeedsGjk;
+		}
+	}
 	normal /= btSqrt(normalLength2);
 	// Two-sided: the face the convex's centre is in front of (GJK starts from the same side).
 	if (normal.dot(convexTransform.getOrigin() - corners[0]) < 0) normal = -normal;
@@ -300,11 +341,7 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 		const btVector3& from = corners[edge];
 		btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(normal);
 		if ((corners[edge == 0 ? 2 : edge - 1] - from).dot(side) > 0) side = -side;
-		bool inside = true;
-		for (int i = 0; i < in->count && inside; ++i) inside = (in->corners[i] - from).dot(side) <= 0;
-		if (inside) continue;
-		clipBySide(*in, *clipped, from, side);
-		btSwap(in, clipped);
+		if (clipBySide(*in, *clipped, from, side)) btSwap(in, clipped);
 	}
 	btVector3 points[kMaxClipped];
 	btScalar distances[kMaxClipped];

@@ -61,6 +61,7 @@ struct MeshContactScratch
 	btAlignedObjectArray<btVector3> positions;
 	btAlignedObjectArray<btScalar> depths;
 	btAlignedObjectArray<int> kept;
+	btAlignedObjectArray<int> faces;  // the triangles with a face contact, in order (built by flush when asked)
 	int faceTriangles = 0;  // how many triangles have a face contact
 	// The concave side of each flushed point: its vertices are set for the point's triangle.
 	btTriangleShape triangle{btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0)};
@@ -99,25 +100,31 @@ int featureOf(const btVector3* corners, const btVector3& point)
 // and height fields, so exact comparison finds them), or the triangle lies in the plane of such a face
 // (a flat region: the faces the convex lies on already hold it, and no feature of that plane can push it
 // sideways).
-bool isInternalFeature(btAlignedObjectArray<CollectedTriangle>& triangles, int self, int featureVertices)
+// `faces` lists the face-contact triangles: only they are scanned (most collected triangles are not).
+bool isInternalFeature(btAlignedObjectArray<CollectedTriangle>& triangles, const btAlignedObjectArray<int>& faces,
+                       int self, int featureVertices)
 {
 	const CollectedTriangle& triangle = triangles[self];
 	bool allShared = true;
 	for (int k = 0; k < 3 && allShared; ++k)
 	{
 		if (!(featureVertices & (1 << k))) continue;
+		const btVector3& vertex = triangle.vertices[k];
 		bool shared = false;
-		for (int t = 0; t < triangles.size() && !shared; ++t)
+		for (int f = 0; f < faces.size() && !shared; ++f)
 		{
-			if (t == self || !triangles[t].faceContact) continue;
-			for (int j = 0; j < 3; ++j) shared = shared || triangles[t].vertices[j] == triangle.vertices[k];
+			const int t = faces[f];
+			if (t == self) continue;
+			const btVector3* other = triangles[t].vertices;
+			shared = other[0] == vertex || other[1] == vertex || other[2] == vertex;
 		}
 		allShared = shared;
 	}
 	if (allShared) return true;
-	for (int t = 0; t < triangles.size(); ++t)
+	for (int f = 0; f < faces.size(); ++f)
 	{
-		if (t == self || !triangles[t].faceContact) continue;
+		const int t = faces[f];
+		if (t == self) continue;
 		CollectedTriangle& face = triangles[t];
 		knowPlane(face);
 		if (!(face.localNormal.length2() > 0)) continue;
@@ -221,6 +228,7 @@ void MeshContactCollector::flush(const btCollisionObjectWrapper* concaveWrap)
 	// the edge's normal leans across the surface (a ghost bump, or a wall where there is none). Only a face
 	// contact on another triangle can make a point internal.
 	s.kept.resizeNoInitialize(0);
+	s.faces.resizeNoInitialize(0);
 	const btTransform& transform = concaveWrap->getWorldTransform();
 	for (int i = 0; i < s.points.size(); ++i)
 	{
@@ -235,7 +243,10 @@ void MeshContactCollector::flush(const btCollisionObjectWrapper* concaveWrap)
 		const btVector3 corners[3] = {transform(triangle.vertices[0]), transform(triangle.vertices[1]),
 		                              transform(triangle.vertices[2])};
 		const int feature = featureOf(corners, point.point - point.normal * m_triangleMargin);
-		if (feature == 0 || !isInternalFeature(s.triangles, point.triangle, feature)) s.kept.push_back(i);
+		if (feature != 0 && s.faces.size() == 0)
+			for (int t = 0; t < s.triangles.size(); ++t)
+				if (s.triangles[t].faceContact) s.faces.push_back(t);
+		if (feature == 0 || !isInternalFeature(s.triangles, s.faces, point.triangle, feature)) s.kept.push_back(i);
 	}
 	if (s.kept.size() == 0) return;
 
