@@ -77,22 +77,31 @@ MeshContactScratch& scratch()
 }
 
 // The edge or vertex of the triangle (world corners) the point lies on, as vertex bits; 0 inside the face.
+// Edges, their lengths and the point's offsets are found once, before any test, so that the independent
+// arithmetic overlaps (the tests' early returns would otherwise serialise it).
 int featureOf(const btVector3* corners, const btVector3& point)
 {
-	btScalar longest2 = 0;
-	for (int k = 0; k < 3; ++k) longest2 = btMax(longest2, (corners[(k + 1) % 3] - corners[k]).length2());
-	const btScalar tolerance2 = kFeatureTolerance * kFeatureTolerance * longest2;
+	const btVector3 edges[3] = {corners[1] - corners[0], corners[2] - corners[1], corners[0] - corners[2]};
+	const btScalar lengths2[3] = {edges[0].length2(), edges[1].length2(), edges[2].length2()};
+	const btVector3 offsets[3] = {point - corners[0], point - corners[1], point - corners[2]};
+	const btScalar tolerance2 =
+	    kFeatureTolerance * kFeatureTolerance * btMax(btMax(btMax(btScalar(0), lengths2[0]), lengths2[1]), lengths2[2]);
 	for (int k = 0; k < 3; ++k)
-		if ((point - corners[k]).length2() <= tolerance2) return 1 << k;
+		if (offsets[k].length2() <= tolerance2) return 1 << k;
 	for (int k = 0; k < 3; ++k)
 	{
-		const btVector3 edge = corners[(k + 1) % 3] - corners[k];
-		const btScalar length2 = edge.length2();
-		if (!(length2 > 0)) continue;
-		const btScalar t = btMax(btScalar(0), btMin(btScalar(1), (point - corners[k]).dot(edge) / length2));
-		if ((point - corners[k] - edge * t).length2() <= tolerance2) return (1 << k) | (1 << ((k + 1) % 3));
+		if (!(lengths2[k] > 0)) continue;
+		const btScalar t = btMax(btScalar(0), btMin(btScalar(1), offsets[k].dot(edges[k]) / lengths2[k]));
+		if ((offsets[k] - edges[k] * t).length2() <= tolerance2) return (1 << k) | (1 << (k == 2 ? 0 : k + 1));
 	}
 	return 0;
+}
+
+// Exact equality of two vertices' coordinates, without a branch per coordinate (vertices of nearby
+// triangles differ in unpredictable coordinates, and mispredicted branches cost more than the compares).
+inline bool sameVertex(const btVector3& a, const btVector3& b)
+{
+	return (a.x() == b.x()) & (a.y() == b.y()) & (a.z() == b.z());
 }
 
 // True when the edge or vertex point of triangle `self` is internal: each of its feature vertices is a
@@ -116,7 +125,7 @@ bool isInternalFeature(btAlignedObjectArray<CollectedTriangle>& triangles, const
 			const int t = faces[f];
 			if (t == self) continue;
 			const btVector3* other = triangles[t].vertices;
-			shared = other[0] == vertex || other[1] == vertex || other[2] == vertex;
+			shared = sameVertex(other[0], vertex) | sameVertex(other[1], vertex) | sameVertex(other[2], vertex);
 		}
 		allShared = shared;
 	}
