@@ -297,6 +297,8 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	}
 	normal /= btSqrt(normalLength2);
 	// Two-sided: the face the convex's centre is in front of (GJK starts from the same side).
+	// The normal of the corners' own winding: each edge crossed with it points out of the triangle.
+	const btVector3 windingNormal = normal;
 	if (normal.dot(convexTransform.getOrigin() - corners[0]) < 0) normal = -normal;
 
 	// Distances to the triangle's plane, which its margin moves out. The normal separates the two by at
@@ -339,8 +341,9 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	for (int edge = 0; edge < 3 && in->count > 0; ++edge)
 	{
 		const btVector3& from = corners[edge];
-		btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(normal);
-		if ((corners[edge == 0 ? 2 : edge - 1] - from).dot(side) > 0) side = -side;
+		// Outwards whichever face the convex is in front of (no test of the third corner: the sliver
+		// test above leaves no triangle whose winding rounding could turn).
+		const btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(windingNormal);
 		if (clipBySide(*in, *clipped, from, side)) btSwap(in, clipped);
 	}
 	btVector3 points[kMaxClipped];
