@@ -24,6 +24,7 @@ struct CollectedTriangle
 {
 	btVector3 vertices[3];  // in the concave's space, exactly as the shape reported them
 	btVector3 faceNormal;   // in world space, not normalised (its length is twice the area)
+	btScalar faceLimit2;    // a normal n is the face's when (faceNormal . n)^2 reaches this (found once)
 	int partId;
 	int index;
 	bool faceContact;       // some point of it lies on its face: its edges and vertices are covered
@@ -183,6 +184,7 @@ void MeshContactCollector::addContactPoint(const btVector3& normalOnBInWorld, co
 		for (int k = 0; k < 3; ++k) added.vertices[k] = triangle->m_vertices1[k];
 		added.faceNormal = triangleWrap->getWorldTransform().getBasis() *
 		                   (added.vertices[1] - added.vertices[0]).cross(added.vertices[2] - added.vertices[0]);
+		added.faceLimit2 = kFaceNormalCosine * kFaceNormalCosine * added.faceNormal.length2();
 		added.partId = partId;
 		added.index = index;
 		added.faceContact = false;
@@ -191,8 +193,7 @@ void MeshContactCollector::addContactPoint(const btVector3& normalOnBInWorld, co
 	}
 	CollectedTriangle& collected = s.triangles[slot];
 	const btScalar along = collected.faceNormal.dot(normalOnBInWorld);
-	const bool onFace =
-	    along * along >= kFaceNormalCosine * kFaceNormalCosine * collected.faceNormal.length2() && along != 0;
+	const bool onFace = along * along >= collected.faceLimit2 && along != 0;
 	if (onFace && !collected.faceContact)
 	{
 		collected.faceContact = true;
