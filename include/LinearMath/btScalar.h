@@ -118,6 +118,22 @@ int btCaliberPrecisionMarker(btScalar);
 static int (*const btCaliberPrecisionCheck)(btScalar) __attribute__((used)) = &btCaliberPrecisionMarker;
 #endif
 
+/// The same guard for BT_THREADSAFE (docs/threading.md): a thread-safe library (CALIBER_THREADSAFE=ON,
+/// the default, which defines BT_THREADSAFE=1 for its users) defines only btCaliberThreadSafeMarker,
+/// a single-threaded one only btCaliberSingleThreadedMarker. A program compiled with the other setting
+/// fails to link with an undefined reference to the marker it expected.
+#if defined(BT_THREADSAFE) && BT_THREADSAFE
+int btCaliberThreadSafeMarker();
+#if defined(__GNUC__)
+static int (*const btCaliberThreadingCheck)() __attribute__((used)) = &btCaliberThreadSafeMarker;
+#endif
+#else
+int btCaliberSingleThreadedMarker();
+#if defined(__GNUC__)
+static int (*const btCaliberThreadingCheck)() __attribute__((used)) = &btCaliberSingleThreadedMarker;
+#endif
+#endif
+
 // ---- math wrappers ------------------------------------------------------------------------------
 
 SIMD_FORCE_INLINE btScalar btSqrt(btScalar x) { return sqrt(x); }
