@@ -5,6 +5,7 @@
 
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
@@ -161,10 +162,46 @@ struct SolveIslandsLoop : public btIParallelForBody
 };
 }  // namespace
 
+namespace
+{
+bool isKinematic(const btCollisionObject* object) { return object && object->isKinematicObject(); }
+
+// A kinematic body is in no island, but the solver of every island that touches it gives it a solver
+// entry and writes its companion id: two islands touching one kinematic body must not be solved at once.
+bool touchesKinematicBody(const btSimulationIslandManagerMt::Island& island)
+{
+	for (int i = 0; i < island.manifoldArray.size(); ++i)
+	{
+		const btPersistentManifold* manifold = island.manifoldArray[i];
+		if (isKinematic(manifold->getBody0()) || isKinematic(manifold->getBody1())) return true;
+	}
+	for (int i = 0; i < island.constraintArray.size(); ++i)
+	{
+		const btTypedConstraint* constraint = island.constraintArray[i];
+		if (constraint->getRigidBodyA().isKinematicObject() || constraint->getRigidBodyB().isKinematicObject())
+			return true;
+	}
+	return false;
+}
+}  // namespace
+
 void btSimulationIslandManagerMt::parallelIslandDispatch(btAlignedObjectArray<Island*>* islandsPtr,
                                                          const SolverParams& solverParams)
 {
 	if (!islandsPtr) return;
+	// Islands that touch kinematic bodies share those bodies' solver bookkeeping: they are solved one
+	// after another on this thread first, and the rest in parallel.
+	static thread_local btAlignedObjectArray<Island*> parallelIslands;  // keeps its capacity between steps
+	parallelIslands.resize(0);
+	for (int i = 0; i < islandsPtr->size(); ++i)
+	{
+		Island* island = (*islandsPtr)[i];
+		if (touchesKinematicBody(*island))
+			solveIsland(solverParams.m_solverPool, *island, solverParams);
+		else
+			parallelIslands.push_back(island);
+	}
+	islandsPtr = &parallelIslands;
 	// Islands share no dynamic body, so each can be solved on its own thread with its own solver of the
 	// pool (btConstraintSolverPoolMt locks one per call).
 	SolveIslandsLoop loop;
