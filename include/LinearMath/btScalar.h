@@ -119,20 +119,23 @@ static int (*const btCaliberPrecisionCheck)(btScalar) __attribute__((used)) = &b
 #endif
 
 /// The same guard for BT_THREADSAFE (docs/threading.md): a thread-safe library (CALIBER_THREADSAFE=ON,
-/// the default, which defines BT_THREADSAFE=1 for its users) defines only btCaliberThreadSafeMarker,
-/// a single-threaded one only btCaliberSingleThreadedMarker. A program compiled with the other setting
-/// fails to link with an undefined reference to the marker it expected.
+/// the default, which defines BT_THREADSAFE=1 for its users) defines only caliber::threadSafeBuildMarker,
+/// a single-threaded one only caliber::singleThreadedBuildMarker. A program compiled with the other
+/// setting fails to link with an undefined reference to the marker it expected.
+namespace caliber
+{
 #if defined(BT_THREADSAFE) && BT_THREADSAFE
-int btCaliberThreadSafeMarker();
+int threadSafeBuildMarker();
 #if defined(__GNUC__)
-static int (*const btCaliberThreadingCheck)() __attribute__((used)) = &btCaliberThreadSafeMarker;
+static int (*const threadingBuildCheck)() __attribute__((used)) = &threadSafeBuildMarker;
 #endif
 #else
-int btCaliberSingleThreadedMarker();
+int singleThreadedBuildMarker();
 #if defined(__GNUC__)
-static int (*const btCaliberThreadingCheck)() __attribute__((used)) = &btCaliberSingleThreadedMarker;
+static int (*const threadingBuildCheck)() __attribute__((used)) = &singleThreadedBuildMarker;
 #endif
 #endif
+}  // namespace caliber
 
 // ---- math wrappers ------------------------------------------------------------------------------
 

@@ -8,9 +8,9 @@ int btCaliberPrecisionMarker(btScalar) { return int(sizeof(btScalar)); }
 
 // Defined only for the BT_THREADSAFE setting this library was built with; see btScalar.h.
 #if defined(BT_THREADSAFE) && BT_THREADSAFE
-int btCaliberThreadSafeMarker() { return 1; }
+int caliber::threadSafeBuildMarker() { return 1; }
 #else
-int btCaliberSingleThreadedMarker() { return 0; }
+int caliber::singleThreadedBuildMarker() { return 0; }
 #endif
 
 void btAssertFailed(const char* condition, const char* file, int line)
