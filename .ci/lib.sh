@@ -17,6 +17,10 @@ CALIBER_DEFAULT_CONFIG=(
 	-DCALIBER_DOUBLE_PRECISION=OFF
 	-DCALIBER_SIMD=ON
 	-DCALIBER_SANITIZE=OFF
+	-DCALIBER_TSAN=OFF
+	-DCALIBER_THREADSAFE=ON
+	-DCALIBER_OPENMP=OFF
+	-DCALIBER_TBB=OFF
 	-DBUILD_SHARED_LIBS=OFF
 	-DCALIBER_BUILD_TESTS=ON
 	-DCALIBER_BUILD_DEMOS=ON
@@ -28,16 +32,22 @@ caliber_package_installed() {
 	dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"
 }
 
-# caliber_ensure_packages [EXTRA_TOOLS...]: installs whatever the build needs and is missing, plus
-# the extra tools asked for (each named as its Debian package). Tools count as present when they are
-# on PATH, libraries when their Debian package is installed. apt-get runs only when something is missing.
+# caliber_ensure_packages [EXTRA...]: installs whatever the build needs and is missing, plus the
+# extras asked for (each named as its Debian package: a tool, or a library package ending in -dev).
+# Tools count as present when they are on PATH, libraries when their Debian package is installed.
+# apt-get runs only when something is missing.
 caliber_ensure_packages() {
 	local missing=()
 	local tool package
+	local libraries=(libgtest-dev libbenchmark-dev libccd-dev)
 	for tool in cmake g++ make pkg-config "$@"; do
+		if [[ "$tool" == *-dev ]]; then
+			libraries+=("$tool")
+			continue
+		fi
 		command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 	done
-	for package in libgtest-dev libbenchmark-dev libccd-dev; do
+	for package in "${libraries[@]}"; do
 		caliber_package_installed "$package" || missing+=("$package")
 	done
 	if ((${#missing[@]} == 0)); then

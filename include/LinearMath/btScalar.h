@@ -118,6 +118,25 @@ int btCaliberPrecisionMarker(btScalar);
 static int (*const btCaliberPrecisionCheck)(btScalar) __attribute__((used)) = &btCaliberPrecisionMarker;
 #endif
 
+/// The same guard for BT_THREADSAFE (docs/threading.md): a thread-safe library (CALIBER_THREADSAFE=ON,
+/// the default, which defines BT_THREADSAFE=1 for its users) defines only caliber::threadSafeBuildMarker,
+/// a single-threaded one only caliber::singleThreadedBuildMarker. A program compiled with the other
+/// setting fails to link with an undefined reference to the marker it expected.
+namespace caliber
+{
+#if defined(BT_THREADSAFE) && BT_THREADSAFE
+int threadSafeBuildMarker();
+#if defined(__GNUC__)
+static int (*const threadingBuildCheck)() __attribute__((used)) = &threadSafeBuildMarker;
+#endif
+#else
+int singleThreadedBuildMarker();
+#if defined(__GNUC__)
+static int (*const threadingBuildCheck)() __attribute__((used)) = &singleThreadedBuildMarker;
+#endif
+#endif
+}  // namespace caliber
+
 // ---- math wrappers ------------------------------------------------------------------------------
 
 SIMD_FORCE_INLINE btScalar btSqrt(btScalar x) { return sqrt(x); }

@@ -113,7 +113,7 @@ void btBU_Simplex1to4::getPlane(btVector3& planeNormal, btVector3& planeSupport,
 	if (i < 0 || i >= getNumPlanes()) return;
 	btVector3 v[4];
 	for (int k = 0; k < m_numVertices; ++k) getVertex(k, v[k]);
-	btVector3 a, b, c, opposite;
+	btVector3 a, b, c, opposite(0, 0, 0);  // set for tetrahedra only; zeroed for g++'s -Wmaybe-uninitialized (TSan build)
 	if (m_numVertices == 3)
 	{
 		a = v[0];

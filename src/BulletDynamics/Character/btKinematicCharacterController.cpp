@@ -37,7 +37,22 @@ CharacterState& stateOf(const btKinematicCharacterController* character)
 	return caliber::sideTable<CharacterState>().acquire(character);
 }
 
-bool finite3(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
+// The character's own filter group and mask (it only meets what it collides with), or the callback's
+// defaults while it is not in the world.
+template <class Callback>
+void takeFilterOf(const btCollisionObject* self, Callback& callback)
+{
+	if (!self->getBroadphaseHandle()) return;
+	callback.m_collisionFilterGroup = self->getBroadphaseHandle()->m_collisionFilterGroup;
+	callback.m_collisionFilterMask = self->getBroadphaseHandle()->m_collisionFilterMask;
+}
+
+// Queries never see the character itself or objects without contact response.
+bool isObstacle(const btCollisionObject* self, const btBroadphaseProxy* proxy)
+{
+	const btCollisionObject* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+	return object != self && !(object && !object->hasContactResponse());
+}
 
 // The closest hit of a sweep that the character would collide with: not itself, not objects without
 // contact response, by its filter, and not a surface it is moving away from.
@@ -46,17 +61,11 @@ struct SweepCallback : public btCollisionWorld::ClosestConvexResultCallback
 	SweepCallback(const btCollisionObject* self, const btVector3& from, const btVector3& to)
 	    : ClosestConvexResultCallback(from, to), m_self(self), m_motion(to - from)
 	{
-		if (self->getBroadphaseHandle())
-		{
-			m_collisionFilterGroup = self->getBroadphaseHandle()->m_collisionFilterGroup;
-			m_collisionFilterMask = self->getBroadphaseHandle()->m_collisionFilterMask;
-		}
+		takeFilterOf(self, *this);
 	}
 	bool needsCollision(btBroadphaseProxy* proxy) const override
 	{
-		const btCollisionObject* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
-		if (object == m_self || (object && !object->hasContactResponse())) return false;
-		return ClosestConvexResultCallback::needsCollision(proxy);
+		return isObstacle(m_self, proxy) && ClosestConvexResultCallback::needsCollision(proxy);
 	}
 	btScalar addSingleResult(btCollisionWorld::LocalConvexResult& result, bool normalInWorldSpace) override
 	{
@@ -88,7 +97,7 @@ Hit sweep(btCollisionWorld* world, const btConvexShape* shape, const btCollision
 	if ((to - from).length2() < SIMD_EPSILON * SIMD_EPSILON) return hit;
 	SweepCallback callback(self, from, to);
 	world->convexSweepTest(shape, btTransform(orientation, from), btTransform(orientation, to), callback);
-	if (!callback.hasHit() || !finite3(callback.m_hitNormalWorld)) return hit;
+	if (!callback.hasHit() || !caliber::isFinite(callback.m_hitNormalWorld)) return hit;
 	hit.hit = true;
 	hit.fraction = callback.m_closestHitFraction;
 	hit.normal = callback.m_hitNormalWorld.normalized();
@@ -118,18 +127,11 @@ struct GroundRay : public btCollisionWorld::ClosestRayResultCallback
 	GroundRay(const btCollisionObject* self, const btVector3& from, const btVector3& to)
 	    : ClosestRayResultCallback(from, to), m_self(self)
 	{
-		// The character's own filter: it only stands on what it collides with.
-		if (self->getBroadphaseHandle())
-		{
-			m_collisionFilterGroup = self->getBroadphaseHandle()->m_collisionFilterGroup;
-			m_collisionFilterMask = self->getBroadphaseHandle()->m_collisionFilterMask;
-		}
+		takeFilterOf(self, *this);
 	}
 	bool needsCollision(btBroadphaseProxy* proxy) const override
 	{
-		const btCollisionObject* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
-		if (object == m_self || (object && !object->hasContactResponse())) return false;
-		return ClosestRayResultCallback::needsCollision(proxy);
+		return isObstacle(m_self, proxy) && ClosestRayResultCallback::needsCollision(proxy);
 	}
 	const btCollisionObject* m_self;
 };
@@ -139,9 +141,7 @@ struct PenetrationCallback : public btCollisionWorld::ContactResultCallback
 	explicit PenetrationCallback(const btCollisionObject* self) : m_self(self) {}
 	bool needsCollision(btBroadphaseProxy* proxy) const override
 	{
-		const btCollisionObject* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
-		if (object == m_self || (object && !object->hasContactResponse())) return false;
-		return ContactResultCallback::needsCollision(proxy);
+		return isObstacle(m_self, proxy) && ContactResultCallback::needsCollision(proxy);
 	}
 	btScalar addSingleResult(btManifoldPoint& point, const btCollisionObjectWrapper* wrap0, int, int,
 	                         const btCollisionObjectWrapper*, int, int) override
@@ -256,13 +256,13 @@ btQuaternion btKinematicCharacterController::getRotation(btVector3& v0, btVector
 
 void btKinematicCharacterController::setUpVector(const btVector3& up)
 {
-	if (!finite3(up) || up.fuzzyZero()) return;
+	if (!caliber::isFinite(up) || up.fuzzyZero()) return;
 	m_up = up.normalized();
 }
 
 void btKinematicCharacterController::setUp(const btVector3& up)
 {
-	const bool valid = finite3(up) && !up.fuzzyZero();
+	const bool valid = caliber::isFinite(up) && !up.fuzzyZero();
 	btAssert(valid && "btKinematicCharacterController::setUp: zero or non-finite up");
 	if (!valid)
 	{
@@ -274,14 +274,14 @@ void btKinematicCharacterController::setUp(const btVector3& up)
 
 void btKinematicCharacterController::setAngularVelocity(const btVector3& velocity)
 {
-	if (finite3(velocity)) m_AngVel = velocity;
+	if (caliber::isFinite(velocity)) m_AngVel = velocity;
 }
 
 const btVector3& btKinematicCharacterController::getAngularVelocity() const { return m_AngVel; }
 
 void btKinematicCharacterController::setLinearVelocity(const btVector3& velocity)
 {
-	if (!finite3(velocity)) return;
+	if (!caliber::isFinite(velocity)) return;
 	m_verticalVelocity = velocity.dot(m_up);
 	if (m_verticalVelocity > 0) m_wasOnGround = false;
 	setVelocityForTimeInterval(velocity - m_up * m_verticalVelocity, BT_LARGE_FLOAT);
@@ -295,8 +295,8 @@ btVector3 btKinematicCharacterController::getLinearVelocity() const
 
 void btKinematicCharacterController::setWalkDirection(const btVector3& walkDirection)
 {
-	btAssert(finite3(walkDirection) && "btKinematicCharacterController::setWalkDirection: non-finite direction");
-	if (!finite3(walkDirection))
+	btAssert(caliber::isFinite(walkDirection) && "btKinematicCharacterController::setWalkDirection: non-finite direction");
+	if (!caliber::isFinite(walkDirection))
 	{
 		btReportWarning("Caliber: btKinematicCharacterController::setWalkDirection: non-finite direction ignored\n");
 		return;
@@ -308,7 +308,7 @@ void btKinematicCharacterController::setWalkDirection(const btVector3& walkDirec
 
 void btKinematicCharacterController::setVelocityForTimeInterval(const btVector3& velocity, btScalar timeInterval)
 {
-	const bool valid = finite3(velocity) && !(timeInterval != timeInterval);
+	const bool valid = caliber::isFinite(velocity) && !(timeInterval != timeInterval);
 	btAssert(valid && "btKinematicCharacterController::setVelocityForTimeInterval: non-finite velocity or interval");
 	if (!valid)
 	{
@@ -335,8 +335,8 @@ void btKinematicCharacterController::reset(btCollisionWorld* collisionWorld)
 
 void btKinematicCharacterController::warp(const btVector3& origin)
 {
-	btAssert(finite3(origin) && "btKinematicCharacterController::warp: non-finite origin");
-	if (!finite3(origin) || !m_ghostObject)
+	btAssert(caliber::isFinite(origin) && "btKinematicCharacterController::warp: non-finite origin");
+	if (!caliber::isFinite(origin) || !m_ghostObject)
 	{
 		btReportWarning("Caliber: btKinematicCharacterController::warp: non-finite origin or no ghost; ignored\n");
 		return;
@@ -389,7 +389,7 @@ void btKinematicCharacterController::jump(const btVector3& v)
 
 void btKinematicCharacterController::setGravity(const btVector3& gravity)
 {
-	if (!finite3(gravity)) return;
+	if (!caliber::isFinite(gravity)) return;
 	if (gravity.length2() > 0) setUpVector(-gravity);
 	m_gravity = gravity.length();
 }
@@ -640,7 +640,7 @@ void btKinematicCharacterController::playerStep(btCollisionWorld* collisionWorld
 	{
 		const btTransform& now = state.ground->getWorldTransform();
 		const btVector3 carry = (now * state.groundPose.inverse())(m_currentPosition) - m_currentPosition;
-		if (!carry.fuzzyZero() && finite3(carry))
+		if (!carry.fuzzyZero() && caliber::isFinite(carry))
 		{
 			// The ground may have moved into the feet (a lift going up): the upward part needs no sweep.
 			const btVector3 up = m_up * btMax(btScalar(0), carry.dot(m_up));

@@ -14,6 +14,7 @@
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btQuickprof.h"
+#include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
 
 namespace
@@ -162,41 +163,66 @@ void caliber::quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world,
 	}
 }
 
+namespace
+{
+// Bodies per task of the per-body stages: enough work per task to pay for handing it out.
+const int kBodiesPerTask = 64;
+
+// One body's part of predictUnconstraintMotion: it reads and writes only that body, so bodies may be
+// predicted on any threads in any order with the same bits (docs/threading.md).
+void predictBody(btRigidBody* body, btScalar timeStep, const btContactSolverInfo& solverInfo)
+{
+	if (body->isStaticOrKinematicObject()) return;
+	body->applyDamping(timeStep);
+	if (body->isActive())
+	{
+		// Forces (gravity included) become velocity here, before the solver, so that contacts see the
+		// velocity the body would have without them: semi-implicit Euler, v1 = v0 + a h, x1 = x0 + v1 h.
+		btVector3 gyroscopicChange(0, 0, 0);
+		const int flags = body->getFlags();
+		if (flags & BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT)
+			gyroscopicChange -= body->getInvInertiaTensorWorld() *
+			                    body->computeGyroscopicForceExplicit(solverInfo.m_maxGyroscopicForce) * timeStep;
+		if (flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD)
+			gyroscopicChange += body->computeGyroscopicImpulseImplicit_World(timeStep);
+		// The default implicit flag is applied when the body turns (integrateTransformsInternal), as
+		// conservation of angular momentum; bodies that do not turn freely keep Bullet's Newton step.
+		if ((flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) && !caliber::spinFollowsAngularMomentum(*body))
+			gyroscopicChange += body->computeGyroscopicImpulseImplicit_Body(timeStep);
+		body->integrateVelocities(timeStep);
+		if (!gyroscopicChange.fuzzyZero())
+			body->setAngularVelocity(body->getAngularVelocity() + gyroscopicChange * body->getAngularFactor());
+	}
+	// The predicted pose widens the broadphase box of fast bodies (m_useContinuous), and the
+	// velocity this step will move with sets the pair's speculative contact distance (the
+	// dispatcher reads it from the interpolation velocities; integrateTransforms overwrites them).
+	body->predictIntegratedTransform(timeStep, body->getInterpolationWorldTransform());
+	body->setInterpolationLinearVelocity(body->getLinearVelocity());
+	body->setInterpolationAngularVelocity(body->getAngularVelocity());
+}
+
+struct PredictBodies : public btIParallelForBody
+{
+	btRigidBody* const* bodies;
+	btScalar timeStep;
+	const btContactSolverInfo* solverInfo;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i) predictBody(bodies[i], timeStep, *solverInfo);
+	}
+};
+}  // namespace
+
 void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
 {
 	BT_PROFILE("predictUnconstraintMotion");
-	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
-	{
-		btRigidBody* body = m_nonStaticRigidBodies[i];
-		if (body->isStaticOrKinematicObject()) continue;
-		body->applyDamping(timeStep);
-		if (body->isActive())
-		{
-			// Forces (gravity included) become velocity here, before the solver, so that contacts see the
-			// velocity the body would have without them: semi-implicit Euler, v1 = v0 + a h, x1 = x0 + v1 h.
-			btVector3 gyroscopicChange(0, 0, 0);
-			const int flags = body->getFlags();
-			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_EXPLICIT)
-				gyroscopicChange -= body->getInvInertiaTensorWorld() *
-				                    body->computeGyroscopicForceExplicit(getSolverInfo().m_maxGyroscopicForce) *
-				                    timeStep;
-			if (flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_WORLD)
-				gyroscopicChange += body->computeGyroscopicImpulseImplicit_World(timeStep);
-			// The default implicit flag is applied when the body turns (integrateTransformsInternal), as
-			// conservation of angular momentum; bodies that do not turn freely keep Bullet's Newton step.
-			if ((flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) && !caliber::spinFollowsAngularMomentum(*body))
-				gyroscopicChange += body->computeGyroscopicImpulseImplicit_Body(timeStep);
-			body->integrateVelocities(timeStep);
-			if (!gyroscopicChange.fuzzyZero())
-				body->setAngularVelocity(body->getAngularVelocity() + gyroscopicChange * body->getAngularFactor());
-		}
-		// The predicted pose widens the broadphase box of fast bodies (m_useContinuous), and the
-		// velocity this step will move with sets the pair's speculative contact distance (the
-		// dispatcher reads it from the interpolation velocities; integrateTransforms overwrites them).
-		body->predictIntegratedTransform(timeStep, body->getInterpolationWorldTransform());
-		body->setInterpolationLinearVelocity(body->getLinearVelocity());
-		body->setInterpolationAngularVelocity(body->getAngularVelocity());
-	}
+	if (m_nonStaticRigidBodies.size() == 0) return;
+	PredictBodies loop;
+	loop.bodies = &m_nonStaticRigidBodies[0];
+	loop.timeStep = timeStep;
+	loop.solverInfo = &getSolverInfo();
+	btParallelFor(0, m_nonStaticRigidBodies.size(), kBodiesPerTask, loop);
 }
 
 void btDiscreteDynamicsWorld::calculateSimulationIslands()
@@ -292,42 +318,81 @@ void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
 	m_constraintSolver->allSolved(solverInfo, m_debugDrawer);
 }
 
+namespace
+{
+// True when the continuous collision of freeFractionOfStep may sweep this body this step. Only such a
+// sweep reads other bodies (their poses, which the loop is changing), so without one the bodies of
+// integrateTransforms are independent.
+bool maySweep(const btCollisionWorld& world, const btRigidBody& body)
+{
+	return world.getDispatchInfo().m_useContinuous && body.getCcdSquareMotionThreshold() != btScalar(0) &&
+	       body.isActive() && !body.isStaticOrKinematicObject();
+}
+
+void integrateBody(btCollisionWorld& world, btRigidBody* body, btScalar timeStep)
+{
+	body->setHitFraction(btScalar(1));
+	if (!body->isActive() || body->isStaticOrKinematicObject()) return;
+	// A body whose spin follows its angular momentum turns freely (btSpinMomentum.h); others turn by
+	// their angular velocity, as in Bullet.
+	btTransform predicted;
+	const bool freeTurn = caliber::spinFollowsAngularMomentum(*body);
+	btVector3 angularVelocityAfter = body->getAngularVelocity();
+	if (freeTurn)
+	{
+		btQuaternion orientation;
+		caliber::turnFreely(*body, body->getOrientation(), timeStep, orientation, angularVelocityAfter);
+		predicted.setOrigin(body->getCenterOfMassPosition() + body->getLinearVelocity() * timeStep);
+		predicted.setRotation(orientation);
+	}
+	else
+	{
+		body->predictIntegratedTransform(timeStep, predicted);
+	}
+	const btScalar freeFraction = freeFractionOfStep(world, *body, predicted);
+	if (freeFraction < btScalar(1))
+	{
+		// The body stops where its sphere first touched; hit fraction 0 then says it was clamped.
+		body->predictIntegratedTransform(timeStep * freeFraction, predicted);
+		body->setHitFraction(btScalar(0));
+		if (freeTurn)
+			angularVelocityAfter =
+			    caliber::angularVelocityAfterTurn(*body, body->getWorldTransform().getBasis(), predicted.getBasis());
+	}
+	body->proceedToTransform(predicted);
+	if (freeTurn) body->setAngularVelocity(angularVelocityAfter);
+}
+
+struct IntegrateBodies : public btIParallelForBody
+{
+	btCollisionWorld* world;
+	btRigidBody** bodies;
+	btScalar timeStep;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i) integrateBody(*world, bodies[i], timeStep);
+	}
+};
+}  // namespace
+
 void btDiscreteDynamicsWorld::integrateTransformsInternal(btRigidBody** bodies, int numBodies, btScalar timeStep)
 {
-	btTransform predicted;
-	for (int i = 0; i < numBodies; ++i)
+	if (numBodies <= 0) return;
+	// With a possible CCD sweep the bodies are moved in order, as the sweeps of later bodies see the
+	// new poses of earlier ones; otherwise they go to the scheduler (same bits at any thread count).
+	bool independent = true;
+	for (int i = 0; i < numBodies && independent; ++i) independent = !maySweep(*this, *bodies[i]);
+	if (!independent)
 	{
-		btRigidBody* body = bodies[i];
-		body->setHitFraction(btScalar(1));
-		if (!body->isActive() || body->isStaticOrKinematicObject()) continue;
-		// A body whose spin follows its angular momentum turns freely (btSpinMomentum.h); others turn by
-		// their angular velocity, as in Bullet.
-		const bool freeTurn = caliber::spinFollowsAngularMomentum(*body);
-		btVector3 angularVelocityAfter = body->getAngularVelocity();
-		if (freeTurn)
-		{
-			btQuaternion orientation;
-			caliber::turnFreely(*body, body->getOrientation(), timeStep, orientation, angularVelocityAfter);
-			predicted.setOrigin(body->getCenterOfMassPosition() + body->getLinearVelocity() * timeStep);
-			predicted.setRotation(orientation);
-		}
-		else
-		{
-			body->predictIntegratedTransform(timeStep, predicted);
-		}
-		const btScalar freeFraction = freeFractionOfStep(*this, *body, predicted);
-		if (freeFraction < btScalar(1))
-		{
-			// The body stops where its sphere first touched; hit fraction 0 then says it was clamped.
-			body->predictIntegratedTransform(timeStep * freeFraction, predicted);
-			body->setHitFraction(btScalar(0));
-			if (freeTurn)
-				angularVelocityAfter = caliber::angularVelocityAfterTurn(*body, body->getWorldTransform().getBasis(),
-				                                                         predicted.getBasis());
-		}
-		body->proceedToTransform(predicted);
-		if (freeTurn) body->setAngularVelocity(angularVelocityAfter);
+		for (int i = 0; i < numBodies; ++i) integrateBody(*this, bodies[i], timeStep);
+		return;
 	}
+	IntegrateBodies loop;
+	loop.world = this;
+	loop.bodies = bodies;
+	loop.timeStep = timeStep;
+	btParallelFor(0, numBodies, kBodiesPerTask, loop);
 }
 
 void btDiscreteDynamicsWorld::integrateTransforms(btScalar timeStep)

@@ -27,8 +27,6 @@ const btScalar kSamePlaneTolerance = btScalar(1e-3);
 // Wheel spin decays by this factor per update while the wheel is in the air (as in Bullet).
 const btScalar kAirSpinDecay = btScalar(0.99);
 
-bool finite3(const btVector3& v) { return btIsFinite(v.x()) && btIsFinite(v.y()) && btIsFinite(v.z()); }
-
 bool wheelIndexValid(const btRaycastVehicle& vehicle, int index, const char* what)
 {
 	const bool valid = index >= 0 && index < vehicle.getNumWheels();
@@ -67,8 +65,8 @@ bool wheelGeometryUsable(const btWheelInfo& wheel)
 {
 	return btIsFinite(wheel.m_wheelsRadius) && wheel.m_wheelsRadius > 0 &&
 	       btIsFinite(wheel.m_suspensionRestLength1) && wheel.m_suspensionRestLength1 >= 0 &&
-	       finite3(wheel.m_chassisConnectionPointCS) && finite3(wheel.m_wheelDirectionCS) &&
-	       finite3(wheel.m_wheelAxleCS) && !wheel.m_wheelDirectionCS.fuzzyZero() && !wheel.m_wheelAxleCS.fuzzyZero();
+	       caliber::isFinite(wheel.m_chassisConnectionPointCS) && caliber::isFinite(wheel.m_wheelDirectionCS) &&
+	       caliber::isFinite(wheel.m_wheelAxleCS) && !wheel.m_wheelDirectionCS.fuzzyZero() && !wheel.m_wheelAxleCS.fuzzyZero();
 }
 }  // namespace
 
@@ -325,7 +323,7 @@ btScalar btRaycastVehicle::rayCast(btWheelInfo& wheel)
 		const btVector3 from = info.m_hardPointWS + forward * offset;
 		btVehicleRaycaster::btVehicleRaycasterResult hit;
 		void* object = m_vehicleRaycaster->castRay(from, from + down * rayLength, hit);
-		if (!object || !(hit.m_distFraction >= 0) || !finite3(hit.m_hitNormalInWorld)) return sample;
+		if (!object || !(hit.m_distFraction >= 0) || !caliber::isFinite(hit.m_hitNormalInWorld)) return sample;
 		sample.hit = true;
 		sample.depth = hit.m_distFraction * rayLength;
 		sample.normal = hit.m_hitNormalInWorld;

@@ -166,6 +166,34 @@ TEST(KinematicCharacterController, DoesNotPassAWallAt20MetresPerSecond)
 	EXPECT_GT(c.feet().z(), btScalar(3 - 0.05 - kRadius - 0.02)) << "it reached the wall";
 }
 
+TEST(KinematicCharacterController, DoesNotSlipThroughACornerAt20MetresPerSecond)
+{
+	// Two 10 cm walls meeting at a right angle; the character runs diagonally into the corner, where the
+	// two surfaces' pushes meet, at 20 m/s (a third of a metre per step, more than the walls' thickness).
+	TestWorld w;
+	w.addGround();
+	const btScalar half = btScalar(0.05);
+	addBox(w, btVector3(5, 2, half), at(btVector3(0, 2, 3)));
+	addBox(w, btVector3(half, 2, 5), at(btVector3(3, 2, 0)));
+	Character c(w, btVector3(0, 0, 0));
+	w.run(10, kStep);
+	const btScalar diagonal = btScalar(20) / btSqrt(btScalar(2));
+	c->setVelocityForTimeInterval(btVector3(diagonal, 0, diagonal), 2);
+	btScalar farthestX = -BT_LARGE_FLOAT, farthestZ = -BT_LARGE_FLOAT;
+	for (int i = 0; i < 120; ++i)
+	{
+		w.run(1, kStep);
+		farthestX = btMax(farthestX, c.feet().x());
+		farthestZ = btMax(farthestZ, c.feet().z());
+	}
+	// The capsule's surface stops at each wall's inner face (within the 1 cm the sweeps keep as skin).
+	const btScalar limit = 3 - half - kRadius;
+	EXPECT_LT(farthestX, limit + btScalar(0.01)) << "never through the wall at x = 3";
+	EXPECT_LT(farthestZ, limit + btScalar(0.01)) << "never through the wall at z = 3";
+	EXPECT_GT(c.feet().x(), limit - btScalar(0.02)) << "it reached the corner";
+	EXPECT_GT(c.feet().z(), limit - btScalar(0.02));
+}
+
 TEST(KinematicCharacterController, RidesAMovingPlatformWithoutSliding)
 {
 	TestWorld w;

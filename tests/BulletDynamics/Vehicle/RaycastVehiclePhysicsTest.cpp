@@ -22,6 +22,18 @@ void addRoad(TestWorld& w) { w.addBody(w.shape<btBoxShape>(btVector3(500, 1, 500
 
 void settle(TestWorld& w, int steps = 240) { w.run(steps, kStep); }
 
+// The chassis' largest distance from start over the next steps.
+btScalar largestExcursion(TestWorld& w, TestCar& car, const btVector3& start, int steps)
+{
+	btScalar worst = 0;
+	for (int i = 0; i < steps; ++i)
+	{
+		w.run(1, kStep);
+		worst = btMax(worst, (car.chassis()->getCenterOfMassPosition() - start).length());
+	}
+	return worst;
+}
+
 // Least-squares circle through points in the ground plane (x, z): Kasa's algebraic fit.
 btScalar fittedRadius(const std::vector<btVector3>& points)
 {
@@ -175,12 +187,7 @@ TEST(RaycastVehiclePhysics, AtRestNoDriftOrJitterOverTenSeconds)
 	TestCar car(w);
 	settle(w, 300);
 	const btVector3 start = car.chassis()->getCenterOfMassPosition();
-	btScalar worst = 0;
-	for (int i = 0; i < 600; ++i)
-	{
-		w.run(1, kStep);
-		worst = btMax(worst, (car.chassis()->getCenterOfMassPosition() - start).length());
-	}
+	const btScalar worst = largestExcursion(w, car, start, 600);
 	EXPECT_LT(worst, btScalar(1e-4)) << "largest excursion over 10 s (m)";
 }
 
@@ -197,12 +204,7 @@ TEST(RaycastVehiclePhysics, BrakedAtStandstillOnASlopeNeitherCreepsNorJitters)
 	car.brake(100);
 	settle(w, 300);
 	const btVector3 start = car.chassis()->getCenterOfMassPosition();
-	btScalar worst = 0;
-	for (int i = 0; i < 600; ++i)
-	{
-		w.run(1, kStep);
-		worst = btMax(worst, (car.chassis()->getCenterOfMassPosition() - start).length());
-	}
+	const btScalar worst = largestExcursion(w, car, start, 600);
 	EXPECT_LT(worst, btScalar(1e-4)) << "largest excursion over 10 s (m)";
 	// Released, it rolls down the hill (the slope is real).
 	car.brake(0);
@@ -278,11 +280,6 @@ TEST(RaycastVehiclePhysics, BrakedCarCarryingAJointedMastDoesNotCreep)
 	car.brake(50);
 	settle(w, 300);
 	const btVector3 start = car.chassis()->getCenterOfMassPosition();
-	btScalar worst = 0;
-	for (int i = 0; i < 600; ++i)
-	{
-		w.run(1, kStep);
-		worst = btMax(worst, (car.chassis()->getCenterOfMassPosition() - start).length());
-	}
+	const btScalar worst = largestExcursion(w, car, start, 600);
 	EXPECT_LT(worst, btScalar(1e-3)) << "largest excursion over 10 s (m)";
 }

@@ -1,0 +1,31 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef BT_COLLISION_DISPATCHER_MT_H
+#define BT_COLLISION_DISPATCHER_MT_H
+
+#include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
+#include "LinearMath/btThreads.h"
+
+/// Bullet 2.89's multithreaded dispatcher. In this version the narrowphase over pairs still runs on the
+/// calling thread, exactly as btCollisionDispatcher (docs/threading.md lists the parallel stages).
+class btCollisionDispatcherMt : public btCollisionDispatcher
+{
+public:
+	/// grainSize: pairs per task once the narrowphase runs in parallel (below 1 counts as 1).
+	btCollisionDispatcherMt(btCollisionConfiguration* config, int grainSize = 40);
+
+	/// A new manifold for the pair, as btCollisionDispatcher's.
+	btPersistentManifold* getNewManifold(const btCollisionObject* body0, const btCollisionObject* body1) override;
+	/// Releases a manifold, as btCollisionDispatcher's.
+	void releaseManifold(btPersistentManifold* manifold) override;
+	/// The narrowphase over every overlapping pair.
+	void dispatchAllCollisionPairs(btOverlappingPairCache* pairCache, const btDispatcherInfo& info,
+	                               btDispatcher* dispatcher) override;
+
+protected:
+	btAlignedObjectArray<btAlignedObjectArray<btPersistentManifold*> > m_batchManifoldsPtr;
+	btAlignedObjectArray<btAlignedObjectArray<btPersistentManifold*> > m_batchReleasePtr;
+	bool m_batchUpdating;
+	int m_grainSize;
+};
+
+#endif  // BT_COLLISION_DISPATCHER_MT_H

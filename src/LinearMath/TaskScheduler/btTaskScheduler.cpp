@@ -1,0 +1,228 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// btCreateDefaultTaskScheduler's scheduler: a persistent pool of std::threads. A loop is posted as one
+// job; the calling thread and the workers take its chunks from a shared counter until none is left.
+// Idle workers spin briefly (loops in a step follow each other closely) and then sleep on a condition
+// variable. Which thread runs a chunk varies from run to run; what a chunk is does not
+// (btParallelChunks.h), and sums are added in chunk order.
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+#include "LinearMath/TaskScheduler/btParallelChunks.h"
+#include "LinearMath/btAlignedObjectArray.h"
+#include "LinearMath/btThreads.h"
+#include "LinearMath/btWarningHook.h"
+
+#if defined(__SSE2__) || defined(__x86_64__)
+#include <emmintrin.h>
+#define CALIBER_CPU_PAUSE() _mm_pause()
+#else
+#define CALIBER_CPU_PAUSE() ((void)0)
+#endif
+
+#if defined(BT_THREADSAFE) && BT_THREADSAFE
+namespace
+{
+// About 50-100 microseconds of pauses before an idle worker sleeps: longer than the gap between two
+// loops of one step, far shorter than the gap between steps of a 60 Hz game.
+const int kSpinsBeforeSleep = 2000;
+
+class ThreadPoolScheduler : public btITaskScheduler
+{
+public:
+	ThreadPoolScheduler() : btITaskScheduler("ThreadPool")
+	{
+		const unsigned hardware = std::thread::hardware_concurrency();
+		setNumThreads(hardware == 0 ? 1 : int(hardware));
+	}
+
+	~ThreadPoolScheduler() override
+	{
+		caliber::forgetTaskScheduler(this);
+		{
+			std::lock_guard<std::mutex> lock(m_sleepMutex);
+			m_quit.store(true, std::memory_order_release);
+		}
+		m_wake.notify_all();
+		for (std::thread& worker : m_workers) worker.join();
+	}
+
+	int getMaxNumThreads() const override { return int(BT_MAX_THREAD_COUNT); }
+	int getNumThreads() const override { return m_numThreads.load(std::memory_order_relaxed); }
+
+	void setNumThreads(int numThreads) override
+	{
+		if (caliber::insideParallelBody())
+		{
+			btReportWarning("btITaskScheduler::setNumThreads: called inside a parallel loop; ignored");
+			return;
+		}
+		const int wanted = numThreads < 1 ? 1 : (numThreads > getMaxNumThreads() ? getMaxNumThreads() : numThreads);
+		// Not while a loop of another thread runs: the workers' count is part of the posted job.
+		std::lock_guard<std::mutex> dispatch(m_dispatchMutex);
+		// Workers are made when first needed and kept; surplus ones sleep.
+		while (int(m_workers.size()) < wanted - 1)
+		{
+			try
+			{
+				// The worker starts from the present post (none can be made while the dispatch lock is held):
+				// read later, in the new thread, it could already be the next job's, which it would then miss.
+				const int slot = int(m_workers.size());
+				const unsigned long long seen = m_posted.load(std::memory_order_relaxed);
+				m_workers.emplace_back([this, slot, seen] { workerMain(slot, seen); });
+			}
+			catch (const std::system_error&)
+			{
+				btReportWarning("btITaskScheduler::setNumThreads: the system refused a new thread; running with fewer");
+				break;
+			}
+		}
+		m_numThreads.store(int(m_workers.size()) + 1 < wanted ? int(m_workers.size()) + 1 : wanted,
+		                   std::memory_order_relaxed);
+	}
+
+	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
+	{
+		const caliber::ChunkPlan plan = caliber::ChunkPlan::of(iBegin, iEnd, grainSize);
+		if (!takeDispatch(plan))
+		{
+			caliber::runChunksSerially(plan, body);
+			return;
+		}
+		m_forBody = &body;
+		m_sumBody = 0;
+		run(plan);
+		m_dispatchMutex.unlock();
+	}
+
+	btScalar parallelSum(int iBegin, int iEnd, int grainSize, const btIParallelSumBody& body) override
+	{
+		const caliber::ChunkPlan plan = caliber::ChunkPlan::of(iBegin, iEnd, grainSize);
+		if (!takeDispatch(plan)) return caliber::sumChunksSerially(plan, body);
+		m_forBody = 0;
+		m_sumBody = &body;
+		m_partials.resize(plan.count);  // grows to the largest loop seen, then stays
+		run(plan);
+		btScalar sum = btScalar(0);
+		for (int k = 0; k < plan.count; ++k) sum += m_partials[k];
+		m_dispatchMutex.unlock();
+		return sum;
+	}
+
+	void sleepWorkerThreadsHint() override { m_sleepHint.store(true, std::memory_order_relaxed); }
+
+private:
+	// True when this call may post a job (the dispatch lock is then held). A loop with one chunk or one
+	// thread, a nested loop, or a loop while another thread's loop runs goes serially instead.
+	bool takeDispatch(const caliber::ChunkPlan& plan)
+	{
+		if (plan.count <= 1 || getNumThreads() <= 1 || caliber::insideParallelBody()) return false;
+		return m_dispatchMutex.try_lock();
+	}
+
+	// Posts the job, takes part in it, and returns when every chunk is done.
+	void run(const caliber::ChunkPlan& plan)
+	{
+		m_plan = plan;
+		const int helpers = (getNumThreads() - 1 < plan.count - 1) ? getNumThreads() - 1 : plan.count - 1;
+		m_nextChunk.store(0, std::memory_order_relaxed);
+		m_busyWorkers.store(helpers, std::memory_order_relaxed);
+		m_sleepHint.store(false, std::memory_order_relaxed);
+		caliber::beginThreadsRunning();
+		// Generation and helper count in one word: a worker decides from one load whether the job is its.
+		m_post = ((m_post >> 8) + 1) << 8 | (unsigned long long)helpers;
+		{
+			std::lock_guard<std::mutex> lock(m_sleepMutex);
+			m_posted.store(m_post, std::memory_order_release);
+		}
+		m_wake.notify_all();
+		{
+			caliber::ParallelBodyScope scope;
+			runChunks();
+		}
+		for (int spin = 0; m_busyWorkers.load(std::memory_order_acquire) != 0; ++spin)
+		{
+			if (spin < kSpinsBeforeSleep)
+				CALIBER_CPU_PAUSE();
+			else
+				std::this_thread::yield();
+		}
+		caliber::endThreadsRunning();
+	}
+
+	void runChunks()
+	{
+		for (;;)
+		{
+			const int k = m_nextChunk.fetch_add(1, std::memory_order_relaxed);
+			if (k >= m_plan.count) return;
+			int chunkBegin, chunkEnd;
+			m_plan.range(k, chunkBegin, chunkEnd);
+			if (m_forBody)
+				m_forBody->forLoop(chunkBegin, chunkEnd);
+			else
+				m_partials[k] = m_sumBody->sumLoop(chunkBegin, chunkEnd);
+		}
+	}
+
+	// Waits for a post newer than seen (or for the end); returns it.
+	unsigned long long waitForPost(unsigned long long seen)
+	{
+		for (int spin = 0; spin < kSpinsBeforeSleep; ++spin)
+		{
+			const unsigned long long posted = m_posted.load(std::memory_order_acquire);
+			if (posted != seen || m_quit.load(std::memory_order_acquire)) return posted;
+			if (m_sleepHint.load(std::memory_order_relaxed)) break;
+			CALIBER_CPU_PAUSE();
+		}
+		std::unique_lock<std::mutex> lock(m_sleepMutex);
+		m_wake.wait(lock, [&] {
+			return m_posted.load(std::memory_order_acquire) != seen || m_quit.load(std::memory_order_acquire);
+		});
+		return m_posted.load(std::memory_order_acquire);
+	}
+
+	void workerMain(int slot, unsigned long long seen)
+	{
+		btGetCurrentThreadIndex();  // takes this worker's index now, not inside the first loop
+		for (;;)
+		{
+			seen = waitForPost(seen);
+			if (m_quit.load(std::memory_order_acquire)) return;
+			// Not a helper of this job: the caller does not wait for it, and it must not touch the job.
+			if (slot >= int(seen & 0xff)) continue;
+			{
+				caliber::ParallelBodyScope scope;
+				runChunks();
+			}
+			m_busyWorkers.fetch_sub(1, std::memory_order_release);
+		}
+	}
+
+	std::vector<std::thread> m_workers;
+	std::atomic<int> m_numThreads{1};
+	// The job, written by the posting thread before it publishes m_posted.
+	caliber::ChunkPlan m_plan = caliber::ChunkPlan::of(0, 0, 1);
+	const btIParallelForBody* m_forBody = 0;
+	const btIParallelSumBody* m_sumBody = 0;
+	btAlignedObjectArray<btScalar> m_partials;
+	unsigned long long m_post = 0;  // the posting thread's copy of m_posted
+	std::atomic<int> m_nextChunk{0};
+	std::atomic<int> m_busyWorkers{0};
+	std::atomic<unsigned long long> m_posted{0};
+	std::atomic<bool> m_sleepHint{false};
+	std::atomic<bool> m_quit{false};
+	std::mutex m_sleepMutex;
+	std::condition_variable m_wake;
+	std::mutex m_dispatchMutex;  // one loop at a time; held from post to completion
+};
+}  // namespace
+
+btITaskScheduler* caliber::createThreadPoolScheduler() { return new ThreadPoolScheduler(); }
+#else
+// A library built without CALIBER_THREADSAFE has no thread pool, as Bullet without BT_THREADSAFE.
+btITaskScheduler* caliber::createThreadPoolScheduler() { return 0; }
+#endif
