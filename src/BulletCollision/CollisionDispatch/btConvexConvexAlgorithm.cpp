@@ -4,6 +4,7 @@
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
+#include "BulletCollision/CollisionDispatch/btCapsuleTriangleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btConvexTriangleClipping.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
@@ -229,6 +230,19 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 			return;
 		}
 		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+	// A capsule against a mesh triangle in closed form: both ends of a capsule lying on the face, and the
+	// edge's point when an edge is nearer (GJK gave one point per triangle, on which a capsule rolls).
+	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::capsuleTriangleContact(
+		    *static_cast<const btCapsuleShape*>(shapeA), body0Wrap->getWorldTransform(),
+		    *static_cast<const btTriangleShape*>(shapeB), body1Wrap->getWorldTransform(), reach, *resultOut);
+		if (outcome != caliber::kTriangleNeedsGjk)
+		{
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
 	}
 
 	btVoronoiSimplexSolver simplexSolver;

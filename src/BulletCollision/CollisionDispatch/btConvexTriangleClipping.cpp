@@ -294,6 +294,23 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 			const btScalar below = kFaceDepthLimit + kDepthSlack - triangle.getMargin();
 			if (below > 0 && clearance * clearance > below * below * normalLength2 * slack) return kTriangleNeedsGjk;
 		}
+		// The triangle's side planes are separating axes too: a triangle beside the box (inside its AABB,
+		// which the mesh query tests, but not under it) is out of reach when the whole box lies beyond one
+		// edge's side plane by more than reach. Without this, such triangles clip to nothing and go to GJK.
+		const btScalar allowed = reach + triangle.getMargin();
+		if (allowed >= 0)
+		{
+			const btVector3 edges[3] = {edge1, corners[2] - corners[1], corners[0] - corners[2]};
+			for (int k = 0; k < 3; ++k)
+			{
+				const btVector3 side = edges[k].cross(normal);  // outwards, length |edge| |normal|
+				const btVector3 sideLocal = side * convexTransform.getBasis();
+				const btScalar gap = side.dot(convexTransform.getOrigin() - corners[k]) -
+				                     btFabs(sideLocal.x()) * half.x() - btFabs(sideLocal.y()) * half.y() -
+				                     btFabs(sideLocal.z()) * half.z();
+				if (gap > 0 && gap * gap > allowed * allowed * side.length2() * slack) return kTriangleOutOfReach;
+			}
+		}
 	}
 	normal /= btSqrt(normalLength2);
 	// Two-sided: the face the convex's centre is in front of (GJK starts from the same side).

@@ -105,15 +105,20 @@ TEST(ConvexTriangleClipping, BoxBeyondReachIsRejectedWithoutPoints)
 	EXPECT_TRUE(out.points.empty());
 }
 
-TEST(ConvexTriangleClipping, BoxBesideTheTriangleOrDeepInItIsLeftToGjk)
+TEST(ConvexTriangleClipping, BoxNearBesideTheTriangleOrDeepInItIsLeftToGjkAndFarBesideIsOutOfReach)
 {
 	btBoxShape box(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
 	const btTriangleShape triangle = bigFloorTriangle();
 	Recorder out;
-	// Beside the triangle (x < -10): no point of the face lies over it.
-	const btTransform beside(btQuaternion::getIdentity(), btVector3(-11, btScalar(0.52), 0));
+	// Beside the triangle (x < -10), 5 cm from its edge: no point of the face lies over it, but the edge is
+	// within reach.
+	const btTransform beside(btQuaternion::getIdentity(), btVector3(btScalar(-10.55), btScalar(0.52), 0));
 	EXPECT_EQ(caliber::triangleFaceContact(box, beside, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
+	// 50 cm from the edge: the edge's side plane separates them by more than reach.
+	const btTransform away(btQuaternion::getIdentity(), btVector3(-11, btScalar(0.52), 0));
+	EXPECT_EQ(caliber::triangleFaceContact(box, away, triangle, btTransform::getIdentity(), kReach, out),
+	          caliber::kTriangleOutOfReach);
 	// 0.3 m into it: the face normal is not trusted as the way out.
 	const btTransform deep(btQuaternion::getIdentity(), btVector3(0, btScalar(0.2), 0));
 	EXPECT_EQ(caliber::triangleFaceContact(box, deep, triangle, btTransform::getIdentity(), kReach, out),
