@@ -46,16 +46,11 @@ TriangleFaceOutcome capsuleTriangleContact(const btCapsuleShape& capsule, const 
                                            const btTriangleShape& triangle, const btTransform& triangleTransform,
                                            btScalar reach, btDiscreteCollisionDetectorInterface::Result& out)
 {
-	const btVector3 corners[3] = {triangleTransform(triangle.m_vertices1[0]),
-	                              triangleTransform(triangle.m_vertices1[1]),
-	                              triangleTransform(triangle.m_vertices1[2])};
-	const btVector3 edge1 = corners[1] - corners[0];
-	const btVector3 edge2 = corners[2] - corners[0];
-	const btVector3 windingNormal = edge1.cross(edge2);
-	const btScalar normalLength2 = windingNormal.length2();
-	// A sliver's cross product is mostly rounding; GJK's point is better there.
-	if (!(normalLength2 > SIMD_EPSILON * edge1.length2() * edge2.length2()) || !btIsFinite(normalLength2))
-		return kTriangleNeedsGjk;
+	WorldTriangle world;
+	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
+	const btVector3* corners = world.corners;
+	const btVector3& windingNormal = world.windingNormal;
+	const btScalar normalLength2 = world.normalLength2;
 
 	const btVector3 axis = capsuleTransform.getBasis().getColumn(capsule.getUpAxis()) * capsule.getHalfHeight();
 	const btVector3 p0 = capsuleTransform.getOrigin() - axis;

@@ -254,20 +254,26 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 	return numChosen;
 }
 
+bool worldTriangleOf(const btTriangleShape& triangle, const btTransform& transform, WorldTriangle& world)
+{
+	for (int k = 0; k < 3; ++k) world.corners[k] = transform(triangle.m_vertices1[k]);
+	const btVector3 edge1 = world.corners[1] - world.corners[0];
+	const btVector3 edge2 = world.corners[2] - world.corners[0];
+	world.windingNormal = edge1.cross(edge2);
+	world.normalLength2 = world.windingNormal.length2();
+	return world.normalLength2 > SIMD_EPSILON * edge1.length2() * edge2.length2() && btIsFinite(world.normalLength2);
+}
+
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
                                         btScalar reach, btDiscreteCollisionDetectorInterface::Result& out)
 {
-	const btVector3 corners[3] = {triangleTransform(triangle.m_vertices1[0]),
-	                              triangleTransform(triangle.m_vertices1[1]),
-	                              triangleTransform(triangle.m_vertices1[2])};
+	WorldTriangle world;
+	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
+	const btVector3* corners = world.corners;
 	const btVector3 edge1 = corners[1] - corners[0];
-	const btVector3 edge2 = corners[2] - corners[0];
-	btVector3 normal = edge1.cross(edge2);
-	const btScalar normalLength2 = normal.length2();
-	// A sliver's cross product is mostly rounding; GJK's point is better there.
-	if (!(normalLength2 > SIMD_EPSILON * edge1.length2() * edge2.length2()) || !btIsFinite(normalLength2))
-		return kTriangleNeedsGjk;
+	btVector3 normal = world.windingNormal;
+	const btScalar normalLength2 = world.normalLength2;
 	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
 	{
 		// Most triangles a mesh query returns are out of reach of a box. Its lowest point along the

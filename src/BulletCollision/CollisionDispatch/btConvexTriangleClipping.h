@@ -25,6 +25,18 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 /// GJK's point per triangle and the collector's internal-edge filter.
 inline bool clipsAgainstMeshTriangles(int shapeType) { return shapeType == BOX_SHAPE_PROXYTYPE; }
 
+/// A mesh triangle in world space: its corners and the unnormalised normal of their winding.
+struct WorldTriangle
+{
+	btVector3 corners[3];
+	btVector3 windingNormal;   // (c1 - c0) x (c2 - c0), twice the area long
+	btScalar normalLength2;
+};
+
+/// Fills `world` from the triangle and its transform; false for a sliver (its cross product is mostly
+/// rounding: GJK's point is better there) or non-finite corners.
+bool worldTriangleOf(const btTriangleShape& triangle, const btTransform& transform, WorldTriangle& world);
+
 enum TriangleFaceOutcome
 {
 	kTriangleOutOfReach,        // the face normal separates them by more than reach: nothing to report

@@ -12,31 +12,12 @@
 
 #include "BulletCollision/CollisionDispatch/btCapsuleTriangleContact.h"
 
+#include "TriangleContactRecorder.h"
+
 namespace
 {
-struct Point
-{
-	btVector3 normal;
-	btVector3 onTriangle;
-	btScalar distance;
-};
-
-struct Recorder : public btDiscreteCollisionDetectorInterface::Result
-{
-	std::vector<Point> points;
-	void setShapeIdentifiersA(int, int) override {}
-	void setShapeIdentifiersB(int, int) override {}
-	void addContactPoint(const btVector3& normal, const btVector3& onTriangle, btScalar distance) override
-	{
-		points.push_back(Point{normal, onTriangle, distance});
-	}
-	btScalar closest() const
-	{
-		btScalar best = BT_LARGE_FLOAT;
-		for (const Point& p : points) best = btMin(best, p.distance);
-		return best;
-	}
-};
+using Point = caliber_test::TrianglePoint;
+using Recorder = caliber_test::TriangleContactRecorder;
 
 struct V
 {

@@ -11,25 +11,12 @@
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 
+#include "TriangleContactRecorder.h"
+
 namespace
 {
-struct Point
-{
-	btVector3 normal;
-	btVector3 onTriangle;
-	btScalar distance;
-};
-
-struct Recorder : public btDiscreteCollisionDetectorInterface::Result
-{
-	std::vector<Point> points;
-	void setShapeIdentifiersA(int, int) override {}
-	void setShapeIdentifiersB(int, int) override {}
-	void addContactPoint(const btVector3& normal, const btVector3& onTriangle, btScalar distance) override
-	{
-		points.push_back(Point{normal, onTriangle, distance});
-	}
-};
+using Point = caliber_test::TrianglePoint;
+using Recorder = caliber_test::TriangleContactRecorder;
 
 // A large triangle in the plane y = 0 (its margin 0), covering [-10, 10] in x and z around the origin.
 btTriangleShape bigFloorTriangle()
