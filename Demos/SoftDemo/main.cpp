@@ -143,11 +143,11 @@ bool cloth(int frames)
 
 bool pressure(int frames)
 {
-	printf("Pressure: a ball of gas (kPR = 100, P V = kPR) falls 3 m onto the ground and bounces.\n");
+	printf("Pressure: a ball of gas (kPR = 1000, P V = kPR) falls 3 m onto the ground and bounces.\n");
 	Scene s;
 	btSoftBody* b =
 	    s.addSoft(btSoftBodyHelpers::CreateEllipsoid(s.info(), btVector3(0, 4, 0), btVector3(1, 1, 1), 256));
-	b->m_cfg.kPR = 100;
+	b->m_cfg.kPR = 1000;
 	b->m_cfg.kDF = btScalar(0.5);
 	b->m_cfg.piterations = 4;
 	b->setTotalMass(1, true);
@@ -161,8 +161,10 @@ bool pressure(int frames)
 	}
 	printf("  volume %.2f m^3 at rest, smallest %.2f m^3 at impact; lowest node %.4f m; centre at rest %.2f m\n",
 	       double(v0), double(minVolume), double(lowest), double(b->evaluateCom().y()));
-	return report(allFinite(b) && lowest > -1e-4 && minVolume > btScalar(0.8) * v0 && b->evaluateCom().y() < 1.5,
-	              "no node below the ground, the gas keeps 80% of its volume, the ball comes to the ground");
+	// With converged sweeps the fall's 30 J would compress the gas only until kPR ln(V0 / V) = 30 J
+	// (V = 0.97 V0); four sweeps leave the volume constraint softer than that.
+	return report(allFinite(b) && lowest > -1e-4 && minVolume > btScalar(0.9) * v0 && b->evaluateCom().y() < 1.5,
+	              "no node below the ground, the gas keeps 90% of its volume, the ball lands");
 }
 
 bool volume(int frames)
@@ -300,11 +302,12 @@ bool friction(int frames)
 
 bool impact(int frames)
 {
-	printf("Impact: a 2 kg box falls 5 m onto a cloth stretched over four posts.\n");
+	printf("Impact: a 2 kg box falls 5 m onto a cloth (nodes 16 cm apart, kDF = 1) stretched over four posts.\n");
 	Scene s;
 	btSoftBody* c =
 	    s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-2, 2, -2), btVector3(2, 2, -2),
-	                                             btVector3(-2, 2, 2), btVector3(2, 2, 2), 17, 17, 1 + 2 + 4 + 8, true));
+	                                             btVector3(-2, 2, 2), btVector3(2, 2, 2), 26, 26, 1 + 2 + 4 + 8, true));
+	c->m_cfg.kDF = 1;
 	c->m_cfg.piterations = 10;
 	c->m_cfg.kDP = btScalar(0.05);
 	c->setTotalMass(1);

@@ -72,6 +72,12 @@ struct btSoftBodyHelpers
 	/// A closed body from the convex hull of the points.
 	static btSoftBody* CreateFromConvexHull(btSoftBodyWorldInfo& worldInfo, const btVector3* vertices, int nvertices,
 	                                        bool randomizeConstraints = true);
+	/// A volume from TetGen's text formats (the contents of the .ele, .face and .node files, not their
+	/// names; face may be null): nodes, tetras, links along the tetras' edges (btetralinks) and the
+	/// given faces' edges (bfacelinks), faces from the .face data, and the four faces of every tetra with
+	/// bfacesfromtetras.
+	static btSoftBody* CreateFromTetGenData(btSoftBodyWorldInfo& worldInfo, const char* ele, const char* face,
+	                                        const char* node, bool bfacelinks, bool btetralinks, bool bfacesfromtetras);
 	/// Reorders links for locality (Caliber: links stay in their order).
 	static void ReoptimizeLinkOrder(btSoftBody* psb);
 };

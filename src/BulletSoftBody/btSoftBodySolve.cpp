@@ -187,7 +187,8 @@ void btSoftBody::updatePose()
 void btSoftBody::applyForces()
 {
 	const btScalar dt = m_sst.sdt;
-	if (m_cfg.kPR != 0 && m_faces.size() > 0)
+	// A closed body whose skin cannot stretch holds its gas by a volume constraint instead (solveConstraints).
+	if (m_cfg.kPR != 0 && m_faces.size() > 0 && !caliber::softBodyTethers(*this, false).inextensibleSkin)
 	{
 		// Gas pressure P = kPR / V (P V = n R T, isothermal), acting on each face as P times its area
 		// along its normal, a third to each node. The sign of V says which way the faces are wound, so
@@ -269,6 +270,8 @@ void btSoftBody::addAeroForceToFace(const btVector3& windVelocity, int faceIndex
 void btSoftBody::predictMotion(btScalar dt)
 {
 	if (m_bUpdateRtCst) updateConstants();
+	// Tethers and the skin's rest volume are (re)built from the shape before this step moves it.
+	caliber::softBodyTethers(*this);
 	m_sst.sdt = dt * m_cfg.timescale;
 	m_sst.isdt = m_sst.sdt > 0 ? btScalar(1) / m_sst.sdt : btScalar(0);
 	m_sst.velmrg = m_sst.sdt * 3;
@@ -323,7 +326,9 @@ void solveLinks(btSoftBody& body, btScalar dt)
 
 // Volume conservation (kVC): the constraint V = V0 of the whole closed surface with the compliance
 // 1 / kVC, so that a lost volume dV holds the pressure kVC dV (XPBD; lambda accumulates over the step).
-void solveVolume(btSoftBody& body, btScalar dt, btScalar& lambda, btAlignedObjectArray<btVector3>& grad)
+// The compliance may differ below and above the target (the gas of an inextensible skin, below).
+void solveVolume(btSoftBody& body, btScalar dt, btScalar target, btScalar complianceShrunk, btScalar complianceGrown,
+                 btScalar& lambda, btAlignedObjectArray<btVector3>& grad)
 {
 	const int n = body.m_nodes.size();
 	if (n == 0) return;
@@ -348,10 +353,10 @@ void solveVolume(btSoftBody& body, btScalar dt, btScalar& lambda, btAlignedObjec
 		grad[i] /= 6;
 		denom += body.m_nodes[i].m_im * grad[i].length2();
 	}
-	const btScalar alpha = btScalar(1) / (body.m_cfg.kVC * dt * dt);
+	const btScalar alpha = (btFabs(volume) < btFabs(target) ? complianceShrunk : complianceGrown) / (dt * dt);
 	denom += alpha;
 	if (!(denom > 0)) return;
-	const btScalar dlambda = (-(volume - body.m_pose.m_volume) - alpha * lambda) / denom;
+	const btScalar dlambda = (-(volume - target) - alpha * lambda) / denom;
 	lambda += dlambda;
 	for (int i = 0; i < n; ++i) body.m_nodes[i].m_x += grad[i] * (dlambda * body.m_nodes[i].m_im);
 }
@@ -411,6 +416,7 @@ void solveContacts(btSoftBody& body, btScalar dt, const caliber::SoftBodyTethers
 		const btScalar w = wn + wb;
 		if (w <= 0) continue;
 		const btScalar lambda = -depth * c.m_c4 / w;
+		const btVector3 nodeBefore = n.m_x;
 		n.m_x += normal * (lambda * wn);
 		btVector3 impulse = -normal * lambda;
 		// Friction (Coulomb, at position level): the node's slide relative to the surface this step is
@@ -434,12 +440,15 @@ void solveContacts(btSoftBody& body, btScalar dt, const caliber::SoftBodyTethers
 		}
 		if (movable)
 		{
-			// The body's velocity changes only as far as it stops approaching the node (an inelastic
-			// contact); the rest of the push moves its pose alone, as a split impulse does, so that
-			// resolving a penetration never launches it.
-			const btScalar approach = rb->getVelocityInLocalPoint(r).dot(normal) - (n.m_x - n.m_q).dot(normal) / dt;
-			const btScalar change = lambda * wb / dt;
-			const btScalar share = change > 0 ? btClamped(approach / change, btScalar(0), btScalar(1)) : btScalar(1);
+			// Velocities change only as far as node and body stop approaching each other (an inelastic
+			// contact), both by the same share of the correction, so momentum is conserved; the rest of
+			// the push moves positions alone (the node's start moves with it), as a split impulse does,
+			// so that resolving a penetration never launches either.
+			btScalar share = 1;
+			const btScalar approach = rb->getVelocityInLocalPoint(r).dot(normal) - (nodeBefore - n.m_q).dot(normal) / dt;
+			const btScalar change = lambda * w / dt;
+			if (change > 0) share = btClamped(approach / change, btScalar(0), btScalar(1));
+			n.m_q += normal * (lambda * wn * (1 - share));
 			moveRigid(rb, -normal * lambda, r, dt, share);
 			if (impulse != -normal * lambda) moveRigid(rb, impulse + normal * lambda, r, dt);
 			rb->activate();
@@ -479,7 +488,14 @@ void btSoftBody::solveConstraints()
 		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
 	}
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
-	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this);
+	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
+	// A pressurised closed body whose skin cannot stretch holds its rest volume V0: its skin's tension
+	// balances any pressure above V0 (a closed surface of rigid triangles cannot grow), and the gas resists
+	// compression with the stiffness of P V = kPR, dP / dV = -kPR / V0^2, i.e. the compliance V0^2 / kPR.
+	// (Applied as a force, the pressure would be undone by Gauss-Seidel sweeps only slowly, since each
+	// link pulls tangentially against a uniform inflation.)
+	const bool gasVolume = m_cfg.kPR > 0 && tethers.inextensibleSkin && tethers.restVolume != 0;
+	btScalar gasLambda = 0;
 	btScalar volumeLambda = 0;
 	// Scratch of the volume constraint, reused from step to step on each thread.
 	static thread_local btAlignedObjectArray<btVector3> volumeGradient;
@@ -490,7 +506,12 @@ void btSoftBody::solveConstraints()
 				case ePSolver::Linear:
 					solveLinks(*this, dt);
 					caliber::solveTethers(*this, tethers);
-					if (keepVolume) solveVolume(*this, dt, volumeLambda, volumeGradient);
+					if (keepVolume)
+						solveVolume(*this, dt, m_pose.m_volume, 1 / m_cfg.kVC, 1 / m_cfg.kVC, volumeLambda,
+						            volumeGradient);
+					if (gasVolume)
+						solveVolume(*this, dt, tethers.restVolume, tethers.restVolume * tethers.restVolume / m_cfg.kPR,
+						            0, gasLambda, volumeGradient);
 					break;
 				case ePSolver::Anchors:
 					solveAnchors(*this, dt);

@@ -58,6 +58,13 @@ void build(btSoftBody& body, caliber::SoftBodyTethers& t)
 	const int n = body.m_nodes.size();
 	t.tetherOfNode.resize(n);
 	for (int i = 0; i < n; ++i) t.tetherOfNode[i] = -1;
+	{
+		InextensibleTest inextensible{body};
+		bool all = body.m_links.size() > 0 && body.m_faces.size() > 0;
+		for (int i = 0; i < body.m_links.size() && all; ++i) all = inextensible(body.m_links[i]);
+		t.inextensibleSkin = all;
+		t.restVolume = all ? body.getVolume() : btScalar(0);
+	}
 	btSoftBody::Node* base = n ? &body.m_nodes[0] : 0;
 	// Adjacency over inextensible links.
 	std::vector<std::vector<std::pair<int, btScalar>>> adjacent(n);
@@ -114,9 +121,10 @@ void build(btSoftBody& body, caliber::SoftBodyTethers& t)
 }
 }  // namespace
 
-caliber::SoftBodyTethers& caliber::softBodyTethers(btSoftBody& body)
+caliber::SoftBodyTethers& caliber::softBodyTethers(btSoftBody& body, bool refresh)
 {
 	SoftBodyTethers& t = sideTable<SoftBodyTethers>().acquire(&body);
+	if (!refresh && t.nodeCount == body.m_nodes.size() && t.linkCount == body.m_links.size()) return t;
 	const unsigned signature = fingerprint(body);
 	if (t.nodeCount != body.m_nodes.size() || t.linkCount != body.m_links.size() || t.signature != signature)
 	{

@@ -24,14 +24,18 @@ struct SoftBodyTethers
 	};
 	btAlignedObjectArray<Tether> tethers;
 	btAlignedObjectArray<int> tetherOfNode;  // index into tethers per node, -1 for none
+	// Every link inextensible and the body closed: its volume is capped at restVolume when pressurised.
+	bool inextensibleSkin = false;
+	btScalar restVolume = 0;  // the volume when the state was built
 	// What the tethers were built from: rebuilt when any of it changes.
 	int nodeCount = -1;
 	int linkCount = -1;
 	unsigned signature = 0;
 };
 
-/// The body's tethers, rebuilt when its nodes, links, fixed nodes, materials or rest lengths changed.
-SoftBodyTethers& softBodyTethers(btSoftBody& body);
+/// The body's tethers (and skin state), rebuilt when its nodes, links, fixed nodes, materials or rest
+/// lengths changed (checked when refresh is set: once per step, in predictMotion).
+SoftBodyTethers& softBodyTethers(btSoftBody& body, bool refresh = true);
 /// Forgets the body's tethers (its destructor).
 void releaseSoftBodyTethers(const btSoftBody& body);
 /// Pulls each tethered node back within its reach of its fixed node.

@@ -237,3 +237,26 @@ TEST(SoftBodyBadInput, NodeStateMadeNonFiniteBehindTheApiIsRepaired)
 	}
 	EXPECT_GE(warnings.count(), 1);
 }
+
+TEST(SoftBodyBadInput, MalformedTetGenDataGivesAnEmptyBody)
+{
+	btSoftBodyWorldInfo info;
+	const char* node = "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n";
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(btSoftBodyHelpers::CreateFromTetGenData(info, "1 4 0\n0 0 1 2 9\n", 0, node, false, true, false),
+	             "malformed TetGen data");
+	EXPECT_DEATH(btSoftBodyHelpers::CreateFromTetGenData(info, "1 4 0\n", 0, "4 2 0 0\n", false, true, false),
+	             "malformed TetGen data");
+#else
+	WarningCounter warnings;
+	std::unique_ptr<btSoftBody> badIndex(
+	    btSoftBodyHelpers::CreateFromTetGenData(info, "1 4 0\n0 0 1 2 9\n", 0, node, false, true, false));
+	std::unique_ptr<btSoftBody> badHeader(
+	    btSoftBodyHelpers::CreateFromTetGenData(info, "1 4 0\n", 0, "4 2 0 0\n", false, true, false));
+	std::unique_ptr<btSoftBody> noData(btSoftBodyHelpers::CreateFromTetGenData(info, 0, 0, 0, false, true, false));
+	EXPECT_EQ(badIndex->m_nodes.size(), 0);
+	EXPECT_EQ(badHeader->m_nodes.size(), 0);
+	EXPECT_EQ(noData->m_nodes.size(), 0);
+	EXPECT_EQ(warnings.count(), 3);
+#endif
+}

@@ -151,3 +151,26 @@ TEST(SoftBodyHelpers, DrawDrawsTheFeaturesItIsAskedFor)
 	EXPECT_EQ(drawer.triangles, cloth->m_faces.size());
 	w.world().setDebugDrawer(0);
 }
+
+TEST(SoftBodyHelpers, TetGenDataMakesNodesTetrasLinksAndFaces)
+{
+	// Two tetras sharing the face (1, 2, 3), numbered from 1 as TetGen often does, with comments.
+	const char* node = "# a comment\n5 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1  # the second tip\n";
+	const char* ele = "2 4 0\n1 1 2 3 4\n2 2 3 4 5\n";
+	const char* face = "2 1\n1 1 2 3 0\n2 2 3 5 1\n";
+	btSoftBodyWorldInfo info;
+	std::unique_ptr<btSoftBody> body(btSoftBodyHelpers::CreateFromTetGenData(info, ele, face, node, true, true, false));
+	EXPECT_EQ(body->m_nodes.size(), 5);
+	EXPECT_EQ(body->m_tetras.size(), 2);
+	EXPECT_EQ(body->m_links.size(), 9);  // 6 + 6 tetra edges, 3 shared
+	EXPECT_EQ(body->m_faces.size(), 2);
+	EXPECT_EQ(body->m_nodes[4].m_x, btVector3(1, 1, 1));
+	EXPECT_NEAR(body->m_tetras[0].m_rv, 1.0 / 6, 1e-6);
+	// Faces from tetras wind outward for TetGen's positive orientation: the lone tetra's volume is +1/6.
+	std::unique_ptr<btSoftBody> one(btSoftBodyHelpers::CreateFromTetGenData(
+	    info, "1 4 0\n0 0 1 2 3\n", 0, "4 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n", false, true, true));
+	EXPECT_EQ(one->m_faces.size(), 4);
+	EXPECT_NEAR(one->getVolume(), 1.0 / 6, 1e-6);
+	one->setVolumeDensity(6);
+	EXPECT_NEAR(one->getTotalMass(), 1, 1e-5);
+}
