@@ -390,12 +390,9 @@ void solveAnchors(btSoftBody& body, btScalar dt)
 	}
 }
 
-// Rigid contacts. A node on a taut tether that the contact would push farther from its fixed node
-// cannot give way: the rigid body then takes the whole correction (otherwise a light node, pulled back
-// by its tether after every contact, would let a heavy body sink through the cloth).
-void solveContacts(btSoftBody& body, btScalar dt, const caliber::SoftBodyTethers& tethers)
+// Rigid contacts.
+void solveContacts(btSoftBody& body, btScalar dt)
 {
-	btSoftBody::Node* base = body.m_nodes.size() ? &body.m_nodes[0] : 0;
 	for (int i = 0; i < body.m_rcontacts.size(); ++i)
 	{
 		btSoftBody::RContact& c = body.m_rcontacts[i];
@@ -411,8 +408,7 @@ void solveContacts(btSoftBody& body, btScalar dt, const caliber::SoftBodyTethers
 		const btVector3 r = p - t.getOrigin();
 		const bool movable = isMovable(rb);
 		const btScalar wb = movable ? rigidInverseMass(rb, r, normal) : btScalar(0);
-		const btScalar wn =
-		    movable && caliber::tetherHolds(body, tethers, int(&n - base), normal) ? btScalar(0) : n.m_im;
+		const btScalar wn = n.m_im;
 		const btScalar w = wn + wb;
 		if (w <= 0) continue;
 		const btScalar lambda = -depth * c.m_c4 / w;
@@ -445,7 +441,8 @@ void solveContacts(btSoftBody& body, btScalar dt, const caliber::SoftBodyTethers
 			// the push moves positions alone (the node's start moves with it), as a split impulse does,
 			// so that resolving a penetration never launches either.
 			btScalar share = 1;
-			const btScalar approach = rb->getVelocityInLocalPoint(r).dot(normal) - (nodeBefore - n.m_q).dot(normal) / dt;
+			const btScalar approach =
+			    rb->getVelocityInLocalPoint(r).dot(normal) - (nodeBefore - n.m_q).dot(normal) / dt;
 			const btScalar change = lambda * w / dt;
 			if (change > 0) share = btClamped(approach / change, btScalar(0), btScalar(1));
 			n.m_q += normal * (lambda * wn * (1 - share));
@@ -517,7 +514,7 @@ void btSoftBody::solveConstraints()
 					solveAnchors(*this, dt);
 					break;
 				case ePSolver::RContacts:
-					solveContacts(*this, dt, tethers);
+					solveContacts(*this, dt);
 					break;
 				default:
 					break;
@@ -536,7 +533,7 @@ void btSoftBody::solveConstraints()
 	}
 	// Contacts have the last word: the links (and pose matching) of the last sweep must not leave nodes
 	// inside rigid objects.
-	solveContacts(*this, dt, tethers);
+	solveContacts(*this, dt);
 	const btScalar keep = 1 - btClamped(m_cfg.kDP, btScalar(0), btScalar(1));
 	bool repaired = false;
 	for (int i = 0; i < m_nodes.size(); ++i)

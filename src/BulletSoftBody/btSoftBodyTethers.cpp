@@ -56,8 +56,6 @@ void build(btSoftBody& body, caliber::SoftBodyTethers& t)
 {
 	t.tethers.resize(0);
 	const int n = body.m_nodes.size();
-	t.tetherOfNode.resize(n);
-	for (int i = 0; i < n; ++i) t.tetherOfNode[i] = -1;
 	{
 		InextensibleTest inextensible{body};
 		bool all = body.m_links.size() > 0 && body.m_faces.size() > 0;
@@ -115,7 +113,6 @@ void build(btSoftBody& body, caliber::SoftBodyTethers& t)
 			tether.node = i;
 			tether.anchor = source[i];
 			tether.reach = distance[i];
-			t.tetherOfNode[i] = t.tethers.size();
 			t.tethers.push_back(tether);
 		}
 }
@@ -150,13 +147,4 @@ void caliber::solveTethers(btSoftBody& body, const SoftBodyTethers& t)
 		if (len2 <= tether.reach * tether.reach) continue;
 		node.m_x = anchor + d * (tether.reach / btSqrt(len2));
 	}
-}
-
-bool caliber::tetherHolds(const btSoftBody& body, const SoftBodyTethers& t, int node, const btVector3& direction)
-{
-	if (node < 0 || node >= t.tetherOfNode.size() || t.tetherOfNode[node] < 0) return false;
-	const SoftBodyTethers::Tether& tether = t.tethers[t.tetherOfNode[node]];
-	const btVector3 d = body.m_nodes[node].m_x - body.m_nodes[tether.anchor].m_x;
-	// Taut within a part in a thousand (the projection leaves it exactly at its reach).
-	return d.length2() >= tether.reach * tether.reach * btScalar(0.998) && d.dot(direction) > 0;
 }

@@ -23,7 +23,6 @@ struct SoftBodyTethers
 		btScalar reach;  // the shortest path of rest lengths between them
 	};
 	btAlignedObjectArray<Tether> tethers;
-	btAlignedObjectArray<int> tetherOfNode;  // index into tethers per node, -1 for none
 	// Every link inextensible and the body closed: its volume is capped at restVolume when pressurised.
 	bool inextensibleSkin = false;
 	btScalar restVolume = 0;  // the volume when the state was built
@@ -40,9 +39,7 @@ SoftBodyTethers& softBodyTethers(btSoftBody& body, bool refresh = true);
 void releaseSoftBodyTethers(const btSoftBody& body);
 /// Pulls each tethered node back within its reach of its fixed node.
 void solveTethers(btSoftBody& body, const SoftBodyTethers& tethers);
-/// True when node is on a taut tether and moving it along direction would take it farther from its
-/// fixed node: the node cannot give way in that direction.
-bool tetherHolds(const btSoftBody& body, const SoftBodyTethers& tethers, int node, const btVector3& direction);
+
 }  // namespace caliber
 
 #endif  // CALIBER_SOFT_BODY_TETHERS_H
