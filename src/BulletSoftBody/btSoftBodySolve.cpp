@@ -280,9 +280,10 @@ void btSoftBody::predictMotion(btScalar dt)
 	m_rcontacts.resize(0);
 	const btVector3 gravity = m_worldInfo ? m_worldInfo->m_gravity : btVector3(0, 0, 0);
 	const btScalar maxMove = m_worldInfo ? m_worldInfo->m_maxDisplacement : btScalar(1000);
+	// Forces that depend on the velocity (air) see the velocity the step starts with.
+	applyForces();
 	for (int i = 0; i < m_nodes.size(); ++i)
 		if (m_nodes[i].m_im > 0) m_nodes[i].m_v += gravity * m_sst.sdt;
-	applyForces();
 	for (int i = 0; i < m_nodes.size(); ++i)
 	{
 		Node& n = m_nodes[i];
