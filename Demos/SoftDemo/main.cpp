@@ -221,7 +221,7 @@ bool ropes(int frames)
 
 bool ropeAttach(int frames)
 {
-	printf("RopeAttach: a 4 m rope fixed at its top carries a 2 kg box through an anchor (two-way).\n");
+	printf("RopeAttach: a 3 m rope fixed at its top carries a 2 kg box through an anchor (two-way).\n");
 	Scene s;
 	btSoftBody* rope =
 	    s.addSoft(btSoftBodyHelpers::CreateRope(s.info(), btVector3(0, 10, 0), btVector3(3, 10, 0), 30, 1));
