@@ -139,7 +139,7 @@ public:
 			CL_RS = 0x0002,     ///< Clusters against rigid bodies (not implemented yet).
 			SDF_RD = 0x0004,    ///< Deformable-rigid (Bullet's later solver; not implemented).
 			SVSmask = 0x00f0,   ///< Soft-versus-soft mask.
-			VF_SS = 0x0010,     ///< Vertices against faces of other soft bodies (not implemented yet).
+			VF_SS = 0x0010,     ///< Nodes against faces of other soft bodies (either body's flag is enough).
 			CL_SS = 0x0020,     ///< Clusters against clusters (not implemented yet).
 			CL_SELF = 0x0040,   ///< Cluster self-collision (not implemented yet).
 			VF_DD = 0x0080,     ///< Deformable vertex-face (not implemented).
@@ -268,16 +268,16 @@ public:
 		btScalar m_c3;     ///< Friction (the product of kDF and the object's friction).
 		btScalar m_c4;     ///< Hardness (kCHR, kKHR or kSHR by the object's kind).
 	};
-	/// A contact of a node with a face of another soft body (not generated yet).
+	/// A contact of a node with a face of another soft body (VF_SS), found this step.
 	struct SContact
 	{
 		Node* m_node;         ///< The node.
 		Face* m_face;         ///< The face.
-		btVector3 m_weights;  ///< Barycentric weights on the face.
+		btVector3 m_weights;  ///< Barycentric weights of the contact point on the face.
 		btVector3 m_normal;   ///< Contact normal.
-		btScalar m_margin;    ///< Margin.
-		btScalar m_friction;  ///< Friction.
-		btScalar m_cfm[2];    ///< Softness.
+		btScalar m_margin;    ///< Distance kept between the node and the face.
+		btScalar m_friction;  ///< Friction (not used yet).
+		btScalar m_cfm[2];  ///< m_cfm[0]: the side of the face (+1 or -1 along its winding normal) the node is kept on.
 	};
 	/// A node held at a point of a rigid body; the body is pulled back (two-way).
 	struct Anchor
@@ -380,7 +380,7 @@ public:
 	tTetraArray m_tetras;                 ///< Tetras.
 	tAnchorArray m_anchors;               ///< Anchors.
 	tRContactArray m_rcontacts;           ///< Contacts with rigid objects of the current step.
-	tSContactArray m_scontacts;           ///< Contacts with soft bodies (empty: soft-soft is not implemented).
+	tSContactArray m_scontacts;           ///< This body's nodes' contacts with other soft bodies' faces this step.
 	tMaterialArray m_materials;           ///< Materials (owned).
 	btScalar m_timeacc;                   ///< Time accumulator (unused: the world steps the body).
 	btVector3 m_bounds[2];                ///< Bounding box of the nodes' current and predicted positions.
@@ -510,17 +510,17 @@ public:
 	void setSolver(eSolverPresets::_ preset);
 	/// First part of a step of dt: forces into velocities, predicted positions, bounds.
 	void predictMotion(btScalar dt);
-	/// Second part: constraints and contacts, then velocities from the moves.
+	/// Second part: the position solve of constraints and contacts.
 	void solveConstraints();
 	/// Runs the link constraints alone iterations times (no time passes).
 	void staticSolve(int iterations);
 	/// Steps the bodies' common constraints (soft-soft joints: none yet).
 	static void solveCommonConstraints(btSoftBody** bodies, int count, int iterations);
-	/// Third part: notes and bounds after the solve.
+	/// Third part, once every body of the world is solved: velocities from the step's moves, normals, bounds.
 	void integrateMotion();
 	/// Finds this step's contacts of the nodes with one rigid object.
 	void defaultCollisionHandler(const btCollisionObjectWrapper* pcoWrap);
-	/// Finds contacts with another soft body (not implemented yet: nothing happens).
+	/// Finds node-face contacts with another soft body, both ways, when either has VF_SS.
 	void defaultCollisionHandler(btSoftBody* psb);
 
 	/// Sets the velocity of the air around the body.

@@ -7,7 +7,7 @@
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
 
 /// Adds the algorithms of soft-rigid pairs (btSoftRigidCollisionAlgorithm) and soft-soft pairs
-/// (btSoftSoftCollisionAlgorithm: no contacts yet) to btDefaultCollisionConfiguration.
+/// (btSoftSoftCollisionAlgorithm) to btDefaultCollisionConfiguration.
 class btSoftBodyRigidBodyCollisionConfiguration : public btDefaultCollisionConfiguration
 {
 	btCollisionAlgorithmCreateFunc* m_softSoftCreateFunc;

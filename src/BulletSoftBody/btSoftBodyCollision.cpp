@@ -244,4 +244,86 @@ void btSoftBody::defaultCollisionHandler(const btCollisionObjectWrapper* pcoWrap
 	caliber::collideSoftWithRigid(*this, *pcoWrap);
 }
 
-void btSoftBody::defaultCollisionHandler(btSoftBody* psb) { (void)psb; }
+namespace
+{
+// Contacts of nodes's free nodes with faces's faces (VF_SS): for each node whose move this step comes
+// within reach of a face, the face point closest to the node's predicted position (as barycentric
+// weights) and the side of the face the node started on. Faces are culled by their boxes.
+void collideNodesWithFaces(btSoftBody& nodes, btSoftBody& faces, btScalar thickness, btScalar reach, btScalar friction)
+{
+	const btVector3 r(reach, reach, reach);
+	btVector3 lo, hi;
+	faces.getAabb(lo, hi);
+	for (int i = 0; i < nodes.m_nodes.size(); ++i)
+	{
+		btSoftBody::Node& n = nodes.m_nodes[i];
+		if (n.m_im <= 0) continue;
+		btVector3 nlo = n.m_q, nhi = n.m_q;
+		nlo.setMin(n.m_x);
+		nhi.setMax(n.m_x);
+		nlo -= r;
+		nhi += r;
+		if (nlo.x() > hi.x() || nhi.x() < lo.x() || nlo.y() > hi.y() || nhi.y() < lo.y() || nlo.z() > hi.z() ||
+		    nhi.z() < lo.z())
+			continue;
+		// Only the nearest face: other faces' planes pass beside a node outside a convex body too.
+		btSoftBody::SContact best;
+		btScalar bestDistance2 = BT_LARGE_FLOAT;
+		for (int k = 0; k < faces.m_faces.size(); ++k)
+		{
+			btSoftBody::Face& f = faces.m_faces[k];
+			const btVector3& a = f.m_n[0]->m_x;
+			const btVector3& b = f.m_n[1]->m_x;
+			const btVector3& c = f.m_n[2]->m_x;
+			btVector3 flo = a, fhi = a;
+			flo.setMin(b);
+			flo.setMin(c);
+			fhi.setMax(b);
+			fhi.setMax(c);
+			if (nlo.x() > fhi.x() || nhi.x() < flo.x() || nlo.y() > fhi.y() || nhi.y() < flo.y() || nlo.z() > fhi.z() ||
+			    nhi.z() < flo.z())
+				continue;
+			const btVector3 normal = (b - a).cross(c - a);
+			const btScalar area2 = normal.length2();
+			if (area2 <= SIMD_EPSILON * SIMD_EPSILON) continue;
+			// The side the node came from, judged against the face where it started the step too.
+			const btVector3 startNormal = (f.m_n[1]->m_q - f.m_n[0]->m_q).cross(f.m_n[2]->m_q - f.m_n[0]->m_q);
+			const btScalar side = startNormal.dot(n.m_q - f.m_n[0]->m_q) >= 0 ? btScalar(1) : btScalar(-1);
+			const btVector3 p = caliber::closestPointOnTriangle(n.m_x, a, b, c);
+			const btScalar distance2 = (n.m_x - p).length2();
+			if (distance2 >= (thickness + reach) * (thickness + reach) || distance2 >= bestDistance2) continue;
+			// Barycentric weights of p.
+			const btVector3 v0 = b - a, v1 = c - a, v2 = p - a;
+			const btScalar d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+			const btScalar denom = d00 * d11 - d01 * d01;
+			if (btFabs(denom) <= SIMD_EPSILON) continue;
+			const btScalar wb = (d11 * d20 - d01 * d21) / denom, wc = (d00 * d21 - d01 * d20) / denom;
+			btSoftBody::SContact contact;
+			contact.m_node = &n;
+			contact.m_face = &f;
+			contact.m_weights.setValue(1 - wb - wc, wb, wc);
+			contact.m_normal = normal * (side / btSqrt(area2));
+			contact.m_margin = thickness;
+			contact.m_friction = friction;
+			contact.m_cfm[0] = side;
+			contact.m_cfm[1] = 0;
+			bestDistance2 = distance2;
+			best = contact;
+		}
+		if (bestDistance2 < BT_LARGE_FLOAT) nodes.m_scontacts.push_back(best);
+	}
+}
+}  // namespace
+
+void btSoftBody::defaultCollisionHandler(btSoftBody* psb)
+{
+	if (!psb || psb == this) return;  // self-collision is not implemented yet
+	if (!((m_cfg.collisions | psb->m_cfg.collisions) & fCollision::VF_SS)) return;
+	// Nodes stay half the smaller margin away from the other body's faces; contacts are looked for
+	// within the margins.
+	const btScalar marginA = getCollisionShape()->getMargin(), marginB = psb->getCollisionShape()->getMargin();
+	const btScalar thickness = btScalar(0.5) * btMin(marginA, marginB);
+	const btScalar friction = btMax(m_cfg.kDF, psb->m_cfg.kDF);
+	collideNodesWithFaces(*this, *psb, thickness, marginA, friction);
+	collideNodesWithFaces(*psb, *this, thickness, marginB, friction);
+}

@@ -4,8 +4,8 @@
 #include <new>
 
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
-#include "BulletCollision/CollisionDispatch/btEmptyCollisionAlgorithm.h"
 #include "BulletSoftBody/btSoftRigidCollisionAlgorithm.h"
+#include "BulletSoftBody/btSoftSoftCollisionAlgorithm.h"
 #include "LinearMath/btAlignedAllocator.h"
 
 namespace
@@ -30,8 +30,7 @@ btSoftBodyRigidBodyCollisionConfiguration::btSoftBodyRigidBodyCollisionConfigura
     const btDefaultCollisionConstructionInfo& constructionInfo)
     : btDefaultCollisionConfiguration(constructionInfo)
 {
-	// Soft-soft contacts are not implemented yet: such pairs get the empty algorithm.
-	m_softSoftCreateFunc = makeCreateFunc<btEmptyAlgorithm::CreateFunc>(false);
+	m_softSoftCreateFunc = makeCreateFunc<btSoftSoftCollisionAlgorithm::CreateFunc>(false);
 	m_softRigidConvexCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(false);
 	m_swappedSoftRigidConvexCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(true);
 	m_softRigidConcaveCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(false);

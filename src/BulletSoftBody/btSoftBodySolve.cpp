@@ -278,6 +278,7 @@ void btSoftBody::predictMotion(btScalar dt)
 	m_sst.radmrg = m_collisionShape ? m_collisionShape->getMargin() : btScalar(0);
 	m_sst.updmrg = m_sst.radmrg * btScalar(0.25);
 	m_rcontacts.resize(0);
+	m_scontacts.resize(0);
 	const btVector3 gravity = m_worldInfo ? m_worldInfo->m_gravity : btVector3(0, 0, 0);
 	const btScalar maxMove = m_worldInfo ? m_worldInfo->m_maxDisplacement : btScalar(1000);
 	// Forces that depend on the velocity (air) see the velocity the step starts with.
@@ -455,6 +456,49 @@ void solveContacts(btSoftBody& body, btScalar dt)
 }
 }  // namespace
 
+namespace
+{
+// Soft-soft contacts (VF_SS): a node of this body kept on its side of another body's face, at the
+// distance m_margin; the correction is shared by the node and the face's nodes by their inverse masses
+// and barycentric weights, so momentum is conserved. (Self-collision and friction are not done yet.)
+void solveSoftContacts(btSoftBody& body)
+{
+	for (int i = 0; i < body.m_scontacts.size(); ++i)
+	{
+		btSoftBody::SContact& c = body.m_scontacts[i];
+		btSoftBody::Node& n = *c.m_node;
+		btSoftBody::Node* f[3] = {c.m_face->m_n[0], c.m_face->m_n[1], c.m_face->m_n[2]};
+		btVector3 normal = (f[1]->m_x - f[0]->m_x).cross(f[2]->m_x - f[0]->m_x);
+		const btScalar len = normal.length();
+		if (len <= SIMD_EPSILON) continue;
+		normal *= c.m_cfm[0] / len;  // the side the node came from
+		const btVector3 p = f[0]->m_x * c.m_weights[0] + f[1]->m_x * c.m_weights[1] + f[2]->m_x * c.m_weights[2];
+		const btScalar gap = normal.dot(n.m_x - p) - c.m_margin;
+		if (gap >= 0) continue;
+		btScalar w = n.m_im;
+		for (int k = 0; k < 3; ++k) w += c.m_weights[k] * c.m_weights[k] * f[k]->m_im;
+		if (w <= 0) continue;
+		const btScalar lambda = -gap / w;
+		// As for rigid contacts: velocities change only as far as node and face stop approaching (an
+		// inelastic contact), the rest moves positions alone (the start points move with them).
+		const btScalar dt = body.m_sst.sdt;
+		btVector3 faceMove = (f[0]->m_x - f[0]->m_q) * c.m_weights[0] + (f[1]->m_x - f[1]->m_q) * c.m_weights[1] +
+		                     (f[2]->m_x - f[2]->m_q) * c.m_weights[2];
+		const btScalar approach = (faceMove - (n.m_x - n.m_q)).dot(normal) / dt;
+		const btScalar change = lambda * w / dt;
+		const btScalar positionOnly = 1 - (change > 0 ? btClamped(approach / change, btScalar(0), btScalar(1)) : 1);
+		n.m_x += normal * (lambda * n.m_im);
+		n.m_q += normal * (lambda * n.m_im * positionOnly);
+		for (int k = 0; k < 3; ++k)
+		{
+			const btVector3 move = normal * (lambda * c.m_weights[k] * f[k]->m_im);
+			f[k]->m_x -= move;
+			f[k]->m_q -= move * positionOnly;
+		}
+	}
+}
+}  // namespace
+
 void btSoftBody::solveConstraints()
 {
 	const btScalar dt = m_sst.sdt;
@@ -517,6 +561,9 @@ void btSoftBody::solveConstraints()
 				case ePSolver::RContacts:
 					solveContacts(*this, dt);
 					break;
+				case ePSolver::SContacts:
+					solveSoftContacts(*this);
+					break;
 				default:
 					break;
 			}
@@ -535,27 +582,6 @@ void btSoftBody::solveConstraints()
 	// Contacts have the last word: the links (and pose matching) of the last sweep must not leave nodes
 	// inside rigid objects.
 	solveContacts(*this, dt);
-	const btScalar keep = 1 - btClamped(m_cfg.kDP, btScalar(0), btScalar(1));
-	bool repaired = false;
-	for (int i = 0; i < m_nodes.size(); ++i)
-	{
-		Node& n = m_nodes[i];
-		if (n.m_im <= 0)
-		{
-			n.m_v.setValue(0, 0, 0);
-			continue;
-		}
-		n.m_v = (n.m_x - n.m_q) * (m_sst.isdt * keep);
-		if (!caliber::isFinite(n.m_x) || !caliber::isFinite(n.m_v))
-		{
-			n.m_x = n.m_q;
-			n.m_v.setValue(0, 0, 0);
-			repaired = true;
-		}
-	}
-	if (repaired)
-		caliber::softBodyWarning(
-		    "Caliber: btSoftBody: a node's state became non-finite; it is put back where it started the step\n");
 }
 
 void btSoftBody::staticSolve(int iterations)
@@ -580,6 +606,32 @@ void btSoftBody::solveCommonConstraints(btSoftBody** bodies, int count, int iter
 
 void btSoftBody::integrateMotion()
 {
+	// Velocities from the step's moves, once every body of the world has been solved (soft-soft
+	// contacts move the nodes of both bodies).
+	if (m_sst.sdt > 0)
+	{
+		const btScalar keep = 1 - btClamped(m_cfg.kDP, btScalar(0), btScalar(1));
+		bool repaired = false;
+		for (int i = 0; i < m_nodes.size(); ++i)
+		{
+			Node& n = m_nodes[i];
+			if (n.m_im <= 0)
+			{
+				n.m_v.setValue(0, 0, 0);
+				continue;
+			}
+			n.m_v = (n.m_x - n.m_q) * (m_sst.isdt * keep);
+			if (!caliber::isFinite(n.m_x) || !caliber::isFinite(n.m_v))
+			{
+				n.m_x = n.m_q;
+				n.m_v.setValue(0, 0, 0);
+				repaired = true;
+			}
+		}
+		if (repaired)
+			caliber::softBodyWarning(
+			    "Caliber: btSoftBody: a node's state became non-finite; it is put back where it started the step\n");
+	}
 	updateNormals();
 	updateBounds();
 }

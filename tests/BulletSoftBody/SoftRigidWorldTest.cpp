@@ -255,3 +255,35 @@ TEST(SoftRigidWorld, CutLinkSplitsARope)
 	EXPECT_NEAR(rope->m_nodes[nodes - 1].m_x.y(), -10 * 0.5 * (0.5 + 1.0 / 60) / 2, 1e-3);
 	EXPECT_NEAR(rope->m_nodes[5].m_x.y(), 5, 0.05);
 }
+
+TEST(SoftRigidWorld, SoftSoftContactHoldsTwoBallsApart)
+{
+	// Two pressurised balls of radius 0.5, one dropped onto the other resting on the ground. With VF_SS
+	// each ball's nodes stay outside the other's faces, so the upper ball rests on the lower one; without
+	// it they pass through each other and end side by side on the ground.
+	auto separation = [](int collisions)
+	{
+		SoftTestWorld w;
+		w.addGround();
+		btSoftBody* balls[2];
+		for (int i = 0; i < 2; ++i)
+		{
+			balls[i] = w.addSoft(btSoftBodyHelpers::CreateEllipsoid(w.info(), btVector3(0, btScalar(0.5 + 1.2 * i), 0),
+			                                                        btVector3(0.5, 0.5, 0.5), 128));
+			balls[i]->m_cfg.kPR = 2000;
+			balls[i]->m_cfg.piterations = 4;
+			balls[i]->m_cfg.kDP = btScalar(0.05);
+			balls[i]->m_cfg.collisions = collisions;
+			balls[i]->setTotalMass(1);
+		}
+		w.step(120);
+		return balls[1]->evaluateCom().y() - balls[0]->evaluateCom().y();
+	};
+	const btScalar apart = separation(btSoftBody::fCollision::SDF_RS | btSoftBody::fCollision::VF_SS);
+	const btScalar through = separation(btSoftBody::fCollision::SDF_RS);
+	// The balls of links flatten under the load (no bending stiffness), but the upper one's centre stays
+	// more than a radius above the lower one's, and at most a diameter plus the contact distance.
+	EXPECT_GT(apart, 0.5);
+	EXPECT_LT(apart, 1.125);
+	EXPECT_LT(btFabs(through), 0.1);
+}
