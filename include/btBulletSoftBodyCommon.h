@@ -2,10 +2,14 @@
 #ifndef CALIBER_BULLET_SOFT_BODY_COMMON_H
 #define CALIBER_BULLET_SOFT_BODY_COMMON_H
 
-/// Caliber's own umbrella header (Bullet has none): meant to be everything a soft-body program needs,
-/// in one include. Soft bodies are not implemented yet (there is no BulletSoftBody library), so today it
-/// is exactly btBulletDynamicsCommon.h; the soft-body headers join here when that layer lands.
+/// Caliber's own umbrella header (Bullet has none): everything a soft-body program needs, in one
+/// include: the rigid-body API and the soft-body layer.
 
 #include "btBulletDynamicsCommon.h"
+#include "BulletSoftBody/btDefaultSoftBodySolver.h"
+#include "BulletSoftBody/btSoftBody.h"
+#include "BulletSoftBody/btSoftBodyHelpers.h"
+#include "BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h"
+#include "BulletSoftBody/btSoftRigidDynamicsWorld.h"
 
 #endif  // CALIBER_BULLET_SOFT_BODY_COMMON_H
