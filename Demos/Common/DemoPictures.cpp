@@ -67,7 +67,7 @@ bool parseDraw(const std::string& list, int& mode)
 DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& commandLine)
     : m_commandLine(commandLine), m_frames(commandLine.defaultFrames)
 {
-	m_debugMode = btIDebugDraw::DBG_DrawConstraints | btIDebugDraw::DBG_DrawConstraintLimits;
+	m_debugMode = commandLine.debugDrawMode;
 	const std::string program = argc > 0 && argv && argv[0] ? argv[0] : commandLine.name;
 	auto usage = [&](FILE* out)
 	{
@@ -234,12 +234,17 @@ void DemoPictures::frame(btCollisionWorld& world, int n)
 	WorldStyle style;
 	style.debugMode = m_debugMode;
 	addWorld(m_scene, world, style);
+	if (std::getenv("CALIBER_DEBUG_FOCUS"))
+		std::fprintf(stderr, "focus %g %g %g .. %g %g %g\n", double(m_scene.focusMin().x()), double(m_scene.focusMin().y()),
+		             double(m_scene.focusMin().z()), double(m_scene.focusMax().x()), double(m_scene.focusMax().y()),
+		             double(m_scene.focusMax().z()));
 	Image image;
 	if (!renderScene(m_scene, image)) return;
 	if (sequence)
 	{
 		char name[64];
-		std::snprintf(name, sizeof(name), "%s-%04d.png", m_commandLine.name, n);
+		// Numbered in order, not by frame: a demo that runs several worlds restarts n for each.
+		std::snprintf(name, sizeof(name), "%s-%04d.png", m_commandLine.name, m_sequenceWritten + 1);
 		std::string error;
 		if (writePng((std::filesystem::path(m_sequenceDir) / name).string(), image, error))
 			++m_sequenceWritten;

@@ -6,10 +6,10 @@
 // pictures.finish(exitCode). Options (docs/demos.md):
 //   --png PATH            a picture of the last frame
 //   --frames N            steps to run instead of the demo's default
-//   --png-sequence DIR    a picture every K frames, DIR/<demo>-0001.png, ... (demos that allow it)
+//   --png-sequence DIR    a picture every K frames, DIR/<demo>-0001.png, -0002, ... (demos that allow it)
 //   --every K             the K of --png-sequence (default 30)
 //   --size WxH            picture size (default 640x480)
-//   --draw LIST           overlays: joints, contacts, aabbs, wireframe, frames, or none (default joints)
+//   --draw LIST           overlays: joints, contacts, aabbs, wireframe, frames, or none (default: the demo's)
 //   --help
 // Demo-side code.
 
@@ -35,6 +35,8 @@ struct DemoCommandLine
 	int defaultFrames = 0;
 	/// Whether --png-sequence is allowed.
 	bool sequences = false;
+	/// The overlay when --draw is not given: btIDebugDraw::DebugDrawModes bits, 0 for solids only.
+	int debugDrawMode = 0;
 	/// How many positional (non-option) arguments the demo takes, and how its usage line shows them.
 	int maxPositional = 0;
 	const char* positionalUsage = "";

@@ -20,14 +20,27 @@ void Camera::frame(const btVector3& aabbMin, const btVector3& aabbMax, btScalar 
 	if (!isFinite(direction) || direction.length2() < btScalar(1e-12)) direction = btVector3(-0.55f, -0.45f, -1);
 	direction.normalize();
 	target = (aabbMin + aabbMax) * btScalar(0.5);
-	btScalar radius = (aabbMax - aabbMin).length() * btScalar(0.5);
-	if (!(radius > btScalar(1e-6))) radius = 1;  // a single point: show a metre around it
-	const double halfVertical = double(fieldOfViewDegrees) * M_PI / 360.0;
-	const double halfHorizontal = std::atan(std::tan(halfVertical) * double(aspect > 0 ? aspect : 1));
-	// The bounding sphere touches the narrower of the two view cones.
-	const double distance = double(radius) / std::sin(std::min(halfVertical, halfHorizontal)) * 1.02;
-	eye = target - direction * btScalar(distance);
 	up = btFabs(direction.y()) > btScalar(0.99) ? btVector3(0, 0, -1) : btVector3(0, 1, 0);
+	const btVector3 right = direction.cross(up).normalized();
+	const btVector3 cameraUp = right.cross(direction);
+	const double tanVertical = std::tan(double(fieldOfViewDegrees) * M_PI / 360.0);
+	const double tanHorizontal = tanVertical * double(aspect > 0 ? aspect : 1);
+	// The nearest eye (along -direction from the centre) that sees all eight corners: a corner at
+	// (x, y) across the view and z along it needs |x| <= (d + z) tan(horizontal half angle), and the
+	// same for y; 5% more leaves a border.
+	double distance = 0;
+	const btVector3 half = (aabbMax - aabbMin) * btScalar(0.5);
+	for (int corner = 0; corner < 8; ++corner)
+	{
+		const btVector3 offset((corner & 1) ? half.x() : -half.x(), (corner & 2) ? half.y() : -half.y(),
+		                       (corner & 4) ? half.z() : -half.z());
+		const double x = std::fabs(double(offset.dot(right))), y = std::fabs(double(offset.dot(cameraUp)));
+		const double z = double(offset.dot(direction));
+		distance = std::max({distance, x / tanHorizontal - z, y / tanVertical - z, -z + 1e-3});
+	}
+	// A point-like box: keep at least a metre in view.
+	distance = std::max(distance, 0.5 / tanVertical);
+	eye = target - direction * btScalar(distance * 1.05);
 }
 
 Camera frameScene(const Scene& scene, const RenderOptions& options, const btVector3& viewDirection)
