@@ -97,7 +97,11 @@ DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& command
 			if (valueOk) m_pngPath = value;
 		}
 		else if (option == "--frames" && commandLine.defaultFrames > 0)
-			valueOk = valueOk && parseInt(value, 1, 10000000, m_frames);
+		{
+			const int limit = commandLine.maxFrames > 0 ? commandLine.maxFrames : 10000000;
+			valueOk = valueOk && parseInt(value, 1, limit, m_frames);
+			m_framesGiven = true;
+		}
 		else if (option == "--png-sequence" && commandLine.sequences)
 		{
 			valueOk = valueOk && *value;
@@ -140,12 +144,15 @@ DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& command
 		{
 			if (!valueOk)
 			{
-				std::fprintf(stderr, "%s: %s needs %s, got '%s'\n", commandLine.name, option.c_str(),
-				             option == "--size" ? "WIDTHxHEIGHT, each side 1 to 8192"
-				             : option == "--draw"
-				                 ? "a comma-separated list of joints, contacts, aabbs, wireframe, frames or none"
-				             : option == "--frames" || option == "--every" ? "a whole number from 1 to 10000000"
-				                                                           : "a path",
+				const std::string limit = std::to_string(commandLine.maxFrames > 0 ? commandLine.maxFrames : 10000000);
+				const std::string expected =
+				    option == "--size" ? "WIDTHxHEIGHT, each side 1 to 8192"
+				    : option == "--draw"
+				        ? "a comma-separated list of joints, contacts, aabbs, wireframe, frames or none"
+				    : option == "--frames" ? "a whole number from 1 to " + limit
+				    : option == "--every"  ? "a whole number from 1 to 10000000"
+				                           : "a path";
+				std::fprintf(stderr, "%s: %s needs %s, got '%s'\n", commandLine.name, option.c_str(), expected.c_str(),
 				             value ? value : "(nothing)");
 				usage(stderr);
 				m_ok = false;
@@ -225,19 +232,21 @@ bool DemoPictures::renderScene(Scene& scene, Image& image)
 	return true;
 }
 
+void DemoPictures::buildWorldScene(btCollisionWorld& world)
+{
+	m_scene.clear();
+	WorldStyle style;
+	style.debugMode = m_debugMode;
+	addWorld(m_scene, world, style);
+	if (m_decorator) m_decorator(m_scene);
+}
+
 void DemoPictures::frame(btCollisionWorld& world, int n)
 {
 	if (!wanted()) return;
 	const bool sequence = !m_sequenceDir.empty() && n % m_every == 0;
 	if (!sequence && (n != m_frames || m_pngPath.empty())) return;
-	m_scene.clear();
-	WorldStyle style;
-	style.debugMode = m_debugMode;
-	addWorld(m_scene, world, style);
-	if (std::getenv("CALIBER_DEBUG_FOCUS"))
-		std::fprintf(stderr, "focus %g %g %g .. %g %g %g\n", double(m_scene.focusMin().x()), double(m_scene.focusMin().y()),
-		             double(m_scene.focusMin().z()), double(m_scene.focusMax().x()), double(m_scene.focusMax().y()),
-		             double(m_scene.focusMax().z()));
+	buildWorldScene(world);
 	Image image;
 	if (!renderScene(m_scene, image)) return;
 	if (sequence)
@@ -261,10 +270,7 @@ void DemoPictures::frame(btCollisionWorld& world, int n)
 void DemoPictures::capture(btCollisionWorld& world)
 {
 	if (m_pngPath.empty()) return;
-	m_scene.clear();
-	WorldStyle style;
-	style.debugMode = m_debugMode;
-	addWorld(m_scene, world, style);
+	buildWorldScene(world);
 	m_captured = renderScene(m_scene, m_last);
 }
 

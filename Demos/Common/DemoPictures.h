@@ -13,6 +13,7 @@
 //   --help
 // Demo-side code.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,8 @@ struct DemoCommandLine
 	/// Steps the demo runs when --frames is not given; 0 for a demo without a frame loop (it then
 	/// rejects --frames).
 	int defaultFrames = 0;
+	/// The most steps --frames may ask for (a scripted demo's script length); 0 for no limit.
+	int maxFrames = 0;
 	/// Whether --png-sequence is allowed.
 	bool sequences = false;
 	/// The overlay when --draw is not given: btIDebugDraw::DebugDrawModes bits, 0 for solids only.
@@ -55,6 +58,8 @@ public:
 	int exitCode() const { return m_exitCode; }
 	/// Steps to run: --frames N, else the demo's default.
 	int frames() const { return m_frames; }
+	/// True when --frames was given.
+	bool framesGiven() const { return m_framesGiven; }
 	/// True when --frames asked for fewer steps than the demo's default: checks that need the whole run
 	/// are skipped then (each demo says which).
 	bool shortened() const { return m_frames < m_commandLine.defaultFrames; }
@@ -74,6 +79,9 @@ public:
 	void setViewDirection(const btVector3& direction) { m_viewDirection = direction; }
 	/// Frames this box instead of the moving objects.
 	void setFocus(const btVector3& aabbMin, const btVector3& aabbMax);
+	/// Adds what the world does not hold (a vehicle's wheels, a path) to every world picture; it runs
+	/// after the world's objects are in the scene and may widen its focus with Scene::focusOn().
+	void setDecorator(std::function<void(Scene&)> decorator) { m_decorator = std::move(decorator); }
 
 	/// Writes the --png picture, prints where the pictures went, and returns exitCode, or 1 when a
 	/// picture could not be made or written (exitCode 0 only).
@@ -81,12 +89,14 @@ public:
 
 private:
 	bool renderScene(Scene& scene, Image& image);
+	void buildWorldScene(btCollisionWorld& world);
 	void fail(const std::string& message);
 
 	DemoCommandLine m_commandLine;
 	bool m_ok = true;
 	int m_exitCode = 0;
 	int m_frames = 0;
+	bool m_framesGiven = false;
 	std::vector<std::string> m_positional;
 	std::string m_pngPath, m_sequenceDir;
 	int m_every = 30;
@@ -95,6 +105,7 @@ private:
 	btVector3 m_viewDirection{-0.55f, -0.45f, -1};
 	btVector3 m_focusMin{0, 0, 0}, m_focusMax{0, 0, 0};
 	bool m_hasFocus = false;
+	std::function<void(Scene&)> m_decorator;
 	Scene m_scene;
 	Image m_last;
 	bool m_captured = false;

@@ -46,6 +46,22 @@ bool isFramable(const btVector3& aabbMin, const btVector3& aabbMax)
 {
 	return isFinite(aabbMin) && isFinite(aabbMax) && (aabbMax - aabbMin).length() < btScalar(1e4);
 }
+// Grounds and walls (static, at least 4 m across in two directions, or a plane) are grey with a
+// checker; every other object gets a colour of its own.
+bool isGround(const btCollisionObject& object)
+{
+	if (!isStill(object) || object.isKinematicObject()) return false;
+	const btCollisionShape* shape = object.getCollisionShape();
+	if (!shape) return false;
+	if (shape->getShapeType() == STATIC_PLANE_PROXYTYPE) return true;
+	btVector3 aabbMin, aabbMax;
+	shape->getAabb(object.getWorldTransform(), aabbMin, aabbMax);
+	const btVector3 size = aabbMax - aabbMin;
+	int wide = 0;
+	for (int axis = 0; axis < 3; ++axis)
+		if (size[axis] >= btScalar(4)) ++wide;
+	return wide >= 2;
+}
 }  // namespace
 
 int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style)
@@ -76,19 +92,19 @@ int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style)
 		MeshStyle mesh;
 		mesh.planeCentre = (focusMin + focusMax) * btScalar(0.5);
 		mesh.planeHalfSize = (focusMax - focusMin).length() * btScalar(1.5) + 2;
-		int moving = 0;
+		int coloured = 0;
 		for (int i = 0; i < objects.size(); ++i)
 		{
 			const btCollisionObject& object = *objects[i];
 			if (object.getCollisionFlags() & btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT) continue;
-			if (isStill(object))
+			if (isGround(object))
 			{
 				mesh.color = btVector3(0.74f, 0.74f, 0.72f);
 				mesh.checker = true;
 			}
 			else
 			{
-				mesh.color = paletteColor(moving++);
+				mesh.color = paletteColor(coloured++);
 				mesh.checker = false;
 			}
 			if (!addShape(scene, object.getCollisionShape(), object.getWorldTransform(), mesh)) ++undrawable;

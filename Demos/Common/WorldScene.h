@@ -1,10 +1,10 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #ifndef CALIBER_DEMOS_COMMON_WORLD_SCENE_H
 #define CALIBER_DEMOS_COMMON_WORLD_SCENE_H
-// Fills a Scene from a btCollisionWorld: every object's shape as a solid (static objects grey with a
-// checker, the others in a palette by their index), plus whatever the world's debugDrawWorld() draws
-// for the chosen btIDebugDraw modes (joint frames and limits, AABBs, contact points, wireframes).
-// SceneDebugDraw is the btIDebugDraw that records into a Scene; any code can use it. Demo-side code.
+// Fills a Scene from a btCollisionWorld: every object's shape as a solid (grounds and walls, static and
+// at least 4 m across two ways, grey with a 1 m checker; the others in a palette by their order), plus whatever the
+// world's debugDrawWorld() draws for the chosen btIDebugDraw modes (joint frames and limits, AABBs, contact points,
+// wireframes). SceneDebugDraw is the btIDebugDraw that records into a Scene; any code can use it. Demo-side code.
 
 #include "LinearMath/btIDebugDraw.h"
 #include "Scene.h"
@@ -53,7 +53,7 @@ struct WorldStyle
 /// Returns how many objects had a shape the mesher cannot draw (they are left out).
 int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style = WorldStyle());
 
-/// The colour addWorld() gives the index-th moving object.
+/// The colour addWorld() gives the index-th object that is not a ground.
 btVector3 paletteColor(int index);
 }  // namespace demo
 }  // namespace caliber
