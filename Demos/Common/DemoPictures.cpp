@@ -113,7 +113,10 @@ DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& command
 			everyGiven = true;
 		}
 		else if (option == "--size")
+		{
 			valueOk = valueOk && parseSize(value, m_options.width, m_options.height);
+			m_sizeGiven = true;
+		}
 		else if (option == "--draw")
 			valueOk = valueOk && parseDraw(value, m_debugMode);
 		else if (option.size() > 1 && option[0] == '-')
@@ -279,6 +282,13 @@ void DemoPictures::capture(const Scene& scene)
 	if (m_pngPath.empty()) return;
 	m_scene = scene;
 	m_captured = renderScene(m_scene, m_last);
+}
+
+void DemoPictures::capture(const Image& image)
+{
+	if (m_pngPath.empty()) return;
+	m_last = image;
+	m_captured = true;
 }
 
 int DemoPictures::finish(int exitCode)

@@ -75,6 +75,12 @@ public:
 	void capture(btCollisionWorld& world);
 	/// Keeps a picture of a scene the demo built itself (demos without a dynamics world).
 	void capture(const Scene& scene);
+	/// Keeps a picture the demo made itself (the Raytracer's image).
+	void capture(const Image& image);
+	/// The --size asked for, or the default 640 x 480; sizeGiven() says whether --size was given.
+	int width() const { return m_options.width; }
+	int height() const { return m_options.height; }
+	bool sizeGiven() const { return m_sizeGiven; }
 	/// Looks at the scene from this direction instead of the default (front, above, right).
 	void setViewDirection(const btVector3& direction) { m_viewDirection = direction; }
 	/// Frames this box instead of the moving objects.
@@ -97,6 +103,7 @@ private:
 	int m_exitCode = 0;
 	int m_frames = 0;
 	bool m_framesGiven = false;
+	bool m_sizeGiven = false;
 	std::vector<std::string> m_positional;
 	std::string m_pngPath, m_sequenceDir;
 	int m_every = 30;

@@ -27,7 +27,7 @@ void Camera::frame(const btVector3& aabbMin, const btVector3& aabbMax, btScalar 
 	const double tanHorizontal = tanVertical * double(aspect > 0 ? aspect : 1);
 	// The nearest eye (along -direction from the centre) that sees all eight corners: a corner at
 	// (x, y) across the view and z along it needs |x| <= (d + z) tan(horizontal half angle), and the
-	// same for y; 5% more leaves a border.
+	// same for y; 10% more leaves a border.
 	double distance = 0;
 	const btVector3 half = (aabbMax - aabbMin) * btScalar(0.5);
 	for (int corner = 0; corner < 8; ++corner)
@@ -40,7 +40,7 @@ void Camera::frame(const btVector3& aabbMin, const btVector3& aabbMax, btScalar 
 	}
 	// A point-like box: keep at least a metre in view.
 	distance = std::max(distance, 0.5 / tanVertical);
-	eye = target - direction * btScalar(distance * 1.05);
+	eye = target - direction * btScalar(distance * 1.1);
 }
 
 Camera frameScene(const Scene& scene, const RenderOptions& options, const btVector3& viewDirection)
