@@ -39,7 +39,8 @@ caliber_package_installed() {
 caliber_ensure_packages() {
 	local missing=()
 	local tool package
-	local libraries=(libgtest-dev libbenchmark-dev libccd-dev)
+	# libpng-dev is optional for the build (the demos' pictures); CI installs it so that they are tested.
+	local libraries=(libgtest-dev libbenchmark-dev libccd-dev libpng-dev)
 	for tool in cmake g++ make pkg-config "$@"; do
 		if [[ "$tool" == *-dev ]]; then
 			libraries+=("$tool")
@@ -97,23 +98,65 @@ caliber_ctest() {
 }
 
 # caliber_run_demos BUILD_DIR: runs each demo listed by Demos/CMakeLists.txt, in order; any non-zero exit fails.
+# When the build has libpng (it built caliber_png_check), each demo also writes a picture of its last
+# frame with --png to BUILD_DIR/pictures/<demo>.png, and the checker then makes sure every picture
+# decodes, has the size the demo reported ("picture: PATH (W x H)") and shows a scene (not a blank or
+# one-colour frame).
 caliber_run_demos() {
 	local list="$CALIBER_ROOT/$1/Demos/demos.txt"
 	if [ ! -s "$list" ]; then
 		echo "error: no demo list at $list (configure with -DCALIBER_BUILD_DEMOS=ON)" >&2
 		return 1
 	fi
-	local demo count=0 start
+	local checker="$CALIBER_ROOT/$1/Demos/Common/caliber_png_check"
+	local pictures="$CALIBER_ROOT/$1/pictures"
+	local with_pictures=0
+	if [ -x "$checker" ]; then
+		with_pictures=1
+		rm -rf "$pictures"
+		mkdir -p "$pictures"
+	fi
+	local demo name count=0 start
+	local picture_args=()
 	while IFS= read -r demo; do
 		[ -n "$demo" ] || continue
+		name="$(basename "$demo")"
+		picture_args=()
+		if ((with_pictures)); then
+			picture_args=(--png "$pictures/$name.png")
+		fi
 		echo
-		echo "----- $(basename "$demo") -----"
+		echo "----- $name -----"
 		start=$SECONDS
-		# From the build directory, so that files a demo writes (raytracer.ppm) stay out of the sources.
-		(cd "$CALIBER_ROOT/$1" && "$demo")
-		echo "----- $(basename "$demo") finished in $((SECONDS - start))s -----"
+		# From the build directory, so that files a demo writes (raytracer.png) stay out of the sources.
+		# The output is kept for the picture check (the callers set pipefail: a failing demo still fails).
+		(cd "$CALIBER_ROOT/$1" && "$demo" "${picture_args[@]}") | tee "$CALIBER_ROOT/$1/Demos/$name.out"
+		echo "----- $name finished in $((SECONDS - start))s -----"
 		count=$((count + 1))
 	done <"$list"
 	echo
 	echo "demos: $count ran, all exited 0"
+	if ((with_pictures)); then
+		echo
+		echo "----- pictures -----"
+		local size failed=0
+		while IFS= read -r demo; do
+			[ -n "$demo" ] || continue
+			name="$(basename "$demo")"
+			size="$(sed -n 's/^picture: .* (\([0-9]*\) x \([0-9]*\))$/\1x\2/p' "$CALIBER_ROOT/$1/Demos/$name.out")"
+			if [ -z "$size" ]; then
+				echo "$name: FAILED: it did not report a picture for --png"
+				failed=1
+				continue
+			fi
+			"$checker" --size "$size" "$pictures/$name.png" || failed=1
+		done <"$list"
+		if ((failed)); then
+			echo "error: some demo pictures are missing, the wrong size or blank (see above)" >&2
+			return 1
+		fi
+		echo "pictures: $count checked in $pictures"
+	else
+		echo "pictures: not checked (this build has no libpng; install libpng-dev)"
+	fi
 }

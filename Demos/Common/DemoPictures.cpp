@@ -68,6 +68,8 @@ DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& command
     : m_commandLine(commandLine), m_frames(commandLine.defaultFrames)
 {
 	m_debugMode = commandLine.debugDrawMode;
+	m_options.width = commandLine.defaultWidth;
+	m_options.height = commandLine.defaultHeight;
 	const std::string program = argc > 0 && argv && argv[0] ? argv[0] : commandLine.name;
 	auto usage = [&](FILE* out)
 	{

@@ -38,6 +38,9 @@ struct DemoCommandLine
 	int maxFrames = 0;
 	/// Whether --png-sequence is allowed.
 	bool sequences = false;
+	/// The picture size when --size is not given (a long row of things wants a wide picture).
+	int defaultWidth = 640;
+	int defaultHeight = 480;
 	/// The overlay when --draw is not given: btIDebugDraw::DebugDrawModes bits, 0 for solids only.
 	int debugDrawMode = 0;
 	/// How many positional (non-option) arguments the demo takes, and how its usage line shows them.

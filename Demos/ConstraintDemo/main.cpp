@@ -71,12 +71,14 @@ int main(int argc, char** argv)
 	commandLine.defaultFrames = 300;
 	commandLine.sequences = true;
 	commandLine.debugDrawMode = btIDebugDraw::DBG_DrawConstraints | btIDebugDraw::DBG_DrawConstraintLimits;
+	commandLine.defaultWidth = 960;  // the joints stand in a 27 m row
+	commandLine.defaultHeight = 320;
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	// The joints stand in a row along x, at heights 4 to 7; the welded L is thrown and falls away, so the
 	// picture frames the row (from the front) rather than everything that moves.
 	pictures.setViewDirection(btVector3(0, -0.15f, -1));
-	pictures.setFocus(btVector3(-0.5f, 3.5f, -1), btVector3(26.5f, 6.5f, 1));
+	pictures.setFocus(btVector3(-0.5f, 3.8f, -0.5f), btVector3(26.5f, 6.2f, 0.5f));
 	Demo d;
 	// Ball joint: a 1 m pendulum released at 60 degrees from a pivot at (0, 5, 0).
 	const btScalar theta = SIMD_PI / 3;
