@@ -211,23 +211,37 @@ void DemoPictures::fail(const std::string& message)
 	m_failed = true;
 }
 
-bool DemoPictures::renderScene(Scene& scene, Image& image)
+bool DemoPictures::renderScene(Scene& scene, Image& image, bool sequence)
 {
+	// What to frame: the demo's own focus, else the scene's (what moves), else everything in it.
+	btVector3 focusMin(-1, -1, -1), focusMax(1, 1, 1);
 	if (m_hasFocus)
 	{
-		// The demo's own focus replaces the one the scene chose.
-		Scene focused;
-		focused.focusOn(m_focusMin, m_focusMax);
-		Camera camera = frameScene(focused, m_options, m_viewDirection);
-		std::string error;
-		if (!render(scene, camera, m_options, image, error))
-		{
-			fail(error);
-			return false;
-		}
-		return true;
+		focusMin = m_focusMin;
+		focusMax = m_focusMax;
 	}
-	const Camera camera = frameScene(scene, m_options, m_viewDirection);
+	else if (scene.hasFocus())
+	{
+		focusMin = scene.focusMin();
+		focusMax = scene.focusMax();
+	}
+	else
+		scene.contentBounds(focusMin, focusMax);
+	if (sequence)
+	{
+		// A sequence keeps one camera that only widens, so that its pictures can be compared side by side.
+		if (m_sequenceFramed)
+		{
+			focusMin.setMin(m_sequenceFocusMin);
+			focusMax.setMax(m_sequenceFocusMax);
+		}
+		m_sequenceFocusMin = focusMin;
+		m_sequenceFocusMax = focusMax;
+		m_sequenceFramed = true;
+	}
+	Scene framing;
+	framing.focusOn(focusMin, focusMax);
+	const Camera camera = frameScene(framing, m_options, m_viewDirection);
 	std::string error;
 	if (!render(scene, camera, m_options, image, error))
 	{
@@ -253,7 +267,7 @@ void DemoPictures::frame(btCollisionWorld& world, int n)
 	if (!sequence && (n != m_frames || m_pngPath.empty())) return;
 	buildWorldScene(world);
 	Image image;
-	if (!renderScene(m_scene, image)) return;
+	if (!renderScene(m_scene, image, sequence)) return;
 	if (sequence)
 	{
 		char name[64];
@@ -276,14 +290,14 @@ void DemoPictures::capture(btCollisionWorld& world)
 {
 	if (m_pngPath.empty()) return;
 	buildWorldScene(world);
-	m_captured = renderScene(m_scene, m_last);
+	m_captured = renderScene(m_scene, m_last, false);
 }
 
 void DemoPictures::capture(const Scene& scene)
 {
 	if (m_pngPath.empty()) return;
 	m_scene = scene;
-	m_captured = renderScene(m_scene, m_last);
+	m_captured = renderScene(m_scene, m_last, false);
 }
 
 void DemoPictures::capture(const Image& image)

@@ -97,7 +97,7 @@ public:
 	int finish(int exitCode);
 
 private:
-	bool renderScene(Scene& scene, Image& image);
+	bool renderScene(Scene& scene, Image& image, bool sequence);
 	void buildWorldScene(btCollisionWorld& world);
 	void fail(const std::string& message);
 
@@ -120,6 +120,8 @@ private:
 	Image m_last;
 	bool m_captured = false;
 	int m_sequenceWritten = 0;
+	btVector3 m_sequenceFocusMin{0, 0, 0}, m_sequenceFocusMax{0, 0, 0};
+	bool m_sequenceFramed = false;
 	bool m_failed = false;
 };
 }  // namespace demo

@@ -73,6 +73,58 @@ TEST(DemoCommandLine, RefusesBadOptionsWithUsageErrorCode)
 	}
 }
 
+TEST(DemoCommandLine, FramesBeyondAScriptedDemosLengthAreRefused)
+{
+	std::vector<char*> argv = {const_cast<char*>("demo"), const_cast<char*>("--frames"), const_cast<char*>("13")};
+	DemoCommandLine commandLine;
+	commandLine.defaultFrames = 12;
+	commandLine.maxFrames = 12;
+	EXPECT_FALSE(DemoPictures(3, argv.data(), commandLine).ok());
+	argv[2] = const_cast<char*>("12");
+	EXPECT_TRUE(DemoPictures(3, argv.data(), commandLine).ok());
+}
+
+// A sequence writes one picture every K frames, numbered in order, each of the asked size.
+TEST(DemoCommandLine, SequenceWritesEveryKthFrame)
+{
+	ASSERT_TRUE(pngAvailable());
+	const std::string dir = ::testing::TempDir() + "caliber_sequence_test";
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	btBoxShape shape(btVector3(1, 1, 1));
+	btRigidBody box(btRigidBody::btRigidBodyConstructionInfo(1, nullptr, &shape, btVector3(1, 1, 1)));
+	world.addRigidBody(&box);
+	DemoPictures pictures =
+	    parse({"demo", "--png-sequence", dir.c_str(), "--every", "2", "--frames", "5", "--size", "32x24"});
+	ASSERT_TRUE(pictures.ok());
+	for (int n = 1; n <= pictures.frames(); ++n)
+	{
+		world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		pictures.frame(world, n);
+	}
+	EXPECT_EQ(pictures.finish(0), 0);
+	for (int k = 1; k <= 3; ++k)
+	{
+		const std::string path = dir + "/TestDemo-000" + std::to_string(k) + ".png";
+		Image image;
+		std::string error;
+		if (k <= 2)
+		{
+			ASSERT_TRUE(readPng(path, image, error)) << error;
+			EXPECT_EQ(image.width, 32);
+			EXPECT_EQ(image.height, 24);
+			std::remove(path.c_str());
+		}
+		else
+			EXPECT_FALSE(readPng(path, image, error)) << "frames 2 and 4 only";
+	}
+	std::remove(dir.c_str());
+	world.removeRigidBody(&box);
+}
+
 TEST(DemoCommandLine, OptionsADemoDoesNotOfferAreRefused)
 {
 	// A demo without a frame loop has no --frames; one without sequences has no --png-sequence.
