@@ -46,7 +46,8 @@ caliber_ensure_packages() {
 			libraries+=("$tool")
 			continue
 		fi
-		command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+		# A package whose name is not its program (xvfb, libgl1-mesa-dri) counts as present when installed.
+		command -v "$tool" >/dev/null 2>&1 || caliber_package_installed "$tool" || missing+=("$tool")
 	done
 	for package in "${libraries[@]}"; do
 		caliber_package_installed "$package" || missing+=("$package")
@@ -159,4 +160,47 @@ caliber_run_demos() {
 	else
 		echo "pictures: not checked (this build has no libpng; install libpng-dev)"
 	fi
+}
+
+# The demo browser's packages: GLFW and OpenGL to build it, Xvfb and Mesa's software OpenGL to run it
+# without a screen. .ci/demos installs them; the browser is skipped in builds without them.
+CALIBER_BROWSER_PACKAGES=(libglfw3-dev libgl-dev xvfb xauth libgl1-mesa-dri)
+
+# caliber_check_browser BUILD_DIR: runs AllBulletDemos under Xvfb (Mesa's software OpenGL): every demo
+# of its list for a few steps with a screenshot, each checked like the demos' pictures, and a scripted
+# mouse drag that must pick a body of BasicDemo and pull it up.
+caliber_check_browser() {
+	local browser="$CALIBER_ROOT/$1/Demos/AllBulletDemos/AllBulletDemos"
+	local checker="$CALIBER_ROOT/$1/Demos/Common/caliber_png_check"
+	if [ ! -x "$browser" ]; then
+		echo "browser: not built (it needs libglfw3-dev and libgl-dev)"
+		return 0
+	fi
+	if ! command -v xvfb-run >/dev/null 2>&1 || [ ! -x "$checker" ]; then
+		echo "error: the browser is built but xvfb-run or caliber_png_check is missing" >&2
+		return 1
+	fi
+	local shots="$CALIBER_ROOT/$1/pictures/browser"
+	rm -rf "$shots"
+	mkdir -p "$shots"
+	local xvfb=(xvfb-run -a -s "-screen 0 1280x1024x24")
+	local demo file
+	echo
+	echo "----- AllBulletDemos under Xvfb -----"
+	while IFS= read -r demo; do
+		file="$shots/$(echo "$demo" | tr '/' '_').png"
+		"${xvfb[@]}" "$browser" --demo "$demo" --frames 10 --size 640x480 --screenshot "$file"
+		"$checker" --size 640x480 "$file"
+	done < <("$browser" --list)
+	local out
+	out="$("${xvfb[@]}" "$browser" --demo BasicDemo --frames 90 --size 1024x768 --drag 512,400,512,100 \
+		--screenshot "$shots/drag.png")"
+	echo "$out"
+	"$checker" --size 1024x768 "$shots/drag.png"
+	# The box under the cursor must have followed it up by more than a metre.
+	echo "$out" | awk '/^drag: picked/ { if ($(NF - 1) + 0 > 1) ok = 1 } END { exit ok ? 0 : 1 }' || {
+		echo "error: the scripted drag did not pull a body up" >&2
+		return 1
+	}
+	echo "browser: every demo drawn, a body picked and dragged"
 }
