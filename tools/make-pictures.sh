@@ -49,4 +49,12 @@ rm -rf "$out/RagdollDemo-sequence" "$out/BasicDemo-sequence"
 	--size 160x120 >/dev/null)
 "$build/Demos/Common/caliber_png_check" --size 160x120 "$out/RagdollDemo-sequence"/*.png
 
+# The browser pulling a box out of BasicDemo's block, when it is built and Xvfb is there (bash .ci/demos
+# installs both).
+if [ -x "$build/Demos/AllBulletDemos/AllBulletDemos" ] && command -v xvfb-run >/dev/null 2>&1; then
+	xvfb-run -a -s "-screen 0 1280x1024x24" "$build/Demos/AllBulletDemos/AllBulletDemos" --demo BasicDemo --drag 160,125,160,30 \
+		--frames 90 --size 320x240 --screenshot "$out/AllBulletDemos.png" >/dev/null
+	"$build/Demos/Common/caliber_png_check" --size 320x240 "$out/AllBulletDemos.png"
+fi
+
 echo "pictures: $(find "$out" -name '*.png' | wc -l) in $out"
