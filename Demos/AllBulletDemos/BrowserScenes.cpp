@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BrowserScenes.h"
 
+#include "Ragdoll.h"
+
 namespace all_bullet_demos
 {
 namespace
@@ -29,11 +31,45 @@ public:
 		return true;
 	}
 };
+
+// RagdollDemo's scene (Demos/RagdollDemo): six ragdolls dropped from 1 to 6 m, each tipped a little
+// differently, over a static ground.
+class RagdollScene : public benchmark_demo::Scene, public ragdoll::Owner
+{
+public:
+	RagdollScene()
+	{
+		world().setGravity(btVector3(0, -10, 0));
+		addBody(own(new btBoxShape(btVector3(50, 1, 50))), 0,
+		        btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0)));
+		m_ragdolls.resize(6);
+		for (int i = 0; i < 6; ++i)
+		{
+			ragdoll::build(*this, btVector3(btScalar(-5 + 2 * i), btScalar(1 + i), 0), 1, m_ragdolls[size_t(i)]);
+			m_ragdolls[size_t(i)].bodies[0]->applyCentralImpulse(
+			    btVector3(btScalar(0.5 * (i % 3)), 0, btScalar(0.3 * (i % 2))));
+		}
+	}
+	btCollisionShape* keepShape(btCollisionShape* shape) override { return own(shape); }
+	btRigidBody* addBody(btCollisionShape* shape, btScalar mass, const btTransform& pose) override
+	{
+		return Scene::addBody(shape, mass, pose);
+	}
+	void addJoint(btTypedConstraint* joint) override { Scene::addJoint(joint); }
+	bool report(std::string& line, int) const override
+	{
+		line = "browser scene";
+		return true;
+	}
+
+private:
+	std::vector<ragdoll::Ragdoll> m_ragdolls;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -41,6 +77,7 @@ std::vector<std::string> demoNames()
 std::unique_ptr<benchmark_demo::Scene> makeDemo(const std::string& name)
 {
 	if (name == "BasicDemo") return std::unique_ptr<benchmark_demo::Scene>(new BasicScene());
+	if (name == "RagdollDemo") return std::unique_ptr<benchmark_demo::Scene>(new RagdollScene());
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) return benchmark_demo::makeScene(name.substr(prefix.size()));
 	return nullptr;

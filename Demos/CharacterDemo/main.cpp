@@ -77,16 +77,14 @@ struct Scene
 	}
 	void run(int steps)
 	{
-		for (int i = 0; i < steps && !spent(); ++i)
+		for (int i = 0; i < steps && !budget.spent(); ++i)
 		{
 			world.stepSimulation(kStep, 1, kStep);
-			++stepped;
+			budget.count();
 		}
 	}
-	/// True once --frames' budget of steps is used up: nothing steps any more.
-	bool spent() const { return stepped >= budget; }
-	int stepped = 0;
-	int budget = INT_MAX;
+	/// --frames' budget of steps: once it is used up nothing steps any more.
+	caliber::demo::StepBudget budget{INT_MAX, false};
 };
 
 btTransform at(btScalar x, btScalar y, btScalar z) { return btTransform(btQuaternion::getIdentity(), btVector3(x, y, z)); }
@@ -110,7 +108,7 @@ int main(int argc, char** argv)
 	pictures.setFocus(btVector3(45, 0, -2), btVector3(63, 3, 6));
 
 	Scene scene;
-	scene.budget = pictures.frames();
+	scene.budget = pictures.stepBudget();
 	scene.box(btVector3(100, 1, 100), at(0, -1, 0));  // the ground, top at y = 0
 	// Stairs in lane x = 10: four steps of 0.3 m, 1 m deep, from z = 2.
 	for (int i = 0; i < 4; ++i)
@@ -136,12 +134,8 @@ int main(int argc, char** argv)
 	scene.world.addAction(&character);
 
 	// A part that --frames cut short is not judged.
-	auto judge = [&](bool ok, const char* what)
-	{
-		if (scene.spent() && pictures.shortened())
-			printf("  check: %s: not reached (--frames %d)\n", what, pictures.frames());
-		else
-			check(ok, what);
+	auto judge = [&](bool ok, const char* what) {
+		if (scene.budget.reached(what)) check(ok, what);
 	};
 	auto feet = [&]() { return ghost.getWorldTransform().getOrigin() - btVector3(0, kHalfHeight, 0); };
 	auto report = [&](const char* part) {

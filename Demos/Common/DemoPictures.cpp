@@ -64,6 +64,13 @@ bool parseDraw(const std::string& list, int& mode)
 }
 }  // namespace
 
+bool StepBudget::reached(const char* what) const
+{
+	if (!spent() || !m_shortened) return true;
+	std::printf("  check: %s: not reached (--frames %d)\n", what, m_frames);
+	return false;
+}
+
 DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& commandLine)
     : m_commandLine(commandLine), m_frames(commandLine.defaultFrames)
 {

@@ -48,6 +48,27 @@ struct DemoCommandLine
 	const char* positionalUsage = "";
 };
 
+/// A scripted demo's step budget under --frames: counts the steps, says when the budget is spent (no
+/// phase steps any more) and whether a phase's check may be judged.
+class StepBudget
+{
+public:
+	/// frames: the steps allowed; shortened: whether --frames cut the demo's default run.
+	StepBudget(int frames, bool shortened) : m_frames(frames), m_shortened(shortened) {}
+	/// True once the budget is used up.
+	bool spent() const { return m_steps >= m_frames; }
+	/// Counts one step.
+	void count() { ++m_steps; }
+	/// False, after printing "check: WHAT: not reached (--frames N)", when --frames cut the phase of
+	/// this check short; true when it may be judged.
+	bool reached(const char* what) const;
+
+private:
+	int m_frames;
+	bool m_shortened;
+	int m_steps = 0;
+};
+
 /// Parses the shared options and writes the demo's pictures.
 class DemoPictures
 {
@@ -61,6 +82,8 @@ public:
 	int exitCode() const { return m_exitCode; }
 	/// Steps to run: --frames N, else the demo's default.
 	int frames() const { return m_frames; }
+	/// The step budget of a scripted demo: frames() steps.
+	StepBudget stepBudget() const { return StepBudget(m_frames, shortened()); }
 	/// True when --frames was given.
 	bool framesGiven() const { return m_framesGiven; }
 	/// True when --frames asked for fewer steps than the demo's default: checks that need the whole run

@@ -68,6 +68,10 @@ struct ClipVertex
 	btVector3 world, normal;
 };
 
+// The pixel index floor(v) clamped to [0, size - 1], computed in double: a vertex just past the near
+// plane can project millions of pixels away, beyond what an int holds.
+int clampToPixels(double v, int size) { return int(std::min(double(size - 1), std::max(0.0, std::floor(v)))); }
+
 ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, double t)
 {
 	ClipVertex v;
@@ -211,10 +215,10 @@ private:
 	void splat(double cx, double cy, double inverseDepth, int size, const btVector3& color)
 	{
 		const double half = 0.5 * size;
-		const int x0 = std::max(0, int(std::floor(cx - half + 0.5))),
-		          x1 = std::min(m_width - 1, int(std::floor(cx + half - 0.5)));
-		const int y0 = std::max(0, int(std::floor(cy - half + 0.5))),
-		          y1 = std::min(m_height - 1, int(std::floor(cy + half - 0.5)));
+		// Wholly off the image (or not a number): nothing to draw.
+		if (!(cx + half > 0 && cy + half > 0 && cx - half < m_width && cy - half < m_height)) return;
+		const int x0 = clampToPixels(cx - half + 0.5, m_width), x1 = clampToPixels(cx + half - 0.5, m_width);
+		const int y0 = clampToPixels(cy - half + 0.5, m_height), y1 = clampToPixels(cy + half - 0.5, m_height);
 		for (int y = y0; y <= y1; ++y)
 			for (int x = x0; x <= x1; ++x)
 			{
@@ -237,8 +241,9 @@ private:
 		if (!(std::fabs(area) > 1e-12)) return;  // edge-on or degenerate: covers no pixel centre
 		const double minX = std::min({sx[0], sx[1], sx[2]}), maxX = std::max({sx[0], sx[1], sx[2]});
 		const double minY = std::min({sy[0], sy[1], sy[2]}), maxY = std::max({sy[0], sy[1], sy[2]});
-		const int x0 = std::max(0, int(std::floor(minX))), x1 = std::min(m_width - 1, int(std::ceil(maxX)));
-		const int y0 = std::max(0, int(std::floor(minY))), y1 = std::min(m_height - 1, int(std::ceil(maxY)));
+		if (!(maxX >= 0 && maxY >= 0 && minX < m_width && minY < m_height)) return;  // wholly off the image
+		const int x0 = clampToPixels(minX, m_width), x1 = clampToPixels(std::ceil(maxX), m_width);
+		const int y0 = clampToPixels(minY, m_height), y1 = clampToPixels(std::ceil(maxY), m_height);
 		for (int y = y0; y <= y1; ++y)
 		{
 			const double py = y + 0.5;

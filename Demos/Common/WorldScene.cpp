@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "ShapeMesher.h"
-#include "btBulletCollisionCommon.h"
+#include "btBulletDynamicsCommon.h"
 
 namespace caliber
 {
@@ -119,6 +119,20 @@ int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style)
 		world.setDebugDrawer(previous);
 	}
 	return undrawable;
+}
+
+void addVehicleWheels(Scene& scene, btRaycastVehicle& vehicle, btScalar width)
+{
+	MeshStyle style;
+	style.color = btVector3(btScalar(0.15), btScalar(0.15), btScalar(0.17));
+	for (int i = 0; i < vehicle.getNumWheels(); ++i)
+	{
+		vehicle.updateWheelTransform(i, true);
+		const btWheelInfo& wheel = vehicle.getWheelInfo(i);
+		// The wheel's axle is its transform's x axis (the vehicle's right axis in Bullet's convention).
+		const btCylinderShapeX shape(btVector3(width / 2, wheel.m_wheelsRadius, wheel.m_wheelsRadius));
+		addShape(scene, &shape, wheel.m_worldTransform, style);
+	}
 }
 }  // namespace demo
 }  // namespace caliber

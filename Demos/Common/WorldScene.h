@@ -10,6 +10,7 @@
 #include "Scene.h"
 
 class btCollisionWorld;
+class btRaycastVehicle;
 
 namespace caliber
 {
@@ -52,6 +53,10 @@ struct WorldStyle
 /// move (every finite object when none moves). The world's own debug drawer is put back afterwards.
 /// Returns how many objects had a shape the mesher cannot draw (they are left out).
 int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style = WorldStyle());
+
+/// Adds a raycast vehicle's wheels (not collision objects, so addWorld() cannot see them) as dark
+/// cylinders of the given width at the vehicle's wheel transforms.
+void addVehicleWheels(Scene& scene, btRaycastVehicle& vehicle, btScalar width);
 
 /// The colour addWorld() gives the index-th object that is not a ground.
 btVector3 paletteColor(int index);

@@ -16,7 +16,7 @@
 #include <stdio.h>
 
 #include "DemoPictures.h"
-#include "ShapeMesher.h"
+#include "WorldScene.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -126,39 +126,21 @@ int main(int argc, char** argv)
 		                 btVector3(0, -1, 0), btVector3(-1, 0, 0), btScalar(0.6), btScalar(0.4), tuning, i < 2);
 	world.addAction(&vehicle);
 
-	// The wheels are not collision objects: the pictures draw them from the vehicle's wheel transforms.
-	btCylinderShapeX wheelShape(btVector3(btScalar(0.12), btScalar(0.4), btScalar(0.4)));
-	pictures.setDecorator(
-	    [&](caliber::demo::Scene& scene)
-	    {
-		    caliber::demo::MeshStyle style;
-		    style.color = btVector3(btScalar(0.15), btScalar(0.15), btScalar(0.17));
-		    for (int i = 0; i < vehicle.getNumWheels(); ++i)
-		    {
-			    vehicle.updateWheelTransform(i, true);
-			    caliber::demo::addShape(scene, &wheelShape, vehicle.getWheelInfo(i).m_worldTransform, style);
-		    }
-	    });
+	pictures.setDecorator([&](caliber::demo::Scene& scene) { caliber::demo::addVehicleWheels(scene, vehicle, btScalar(0.24)); });
 
 	btScalar t = 0;
-	int steps = 0;
 	// --frames: once the budget is spent no phase steps any more, and the unfinished phases' checks are skipped.
-	auto finished = [&]() { return steps >= pictures.frames(); };
-	auto run = [&](int count)
-	{
-		for (int i = 0; i < count && !finished(); ++i)
+	caliber::demo::StepBudget budget = pictures.stepBudget();
+	auto run = [&](int count) {
+		for (int i = 0; i < count && !budget.spent(); ++i)
 		{
 			world.stepSimulation(kStep, 1, kStep);
-			++steps;
+			budget.count();
 			t += kStep;
 		}
 	};
-	auto judge = [&](bool ok, const char* what)
-	{
-		if (finished() && pictures.shortened())
-			printf("  check: %s: not reached (--frames %d)\n", what, pictures.frames());
-		else
-			check(ok, what);
+	auto judge = [&](bool ok, const char* what) {
+		if (budget.reached(what)) check(ok, what);
 	};
 	auto report = [&](const char* phase)
 	{
@@ -186,7 +168,7 @@ int main(int argc, char** argv)
 
 	// To the load, fork low, slowing near it, until the fork is centred under it.
 	const btScalar forkAhead = fork->getCenterOfMassPosition().z() - chassis->getCenterOfMassPosition().z();
-	for (int i = 0; i < 1200 && !finished(); ++i)
+	for (int i = 0; i < 1200 && !budget.spent(); ++i)
 	{
 		const btScalar left = load->getCenterOfMassPosition().z() - fork->getCenterOfMassPosition().z();
 		if (left < btScalar(0.02)) break;
@@ -204,7 +186,7 @@ int main(int argc, char** argv)
 
 	// Lift.
 	slider.setTargetLinMotorVelocity(btScalar(0.4));
-	for (int i = 0; i < 300 && slider.getLinearPos() < btScalar(1.0) && !finished(); ++i)
+	for (int i = 0; i < 300 && slider.getLinearPos() < btScalar(1.0) && !budget.spent(); ++i)
 	{
 		run(1);
 		if (i % 60 == 0) report("lift");
@@ -228,7 +210,7 @@ int main(int argc, char** argv)
 	};
 	bool stayedOnFork = onFork();
 	btScalar slide = 0;
-	for (int i = 0; i < 900 && chassis->getCenterOfMassPosition().z() > startZ - 5 && !finished(); ++i)
+	for (int i = 0; i < 900 && chassis->getCenterOfMassPosition().z() > startZ - 5 && !budget.spent(); ++i)
 	{
 		drive(btScalar(-1.0));
 		run(1);

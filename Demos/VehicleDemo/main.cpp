@@ -18,7 +18,7 @@
 
 #include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
 #include "DemoPictures.h"
-#include "ShapeMesher.h"
+#include "WorldScene.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -139,42 +139,26 @@ int main(int argc, char** argv)
 		             btVector3(0, -1, 0), btVector3(-1, 0, 0), kRestLength, btScalar(0.4), tuning, i < 2);
 	world.addAction(&car);
 
-	// The wheels are not collision objects: the pictures draw them from the vehicle's wheel transforms.
-	btCylinderShapeX wheelShape(btVector3(btScalar(0.15), btScalar(0.4), btScalar(0.4)));
-	pictures.setDecorator(
-	    [&](caliber::demo::Scene& scene)
-	    {
-		    caliber::demo::MeshStyle style;
-		    style.color = btVector3(btScalar(0.15), btScalar(0.15), btScalar(0.17));
-		    for (int i = 0; i < car.getNumWheels(); ++i)
-		    {
-			    car.updateWheelTransform(i, true);
-			    caliber::demo::addShape(scene, &wheelShape, car.getWheelInfo(i).m_worldTransform, style);
-		    }
-		    // Frame the car and a few metres around it.
-		    const btVector3 p = chassis.getCenterOfMassPosition();
-		    scene.focusOn(p - btVector3(3, 1, 4), p + btVector3(3, 2, 4));
-	    });
+	pictures.setDecorator([&](caliber::demo::Scene& scene) {
+		caliber::demo::addVehicleWheels(scene, car, btScalar(0.3));
+		// Frame the car and a few metres around it.
+		const btVector3 p = chassis.getCenterOfMassPosition();
+		scene.focusOn(p - btVector3(3, 1, 4), p + btVector3(3, 2, 4));
+	});
 
 	btScalar t = 0;
-	int steps = 0;
 	// --frames: once the budget is spent no phase steps any more, and the unfinished phases' checks are skipped.
-	auto finished = [&]() { return steps >= pictures.frames(); };
-	auto run = [&](int count)
-	{
-		for (int i = 0; i < count && !finished(); ++i)
+	caliber::demo::StepBudget budget = pictures.stepBudget();
+	auto run = [&](int count) {
+		for (int i = 0; i < count && !budget.spent(); ++i)
 		{
 			world.stepSimulation(kStep, 1, kStep);
-			++steps;
+			budget.count();
 			t += kStep;
 		}
 	};
-	auto checkIfFinished = [&](bool ok, const char* what)
-	{
-		if (finished() && pictures.shortened())
-			printf("  check: %s: not reached (--frames %d)\n", what, pictures.frames());
-		else
-			check(ok, what);
+	auto judge = [&](bool ok, const char* what) {
+		if (budget.reached(what)) check(ok, what);
 	};
 	bool upright = true;
 	auto watch = [&]() { upright = upright && chassis.getWorldTransform().getBasis().getColumn(1).y() > btScalar(0.9); };
@@ -188,14 +172,14 @@ int main(int argc, char** argv)
 	for (int i = 0; i < 4; ++i)
 		sagOk = sagOk && fabs(kRestLength - car.getWheelInfo(i).m_raycastInfo.m_suspensionLength - sag) < 1e-3;
 	printf("  expected static sag g / (k n) = %.4f m\n", double(sag));
-	checkIfFinished(sagOk, "static sag on all four wheels");
+	judge(sagOk, "static sag on all four wheels");
 
 	// Drive: rear-wheel drive over the bumps and the ramp, until past the plateau.
 	car.applyEngineForce(1200, 2);
 	car.applyEngineForce(1200, 3);
 	btScalar highest = 0;
 	bool allWheelsOnPlateau = false;
-	for (int i = 0; i < 1200 && chassis.getCenterOfMassPosition().z() < 25 && !finished(); ++i)
+	for (int i = 0; i < 1200 && chassis.getCenterOfMassPosition().z() < 25 && !budget.spent(); ++i)
 	{
 		run(1);
 		watch();
@@ -205,8 +189,8 @@ int main(int argc, char** argv)
 		if (i % 60 == 0) printState("drive", t, car);
 	}
 	printState("drive", t, car);
-	checkIfFinished(highest > btScalar(1.8), "the car climbed the ramp onto the 1 m plateau");
-	checkIfFinished(allWheelsOnPlateau, "all four wheels on the ground on the plateau");
+	judge(highest > btScalar(1.8), "the car climbed the ramp onto the 1 m plateau");
+	judge(allWheelsOnPlateau, "all four wheels on the ground on the plateau");
 
 	// Brake hard: every tyre slides at its grip.
 	car.applyEngineForce(0, 2);
@@ -214,7 +198,7 @@ int main(int argc, char** argv)
 	const btScalar v0 = chassis.getLinearVelocity().length();
 	const btScalar z0 = chassis.getCenterOfMassPosition().z();
 	for (int i = 0; i < 4; ++i) car.setBrake(200, i);
-	for (int i = 0; i < 600 && btFabs(chassis.getLinearVelocity().z()) > btScalar(0.01) && !finished(); ++i)
+	for (int i = 0; i < 600 && btFabs(chassis.getLinearVelocity().z()) > btScalar(0.01) && !budget.spent(); ++i)
 	{
 		run(1);
 		watch();
@@ -225,7 +209,7 @@ int main(int argc, char** argv)
 	printState("stopped", t, car);
 	printf("  braking from %.2f m/s: %.2f m (v^2 / (2 mu g) = %.2f m)\n", double(v0), double(distance),
 	       double(expected));
-	checkIfFinished(fabs(distance - expected) < 0.1 * expected, "braking distance");
+	judge(fabs(distance - expected) < 0.1 * expected, "braking distance");
 
 	// A circle at walking pace, front wheels at Ackermann's angles for the bicycle angle 0.3 rad.
 	for (int i = 0; i < 4; ++i) car.setBrake(0, i);
@@ -234,7 +218,7 @@ int main(int argc, char** argv)
 	car.setSteeringValue(btAtan(wheelbase / (radius - kHalfTrack)), 0);
 	car.setSteeringValue(btAtan(wheelbase / (radius + kHalfTrack)), 1);
 	std::vector<btVector3> path;
-	for (int i = 0; i < 1500 && !finished(); ++i)
+	for (int i = 0; i < 1500 && !budget.spent(); ++i)
 	{
 		const btScalar speed = car.getCurrentSpeedKmHour() / btScalar(3.6);
 		const btScalar throttle = btMax(btScalar(-1500), btMin(btScalar(1500), 800 * (4 - speed)));
@@ -247,7 +231,7 @@ int main(int argc, char** argv)
 	}
 	const double measured = path.size() >= 3 ? fittedRadius(path) : 0;  // a shortened run may not reach the circle
 	printf("  circle of the rear axle: radius %.2f m (wheelbase / tan(steer) = %.2f m)\n", measured, double(radius));
-	checkIfFinished(fabs(measured - radius) < 0.05 * radius, "cornering radius");
+	judge(fabs(measured - radius) < 0.05 * radius, "cornering radius");
 	check(upright, "the chassis stayed upright");
 
 	pictures.capture(world);

@@ -316,3 +316,33 @@ TEST(DemoRenderer, DropsAndCountsNonFiniteGeometry)
 	ASSERT_TRUE(render(scene, frameScene(scene, options), options, image, error)) << error;
 	EXPECT_EQ(countScenePixels(image, options), 0);
 }
+
+// Geometry far larger than the view, crossing the camera's near plane, is clipped: a 2000 km ground
+// under the camera fills the lower half of the picture (the horizon is at the centre row, the camera
+// looking level) and nothing is drawn above the horizon; a point far off screen draws nothing.
+TEST(DemoRenderer, HugeGeometryIsClippedToTheViewAndNearPlane)
+{
+	Scene scene;
+	const btScalar size = btScalar(1e6);
+	const btVector3 color(0.2f, 0.6f, 0.2f);
+	scene.addFlatTriangle(btVector3(-size, -1, -size), btVector3(size, -1, -size), btVector3(size, -1, size), color);
+	scene.addFlatTriangle(btVector3(-size, -1, -size), btVector3(size, -1, size), btVector3(-size, -1, size), color);
+	scene.addPoint(btVector3(btScalar(1e5), 0, -1), btVector3(1, 0, 0));
+	RenderOptions options;
+	options.width = 64;
+	options.height = 48;
+	options.supersampling = 1;
+	Camera camera;
+	camera.eye = btVector3(0, 0, 0);
+	camera.target = btVector3(0, 0, -1);
+	Image image;
+	std::string error;
+	ASSERT_TRUE(render(scene, camera, options, image, error)) << error;
+	const std::uint32_t background = image.pixel(0, 0);
+	for (int x = 0; x < image.width; ++x)
+	{
+		EXPECT_EQ(image.pixel(x, 10), background) << "sky at column " << x;
+		EXPECT_NE(image.pixel(x, image.height - 1), background) << "ground at column " << x;
+	}
+	EXPECT_NE(image.pixel(image.width - 1, image.height / 2), 0xff0000u) << "the off-screen point is not drawn";
+}
