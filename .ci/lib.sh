@@ -190,7 +190,9 @@ caliber_check_browser() {
 	while IFS= read -r demo; do
 		file="$shots/$(echo "$demo" | tr '/' '_').png"
 		"${xvfb[@]}" "$browser" --demo "$demo" --frames 10 --size 640x480 --screenshot "$file"
-		"$checker" --size 640x480 "$file"
+		# 0.5%: ConstraintDemo's small joints hang in a 27 m row over no ground (0.7% of the frame);
+		# a blank or one-colour frame still fails.
+		"$checker" --size 640x480 --min-scene 0.5 "$file"
 	done < <("$browser" --list)
 	local out
 	out="$("${xvfb[@]}" "$browser" --demo BasicDemo --frames 90 --size 1024x768 --drag 512,400,512,100 \

@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BrowserScenes.h"
 
+#include "ConstraintScene.h"
 #include "Ragdoll.h"
 
 namespace all_bullet_demos
@@ -65,21 +66,59 @@ public:
 private:
 	std::vector<ragdoll::Ragdoll> m_ragdolls;
 };
+
+// A benchmark_demo::Scene as a browser demo.
+class SceneDemo : public BrowserDemo
+{
+public:
+	explicit SceneDemo(std::unique_ptr<benchmark_demo::Scene> scene) : m_scene(std::move(scene)) {}
+	btDiscreteDynamicsWorld& world() override { return m_scene->world(); }
+	void step() override
+	{
+		m_scene->world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		m_scene->afterStep();
+	}
+
+private:
+	std::unique_ptr<benchmark_demo::Scene> m_scene;
+};
+
+// ConstraintDemo's joints, stepped as the demo steps them (the door's torque flips every second).
+class ConstraintDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.step(++m_frame); }
+	// The row of joints from the front, as ConstraintDemo's picture shows it (the welded L falls away).
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(btScalar(-0.5), btScalar(3.8), btScalar(-0.5));
+		focusMax = btVector3(btScalar(26.5), btScalar(6.2), btScalar(0.5));
+		viewDirection = btVector3(0, btScalar(-0.15), -1);
+		return true;
+	}
+
+private:
+	constraint_demo::Scene m_scene;
+	int m_frame = 0;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
 
-std::unique_ptr<benchmark_demo::Scene> makeDemo(const std::string& name)
+std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 {
-	if (name == "BasicDemo") return std::unique_ptr<benchmark_demo::Scene>(new BasicScene());
-	if (name == "RagdollDemo") return std::unique_ptr<benchmark_demo::Scene>(new RagdollScene());
+	std::unique_ptr<benchmark_demo::Scene> scene;
+	if (name == "BasicDemo") scene.reset(new BasicScene());
+	if (name == "RagdollDemo") scene.reset(new RagdollScene());
+	if (name == "ConstraintDemo") return std::unique_ptr<BrowserDemo>(new ConstraintDemo());
 	const std::string prefix = "Benchmark/";
-	if (name.compare(0, prefix.size(), prefix) == 0) return benchmark_demo::makeScene(name.substr(prefix.size()));
-	return nullptr;
+	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
+	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
 }
 }  // namespace all_bullet_demos

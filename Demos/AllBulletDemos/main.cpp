@@ -152,20 +152,27 @@ public:
 		frameCamera();
 	}
 
-	// Aims the orbit camera as the headless pictures do: at what moves, from the front, above, right.
+	// Aims the orbit camera as the headless pictures do: at what moves, from the front, above, right
+	// (or where the demo says).
 	void frameCamera()
 	{
 		caliber::demo::Scene scene;
-		caliber::demo::WorldStyle style;
-		style.solids = false;
-		style.debugMode = 0;
-		caliber::demo::addWorld(scene, m_scene->world(), style);
+		btVector3 focusMin, focusMax, direction(btScalar(-0.55), btScalar(-0.45), -1);
+		if (m_scene->startView(focusMin, focusMax, direction))
+			scene.focusOn(focusMin, focusMax);
+		else
+		{
+			caliber::demo::WorldStyle style;
+			style.solids = false;
+			style.debugMode = 0;
+			caliber::demo::addWorld(scene, m_scene->world(), style);
+		}
 		int width = 1, height = 1;
 		glfwGetFramebufferSize(m_window, &width, &height);
 		caliber::demo::RenderOptions options;
 		options.width = width;
 		options.height = btMax(1, height);
-		const caliber::demo::Camera camera = caliber::demo::frameScene(scene, options);
+		const caliber::demo::Camera camera = caliber::demo::frameScene(scene, options, direction);
 		m_target = camera.target;
 		m_distance = (camera.eye - camera.target).length();
 		const btVector3 d = (camera.target - camera.eye).normalized();
@@ -185,8 +192,7 @@ public:
 	void step()
 	{
 		const auto start = std::chrono::steady_clock::now();
-		m_scene->world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
-		m_scene->afterStep();
+		m_scene->step();
 		m_stepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 	}
 
@@ -379,11 +385,11 @@ private:
 	GLFWwindow* m_window;
 	std::vector<std::string> m_names;
 	int m_index = 0;
-	std::unique_ptr<benchmark_demo::Scene> m_scene;
+	std::unique_ptr<all_bullet_demos::BrowserDemo> m_scene;
 	btVector3 m_target{0, 0, 0};
 	btScalar m_yaw = 0, m_pitch = btScalar(0.4), m_distance = 20;
 	bool m_paused = false, m_stepOnce = false, m_wireframe = false, m_orbiting = false;
-	int m_debugMode = btIDebugDraw::DBG_DrawConstraints | btIDebugDraw::DBG_DrawConstraintLimits;
+	int m_debugMode = 0;  // solids only; W, A, C and J add the overlays
 	double m_stepMs = 0;
 	btRigidBody* m_picked = nullptr;
 	std::unique_ptr<btPoint2PointConstraint> m_pickJoint;
