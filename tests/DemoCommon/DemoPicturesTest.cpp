@@ -210,3 +210,64 @@ TEST(DemoWorldScene, FramesMovingBodiesAndDrawsJoints)
 	world.removeRigidBody(&ball);
 	world.removeRigidBody(&ground);
 }
+
+// A scripted demo's budget: spent after exactly N counted steps; a check is judged unless --frames cut
+// the run short and the budget is spent.
+TEST(DemoStepBudget, SpentAfterNStepsAndSkipsOnlyShortenedChecks)
+{
+	StepBudget shortened(3, true);
+	for (int i = 0; i < 3; ++i)
+	{
+		EXPECT_FALSE(shortened.spent()) << i;
+		EXPECT_TRUE(shortened.reached("a phase that finished"));
+		shortened.count();
+	}
+	EXPECT_TRUE(shortened.spent());
+	EXPECT_FALSE(shortened.reached("a phase cut short"));
+	// Without --frames the budget is the demo's own length: spent or not, every check is judged.
+	StepBudget full(1, false);
+	full.count();
+	EXPECT_TRUE(full.spent());
+	EXPECT_TRUE(full.reached("the last phase"));
+}
+
+// A raycast vehicle's wheels, which the world does not hold, are drawn at the wheel transforms: every
+// corner lies within the wheel's radius (across) and half its width (along the axle) of its centre.
+TEST(DemoWorldScene, VehicleWheelsAreDrawnAtTheWheels)
+{
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	btBoxShape chassisShape(btVector3(1, btScalar(0.3), 2));
+	btRigidBody chassis(btRigidBody::btRigidBodyConstructionInfo(800, nullptr, &chassisShape, btVector3(1, 1, 1)));
+	chassis.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, 2, 0)));
+	world.addRigidBody(&chassis);
+	btRaycastVehicle::btVehicleTuning tuning;
+	btDefaultVehicleRaycaster raycaster(&world);
+	btRaycastVehicle car(tuning, &chassis, &raycaster);
+	car.setCoordinateSystem(0, 1, 2);
+	const btScalar radius = btScalar(0.4), width = btScalar(0.3);
+	for (int i = 0; i < 4; ++i)
+		car.addWheel(btVector3((i & 1) ? -1 : 1, 0, i < 2 ? 1 : -1), btVector3(0, -1, 0), btVector3(-1, 0, 0),
+		             btScalar(0.6), radius, tuning, i < 2);
+	Scene scene;
+	addVehicleWheels(scene, car, width);
+	ASSERT_GE(scene.triangles().size(), 4u * 48u);
+	for (const SceneTriangle& t : scene.triangles())
+		for (const btVector3& c : t.corner)
+		{
+			bool nearAWheel = false;
+			for (int i = 0; i < 4; ++i)
+			{
+				const btTransform& wheel = car.getWheelInfo(i).m_worldTransform;
+				const btVector3 local = wheel.invXform(c);
+				const btScalar across = btSqrt(local.y() * local.y() + local.z() * local.z());
+				if (btFabs(local.x()) <= width / 2 + btScalar(1e-4) && across <= radius + btScalar(1e-4))
+					nearAWheel = true;
+			}
+			EXPECT_TRUE(nearAWheel) << "(" << c.x() << ", " << c.y() << ", " << c.z() << ")";
+		}
+	world.removeRigidBody(&chassis);
+}
