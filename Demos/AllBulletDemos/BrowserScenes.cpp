@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BrowserScenes.h"
 
+#include "CcdScene.h"
 #include "ConstraintScene.h"
 #include "Ragdoll.h"
 
@@ -102,11 +103,30 @@ private:
 	constraint_demo::Scene m_scene;
 	int m_frame = 0;
 };
+
+// CcdPhysicsDemo's third run: fast spheres stopped by a 1 cm wall with swept CCD.
+class CcdDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+	// The spheres' start and the wall, from the side (the spheres are fired along +x).
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-6, -5, -1);
+		focusMax = btVector3(1, 6, 2);
+		viewDirection = btVector3(btScalar(0.3), btScalar(-0.3), -1);
+		return true;
+	}
+
+private:
+	ccd_demo::Scene m_scene{ccd_demo::kSweptCcd};
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -117,6 +137,7 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "BasicDemo") scene.reset(new BasicScene());
 	if (name == "RagdollDemo") scene.reset(new RagdollScene());
 	if (name == "ConstraintDemo") return std::unique_ptr<BrowserDemo>(new ConstraintDemo());
+	if (name == "CcdPhysicsDemo") return std::unique_ptr<BrowserDemo>(new CcdDemo());
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;

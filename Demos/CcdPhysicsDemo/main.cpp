@@ -16,72 +16,22 @@
 
 #include <stdio.h>
 
+#include "CcdScene.h"
 #include "DemoPictures.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
 {
-enum Mode
-{
-	kDiscreteOnly,
-	kSpeculative,
-	kSweptCcd
-};
-
 // Returns how many of the spheres ended beyond the wall.
-int fireAtWall(Mode mode, caliber::demo::DemoPictures& pictures)
+int fireAtWall(ccd_demo::Mode mode, caliber::demo::DemoPictures& pictures)
 {
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher(&configuration);
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-	world.setGravity(btVector3(0, -10, 0));
-	world.getDispatchInfo().m_useContinuous = mode != kDiscreteOnly;
-
-	// The wall: the slab 0 <= x <= 0.01, 20 m wide and tall.
-	btBoxShape wallShape(btVector3(btScalar(0.005), 10, 10));
-	btRigidBody::btRigidBodyConstructionInfo wallInfo(0, 0, &wallShape);
-	wallInfo.m_startWorldTransform.setOrigin(btVector3(btScalar(0.005), 0, 0));
-	btRigidBody wall(wallInfo);
-	world.addRigidBody(&wall);
-
-	const btScalar radius = btScalar(0.05);
-	btSphereShape ballShape(radius);
-	btVector3 inertia;
-	ballShape.calculateLocalInertia(btScalar(0.1), inertia);
-	btAlignedObjectArray<btRigidBody*> balls;
-	for (int i = 0; i < 20; ++i)
-	{
-		btRigidBody::btRigidBodyConstructionInfo info(btScalar(0.1), 0, &ballShape, inertia);
-		info.m_startWorldTransform.setOrigin(
-		    btVector3(-5, btScalar(-4.5) + btScalar(0.5) * i, btScalar(0.3) * (i % 5)));
-		btRigidBody* ball = new btRigidBody(info);
-		ball->setLinearVelocity(btVector3(btScalar(100) + btScalar(10) * i, 0, 0));
-		if (mode == kSweptCcd)
-		{
-			// Sweep whenever a step moves the ball more than its radius.
-			ball->setCcdMotionThreshold(radius);
-			ball->setCcdSweptSphereRadius(radius);
-		}
-		world.addRigidBody(ball);
-		balls.push_back(ball);
-	}
+	ccd_demo::Scene scene(mode);
 	for (int step = 1; step <= pictures.frames(); ++step)
 	{
-		world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
-		pictures.frame(world, step);
+		scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		pictures.frame(scene.world(), step);
 	}
-
-	int through = 0;
-	for (int i = 0; i < balls.size(); ++i)
-	{
-		if (balls[i]->getCenterOfMassPosition().getX() > 0) ++through;
-		world.removeRigidBody(balls[i]);
-		delete balls[i];
-	}
-	world.removeRigidBody(&wall);
-	return through;
+	return scene.spheresThrough();
 }
 }  // namespace
 
@@ -94,9 +44,9 @@ int main(int argc, char** argv)
 	if (!pictures.ok()) return pictures.exitCode();
 	// From the side, so that the wall is edge-on and the spheres stopped at it show.
 	pictures.setViewDirection(btVector3(0.3f, -0.3f, -1));
-	const int discrete = fireAtWall(kDiscreteOnly, pictures);
-	const int speculative = fireAtWall(kSpeculative, pictures);
-	const int swept = fireAtWall(kSweptCcd, pictures);
+	const int discrete = fireAtWall(ccd_demo::kDiscreteOnly, pictures);
+	const int speculative = fireAtWall(ccd_demo::kSpeculative, pictures);
+	const int swept = fireAtWall(ccd_demo::kSweptCcd, pictures);
 	printf("20 spheres (r = 5 cm) at 100-290 m/s against a 1 cm wall:\n");
 	printf("  discrete detection only:          %d passed through\n", discrete);
 	printf("  speculative contacts (default):   %d passed through\n", speculative);
