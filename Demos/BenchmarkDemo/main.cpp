@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "BenchmarkScenes.h"
+#include "DemoPictures.h"
 
 namespace
 {
@@ -71,8 +72,19 @@ uint64_t stateHash(const std::vector<btRigidBody*>& bodies)
 
 int main(int argc, char** argv)
 {
-	const std::string filter = argc > 1 ? argv[1] : "all";
-	const int frames = argc > 2 ? atoi(argv[2]) : 30;
+	// Positional arguments as before: the scenes, then the frames (which --frames replaces). --png
+	// pictures the last frame of the last scene run (docs/demos.md); it is drawn after the timing.
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "BenchmarkDemo";
+	commandLine.defaultFrames = 30;
+	commandLine.maxPositional = 2;
+	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0]";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	const std::vector<std::string>& positional = pictures.positional();
+	const std::string filter = positional.size() > 0 ? positional[0] : "all";
+	const int frames =
+	    pictures.framesGiven() ? pictures.frames() : (positional.size() > 1 ? atoi(positional[1].c_str()) : 30);
 	if (frames <= 0)
 	{
 		fprintf(stderr, "usage: %s [scene[,scene...]|all] [frames > 0]\n", argv[0]);
@@ -86,6 +98,10 @@ int main(int argc, char** argv)
 	    sizeof(btScalar) == 8 ? "double" : "float", frames);
 	bool allSane = true;
 	int ran = 0;
+	// The picture is of the last scene run; only that one is drawn (drawing 3000 boxes is not free).
+	std::string lastSelected;
+	for (const std::string& name : benchmark_demo::sceneNames())
+		if (selected(filter, name)) lastSelected = name;
 	for (const std::string& name : benchmark_demo::sceneNames())
 	{
 		if (!selected(filter, name)) continue;
@@ -106,6 +122,7 @@ int main(int argc, char** argv)
 		for (double ms : stepMs) total += ms;
 		std::vector<double> sorted = stepMs;
 		std::sort(sorted.begin(), sorted.end());
+		if (name == lastSelected) pictures.capture(scene->world());
 		std::string sanity;
 		const bool sane = scene->report(sanity, frames);
 		allSane = allSane && sane;
@@ -123,5 +140,5 @@ int main(int argc, char** argv)
 		fprintf(stderr, "no scene matches '%s'\n", filter.c_str());
 		return 2;
 	}
-	return allSane ? 0 : 1;
+	return pictures.finish(allSane ? 0 : 1);
 }

@@ -8,13 +8,17 @@
 // Checks: 5 m walked on the flat; the stairs' top reached (1.2 m); the 30 degree slope climbed, the
 // 50 degree one not (height gained below the step height); the jump's apex v^2 / (2 g) within 1 cm
 // and no ground reported in the air; the wall not passed; the character keeps its place on the
-// platform within 1 cm. Exit 1 when a check fails.
+// platform within 1 cm. Exit 1 when a check fails. --frames N stops the course after N steps (the whole
+// course is 1340); the checks of the parts it did not finish are skipped. --png shows the end of the
+// course: the wall's lane and the platform (docs/demos.md).
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 
 #include "BulletCollision/CollisionDispatch/btGhostObject.h"
 #include "BulletDynamics/Character/btKinematicCharacterController.h"
+#include "DemoPictures.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -73,8 +77,14 @@ struct Scene
 	}
 	void run(int steps)
 	{
-		for (int i = 0; i < steps; ++i) world.stepSimulation(kStep, 1, kStep);
+		for (int i = 0; i < steps && !budget.spent(); ++i)
+		{
+			world.stepSimulation(kStep, 1, kStep);
+			budget.count();
+		}
 	}
+	/// --frames' budget of steps: once it is used up nothing steps any more.
+	caliber::demo::StepBudget budget{INT_MAX, false};
 };
 
 btTransform at(btScalar x, btScalar y, btScalar z) { return btTransform(btQuaternion::getIdentity(), btVector3(x, y, z)); }
@@ -87,9 +97,18 @@ btTransform tilted(btScalar degrees, btScalar x, btScalar footZ, btScalar halfLe
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "CharacterDemo";
+	commandLine.defaultFrames = 1000000;  // more than the course takes: by default it runs to its end
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	// The course is 60 m wide; the picture shows its last two lanes, the wall and the moving platform.
+	pictures.setFocus(btVector3(45, 0, -2), btVector3(63, 3, 6));
+
 	Scene scene;
+	scene.budget = pictures.stepBudget();
 	scene.box(btVector3(100, 1, 100), at(0, -1, 0));  // the ground, top at y = 0
 	// Stairs in lane x = 10: four steps of 0.3 m, 1 m deep, from z = 2.
 	for (int i = 0; i < 4; ++i)
@@ -114,6 +133,10 @@ int main()
 	btKinematicCharacterController character(&ghost, &capsule, btScalar(0.35), btVector3(0, 1, 0));
 	scene.world.addAction(&character);
 
+	// A part that --frames cut short is not judged.
+	auto judge = [&](bool ok, const char* what) {
+		if (scene.budget.reached(what)) check(ok, what);
+	};
 	auto feet = [&]() { return ghost.getWorldTransform().getOrigin() - btVector3(0, kHalfHeight, 0); };
 	auto report = [&](const char* part) {
 		const btVector3 f = feet();
@@ -132,25 +155,25 @@ int main()
 	character.setWalkDirection(walk);
 	scene.run(100);
 	report("flat");
-	check(fabs(feet().z() - 5) < 0.01 && fabs(feet().y()) < 0.01, "walked 5 m on flat ground");
+	judge(fabs(feet().z() - 5) < 0.01 && fabs(feet().y()) < 0.01, "walked 5 m on flat ground");
 
 	startLane(10);
 	character.setWalkDirection(walk);
 	scene.run(200);
 	report("stairs");
-	check(fabs(feet().y() - 1.2) < 0.01, "climbed four 0.3 m steps to 1.2 m");
+	judge(fabs(feet().y() - 1.2) < 0.01, "climbed four 0.3 m steps to 1.2 m");
 
 	startLane(20);
 	character.setWalkDirection(walk);
 	scene.run(200);
 	report("slope 30");
-	check(feet().y() > 3, "walked up the 30 degree slope");
+	judge(feet().y() > 3, "walked up the 30 degree slope");
 
 	startLane(30);
 	character.setWalkDirection(walk);
 	scene.run(200);
 	report("slope 50");
-	check(feet().y() < 0.35, "did not walk up the 50 degree slope");
+	judge(feet().y() < 0.35, "did not walk up the 50 degree slope");
 
 	startLane(40);
 	const btScalar y0 = feet().y();
@@ -166,14 +189,14 @@ int main()
 	report("jump");
 	const btScalar expected = character.getJumpSpeed() * character.getJumpSpeed() / (2 * -character.getGravity().y());
 	printf("  apex %.3f m (v^2 / (2 g) = %.3f m)\n", double(apex - y0), double(expected));
-	check(fabs(apex - y0 - expected) < 0.01, "jump apex");
-	check(!groundInAir && character.onGround(), "no ground reported in the air, ground after landing");
+	judge(fabs(apex - y0 - expected) < 0.01, "jump apex");
+	judge(!groundInAir && character.onGround(), "no ground reported in the air, ground after landing");
 
 	startLane(50);
 	character.setVelocityForTimeInterval(btVector3(0, 0, 20), 1);
 	scene.run(60);
 	report("wall");
-	check(feet().z() < 5 - 0.05 - kRadius + 0.01, "the 10 cm wall was not passed at 20 m/s");
+	judge(feet().z() < 5 - 0.05 - kRadius + 0.01, "the 10 cm wall was not passed at 20 m/s");
 
 	startLane(60, btScalar(1.1));
 	const btVector3 offset = feet() - platform->getWorldTransform().getOrigin();
@@ -189,10 +212,11 @@ int main()
 	printf("  platform moved to (%.2f, %.2f, %.2f); the character moved with it within %.4f m\n",
 	       platform->getWorldTransform().getOrigin().x(), platform->getWorldTransform().getOrigin().y(),
 	       platform->getWorldTransform().getOrigin().z(), double(drift.length()));
-	check(drift.length() < 0.01, "rode the moving platform");
+	judge(drift.length() < 0.01, "rode the moving platform");
 
+	pictures.capture(scene.world);
 	scene.world.removeAction(&character);
 	scene.world.removeCollisionObject(&ghost);
 	printf("CharacterDemo: %s\n", failures ? "FAILED" : "all checks passed");
-	return failures ? 1 : 0;
+	return pictures.finish(failures ? 1 : 0);
 }

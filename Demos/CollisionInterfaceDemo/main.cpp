@@ -6,8 +6,10 @@
 // narrowphase, and the demo prints every contact point of the dispatcher's manifolds. The static objects use the usual
 // filter (group StaticFilter, mask everything but StaticFilter) so that they never test against each other. The demo
 // checks the contacts against the analytic distances (sphere above a face: height minus radius) and exits 1 when a
-// contact is missing, wrong, or present where the shapes are clearly apart.
+// contact is missing, wrong, or present where the shapes are clearly apart. --frames N (1 to 12) stops
+// the script after frame N; --png shows the last frame with its contact points (docs/demos.md).
 
+#include "DemoPictures.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
@@ -94,8 +96,18 @@ bool checkPair(const char* name, btScalar analytic, btScalar found)
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "CollisionInterfaceDemo";
+	commandLine.defaultFrames = 12;  // the script's length (frames[] below)
+	commandLine.maxFrames = 12;
+	commandLine.debugDrawMode = btIDebugDraw::DBG_DrawContactPoints;
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	// Only the sphere moves; the picture shows the whole floor with the crate and the pillar.
+	pictures.setFocus(btVector3(-5, 0, -3), btVector3(5, 2.5f, 3));
+
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	btDbvtBroadphase broadphase;
@@ -147,7 +159,7 @@ int main()
 	    {btScalar(1.1), btScalar(0.95), btScalar(-0.05), btScalar(-0.1)},
 	    {btScalar(1.1), btScalar(2.5), btScalar(1.5), btSqrt(btScalar(1.16)) - btScalar(0.5)},
 	};
-	const int frameCount = int(sizeof(frames) / sizeof(frames[0]));
+	const int frameCount = btMin(int(sizeof(frames) / sizeof(frames[0])), pictures.frames());
 
 	bool good = true;
 	for (int f = 0; f < frameCount; ++f)
@@ -164,6 +176,7 @@ int main()
 		good = checkPair("crate", frame.crateDistance, closest[kCrate]) && good;
 		// The pillar stays at least 1.1 from the sphere's path.
 		good = checkPair("pillar", btScalar(1.1), closest[kPillar]) && good;
+		pictures.frame(world, f + 1);
 	}
 
 	for (int i = 0; i < kObjectCount; ++i)
@@ -171,5 +184,5 @@ int main()
 		world.removeCollisionObject(&objects[i]);
 	}
 	printf(good ? "Every frame's contacts match the analytic distances.\n" : "MISMATCH (see above)\n");
-	return good ? 0 : 1;
+	return pictures.finish(good ? 0 : 1);
 }

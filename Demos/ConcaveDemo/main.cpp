@@ -9,11 +9,14 @@
 // body ever falls through (its centre stays at least 0.2 above h(x, z): every shape is thicker than
 // that, and the flat triangles differ from h by under 1 cm), and at least half of them are at rest
 // (slower than 0.1 m/s) by the end; spheres on a slope may keep rolling, and one rolling body keeps
-// its whole pile's island awake. Exit 1 when a check fails.
+// its whole pile's island awake. Exit 1 when a check fails. --frames N runs N steps on each terrain
+// (default 360; shorter runs skip the at-rest check); --png shows the height field's last frame;
+// --png-sequence covers both terrains (docs/demos.md).
 
 #include <math.h>
 #include <stdio.h>
 
+#include "DemoPictures.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -27,7 +30,7 @@ btScalar terrainHeight(btScalar x, btScalar z)
 }
 
 // Drops bodies on the terrain body already in world; returns true when the checks pass.
-bool dropBodiesOn(const char* name, btDiscreteDynamicsWorld& world)
+bool dropBodiesOn(const char* name, btDiscreteDynamicsWorld& world, caliber::demo::DemoPictures& pictures)
 {
 	btSphereShape sphere(btScalar(0.4));
 	btBoxShape box(btVector3(btScalar(0.35), btScalar(0.35), btScalar(0.35)));
@@ -56,17 +59,16 @@ bool dropBodiesOn(const char* name, btDiscreteDynamicsWorld& world)
 	btScalar lowestClearance = BT_LARGE_FLOAT;
 	int sleeping = 0;
 	int slow = 0;
-	for (int second = 1; second <= 6; ++second)
+	for (int frame = 1; frame <= pictures.frames(); ++frame)
 	{
-		for (int step = 0; step < 60; ++step)
+		world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		for (int b = 0; b < bodies.size(); ++b)
 		{
-			world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
-			for (int b = 0; b < bodies.size(); ++b)
-			{
-				const btVector3& p = bodies[b]->getCenterOfMassPosition();
-				lowestClearance = btMin(lowestClearance, p.getY() - terrainHeight(p.getX(), p.getZ()));
-			}
+			const btVector3& p = bodies[b]->getCenterOfMassPosition();
+			lowestClearance = btMin(lowestClearance, p.getY() - terrainHeight(p.getX(), p.getZ()));
 		}
+		pictures.frame(world, frame);
+		if (frame % 60 != 0 && frame != pictures.frames()) continue;
 		sleeping = 0;
 		slow = 0;
 		for (int b = 0; b < bodies.size(); ++b)
@@ -74,8 +76,12 @@ bool dropBodiesOn(const char* name, btDiscreteDynamicsWorld& world)
 			if (bodies[b]->getActivationState() == ISLAND_SLEEPING) ++sleeping;
 			if (bodies[b]->getLinearVelocity().length() < btScalar(0.1)) ++slow;
 		}
-		printf("%s, t=%d s: lowest clearance %.3f, sleeping %d/%d, slower than 0.1 m/s %d\n", name, second,
-		       double(lowestClearance), sleeping, bodies.size(), slow);
+		if (frame % 60 == 0)
+			printf("%s, t=%d s: lowest clearance %.3f, sleeping %d/%d, slower than 0.1 m/s %d\n", name, frame / 60,
+			       double(lowestClearance), sleeping, bodies.size(), slow);
+		else
+			printf("%s, t=%.3f s: lowest clearance %.3f, sleeping %d/%d, slower than 0.1 m/s %d\n", name, frame / 60.0,
+			       double(lowestClearance), sleeping, bodies.size(), slow);
 	}
 	for (int b = 0; b < bodies.size(); ++b)
 	{
@@ -84,6 +90,14 @@ bool dropBodiesOn(const char* name, btDiscreteDynamicsWorld& world)
 		delete motions[b];
 	}
 	const bool noneFellThrough = lowestClearance > btScalar(0.2);
+	if (pictures.shortened())
+	{
+		printf(
+		    "%s: nothing fell through (lowest clearance %.3f > 0.2): %s; at rest not checked (--frames %d is "
+		    "shorter than 360)\n",
+		    name, double(lowestClearance), noneFellThrough ? "ok" : "FAILED", pictures.frames());
+		return noneFellThrough;
+	}
 	const bool mostAtRest = 2 * slow >= bodies.size();
 	printf("%s: nothing fell through (lowest clearance %.3f > 0.2): %s; at rest (< 0.1 m/s) %d of %d: %s\n", name,
 	       double(lowestClearance), noneFellThrough ? "ok" : "FAILED", slow, bodies.size(),
@@ -92,8 +106,15 @@ bool dropBodiesOn(const char* name, btDiscreteDynamicsWorld& world)
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "ConcaveDemo";
+	commandLine.defaultFrames = 360;
+	commandLine.sequences = true;
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	btDbvtBroadphase broadphase;
@@ -130,7 +151,7 @@ int main()
 		btBvhTriangleMeshShape meshShape(&mesh, true);
 		btRigidBody terrain(btRigidBody::btRigidBodyConstructionInfo(0, 0, &meshShape));
 		world.addRigidBody(&terrain);
-		ok = dropBodiesOn("triangle mesh", world) && ok;
+		ok = dropBodiesOn("triangle mesh", world, pictures) && ok;
 		world.removeRigidBody(&terrain);
 	}
 	{
@@ -142,8 +163,8 @@ int main()
 		info.m_startWorldTransform.setOrigin(btVector3(0, (minHeight + maxHeight) / 2, 0));
 		btRigidBody terrain(info);
 		world.addRigidBody(&terrain);
-		ok = dropBodiesOn("height field", world) && ok;
+		ok = dropBodiesOn("height field", world, pictures) && ok;
 		world.removeRigidBody(&terrain);
 	}
-	return ok ? 0 : 1;
+	return pictures.finish(ok ? 0 : 1);
 }

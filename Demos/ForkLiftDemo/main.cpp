@@ -9,10 +9,14 @@
 // Checks: the fork ends under the load; the load is lifted off the rails (its bottom above them by
 // most of the fork's travel); the load stays on the fork while carried (resting on it, its centre
 // over the plate); lowered, it rests on the fork at the bottom of its travel. Exit 1 when a check fails.
+// --frames N stops the script after N steps (the whole script is about 1500); the checks of the phases
+// it did not finish are skipped. --png shows the last frame with the wheels (docs/demos.md).
 
 #include <math.h>
 #include <stdio.h>
 
+#include "DemoPictures.h"
+#include "WorldScene.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -59,8 +63,14 @@ struct Bodies
 };
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "ForkLiftDemo";
+	commandLine.defaultFrames = 1000000;  // more than the script takes: by default it runs to its end
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	btDbvtBroadphase broadphase;
@@ -116,12 +126,24 @@ int main()
 		                 btVector3(0, -1, 0), btVector3(-1, 0, 0), btScalar(0.6), btScalar(0.4), tuning, i < 2);
 	world.addAction(&vehicle);
 
+	pictures.setDecorator([&](caliber::demo::Scene& scene) { caliber::demo::addVehicleWheels(scene, vehicle, btScalar(0.24)); });
+
 	btScalar t = 0;
-	auto run = [&](int steps) {
-		for (int i = 0; i < steps; ++i) world.stepSimulation(kStep, 1, kStep);
-		t += kStep * steps;
+	// --frames: once the budget is spent no phase steps any more, and the unfinished phases' checks are skipped.
+	caliber::demo::StepBudget budget = pictures.stepBudget();
+	auto run = [&](int count) {
+		for (int i = 0; i < count && !budget.spent(); ++i)
+		{
+			world.stepSimulation(kStep, 1, kStep);
+			budget.count();
+			t += kStep;
+		}
 	};
-	auto report = [&](const char* phase) {
+	auto judge = [&](bool ok, const char* what) {
+		if (budget.reached(what)) check(ok, what);
+	};
+	auto report = [&](const char* phase)
+	{
 		const btVector3 c = chassis->getCenterOfMassPosition(), l = load->getCenterOfMassPosition();
 		printf("%-8s t %5.2f s  fork lift z %6.2f  speed %5.1f km/h  fork height %5.2f m  load (%5.2f, %5.2f, %5.2f)\n",
 		       phase, t, c.z(), vehicle.getCurrentSpeedKmHour(), slider.getLinearPos(), l.x(), l.y(), l.z());
@@ -146,7 +168,7 @@ int main()
 
 	// To the load, fork low, slowing near it, until the fork is centred under it.
 	const btScalar forkAhead = fork->getCenterOfMassPosition().z() - chassis->getCenterOfMassPosition().z();
-	for (int i = 0; i < 1200; ++i)
+	for (int i = 0; i < 1200 && !budget.spent(); ++i)
 	{
 		const btScalar left = load->getCenterOfMassPosition().z() - fork->getCenterOfMassPosition().z();
 		if (left < btScalar(0.02)) break;
@@ -158,13 +180,13 @@ int main()
 	run(60);
 	report("under");
 	const btVector3 forkAtLoad = fork->getCenterOfMassPosition();
-	check(fabs(forkAtLoad.z() - load->getCenterOfMassPosition().z()) < 0.15 && fabs(forkAtLoad.x()) < 0.1,
+	judge(fabs(forkAtLoad.z() - load->getCenterOfMassPosition().z()) < 0.15 && fabs(forkAtLoad.x()) < 0.1,
 	      "the fork is under the load");
 	printf("  fork %.2f m ahead of the chassis' centre\n", double(forkAhead));
 
 	// Lift.
 	slider.setTargetLinMotorVelocity(btScalar(0.4));
-	for (int i = 0; i < 300 && slider.getLinearPos() < btScalar(1.0); ++i)
+	for (int i = 0; i < 300 && slider.getLinearPos() < btScalar(1.0) && !budget.spent(); ++i)
 	{
 		run(1);
 		if (i % 60 == 0) report("lift");
@@ -173,7 +195,7 @@ int main()
 	run(60);
 	report("lifted");
 	const btScalar loadBottom = load->getCenterOfMassPosition().y() - btScalar(0.4);
-	check(loadBottom > btScalar(0.3) + btScalar(0.6), "the load is lifted well above the rails");
+	judge(loadBottom > btScalar(0.3) + btScalar(0.6), "the load is lifted well above the rails");
 
 	// Carry it 5 m backwards.
 	const btScalar startZ = chassis->getCenterOfMassPosition().z();
@@ -188,7 +210,7 @@ int main()
 	};
 	bool stayedOnFork = onFork();
 	btScalar slide = 0;
-	for (int i = 0; i < 900 && chassis->getCenterOfMassPosition().z() > startZ - 5; ++i)
+	for (int i = 0; i < 900 && chassis->getCenterOfMassPosition().z() > startZ - 5 && !budget.spent(); ++i)
 	{
 		drive(btScalar(-1.0));
 		run(1);
@@ -200,9 +222,9 @@ int main()
 	stop();
 	run(90);
 	report("carried");
-	check(chassis->getCenterOfMassPosition().z() < startZ - btScalar(4.9), "reversed 5 m");
+	judge(chassis->getCenterOfMassPosition().z() < startZ - btScalar(4.9), "reversed 5 m");
 	printf("  the load's centre was at most %.2f m from the fork's centre\n", double(slide));
-	check(stayedOnFork, "the load stayed on the fork");
+	judge(stayedOnFork, "the load stayed on the fork");
 
 	// Set it down on the ground.
 	slider.setTargetLinMotorVelocity(btScalar(-0.4));
@@ -210,12 +232,13 @@ int main()
 	report("lowered");
 	run(120);
 	report("rest");
-	check(slider.getLinearPos() < btScalar(0.02) && onFork() && load->getLinearVelocity().length() < btScalar(0.01),
+	judge(slider.getLinearPos() < btScalar(0.02) && onFork() && load->getLinearVelocity().length() < btScalar(0.01),
 	      "lowered, the load rests on the fork");
 
+	pictures.capture(world);
 	world.removeAction(&vehicle);
 	world.removeConstraint(&slider);
 	world.removeConstraint(&hinge);
 	printf("ForkLiftDemo: %s\n", failures ? "FAILED" : "all checks passed");
-	return failures ? 1 : 0;
+	return pictures.finish(failures ? 1 : 0);
 }

@@ -4,8 +4,13 @@
 // towards each other; btGjkConvexCast, btSubsimplexConvexCast and btContinuousConvexCollision each
 // find when they first touch, the contact normal and the contact point. The answers are compared with
 // the analytic ones worked out below, and a second motion that passes the box by must report no hit.
-// The demo exits 1 when a cast disagrees with the analytic answer.
+// The demo exits 1 when a cast disagrees with the analytic answer. --png draws the head-on motion: the
+// box and the sphere where they first touch (the analytic time of impact), faint where they start and
+// end, and the centres' paths as lines; the pass-by path in grey (docs/demos.md).
 
+#include "DemoPictures.h"
+#include "ShapeMesher.h"
+#include "WorldScene.h"
 #include "btBulletCollisionCommon.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btSubSimplexConvexCast.h"
@@ -99,8 +104,13 @@ bool runAllCasts(const btConvexShape& box, const btConvexShape& sphere, const Mo
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "GjkConvexCastDemo";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+
 	// A: a unit box (half extents 1, its margin is inside them) moving from x = -4 to x = 0.
 	// B: a sphere of radius 0.5 moving from x = 4 to x = 0, 0.3 above the box's centre line (its
 	// contact point stays on the box's face, so the first contact is face against sphere).
@@ -127,5 +137,26 @@ int main()
 	good = runAllCasts(box, sphere, passBy, false, 0, normal, point, closingSpeed) && good;
 
 	printf(good ? "All casts agree with the analytic time of impact.\n" : "MISMATCH (see above)\n");
-	return good ? 0 : 1;
+	if (pictures.wanted())
+	{
+		caliber::demo::Scene scene;
+		caliber::demo::MeshStyle boxStyle, sphereStyle, faint;
+		boxStyle.color = caliber::demo::paletteColor(1);
+		sphereStyle.color = caliber::demo::paletteColor(0);
+		faint.color = btVector3(0.85f, 0.86f, 0.9f);
+		// At the time of impact: both have moved toi of the way from their start to their end.
+		const btVector3 boxAtToi = headOn.fromA.getOrigin().lerp(headOn.toA.getOrigin(), toi);
+		const btVector3 sphereAtToi = headOn.fromB.getOrigin().lerp(headOn.toB.getOrigin(), toi);
+		caliber::demo::addShape(scene, &box, at(boxAtToi.x(), boxAtToi.y(), boxAtToi.z()), boxStyle);
+		caliber::demo::addShape(scene, &sphere, at(sphereAtToi.x(), sphereAtToi.y(), sphereAtToi.z()), sphereStyle);
+		caliber::demo::addShape(scene, &box, headOn.fromA, faint);
+		caliber::demo::addShape(scene, &sphere, headOn.fromB, faint);
+		scene.addLine(headOn.fromA.getOrigin(), headOn.toA.getOrigin(), boxStyle.color * btScalar(0.6));
+		scene.addLine(headOn.fromB.getOrigin(), headOn.toB.getOrigin(), sphereStyle.color * btScalar(0.6));
+		scene.addLine(passBy.fromB.getOrigin(), passBy.toB.getOrigin(), btVector3(0.5f, 0.5f, 0.5f));
+		scene.addPoint(point, btVector3(0.9f, 0.1f, 0.1f));
+		pictures.setViewDirection(btVector3(-0.3f, -0.35f, -1));
+		pictures.capture(scene);
+	}
+	return pictures.finish(good ? 0 : 1);
 }

@@ -6,7 +6,9 @@
 //   2. builds convex hulls of random point clouds with btConvexHullComputer and checks Euler's
 //      formula V - E + F = 2 on each;
 //   3. profiles both with BT_PROFILE and prints CProfileManager's report.
-// It exits 1 if a measured error is out of tolerance, so CI notices when the math breaks.
+// It exits 1 if a measured error is out of tolerance, so CI notices when the math breaks. --png draws
+// the spinning body's frame every second along its path and the three hulls, each moved next to the
+// path's start (docs/demos.md).
 
 #include "LinearMath/btConvexHullComputer.h"
 #include "LinearMath/btQuaternion.h"
@@ -20,8 +22,16 @@
 
 #include <vector>
 
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "DemoPictures.h"
+#include "ShapeMesher.h"
+#include "WorldScene.h"
+
 namespace
 {
+/// The picture being built (--png), or null.
+caliber::demo::Scene* gPicture = nullptr;
+
 /// A small deterministic generator, so every run prints the same numbers.
 class DemoRandom
 {
@@ -75,6 +85,13 @@ bool demoIntegration()
 		BT_PROFILE("integrateTransform");
 		previous = current;
 		btTransformUtil::integrateTransform(previous, linearVelocity, angularVelocity, timeStep, current);
+		if (gPicture && step % 60 == 0)
+		{
+			// The body's axes (x red, y green, z blue) every half second, through btIDebugDraw::drawTransform.
+			caliber::demo::SceneDebugDraw drawer(*gPicture);
+			drawer.drawTransform(current, btScalar(1));
+			gPicture->addLine(current.getOrigin(), current.getOrigin() + linearVelocity, btVector3(0.6f, 0.6f, 0.6f));
+		}
 	}
 
 	// For a constant world-space angular velocity the exact orientation is a rotation about the
@@ -106,7 +123,8 @@ bool demoIntegration()
 }
 
 /// Builds the hull of the given points and prints its size; returns true when V - E + F = 2.
-bool buildAndReportHull(const char* name, const std::vector<btVector3>& points)
+bool buildAndReportHull(const char* name, const std::vector<btVector3>& points, const btVector3& pictureAt,
+                        const btVector3& pictureScale = btVector3(1, 1, 1))
 {
 	BT_PROFILE("convex hull");
 	std::vector<btScalar> coordinates;
@@ -126,6 +144,20 @@ bool buildAndReportHull(const char* name, const std::vector<btVector3>& points)
 	const int euler = vertexCount - edgeCount + faceCount;
 	printf("   %-28s %5d points -> V = %4d, E = %4d, F = %4d, V - E + F = %d\n", name, int(points.size()), vertexCount,
 	       edgeCount, faceCount, euler);
+	if (gPicture)
+	{
+		// Drawn centred at pictureAt and scaled, wherever the cloud itself is.
+		btVector3 centre(0, 0, 0);
+		for (int i = 0; i < hull.vertices.size(); ++i) centre += hull.vertices[i] / btScalar(hull.vertices.size());
+		btConvexHullShape shape;
+		for (int i = 0; i < hull.vertices.size(); ++i) shape.addPoint(hull.vertices[i] - centre, false);
+		shape.recalcLocalAabb();
+		shape.setLocalScaling(pictureScale);
+		caliber::demo::MeshStyle style;
+		static int colour = 0;
+		style.color = caliber::demo::paletteColor(colour++);
+		caliber::demo::addShape(*gPicture, &shape, btTransform(btQuaternion::getIdentity(), pictureAt), style);
+	}
 	return euler == 2;
 }
 
@@ -142,7 +174,7 @@ bool demoConvexHulls()
 	{
 		cube.push_back(btVector3(random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)));
 	}
-	allClosed &= buildAndReportHull("random points in a cube", cube);
+	allClosed &= buildAndReportHull("random points in a cube", cube, btVector3(-3, 10, 3));
 
 	// Every point on a sphere is extreme, so most of them become hull vertices.
 	std::vector<btVector3> sphere;
@@ -152,7 +184,7 @@ bool demoConvexHulls()
 		const btScalar length2 = p.length2();
 		if (length2 > btScalar(0.01) && length2 <= btScalar(1)) sphere.push_back(p / btSqrt(length2));
 	}
-	allClosed &= buildAndReportHull("random points on a sphere", sphere);
+	allClosed &= buildAndReportHull("random points on a sphere", sphere, btVector3(-3, 10, 0));
 
 	// A long thin box far from the origin: hulls must not depend on where the cloud sits.
 	std::vector<btVector3> farBox;
@@ -161,14 +193,23 @@ bool demoConvexHulls()
 	{
 		farBox.push_back(offset + btVector3(random.uniform(-20, 20), random.uniform(-1, 1), random.uniform(-1, 1)));
 	}
-	allClosed &= buildAndReportHull("thin box far from origin", farBox);
+	// Drawn a tenth as long, next to the others.
+	allClosed &=
+	    buildAndReportHull("thin box far from origin", farBox, btVector3(-3, 10, -3), btVector3(btScalar(0.1), 1, 1));
 	printf("\n");
 	return allClosed;
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "LinearMathDemo";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	caliber::demo::Scene picture;
+	if (pictures.wanted()) gPicture = &picture;
+
 	printf("Caliber LinearMathDemo (btScalar is %s, %s path)\n\n", btIsDoublePrecision() ? "double" : "float",
 #ifdef BT_USE_SSE
 	       "SSE"
@@ -189,5 +230,6 @@ int main()
 	if (!integrationOk) printf("FAILED: integrated motion is out of tolerance\n");
 	if (!hullsOk) printf("FAILED: a hull is not a closed polyhedron\n");
 	if (integrationOk && hullsOk) printf("All LinearMath checks of this demo passed.\n");
-	return integrationOk && hullsOk ? 0 : 1;
+	pictures.capture(picture);
+	return pictures.finish(integrationOk && hullsOk ? 0 : 1);
 }

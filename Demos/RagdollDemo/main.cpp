@@ -1,12 +1,14 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // RagdollDemo: six ragdolls (11 capsules, 5 hinges and 5 cone-twist joints each) dropped onto the
 // ground from different heights and tilts. Prints, every half second, how high they are and how far
-// their joints have opened (pivot errors), and exits non-zero if a joint came apart.
+// their joints have opened (pivot errors), and exits non-zero if a joint came apart. --png, --frames
+// (default 300) and --png-sequence: docs/demos.md.
 
 #include <cstdio>
 #include <memory>
 #include <vector>
 
+#include "DemoPictures.h"
 #include "Ragdoll.h"
 
 namespace
@@ -62,8 +64,14 @@ private:
 };
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "RagdollDemo";
+	commandLine.defaultFrames = 300;
+	commandLine.sequences = true;
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
 	World w;
 	std::vector<ragdoll::Ragdoll> ragdolls(6);
 	for (int i = 0; i < 6; ++i)
@@ -75,9 +83,10 @@ int main()
 	std::printf("RagdollDemo: 6 ragdolls (66 capsules, 30 hinges, 30 cone-twist joints) falling onto the ground\n");
 	std::printf("%6s %12s %12s %16s %16s\n", "time", "lowest y", "highest y", "max pivot err", "mean pivot err");
 	btScalar worstEver = 0;
-	for (int frame = 1; frame <= 300; ++frame)
+	for (int frame = 1; frame <= pictures.frames(); ++frame)
 	{
 		w.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		pictures.frame(w.world(), frame);
 		btScalar lowest = BT_LARGE_FLOAT, highest = -BT_LARGE_FLOAT, worst = 0, sum = 0;
 		for (const ragdoll::Ragdoll& r : ragdolls)
 		{
@@ -103,7 +112,7 @@ int main()
 	if (worstEver > btScalar(0.15))
 	{
 		std::printf("FAILED: a joint opened by more than 15 cm\n");
-		return 1;
+		return pictures.finish(1);
 	}
-	return 0;
+	return pictures.finish(0);
 }

@@ -1,11 +1,13 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 //
 // Raytracer: btCollisionWorld::rayTest as a camera, headless. A sphere, a box, a cylinder and a cone stand on a floor
-// made of a small triangle mesh; one ray per pixel of a 128x128 image finds the closest hit, and the pixel is shaded by
-// the hit normal (its colour) and a directional light. The image is written as a binary PPM (raytracer.ppm in the
-// current directory, or the path given as argv[1]). Every ray is also checked against an analytic intersection written
-// here: rays that pass clearly through the sphere or the box must hit it, rays that pass clearly beside them must not,
-// and hit points must lie on the surface. The demo exits 1 when a check fails or the file cannot be written.
+// made of a small triangle mesh; one ray per pixel of a 128x128 image (--size WxH for another) finds the closest hit,
+// and the pixel is shaded by the hit normal (its colour) and a directional light. The image is written as a PNG
+// (raytracer.png in the current directory, the path given as the argument or by --png); a path ending in .ppm, or a
+// build without libpng, gets a binary PPM instead (raytracer.ppm by default). Every ray is also checked against an
+// analytic intersection written here: rays that pass clearly through the sphere or the box must hit it, rays that pass
+// clearly beside them must not, and hit points must lie on the surface. The demo exits 1 when a check fails or the file
+// cannot be written.
 
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
@@ -13,12 +15,17 @@
 #include "btBulletCollisionCommon.h"
 
 #include <stdio.h>
+#include <string.h>
 
+#include <string>
 #include <vector>
+
+#include "DemoPictures.h"
+#include "Png.h"
 
 namespace
 {
-const int kImageSize = 128;
+const int kDefaultImageSize = 128;
 
 /// How far a convex ray hit may lie from the exact surface: the world's convex ray test stops within
 /// sqrt(MAX_CONVEX_CAST_EPSILON) (1e-3 in float) of the shape; five times that leaves room for rounding. Rays whose
@@ -96,9 +103,30 @@ unsigned char toByte(btScalar value)
 }
 }  // namespace
 
+namespace
+{
+bool endsWith(const std::string& text, const char* suffix)
+{
+	const size_t n = strlen(suffix);
+	return text.size() >= n && text.compare(text.size() - n, n, suffix) == 0;
+}
+}  // namespace
+
 int main(int argc, char** argv)
 {
-	const char* outputPath = argc > 1 ? argv[1] : "raytracer.ppm";
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "Raytracer";
+	commandLine.maxPositional = 1;
+	commandLine.positionalUsage = "[OUTPUT.png|OUTPUT.ppm]";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	const bool png = caliber::demo::pngAvailable();
+	const std::string outputPath = !pictures.positional().empty() ? pictures.positional()[0]
+	                               : png                          ? "raytracer.png"
+	                                                              : "raytracer.ppm";
+	const int width = pictures.sizeGiven() ? pictures.width() : kDefaultImageSize;
+	const int height = pictures.sizeGiven() ? pictures.height() : kDefaultImageSize;
+	const btScalar aspect = btScalar(width) / btScalar(height);
 
 	// The world: default configuration, dispatcher, broadphase.
 	btDefaultCollisionConfiguration configuration;
@@ -155,24 +183,24 @@ int main(int argc, char** argv)
 	const btScalar rayLength = btScalar(100);
 	const btVector3 light = btVector3(btScalar(-0.4), btScalar(1), btScalar(0.6)).normalized();
 
-	std::vector<unsigned char> image(size_t(kImageSize) * size_t(kImageSize) * 3u);
+	std::vector<unsigned char> image(size_t(width) * size_t(height) * 3u);
 	int hitCounts[kObjectCount] = {0, 0, 0, 0, 0};
 	int misses = 0;
 	CheckStats checks;
 
-	for (int py = 0; py < kImageSize; ++py)
+	for (int py = 0; py < height; ++py)
 	{
-		for (int px = 0; px < kImageSize; ++px)
+		for (int px = 0; px < width; ++px)
 		{
-			const btScalar u = (btScalar(px) + btScalar(0.5)) / btScalar(kImageSize) * 2 - 1;
-			const btScalar v = 1 - (btScalar(py) + btScalar(0.5)) / btScalar(kImageSize) * 2;
+			const btScalar u = ((btScalar(px) + btScalar(0.5)) / btScalar(width) * 2 - 1) * aspect;
+			const btScalar v = 1 - (btScalar(py) + btScalar(0.5)) / btScalar(height) * 2;
 			const btVector3 dir = (forward + right * (u * halfWidth) + up * (v * halfWidth)).normalized();
 			const btVector3 to = eye + dir * rayLength;
 			btCollisionWorld::ClosestRayResultCallback callback(eye, to);
 			world.rayTest(eye, to, callback);
 
 			const int hitIndex = callback.hasHit() ? callback.m_collisionObject->getUserIndex() : -1;
-			unsigned char* pixel = &image[(size_t(py) * size_t(kImageSize) + size_t(px)) * 3u];
+			unsigned char* pixel = &image[(size_t(py) * size_t(width) + size_t(px)) * 3u];
 			if (hitIndex < 0)
 			{
 				++misses;
@@ -253,22 +281,48 @@ int main(int argc, char** argv)
 			++checks.failures;
 		}
 	}
-	printf("%-11s %5d pixels (of %d rays)\n", "no hit", misses, kImageSize * kImageSize);
+	printf("%-11s %5d pixels (of %d rays)\n", "no hit", misses, width * height);
 	printf("%d rays judged against the analytic sphere and box, %d failures\n", checks.judged, checks.failures);
 
-	FILE* file = fopen(outputPath, "wb");
-	bool written = file != nullptr;
-	if (written)
+	bool written = true;
+	if (pictures.wanted())
 	{
-		fprintf(file, "P6\n%d %d\n255\n", kImageSize, kImageSize);
-		written = fwrite(image.data(), 1, image.size(), file) == image.size();
-		written = fclose(file) == 0 && written;
+		// --png PATH: the ray-traced image is the demo's picture.
+		caliber::demo::Image picture;
+		picture.width = width;
+		picture.height = height;
+		picture.rgb = image;
+		pictures.capture(picture);
 	}
-	printf(written ? "Wrote %s\n" : "FAILED to write %s\n", outputPath);
+	else if (png && !endsWith(outputPath, ".ppm"))
+	{
+		caliber::demo::Image picture;
+		picture.width = width;
+		picture.height = height;
+		picture.rgb = image;
+		std::string error;
+		written = caliber::demo::writePng(outputPath, picture, error);
+		if (written)
+			printf("Wrote %s\n", outputPath.c_str());
+		else
+			printf("FAILED: %s\n", error.c_str());
+	}
+	else
+	{
+		FILE* file = fopen(outputPath.c_str(), "wb");
+		written = file != nullptr;
+		if (written)
+		{
+			fprintf(file, "P6\n%d %d\n255\n", width, height);
+			written = fwrite(image.data(), 1, image.size(), file) == image.size();
+			written = fclose(file) == 0 && written;
+		}
+		printf(written ? "Wrote %s\n" : "FAILED to write %s\n", outputPath.c_str());
+	}
 
 	for (int i = 0; i < kObjectCount; ++i)
 	{
 		world.removeCollisionObject(&objects[i]);
 	}
-	return (written && checks.failures == 0) ? 0 : 1;
+	return pictures.finish((written && checks.failures == 0) ? 0 : 1);
 }

@@ -5,8 +5,13 @@
 // of the simplex closest to the origin, the vertices that point uses and their barycentric weights.
 // Run 1 grows a point, a segment, a triangle and a tetrahedron that contains the origin; run 2 puts the
 // apex on the far side, so the solver must drop it again. Every answer is compared with the one worked
-// out by hand (in the comments below); the demo exits 1 when any of them disagrees.
+// out by hand (in the comments below); the demo exits 1 when any of them disagrees. --png draws the
+// three runs side by side: each simplex as a solid, the origin (red) and the closest point the solver
+// found (green) joined by a line (docs/demos.md).
 
+#include "DemoPictures.h"
+#include "ShapeMesher.h"
+#include "WorldScene.h"
 #include "btBulletCollisionCommon.h"
 
 #include <stdio.h>
@@ -40,7 +45,7 @@ char labelOf(const btVector3& w, const SimplexStep* steps, int count)
 }
 
 /// Adds the steps' vertices one by one; returns true when every answer matches the expected one.
-bool runSimplex(const char* title, const SimplexStep* steps, int count)
+bool runSimplex(const char* title, const SimplexStep* steps, int count, btVector3& lastClosest)
 {
 	printf("%s\n", title);
 	btVoronoiSimplexSolver solver;
@@ -64,6 +69,7 @@ bool runSimplex(const char* title, const SimplexStep* steps, int count)
 		solver.addVertex(step.vertex, step.vertex, btVector3(0, 0, 0));
 		btVector3 closest;
 		const bool valid = solver.closest(closest);
+		lastClosest = closest;
 
 		printf("  add %c (%5.2f %5.2f %5.2f): closest point (%7.4f %7.4f %7.4f), distance %.4f, uses", step.label,
 		       double(step.vertex.x()), double(step.vertex.y()), double(step.vertex.z()), double(closest.x()),
@@ -113,8 +119,13 @@ bool runSimplex(const char* title, const SimplexStep* steps, int count)
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "SimplexDemo";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+
 	// Base triangle in the plane z = 1: A(2, 1), B(-2, 1), C(0, -3). The origin projects to (0, 0, 1),
 	// which lies inside it.
 	const btVector3 a(2, 1, 1), b(-2, 1, 1), c(0, -3, 1);
@@ -148,10 +159,37 @@ int main()
 	    {'F', btVector3(4, 3, 1), a, "A", {1, 0, 0, 0}},
 	};
 
-	bool good = runSimplex("1. Tetrahedron ABCD around the origin, vertex by vertex", inside, 4);
-	good = runSimplex("2. Tetrahedron ABCE beside the origin: E is dropped", outside, 4) && good;
-	good = runSimplex("3. Segment AF pointing away: the closest feature is vertex A", vertexRegion, 2) && good;
+	btVector3 closest[3];
+	bool good = runSimplex("1. Tetrahedron ABCD around the origin, vertex by vertex", inside, 4, closest[0]);
+	good = runSimplex("2. Tetrahedron ABCE beside the origin: E is dropped", outside, 4, closest[1]) && good;
+	good =
+	    runSimplex("3. Segment AF pointing away: the closest feature is vertex A", vertexRegion, 2, closest[2]) && good;
 
 	printf(good ? "All closest points and weights match the analytic answers.\n" : "MISMATCH (see above)\n");
-	return good ? 0 : 1;
+	if (pictures.wanted())
+	{
+		// The runs side by side, 9 m apart along x; each simplex in the solver's frame (origin at its own origin).
+		caliber::demo::Scene scene;
+		const SimplexStep* runs[3] = {inside, outside, vertexRegion};
+		const int counts[3] = {4, 4, 2};
+		for (int r = 0; r < 3; ++r)
+		{
+			const btVector3 shift(btScalar(9 * r), 0, 0);
+			btConvexHullShape simplex;
+			for (int i = 0; i < counts[r]; ++i) simplex.addPoint(runs[r][i].vertex, false);
+			simplex.recalcLocalAabb();
+			caliber::demo::MeshStyle style;
+			style.color = caliber::demo::paletteColor(r + 1);
+			caliber::demo::addShape(scene, &simplex, btTransform(btQuaternion::getIdentity(), shift), style);
+			for (int i = 0; i < counts[r]; ++i)
+				for (int k = i + 1; k < counts[r]; ++k)
+					scene.addLine(runs[r][i].vertex + shift, runs[r][k].vertex + shift, btVector3(0.1f, 0.1f, 0.1f));
+			scene.addPoint(shift, btVector3(0.9f, 0.1f, 0.1f));
+			scene.addPoint(closest[r] + shift, btVector3(0.1f, 0.7f, 0.1f));
+			scene.addLine(shift, closest[r] + shift, btVector3(0.1f, 0.6f, 0.1f));
+		}
+		pictures.setViewDirection(btVector3(-0.3f, -0.7f, -0.6f));
+		pictures.capture(scene);
+	}
+	return pictures.finish(good ? 0 : 1);
 }

@@ -5,8 +5,10 @@
 // btCollisionDispatcher::registerCollisionCreateFunc, and runs a small btCollisionWorld of three spheres and a box
 // while one sphere moves. It prints every manifold, marking those the user algorithm filled, and checks that every
 // sphere-sphere pair went through the user algorithm, that the sphere-box pair kept the default one, and that the
-// contact distances are the analytic ones. The demo exits 1 when any of that is not so.
+// contact distances are the analytic ones. The demo exits 1 when any of that is not so. --frames N (1 to
+// 4) stops after frame N; --png shows the last frame with its contact points (docs/demos.md).
 
+#include "DemoPictures.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
@@ -106,8 +108,16 @@ enum ObjectIndex
 const char* const kObjectNames[kObjectCount] = {"sphere A", "sphere B", "sphere C", "box"};
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "UserCollisionAlgorithm";
+	commandLine.defaultFrames = 4;  // the script's length (heightsOfC below)
+	commandLine.maxFrames = 4;
+	commandLine.debugDrawMode = btIDebugDraw::DBG_DrawContactPoints;
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	// The factory must outlive the dispatcher's algorithms, so it is declared before the world.
@@ -137,7 +147,7 @@ int main()
 	const btScalar heightsOfC[] = {3, btScalar(2.5), btScalar(1.9), btScalar(1.8)};
 	const int expectedSphereContacts[] = {1, 1, 2, 2};
 	bool good = true;
-	for (int frame = 0; frame < 4; ++frame)
+	for (int frame = 0; frame < pictures.frames(); ++frame)
 	{
 		objects[kSphereC].setWorldTransform(
 		    btTransform(btQuaternion::getIdentity(), btVector3(0, heightsOfC[frame], 0)));
@@ -189,6 +199,7 @@ int main()
 			       expectedSphereContacts[frame]);
 			good = false;
 		}
+		pictures.frame(world, frame + 1);
 	}
 	if (gUserAlgorithmCalls == 0)
 	{
@@ -201,5 +212,5 @@ int main()
 		world.removeCollisionObject(&objects[i]);
 	}
 	printf(good ? "The dispatcher used the user algorithm for every sphere pair.\n" : "MISMATCH (see above)\n");
-	return good ? 0 : 1;
+	return pictures.finish(good ? 0 : 1);
 }

@@ -1,0 +1,145 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BrowserScenes.h"
+
+#include "CcdScene.h"
+#include "ConstraintScene.h"
+#include "Ragdoll.h"
+
+namespace all_bullet_demos
+{
+namespace
+{
+// BasicDemo's scene (Demos/BasicDemo): a 5 x 5 x 5 block of unit boxes, 0.2 apart, over a static ground.
+class BasicScene : public benchmark_demo::Scene
+{
+public:
+	BasicScene()
+	{
+		world().setGravity(btVector3(0, -10, 0));
+		addBody(own(new btBoxShape(btVector3(50, 50, 50))), 0,
+		        btTransform(btQuaternion::getIdentity(), btVector3(0, -50, 0)));
+		btBoxShape* box = own(new btBoxShape(btVector3(1, 1, 1)));
+		for (int k = 0; k < 5; ++k)
+			for (int i = 0; i < 5; ++i)
+				for (int j = 0; j < 5; ++j)
+					addBody(box, 1,
+					        btTransform(btQuaternion::getIdentity(),
+					                    btVector3(btScalar(2.2) * (i - 2), btScalar(1.5) + btScalar(2.2) * k,
+					                              btScalar(2.2) * (j - 2))));
+	}
+	bool report(std::string& line, int) const override
+	{
+		line = "browser scene";
+		return true;
+	}
+};
+
+// RagdollDemo's scene (Demos/RagdollDemo): six ragdolls dropped from 1 to 6 m, each tipped a little
+// differently, over a static ground.
+class RagdollScene : public benchmark_demo::Scene, public ragdoll::Owner
+{
+public:
+	RagdollScene()
+	{
+		world().setGravity(btVector3(0, -10, 0));
+		addBody(own(new btBoxShape(btVector3(50, 1, 50))), 0,
+		        btTransform(btQuaternion::getIdentity(), btVector3(0, -1, 0)));
+		m_ragdolls.resize(6);
+		for (int i = 0; i < 6; ++i)
+		{
+			ragdoll::build(*this, btVector3(btScalar(-5 + 2 * i), btScalar(1 + i), 0), 1, m_ragdolls[size_t(i)]);
+			m_ragdolls[size_t(i)].bodies[0]->applyCentralImpulse(
+			    btVector3(btScalar(0.5 * (i % 3)), 0, btScalar(0.3 * (i % 2))));
+		}
+	}
+	btCollisionShape* keepShape(btCollisionShape* shape) override { return own(shape); }
+	btRigidBody* addBody(btCollisionShape* shape, btScalar mass, const btTransform& pose) override
+	{
+		return Scene::addBody(shape, mass, pose);
+	}
+	void addJoint(btTypedConstraint* joint) override { Scene::addJoint(joint); }
+	bool report(std::string& line, int) const override
+	{
+		line = "browser scene";
+		return true;
+	}
+
+private:
+	std::vector<ragdoll::Ragdoll> m_ragdolls;
+};
+
+// A benchmark_demo::Scene as a browser demo.
+class SceneDemo : public BrowserDemo
+{
+public:
+	explicit SceneDemo(std::unique_ptr<benchmark_demo::Scene> scene) : m_scene(std::move(scene)) {}
+	btDiscreteDynamicsWorld& world() override { return m_scene->world(); }
+	void step() override
+	{
+		m_scene->world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		m_scene->afterStep();
+	}
+
+private:
+	std::unique_ptr<benchmark_demo::Scene> m_scene;
+};
+
+// ConstraintDemo's joints, stepped as the demo steps them (the door's torque flips every second).
+class ConstraintDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.step(++m_frame); }
+	// The row of joints from the front, as ConstraintDemo's picture shows it (the welded L falls away).
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(btScalar(-0.5), btScalar(3.8), btScalar(-0.5));
+		focusMax = btVector3(btScalar(26.5), btScalar(6.2), btScalar(0.5));
+		viewDirection = btVector3(0, btScalar(-0.15), -1);
+		return true;
+	}
+
+private:
+	constraint_demo::Scene m_scene;
+	int m_frame = 0;
+};
+
+// CcdPhysicsDemo's third run: fast spheres stopped by a 1 cm wall with swept CCD.
+class CcdDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+	// The spheres' start and the wall, from the side (the spheres are fired along +x).
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-6, -5, -1);
+		focusMax = btVector3(1, 6, 2);
+		viewDirection = btVector3(btScalar(0.3), btScalar(-0.3), -1);
+		return true;
+	}
+
+private:
+	ccd_demo::Scene m_scene{ccd_demo::kSweptCcd};
+};
+}  // namespace
+
+std::vector<std::string> demoNames()
+{
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo"};
+	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
+	return names;
+}
+
+std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
+{
+	std::unique_ptr<benchmark_demo::Scene> scene;
+	if (name == "BasicDemo") scene.reset(new BasicScene());
+	if (name == "RagdollDemo") scene.reset(new RagdollScene());
+	if (name == "ConstraintDemo") return std::unique_ptr<BrowserDemo>(new ConstraintDemo());
+	if (name == "CcdPhysicsDemo") return std::unique_ptr<BrowserDemo>(new CcdDemo());
+	const std::string prefix = "Benchmark/";
+	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
+	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
+}
+}  // namespace all_bullet_demos

@@ -1,0 +1,571 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+//
+// AllBulletDemos: the demo browser. Every demo of its list in one window (GLFW, OpenGL 3.3 core),
+// drawn with the same scene the headless pictures use (Demos/Common) and stepped at 60 Hz.
+//
+// Mouse: left-drag a body to pull it (a point-to-point joint to the cursor, as Bullet's demos do),
+// left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
+// Keys: space pause, S single step, R reset, B shoot a box, W wireframe, A AABBs, C contact points,
+// J joint frames and limits, P print the step's profile (btQuickprof), F frame the scene again,
+// N / right arrow next demo, left arrow previous, Esc quit. The title bar shows the demo, the body
+// count, the step time and the frame time.
+//
+// Automation: --demo NAME --frames N --screenshot PATH runs N steps without input, draws the last
+// frame and writes it as a PNG (CI runs this under Xvfb with Mesa). --drag X0,Y0,X1,Y1 (window
+// pixels) does what a user's left-drag would during those N steps: press at (X0, Y0), move to
+// (X1, Y1), release at the end; it reports the body it picked and how far it moved, and fails when
+// nothing was picked. --list prints the demos.
+
+#define GLFW_INCLUDE_GLCOREARB
+#define GL_GLEXT_PROTOTYPES
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "BrowserScenes.h"
+#include "GlRenderer.h"
+#include "LinearMath/btQuickprof.h"
+#include "Png.h"
+#include "WorldScene.h"
+
+namespace
+{
+std::string gGlfwError = "no error reported";
+
+void onGlfwError(int code, const char* description)
+{
+	gGlfwError = std::string(description ? description : "unknown") + " (GLFW error " + std::to_string(code) + ")";
+}
+
+struct Options
+{
+	std::string demo = "BasicDemo";
+	int frames = 0;  // 0: interactive
+	std::string screenshot;
+	int width = 1024, height = 768;
+	bool drag = false;
+	double dragFrom[2] = {0, 0}, dragTo[2] = {0, 0};
+};
+
+// Parses the command line; returns -1 to go on, else the exit code.
+int parse(int argc, char** argv, Options& options)
+{
+	auto usage = [&](FILE* out)
+	{
+		std::fprintf(out,
+		             "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--list]\n"
+		             "  --frames N without input: run N steps and exit; --screenshot writes the last frame as PNG\n",
+		             argv[0]);
+	};
+	for (int i = 1; i < argc; ++i)
+	{
+		const std::string option = argv[i];
+		const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
+		if (option == "--help" || option == "-h")
+		{
+			usage(stdout);
+			return 0;
+		}
+		if (option == "--list")
+		{
+			for (const std::string& name : all_bullet_demos::demoNames()) std::printf("%s\n", name.c_str());
+			return 0;
+		}
+		if (!value)
+		{
+			std::fprintf(stderr, "AllBulletDemos: %s needs a value\n", option.c_str());
+			usage(stderr);
+			return 2;
+		}
+		char* end = nullptr;
+		if (option == "--demo")
+			options.demo = value;
+		else if (option == "--frames")
+		{
+			const long frames = std::strtol(value, &end, 10);
+			if (*end != '\0' || frames < 1 || frames > 10000000)
+			{
+				std::fprintf(stderr, "AllBulletDemos: --frames needs a whole number from 1 to 10000000, got '%s'\n",
+				             value);
+				return 2;
+			}
+			options.frames = int(frames);
+		}
+		else if (option == "--screenshot")
+			options.screenshot = value;
+		else if (option == "--drag")
+		{
+			if (std::sscanf(value, "%lf,%lf,%lf,%lf", &options.dragFrom[0], &options.dragFrom[1], &options.dragTo[0],
+			                &options.dragTo[1]) != 4)
+			{
+				std::fprintf(stderr, "AllBulletDemos: --drag needs X0,Y0,X1,Y1 in window pixels, got '%s'\n", value);
+				return 2;
+			}
+			options.drag = true;
+		}
+		else if (option == "--size")
+		{
+			if (std::sscanf(value, "%dx%d", &options.width, &options.height) != 2 || options.width < 1 ||
+			    options.height < 1 || options.width > 8192 || options.height > 8192)
+			{
+				std::fprintf(stderr, "AllBulletDemos: --size needs WIDTHxHEIGHT, each side 1 to 8192, got '%s'\n",
+				             value);
+				return 2;
+			}
+		}
+		else
+		{
+			std::fprintf(stderr, "AllBulletDemos: unknown option %s\n", option.c_str());
+			usage(stderr);
+			return 2;
+		}
+		++i;
+	}
+	if ((!options.screenshot.empty() || options.drag) && options.frames == 0) options.frames = 60;
+	if (!options.screenshot.empty() && !caliber::demo::pngAvailable())
+	{
+		std::fprintf(stderr, "AllBulletDemos: --screenshot is unavailable: this build has no libpng\n");
+		return 2;
+	}
+	return -1;
+}
+
+class Browser
+{
+public:
+	Browser(GLFWwindow* window, const std::vector<std::string>& names) : m_window(window), m_names(names) {}
+	~Browser() { unload(); }
+
+	void load(int index)
+	{
+		unload();
+		m_index = (index % int(m_names.size()) + int(m_names.size())) % int(m_names.size());
+		m_scene = all_bullet_demos::makeDemo(m_names[size_t(m_index)]);
+		m_stepMs = 0;
+		frameCamera();
+	}
+
+	// Aims the orbit camera as the headless pictures do: at what moves, from the front, above, right
+	// (or where the demo says).
+	void frameCamera()
+	{
+		caliber::demo::Scene scene;
+		btVector3 focusMin, focusMax, direction(btScalar(-0.55), btScalar(-0.45), -1);
+		if (m_scene->startView(focusMin, focusMax, direction))
+			scene.focusOn(focusMin, focusMax);
+		else
+		{
+			caliber::demo::WorldStyle style;
+			style.solids = false;
+			style.debugMode = 0;
+			caliber::demo::addWorld(scene, m_scene->world(), style);
+		}
+		int width = 1, height = 1;
+		glfwGetFramebufferSize(m_window, &width, &height);
+		caliber::demo::RenderOptions options;
+		options.width = width;
+		options.height = btMax(1, height);
+		const caliber::demo::Camera camera = caliber::demo::frameScene(scene, options, direction);
+		m_target = camera.target;
+		m_distance = (camera.eye - camera.target).length();
+		const btVector3 d = (camera.target - camera.eye).normalized();
+		m_pitch = btAsin(-d.y());
+		m_yaw = btAtan2(-d.x(), -d.z());
+	}
+
+	caliber::demo::Camera camera() const
+	{
+		caliber::demo::Camera camera;
+		const btVector3 d(-btCos(m_pitch) * btSin(m_yaw), -btSin(m_pitch), -btCos(m_pitch) * btCos(m_yaw));
+		camera.target = m_target;
+		camera.eye = m_target - d * m_distance;
+		return camera;
+	}
+
+	void step()
+	{
+		const auto start = std::chrono::steady_clock::now();
+		m_scene->step();
+		m_stepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+	}
+
+	void draw(all_bullet_demos::GlRenderer& gl)
+	{
+		caliber::demo::Scene scene;
+		caliber::demo::WorldStyle style;
+		style.debugMode = m_debugMode;
+		caliber::demo::addWorld(scene, m_scene->world(), style);
+		int width = 0, height = 0;
+		glfwGetFramebufferSize(m_window, &width, &height);
+		gl.draw(scene, camera(), width, height, m_wireframe);
+	}
+
+	/// Replaces the mouse's position (automation's scripted drag).
+	void setCursor(double x, double y)
+	{
+		m_cursorSet = true;
+		m_cursorX = x;
+		m_cursorY = y;
+	}
+	btRigidBody* picked() const { return m_picked; }
+
+	// A ray from the eye through the cursor, in world space.
+	btVector3 rayThroughCursor() const
+	{
+		double x = m_cursorX, y = m_cursorY;
+		int width = 1, height = 1;
+		if (!m_cursorSet) glfwGetCursorPos(m_window, &x, &y);
+		glfwGetWindowSize(m_window, &width, &height);
+		const caliber::demo::Camera c = camera();
+		const btVector3 forward = (c.target - c.eye).normalized();
+		const btVector3 right = forward.cross(c.up).normalized();
+		const btVector3 up = right.cross(forward);
+		const double t = std::tan(double(c.fieldOfViewDegrees) * M_PI / 360.0);
+		const double aspect = double(width) / double(btMax(1, height));
+		const double u = (2 * x / btMax(1, width) - 1) * aspect * t, v = (1 - 2 * y / btMax(1, height)) * t;
+		return (forward + right * btScalar(u) + up * btScalar(v)).normalized();
+	}
+
+	void pressLeft()
+	{
+		const btVector3 eye = camera().eye, direction = rayThroughCursor();
+		const btVector3 to = eye + direction * btScalar(1e4);
+		btCollisionWorld::ClosestRayResultCallback hit(eye, to);
+		m_scene->world().rayTest(eye, to, hit);
+		btRigidBody* body =
+		    hit.hasHit() ? const_cast<btRigidBody*>(btRigidBody::upcast(hit.m_collisionObject)) : nullptr;
+		if (!body || body->isStaticOrKinematicObject())
+		{
+			m_orbiting = true;
+			return;
+		}
+		// Pull the body at the point under the cursor, as Bullet's demos do.
+		m_picked = body;
+		m_picked->setActivationState(DISABLE_DEACTIVATION);
+		const btVector3 pivot = body->getCenterOfMassTransform().inverse()(hit.m_hitPointWorld);
+		m_pickJoint.reset(new btPoint2PointConstraint(*body, pivot));
+		m_pickJoint->m_setting.m_impulseClamp = 30;
+		m_pickJoint->m_setting.m_tau = btScalar(0.001);
+		m_scene->world().addConstraint(m_pickJoint.get(), true);
+		m_pickDistance = (hit.m_hitPointWorld - eye).length();
+	}
+
+	void releaseLeft()
+	{
+		m_orbiting = false;
+		dropPick();
+	}
+
+	void drag(double dx, double dy, bool right)
+	{
+		if (m_pickJoint)
+			m_pickJoint->setPivotB(camera().eye + rayThroughCursor() * m_pickDistance);
+		else if (m_orbiting && !right)
+		{
+			m_yaw -= btScalar(dx * 0.005);
+			m_pitch = btClamped(m_pitch + btScalar(dy * 0.005), btScalar(-1.5), btScalar(1.5));
+		}
+		else if (right)
+		{
+			const caliber::demo::Camera c = camera();
+			const btVector3 forward = (c.target - c.eye).normalized();
+			const btVector3 side = forward.cross(c.up).normalized();
+			const btVector3 up = side.cross(forward);
+			m_target += (side * btScalar(-dx) + up * btScalar(dy)) * m_distance * btScalar(0.0015);
+		}
+	}
+
+	void zoom(double steps) { m_distance *= btScalar(std::pow(0.9, steps)); }
+
+	void shootBox()
+	{
+		const caliber::demo::Camera c = camera();
+		btVector3 inertia;
+		m_shotShape.calculateLocalInertia(1, inertia);
+		btRigidBody::btRigidBodyConstructionInfo info(1, nullptr, &m_shotShape, inertia);
+		info.m_startWorldTransform = btTransform(btQuaternion::getIdentity(), c.eye);
+		m_shots.emplace_back(new btRigidBody(info));
+		m_shots.back()->setLinearVelocity((c.target - c.eye).normalized() * 25);
+		m_scene->world().addRigidBody(m_shots.back().get());
+	}
+
+	void key(int key)
+	{
+		switch (key)
+		{
+			case GLFW_KEY_SPACE:
+				m_paused = !m_paused;
+				break;
+			case GLFW_KEY_S:
+				m_stepOnce = true;
+				break;
+			case GLFW_KEY_R:
+				load(m_index);
+				break;
+			case GLFW_KEY_B:
+				shootBox();
+				break;
+			case GLFW_KEY_W:
+				m_wireframe = !m_wireframe;
+				break;
+			case GLFW_KEY_A:
+				m_debugMode ^= btIDebugDraw::DBG_DrawAabb;
+				break;
+			case GLFW_KEY_C:
+				m_debugMode ^= btIDebugDraw::DBG_DrawContactPoints;
+				break;
+			case GLFW_KEY_J:
+				m_debugMode ^= btIDebugDraw::DBG_DrawConstraints | btIDebugDraw::DBG_DrawConstraintLimits;
+				break;
+			case GLFW_KEY_P:
+				CProfileManager::dumpAll();
+				break;
+			case GLFW_KEY_F:
+				frameCamera();
+				break;
+			case GLFW_KEY_N:
+			case GLFW_KEY_RIGHT:
+				load(m_index + 1);
+				break;
+			case GLFW_KEY_LEFT:
+				load(m_index - 1);
+				break;
+			case GLFW_KEY_ESCAPE:
+				glfwSetWindowShouldClose(m_window, 1);
+				break;
+			default:
+				break;
+		}
+	}
+
+	// Steps unless paused (a single step when asked).
+	void advance()
+	{
+		if (!m_paused || m_stepOnce) step();
+		m_stepOnce = false;
+	}
+
+	void updateTitle(double frameMs)
+	{
+		char title[256];
+		std::snprintf(title, sizeof(title), "AllBulletDemos - %s - %d bodies - step %.2f ms - frame %.1f ms%s",
+		              m_names[size_t(m_index)].c_str(), m_scene->world().getNumCollisionObjects(), m_stepMs, frameMs,
+		              m_paused ? " - paused" : "");
+		glfwSetWindowTitle(m_window, title);
+	}
+
+private:
+	void dropPick()
+	{
+		if (!m_pickJoint) return;
+		m_scene->world().removeConstraint(m_pickJoint.get());
+		m_pickJoint.reset();
+		m_picked->forceActivationState(ACTIVE_TAG);
+		m_picked->setDeactivationTime(0);
+		m_picked = nullptr;
+	}
+
+	// Takes out what the browser added to the world, then the world itself.
+	void unload()
+	{
+		if (!m_scene) return;
+		dropPick();
+		for (auto& shot : m_shots) m_scene->world().removeRigidBody(shot.get());
+		m_shots.clear();
+		m_scene.reset();
+	}
+
+	GLFWwindow* m_window;
+	std::vector<std::string> m_names;
+	int m_index = 0;
+	std::unique_ptr<all_bullet_demos::BrowserDemo> m_scene;
+	btVector3 m_target{0, 0, 0};
+	btScalar m_yaw = 0, m_pitch = btScalar(0.4), m_distance = 20;
+	bool m_paused = false, m_stepOnce = false, m_wireframe = false, m_orbiting = false;
+	int m_debugMode = 0;  // solids only; W, A, C and J add the overlays
+	double m_stepMs = 0;
+	btRigidBody* m_picked = nullptr;
+	std::unique_ptr<btPoint2PointConstraint> m_pickJoint;
+	btScalar m_pickDistance = 0;
+	bool m_cursorSet = false;
+	double m_cursorX = 0, m_cursorY = 0;
+	btBoxShape m_shotShape{btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5))};
+	std::vector<std::unique_ptr<btRigidBody>> m_shots;
+};
+
+Browser* browserOf(GLFWwindow* window) { return static_cast<Browser*>(glfwGetWindowUserPointer(window)); }
+
+bool writeScreenshot(GLFWwindow* window, const std::string& path)
+{
+	int width = 0, height = 0;
+	glfwGetFramebufferSize(window, &width, &height);
+	caliber::demo::Image image;
+	image.width = width;
+	image.height = height;
+	std::vector<std::uint8_t> rows(std::size_t(width) * std::size_t(height) * 3);
+	glPixelStorei(GL_PACK_ALIGNMENT, 1);
+	glReadBuffer(GL_BACK);
+	glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+	// OpenGL's rows run bottom to top, a PNG's top to bottom.
+	image.rgb.resize(rows.size());
+	const std::size_t stride = std::size_t(width) * 3;
+	for (int y = 0; y < height; ++y)
+		std::memcpy(&image.rgb[std::size_t(y) * stride], &rows[std::size_t(height - 1 - y) * stride], stride);
+	std::string error;
+	if (!caliber::demo::writePng(path, image, error))
+	{
+		std::fprintf(stderr, "AllBulletDemos: %s\n", error.c_str());
+		return false;
+	}
+	std::printf("screenshot: %s (%d x %d)\n", path.c_str(), width, height);
+	return true;
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	Options options;
+	const int parsed = parse(argc, argv, options);
+	if (parsed >= 0) return parsed;
+	const std::vector<std::string> names = all_bullet_demos::demoNames();
+	int index = -1;
+	for (size_t i = 0; i < names.size(); ++i)
+		if (names[i] == options.demo) index = int(i);
+	if (index < 0)
+	{
+		std::fprintf(stderr, "AllBulletDemos: no demo '%s'; --list shows them\n", options.demo.c_str());
+		return 2;
+	}
+
+	glfwSetErrorCallback(onGlfwError);
+	if (!glfwInit())
+	{
+		std::fprintf(stderr, "AllBulletDemos: cannot start GLFW (no display?): %s\n", gGlfwError.c_str());
+		return 1;
+	}
+	glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+	glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+	glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+	glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+	glfwWindowHint(GLFW_SAMPLES, 4);
+	GLFWwindow* window = glfwCreateWindow(options.width, options.height, "AllBulletDemos", nullptr, nullptr);
+	if (!window)
+	{
+		std::fprintf(stderr, "AllBulletDemos: cannot open an OpenGL 3.3 window: %s\n", gGlfwError.c_str());
+		glfwTerminate();
+		return 1;
+	}
+	glfwMakeContextCurrent(window);
+	glfwSwapInterval(options.frames > 0 ? 0 : 1);
+	all_bullet_demos::GlRenderer gl;
+	std::string error;
+	int exitCode = 0;
+	if (!gl.init(error))
+	{
+		std::fprintf(stderr, "AllBulletDemos: %s\n", error.c_str());
+		glfwDestroyWindow(window);
+		glfwTerminate();
+		return 1;
+	}
+	glEnable(GL_MULTISAMPLE);
+	{
+		Browser browser(window, names);
+		browser.load(index);
+		glfwSetWindowUserPointer(window, &browser);
+		if (options.frames > 0)
+		{
+			// Automation: no input (or a scripted drag), N steps, one drawn frame.
+			btRigidBody* dragged = nullptr;
+			btVector3 dragStart(0, 0, 0);
+			if (options.drag)
+			{
+				browser.setCursor(options.dragFrom[0], options.dragFrom[1]);
+				browser.pressLeft();
+				dragged = browser.picked();
+				if (dragged) dragStart = dragged->getCenterOfMassPosition();
+			}
+			for (int frame = 0; frame < options.frames; ++frame)
+			{
+				if (options.drag)
+				{
+					const double t = double(frame + 1) / options.frames;
+					browser.setCursor(options.dragFrom[0] + (options.dragTo[0] - options.dragFrom[0]) * t,
+					                  options.dragFrom[1] + (options.dragTo[1] - options.dragFrom[1]) * t);
+					browser.drag(0, 0, false);
+				}
+				browser.step();
+			}
+			if (options.drag)
+			{
+				if (!dragged)
+				{
+					std::printf("drag: nothing to pick at (%.0f, %.0f)\n", options.dragFrom[0], options.dragFrom[1]);
+					exitCode = 1;
+				}
+				else
+				{
+					const btVector3 end = dragged->getCenterOfMassPosition();
+					std::printf("drag: picked a body at (%.2f, %.2f, %.2f), dragged to (%.2f, %.2f, %.2f), %.2f m\n",
+					            double(dragStart.x()), double(dragStart.y()), double(dragStart.z()), double(end.x()),
+					            double(end.y()), double(end.z()), double((end - dragStart).length()));
+				}
+				browser.releaseLeft();
+			}
+			browser.draw(gl);
+			glFinish();
+			if (!options.screenshot.empty() && !writeScreenshot(window, options.screenshot)) exitCode = 1;
+			std::printf("AllBulletDemos: %s, %d frames\n", options.demo.c_str(), options.frames);
+		}
+		else
+		{
+			glfwSetKeyCallback(window,
+			                   [](GLFWwindow* w, int key, int, int action, int)
+			                   {
+				                   if (action == GLFW_PRESS || action == GLFW_REPEAT) browserOf(w)->key(key);
+			                   });
+			glfwSetMouseButtonCallback(window,
+			                           [](GLFWwindow* w, int button, int action, int)
+			                           {
+				                           if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS)
+					                           browserOf(w)->pressLeft();
+				                           if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_RELEASE)
+					                           browserOf(w)->releaseLeft();
+			                           });
+			glfwSetScrollCallback(window, [](GLFWwindow* w, double, double y) { browserOf(w)->zoom(y); });
+			double lastX = 0, lastY = 0;
+			glfwGetCursorPos(window, &lastX, &lastY);
+			int frameCount = 0;
+			auto last = std::chrono::steady_clock::now();
+			while (!glfwWindowShouldClose(window))
+			{
+				glfwPollEvents();
+				double x = 0, y = 0;
+				glfwGetCursorPos(window, &x, &y);
+				const bool left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+				const bool right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+				if (left || right) browser.drag(x - lastX, y - lastY, right);
+				lastX = x;
+				lastY = y;
+				browser.advance();
+				browser.draw(gl);
+				glfwSwapBuffers(window);
+				const auto now = std::chrono::steady_clock::now();
+				if (++frameCount % 15 == 0)
+					browser.updateTitle(std::chrono::duration<double, std::milli>(now - last).count());
+				last = now;
+			}
+		}
+		glfwSetWindowUserPointer(window, nullptr);
+	}
+	gl.shutdown();
+	glfwDestroyWindow(window);
+	glfwTerminate();
+	return exitCode;
+}
