@@ -41,6 +41,7 @@ picture RagdollDemo
 picture VehicleDemo
 picture CharacterDemo
 picture ForkLiftDemo
+picture SoftDemo 320x240 Impact
 picture BenchmarkDemo 320x240 pyramid_jolt 120
 
 # A contact sheet's worth of RagdollDemo: the ragdolls falling and landing, every 12 frames (0.2 s).
