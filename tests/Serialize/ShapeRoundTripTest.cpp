@@ -210,7 +210,8 @@ TEST(ShapeRoundTrip, NestedCompoundKeepsChildrenTransformsAndSharedChildren)
 	EXPECT_EQ(read->getChildShape(0), read->getChildShape(1));
 	btCompoundShape* readInner = static_cast<btCompoundShape*>(read->getChildShape(2));
 	ASSERT_EQ(readInner->getNumChildShapes(), 1);
-	EXPECT_NEAR(static_cast<btSphereShape*>(readInner->getChildShape(0))->getRadius(), sphere.getRadius(), kShapeTolerance);
+	EXPECT_NEAR(static_cast<btSphereShape*>(readInner->getChildShape(0))->getRadius(), sphere.getRadius(),
+	            kShapeTolerance);
 	EXPECT_EQ(rt.importer().getNumCollisionShapes(), 4);
 }
 

@@ -409,7 +409,11 @@ bFile::bFile(char* memoryBuffer, int len, const char headerString[7])
 	m_headerString[6] = 0;
 	if (!memoryBuffer || len <= 0)
 	{
-		fail("the buffer is empty");
+		// btBulletFile() (no buffer at all) is a valid empty object; anything else is a bad buffer.
+		if (memoryBuffer || len != 0)
+			fail("the buffer is empty or its length is negative");
+		else
+			mFlags = FD_INVALID;
 		return;
 	}
 	mFlags = FD_OK;

@@ -452,6 +452,11 @@ bool btBulletWorldImporter::loadFile(const char* fileName, const char* preSwapFi
 
 bool btBulletWorldImporter::loadFileFromMemory(char* memoryBuffer, int len)
 {
+	if (!memoryBuffer || len <= 0)
+	{
+		warn("no buffer, or an empty one, was given; nothing was loaded");
+		return false;
+	}
 	bParse::btBulletFile file(memoryBuffer, len);
 	if (!file.ok()) return false;
 	file.parse(m_verboseMode);
@@ -479,13 +484,16 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		btContactSolverInfo solverInfo = m_dynamicsWorld ? m_dynamicsWorld->getSolverInfo() : btContactSolverInfo();
 		btVector3 gravity = m_dynamicsWorld ? m_dynamicsWorld->getGravity() : btVector3(0, -10, 0);
 		bParse::bDNA* fileDna = file->getFileDNA();
-		auto read = [&](const auto& d, const char* worldStruct, const char* infoStruct) {
-			auto has = [&](const char* structName, const char* field) {
+		auto read = [&](const auto& d, const char* worldStruct, const char* infoStruct)
+		{
+			auto has = [&](const char* structName, const char* field)
+			{
 				short* st = fileDna ? fileDna->getStruct(fileDna->getReverseType(structName)) : 0;
 				for (int f = 0; st && f < st[1]; ++f)
 				{
 					const char* name = fileDna->getName(st[3 + 2 * f]);
-					if (name && !strncmp(name, field, strlen(field)) && (name[strlen(field)] == 0 || name[strlen(field)] == '['))
+					if (name && !strncmp(name, field, strlen(field)) &&
+					    (name[strlen(field)] == 0 || name[strlen(field)] == '['))
 						return true;
 				}
 				return false;
@@ -496,9 +504,8 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 			if (!has(worldStruct, "m_solverInfo")) return;
 			const auto& i = d.m_solverInfo;
 			// Each setting is taken when the file has it and it is a non-negative number.
-#define CALIBER_TAKE(field)                                                     \
-	if (has(infoStruct, #field) && i.field >= 0 && isfinite(double(i.field))) \
-		solverInfo.field = btScalar(i.field);
+#define CALIBER_TAKE(field) \
+	if (has(infoStruct, #field) && i.field >= 0 && isfinite(double(i.field))) solverInfo.field = btScalar(i.field);
 			CALIBER_TAKE(m_tau)
 			CALIBER_TAKE(m_damping)
 			CALIBER_TAKE(m_friction)
@@ -528,9 +535,11 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		void* info = file->m_dynamicsWorldInfo[0];
 		bool known = true;
 		if (check.isA(info, "btDynamicsWorldFloatData"))
-			read(*static_cast<btDynamicsWorldFloatData*>(info), "btDynamicsWorldFloatData", "btContactSolverInfoFloatData");
+			read(*static_cast<btDynamicsWorldFloatData*>(info), "btDynamicsWorldFloatData",
+			     "btContactSolverInfoFloatData");
 		else if (check.isA(info, "btDynamicsWorldDoubleData"))
-			read(*static_cast<btDynamicsWorldDoubleData*>(info), "btDynamicsWorldDoubleData", "btContactSolverInfoDoubleData");
+			read(*static_cast<btDynamicsWorldDoubleData*>(info), "btDynamicsWorldDoubleData",
+			     "btContactSolverInfoDoubleData");
 		else
 			known = false;
 		if (known && isfinite(gravity.x()) && isfinite(gravity.y()) && isfinite(gravity.z()))
