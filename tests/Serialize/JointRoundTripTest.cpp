@@ -2,7 +2,8 @@
 //
 // Every joint kind the format describes, written with its world and read into a fresh world:
 // bodies, frames, limits, motors, springs and the common settings come back. Joint data keeps the
-// build's precision except the hinge's limits and motor in float files (Bullet's layout): exact.
+// build's precision (float layouts in float builds, the "DoubleData2" layouts in double builds), so
+// everything compares exactly.
 #include <gtest/gtest.h>
 
 #include "BulletDynamics/ConstraintSolver/btFixedConstraint.h"
@@ -16,12 +17,7 @@ using caliber_test::WarningLog;
 
 namespace
 {
-#ifdef BT_USE_DOUBLE_PRECISION
-// The hinge's limits and motor are float in every file (Bullet's hinge layout).
-const btScalar kHingeTolerance = 1e-6;
-#else
 const btScalar kHingeTolerance = 0;
-#endif
 
 void expectSameTransform(const btTransform& a, const btTransform& b)
 {

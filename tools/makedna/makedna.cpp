@@ -6,13 +6,15 @@
 //      sizes the DNA implies (no hidden padding).
 // Usage: makedna [--check] <table.inc> <fields.inc> [--also Name]... [--skip Name]... header...
 // With --check nothing is written: the exit status says whether both files are up to date.
-// A struct is read when its name ends in "Data" or is named by --also, and --skip does not name it. Each field is one
+// A struct is read when its name ends in "Data" or "Data2" or is named by --also, and --skip does
+// not name it. Each field is one
 // declaration `type name;`, `type *name;` or `type name[N]...;` of a basic type (char, short, int,
 // float, double, void) or another struct; anything else is an error, so the DNA never silently
 // drops a field.
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -180,7 +182,13 @@ void parseHeader(const std::string& path, const std::set<std::string>& also, con
 		const std::string name = text.substr(nameStart, p - nameStart);
 		while (p < text.size() && std::isspace(static_cast<unsigned char>(text[p]))) ++p;
 		if (p >= text.size() || text[p] != '{') continue;  // a declaration or a derived struct
-		const bool wanted = (name.size() > 4 && name.compare(name.size() - 4, 4, "Data") == 0) || also.count(name);
+		// "...Data" and Bullet's second double layouts "...Data2".
+		auto endsWith = [&](const char* suffix)
+		{
+			const size_t n = strlen(suffix);
+			return name.size() > n && name.compare(name.size() - n, n, suffix) == 0;
+		};
+		const bool wanted = endsWith("Data") || endsWith("Data2") || also.count(name);
 		if (!wanted || skip.count(name)) continue;
 		const size_t close = text.find('}', p);
 		if (close == std::string::npos) fail(path + ": struct " + name + " is not closed");

@@ -262,6 +262,8 @@ struct btHingeConstraintFloatData
 };
 
 /// File layout of btHingeConstraintDoubleData2 in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+/// m_padding1 sits before the doubles, not after them as in Bullet's declaration, where the compiler
+/// adds hidden padding that the DNA does not describe; readers match fields by name, so files agree.
 struct btHingeConstraintDoubleData2
 {
 	btTypedConstraintDoubleData m_typeConstraintData;
@@ -270,6 +272,7 @@ struct btHingeConstraintDoubleData2
 	int m_useReferenceFrameA;
 	int m_angularOnly;
 	int m_enableAngularMotor;
+	char m_padding1[4];
 	double m_motorTargetVelocity;
 	double m_maxMotorImpulse;
 	double m_lowerLimit;
@@ -277,7 +280,6 @@ struct btHingeConstraintDoubleData2
 	double m_limitSoftness;
 	double m_biasFactor;
 	double m_relaxationFactor;
-	char m_padding1[4];
 };
 
 // clang-format on

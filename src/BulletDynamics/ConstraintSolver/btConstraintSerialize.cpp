@@ -69,14 +69,14 @@ const char* btHingeConstraint::serialize(void* dataBuffer, btSerializer* seriali
 	m_rbBFrame.serialize(data->m_rbBFrame);
 	data->m_angularOnly = m_angularOnly;
 	data->m_enableAngularMotor = m_enableAngularMotor;
-	data->m_maxMotorImpulse = float(m_maxMotorImpulse);
-	data->m_motorTargetVelocity = float(m_motorTargetVelocity);
+	data->m_maxMotorImpulse = m_maxMotorImpulse;
+	data->m_motorTargetVelocity = m_motorTargetVelocity;
 	data->m_useReferenceFrameA = m_useReferenceFrameA;
-	data->m_lowerLimit = float(m_limit.getLow());
-	data->m_upperLimit = float(m_limit.getHigh());
-	data->m_limitSoftness = float(m_limit.getSoftness());
-	data->m_biasFactor = float(m_limit.getBiasFactor());
-	data->m_relaxationFactor = float(m_limit.getRelaxationFactor());
+	data->m_lowerLimit = m_limit.getLow();
+	data->m_upperLimit = m_limit.getHigh();
+	data->m_limitSoftness = m_limit.getSoftness();
+	data->m_biasFactor = m_limit.getBiasFactor();
+	data->m_relaxationFactor = m_limit.getRelaxationFactor();
 #ifdef BT_USE_DOUBLE_PRECISION
 	memset(data->m_padding1, 0, sizeof(data->m_padding1));
 #endif
