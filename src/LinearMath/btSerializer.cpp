@@ -8,6 +8,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include <string>
+
 btDefaultSerializer::btDefaultSerializer(int totalSize, unsigned char* buffer)
     : m_uniqueIdGenerator(0),
       m_totalSize(totalSize > 0 ? totalSize : 0),
@@ -131,12 +133,10 @@ void btDefaultSerializer::finishSerialization()
 	}
 	if (!m_ownsBuffer && total > size_t(m_totalSize))
 	{
-		char message[200];
-		snprintf(message, sizeof(message),
-		         "Caliber: btDefaultSerializer: the file needs %zu bytes but the caller's buffer holds %d; "
-		         "the serializer keeps it in its own buffer\n",
-		         total, m_totalSize);
-		btReportWarning(message);
+		const std::string message = "Caliber: btDefaultSerializer: the file needs " + std::to_string(total) +
+		                            " bytes but the caller's buffer holds " + std::to_string(m_totalSize) +
+		                            "; the serializer keeps it in its own buffer\n";
+		btReportWarning(message.c_str());
 		m_buffer = 0;
 		m_ownsBuffer = true;
 	}
@@ -186,12 +186,10 @@ void btDefaultSerializer::finalizeChunk(btChunk* chunk, const char* structType, 
 	if (chunk->m_dna_nr < 0 && strcmp(structType, "char") != 0 && strcmp(structType, "int") != 0)
 	{
 		btAssert(!"btDefaultSerializer::finalizeChunk: the DNA has no such struct");
-		char message[200];
-		snprintf(message, sizeof(message),
-		         "Caliber: btDefaultSerializer::finalizeChunk: the DNA has no struct '%.80s'; the chunk is "
-		         "written without a type and readers skip it\n",
-		         structType ? structType : "(null)");
-		btReportWarning(message);
+		const std::string message =
+		    std::string("Caliber: btDefaultSerializer::finalizeChunk: the DNA has no struct '") +
+		    (structType ? structType : "(null)") + "'; the chunk is written without a type and readers skip it\n";
+		btReportWarning(message.c_str());
 	}
 	chunk->m_chunkCode = chunkCode;
 	void* uniquePtr = getUniquePointer(oldPtr);

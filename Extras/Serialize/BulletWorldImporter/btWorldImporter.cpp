@@ -15,6 +15,8 @@
 
 #include <string.h>
 
+#include <string>
+
 namespace
 {
 // Deeper compound nesting than this is treated as a cycle.
@@ -341,11 +343,10 @@ btCollisionShape* btWorldImporter::convertCollisionShape(btCollisionShapeData* s
 		}
 		default:
 		{
-			char message[160];
-			snprintf(message, sizeof(message),
-			         "Caliber: btWorldImporter: shapes of type %d are not supported by the importer; skipped\n",
-			         shapeData->m_shapeType);
-			btReportWarning(message);
+			const std::string message = "Caliber: btWorldImporter: shapes of type " +
+			                            std::to_string(shapeData->m_shapeType) +
+			                            " are not supported by the importer; skipped\n";
+			btReportWarning(message.c_str());
 			return 0;
 		}
 	}
