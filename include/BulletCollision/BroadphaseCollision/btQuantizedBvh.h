@@ -259,4 +259,80 @@ public:
 	bool isQuantized() const { return m_useQuantization; }
 };
 
+// clang-format off
+/// File layout of btBvhSubtreeInfoData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btBvhSubtreeInfoData
+{
+	int m_rootNodeIndex;
+	int m_subtreeSize;
+	short m_quantizedAabbMin[3];
+	short m_quantizedAabbMax[3];
+};
+
+/// File layout of btOptimizedBvhNodeFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btOptimizedBvhNodeFloatData
+{
+	btVector3FloatData m_aabbMinOrg;
+	btVector3FloatData m_aabbMaxOrg;
+	int m_escapeIndex;
+	int m_subPart;
+	int m_triangleIndex;
+	char m_pad[4];
+};
+
+/// File layout of btOptimizedBvhNodeDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btOptimizedBvhNodeDoubleData
+{
+	btVector3DoubleData m_aabbMinOrg;
+	btVector3DoubleData m_aabbMaxOrg;
+	int m_escapeIndex;
+	int m_subPart;
+	int m_triangleIndex;
+	char m_pad[4];
+};
+
+/// File layout of btQuantizedBvhNodeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btQuantizedBvhNodeData
+{
+	short m_quantizedAabbMin[3];
+	short m_quantizedAabbMax[3];
+	int m_escapeIndexOrTriangleIndex;
+};
+
+/// File layout of btQuantizedBvhFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btQuantizedBvhFloatData
+{
+	btVector3FloatData m_bvhAabbMin;
+	btVector3FloatData m_bvhAabbMax;
+	btVector3FloatData m_bvhQuantization;
+	int m_curNodeIndex;
+	int m_useQuantization;
+	int m_numContiguousLeafNodes;
+	int m_numQuantizedContiguousNodes;
+	btOptimizedBvhNodeFloatData* m_contiguousNodesPtr;
+	btQuantizedBvhNodeData* m_quantizedContiguousNodesPtr;
+	btBvhSubtreeInfoData* m_subTreeInfoPtr;
+	int m_traversalMode;
+	int m_numSubtreeHeaders;
+};
+
+/// File layout of btQuantizedBvhDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btQuantizedBvhDoubleData
+{
+	btVector3DoubleData m_bvhAabbMin;
+	btVector3DoubleData m_bvhAabbMax;
+	btVector3DoubleData m_bvhQuantization;
+	int m_curNodeIndex;
+	int m_useQuantization;
+	int m_numContiguousLeafNodes;
+	int m_numQuantizedContiguousNodes;
+	btOptimizedBvhNodeDoubleData* m_contiguousNodesPtr;
+	btQuantizedBvhNodeData* m_quantizedContiguousNodesPtr;
+	int m_traversalMode;
+	int m_numSubtreeHeaders;
+	btBvhSubtreeInfoData* m_subTreeInfoPtr;
+};
+
+// clang-format on
+
 #endif  // BT_QUANTIZED_BVH_H

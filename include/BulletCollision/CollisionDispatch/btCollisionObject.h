@@ -8,6 +8,16 @@
 #include "LinearMath/btMotionState.h"
 #include "LinearMath/btTransform.h"
 
+#include "BulletCollision/CollisionShapes/btCollisionShape.h"
+
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btCollisionObjectData btCollisionObjectDoubleData
+#define btCollisionObjectDataName "btCollisionObjectDoubleData"
+#else
+#define btCollisionObjectData btCollisionObjectFloatData
+#define btCollisionObjectDataName "btCollisionObjectFloatData"
+#endif
+
 /// Activation state: awake.
 #define ACTIVE_TAG 1
 /// Activation state: asleep with its island.
@@ -29,7 +39,6 @@ typedef btAlignedObjectArray<class btCollisionObject*> btCollisionObjectArray;
 
 /// A collision shape with a world transform, material (friction, restitution, ...), collision flags,
 /// an activation state and the bookkeeping the broadphase, islands and CCD need.
-/// (Bullet's serialize / calculateSerializeBufferSize are not provided yet.)
 ATTRIBUTE_ALIGNED16(class)
 btCollisionObject
 {
@@ -387,6 +396,85 @@ public:
 		if (m_checkCollideWith) return checkCollideWithOverride(co);
 		return true;
 	}
+
+public:
+	/// Bytes of btCollisionObjectData (float or double as the build).
+	virtual int calculateSerializeBufferSize() const;
+	/// Writes the object's data struct into dataBuffer and returns the struct's name.
+	virtual const char* serialize(void* dataBuffer, class btSerializer* serializer) const;
+	/// Writes the object as a chunk of its own (its shape is written separately).
+	virtual void serializeSingleObject(class btSerializer * serializer) const;
 };
+
+// clang-format off
+/// File layout of btCollisionObjectDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCollisionObjectDoubleData
+{
+	void* m_broadphaseHandle;
+	void* m_collisionShape;
+	btCollisionShapeData* m_rootCollisionShape;
+	char* m_name;
+	btTransformDoubleData m_worldTransform;
+	btTransformDoubleData m_interpolationWorldTransform;
+	btVector3DoubleData m_interpolationLinearVelocity;
+	btVector3DoubleData m_interpolationAngularVelocity;
+	btVector3DoubleData m_anisotropicFriction;
+	double m_contactProcessingThreshold;
+	double m_deactivationTime;
+	double m_friction;
+	double m_rollingFriction;
+	double m_contactDamping;
+	double m_contactStiffness;
+	double m_restitution;
+	double m_hitFraction;
+	double m_ccdSweptSphereRadius;
+	double m_ccdMotionThreshold;
+	int m_hasAnisotropicFriction;
+	int m_collisionFlags;
+	int m_islandTag1;
+	int m_companionId;
+	int m_activationState1;
+	int m_internalType;
+	int m_checkCollideWith;
+	int m_collisionFilterGroup;
+	int m_collisionFilterMask;
+	int m_uniqueId;
+};
+
+/// File layout of btCollisionObjectFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCollisionObjectFloatData
+{
+	void* m_broadphaseHandle;
+	void* m_collisionShape;
+	btCollisionShapeData* m_rootCollisionShape;
+	char* m_name;
+	btTransformFloatData m_worldTransform;
+	btTransformFloatData m_interpolationWorldTransform;
+	btVector3FloatData m_interpolationLinearVelocity;
+	btVector3FloatData m_interpolationAngularVelocity;
+	btVector3FloatData m_anisotropicFriction;
+	float m_contactProcessingThreshold;
+	float m_deactivationTime;
+	float m_friction;
+	float m_rollingFriction;
+	float m_contactDamping;
+	float m_contactStiffness;
+	float m_restitution;
+	float m_hitFraction;
+	float m_ccdSweptSphereRadius;
+	float m_ccdMotionThreshold;
+	int m_hasAnisotropicFriction;
+	int m_collisionFlags;
+	int m_islandTag1;
+	int m_companionId;
+	int m_activationState1;
+	int m_internalType;
+	int m_checkCollideWith;
+	int m_collisionFilterGroup;
+	int m_collisionFilterMask;
+	int m_uniqueId;
+};
+
+// clang-format on
 
 #endif  // BT_COLLISION_OBJECT_H

@@ -41,9 +41,9 @@ protected:
 	/// When true (the default, as in Bullet) updateAabbs updates every object, not only active ones.
 	bool m_forceUpdateAllAabbs;
 
-	/// Kept for source compatibility: serialization of collision objects is not provided yet.
+	/// Writes every shape (once) and every plain collision object as chunks (docs/serialization.md).
 	void serializeCollisionObjects(btSerializer* serializer);
-	/// Kept for source compatibility: serialization of contact manifolds is not provided yet.
+	/// Contact manifolds are not written yet: with BT_SERIALIZE_CONTACT_MANIFOLDS this reports a warning.
 	void serializeContactManifolds(btSerializer* serializer);
 
 public:
@@ -431,7 +431,7 @@ public:
 	/// Sets whether updateAabbs updates every object, or only active non-static ones.
 	void setForceUpdateAllAabbs(bool forceUpdateAllAabbs) { m_forceUpdateAllAabbs = forceUpdateAllAabbs; }
 
-	/// Serialization is not supported yet: reports a warning and writes nothing.
+	/// Writes the world into serializer as a complete .bullet file (start, shapes, objects, finish).
 	virtual void serialize(btSerializer* serializer);
 };
 

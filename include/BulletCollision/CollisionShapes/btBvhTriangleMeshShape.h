@@ -4,6 +4,8 @@
 
 #include "BulletCollision/CollisionShapes/btOptimizedBvh.h"
 #include "BulletCollision/CollisionShapes/btTriangleMeshShape.h"
+#include "BulletCollision/CollisionShapes/btStridingMeshInterface.h"
+#include "BulletCollision/CollisionShapes/btTriangleInfoMap.h"
 
 struct btTriangleInfoMap;
 
@@ -84,6 +86,32 @@ public:
 	const btTriangleInfoMap* getTriangleInfoMap() const { return m_triangleInfoMap; }
 	/// The triangle info map (0 when none).
 	btTriangleInfoMap* getTriangleInfoMap() { return m_triangleInfoMap; }
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
+	/// Writes the BVH as a chunk of its own. Caliber does not write BVHs yet: readers rebuild them
+	/// (docs/serialization.md); this reports that nothing was written.
+	virtual void serializeSingleBvh(btSerializer * serializer) const;
+	/// Writes the triangle info map as a chunk of its own (not written yet, as serializeSingleBvh).
+	virtual void serializeSingleTriangleInfoMap(btSerializer * serializer) const;
 };
+
+// clang-format off
+/// File layout of btTriangleMeshShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btTriangleMeshShapeData
+{
+	btCollisionShapeData m_collisionShapeData;
+	btStridingMeshInterfaceData m_meshInterface;
+	btQuantizedBvhFloatData* m_quantizedFloatBvh;
+	btQuantizedBvhDoubleData* m_quantizedDoubleBvh;
+	btTriangleInfoMapData* m_triangleInfoMap;
+	float m_collisionMargin;
+	char m_pad3[4];
+};
+
+// clang-format on
 
 #endif  // BT_BVH_TRIANGLE_MESH_SHAPE_H

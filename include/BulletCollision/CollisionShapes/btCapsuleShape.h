@@ -65,6 +65,12 @@ public:
 		direction[m_upAxis] = btScalar(1);
 		return direction;
 	}
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
 
 /// A capsule along the X axis.
@@ -86,5 +92,16 @@ public:
 	/// "CapsuleZ".
 	const char* getName() const override { return "CapsuleZ"; }
 };
+
+// clang-format off
+/// File layout of btCapsuleShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCapsuleShapeData
+{
+	btConvexInternalShapeData m_convexInternalShapeData;
+	int m_upAxis;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_CAPSULE_SHAPE_H

@@ -8,9 +8,10 @@
 #include "LinearMath/btMatrix3x3.h"
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
 
+class btSerializer;
+
 /// The abstract base of every collision shape: bounds, classification, scaling, margin and inertia.
 /// Shapes are defined in their own local frame; a transform places them in the world.
-/// (btSerializer support, calculateSerializeBufferSize / serialize, comes with the serialization issue.)
 ATTRIBUTE_ALIGNED16(class)
 btCollisionShape
 {
@@ -103,6 +104,26 @@ public:
 	void setUserIndex2(int index) { m_userIndex2 = index; }
 	/// The second user index.
 	int getUserIndex2() const { return m_userIndex2; }
+
+public:
+	/// Bytes of the data struct serialize() writes (docs/serialization.md).
+	virtual int calculateSerializeBufferSize() const;
+	/// Writes the shape's data struct into dataBuffer (calculateSerializeBufferSize() bytes) and returns
+	/// the struct's name; sub-objects (children, points, meshes) become chunks of their own.
+	virtual const char* serialize(void* dataBuffer, btSerializer* serializer) const;
+	/// Writes the shape as a chunk of its own (once: a shape already written is skipped).
+	virtual void serializeSingleShape(btSerializer * serializer) const;
 };
+
+// clang-format off
+/// File layout of btCollisionShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCollisionShapeData
+{
+	char* m_name;
+	int m_shapeType;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_COLLISION_SHAPE_H

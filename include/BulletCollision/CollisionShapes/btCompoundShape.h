@@ -134,6 +134,33 @@ private:
 	void childAabb(int index, btVector3& aabbMin, btVector3& aabbMax) const;
 	/// Returned by the transform getters for an out-of-range index.
 	mutable btTransform m_invalidChildTransform;
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btCompoundShapeChildData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCompoundShapeChildData
+{
+	btTransformFloatData m_transform;
+	btCollisionShapeData* m_childShape;
+	int m_childShapeType;
+	float m_childMargin;
+};
+
+/// File layout of btCompoundShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCompoundShapeData
+{
+	btCollisionShapeData m_collisionShapeData;
+	btCompoundShapeChildData* m_childShapePtr;
+	int m_numChildShapes;
+	float m_collisionMargin;
+};
+
+// clang-format on
 
 #endif  // BT_COMPOUND_SHAPE_H

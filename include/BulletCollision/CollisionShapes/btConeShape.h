@@ -66,6 +66,12 @@ public:
 
 	/// Sets the scaling and rescales the radius and the height.
 	void setLocalScaling(const btVector3& scaling) override;
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
 
 /// A cone along the X axis.
@@ -91,5 +97,16 @@ public:
 	/// Rolling friction about Z.
 	btVector3 getAnisotropicRollingFrictionDirection() const override { return btVector3(0, 0, 1); }
 };
+
+// clang-format off
+/// File layout of btConeShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btConeShapeData
+{
+	btConvexInternalShapeData m_convexInternalShapeData;
+	int m_upIndex;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_CONE_MINKOWSKI_H

@@ -83,6 +83,25 @@ public:
 	void getPlane(btVector3 & planeNormal, btVector3 & planeSupport, int i) const override;
 	/// Not supported (no planes): asserts, and returns false in release builds.
 	bool isInside(const btVector3& pt, btScalar tolerance) const override;
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btConvexHullShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btConvexHullShapeData
+{
+	btConvexInternalShapeData m_convexInternalShapeData;
+	btVector3FloatData* m_unscaledPointsFloatPtr;
+	btVector3DoubleData* m_unscaledPointsDoublePtr;
+	int m_numUnscaledPoints;
+	char m_padding3[4];
+};
+
+// clang-format on
 
 #endif  // BT_CONVEX_HULL_SHAPE_H

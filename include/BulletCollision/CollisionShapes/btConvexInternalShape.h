@@ -73,6 +73,12 @@ public:
 	int getNumPreferredPenetrationDirections() const override { return 0; }
 	/// Asserts (there are none); gives (0, 0, 0) in release builds.
 	void getPreferredPenetrationDirection(int index, btVector3& penetrationVector) const override;
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
 
 /// A btConvexInternalShape that caches its local AABB (for shapes whose support function is costly).
@@ -114,5 +120,18 @@ public:
 	/// Recomputes the cached local AABB from the margin-free support along the six local axes.
 	void recalcLocalAabb();
 };
+
+// clang-format off
+/// File layout of btConvexInternalShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btConvexInternalShapeData
+{
+	btCollisionShapeData m_collisionShapeData;
+	btVector3FloatData m_localScaling;
+	btVector3FloatData m_implicitShapeDimensions;
+	float m_collisionMargin;
+	int m_padding;
+};
+
+// clang-format on
 
 #endif  // BT_CONVEX_INTERNAL_SHAPE_H

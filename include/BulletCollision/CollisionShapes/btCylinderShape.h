@@ -72,6 +72,12 @@ public:
 
 	/// "CylinderY".
 	const char* getName() const override { return "CylinderY"; }
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
 
 /// A cylinder along the X axis (radius from the y half extent).
@@ -95,5 +101,16 @@ public:
 	/// "CylinderZ".
 	const char* getName() const override { return "CylinderZ"; }
 };
+
+// clang-format off
+/// File layout of btCylinderShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCylinderShapeData
+{
+	btConvexInternalShapeData m_convexInternalShapeData;
+	int m_upAxis;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_CYLINDER_MINKOWSKI_H

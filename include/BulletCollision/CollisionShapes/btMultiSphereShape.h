@@ -42,6 +42,31 @@ public:
 
 	/// "MultiSphere".
 	const char* getName() const override { return "MultiSphere"; }
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btPositionAndRadius in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btPositionAndRadius
+{
+	btVector3FloatData m_pos;
+	float m_radius;
+};
+
+/// File layout of btMultiSphereShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btMultiSphereShapeData
+{
+	btConvexInternalShapeData m_convexInternalShapeData;
+	btPositionAndRadius* m_localPositionArrayPtr;
+	int m_localPositionArraySize;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_MULTI_SPHERE_SHAPE_H

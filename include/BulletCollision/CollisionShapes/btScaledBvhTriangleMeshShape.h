@@ -42,6 +42,22 @@ public:
 
 	/// "SCALEDBVHTRIANGLEMESH", as in Bullet.
 	const char* getName() const override { return "SCALEDBVHTRIANGLEMESH"; }
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btScaledTriangleMeshShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btScaledTriangleMeshShapeData
+{
+	btTriangleMeshShapeData m_trimeshShapeData;
+	btVector3FloatData m_localScaling;
+};
+
+// clang-format on
 
 #endif  // BT_SCALED_BVH_TRIANGLE_MESH_SHAPE_H

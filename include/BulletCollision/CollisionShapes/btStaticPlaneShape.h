@@ -56,6 +56,25 @@ public:
 
 	/// "STATICPLANE".
 	const char* getName() const override { return "STATICPLANE"; }
+
+public:
+	/// Bytes of the data struct serialize() writes.
+	int calculateSerializeBufferSize() const override;
+	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btStaticPlaneShapeData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btStaticPlaneShapeData
+{
+	btCollisionShapeData m_collisionShapeData;
+	btVector3FloatData m_localScaling;
+	btVector3FloatData m_planeNormal;
+	float m_planeConstant;
+	char m_pad[4];
+};
+
+// clang-format on
 
 #endif  // BT_STATIC_PLANE_SHAPE_H

@@ -6,6 +6,8 @@
 #include "BulletCollision/CollisionShapes/btTriangleCallback.h"
 #include "LinearMath/btVector3.h"
 
+class btSerializer;
+
 /// Access to triangle mesh data that stays in the user's arrays: each subpart is a vertex array and an
 /// index array (three indices per triangle), both with a byte stride. Vertices may be PHY_FLOAT or
 /// PHY_DOUBLE (three components read per vertex), indices PHY_INTEGER, PHY_SHORT or PHY_UCHAR. Readers
@@ -77,6 +79,65 @@ public:
 	const btVector3& getScaling() const { return m_scaling; }
 	/// Sets the scaling; a non-finite scaling asserts and is ignored in release builds.
 	void setScaling(const btVector3& scaling);
+
+public:
+	/// Bytes of btStridingMeshInterfaceData.
+	virtual int calculateSerializeBufferSize() const;
+	/// Writes the mesh (its parts, vertices and indices as chunks of their own) into dataBuffer and
+	/// returns the struct's name.
+	virtual const char* serialize(void* dataBuffer, btSerializer* serializer) const;
 };
+
+// clang-format off
+/// File layout of btIntIndexData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btIntIndexData
+{
+	int m_value;
+};
+
+/// File layout of btShortIntIndexData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btShortIntIndexData
+{
+	short m_value;
+	char m_pad[2];
+};
+
+/// File layout of btShortIntIndexTripletData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btShortIntIndexTripletData
+{
+	short m_values[3];
+	char m_pad[2];
+};
+
+/// File layout of btCharIndexTripletData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btCharIndexTripletData
+{
+	char m_values[3];
+	char m_pad;
+};
+
+/// File layout of btMeshPartData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btMeshPartData
+{
+	btVector3FloatData* m_vertices3f;
+	btVector3DoubleData* m_vertices3d;
+	btIntIndexData* m_indices32;
+	btShortIntIndexTripletData* m_3indices16;
+	btCharIndexTripletData* m_3indices8;
+	btShortIntIndexData* m_indices16;
+	int m_numTriangles;
+	int m_numVertices;
+};
+
+/// File layout of btStridingMeshInterfaceData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btStridingMeshInterfaceData
+{
+	btMeshPartData* m_meshPartsPtr;
+	btVector3FloatData m_scaling;
+	int m_numMeshParts;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_STRIDING_MESH_INTERFACE_H

@@ -73,4 +73,35 @@ struct btTriangleInfoMap : public btInternalTriangleInfoMap
 	virtual ~btTriangleInfoMap() {}
 };
 
+// clang-format off
+/// File layout of btTriangleInfoData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btTriangleInfoData
+{
+	int m_flags;
+	float m_edgeV0V1Angle;
+	float m_edgeV1V2Angle;
+	float m_edgeV2V0Angle;
+};
+
+/// File layout of btTriangleInfoMapData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btTriangleInfoMapData
+{
+	int* m_hashTablePtr;
+	int* m_nextPtr;
+	btTriangleInfoData* m_valueArrayPtr;
+	int* m_keyArrayPtr;
+	float m_convexEpsilon;
+	float m_planarEpsilon;
+	float m_equalVertexThreshold;
+	float m_edgeDistanceThreshold;
+	float m_zeroAreaThreshold;
+	int m_nextSize;
+	int m_hashTableSize;
+	int m_numValues;
+	int m_numKeys;
+	char m_padding[4];
+};
+
+// clang-format on
+
 #endif  // _BT_TRIANGLE_INFO_MAP_H

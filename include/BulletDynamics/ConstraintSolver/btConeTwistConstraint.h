@@ -11,6 +11,14 @@
 #include "LinearMath/btQuaternion.h"
 #include "LinearMath/btTransform.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btConeTwistConstraintData2 btConeTwistConstraintDoubleData
+#define btConeTwistConstraintDataName "btConeTwistConstraintDoubleData"
+#else
+#define btConeTwistConstraintData2 btConeTwistConstraintData
+#define btConeTwistConstraintDataName "btConeTwistConstraintData"
+#endif
+
 enum btConeTwistFlags
 {
 	BT_CONETWIST_FLAGS_LIN_CFM = 1,
@@ -175,6 +183,46 @@ public:
 	void setParam(int num, btScalar value, int axis = -1) override;
 	btScalar getParam(int num, int axis = -1) const override;
 	int getFlags() const { return m_flags; }
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btConeTwistConstraintDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btConeTwistConstraintDoubleData
+{
+	btTypedConstraintDoubleData m_typeConstraintData;
+	btTransformDoubleData m_rbAFrame;
+	btTransformDoubleData m_rbBFrame;
+	double m_swingSpan1;
+	double m_swingSpan2;
+	double m_twistSpan;
+	double m_limitSoftness;
+	double m_biasFactor;
+	double m_relaxationFactor;
+	double m_damping;
+};
+
+/// File layout of btConeTwistConstraintData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btConeTwistConstraintData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btTransformFloatData m_rbAFrame;
+	btTransformFloatData m_rbBFrame;
+	float m_swingSpan1;
+	float m_swingSpan2;
+	float m_twistSpan;
+	float m_limitSoftness;
+	float m_biasFactor;
+	float m_relaxationFactor;
+	float m_damping;
+	char m_pad[4];
+};
+
+// clang-format on
 
 #endif  // BT_CONE_TWIST_CONSTRAINT_H

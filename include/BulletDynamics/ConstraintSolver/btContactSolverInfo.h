@@ -103,4 +103,61 @@ struct btContactSolverInfo : public btContactSolverInfoData
 	}
 };
 
+// clang-format off
+/// File layout of btContactSolverInfoDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btContactSolverInfoDoubleData
+{
+	double m_tau;
+	double m_damping;
+	double m_friction;
+	double m_timeStep;
+	double m_restitution;
+	double m_maxErrorReduction;
+	double m_sor;
+	double m_erp;
+	double m_erp2;
+	double m_globalCfm;
+	double m_splitImpulsePenetrationThreshold;
+	double m_splitImpulseTurnErp;
+	double m_linearSlop;
+	double m_warmstartingFactor;
+	double m_maxGyroscopicForce;
+	double m_singleAxisRollingFrictionThreshold;
+	int m_numIterations;
+	int m_solverMode;
+	int m_restingContactRestitutionThreshold;
+	int m_minimumSolverBatchSize;
+	int m_splitImpulse;
+	char m_padding[4];
+};
+
+/// File layout of btContactSolverInfoFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btContactSolverInfoFloatData
+{
+	float m_tau;
+	float m_damping;
+	float m_friction;
+	float m_timeStep;
+	float m_restitution;
+	float m_maxErrorReduction;
+	float m_sor;
+	float m_erp;
+	float m_erp2;
+	float m_globalCfm;
+	float m_splitImpulsePenetrationThreshold;
+	float m_splitImpulseTurnErp;
+	float m_linearSlop;
+	float m_warmstartingFactor;
+	float m_maxGyroscopicForce;
+	float m_singleAxisRollingFrictionThreshold;
+	int m_numIterations;
+	int m_solverMode;
+	int m_restingContactRestitutionThreshold;
+	int m_minimumSolverBatchSize;
+	int m_splitImpulse;
+	char m_padding[4];
+};
+
+// clang-format on
+
 #endif  // BT_CONTACT_SOLVER_INFO

@@ -18,6 +18,14 @@
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btVector3.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btGearConstraintData btGearConstraintDoubleData
+#define btGearConstraintDataName "btGearConstraintDoubleData"
+#else
+#define btGearConstraintData btGearConstraintFloatData
+#define btGearConstraintDataName "btGearConstraintFloatData"
+#endif
+
 ATTRIBUTE_ALIGNED16(class)
 btGearConstraint : public btTypedConstraint
 {
@@ -58,6 +66,34 @@ public:
 	/// error to reduce, so ERP is not a parameter of this joint (asserts, as in Bullet, and is ignored).
 	void setParam(int num, btScalar value, int axis = -1) override;
 	btScalar getParam(int num, int axis = -1) const override;
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btGearConstraintFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btGearConstraintFloatData
+{
+	btTypedConstraintFloatData m_typeConstraintData;
+	btVector3FloatData m_axisInA;
+	btVector3FloatData m_axisInB;
+	float m_ratio;
+	char m_padding[4];
+};
+
+/// File layout of btGearConstraintDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btGearConstraintDoubleData
+{
+	btTypedConstraintDoubleData m_typeConstraintData;
+	btVector3DoubleData m_axisInA;
+	btVector3DoubleData m_axisInB;
+	double m_ratio;
+};
+
+// clang-format on
 
 #endif  // BT_GEAR_CONSTRAINT_H

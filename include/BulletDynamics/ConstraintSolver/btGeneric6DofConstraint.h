@@ -19,6 +19,14 @@
 #include "LinearMath/btTransform.h"
 #include "LinearMath/btVector3.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btGeneric6DofConstraintData2 btGeneric6DofConstraintDoubleData2
+#define btGeneric6DofConstraintDataName "btGeneric6DofConstraintDoubleData2"
+#else
+#define btGeneric6DofConstraintData2 btGeneric6DofConstraintData
+#define btGeneric6DofConstraintDataName "btGeneric6DofConstraintData"
+#endif
+
 class btRigidBody;
 
 /// The limit and motor of one angular coordinate of a btGeneric6DofConstraint.
@@ -346,6 +354,43 @@ public:
 
 	/// The bt6DofFlags of all axes (BT_6DOF_FLAGS_AXIS_SHIFT bits per axis).
 	virtual int getFlags() const { return m_flags; }
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btGeneric6DofConstraintData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btGeneric6DofConstraintData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btTransformFloatData m_rbAFrame;
+	btTransformFloatData m_rbBFrame;
+	btVector3FloatData m_linearUpperLimit;
+	btVector3FloatData m_linearLowerLimit;
+	btVector3FloatData m_angularUpperLimit;
+	btVector3FloatData m_angularLowerLimit;
+	int m_useLinearReferenceFrameA;
+	int m_useOffsetForConstraintFrame;
+};
+
+/// File layout of btGeneric6DofConstraintDoubleData2 in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btGeneric6DofConstraintDoubleData2
+{
+	btTypedConstraintDoubleData m_typeConstraintData;
+	btTransformDoubleData m_rbAFrame;
+	btTransformDoubleData m_rbBFrame;
+	btVector3DoubleData m_linearUpperLimit;
+	btVector3DoubleData m_linearLowerLimit;
+	btVector3DoubleData m_angularUpperLimit;
+	btVector3DoubleData m_angularLowerLimit;
+	int m_useLinearReferenceFrameA;
+	int m_useOffsetForConstraintFrame;
+};
+
+// clang-format on
 
 #endif  // BT_GENERIC_6DOF_CONSTRAINT_H

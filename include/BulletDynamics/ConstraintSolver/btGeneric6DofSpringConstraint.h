@@ -11,6 +11,14 @@
 
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btGeneric6DofSpringConstraintData2 btGeneric6DofSpringConstraintDoubleData2
+#define btGeneric6DofSpringConstraintDataName "btGeneric6DofSpringConstraintDoubleData2"
+#else
+#define btGeneric6DofSpringConstraintData2 btGeneric6DofSpringConstraintData
+#define btGeneric6DofSpringConstraintDataName "btGeneric6DofSpringConstraintData"
+#endif
+
 ATTRIBUTE_ALIGNED16(class)
 btGeneric6DofSpringConstraint : public btGeneric6DofConstraint
 {
@@ -60,6 +68,35 @@ public:
 
 	void getInfo1(btConstraintInfo1 * info) override;
 	void getInfo2(btConstraintInfo2 * info) override;
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btGeneric6DofSpringConstraintData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btGeneric6DofSpringConstraintData
+{
+	btGeneric6DofConstraintData m_6dofData;
+	int m_springEnabled[6];
+	float m_equilibriumPoint[6];
+	float m_springStiffness[6];
+	float m_springDamping[6];
+};
+
+/// File layout of btGeneric6DofSpringConstraintDoubleData2 in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btGeneric6DofSpringConstraintDoubleData2
+{
+	btGeneric6DofConstraintDoubleData2 m_6dofData;
+	int m_springEnabled[6];
+	double m_equilibriumPoint[6];
+	double m_springStiffness[6];
+	double m_springDamping[6];
+};
+
+// clang-format on
 
 #endif  // BT_GENERIC_6DOF_SPRING_CONSTRAINT_H

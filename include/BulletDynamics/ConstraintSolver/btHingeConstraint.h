@@ -10,6 +10,14 @@
 #include "LinearMath/btTransform.h"
 #include "LinearMath/btVector3.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btHingeConstraintData btHingeConstraintDoubleData2
+#define btHingeConstraintDataName "btHingeConstraintDoubleData2"
+#else
+#define btHingeConstraintData btHingeConstraintFloatData
+#define btHingeConstraintDataName "btHingeConstraintFloatData"
+#endif
+
 enum btHingeFlags
 {
 	BT_HINGE_FLAGS_CFM_STOP = 1,
@@ -165,6 +173,12 @@ public:
 	void setParam(int num, btScalar value, int axis = -1) override;
 	btScalar getParam(int num, int axis = -1) const override;
 	int getFlags() const { return m_flags; }
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
 
 /// A hinge whose angle keeps counting past +-pi (getAccumulatedHingeAngle), for motors and limits that
@@ -209,5 +223,65 @@ public:
 	/// Updates the accumulated angle once per step, then as btHingeConstraint.
 	void getInfo1(btConstraintInfo1 * info) override;
 };
+
+// clang-format off
+/// File layout of btHingeConstraintDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btHingeConstraintDoubleData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btTransformDoubleData m_rbAFrame;
+	btTransformDoubleData m_rbBFrame;
+	int m_useReferenceFrameA;
+	int m_angularOnly;
+	int m_enableAngularMotor;
+	float m_motorTargetVelocity;
+	float m_maxMotorImpulse;
+	float m_lowerLimit;
+	float m_upperLimit;
+	float m_limitSoftness;
+	float m_biasFactor;
+	float m_relaxationFactor;
+};
+
+/// File layout of btHingeConstraintFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btHingeConstraintFloatData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btTransformFloatData m_rbAFrame;
+	btTransformFloatData m_rbBFrame;
+	int m_useReferenceFrameA;
+	int m_angularOnly;
+	int m_enableAngularMotor;
+	float m_motorTargetVelocity;
+	float m_maxMotorImpulse;
+	float m_lowerLimit;
+	float m_upperLimit;
+	float m_limitSoftness;
+	float m_biasFactor;
+	float m_relaxationFactor;
+};
+
+/// File layout of btHingeConstraintDoubleData2 in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+/// m_padding1 sits before the doubles, not after them as in Bullet's declaration, where the compiler
+/// adds hidden padding that the DNA does not describe; readers match fields by name, so files agree.
+struct btHingeConstraintDoubleData2
+{
+	btTypedConstraintDoubleData m_typeConstraintData;
+	btTransformDoubleData m_rbAFrame;
+	btTransformDoubleData m_rbBFrame;
+	int m_useReferenceFrameA;
+	int m_angularOnly;
+	int m_enableAngularMotor;
+	char m_padding1[4];
+	double m_motorTargetVelocity;
+	double m_maxMotorImpulse;
+	double m_lowerLimit;
+	double m_upperLimit;
+	double m_limitSoftness;
+	double m_biasFactor;
+	double m_relaxationFactor;
+};
+
+// clang-format on
 
 #endif  // BT_HINGE_CONSTRAINT_H

@@ -8,6 +8,14 @@
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btVector3.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btPoint2PointConstraintData2 btPoint2PointConstraintDoubleData2
+#define btPoint2PointConstraintDataName "btPoint2PointConstraintDoubleData2"
+#else
+#define btPoint2PointConstraintData2 btPoint2PointConstraintFloatData
+#define btPoint2PointConstraintDataName "btPoint2PointConstraintFloatData"
+#endif
+
 /// Per-joint settings of a point-to-point joint. m_impulseClamp > 0 bounds each row's impulse per step
 /// (a "rubber" joint that gives way under load). m_tau and m_damping are kept for source compatibility:
 /// as in Bullet's row solver, the error reduction comes from ERP (setParam or the world's erp).
@@ -64,6 +72,39 @@ public:
 	void setParam(int num, btScalar value, int axis = -1) override;
 	btScalar getParam(int num, int axis = -1) const override;
 	int getFlags() const { return m_flags; }
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btPoint2PointConstraintFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btPoint2PointConstraintFloatData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btVector3FloatData m_pivotInA;
+	btVector3FloatData m_pivotInB;
+};
+
+/// File layout of btPoint2PointConstraintDoubleData2 in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btPoint2PointConstraintDoubleData2
+{
+	btTypedConstraintDoubleData m_typeConstraintData;
+	btVector3DoubleData m_pivotInA;
+	btVector3DoubleData m_pivotInB;
+};
+
+/// Older double layout of the point-to-point joint (read, not written).
+struct btPoint2PointConstraintDoubleData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btVector3DoubleData m_pivotInA;
+	btVector3DoubleData m_pivotInB;
+};
+
+// clang-format on
 
 #endif  // BT_POINT2POINT_CONSTRAINT_H

@@ -20,6 +20,14 @@
 #include "LinearMath/btTransform.h"
 #include "LinearMath/btVector3.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btSliderConstraintData2 btSliderConstraintDoubleData
+#define btSliderConstraintDataName "btSliderConstraintDoubleData"
+#else
+#define btSliderConstraintData2 btSliderConstraintData
+#define btSliderConstraintDataName "btSliderConstraintData"
+#endif
+
 class btRigidBody;
 
 #define SLIDER_CONSTRAINT_DEF_SOFTNESS (btScalar(1.0))
@@ -244,6 +252,43 @@ public:
 	btScalar getParam(int num, int axis = -1) const override;
 	/// Which values setParam set (btSliderFlags).
 	int getFlags() const { return m_flags; }
+
+public:
+	/// Bytes of the joint's data struct (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the joint's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
 };
+
+// clang-format off
+/// File layout of btSliderConstraintData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btSliderConstraintData
+{
+	btTypedConstraintData m_typeConstraintData;
+	btTransformFloatData m_rbAFrame;
+	btTransformFloatData m_rbBFrame;
+	float m_linearUpperLimit;
+	float m_linearLowerLimit;
+	float m_angularUpperLimit;
+	float m_angularLowerLimit;
+	int m_useLinearReferenceFrameA;
+	int m_useOffsetForConstraintFrame;
+};
+
+/// File layout of btSliderConstraintDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btSliderConstraintDoubleData
+{
+	btTypedConstraintDoubleData m_typeConstraintData;
+	btTransformDoubleData m_rbAFrame;
+	btTransformDoubleData m_rbBFrame;
+	double m_linearUpperLimit;
+	double m_linearLowerLimit;
+	double m_angularUpperLimit;
+	double m_angularLowerLimit;
+	int m_useLinearReferenceFrameA;
+	int m_useOffsetForConstraintFrame;
+};
+
+// clang-format on
 
 #endif  // BT_SLIDER_CONSTRAINT_H

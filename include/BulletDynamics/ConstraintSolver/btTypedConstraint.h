@@ -12,6 +12,14 @@
 #include "LinearMath/btAlignedObjectArray.h"
 #include "LinearMath/btScalar.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btTypedConstraintData2 btTypedConstraintDoubleData
+#define btTypedConstraintDataName "btTypedConstraintDoubleData"
+#else
+#define btTypedConstraintData2 btTypedConstraintFloatData
+#define btTypedConstraintDataName "btTypedConstraintFloatData"
+#endif
+
 class btSerializer;
 struct btSolverBody;
 
@@ -204,14 +212,11 @@ public:
 	virtual void setParam(int num, btScalar value, int axis = -1) = 0;
 	virtual btScalar getParam(int num, int axis = -1) const = 0;
 
-	/// Serialization is not supported yet: the buffer size is 0 and serialize writes nothing.
-	virtual int calculateSerializeBufferSize() const { return 0; }
-	virtual const char* serialize(void* dataBuffer, btSerializer* serializer) const
-	{
-		(void)dataBuffer;
-		(void)serializer;
-		return "btTypedConstraintData";
-	}
+	/// Bytes of the joint's data struct (btTypedConstraintData2: float or double as the build).
+	virtual int calculateSerializeBufferSize() const;
+	/// Writes the joint's common data (bodies, name, type, feedback, threshold, enabled) into dataBuffer
+	/// and returns the struct's name; each joint type extends it with its own frames and limits.
+	virtual const char* serialize(void* dataBuffer, btSerializer* serializer) const;
 };
 
 /// angleInRadians moved by whole turns into [angleLowerLimitInRadians, angleUpperLimitInRadians] when it
@@ -279,5 +284,63 @@ public:
 	btScalar getLow() const;
 	btScalar getHigh() const;
 };
+
+// clang-format off
+/// File layout of btTypedConstraintFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btTypedConstraintFloatData
+{
+	btRigidBodyFloatData* m_rbA;
+	btRigidBodyFloatData* m_rbB;
+	char* m_name;
+	int m_objectType;
+	int m_userConstraintType;
+	int m_userConstraintId;
+	int m_needsFeedback;
+	float m_appliedImpulse;
+	float m_dbgDrawSize;
+	int m_disableCollisionsBetweenLinkedBodies;
+	int m_overrideNumSolverIterations;
+	float m_breakingImpulseThreshold;
+	int m_isEnabled;
+};
+
+/// File layout of btTypedConstraintData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btTypedConstraintData
+{
+	btRigidBodyData* m_rbA;
+	btRigidBodyData* m_rbB;
+	char* m_name;
+	int m_objectType;
+	int m_userConstraintType;
+	int m_userConstraintId;
+	int m_needsFeedback;
+	float m_appliedImpulse;
+	float m_dbgDrawSize;
+	int m_disableCollisionsBetweenLinkedBodies;
+	int m_overrideNumSolverIterations;
+	float m_breakingImpulseThreshold;
+	int m_isEnabled;
+};
+
+/// File layout of btTypedConstraintDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btTypedConstraintDoubleData
+{
+	btRigidBodyDoubleData* m_rbA;
+	btRigidBodyDoubleData* m_rbB;
+	char* m_name;
+	int m_objectType;
+	int m_userConstraintType;
+	int m_userConstraintId;
+	int m_needsFeedback;
+	double m_appliedImpulse;
+	double m_dbgDrawSize;
+	int m_disableCollisionsBetweenLinkedBodies;
+	int m_overrideNumSolverIterations;
+	double m_breakingImpulseThreshold;
+	int m_isEnabled;
+	char padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_TYPED_CONSTRAINT_H

@@ -81,9 +81,9 @@ protected:
 	virtual void createPredictiveContacts(btScalar timeStep);
 	/// Reads kinematic bodies' motion states and derives their velocities.
 	virtual void saveKinematicState(btScalar timeStep);
-	/// Serialization is not supported yet: reports a warning and writes nothing.
+	/// Writes every rigid body, then every joint, as chunks.
 	void serializeRigidBodies(btSerializer * serializer);
-	/// Serialization is not supported yet: reports a warning and writes nothing.
+	/// Writes gravity and the solver settings (btDynamicsWorldData) as a chunk.
 	void serializeDynamicsWorldInfo(btSerializer * serializer);
 
 public:
@@ -160,7 +160,7 @@ public:
 	/// Older name for updating the actions.
 	virtual void updateVehicles(btScalar timeStep) { updateActions(timeStep); }
 
-	/// Serialization is not supported yet: reports a warning and writes nothing.
+	/// Writes the world into serializer as a complete .bullet file (docs/serialization.md).
 	void serialize(btSerializer * serializer) override;
 
 	void addVehicle(btActionInterface * vehicle) override;

@@ -124,4 +124,21 @@ public:
 	virtual void removeCharacter(btActionInterface* character) { (void)character; }
 };
 
+// clang-format off
+/// File layout of btDynamicsWorldDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btDynamicsWorldDoubleData
+{
+	btContactSolverInfoDoubleData m_solverInfo;
+	btVector3DoubleData m_gravity;
+};
+
+/// File layout of btDynamicsWorldFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btDynamicsWorldFloatData
+{
+	btContactSolverInfoFloatData m_solverInfo;
+	btVector3FloatData m_gravity;
+};
+
+// clang-format on
+
 #endif  // BT_DYNAMICS_WORLD_H

@@ -7,6 +7,14 @@
 #include "LinearMath/btMatrix3x3.h"
 #include "LinearMath/btTransform.h"
 
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btRigidBodyData btRigidBodyDoubleData
+#define btRigidBodyDataName "btRigidBodyDoubleData"
+#else
+#define btRigidBodyData btRigidBodyFloatData
+#define btRigidBodyDataName "btRigidBodyFloatData"
+#endif
+
 class btCollisionShape;
 class btMotionState;
 class btTypedConstraint;
@@ -326,6 +334,70 @@ public:
 
 private:
 	void setupRigidBody(const btRigidBodyConstructionInfo& constructionInfo);
+
+public:
+	/// Bytes of btRigidBodyData (float or double as the build).
+	int calculateSerializeBufferSize() const override;
+	/// Writes the body's data struct into dataBuffer and returns the struct's name.
+	const char* serialize(void* dataBuffer, class btSerializer* serializer) const override;
+	/// Writes the body as a chunk of its own (its shape is written separately).
+	void serializeSingleObject(class btSerializer * serializer) const override;
 };
+
+// clang-format off
+/// File layout of btRigidBodyFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btRigidBodyFloatData
+{
+	btCollisionObjectFloatData m_collisionObjectData;
+	btMatrix3x3FloatData m_invInertiaTensorWorld;
+	btVector3FloatData m_linearVelocity;
+	btVector3FloatData m_angularVelocity;
+	btVector3FloatData m_angularFactor;
+	btVector3FloatData m_linearFactor;
+	btVector3FloatData m_gravity;
+	btVector3FloatData m_gravity_acceleration;
+	btVector3FloatData m_invInertiaLocal;
+	btVector3FloatData m_totalForce;
+	btVector3FloatData m_totalTorque;
+	float m_inverseMass;
+	float m_linearDamping;
+	float m_angularDamping;
+	float m_additionalDampingFactor;
+	float m_additionalLinearDampingThresholdSqr;
+	float m_additionalAngularDampingThresholdSqr;
+	float m_additionalAngularDampingFactor;
+	float m_linearSleepingThreshold;
+	float m_angularSleepingThreshold;
+	int m_additionalDamping;
+};
+
+/// File layout of btRigidBodyDoubleData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btRigidBodyDoubleData
+{
+	btCollisionObjectDoubleData m_collisionObjectData;
+	btMatrix3x3DoubleData m_invInertiaTensorWorld;
+	btVector3DoubleData m_linearVelocity;
+	btVector3DoubleData m_angularVelocity;
+	btVector3DoubleData m_angularFactor;
+	btVector3DoubleData m_linearFactor;
+	btVector3DoubleData m_gravity;
+	btVector3DoubleData m_gravity_acceleration;
+	btVector3DoubleData m_invInertiaLocal;
+	btVector3DoubleData m_totalForce;
+	btVector3DoubleData m_totalTorque;
+	double m_inverseMass;
+	double m_linearDamping;
+	double m_angularDamping;
+	double m_additionalDampingFactor;
+	double m_additionalLinearDampingThresholdSqr;
+	double m_additionalAngularDampingThresholdSqr;
+	double m_additionalAngularDampingFactor;
+	double m_linearSleepingThreshold;
+	double m_angularSleepingThreshold;
+	int m_additionalDamping;
+	char m_padding[4];
+};
+
+// clang-format on
 
 #endif  // BT_RIGIDBODY_H

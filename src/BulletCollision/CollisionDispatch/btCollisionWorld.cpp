@@ -260,15 +260,3 @@ void btCollisionWorld::performDiscreteCollisionDetection()
 	}
 }
 
-void btCollisionWorld::serializeCollisionObjects(btSerializer* serializer) { (void)serializer; }
-
-void btCollisionWorld::serializeContactManifolds(btSerializer* serializer) { (void)serializer; }
-
-void btCollisionWorld::serialize(btSerializer* serializer)
-{
-	// Caliber has no btSerializer yet: the caller is told that nothing was written.
-	serializeCollisionObjects(serializer);
-	serializeContactManifolds(serializer);
-	btReportWarning("Caliber: btCollisionWorld::serialize: serialization is not supported yet; nothing was written\n",
-	                getDebugDrawer());
-}

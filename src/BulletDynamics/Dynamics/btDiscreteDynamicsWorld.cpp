@@ -206,32 +206,6 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	if (m_internalTickCallback) (*m_internalTickCallback)(this, timeStep);
 }
 
-// Caliber has no btSerializer yet: a caller asking for a snapshot is told that none was written.
-void btDiscreteDynamicsWorld::serialize(btSerializer* serializer)
-{
-	(void)serializer;
-	btReportWarning(
-	    "Caliber: btDiscreteDynamicsWorld::serialize: serialization is not supported yet; nothing was written\n",
-	    getDebugDrawer());
-}
-
-void btDiscreteDynamicsWorld::serializeRigidBodies(btSerializer* serializer)
-{
-	(void)serializer;
-	btReportWarning(
-	    "Caliber: btDiscreteDynamicsWorld::serializeRigidBodies: serialization is not supported yet; nothing was "
-	    "written\n",
-	    getDebugDrawer());
-}
-
-void btDiscreteDynamicsWorld::serializeDynamicsWorldInfo(btSerializer* serializer)
-{
-	(void)serializer;
-	btReportWarning(
-	    "Caliber: btDiscreteDynamicsWorld::serializeDynamicsWorldInfo: serialization is not supported yet; nothing "
-	    "was written\n",
-	    getDebugDrawer());
-}
 
 void btDiscreteDynamicsWorld::startProfiling(btScalar timeStep)
 {

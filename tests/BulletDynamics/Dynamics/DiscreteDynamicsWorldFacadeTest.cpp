@@ -169,10 +169,23 @@ TEST(DiscreteDynamicsWorldFacade, PredictiveContactsOfASubclassLiveForOneStep)
 	EXPECT_EQ(dispatcher.getNumManifolds(), 0) << "the world releases its predictive manifolds when it goes";
 }
 
-TEST(DiscreteDynamicsWorldFacade, SerializationWarnsAndWritesNothing)
+#if CALIBER_ASSERTS_ENABLED
+TEST(DiscreteDynamicsWorldFacadeDeathTest, SerializationWithoutSerializerAsserts)
 {
-	// Caliber has no serializer yet: each serialization entry point reports that it wrote nothing (in
-	// Bullet they would write a .bullet snapshot), rather than failing silently.
+	// The protected parts and the public entry points all refuse a null serializer.
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	PredictiveWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	EXPECT_DEATH(world.serializeParts(), "assertion failed");
+	EXPECT_DEATH(world.serialize(nullptr), "assertion failed");
+	EXPECT_DEATH(world.btCollisionWorld::serialize(nullptr), "assertion failed");
+}
+#else
+TEST(DiscreteDynamicsWorldFacade, SerializationWithoutSerializerWarnsAndWritesNothing)
+{
+	// Bullet would crash on a null serializer; Caliber reports it once per call and writes nothing.
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	btDbvtBroadphase broadphase;
@@ -186,3 +199,4 @@ TEST(DiscreteDynamicsWorldFacade, SerializationWarnsAndWritesNothing)
 	world.btCollisionWorld::serialize(nullptr);
 	EXPECT_EQ(warnings.count(), 4);
 }
+#endif

@@ -1,0 +1,656 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+//
+// Loading .bullet files: the file is parsed (BulletFileLoader), every converted struct is checked
+// against the chunk it came from (pointer targets of the right struct, counts within the arrays,
+// indices within the vertices, finite numbers), and only then turned into objects by
+// btWorldImporter. docs/serialization.md, "Bad input".
+#include "btBulletWorldImporter.h"
+
+#include "../BulletFileLoader/btBulletFile.h"
+#include "btBulletDynamicsCommon.h"
+#include "BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h"
+#include "BulletDynamics/ConstraintSolver/btGearConstraint.h"
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
+#include "LinearMath/btSerializer.h"
+#include "LinearMath/btWarningHook.h"
+
+#include <math.h>
+#include <string.h>
+
+#include <string>
+
+namespace
+{
+// Reads the chunk header the loader kept for each converted block (a protected member of bFile,
+// reached through a pointer to member as the BVH access helpers do; no Caliber member is added).
+struct BlockInfoAccess : bParse::bFile
+{
+	static const btHashMap<btHashPtr, bParse::bChunkInd>& blocks(const bParse::bFile& file)
+	{
+		return file.*(&BlockInfoAccess::m_chunkPtrPtrMap);
+	}
+};
+
+class Checker
+{
+public:
+	explicit Checker(bParse::btBulletFile& file) : m_file(file), m_blocks(BlockInfoAccess::blocks(file))
+	{
+		for (int i = 0; i < file.m_collisionShapes.size(); ++i)
+			m_shapes.insert(btHashPtr(file.m_collisionShapes[i]), 1);
+		for (int i = 0; i < file.m_rigidBodies.size(); ++i) m_bodies.insert(btHashPtr(file.m_rigidBodies[i]), 1);
+	}
+
+	// The struct name of the block at p (0 when p is no block start).
+	const char* structOf(const void* p) const
+	{
+		const bParse::bChunkInd* info = p ? m_blocks.find(btHashPtr(p)) : 0;
+		if (!info || info->dna_nr < 0) return 0;
+		return m_file.getFileDNA() ? memoryType(info->dna_nr) : 0;
+	}
+	// Elements in the block at p.
+	int countOf(const void* p) const
+	{
+		const bParse::bChunkInd* info = p ? m_blocks.find(btHashPtr(p)) : 0;
+		return info ? info->nr : 0;
+	}
+	bool isA(const void* p, const char* type, long long count = 1) const
+	{
+		const char* s = structOf(p);
+		return s && strcmp(s, type) == 0 && count >= 0 && countOf(p) >= count;
+	}
+	// A name pointer must point at a plain (terminated) block; anything else is dropped.
+	void fixName(char*& name) const
+	{
+		if (!name) return;
+		const bParse::bChunkInd* info = m_blocks.find(btHashPtr(name));
+		if (!info || info->dna_nr >= 0) name = 0;
+	}
+	bool isShape(const void* p) const { return p && m_shapes.find(btHashPtr(p)); }
+	bool isBody(const void* p) const { return p && m_bodies.find(btHashPtr(p)); }
+
+	// Valid shapes may be converted; the answer is remembered (compound children are asked again).
+	bool shapeIsValid(btCollisionShapeData* shape, int depth = 0)
+	{
+		if (!isShape(shape)) return false;
+		int* known = m_verdicts.find(btHashPtr(shape));
+		if (known) return *known == 1;
+		m_verdicts.insert(btHashPtr(shape), 2);  // a compound reaching itself is invalid
+		const bool valid = depth <= 64 && checkShape(shape, depth);
+		m_verdicts.insert(btHashPtr(shape), valid ? 1 : 2);
+		return valid;
+	}
+
+private:
+	// Every shape struct starts with btCollisionShapeData: only blocks of these are read as shapes.
+	static bool isShapeStruct(const char* type)
+	{
+		static const char* const names[] = {
+		    "btCollisionShapeData",          "btConvexInternalShapeData", "btCapsuleShapeData",
+		    "btCylinderShapeData",           "btConeShapeData",           "btStaticPlaneShapeData",
+		    "btMultiSphereShapeData",        "btConvexHullShapeData",     "btTriangleMeshShapeData",
+		    "btScaledTriangleMeshShapeData", "btCompoundShapeData"};
+		for (const char* n : names)
+			if (!strcmp(n, type)) return true;
+		return false;
+	}
+
+	bool checkShape(btCollisionShapeData* shape, int depth)
+	{
+		const char* type = structOf(shape);
+		if (!type || !isShapeStruct(type)) return false;
+		fixName(shape->m_name);
+		switch (shape->m_shapeType)
+		{
+			case BOX_SHAPE_PROXYTYPE:
+			case SPHERE_SHAPE_PROXYTYPE:
+				return !strcmp(type, "btConvexInternalShapeData") && convexFinite(shape);
+			case CAPSULE_SHAPE_PROXYTYPE:
+				return !strcmp(type, "btCapsuleShapeData") && convexFinite(shape);
+			case CYLINDER_SHAPE_PROXYTYPE:
+				return !strcmp(type, "btCylinderShapeData") && convexFinite(shape);
+			case CONE_SHAPE_PROXYTYPE:
+				return !strcmp(type, "btConeShapeData") && convexFinite(shape);
+			case STATIC_PLANE_PROXYTYPE:
+			{
+				if (strcmp(type, "btStaticPlaneShapeData")) return false;
+				const btStaticPlaneShapeData* d = reinterpret_cast<btStaticPlaneShapeData*>(shape);
+				return finite(d->m_planeNormal) && finite(d->m_localScaling) && isfinite(d->m_planeConstant);
+			}
+			case MULTI_SPHERE_SHAPE_PROXYTYPE:
+			{
+				if (strcmp(type, "btMultiSphereShapeData") || !convexFinite(shape)) return false;
+				btMultiSphereShapeData* d = reinterpret_cast<btMultiSphereShapeData*>(shape);
+				if (d->m_localPositionArraySize <= 0 ||
+				    !isA(d->m_localPositionArrayPtr, "btPositionAndRadius", d->m_localPositionArraySize))
+					return false;
+				for (int i = 0; i < d->m_localPositionArraySize; ++i)
+					if (!finite(d->m_localPositionArrayPtr[i].m_pos) ||
+					    !isfinite(d->m_localPositionArrayPtr[i].m_radius))
+						return false;
+				return true;
+			}
+			case CONVEX_HULL_SHAPE_PROXYTYPE:
+			{
+				if (strcmp(type, "btConvexHullShapeData") || !convexFinite(shape)) return false;
+				btConvexHullShapeData* d = reinterpret_cast<btConvexHullShapeData*>(shape);
+				const int n = d->m_numUnscaledPoints;
+				if (n <= 0) return false;
+				if (d->m_unscaledPointsFloatPtr)
+				{
+					if (!isA(d->m_unscaledPointsFloatPtr, "btVector3FloatData", n)) return false;
+					for (int i = 0; i < n; ++i)
+						if (!finite(d->m_unscaledPointsFloatPtr[i])) return false;
+					return true;
+				}
+				if (!isA(d->m_unscaledPointsDoublePtr, "btVector3DoubleData", n)) return false;
+				for (int i = 0; i < n; ++i)
+					if (!finite(d->m_unscaledPointsDoublePtr[i])) return false;
+				return true;
+			}
+			case TRIANGLE_MESH_SHAPE_PROXYTYPE:
+				return !strcmp(type, "btTriangleMeshShapeData") &&
+				       checkMesh(*reinterpret_cast<btTriangleMeshShapeData*>(shape));
+			case SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE:
+			{
+				if (strcmp(type, "btScaledTriangleMeshShapeData")) return false;
+				btScaledTriangleMeshShapeData* d = reinterpret_cast<btScaledTriangleMeshShapeData*>(shape);
+				return finite(d->m_localScaling) && checkMesh(d->m_trimeshShapeData);
+			}
+			case COMPOUND_SHAPE_PROXYTYPE:
+			{
+				if (strcmp(type, "btCompoundShapeData") || depth > 64) return false;
+				btCompoundShapeData* d = reinterpret_cast<btCompoundShapeData*>(shape);
+				if (d->m_numChildShapes < 0) return false;
+				if (d->m_numChildShapes == 0) return true;
+				if (!isA(d->m_childShapePtr, "btCompoundShapeChildData", d->m_numChildShapes)) return false;
+				for (int i = 0; i < d->m_numChildShapes; ++i)
+				{
+					btCompoundShapeChildData& c = d->m_childShapePtr[i];
+					if (!finiteTransform(c.m_transform)) return false;
+					// A child must itself be a valid shape of the file (which excludes cycles).
+					if (!shapeIsValid(c.m_childShape, depth + 1)) return false;
+				}
+				return true;
+			}
+			default:
+				return true;  // unknown kinds are reported and skipped by the converter
+		}
+	}
+
+public:
+	// No number of the block is NaN, and every number inside a transform, pivot or axis is finite
+	// (other fields may be infinite: a joint's breaking threshold is by default).
+	bool numbersSane(const void* block) const
+	{
+		const bParse::bChunkInd* info = block ? m_blocks.find(btHashPtr(block)) : 0;
+		if (!info || info->dna_nr < 0) return false;
+		return numbersSaneIn(info->dna_nr, static_cast<const char*>(block), false, 0);
+	}
+
+	template <class V>
+	static bool finite(const V& v)
+	{
+		for (int i = 0; i < 3; ++i)
+			if (!isfinite(v.m_floats[i])) return false;
+		return true;
+	}
+	template <class T>
+	static bool finiteTransform(const T& t)
+	{
+		return finite(t.m_origin) && finite(t.m_basis.m_el[0]) && finite(t.m_basis.m_el[1]) &&
+		       finite(t.m_basis.m_el[2]);
+	}
+
+private:
+	bool numbersSaneIn(int memoryStruct, const char* p, bool mustBeFinite, int depth) const
+	{
+		bParse::bDNA& dna = memoryDna();
+		short* st = dna.getStruct(memoryStruct);
+		if (!st || depth > 8) return false;
+		int offset = 0;
+		for (int f = 0; f < st[1]; ++f)
+		{
+			const short type = st[2 + 2 * f], name = st[3 + 2 * f];
+			const char* fieldName = dna.getName(name);
+			const int size = dna.getElementSize(type, name);
+			const int count = dna.getArraySizeNew(name);
+			if (fieldName[0] != '*' && count > 0)
+			{
+				const char* typeName = dna.getType(type);
+				const int element = size / count;
+				const bool strict = mustBeFinite || strstr(fieldName, "Frame") || strstr(fieldName, "Transform") ||
+				                    strstr(fieldName, "m_pivotIn") || strstr(fieldName, "m_axisIn") ||
+				                    strstr(fieldName, "m_gravity");
+				const int sub = dna.getReverseType(typeName);
+				for (int i = 0; i < count; ++i)
+				{
+					const char* q = p + offset + i * element;
+					double v = 0;
+					if (!strcmp(typeName, "btTransformFloatData") || !strcmp(typeName, "btTransformDoubleData"))
+					{
+						// Frames and transforms must be rotations, not just numbers.
+						bool rotation;
+						if (typeName[11] == 'F')
+						{
+							btTransformFloatData t;
+							memcpy(&t, q, sizeof(t));
+							rotation = finiteTransform(t);
+						}
+						else
+						{
+							btTransformDoubleData t;
+							memcpy(&t, q, sizeof(t));
+							rotation = finiteTransform(t);
+						}
+						if (!rotation) return false;
+						continue;
+					}
+					if (sub >= 0)
+					{
+						if (!numbersSaneIn(sub, q, strict, depth + 1)) return false;
+						continue;
+					}
+					if (!strcmp(typeName, "float"))
+					{
+						float x;
+						memcpy(&x, q, 4);
+						v = x;
+					}
+					else if (!strcmp(typeName, "double"))
+						memcpy(&v, q, 8);
+					else
+						continue;
+					if (v != v || (strict && !isfinite(v))) return false;
+				}
+			}
+			offset += size;
+		}
+		return true;
+	}
+
+	btHashMap<btHashPtr, int> m_verdicts;
+	// The reader's DNA names the struct of every converted block.
+	static bParse::bDNA& memoryDna()
+	{
+		static bParse::bDNA* dna = []
+		{
+			bParse::bDNA* parsed = new bParse::bDNA();  // built once, kept for the process
+			const int length = btDefaultSerializer::getMemoryDnaSizeInBytes();
+			parsed->init(const_cast<char*>(btDefaultSerializer::getMemoryDna()), length, false);
+			return parsed;
+		}();
+		return *dna;
+	}
+	const char* memoryType(int memoryStruct) const
+	{
+		short* s = memoryDna().getStruct(memoryStruct);
+		return s ? memoryDna().getType(s[0]) : 0;
+	}
+
+	bool convexFinite(btCollisionShapeData* shape) const
+	{
+		const btConvexInternalShapeData* d = reinterpret_cast<btConvexInternalShapeData*>(shape);
+		if (!finite(d->m_implicitShapeDimensions) || !finite(d->m_localScaling) || !isfinite(d->m_collisionMargin))
+			return false;
+		// Scaling divides the stored dimensions: zero scaling cannot be undone.
+		for (int i = 0; i < 3; ++i)
+			if (d->m_localScaling.m_floats[i] == 0.f) return false;
+		return true;
+	}
+
+	bool checkMesh(btTriangleMeshShapeData& mesh)
+	{
+		// BVHs and triangle info maps are rebuilt, never read.
+		mesh.m_quantizedFloatBvh = 0;
+		mesh.m_quantizedDoubleBvh = 0;
+		mesh.m_triangleInfoMap = 0;
+		btStridingMeshInterfaceData& m = mesh.m_meshInterface;
+		if (!finite(m.m_scaling) || m.m_numMeshParts <= 0 || !isA(m.m_meshPartsPtr, "btMeshPartData", m.m_numMeshParts))
+			return false;
+		for (int p = 0; p < m.m_numMeshParts; ++p)
+		{
+			btMeshPartData& part = m.m_meshPartsPtr[p];
+			const int nv = part.m_numVertices, nt = part.m_numTriangles;
+			if (nv <= 0 || nt <= 0) return false;
+			if (part.m_vertices3f)
+			{
+				if (!isA(part.m_vertices3f, "btVector3FloatData", nv)) return false;
+				for (int v = 0; v < nv; ++v)
+					if (!finite(part.m_vertices3f[v])) return false;
+			}
+			else
+			{
+				if (!isA(part.m_vertices3d, "btVector3DoubleData", nv)) return false;
+				for (int v = 0; v < nv; ++v)
+					if (!finite(part.m_vertices3d[v])) return false;
+			}
+			long long triangles = nt;
+			if (part.m_indices32)
+			{
+				if (!isA(part.m_indices32, "btIntIndexData", 3 * triangles)) return false;
+				for (long long i = 0; i < 3 * triangles; ++i)
+					if (part.m_indices32[i].m_value < 0 || part.m_indices32[i].m_value >= nv) return false;
+			}
+			else if (part.m_3indices16)
+			{
+				if (!isA(part.m_3indices16, "btShortIntIndexTripletData", triangles)) return false;
+				for (long long t = 0; t < triangles; ++t)
+					for (int k = 0; k < 3; ++k)
+						if (static_cast<unsigned short>(part.m_3indices16[t].m_values[k]) >= nv) return false;
+			}
+			else if (part.m_3indices8)
+			{
+				if (!isA(part.m_3indices8, "btCharIndexTripletData", triangles)) return false;
+				for (long long t = 0; t < triangles; ++t)
+					for (int k = 0; k < 3; ++k)
+						if (static_cast<unsigned char>(part.m_3indices8[t].m_values[k]) >= nv) return false;
+			}
+			else if (part.m_indices16)
+			{
+				if (!isA(part.m_indices16, "btShortIntIndexData", 3 * triangles)) return false;
+				for (long long i = 0; i < 3 * triangles; ++i)
+					if (static_cast<unsigned short>(part.m_indices16[i].m_value) >= nv) return false;
+			}
+			else
+				return false;
+		}
+		return true;
+	}
+
+	bParse::btBulletFile& m_file;
+	const btHashMap<btHashPtr, bParse::bChunkInd>& m_blocks;
+	btHashMap<btHashPtr, int> m_shapes;
+	btHashMap<btHashPtr, int> m_bodies;
+};
+
+void readTransform(btTransform& t, const btTransformFloatData& d) { t.deSerializeFloat(d); }
+void readTransform(btTransform& t, const btTransformDoubleData& d) { t.deSerializeDouble(d); }
+
+void warn(const std::string& message)
+{
+	btReportWarning(("Caliber: btBulletWorldImporter: " + message + "\n").c_str());
+}
+
+template <class ObjectData>
+bool objectFinite(const ObjectData& d)
+{
+	return Checker::finiteTransform(d.m_worldTransform) && Checker::finiteTransform(d.m_interpolationWorldTransform) &&
+	       Checker::finite(d.m_interpolationLinearVelocity) && Checker::finite(d.m_interpolationAngularVelocity) &&
+	       Checker::finite(d.m_anisotropicFriction);
+}
+
+template <class BodyData>
+bool bodyFinite(const BodyData& d)
+{
+	return objectFinite(d.m_collisionObjectData) && Checker::finite(d.m_linearVelocity) &&
+	       Checker::finite(d.m_angularVelocity) && Checker::finite(d.m_gravity_acceleration) &&
+	       Checker::finite(d.m_invInertiaLocal) && Checker::finite(d.m_linearFactor) &&
+	       Checker::finite(d.m_angularFactor) && isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
+}
+
+// The struct each joint kind has in float and in double files (and the older double layouts).
+bool jointStructMatches(int objectType, const char* type)
+{
+	struct Entry
+	{
+		int kind;
+		const char* names[3];
+	};
+	static const Entry table[] = {
+	    {POINT2POINT_CONSTRAINT_TYPE,
+	     {"btPoint2PointConstraintFloatData", "btPoint2PointConstraintDoubleData2",
+	      "btPoint2PointConstraintDoubleData"}},
+	    {HINGE_CONSTRAINT_TYPE,
+	     {"btHingeConstraintFloatData", "btHingeConstraintDoubleData2", "btHingeConstraintDoubleData"}},
+	    {CONETWIST_CONSTRAINT_TYPE, {"btConeTwistConstraintData", "btConeTwistConstraintDoubleData", 0}},
+	    {D6_CONSTRAINT_TYPE, {"btGeneric6DofConstraintData", "btGeneric6DofConstraintDoubleData2", 0}},
+	    {D6_SPRING_CONSTRAINT_TYPE,
+	     {"btGeneric6DofSpringConstraintData", "btGeneric6DofSpringConstraintDoubleData2", 0}},
+	    {D6_SPRING_2_CONSTRAINT_TYPE,
+	     {"btGeneric6DofSpring2ConstraintData", "btGeneric6DofSpring2ConstraintDoubleData2", 0}},
+	    {FIXED_CONSTRAINT_TYPE, {"btGeneric6DofSpring2ConstraintData", "btGeneric6DofSpring2ConstraintDoubleData2", 0}},
+	    {SLIDER_CONSTRAINT_TYPE, {"btSliderConstraintData", "btSliderConstraintDoubleData", 0}},
+	    {GEAR_CONSTRAINT_TYPE, {"btGearConstraintFloatData", "btGearConstraintDoubleData", 0}},
+	};
+	for (const Entry& e : table)
+		if (e.kind == objectType)
+			for (const char* name : e.names)
+				if (name && !strcmp(name, type)) return true;
+	return false;
+}
+
+bool isJointStruct(const char* type)
+{
+	for (int kind = POINT2POINT_CONSTRAINT_TYPE; kind < MAX_CONSTRAINT_TYPE; ++kind)
+		if (jointStructMatches(kind, type)) return true;
+	return false;
+}
+
+bool isDoubleJoint(const char* type)
+{
+	return !strcmp(type, "btPoint2PointConstraintDoubleData2") || !strcmp(type, "btHingeConstraintDoubleData2") ||
+	       !strcmp(type, "btConeTwistConstraintDoubleData") || !strcmp(type, "btGeneric6DofConstraintDoubleData2") ||
+	       !strcmp(type, "btGeneric6DofSpringConstraintDoubleData2") ||
+	       !strcmp(type, "btGeneric6DofSpring2ConstraintDoubleData2") ||
+	       !strcmp(type, "btSliderConstraintDoubleData") || !strcmp(type, "btGearConstraintDoubleData");
+}
+}  // namespace
+
+btBulletWorldImporter::btBulletWorldImporter(btDynamicsWorld* world) : btWorldImporter(world) {}
+
+btBulletWorldImporter::~btBulletWorldImporter() {}
+
+bool btBulletWorldImporter::loadFile(const char* fileName, const char* preSwapFilenameOut)
+{
+	bParse::btBulletFile file(fileName);
+	if (!file.ok()) return false;
+	file.parse(m_verboseMode);
+	if (preSwapFilenameOut && file.ok()) file.write(preSwapFilenameOut);
+	return loadFileFromMemory(&file);
+}
+
+bool btBulletWorldImporter::loadFileFromMemory(char* memoryBuffer, int len)
+{
+	if (!memoryBuffer || len <= 0)
+	{
+		warn("no buffer, or an empty one, was given; nothing was loaded");
+		return false;
+	}
+	bParse::btBulletFile file(memoryBuffer, len);
+	if (!file.ok()) return false;
+	file.parse(m_verboseMode);
+	return loadFileFromMemory(&file);
+}
+
+bool btBulletWorldImporter::loadFileFromMemory(bParse::btBulletFile* file)
+{
+	if (!file || !file->ok())
+	{
+		warn("the file is not a valid .bullet file; nothing was loaded");
+		return false;
+	}
+	return convertAllObjects(file);
+}
+
+bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
+{
+	if (!file || !file->ok()) return false;
+	Checker check(*file);
+	// 1. World settings (the first record).
+	if (file->m_dynamicsWorldInfo.size() > 0)
+	{
+		// Start from the world's settings: a field the file lacks (older writers) keeps its value.
+		btContactSolverInfo solverInfo = m_dynamicsWorld ? m_dynamicsWorld->getSolverInfo() : btContactSolverInfo();
+		btVector3 gravity = m_dynamicsWorld ? m_dynamicsWorld->getGravity() : btVector3(0, -10, 0);
+		bParse::bDNA* fileDna = file->getFileDNA();
+		auto read = [&](const auto& d, const char* worldStruct, const char* infoStruct)
+		{
+			auto has = [&](const char* structName, const char* field)
+			{
+				short* st = fileDna ? fileDna->getStruct(fileDna->getReverseType(structName)) : 0;
+				for (int f = 0; st && f < st[1]; ++f)
+				{
+					const char* name = fileDna->getName(st[3 + 2 * f]);
+					if (name && !strncmp(name, field, strlen(field)) &&
+					    (name[strlen(field)] == 0 || name[strlen(field)] == '['))
+						return true;
+				}
+				return false;
+			};
+			if (has(worldStruct, "m_gravity"))
+				gravity = btVector3(btScalar(d.m_gravity.m_floats[0]), btScalar(d.m_gravity.m_floats[1]),
+				                    btScalar(d.m_gravity.m_floats[2]));
+			if (!has(worldStruct, "m_solverInfo")) return;
+			const auto& i = d.m_solverInfo;
+			// Each setting is taken when the file has it and it is a non-negative number.
+#define CALIBER_TAKE(field) \
+	if (has(infoStruct, #field) && i.field >= 0 && isfinite(double(i.field))) solverInfo.field = btScalar(i.field);
+			CALIBER_TAKE(m_tau)
+			CALIBER_TAKE(m_damping)
+			CALIBER_TAKE(m_friction)
+			CALIBER_TAKE(m_timeStep)
+			CALIBER_TAKE(m_restitution)
+			CALIBER_TAKE(m_maxErrorReduction)
+			CALIBER_TAKE(m_sor)
+			CALIBER_TAKE(m_erp)
+			CALIBER_TAKE(m_erp2)
+			CALIBER_TAKE(m_globalCfm)
+			CALIBER_TAKE(m_splitImpulsePenetrationThreshold)
+			CALIBER_TAKE(m_splitImpulseTurnErp)
+			CALIBER_TAKE(m_linearSlop)
+			CALIBER_TAKE(m_warmstartingFactor)
+			CALIBER_TAKE(m_maxGyroscopicForce)
+			CALIBER_TAKE(m_singleAxisRollingFrictionThreshold)
+#undef CALIBER_TAKE
+			if (has(infoStruct, "m_numIterations") && i.m_numIterations >= 1 && i.m_numIterations <= 100000)
+				solverInfo.m_numIterations = i.m_numIterations;
+			if (has(infoStruct, "m_solverMode")) solverInfo.m_solverMode = i.m_solverMode;
+			if (has(infoStruct, "m_restingContactRestitutionThreshold"))
+				solverInfo.m_restingContactRestitutionThreshold = i.m_restingContactRestitutionThreshold;
+			if (has(infoStruct, "m_minimumSolverBatchSize") && i.m_minimumSolverBatchSize >= 0)
+				solverInfo.m_minimumSolverBatchSize = i.m_minimumSolverBatchSize;
+			if (has(infoStruct, "m_splitImpulse")) solverInfo.m_splitImpulse = i.m_splitImpulse != 0;
+		};
+		void* info = file->m_dynamicsWorldInfo[0];
+		bool known = true;
+		if (check.isA(info, "btDynamicsWorldFloatData"))
+			read(*static_cast<btDynamicsWorldFloatData*>(info), "btDynamicsWorldFloatData",
+			     "btContactSolverInfoFloatData");
+		else if (check.isA(info, "btDynamicsWorldDoubleData"))
+			read(*static_cast<btDynamicsWorldDoubleData*>(info), "btDynamicsWorldDoubleData",
+			     "btContactSolverInfoDoubleData");
+		else
+			known = false;
+		if (known && isfinite(gravity.x()) && isfinite(gravity.y()) && isfinite(gravity.z()))
+			setDynamicsWorldInfo(gravity, solverInfo);
+		else
+			warn("the world settings are malformed; the world's own are kept");
+	}
+	// 2. Shapes (compound children convert on demand through the shape map).
+	for (int i = 0; i < file->m_collisionShapes.size(); ++i)
+	{
+		btCollisionShapeData* shapeData = reinterpret_cast<btCollisionShapeData*>(file->m_collisionShapes[i]);
+		if (!check.shapeIsValid(shapeData))
+		{
+			warn("shape " + std::to_string(i) + " has inconsistent data; it is skipped");
+			continue;
+		}
+		if (m_shapeMap.find(btHashPtr(shapeData))) continue;
+		btCollisionShape* shape = convertCollisionShape(shapeData);
+		if (shape) m_shapeMap.insert(btHashPtr(shapeData), shape);
+	}
+	// 3. Rigid bodies.
+	for (int i = 0; i < file->m_rigidBodies.size(); ++i)
+	{
+		void* body = file->m_rigidBodies[i];
+		if (check.isA(body, "btRigidBodyFloatData"))
+		{
+			btRigidBodyFloatData* d = static_cast<btRigidBodyFloatData*>(body);
+			check.fixName(d->m_collisionObjectData.m_name);
+			if (bodyFinite(*d) && check.numbersSane(d))
+				convertRigidBodyFloat(d);
+			else
+				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
+		}
+		else if (check.isA(body, "btRigidBodyDoubleData"))
+		{
+			btRigidBodyDoubleData* d = static_cast<btRigidBodyDoubleData*>(body);
+			check.fixName(d->m_collisionObjectData.m_name);
+			if (bodyFinite(*d) && check.numbersSane(d))
+				convertRigidBodyDouble(d);
+			else
+				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
+		}
+	}
+	// 4. Plain collision objects.
+	for (int i = 0; i < file->m_collisionObjects.size(); ++i)
+	{
+		void* object = file->m_collisionObjects[i];
+		auto convert = [&](auto* d)
+		{
+			check.fixName(d->m_name);
+			btCollisionShape** shape = m_shapeMap.find(btHashPtr(d->m_collisionShape));
+			if (!shape || !objectFinite(*d) || !check.numbersSane(d))
+			{
+				warn("collision object " + std::to_string(i) + " has no valid shape or non-finite data; it is skipped");
+				return;
+			}
+			btTransform t;
+			readTransform(t, d->m_worldTransform);
+			btCollisionObject* created = createCollisionObject(t, *shape, d->m_name);
+			created->setFriction(btScalar(d->m_friction));
+			created->setRestitution(btScalar(d->m_restitution));
+			created->setRollingFriction(btScalar(d->m_rollingFriction));
+			created->setCollisionFlags(d->m_collisionFlags);
+			if (m_dynamicsWorld && (d->m_collisionFilterGroup || d->m_collisionFilterMask))
+			{
+				m_dynamicsWorld->removeCollisionObject(created);
+				m_dynamicsWorld->addCollisionObject(created, d->m_collisionFilterGroup, d->m_collisionFilterMask);
+			}
+			m_bodyMap.insert(btHashPtr(d), created);
+		};
+		if (check.isA(object, "btCollisionObjectFloatData"))
+			convert(static_cast<btCollisionObjectFloatData*>(object));
+		else if (check.isA(object, "btCollisionObjectDoubleData"))
+			convert(static_cast<btCollisionObjectDoubleData*>(object));
+	}
+	// 5. Joints: both bodies must be rigid bodies of this file (or null: the world).
+	for (int i = 0; i < file->m_constraints.size(); ++i)
+	{
+		void* joint = file->m_constraints[i];
+		const char* type = check.structOf(joint);
+		btTypedConstraintData* common = static_cast<btTypedConstraintData*>(joint);
+		// The type field is read only once the block is known to be a joint struct.
+		if (!type || !isJointStruct(type) || !jointStructMatches(common->m_objectType, type))
+		{
+			warn("joint " + std::to_string(i) + " has a struct that does not match its type; it is skipped");
+			continue;
+		}
+		if (!check.numbersSane(joint))
+		{
+			warn("joint " + std::to_string(i) + " has NaN or non-finite frames; it is skipped");
+			continue;
+		}
+		check.fixName(common->m_name);
+		void* bodyA = common->m_rbA;
+		void* bodyB = common->m_rbB;
+		btCollisionObject** a = bodyA ? m_bodyMap.find(btHashPtr(bodyA)) : 0;
+		btCollisionObject** b = bodyB ? m_bodyMap.find(btHashPtr(bodyB)) : 0;
+		btRigidBody* rbA = a ? btRigidBody::upcast(*a) : 0;
+		btRigidBody* rbB = b ? btRigidBody::upcast(*b) : 0;
+		if ((bodyA && !rbA) || (bodyB && !rbB) || (!rbA && !rbB) || (bodyA && !check.isBody(bodyA)) ||
+		    (bodyB && !check.isBody(bodyB)))
+		{
+			warn("joint " + std::to_string(i) + " refers to a body that is not in the file; it is skipped");
+			continue;
+		}
+		if (isDoubleJoint(type))
+			convertConstraintDouble(static_cast<btTypedConstraintDoubleData*>(joint), rbA, rbB, file->getVersion());
+		else if (!strcmp(type, "btPoint2PointConstraintDoubleData") || !strcmp(type, "btHingeConstraintDoubleData"))
+			convertConstraintBackwardsCompatible281(common, rbA, rbB, file->getVersion());
+		else
+			convertConstraintFloat(static_cast<btTypedConstraintFloatData*>(joint), rbA, rbB, file->getVersion());
+	}
+	return true;
+}
