@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "HullShapes/MarginHullShape.h"
 #include "LinearMath/btConvexHullComputer.h"
 #include "LinearMath/btGeometryUtil.h"
 
@@ -127,19 +128,8 @@ BspLevelShape buildBspLevelShape(const BspConversion& conversion)
 	identity.setIdentity();
 	for (const BspConvexPiece& piece : conversion.pieces)
 	{
-		std::unique_ptr<btConvexHullShape> hull(new btConvexHullShape());
-		// The hull's collision margin rounds it outwards; moving the faces in by the margin first keeps
-		// the surface where the brush's planes are. A brush too thin for that keeps its corners.
-		btAlignedObjectArray<btVector3> planes, shrunk;
-		btAlignedObjectArray<btVector3> corners = piece.vertices;
-		btGeometryUtil::getPlaneEquationsFromVertices(corners, planes);
-		for (int i = 0; i < planes.size(); ++i) planes[i].setW(planes[i].w() + hull->getMargin());
-		btGeometryUtil::getVerticesFromPlaneEquations(planes, shrunk);
-		btConvexHullComputer check;
-		if (shrunk.size() >= 4) check.compute(&shrunk[0][0], sizeof(btVector3), shrunk.size(), 0, 0);
-		const btAlignedObjectArray<btVector3>& used = check.faces.size() >= 4 ? shrunk : piece.vertices;
-		for (int i = 0; i < used.size(); ++i) hull->addPoint(used[i], false);
-		hull->recalcLocalAabb();
+		std::unique_ptr<btConvexHullShape> hull = makeMarginHullShape(piece.vertices);
+		if (!hull) continue;  // cannot happen: every piece has volume
 		level.compound->addChildShape(identity, hull.get());
 		level.hulls.push_back(std::move(hull));
 	}

@@ -47,8 +47,8 @@ bool brushToConvexVertices(const btAlignedObjectArray<btVector3>& planes, btAlig
 BspConversion convertBspBrushes(const BspLevel& level, btScalar scale);
 
 /// A static level: one btCompoundShape with a btConvexHullShape child per piece (children at the identity,
-/// their corners in level coordinates, each hull shrunk by its collision margin so that hull plus margin
-/// has the brush's faces). The compound does not own its children, so they are kept here.
+/// their corners in level coordinates, each shrunk by its collision margin so that hull plus margin has the
+/// brush's faces: caliber::makeMarginHullShape). The compound does not own its children, so they are kept here.
 struct BspLevelShape
 {
 	std::vector<std::unique_ptr<btConvexHullShape>> hulls;
