@@ -10,7 +10,7 @@
 #include "BspLoader/BspConverter.h"
 #include "BspLoader/BspLoader.h"
 #include "BspLoader/BspWriter.h"
-#include "LinearMath/btConvexHullComputer.h"
+#include "ConvexDecomposition/ConvexDecomposition.h"
 #include "btBulletDynamicsCommon.h"
 
 using caliber::BspConversion;
@@ -27,27 +27,7 @@ BspLevel load(const std::vector<unsigned char>& bytes)
 	return level;
 }
 
-// Volume of the convex hull of points: tetrahedra from the first vertex to each face's triangle fan.
-double hullVolume(const btAlignedObjectArray<btVector3>& points)
-{
-	btConvexHullComputer hull;
-	hull.compute(&points[0][0], sizeof(btVector3), points.size(), 0, 0);
-	double volume = 0;
-	const btVector3 origin = hull.vertices[0];
-	for (int f = 0; f < hull.faces.size(); ++f)
-	{
-		const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
-		const btVector3 a = hull.vertices[first->getSourceVertex()] - origin;
-		for (const btConvexHullComputer::Edge* e = first->getNextEdgeOfFace();
-		     e->getTargetVertex() != first->getSourceVertex(); e = e->getNextEdgeOfFace())
-		{
-			const btVector3 b = hull.vertices[e->getSourceVertex()] - origin;
-			const btVector3 c = hull.vertices[e->getTargetVertex()] - origin;
-			volume += a.dot(b.cross(c)) / 6.0;
-		}
-	}
-	return std::fabs(volume);
-}
+double hullVolume(const btAlignedObjectArray<btVector3>& points) { return caliber::convexHullVolume(points); }
 
 void setLump(std::vector<unsigned char>& bytes, int lump, std::int32_t offset, std::int32_t length)
 {
