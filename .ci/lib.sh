@@ -39,7 +39,7 @@ caliber_package_installed() {
 caliber_ensure_packages() {
 	local missing=()
 	local tool package
-	local libraries=(libgtest-dev libbenchmark-dev libccd-dev)
+	local libraries=(libgtest-dev libbenchmark-dev libccd-dev libtinyxml2-dev)
 	for tool in cmake g++ make pkg-config "$@"; do
 		if [[ "$tool" == *-dev ]]; then
 			libraries+=("$tool")
