@@ -2,10 +2,11 @@
 //
 // ColladaDemo: the COLLADA physics viewer, headless. It loads a COLLADA 1.4 physics document (by default
 // playground.dae next to this file, written by hand: a ground plane, a stack of three boxes, a ball rolling
-// towards the stack, a capsule, a cylinder and a convex pyramid), simulates it for 4 s at the document's
-// time step and gravity, printing each body's height every second, then exports the world, imports the
-// export and exports that again. Checks: every body comes to rest above the ground, the stack's top box
-// stays on the stack, and the two exports are the same text (the round trip is exact). It also shows what
+// towards the stack, a capsule, a cylinder, a convex pyramid, and a plank hinged to a post by a
+// rigid_constraint), simulates it for 4 s at the document's time step and gravity, printing each body's
+// height every second, then exports the world, imports the export and exports that again. Checks: every
+// body comes to rest above the ground, the stack's top box stays on the stack, the plank has swung down
+// with its end still on the hinge, and the two exports are the same text (the round trip is exact). It also shows what
 // a damaged document gives. Usage: ColladaDemo [FILE.dae]. Exit 1 when a check fails.
 
 #include <stdio.h>
@@ -66,6 +67,15 @@ int main(int argc, char** argv)
 	// The stack is the 2nd to 4th bodies; the top box, 1 m cubes on the ground, rests near y = 2.5.
 	const btScalar top = scene.bodies.size() > 3 ? scene.bodies[3]->getCenterOfMassPosition().y() : 0;
 
+	// The plank (last body) hinges at the post's top (4, 0.5, 2) by its end 0.6 m from its centre.
+	const btRigidBody& plank = *scene.bodies.back();
+	const btVector3 plankEnd = plank.getCenterOfMassTransform() * btVector3(btScalar(-0.6), 0, 0);
+	const btScalar hingeGap = (plankEnd - btVector3(4, btScalar(0.5), 2)).length();
+	const bool hingeOk = scene.constraints.size() == 1 && hingeGap < btScalar(0.01) &&
+	                     plank.getCenterOfMassPosition().y() < btScalar(0.45);
+	printf("the plank's end is %.4f m from the hinge, its centre %.3f m up\n", hingeGap,
+	       plank.getCenterOfMassPosition().y());
+
 	std::string first, second, error;
 	bool roundTrip = caliber::exportColladaPhysics(physics.world, scene.timeStep, first, error);
 	caliber::ColladaPhysicsScene copy;
@@ -90,7 +100,8 @@ int main(int argc, char** argv)
 	printf("check: every body at rest above the ground (%d of %d at rest, lowest centre %.3f m): %s\n", resting,
 	       dynamic, lowest, restOk ? "ok" : "FAILED");
 	printf("check: the stack stands (top box at %.3f m): %s\n", top, stackOk ? "ok" : "FAILED");
+	printf("check: the plank swung down on its hinge: %s\n", hingeOk ? "ok" : "FAILED");
 	printf("check: export, import, export gives the same document: %s\n", roundTrip ? "ok" : "FAILED");
 	printf("check: the damaged document is refused: %s\n", damaged.ok() ? "FAILED" : "ok");
-	return (restOk && stackOk && roundTrip && !damaged.ok()) ? 0 : 1;
+	return (restOk && stackOk && hingeOk && roundTrip && !damaged.ok()) ? 0 : 1;
 }

@@ -36,6 +36,7 @@ struct ShowcaseWorld
 	btSphereShape bell{btScalar(0.2)};
 	btBoxShape bar{btVector3(btScalar(0.4), btScalar(0.05), btScalar(0.05))};
 	std::vector<std::unique_ptr<btRigidBody>> bodies;
+	std::vector<std::unique_ptr<btGeneric6DofConstraint>> joints;
 
 	ShowcaseWorld()
 	{
@@ -68,6 +69,21 @@ struct ShowcaseWorld
 		bodies[3]->setLinearVelocity(btVector3(btScalar(0.5), 0, btScalar(-0.25)));
 		bodies[3]->setFriction(btScalar(0.3));
 		bodies[4]->setRestitution(btScalar(0.6));
+
+		// A 6-DoF joint with rotated frames, a free slide along x and limited swings; and a locked one whose
+		// bodies may interpenetrate.
+		btTransform frameA(btQuaternion(btVector3(0, 0, 1), btScalar(0.5)), btVector3(btScalar(0.5), 0, 0));
+		btTransform frameB(btQuaternion(btVector3(1, 0, 0), btScalar(-0.25)),
+		                   btVector3(btScalar(-0.3), btScalar(0.1), 0));
+		joints.emplace_back(new btGeneric6DofConstraint(*bodies[2], *bodies[3], frameA, frameB, true));
+		joints.back()->setLinearLowerLimit(btVector3(1, 0, 0));
+		joints.back()->setLinearUpperLimit(btVector3(-1, 0, 0));
+		joints.back()->setAngularLowerLimit(btVector3(btScalar(-0.3), btScalar(-0.2), 0));
+		joints.back()->setAngularUpperLimit(btVector3(btScalar(0.3), btScalar(0.2), 0));
+		world.addConstraint(joints.back().get());
+		joints.emplace_back(new btGeneric6DofConstraint(*bodies[5], *bodies[6], btTransform::getIdentity(),
+		                                                btTransform::getIdentity(), false));
+		world.addConstraint(joints.back().get(), true);
 	}
 
 	void add(btCollisionShape* shape, btScalar mass, const btVector3& at, const btQuaternion& rotation)
@@ -75,12 +91,14 @@ struct ShowcaseWorld
 		btVector3 inertia(0, 0, 0);
 		if (mass > 0) shape->calculateLocalInertia(mass, inertia);
 		bodies.emplace_back(new btRigidBody(mass, nullptr, shape, inertia));
-		bodies.back()->setWorldTransform(btTransform(rotation, at));
+		// Not setWorldTransform: that leaves the world inertia tensor of the identity pose until the first step.
+		bodies.back()->setCenterOfMassTransform(btTransform(rotation, at));
 		world.addRigidBody(bodies.back().get());
 	}
 
 	~ShowcaseWorld()
 	{
+		for (auto& joint : joints) world.removeConstraint(joint.get());
 		for (auto& body : bodies) world.removeRigidBody(body.get());
 	}
 };
@@ -169,6 +187,28 @@ TEST(ColladaPhysics, ExportThenImportIsExact)
 		EXPECT_EQ(a.getRestitution(), b.getRestitution()) << "body " << i;
 		EXPECT_EQ(a.getLinearVelocity(), b.getLinearVelocity()) << "body " << i;
 		EXPECT_EQ(a.getCollisionShape()->getShapeType(), b.getCollisionShape()->getShapeType()) << "body " << i;
+	}
+	ASSERT_EQ(scene.constraints.size(), 2u);
+	EXPECT_EQ(scene.constraintsInterpenetrate, std::vector<bool>({false, true}));
+	for (std::size_t j = 0; j < 2; ++j)
+	{
+		const btGeneric6DofConstraint& a = *original.joints[j];
+		const btGeneric6DofConstraint& b = static_cast<const btGeneric6DofConstraint&>(*scene.constraints[j]);
+		for (int r = 0; r < 3; ++r)
+		{
+			EXPECT_EQ(a.getFrameOffsetA().getBasis()[r], b.getFrameOffsetA().getBasis()[r]) << "joint " << j;
+			EXPECT_EQ(a.getFrameOffsetB().getBasis()[r], b.getFrameOffsetB().getBasis()[r]) << "joint " << j;
+		}
+		EXPECT_EQ(a.getFrameOffsetA().getOrigin(), b.getFrameOffsetA().getOrigin()) << "joint " << j;
+		EXPECT_EQ(a.getFrameOffsetB().getOrigin(), b.getFrameOffsetB().getOrigin()) << "joint " << j;
+		btVector3 la, lb;
+		a.getAngularLowerLimit(la);
+		b.getAngularLowerLimit(lb);
+		EXPECT_EQ(la, lb) << "joint " << j;
+		a.getLinearUpperLimit(la);
+		b.getLinearUpperLimit(lb);
+		EXPECT_EQ(la, lb) << "joint " << j;
+		EXPECT_EQ(a.getUseLinearReferenceFrameA(), b.getUseLinearReferenceFrameA()) << "joint " << j;
 	}
 	scene.removeFrom(copy.world);
 }
@@ -273,6 +313,16 @@ TEST(ColladaPhysics, MalformedDocumentsFailWithTheLineAndTheReason)
 	     "names no <geometry>"},
 	    {replaced(kBoxDocument, "<time_step>0.01</time_step>", "<time_step>-1</time_step>"),
 	     "time step must be positive"},
+	    {replaced(
+	         kBoxDocument, "<instance_rigid_body body=\"box\" target=\"#node\"/>",
+	         "<instance_rigid_body body=\"box\" target=\"#node\"/><instance_rigid_constraint constraint=\"hinge\"/>"),
+	     "no rigid constraint 'hinge'"},
+	    {replaced(replaced(kBoxDocument, "</physics_model>",
+	                       "<rigid_constraint sid=\"j\"><ref_attachment rigid_body=\"box\"/><attachment "
+	                       "rigid_body=\"lid\"/></rigid_constraint></physics_model>"),
+	              "<instance_rigid_body body=\"box\" target=\"#node\"/>",
+	              "<instance_rigid_body body=\"box\" target=\"#node\"/><instance_rigid_constraint constraint=\"j\"/>"),
+	     "'lid' names no rigid body"},
 	};
 	for (const auto& c : cases)
 	{
@@ -343,6 +393,24 @@ TEST(ColladaPhysics, ExportRefusesObjectsAndShapesItCannotWrite)
 	EXPECT_NE(error.find("no COLLADA form"), std::string::npos) << error;
 	EXPECT_TRUE(text.empty());
 	empty.world.removeRigidBody(&coneBody);
+
+	btSphereShape ball(1);
+	btRigidBody first(1, nullptr, &ball, btVector3(1, 1, 1)), second(1, nullptr, &ball, btVector3(1, 1, 1));
+	empty.world.addRigidBody(&first);
+	empty.world.addRigidBody(&second);
+	btHingeConstraint hinge(first, second, btVector3(0, 0, 0), btVector3(0, 2, 0), btVector3(0, 0, 1),
+	                        btVector3(0, 0, 1));
+	empty.world.addConstraint(&hinge);
+	EXPECT_FALSE(caliber::exportColladaPhysics(empty.world, btScalar(1) / 60, text, error));
+	EXPECT_NE(error.find("only btGeneric6DofConstraint"), std::string::npos) << error;
+	empty.world.removeConstraint(&hinge);
+	btGeneric6DofConstraint toWorld(second, btTransform::getIdentity(), true);
+	empty.world.addConstraint(&toWorld);
+	EXPECT_FALSE(caliber::exportColladaPhysics(empty.world, btScalar(1) / 60, text, error));
+	EXPECT_NE(error.find("joints to the world"), std::string::npos) << error;
+	empty.world.removeConstraint(&toWorld);
+	empty.world.removeRigidBody(&first);
+	empty.world.removeRigidBody(&second);
 
 	btBoxShape box(btVector3(1, 1, 1));
 	btCollisionObject plain;

@@ -6,6 +6,7 @@
 
 #include "BulletCollision/CollisionShapes/btCapsuleShape.h"
 #include "BulletCollision/CollisionShapes/btCylinderShape.h"
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
 #include "ColladaPhysics.h"
 
 namespace caliber
@@ -228,6 +229,76 @@ private:
 	std::string& m_error;
 	int m_geometryCount = 0;
 };
+// The 12 numbers of a frame for Caliber's <extra>: three rows of basis and origin.
+std::string frame(const btTransform& t)
+{
+	std::string out;
+	for (int row = 0; row < 3; ++row)
+	{
+		for (int column = 0; column < 3; ++column) out += number(t.getBasis()[row][column]) + " ";
+		out += number(t.getOrigin()[row]) + (row < 2 ? " " : "");
+	}
+	return out;
+}
+
+std::string attachment(const char* element, int body, const btTransform& t)
+{
+	return std::string("<") + element + " rigid_body=\"body" + std::to_string(body) + "\"><translate>" +
+	       vector3(t.getOrigin()) + "</translate><rotate>" + rotation(t.getRotation()) + "</rotate></" + element + ">";
+}
+
+bool writeJoints(const btDiscreteDynamicsWorld& world, std::string& joints, std::string& instances, std::string& error)
+{
+	const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+	const auto indexOf = [&objects](const btRigidBody& body)
+	{
+		for (int i = 0; i < objects.size(); ++i)
+			if (objects[i] == &body) return i;
+		return -1;
+	};
+	for (int c = 0; c < world.getNumConstraints(); ++c)
+	{
+		const btTypedConstraint* constraint = world.getConstraint(c);
+		const std::string where = "joint " + std::to_string(c);
+		if (constraint->getConstraintType() != D6_CONSTRAINT_TYPE)
+		{
+			error = where + ": only btGeneric6DofConstraint has a COLLADA form here (type " +
+			        std::to_string(constraint->getConstraintType()) + ")";
+			return false;
+		}
+		const btGeneric6DofConstraint* joint = static_cast<const btGeneric6DofConstraint*>(constraint);
+		const int a = indexOf(joint->getRigidBodyA()), b = indexOf(joint->getRigidBodyB());
+		if (a < 0 || b < 0)
+		{
+			error = where + ": joints to the world (or to bodies outside it) have no COLLADA form here";
+			return false;
+		}
+		btVector3 linearLower, linearUpper, angularLower, angularUpper;
+		joint->getLinearLowerLimit(linearLower);
+		joint->getLinearUpperLimit(linearUpper);
+		joint->getAngularLowerLimit(angularLower);
+		joint->getAngularUpperLimit(angularUpper);
+		const btScalar degrees = btScalar(180) / SIMD_PI;
+		const bool interpenetrate = !joint->getRigidBodyA().checkCollideWith(&joint->getRigidBodyB());
+		const std::string sid = "joint" + std::to_string(c);
+		joints += "<rigid_constraint sid=\"" + sid + "\">" + attachment("ref_attachment", a, joint->getFrameOffsetA()) +
+		          attachment("attachment", b, joint->getFrameOffsetB()) + "<technique_common><enabled>" +
+		          (joint->isEnabled() ? "true" : "false") + "</enabled><interpenetrate>" +
+		          (interpenetrate ? "true" : "false") + "</interpenetrate><limits><swing_cone_and_twist><min>" +
+		          vector3(angularLower * degrees) + "</min><max>" + vector3(angularUpper * degrees) +
+		          "</max></swing_cone_and_twist><linear><min>" + vector3(linearLower) + "</min><max>" +
+		          vector3(linearUpper) + "</max></linear></limits></technique_common>" +
+		          // Exact frames and angles for Caliber's reader (COLLADA's rotate and limits are in degrees).
+		          "<extra><technique profile=\"Caliber\"><frame_a>" + frame(joint->getFrameOffsetA()) +
+		          "</frame_a><frame_b>" + frame(joint->getFrameOffsetB()) + "</frame_b><angular_min_radians>" +
+		          vector3(angularLower) + "</angular_min_radians><angular_max_radians>" + vector3(angularUpper) +
+		          "</angular_max_radians><linear_reference_frame_a>" +
+		          (joint->getUseLinearReferenceFrameA() ? "true" : "false") +
+		          "</linear_reference_frame_a></technique></extra></rigid_constraint>\n";
+		instances += "<instance_rigid_constraint constraint=\"" + sid + "\"/>\n";
+	}
+	return true;
+}
 }  // namespace
 
 bool exportColladaPhysics(const btDiscreteDynamicsWorld& world, btScalar timeStep, std::string& out, std::string& error)
@@ -269,6 +340,10 @@ bool exportColladaPhysics(const btDiscreteDynamicsWorld& world, btScalar timeSte
 		             vector3(body->getAngularVelocity()) +
 		             "</angular_velocity_radians></technique></extra></instance_rigid_body>\n";
 	}
+	std::string joints, jointInstances;
+	if (!writeJoints(world, joints, jointInstances, error)) return false;
+	bodies += joints;
+	instances += jointInstances;
 	out =
 	    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
 	    "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"

@@ -13,6 +13,7 @@
 #include "BulletCollision/CollisionShapes/btCapsuleShape.h"
 #include "BulletCollision/CollisionShapes/btCylinderShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleMesh.h"
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
 #include "ColladaPhysics.h"
 
 using tinyxml2::XMLElement;
@@ -64,9 +65,13 @@ public:
 		{
 			const XMLElement* physicsModel = resolve(model, "url", "physics_model");
 			if (!physicsModel) return false;
+			m_instancedBodies.clear();
 			for (const XMLElement* instance = model->FirstChildElement("instance_rigid_body"); instance;
 			     instance = instance->NextSiblingElement("instance_rigid_body"))
 				if (!readBody(physicsModel, instance)) return false;
+			for (const XMLElement* instance = model->FirstChildElement("instance_rigid_constraint"); instance;
+			     instance = instance->NextSiblingElement("instance_rigid_constraint"))
+				if (!readJoint(physicsModel, instance)) return false;
 		}
 		return true;
 	}
@@ -418,12 +423,7 @@ private:
 
 		bool dynamic = true;
 		if (const XMLElement* d = common->FirstChildElement("dynamic"))
-		{
-			const char* text = d->GetText() ? d->GetText() : "";
-			if (std::strcmp(text, "true") != 0 && std::strcmp(text, "false") != 0)
-				return fail(d, "<dynamic> must be true or false");
-			dynamic = std::strcmp(text, "true") == 0;
-		}
+			if (!boolean(d, dynamic)) return false;
 		btScalar mass = 0;
 		if (dynamic)
 		{
@@ -502,22 +502,139 @@ private:
 			}
 		}
 		// Caliber's exact radians, when the document came from Caliber's writer.
-		for (const XMLElement* extra = instance->FirstChildElement("extra"); extra;
-		     extra = extra->NextSiblingElement("extra"))
-			for (const XMLElement* t = extra->FirstChildElement("technique"); t; t = t->NextSiblingElement("technique"))
-				if (t->Attribute("profile") && std::strcmp(t->Attribute("profile"), "Caliber") == 0)
-					if (const XMLElement* w = t->FirstChildElement("angular_velocity_radians"))
-					{
-						btVector3 radians;
-						if (!vector(w, radians)) return false;
-						body->setAngularVelocity(radians);
-					}
+		if (const XMLElement* exact = caliberExtra(instance))
+			if (const XMLElement* w = exact->FirstChildElement("angular_velocity_radians"))
+			{
+				btVector3 radians;
+				if (!vector(w, radians)) return false;
+				body->setAngularVelocity(radians);
+			}
+		// A sid instanced twice cannot name one body for a joint.
+		const auto known = m_instancedBodies.find(sid);
+		if (known == m_instancedBodies.end())
+			m_instancedBodies.emplace(sid, int(m_scene.bodies.size()));
+		else
+			known->second = -1;
 		m_scene.bodies.push_back(std::move(body));
 		m_scene.bodyNames.push_back(rigidBody->Attribute("name") ? rigidBody->Attribute("name") : sid);
 		return true;
 	}
 
+	bool boolean(const XMLElement* element, bool& out)
+	{
+		const char* text = element->GetText() ? element->GetText() : "";
+		if (std::strcmp(text, "true") != 0 && std::strcmp(text, "false") != 0)
+			return fail(element, std::string("<") + element->Name() + "> must be true or false");
+		out = std::strcmp(text, "true") == 0;
+		return true;
+	}
+
+	// Caliber's <extra> of element, when there is one.
+	static const XMLElement* caliberExtra(const XMLElement* element)
+	{
+		for (const XMLElement* extra = element->FirstChildElement("extra"); extra;
+		     extra = extra->NextSiblingElement("extra"))
+			for (const XMLElement* t = extra->FirstChildElement("technique"); t; t = t->NextSiblingElement("technique"))
+				if (t->Attribute("profile") && std::strcmp(t->Attribute("profile"), "Caliber") == 0) return t;
+		return nullptr;
+	}
+
+	bool exactFrame(const XMLElement* element, btTransform& out)
+	{
+		btScalar m[12] = {};
+		if (!numbers(element, 12, m)) return false;
+		out.setBasis(btMatrix3x3(m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]));
+		out.setOrigin(btVector3(m[3], m[7], m[11]));
+		return true;
+	}
+
+	// The body an attachment names, and the attachment's frame in that body.
+	bool attachmentOf(const XMLElement* constraint, const char* name, btRigidBody*& body, btTransform& frame)
+	{
+		const XMLElement* element = constraint->FirstChildElement(name);
+		if (!element) return fail(constraint, std::string("<rigid_constraint> has no <") + name + ">");
+		const char* sid = element->Attribute("rigid_body");
+		const auto found = sid ? m_instancedBodies.find(sid) : m_instancedBodies.end();
+		if (found == m_instancedBodies.end())
+			return fail(element, std::string("'") + (sid ? sid : "") + "' names no rigid body instanced in this scene");
+		if (found->second < 0)
+			return fail(element, std::string("the rigid body '") + sid + "' is instanced more than once");
+		body = m_scene.bodies[std::size_t(found->second)].get();
+		bool any;
+		return transformOf(element, frame, any);
+	}
+
+	bool readJoint(const XMLElement* physicsModel, const XMLElement* instance)
+	{
+		const char* sid = instance->Attribute("constraint");
+		const XMLElement* constraint = physicsModel->FirstChildElement("rigid_constraint");
+		while (sid && constraint &&
+		       !(constraint->Attribute("sid") && std::strcmp(constraint->Attribute("sid"), sid) == 0))
+			constraint = constraint->NextSiblingElement("rigid_constraint");
+		if (!sid || !constraint)
+			return fail(instance, std::string("the physics model has no rigid constraint '") + (sid ? sid : "") + "'");
+		btRigidBody *bodyA, *bodyB;
+		btTransform frameA, frameB;
+		if (!attachmentOf(constraint, "ref_attachment", bodyA, frameA) ||
+		    !attachmentOf(constraint, "attachment", bodyB, frameB))
+			return false;
+		if (bodyA == bodyB) return fail(constraint, "a joint needs two different bodies");
+		// Bullet's defaults: every axis locked, enabled, the linked bodies still collide.
+		btVector3 linearLower(0, 0, 0), linearUpper(0, 0, 0), angularLower(0, 0, 0), angularUpper(0, 0, 0);
+		bool enabled = true, interpenetrate = false, referenceFrameA = true;
+		if (const XMLElement* common = constraint->FirstChildElement("technique_common"))
+		{
+			if (const XMLElement* e = common->FirstChildElement("enabled"))
+				if (!boolean(e, enabled)) return false;
+			if (const XMLElement* e = common->FirstChildElement("interpenetrate"))
+				if (!boolean(e, interpenetrate)) return false;
+			if (const XMLElement* limits = common->FirstChildElement("limits"))
+			{
+				if (const XMLElement* angular = limits->FirstChildElement("swing_cone_and_twist"))
+				{
+					const XMLElement *lo = angular->FirstChildElement("min"), *hi = angular->FirstChildElement("max");
+					if (lo && !vector(lo, angularLower)) return false;
+					if (hi && !vector(hi, angularUpper)) return false;
+					angularLower *= SIMD_PI / 180;  // COLLADA gives degrees
+					angularUpper *= SIMD_PI / 180;
+				}
+				if (const XMLElement* linear = limits->FirstChildElement("linear"))
+				{
+					const XMLElement *lo = linear->FirstChildElement("min"), *hi = linear->FirstChildElement("max");
+					if (lo && !vector(lo, linearLower)) return false;
+					if (hi && !vector(hi, linearUpper)) return false;
+				}
+			}
+		}
+		// Caliber's exact frames and angles, when the document came from Caliber's writer.
+		if (const XMLElement* exact = caliberExtra(constraint))
+		{
+			if (const XMLElement* e = exact->FirstChildElement("frame_a"))
+				if (!exactFrame(e, frameA)) return false;
+			if (const XMLElement* e = exact->FirstChildElement("frame_b"))
+				if (!exactFrame(e, frameB)) return false;
+			if (const XMLElement* e = exact->FirstChildElement("angular_min_radians"))
+				if (!vector(e, angularLower)) return false;
+			if (const XMLElement* e = exact->FirstChildElement("angular_max_radians"))
+				if (!vector(e, angularUpper)) return false;
+			if (const XMLElement* e = exact->FirstChildElement("linear_reference_frame_a"))
+				if (!boolean(e, referenceFrameA)) return false;
+		}
+		std::unique_ptr<btGeneric6DofConstraint> joint(
+		    new btGeneric6DofConstraint(*bodyA, *bodyB, frameA, frameB, referenceFrameA));
+		joint->setLinearLowerLimit(linearLower);
+		joint->setLinearUpperLimit(linearUpper);
+		joint->setAngularLowerLimit(angularLower);
+		joint->setAngularUpperLimit(angularUpper);
+		joint->setEnabled(enabled);
+		m_scene.constraints.push_back(std::move(joint));
+		m_scene.constraintNames.push_back(sid);
+		m_scene.constraintsInterpenetrate.push_back(interpenetrate);
+		return true;
+	}
+
 	ColladaPhysicsScene& m_scene;
+	std::unordered_map<std::string, int> m_instancedBodies;  // body sid -> index, -1 when instanced twice
 	tinyxml2::XMLDocument m_document;
 	std::unordered_map<std::string, const XMLElement*> m_ids;
 	std::unordered_map<std::string, btTransform> m_nodePoses;
@@ -527,7 +644,8 @@ private:
 ColladaPhysicsScene::~ColladaPhysicsScene()
 {
 	if (m_world) removeFrom(*m_world);
-	bodies.clear();  // bodies before the shapes and meshes they use
+	constraints.clear();  // joints before their bodies, bodies before the shapes and meshes they use
+	bodies.clear();
 	shapes.clear();
 }
 
@@ -538,11 +656,14 @@ void ColladaPhysicsScene::addTo(btDiscreteDynamicsWorld& world)
 	m_world = &world;
 	world.setGravity(gravity);
 	for (auto& body : bodies) world.addRigidBody(body.get());
+	for (std::size_t i = 0; i < constraints.size(); ++i)
+		world.addConstraint(constraints[i].get(), constraintsInterpenetrate[i]);
 }
 
 void ColladaPhysicsScene::removeFrom(btDiscreteDynamicsWorld& world)
 {
 	if (m_world != &world) return;
+	for (auto& constraint : constraints) world.removeConstraint(constraint.get());
 	for (auto& body : bodies) world.removeRigidBody(body.get());
 	m_world = nullptr;
 }
@@ -570,6 +691,9 @@ bool importColladaPhysics(const char* text, std::size_t size, ColladaPhysicsScen
 	Reader reader(scene);
 	if (reader.run(text, size)) return true;
 	const std::string error = scene.error;  // a failed import holds nothing
+	scene.constraints.clear();
+	scene.constraintNames.clear();
+	scene.constraintsInterpenetrate.clear();
 	scene.bodies.clear();
 	scene.bodyNames.clear();
 	scene.shapes.clear();

@@ -2,7 +2,7 @@
 #ifndef CALIBER_EXTRAS_COLLADA_PHYSICS_H
 #define CALIBER_EXTRAS_COLLADA_PHYSICS_H
 
-/// COLLADA 1.4 physics import and export: rigid bodies, their shapes and materials, gravity and time step
+/// COLLADA 1.4 physics import and export: rigid bodies, their shapes and materials, 6-DoF joints, gravity and time step
 /// (docs/extras.md, "COLLADA physics"). Needs tinyxml2 (Debian libtinyxml2-dev).
 
 #include <cstddef>
@@ -40,6 +40,13 @@ public:
 	void addTo(btDiscreteDynamicsWorld& world);
 	void removeFrom(btDiscreteDynamicsWorld& world);
 
+	/// The joints (btGeneric6DofConstraint, from rigid_constraint), in document order, with their sids.
+	std::vector<std::unique_ptr<btTypedConstraint>> constraints;
+	std::vector<std::string> constraintNames;
+	/// For each joint, whether its bodies may interpenetrate (COLLADA's interpenetrate: addConstraint's
+	/// disableCollisionsBetweenLinkedBodies).
+	std::vector<bool> constraintsInterpenetrate;
+
 	/// Objects the bodies use (shapes, compound children, triangle meshes); kept alive by the scene.
 	std::vector<std::unique_ptr<btCollisionShape>> shapes;
 	std::vector<std::unique_ptr<btStridingMeshInterface>> meshes;
@@ -59,10 +66,11 @@ bool importColladaPhysics(const char* text, std::size_t size, ColladaPhysicsScen
 bool importColladaPhysicsFile(const char* path, ColladaPhysicsScene& scene);
 
 /// Writes world's rigid bodies (shapes: box, sphere, static plane, cylinder, capsule, convex hull, BVH
-/// triangle mesh, and compounds of these), their materials, poses and velocities, and the world's gravity
-/// with timeStep, as a COLLADA 1.4.1 document in out. Numbers are printed with enough digits to read back
-/// bit for bit. A collision object that is not a rigid body, or a shape of another kind, fails the export
-/// with a message in error and leaves out empty.
+/// triangle mesh, and compounds of these), their materials, poses and velocities, its btGeneric6DofConstraint
+/// joints between two of its bodies (frames, limits, enabled, interpenetrate), and the world's gravity with
+/// timeStep, as a COLLADA 1.4.1 document in out. Numbers are printed with enough digits to read back bit for
+/// bit. A collision object that is not a rigid body, a shape or joint of another kind, or a joint to the
+/// world, fails the export with a message in error and leaves out empty.
 bool exportColladaPhysics(const btDiscreteDynamicsWorld& world, btScalar timeStep, std::string& out,
                           std::string& error);
 }  // namespace caliber
