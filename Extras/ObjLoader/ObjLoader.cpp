@@ -133,7 +133,7 @@ private:
 		else if (keyword == "f")
 			parseFace(lineNumber);
 		else if (keyword == "g" || keyword == "o")
-			selectGroup(lineNumber);
+			selectGroup();
 		else if (keyword == "vt" || keyword == "vn" || keyword == "vp" || keyword == "usemtl" || keyword == "mtllib" ||
 		         keyword == "s" || keyword == "l" || keyword == "p")
 			return;  // texture, normal, material and line data: not needed for collision
@@ -263,7 +263,7 @@ private:
 			        "face repeats a vertex; " + std::to_string(dropped) + " degenerate triangle(s) dropped");
 	}
 
-	void selectGroup(int lineNumber)
+	void selectGroup()
 	{
 		std::string name;
 		for (std::size_t i = 1; i < m_tokens.size(); ++i)
@@ -271,7 +271,6 @@ private:
 			if (!name.empty()) name += ' ';
 			name += m_tokens[i];
 		}
-		(void)lineNumber;
 		m_currentName = name.empty() ? "default" : name;
 		m_current = -1;  // looked up (or created) at the group's next face, so empty groups make no mesh
 	}
