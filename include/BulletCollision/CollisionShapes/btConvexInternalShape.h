@@ -2,11 +2,9 @@
 #ifndef BT_CONVEX_INTERNAL_SHAPE_H
 #define BT_CONVEX_INTERNAL_SHAPE_H
 
+#include "BulletCollision/CollisionShapes/btCollisionMargin.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "LinearMath/btAabbUtil2.h"
-
-/// The collision margin convex shapes get by default (0.04 length units, as in Bullet).
-#define CONVEX_DISTANCE_MARGIN btScalar(0.04)
 
 /// A convex shape that stores its local scaling, its implicit dimensions (half extents, radius, ...)
 /// and a collision margin. Bad input is sanitised: negative scaling components are made positive,

@@ -14,6 +14,7 @@
 /// [lower, upper]. Defaults (as in Bullet): linear coordinates locked at 0, angular coordinates free.
 /// Rows: locked coordinates first (solved together as one block), then limits, then motors.
 
+#include "BulletDynamics/ConstraintSolver/btJacobianEntry.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btTransform.h"
 #include "LinearMath/btVector3.h"
@@ -132,8 +133,14 @@ protected:
 	/// The joint frames in each body's centre-of-mass frame.
 	btTransform m_frameInA;
 	btTransform m_frameInB;
+	/// Bullet's per-axis Jacobians of the old iterative path, filled by buildLinearJacobian and
+	/// buildAngularJacobian for subclasses that call them (Caliber's rows do not use them).
+	btJacobianEntry m_jacLinear[3];
+	btJacobianEntry m_jacAng[3];
 	btTranslationalLimitMotor m_linearLimits;
 	btRotationalLimitMotor m_angularLimits[3];
+	/// The step of the last getInfo2 (1 / info->fps).
+	btScalar m_timeStep;
 
 	/// The joint frames in the world, as last calculated.
 	btTransform m_calculatedTransformA;
@@ -145,6 +152,12 @@ protected:
 	/// The linear coordinates.
 	btVector3 m_calculatedLinearDiff;
 	/// The world point at which the linear rows act when the frame offset is off (see calcAnchorPos).
+	/// How the frame-offset method shares a correction: body A's share m_factA = invMassB / (invMassA +
+	/// invMassB), m_factB = 1 - m_factA (0.5 each when both are immovable); m_hasStaticBody when either
+	/// body's inverse mass is (near) zero. Updated by calculateTransforms.
+	btScalar m_factA;
+	btScalar m_factB;
+	bool m_hasStaticBody;
 	btVector3 m_AnchorPos;
 	bool m_useLinearReferenceFrameA;
 	bool m_useOffsetForConstraintFrame;
@@ -154,6 +167,23 @@ protected:
 	void calculateLinearInfo();
 	/// Fills the Euler angles and angular row directions from the calculated transforms.
 	void calculateAngleInfo();
+
+	/// Writes a limit or motor row for each angular axis that needs one (testAngularLimitMotor decides),
+	/// from row row_offset on; returns the row after the last one written. calculateTransforms must have
+	/// run for this step.
+	int setAngularLimits(btConstraintInfo2 * info, int row_offset, const btTransform& transA,
+	                     const btTransform& transB, const btVector3& linVelA, const btVector3& linVelB,
+	                     const btVector3& angVelA, const btVector3& angVelB);
+	/// The same for the linear axes (the linear limit motor's per-axis settings), from row `row` on.
+	int setLinearLimits(btConstraintInfo2 * info, int row, const btTransform& transA, const btTransform& transB,
+	                    const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+	                    const btVector3& angVelB);
+	/// Fills jacLinear for a linear row along normalWorld between the world points pivotAInW (on A) and
+	/// pivotBInW (on B).
+	void buildLinearJacobian(btJacobianEntry & jacLinear, const btVector3& normalWorld, const btVector3& pivotAInW,
+	                         const btVector3& pivotBInW);
+	/// Fills jacAngular for an angular row about the world axis jointAxisW.
+	void buildAngularJacobian(btJacobianEntry & jacAngular, const btVector3& jointAxisW);
 
 private:
 	// Caliber's own row machinery; the spring and universal joints build their rows and frames with it.
@@ -258,6 +288,18 @@ public:
 
 	/// Measures angle axis_index against its limit; true when the angle needs a limit or motor row.
 	bool testAngularLimitMotor(int axis_index);
+
+	/// Writes one row at `row` of info for a limit motor along the world axis ax1 (rotational: an angular
+	/// row; otherwise a linear row at the frames' anchor, without angular part unless rotAllowed), when
+	/// the motor is at a limit (limot->m_currentLimit, from testLimitValue) or enabled; returns the number
+	/// of rows written (0 or 1). The row's J v is ax1 . (wA - wB) (or the anchor's relative velocity along
+	/// ax1), the opposite of the coordinate's rate: a limit row drives limot->m_currentLimitError to zero
+	/// at m_stopERP with a one-sided impulse (both sides when the limits are equal), with m_stopCFM; a motor
+	/// row drives the coordinate's rate to m_targetVelocity within m_maxMotorForce, with m_normalCFM.
+	int get_limit_motor_info2(btRotationalLimitMotor * limot, const btTransform& transA, const btTransform& transB,
+	                          const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+	                          const btVector3& angVelB, btConstraintInfo2* info, int row, btVector3& ax1,
+	                          int rotational, int rotAllowed = false);
 
 	/// Linear limits per axis of the linear reference frame.
 	void setLinearLowerLimit(const btVector3& linearLower) { m_linearLimits.m_lowerLimit = linearLower; }

@@ -15,6 +15,10 @@
 
 class btManifoldPoint;
 
+/// Solves one row (a btSolverConstraint between two pool bodies): applies the impulse change that the
+/// row's limits allow and returns the squared velocity change (the row's least-squares residual).
+typedef btScalar (*btSingleConstraintRowSolver)(btSolverBody&, btSolverBody&, const btSolverConstraint&);
+
 /// The default solver of btDiscreteDynamicsWorld. Each solveGroup copies the bodies into a contiguous
 /// pool of btSolverBody, turns every manifold point within the contact processing threshold into one
 /// normal row, two friction rows and optional rolling/spinning rows (contiguous arrays, indices into
@@ -44,6 +48,22 @@ protected:
 	/// Squared velocity change of the last iteration (the least-squares residual).
 	btScalar m_leastSquaresResidual;
 	int m_maxOverrideNumSolverIterations;
+	/// Bullet's table from a kinematic body's unique id to its solver-pool index, for solvers that run on
+	/// several threads at once. Caliber's solver does not need it (each pool entry is found from the
+	/// body's companion id, checked against the pool; see getOrInitSolverBody): it stays empty.
+	btAlignedObjectArray<int> m_kinematicBodyUniqueIdToSolverBodyTable;
+
+	/// The row solvers the sweeps use: equality rows and friction (generic, between the row's lower and
+	/// upper limits), contact rows (lower limit only) and the split-impulse push rows. Set to Caliber's
+	/// own kernels by setupSolverFunctions; a subclass or setConstraintRowSolver* may replace them, and the
+	/// sweeps then call the replacements for every row (see docs/rigid-body-dynamics.md).
+	btSingleConstraintRowSolver m_resolveSingleConstraintRowGeneric;
+	btSingleConstraintRowSolver m_resolveSingleConstraintRowLowerLimit;
+	btSingleConstraintRowSolver m_resolveSplitPenetrationImpulse;
+	/// The solver mode of the last solve (infoGlobal.m_solverMode).
+	int m_cachedSolverMode;
+	/// Installs Caliber's row kernels (the same vectorised kernel serves both settings of useSimd).
+	void setupSolverFunctions(bool useSimd);
 
 	/// The solver-pool index of body, creating its entry on first use (static bodies share one).
 	int getOrInitSolverBody(btCollisionObject & body, btScalar timeStep);
@@ -52,23 +72,90 @@ protected:
 
 	/// Adds the rows of one manifold (points within its contact processing threshold).
 	void convertContact(btPersistentManifold * manifold, const btContactSolverInfo& infoGlobal);
-	/// Fills the normal row of one point; returns the relative normal velocity at the start of the step.
+	/// Adds the rows of every manifold (convertContact for each).
+	virtual void convertContacts(btPersistentManifold * *manifoldPtr, int numManifolds,
+	                             const btContactSolverInfo& infoGlobal);
+	/// Fills the normal row of one point, warm started; relaxation receives infoGlobal.m_sor (Bullet's
+	/// successive over-relaxation factor, which the rows do not otherwise use).
 	void setupContactConstraint(btSolverConstraint & solverConstraint, int solverBodyIdA, int solverBodyIdB,
-	                            btManifoldPoint& cp, const btContactSolverInfo& infoGlobal, const btVector3& rel_pos1,
-	                            const btVector3& rel_pos2);
+	                            btManifoldPoint& cp, const btContactSolverInfo& infoGlobal, btScalar& relaxation,
+	                            const btVector3& rel_pos1, const btVector3& rel_pos2);
+	/// Fills a friction row along normalAxis for the contact row at the index the row's m_frictionIndex
+	/// will hold (set by the caller), not warm started. relaxation is accepted for Bullet's signature.
+	void setupFrictionConstraint(btSolverConstraint & solverConstraint, const btVector3& normalAxis,
+	                             int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, const btVector3& rel_pos1,
+	                             const btVector3& rel_pos2, btCollisionObject* colObj0, btCollisionObject* colObj1,
+	                             btScalar relaxation, const btContactSolverInfo& infoGlobal,
+	                             btScalar desiredVelocity = 0., btScalar cfmSlip = 0.);
+	/// Fills an angular friction row about normalAxis (rolling or spinning friction, bounded by
+	/// combinedTorsionalFriction times the normal impulse).
+	void setupTorsionalFrictionConstraint(btSolverConstraint & solverConstraint, const btVector3& normalAxis,
+	                                      int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp,
+	                                      btScalar combinedTorsionalFriction, const btVector3& rel_pos1,
+	                                      const btVector3& rel_pos2, btCollisionObject* colObj0,
+	                                      btCollisionObject* colObj1, btScalar relaxation,
+	                                      btScalar desiredVelocity = 0., btScalar cfmSlip = 0.);
 	/// Adds a friction row along normalAxis (a unit vector) for the contact row at frictionIndex.
-	btSolverConstraint& addFrictionConstraint(
-	    const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
-	    const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0, btCollisionObject* colObj1,
-	    btScalar desiredVelocity = 0., btScalar cfmSlip = 0.);
+	btSolverConstraint& addFrictionConstraint(const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB,
+	                                          int frictionIndex, btManifoldPoint& cp, const btVector3& rel_pos1,
+	                                          const btVector3& rel_pos2, btCollisionObject* colObj0,
+	                                          btCollisionObject* colObj1, btScalar relaxation,
+	                                          const btContactSolverInfo& infoGlobal, btScalar desiredVelocity = 0.,
+	                                          btScalar cfmSlip = 0.);
 	/// Adds an angular friction row about normalAxis (rolling or spinning friction).
 	btSolverConstraint& addTorsionalFrictionConstraint(
 	    const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
 	    btScalar torsionalFriction, const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0,
-	    btCollisionObject* colObj1, btScalar desiredVelocity = 0, btScalar cfmSlip = 0.f);
+	    btCollisionObject* colObj1, btScalar relaxation, const btContactSolverInfo& infoGlobal,
+	    btScalar desiredVelocity = 0, btScalar cfmSlip = 0.f);
+	/// Scales frictionDirection by the object's anisotropic friction (in the object's frame) when the
+	/// object has the frictionMode bit (btCollisionObject::CF_ANISOTROPIC_FRICTION or
+	/// CF_ANISOTROPIC_ROLLING_FRICTION) set; otherwise leaves it alone.
+	static void applyAnisotropicFriction(btCollisionObject * colObj, btVector3 & frictionDirection, int frictionMode);
+	/// Warm starts the friction rows of a contact row (its m_frictionIndex is its first friction row) from
+	/// the point's lateral impulses of the last step, or zeroes them without SOLVER_USE_WARMSTARTING.
+	void setFrictionConstraintImpulse(btSolverConstraint & solverConstraint, int solverBodyIdA, int solverBodyIdB,
+	                                  btManifoldPoint& cp, const btContactSolverInfo& infoGlobal);
+	/// Bullet's restitution target: -rel_vel * restitution for an approach faster than velocityThreshold,
+	/// else 0. (The solver's own rebounds come from its restitution pass; see docs/rigid-body-dynamics.md.)
+	btScalar restitutionCurve(btScalar rel_vel, btScalar restitution, btScalar velocityThreshold);
+
+	/// The row solvers, through the pointers above.
+	btScalar resolveSingleConstraintRowGeneric(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                           const btSolverConstraint& contactConstraint);
+	btScalar resolveSingleConstraintRowGenericSIMD(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                               const btSolverConstraint& contactConstraint);
+	btScalar resolveSingleConstraintRowLowerLimit(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                              const btSolverConstraint& contactConstraint);
+	btScalar resolveSingleConstraintRowLowerLimitSIMD(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                                  const btSolverConstraint& contactConstraint);
+	btScalar resolveSplitPenetrationSIMD(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                     const btSolverConstraint& contactConstraint)
+	{
+		return m_resolveSplitPenetrationImpulse(bodyA, bodyB, contactConstraint);
+	}
+	btScalar resolveSplitPenetrationImpulseCacheFriendly(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                                     const btSolverConstraint& contactConstraint)
+	{
+		return m_resolveSplitPenetrationImpulse(bodyA, bodyB, contactConstraint);
+	}
+	btScalar resolveSplitPenetrationImpulse(btSolverBody & bodyA, btSolverBody & bodyB,
+	                                        const btSolverConstraint& contactConstraint)
+	{
+		return m_resolveSplitPenetrationImpulse(bodyA, bodyB, contactConstraint);
+	}
 
 	/// Adds the rows of every enabled joint, warm started from the joint's last step.
-	void convertJoints(btTypedConstraint * *constraints, int numConstraints, const btContactSolverInfo& infoGlobal);
+	virtual void convertJoints(btTypedConstraint * *constraints, int numConstraints,
+	                           const btContactSolverInfo& infoGlobal);
+	/// Fills the info1.m_numConstraintRows rows of one joint from currentConstraintRow on (its getInfo2,
+	/// limits, breaking threshold and feedback rows), warm started from the joint's last step. A joint
+	/// whose rows are not finite is disabled, with a warning, and its rows are made inert.
+	void convertJoint(btSolverConstraint * currentConstraintRow, btTypedConstraint * constraint,
+	                  const btTypedConstraint::btConstraintInfo1& info1, int solverBodyIdA, int solverBodyIdB,
+	                  const btContactSolverInfo& infoGlobal);
+	/// Puts every body of the island into the solver pool (getOrInitSolverBody for each).
+	virtual void convertBodies(btCollisionObject * *bodies, int numBodies, const btContactSolverInfo& infoGlobal);
 	/// Stores the joints' row impulses (warm start, applied impulse, feedback) and breaks overloaded ones.
 	void writeBackJoints(int iBegin, int iEnd, const btContactSolverInfo& infoGlobal);
 
@@ -124,6 +211,28 @@ public:
 	unsigned long getRandSeed() const { return m_btSeed2; }
 
 	btConstraintSolverType getSolverType() const override { return BT_SEQUENTIAL_IMPULSE_SOLVER; }
+
+	btSingleConstraintRowSolver getActiveConstraintRowSolverGeneric() { return m_resolveSingleConstraintRowGeneric; }
+	void setConstraintRowSolverGeneric(btSingleConstraintRowSolver rowSolver)
+	{
+		m_resolveSingleConstraintRowGeneric = rowSolver;
+	}
+	btSingleConstraintRowSolver getActiveConstraintRowSolverLowerLimit()
+	{
+		return m_resolveSingleConstraintRowLowerLimit;
+	}
+	void setConstraintRowSolverLowerLimit(btSingleConstraintRowSolver rowSolver)
+	{
+		m_resolveSingleConstraintRowLowerLimit = rowSolver;
+	}
+	/// Caliber's row kernels. There is one vectorised kernel of each kind (SSE2 where the build has
+	/// SIMD, scalar otherwise): the scalar, SSE2 and SSE4.1 getters all return it.
+	btSingleConstraintRowSolver getScalarConstraintRowSolverGeneric();
+	btSingleConstraintRowSolver getSSE2ConstraintRowSolverGeneric();
+	btSingleConstraintRowSolver getSSE4_1ConstraintRowSolverGeneric();
+	btSingleConstraintRowSolver getScalarConstraintRowSolverLowerLimit();
+	btSingleConstraintRowSolver getSSE2ConstraintRowSolverLowerLimit();
+	btSingleConstraintRowSolver getSSE4_1ConstraintRowSolverLowerLimit();
 };
 
 #endif  // BT_SEQUENTIAL_IMPULSE_CONSTRAINT_SOLVER_H

@@ -3,7 +3,9 @@
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btConvexTriangleClipping.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
+#include "BulletCollision/CollisionDispatch/btMeshContactCollector.h"
 #include "BulletCollision/CollisionShapes/btConcaveShape.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
@@ -238,11 +240,24 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 
 	const btConcaveShape* concave = static_cast<const btConcaveShape*>(triBodyWrap->getCollisionShape());
 	m_btConvexTriangleCallback.m_triangleCount = 0;
+	// The triangles report into a collector, which drops internal-edge points and passes on the rest (for
+	// face-clipped boxes, the best 4 of all the triangles' points). Objects with a custom material
+	// callback see every triangle's raw points instead, as in Bullet (their owners fix internal edges
+	// themselves, e.g. with btAdjustInternalEdgeContacts).
+	const bool clips = caliber::clipsAgainstMeshTriangles(convexBodyWrap->getCollisionShape()->getShapeType());
+	const bool collect = !((convexBodyWrap->getCollisionObject()->getCollisionFlags() |
+	                        triBodyWrap->getCollisionObject()->getCollisionFlags()) &
+	                       btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+	caliber::MeshContactCollector collector(*resultOut, !m_isSwapped, concave->getMargin(), clips && collect);
 	m_btConvexTriangleCallback.setTimeStepAndCounters(concave->getMargin(), dispatchInfo, convexBodyWrap, triBodyWrap,
-	                                                  resultOut);
+	                                                  collect ? &collector : resultOut);
 	manifold->setBodies(convexBodyWrap->getCollisionObject(), triBodyWrap->getCollisionObject());
+	// Boxes get their whole contact patch each frame (face clipping): last frame's points that have moved
+	// away would crowd the manifold.
+	if (clips) caliber::dropStalePoints(manifold, body0Wrap, body1Wrap);
 	concave->processAllTriangles(&m_btConvexTriangleCallback, m_btConvexTriangleCallback.getAabbMin(),
 	                             m_btConvexTriangleCallback.getAabbMax());
+	if (collect) collector.flush(triBodyWrap);
 	resultOut->refreshContactPoints();
 	m_btConvexTriangleCallback.clearWrapperData();
 }

@@ -4,7 +4,9 @@
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
+#include "BulletCollision/CollisionDispatch/btCapsuleTriangleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btConvexTriangleClipping.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
@@ -211,6 +213,38 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		}
 	}
 
+	// A box against a mesh triangle: the contact along the triangle's normal, in closed form before GJK,
+	// with the whole clipped face when the box is over the face (a box landing flat, or fast on
+	// speculative points, is held at its corners at once). GJK is spared for most triangles (beyond reach,
+	// or under the box) and left the edges and vertices. The mesh collector chooses among all triangles'
+	// points.
+	bool facePointsReported = false;
+	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && caliber::clipsAgainstMeshTriangles(shapeA->getShapeType()))
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
+		    *shapeA, body0Wrap->getWorldTransform(), *static_cast<const btTriangleShape*>(shapeB),
+		    body1Wrap->getWorldTransform(), reach, *resultOut);
+		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact)
+		{
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
+		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+	// A capsule against a mesh triangle in closed form: both ends of a capsule lying on the face, and the
+	// edge's point when an edge is nearer (GJK gave one point per triangle, on which a capsule rolls).
+	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::capsuleTriangleContact(
+		    *static_cast<const btCapsuleShape*>(shapeA), body0Wrap->getWorldTransform(),
+		    *static_cast<const btTriangleShape*>(shapeB), body1Wrap->getWorldTransform(), reach, *resultOut);
+		if (outcome != caliber::kTriangleNeedsGjk)
+		{
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
+	}
+
 	btVoronoiSimplexSolver simplexSolver;
 	btGjkPairDetector gjk(shapeA, shapeB, &simplexSolver, m_pdSolver);
 	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
@@ -239,7 +273,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 
 	const btConvexPolyhedron* polyA = polyhedronOf(shapeA);
 	const btConvexPolyhedron* polyB = polyhedronOf(shapeB);
-	if (polyA && polyB)
+	if (polyA && polyB && !facePointsReported)
 	{
 		bool haveAxis = false;
 		btVector3 separatingAxis(0, 0, 0);

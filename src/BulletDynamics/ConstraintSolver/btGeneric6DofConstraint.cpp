@@ -127,6 +127,10 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbA, btRigidBody& 
     : btTypedConstraint(D6_CONSTRAINT_TYPE, rbA, rbB),
       m_frameInA(frameInA),
       m_frameInB(frameInB),
+      m_timeStep(0),
+      m_factA(btScalar(0.5)),
+      m_factB(btScalar(0.5)),
+      m_hasStaticBody(false),
       m_useLinearReferenceFrameA(useLinearReferenceFrameA),
       m_useOffsetForConstraintFrame(true),
       m_flags(0),
@@ -140,6 +144,10 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbB, const btTrans
     : btTypedConstraint(D6_CONSTRAINT_TYPE, getFixedBody(), rbB),
       m_frameInA(rbB.getCenterOfMassTransform() * frameInB),
       m_frameInB(frameInB),
+      m_timeStep(0),
+      m_factA(btScalar(0.5)),
+      m_factB(btScalar(0.5)),
+      m_hasStaticBody(false),
       m_useLinearReferenceFrameA(useLinearReferenceFrameB),
       m_useOffsetForConstraintFrame(true),
       m_flags(0),
@@ -167,6 +175,11 @@ void btGeneric6DofConstraint::calculateTransforms(const btTransform& transA, con
 	m_centerOfMassB = transB.getOrigin();
 	m_calculatedTransformA = transA * m_frameInA;
 	m_calculatedTransformB = transB * m_frameInB;
+	const btScalar invMassA = m_rbA.getInvMass(), invMassB = m_rbB.getInvMass();
+	m_hasStaticBody = invMassA < SIMD_EPSILON || invMassB < SIMD_EPSILON;
+	const btScalar invMassSum = invMassA + invMassB;
+	m_factA = invMassSum > btScalar(0) ? invMassB / invMassSum : btScalar(0.5);
+	m_factB = btScalar(1) - m_factA;
 	calcAnchorPos();
 	calculateLinearInfo();
 	calculateAngleInfo();
@@ -698,6 +711,7 @@ void btGeneric6DofConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const 
                                                  const btVector3& angVelB)
 {
 	calculateTransforms(transA, transB);
+	if (info->fps > btScalar(0)) m_timeStep = btScalar(1) / info->fps;
 	const int rows = writeLimitMotorRows(info, linVelA, linVelB, angVelA, angVelB);
 	btAssert(rows == countLimitMotorRows());
 	(void)rows;
@@ -781,4 +795,141 @@ void btGeneric6DofConstraint::setAxis(const btVector3& axis1, const btVector3& a
 	m_frameInA.setBasis(m_rbA.getCenterOfMassTransform().getBasis().transposeTimes(world));
 	m_frameInB.setBasis(m_rbB.getCenterOfMassTransform().getBasis().transposeTimes(world));
 	calculateTransforms();
+}
+
+int btGeneric6DofConstraint::get_limit_motor_info2(btRotationalLimitMotor* limot, const btTransform& transA,
+                                                   const btTransform& transB, const btVector3& linVelA,
+                                                   const btVector3& linVelB, const btVector3& angVelA,
+                                                   const btVector3& angVelB, btConstraintInfo2* info, int row,
+                                                   btVector3& ax1, int rotational, int rotAllowed)
+{
+	if (!limot || !info || !(limot->m_enableMotor || limot->m_currentLimit != 0)) return 0;
+	const int at = row * info->rowskip;
+	btScalar* J1linear = info->m_J1linearAxis + at;
+	btScalar* J1angular = info->m_J1angularAxis + at;
+	btScalar* J2linear = info->m_J2linearAxis ? info->m_J2linearAxis + at : 0;
+	btScalar* J2angular = info->m_J2angularAxis + at;
+	btVector3 angularA(0, 0, 0), angularB(0, 0, 0), linear(0, 0, 0);
+	if (rotational)
+	{
+		angularA = ax1;
+		angularB = -ax1;
+	}
+	else
+	{
+		linear = ax1;
+		if (rotAllowed)
+		{
+			// Acting at the anchor: each body turns about its centre of mass.
+			angularA = (m_AnchorPos - transA.getOrigin()).cross(ax1);
+			angularB = -(m_AnchorPos - transB.getOrigin()).cross(ax1);
+		}
+	}
+	for (int k = 0; k < 3; ++k)
+	{
+		J1linear[k] = linear[k];
+		J1angular[k] = angularA[k];
+		if (J2linear) J2linear[k] = -linear[k];
+		J2angular[k] = angularB[k];
+	}
+	(void)linVelA;
+	(void)linVelB;
+	(void)angVelA;
+	(void)angVelB;
+
+	const btScalar fps = info->fps;
+	const bool locked = limot->m_currentLimit != 0 && limot->m_loLimit == limot->m_hiLimit;
+	if (limot->m_currentLimit != 0)
+	{
+		// J v = -(rate of the coordinate): a target of k * error moves the coordinate back by k * error per
+		// second. Below the lower limit (error < 0) only a negative impulse may act, above only a positive.
+		info->m_constraintError[at] = fps * limot->m_stopERP * limot->m_currentLimitError;
+		info->cfm[at] = limot->m_stopCFM;
+		if (locked || limot->m_currentLimit == 3)
+		{
+			info->m_lowerLimit[at] = -SIMD_INFINITY;
+			info->m_upperLimit[at] = SIMD_INFINITY;
+		}
+		else if (limot->m_currentLimit == 1)
+		{
+			info->m_lowerLimit[at] = -SIMD_INFINITY;
+			info->m_upperLimit[at] = 0;
+		}
+		else
+		{
+			info->m_lowerLimit[at] = 0;
+			info->m_upperLimit[at] = SIMD_INFINITY;
+		}
+		return 1;
+	}
+	// A free motor: the coordinate's rate towards the target, within the force the motor has for a step.
+	info->m_constraintError[at] = -limot->m_targetVelocity;
+	info->cfm[at] = limot->m_normalCFM;
+	const btScalar maxImpulse = fps > btScalar(0) ? limot->m_maxMotorForce / fps : btScalar(0);
+	info->m_lowerLimit[at] = -maxImpulse;
+	info->m_upperLimit[at] = maxImpulse;
+	return 1;
+}
+
+int btGeneric6DofConstraint::setAngularLimits(btConstraintInfo2* info, int row_offset, const btTransform& transA,
+                                              const btTransform& transB, const btVector3& linVelA,
+                                              const btVector3& linVelB, const btVector3& angVelA,
+                                              const btVector3& angVelB)
+{
+	int row = row_offset;
+	for (int i = 0; i < 3; ++i)
+	{
+		if (!testAngularLimitMotor(i)) continue;
+		btVector3 axis = getAxis(i);
+		row += get_limit_motor_info2(&m_angularLimits[i], transA, transB, linVelA, linVelB, angVelA, angVelB, info,
+		                             row, axis, 1);
+	}
+	return row;
+}
+
+int btGeneric6DofConstraint::setLinearLimits(btConstraintInfo2* info, int row, const btTransform& transA,
+                                             const btTransform& transB, const btVector3& linVelA,
+                                             const btVector3& linVelB, const btVector3& angVelA,
+                                             const btVector3& angVelB)
+{
+	const btTransform& frame = m_useLinearReferenceFrameA ? m_calculatedTransformA : m_calculatedTransformB;
+	for (int i = 0; i < 3; ++i)
+	{
+		m_linearLimits.testLimitValue(i, m_calculatedLinearDiff[i]);
+		if (!m_linearLimits.needApplyForce(i)) continue;
+		// The axis's settings as a one-axis limit motor.
+		btRotationalLimitMotor motor;
+		motor.m_loLimit = m_linearLimits.m_lowerLimit[i];
+		motor.m_hiLimit = m_linearLimits.m_upperLimit[i];
+		motor.m_targetVelocity = m_linearLimits.m_targetVelocity[i];
+		motor.m_maxMotorForce = m_linearLimits.m_maxMotorForce[i];
+		motor.m_enableMotor = m_linearLimits.m_enableMotor[i];
+		motor.m_normalCFM = m_linearLimits.m_normalCFM[i];
+		motor.m_stopERP = m_linearLimits.m_stopERP[i];
+		motor.m_stopCFM = m_linearLimits.m_stopCFM[i];
+		motor.m_currentLimit = m_linearLimits.m_currentLimit[i];
+		motor.m_currentLimitError = m_linearLimits.m_currentLimitError[i];
+		motor.m_currentPosition = m_calculatedLinearDiff[i];
+		btVector3 axis = frame.getBasis().getColumn(i);
+		row += get_limit_motor_info2(&motor, transA, transB, linVelA, linVelB, angVelA, angVelB, info, row, axis, 0,
+		                             1);
+	}
+	return row;
+}
+
+void btGeneric6DofConstraint::buildLinearJacobian(btJacobianEntry& jacLinear, const btVector3& normalWorld,
+                                                  const btVector3& pivotAInW, const btVector3& pivotBInW)
+{
+	jacLinear = btJacobianEntry(m_rbA.getCenterOfMassTransform().getBasis().transpose(),
+	                            m_rbB.getCenterOfMassTransform().getBasis().transpose(),
+	                            pivotAInW - m_rbA.getCenterOfMassPosition(), pivotBInW - m_rbB.getCenterOfMassPosition(),
+	                            normalWorld, m_rbA.getInvInertiaDiagLocal(), m_rbA.getInvMass(),
+	                            m_rbB.getInvInertiaDiagLocal(), m_rbB.getInvMass());
+}
+
+void btGeneric6DofConstraint::buildAngularJacobian(btJacobianEntry& jacAngular, const btVector3& jointAxisW)
+{
+	jacAngular = btJacobianEntry(jointAxisW, m_rbA.getCenterOfMassTransform().getBasis().transpose(),
+	                             m_rbB.getCenterOfMassTransform().getBasis().transpose(),
+	                             m_rbA.getInvInertiaDiagLocal(), m_rbB.getInvInertiaDiagLocal());
 }

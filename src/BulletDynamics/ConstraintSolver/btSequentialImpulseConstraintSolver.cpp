@@ -4,6 +4,7 @@
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btSpinMomentum.h"
@@ -40,8 +41,16 @@ void identityOrder(btAlignedObjectArray<int>& order, int count)
 }  // namespace
 
 btSequentialImpulseConstraintSolver::btSequentialImpulseConstraintSolver()
-    : m_fixedBodyId(-1), m_btSeed2(kDefaultSeed), m_leastSquaresResidual(0), m_maxOverrideNumSolverIterations(0)
+    : m_fixedBodyId(-1),
+      m_btSeed2(kDefaultSeed),
+      m_leastSquaresResidual(0),
+      m_maxOverrideNumSolverIterations(0),
+      m_resolveSingleConstraintRowGeneric(0),
+      m_resolveSingleConstraintRowLowerLimit(0),
+      m_resolveSplitPenetrationImpulse(0),
+      m_cachedSolverMode(0)
 {
+	setupSolverFunctions(true);
 	caliber::solverScratchOf(*this);
 }
 
@@ -150,29 +159,19 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	// Rough upper bound, so the pool grows at most once per new record scene size.
 	m_tmpSolverBodyPool.reserve(numBodies + 1);
 
-	for (int i = 0; i < numBodies; ++i)
-	{
-		// An island holds dynamic bodies; the static and kinematic ones they touch come in through the
-		// manifolds. Reset the hint so a stale id from another island is never trusted.
-		bodies[i]->setCompanionId(-1);
-	}
-	for (int i = 0; i < numBodies; ++i) getOrInitSolverBody(*bodies[i], infoGlobal.m_timeStep);
+	m_cachedSolverMode = infoGlobal.m_solverMode;
+	convertBodies(bodies, numBodies, infoGlobal);
 
 	// Joints first: their warm-start impulses are in the bodies before the contacts measure velocities.
 	convertJoints(constraints, numConstraints, infoGlobal);
 
 	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	scratch.manifoldFirstRow.resize(0);
-	for (int i = 0; i < numManifolds; ++i)
-	{
-		// Manifolds are scattered over the heap: the header line (with the point count) four ahead, then
-		// the lines of the points held two ahead.
-		if (i + 4 < numManifolds) caliber::prefetchManifoldHeader(manifoldPtr[i + 4]);
-		if (i + 2 < numManifolds) caliber::prefetchManifoldPoints(manifoldPtr[i + 2]);
-		const int firstRow = m_tmpSolverContactConstraintPool.size();
-		convertContact(manifoldPtr[i], infoGlobal);
-		if (m_tmpSolverContactConstraintPool.size() > firstRow) scratch.manifoldFirstRow.push_back(firstRow);
-	}
+	convertContacts(manifoldPtr, numManifolds, infoGlobal);
+	// A subclass's convertContacts that does not record where each manifold's rows start leaves them as one
+	// run (the sweep order below only needs runs of rows).
+	if (scratch.manifoldFirstRow.size() == 0 && m_tmpSolverContactConstraintPool.size() > 0)
+		scratch.manifoldFirstRow.push_back(0);
 	scratch.manifoldFirstRow.push_back(m_tmpSolverContactConstraintPool.size());
 	++scratch.solveCount;
 	caliber::findBouncesAndMassRatios(scratch, m_tmpSolverBodyPool, m_tmpSolverContactConstraintPool, infoGlobal);
@@ -261,6 +260,15 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	btSolverBody* solverBodies = m_tmpSolverBodyPool.size() ? &m_tmpSolverBodyPool[0] : 0;
 	btScalar residual = btScalar(0);
 	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	if (!caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric, m_resolveSingleConstraintRowLowerLimit))
+		return caliber::sweepWithRowSolvers(iteration, infoGlobal, scratch, solverBodies,
+		                                    m_tmpSolverNonContactConstraintPool, m_tmpConstraintSizesPool,
+		                                    m_orderNonContactConstraintPool, m_tmpSolverContactConstraintPool,
+		                                    m_orderTmpConstraintPool, m_tmpSolverContactFrictionConstraintPool,
+		                                    m_orderFrictionConstraintPool,
+		                                    m_tmpSolverContactRollingFrictionConstraintPool,
+		                                    m_orderRollingFrictionConstraintPool, m_resolveSingleConstraintRowGeneric,
+		                                    m_resolveSingleConstraintRowLowerLimit);
 
 	// Every other sweep runs backwards, starting with the other direction on every other step so that an
 	// odd iteration count is balanced too (not in Bullet's shuffled mode).
@@ -355,6 +363,7 @@ void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIte
 
 	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
 	const int numPushRows = pushRows.size();
+	const bool customPush = !caliber::isCaliberPushRowSolver(m_resolveSplitPenetrationImpulse);
 	for (int iteration = 0; iteration < infoGlobal.m_numIterations; ++iteration)
 	{
 		btScalar residual = btScalar(0);
@@ -362,8 +371,12 @@ void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIte
 		{
 			if (k + 8 < numPushRows) prefetchRow(&m_tmpSolverContactConstraintPool[pushRows[k + 8]]);
 			btSolverConstraint& row = m_tmpSolverContactConstraintPool[pushRows[k]];
-			residual +=
-			    caliber::resolvePushRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row);
+			if (customPush)
+				residual += m_resolveSplitPenetrationImpulse(solverBodies[row.m_solverBodyIdA],
+				                                             solverBodies[row.m_solverBodyIdB], row);
+			else
+				residual +=
+				    caliber::resolvePushRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row);
 		}
 		if (residual <= infoGlobal.m_leastSquaresResidualThreshold) break;
 	}

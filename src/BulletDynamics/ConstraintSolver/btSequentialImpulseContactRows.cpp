@@ -5,6 +5,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
@@ -227,8 +228,10 @@ bool isFinitePoint(const btManifoldPoint& cp)
 void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstraint& row, int solverBodyIdA,
                                                                  int solverBodyIdB, btManifoldPoint& cp,
                                                                  const btContactSolverInfo& infoGlobal,
-                                                                 const btVector3& rel_pos1, const btVector3& rel_pos2)
+                                                                 btScalar& relaxation, const btVector3& rel_pos1,
+                                                                 const btVector3& rel_pos2)
 {
+	relaxation = infoGlobal.m_sor;
 	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
 	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
 	const RowBody a = {&bodyA, bodyA.m_originalBody};
@@ -303,42 +306,131 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
 	}
 }
 
-btSolverConstraint& btSequentialImpulseConstraintSolver::addFrictionConstraint(
-    const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
+void btSequentialImpulseConstraintSolver::setupFrictionConstraint(
+    btSolverConstraint& row, const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp,
     const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0, btCollisionObject* colObj1,
-    btScalar desiredVelocity, btScalar cfmSlip)
+    btScalar relaxation, const btContactSolverInfo& infoGlobal, btScalar desiredVelocity, btScalar cfmSlip)
 {
 	(void)colObj0;
 	(void)colObj1;
-	btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
+	(void)relaxation;
+	(void)infoGlobal;
 	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
 	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
 	const RowBody a = {&bodyA, bodyA.m_originalBody};
 	const RowBody b = {&bodyB, bodyB.m_originalBody};
 	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
-	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, frictionIndex, denominator,
-	                  cfmSlip + cp.m_frictionCFM, desiredVelocity);
+	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, row.m_frictionIndex,
+	                  denominator, cfmSlip + cp.m_frictionCFM, desiredVelocity);
+}
+
+void btSequentialImpulseConstraintSolver::setupTorsionalFrictionConstraint(
+    btSolverConstraint& row, const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp,
+    btScalar combinedTorsionalFriction, const btVector3& rel_pos1, const btVector3& rel_pos2,
+    btCollisionObject* colObj0, btCollisionObject* colObj1, btScalar relaxation, btScalar desiredVelocity,
+    btScalar cfmSlip)
+{
+	(void)rel_pos1;
+	(void)rel_pos2;
+	(void)colObj0;
+	(void)colObj1;
+	(void)relaxation;
+	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
+	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	const RowBody a = {&bodyA, bodyA.m_originalBody};
+	const RowBody b = {&bodyB, bodyB.m_originalBody};
+	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
+	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, combinedTorsionalFriction, row.m_frictionIndex,
+	                  denominator, cfmSlip, desiredVelocity);
+}
+
+btSolverConstraint& btSequentialImpulseConstraintSolver::addFrictionConstraint(
+    const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
+    const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0, btCollisionObject* colObj1,
+    btScalar relaxation, const btContactSolverInfo& infoGlobal, btScalar desiredVelocity, btScalar cfmSlip)
+{
+	btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
+	row.m_frictionIndex = frictionIndex;
+	setupFrictionConstraint(row, normalAxis, solverBodyIdA, solverBodyIdB, cp, rel_pos1, rel_pos2, colObj0, colObj1,
+	                        relaxation, infoGlobal, desiredVelocity, cfmSlip);
 	return row;
 }
 
 btSolverConstraint& btSequentialImpulseConstraintSolver::addTorsionalFrictionConstraint(
     const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB, int frictionIndex, btManifoldPoint& cp,
     btScalar torsionalFriction, const btVector3& rel_pos1, const btVector3& rel_pos2, btCollisionObject* colObj0,
-    btCollisionObject* colObj1, btScalar desiredVelocity, btScalar cfmSlip)
+    btCollisionObject* colObj1, btScalar relaxation, const btContactSolverInfo& infoGlobal, btScalar desiredVelocity,
+    btScalar cfmSlip)
 {
-	(void)rel_pos1;
-	(void)rel_pos2;
-	(void)colObj0;
-	(void)colObj1;
+	(void)infoGlobal;
 	btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool.expandNonInitializing();
+	row.m_frictionIndex = frictionIndex;
+	setupTorsionalFrictionConstraint(row, normalAxis, solverBodyIdA, solverBodyIdB, cp, torsionalFriction, rel_pos1,
+	                                 rel_pos2, colObj0, colObj1, relaxation, desiredVelocity, cfmSlip);
+	return row;
+}
+
+void btSequentialImpulseConstraintSolver::applyAnisotropicFriction(btCollisionObject* colObj,
+                                                                   btVector3& frictionDirection, int frictionMode)
+{
+	if (!colObj || !colObj->hasAnisotropicFriction(frictionMode)) return;
+	// Scaled in the object's frame: each local axis's friction is the direction's component along it times
+	// that axis's factor (Bullet's convention; the row is not renormalised, so a factor also scales the
+	// row's impulse per unit of sliding speed).
+	const btMatrix3x3& basis = colObj->getWorldTransform().getBasis();
+	const btVector3 local = frictionDirection * basis;
+	frictionDirection = basis * (local * colObj->getAnisotropicFriction());
+}
+
+void btSequentialImpulseConstraintSolver::setFrictionConstraintImpulse(btSolverConstraint& contactRow,
+                                                                       int solverBodyIdA, int solverBodyIdB,
+                                                                       btManifoldPoint& cp,
+                                                                       const btContactSolverInfo& infoGlobal)
+{
+	const int first = contactRow.m_frictionIndex;
+	if (first < 0) return;
+	const int rows = btMin(caliber::frictionRowsPerContact(infoGlobal),
+	                       m_tmpSolverContactFrictionConstraintPool.size() - first);
 	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
 	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
-	const RowBody a = {&bodyA, bodyA.m_originalBody};
-	const RowBody b = {&bodyB, bodyB.m_originalBody};
-	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
-	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, torsionalFriction, frictionIndex, denominator,
-	                  cfmSlip, desiredVelocity);
-	return row;
+	for (int f = 0; f < rows; ++f)
+	{
+		btSolverConstraint& friction = m_tmpSolverContactFrictionConstraintPool[first + f];
+		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
+		{
+			const btScalar previous = f == 0 ? cp.m_appliedImpulseLateral1 : cp.m_appliedImpulseLateral2;
+			friction.m_appliedImpulse = previous * infoGlobal.m_warmstartingFactor;
+			applyWarmStart(friction, bodyA, bodyB);
+		}
+		else
+		{
+			friction.m_appliedImpulse = btScalar(0);
+		}
+	}
+}
+
+btScalar btSequentialImpulseConstraintSolver::restitutionCurve(btScalar rel_vel, btScalar restitution,
+                                                               btScalar velocityThreshold)
+{
+	// rel_vel < 0 is an approach; slower than the threshold, nothing bounces.
+	if (btFabs(rel_vel) < velocityThreshold) return btScalar(0);
+	return -rel_vel * restitution;
+}
+
+void btSequentialImpulseConstraintSolver::convertContacts(btPersistentManifold** manifoldPtr, int numManifolds,
+                                                          const btContactSolverInfo& infoGlobal)
+{
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		// Manifolds are scattered over the heap: the header line (with the point count) four ahead, then
+		// the lines of the points held two ahead.
+		if (i + 4 < numManifolds) caliber::prefetchManifoldHeader(manifoldPtr[i + 4]);
+		if (i + 2 < numManifolds) caliber::prefetchManifoldPoints(manifoldPtr[i + 2]);
+		const int firstRow = m_tmpSolverContactConstraintPool.size();
+		convertContact(manifoldPtr[i], infoGlobal);
+		if (m_tmpSolverContactConstraintPool.size() > firstRow) scratch.manifoldFirstRow.push_back(firstRow);
+	}
 }
 
 void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* manifold,
@@ -402,7 +494,9 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 
 		const int frictionIndex = m_tmpSolverContactConstraintPool.size();
 		btSolverConstraint& contactRow = m_tmpSolverContactConstraintPool.expandNonInitializing();
-		setupContactConstraint(contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, rel_pos1, rel_pos2);
+		btScalar relaxation;
+		setupContactConstraint(contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1,
+		                       rel_pos2);
 
 		const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
 		const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
@@ -411,7 +505,8 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		// Rolling and spinning friction: angular rows about the normal and about two axes across it.
 		if (cp.m_combinedSpinningFriction > btScalar(0))
 			addTorsionalFrictionConstraint(normal, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
-			                               cp.m_combinedSpinningFriction, rel_pos1, rel_pos2, colObj0, colObj1);
+			                               cp.m_combinedSpinningFriction, rel_pos1, rel_pos2, colObj0, colObj1,
+			                               relaxation, infoGlobal);
 		if (cp.m_combinedRollingFriction > btScalar(0))
 		{
 			btVector3 axis0, axis1;
@@ -423,10 +518,17 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 				axis0 = rolling.normalized();
 				axis1 = normal.cross(axis0);
 			}
+			for (btVector3* axis : {&axis0, &axis1})
+			{
+				applyAnisotropicFriction(colObj0, *axis, btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+				applyAnisotropicFriction(colObj1, *axis, btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+			}
 			addTorsionalFrictionConstraint(axis0, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
-			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1);
+			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1,
+			                               relaxation, infoGlobal);
 			addTorsionalFrictionConstraint(axis1, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
-			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1);
+			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1,
+			                               relaxation, infoGlobal);
 		}
 
 		// Sliding friction. The first direction follows the tangential relative velocity when there is
@@ -455,11 +557,23 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 				cp.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
 		}
 		const int friction1Index = m_tmpSolverContactFrictionConstraintPool.size();
-		addFrictionConstraint(cp.m_lateralFrictionDir1, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
-		                      rel_pos2, colObj0, colObj1, cp.m_contactMotion1);
+		// Bullet's link from a contact row to its first friction row.
+		m_tmpSolverContactConstraintPool[frictionIndex].m_frictionIndex = friction1Index;
+		btVector3 direction1 = cp.m_lateralFrictionDir1, direction2 = cp.m_lateralFrictionDir2;
+		if (colObj0->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION) ||
+		    colObj1->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
+		{
+			for (btVector3* direction : {&direction1, &direction2})
+			{
+				applyAnisotropicFriction(colObj0, *direction, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+				applyAnisotropicFriction(colObj1, *direction, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+			}
+		}
+		addFrictionConstraint(direction1, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1, rel_pos2, colObj0,
+		                      colObj1, relaxation, infoGlobal, cp.m_contactMotion1);
 		if (frictionRowsPerContact == 2)
-			addFrictionConstraint(cp.m_lateralFrictionDir2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1,
-			                      rel_pos2, colObj0, colObj1, cp.m_contactMotion2);
+			addFrictionConstraint(direction2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1, rel_pos2,
+			                      colObj0, colObj1, relaxation, infoGlobal, cp.m_contactMotion2);
 		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
 		{
 			// Indices, not references: the second row may have grown the pool.

@@ -1,0 +1,397 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "BulletCollision/CollisionDispatch/btConvexTriangleClipping.h"
+
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+
+namespace caliber
+{
+namespace
+{
+// A face of the convex after clipping has at most its own corners plus one per triangle side.
+const int kMaxFaceCorners = 16;
+const int kMaxClipped = kMaxFaceCorners + 3;
+
+// Deeper than this below a triangle's plane the face normal is not trusted as the way out (a triangle's
+// edge may be poking into a side); well beyond what a speculative contact lets a body sink in one step.
+const btScalar kFaceDepthLimit = btScalar(0.1);
+// Beyond the depth limit by this much, rounding cannot bring a box's lowest point back within it.
+const btScalar kDepthSlack = btScalar(0.01);
+
+// When the face's points over the triangle are this close to the convex's lowest point, the lowest point
+// is taken to be over the triangle (a box resting on a face tilted by rounding); farther, the contact is
+// at an edge too. A tenth of the default breaking threshold (0.02).
+const btScalar kFaceLevelTolerance = btScalar(0.002);
+
+// Hull vertices this close to the supporting plane, as a fraction of the hull's depth along the normal,
+// form its face there: it catches a face tilted by about a degree (a hull settling on a face) whose
+// vertices are not quite level. Each point keeps its own distance, so a vertex taken in that is a little
+// higher only gives a point a little farther away.
+const btScalar kHullFaceBand = btScalar(0.02);
+
+struct Polygon
+{
+	btVector3 corners[kMaxClipped];
+	int count = 0;
+};
+
+// The box's face most opposed to the normal, in world space (boxes carry their margin in their extents).
+// localNormal is the normal in the box's frame.
+void boxFace(const btBoxShape& box, const btTransform& transform, const btVector3& localNormal, Polygon& face)
+{
+	const btVector3 direction = -localNormal;
+	int axis = 0;
+	for (int i = 1; i < 3; ++i)
+		if (btFabs(direction[i]) > btFabs(direction[axis])) axis = i;
+	const btVector3 half = box.getHalfExtentsWithMargin();
+	const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+	const btScalar signs[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+	for (int c = 0; c < 4; ++c)
+	{
+		btVector3 local;
+		local[axis] = direction[axis] < 0 ? -half[axis] : half[axis];
+		local[a1] = signs[c][0] * half[a1];
+		local[a2] = signs[c][1] * half[a2];
+		face.corners[c] = transform(local);
+	}
+	face.count = 4;
+}
+
+// A number that grows with the angle of (x, y) as atan2(y, x) does, over the same range (-pi, pi] cut
+// at the same place, without the trigonometry: only the order of the corners around the face matters.
+btScalar pseudoAngle(btScalar x, btScalar y)
+{
+	const btScalar sum = btFabs(x) + btFabs(y);
+	if (!(sum > 0)) return 0;
+	// 0 along +x, 1 along +y, 2 along -x, 3 along -y, linear in between.
+	btScalar diamond;
+	if (y >= 0)
+		diamond = x >= 0 ? y / sum : 1 - x / sum;
+	else
+		diamond = x < 0 ? 2 - y / sum : 3 + x / sum;
+	return diamond > 2 ? diamond - 4 : diamond;
+}
+
+// The hull's vertices near its supporting plane opposite the normal, ordered around their centre so that
+// they form a polygon, moved out by the margin (the hull's surface is its points' hull grown by it).
+// Returns false, building nothing, when the hull's lowest point along the normal is higher than `above`.
+bool hullFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal, btScalar above,
+              Polygon& face)
+{
+	face.count = 0;
+	const btVector3* points = hull.getUnscaledPoints();
+	const int numPoints = hull.getNumPoints();
+	if (!points || numPoints == 0) return true;
+	const btVector3& scaling = hull.getLocalScaling();
+	const btVector3 direction = (-normal * transform.getBasis()) * scaling;
+	// The hull's own support search (vectorised over its distinct points) finds its extremes along the
+	// normal; depths are measured along `direction` from the centre, positive away from the triangle.
+	const btVector3 down = -normal * transform.getBasis();
+	const btScalar highest = hull.localGetSupportingVertexWithoutMargin(down).dot(down);
+	// The lowest point is at centre - highest along the normal.
+	if (transform.getOrigin().dot(normal) - highest - hull.getMargin() > above) return false;
+	const btScalar lowest = hull.localGetSupportingVertexWithoutMargin(-down).dot(down);
+	const btScalar threshold = highest - kHullFaceBand * (highest - lowest);
+	// A hull on an edge or a vertex (a barrel on its side) has no face there: GJK's point is the contact.
+	int inBand = 0;
+	for (int i = 0; i < numPoints && inBand < 3; ++i) inBand += points[i].dot(direction) >= threshold;
+	if (inBand < 3) return true;
+	const btVector3 outwards = -normal * hull.getMargin();
+	const btVector3* sources[kMaxFaceCorners];
+	for (int i = 0; i < numPoints && face.count < kMaxFaceCorners; ++i)
+	{
+		if (points[i].dot(direction) < threshold) continue;
+		// Hulls often list a point twice (a closed ring, as copies); one copy is enough.
+		const btVector3& point = points[i];
+		bool duplicate = false;
+		for (int j = 0; j < face.count && !duplicate; ++j)
+			duplicate = sources[j]->x() == point.x() && sources[j]->y() == point.y() && sources[j]->z() == point.z();
+		if (duplicate) continue;
+		sources[face.count] = &point;
+		face.corners[face.count++] = transform(point * scaling) + outwards;
+	}
+	if (face.count < 3) return true;
+	// Order by angle around the centre in the plane across the normal (insertion sort: a face is small).
+	btVector3 centre(0, 0, 0);
+	for (int i = 0; i < face.count; ++i) centre += face.corners[i];
+	centre /= btScalar(face.count);
+	btVector3 tangent0, tangent1;
+	btPlaneSpace1(normal, tangent0, tangent1);
+	btScalar angles[kMaxClipped];
+	for (int i = 0; i < face.count; ++i)
+	{
+		const btVector3 offset = face.corners[i] - centre;
+		angles[i] = pseudoAngle(offset.dot(tangent0), offset.dot(tangent1));
+	}
+	for (int i = 1; i < face.count; ++i)
+	{
+		const btScalar angle = angles[i];
+		const btVector3 corner = face.corners[i];
+		int j = i - 1;
+		for (; j >= 0 && angles[j] > angle; --j)
+		{
+			angles[j + 1] = angles[j];
+			face.corners[j + 1] = face.corners[j];
+		}
+		angles[j + 1] = angle;
+		face.corners[j + 1] = corner;
+	}
+	return true;
+}
+
+// Sutherland-Hodgman: keeps the part of the closed polygon in on the side (x - origin) . side <= 0.
+// Returns false, writing nothing, when all of it is on that side already (no cut needed). Each corner's
+// distance is found once, and the count is kept in a register (out may not alias in, but the compiler
+// cannot know: a count in memory is reloaded after every store).
+bool clipBySide(const Polygon& in, Polygon& out, const btVector3& origin, const btVector3& side)
+{
+	const int count = in.count;
+	btScalar distances[kMaxClipped];
+	bool inside = true;
+	for (int i = 0; i < count; ++i)
+	{
+		distances[i] = (in.corners[i] - origin).dot(side);
+		inside = inside && distances[i] <= 0;
+	}
+	if (inside) return false;
+	int written = 0;
+	int previous = count - 1;
+	for (int i = 0; i < count; ++i)
+	{
+		const btScalar previousDistance = distances[previous];
+		const btScalar distance = distances[i];
+		if ((previousDistance < 0) != (distance < 0))
+		{
+			const btScalar t = previousDistance / (previousDistance - distance);
+			const btVector3& from = in.corners[previous];
+			if (written < kMaxClipped) out.corners[written++] = from + (in.corners[i] - from) * t;
+		}
+		if (distance <= 0 && written < kMaxClipped) out.corners[written++] = in.corners[i];
+		previous = i;
+	}
+	out.count = written;
+	return true;
+}
+}  // namespace
+
+int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int count, const btVector3& normal,
+                         int chosen[4])
+{
+	if (count <= 0) return 0;
+	int deepest = 0;
+	btVector3 centre(0, 0, 0);
+	for (int i = 0; i < count; ++i)
+	{
+		if (distances[i] < distances[deepest]) deepest = i;
+		centre += points[i];
+	}
+	centre /= btScalar(count);
+	// The corners of the patch, not its deepest point first: points of a flat contact have equal depths up
+	// to rounding, and a point inside the patch would waste a slot.
+	int first = 0;
+	btScalar firstDistance2 = -1;
+	for (int i = 0; i < count; ++i)
+	{
+		const btScalar distance2 = (points[i] - centre).length2();
+		if (distance2 > firstDistance2)
+		{
+			firstDistance2 = distance2;
+			first = i;
+		}
+	}
+	int numChosen = 0;
+	chosen[numChosen++] = first;
+	int farthest = -1;
+	btScalar farthestDistance2 = SIMD_EPSILON;
+	for (int i = 0; i < count; ++i)
+	{
+		const btScalar distance2 = (points[i] - points[first]).length2();
+		if (distance2 > farthestDistance2)
+		{
+			farthestDistance2 = distance2;
+			farthest = i;
+		}
+	}
+	if (farthest >= 0)
+	{
+		chosen[numChosen++] = farthest;
+		const btVector3 line = points[farthest] - points[first];
+		int left = -1, right = -1;
+		btScalar leftArea = SIMD_EPSILON * farthestDistance2, rightArea = -SIMD_EPSILON * farthestDistance2;
+		for (int i = 0; i < count; ++i)
+		{
+			const btScalar area = line.cross(points[i] - points[first]).dot(normal);
+			if (area > leftArea)
+			{
+				leftArea = area;
+				left = i;
+			}
+			else if (area < rightArea)
+			{
+				rightArea = area;
+				right = i;
+			}
+		}
+		if (left >= 0) chosen[numChosen++] = left;
+		if (right >= 0) chosen[numChosen++] = right;
+	}
+	// The deepest point carries the contact when the others are clearly shallower (a tilted face landing
+	// on its lowest corner): it takes the last slot unless a chosen point is within a millimetre of it.
+	btScalar chosenDeepest = BT_LARGE_FLOAT;
+	bool haveDeepest = false;
+	for (int i = 0; i < numChosen; ++i)
+	{
+		chosenDeepest = btMin(chosenDeepest, distances[chosen[i]]);
+		haveDeepest = haveDeepest || chosen[i] == deepest;
+	}
+	if (!haveDeepest && distances[deepest] < chosenDeepest - btScalar(0.001))
+	{
+		if (numChosen < 4)
+			chosen[numChosen++] = deepest;
+		else
+			chosen[numChosen - 1] = deepest;
+	}
+	return numChosen;
+}
+
+TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
+                                        const btTriangleShape& triangle, const btTransform& triangleTransform,
+                                        btScalar reach, btDiscreteCollisionDetectorInterface::Result& out)
+{
+	const btVector3 corners[3] = {triangleTransform(triangle.m_vertices1[0]),
+	                              triangleTransform(triangle.m_vertices1[1]),
+	                              triangleTransform(triangle.m_vertices1[2])};
+	const btVector3 edge1 = corners[1] - corners[0];
+	const btVector3 edge2 = corners[2] - corners[0];
+	btVector3 normal = edge1.cross(edge2);
+	const btScalar normalLength2 = normal.length2();
+	// A sliver's cross product is mostly rounding; GJK's point is better there.
+	if (!(normalLength2 > SIMD_EPSILON * edge1.length2() * edge2.length2()) || !btIsFinite(normalLength2))
+		return kTriangleNeedsGjk;
+	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
+	{
+		// Most triangles a mesh query returns are out of reach of a box. Its lowest point along the
+		// unnormalised normal tells, compared squared: no square root or division for them (their latency,
+		// not their count, is what they cost).
+		const btBoxShape& box = static_cast<const btBoxShape&>(convex);
+		const btVector3 local = normal * convexTransform.getBasis();
+		const btVector3 half = box.getHalfExtentsWithMargin();
+		const btScalar centre = normal.dot(convexTransform.getOrigin() - corners[0]);
+		const btScalar clearance = btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() -
+		                           btFabs(local.z()) * half.z();
+		// The exact tests below decide the cases near the limits (rounding differs a little from them here).
+		const btScalar slack = btScalar(1.0001);
+		if (clearance > 0)
+		{
+			const btScalar allowed = reach + triangle.getMargin();
+			if (allowed >= 0 && clearance * clearance > allowed * allowed * normalLength2 * slack)
+				return kTriangleOutOfReach;
+		}
+		else
+		{
+			// Far below the plane (the plane of a neighbour of the triangle the box is on): GJK's, as
+			// below, found without building the face.
+			const btScalar below = kFaceDepthLimit + kDepthSlack - triangle.getMargin();
+			if (below > 0 && clearance * clearance > below * below * normalLength2 * slack) return kTriangleNeedsGjk;
+		}
+		// The triangle's side planes are separating axes too: a triangle beside the box (inside its AABB,
+		// which the mesh query tests, but not under it) is out of reach when the whole box lies beyond one
+		// edge's side plane by more than reach. Without this, such triangles clip to nothing and go to GJK.
+		const btScalar allowed = reach + triangle.getMargin();
+		if (allowed >= 0)
+		{
+			const btVector3 edges[3] = {edge1, corners[2] - corners[1], corners[0] - corners[2]};
+			for (int k = 0; k < 3; ++k)
+			{
+				const btVector3 side = edges[k].cross(normal);  // outwards, length |edge| |normal|
+				const btVector3 sideLocal = side * convexTransform.getBasis();
+				const btScalar gap = side.dot(convexTransform.getOrigin() - corners[k]) -
+				                     btFabs(sideLocal.x()) * half.x() - btFabs(sideLocal.y()) * half.y() -
+				                     btFabs(sideLocal.z()) * half.z();
+				if (gap > 0 && gap * gap > allowed * allowed * side.length2() * slack) return kTriangleOutOfReach;
+			}
+		}
+	}
+	normal /= btSqrt(normalLength2);
+	// Two-sided: the face the convex's centre is in front of (GJK starts from the same side).
+	// The normal of the corners' own winding: each edge crossed with it points out of the triangle.
+	const btVector3 windingNormal = normal;
+	if (normal.dot(convexTransform.getOrigin() - corners[0]) < 0) normal = -normal;
+
+	// Distances to the triangle's plane, which its margin moves out. The normal separates the two by at
+	// least the convex's lowest point's distance.
+	const btScalar planeOffset = corners[0].dot(normal) + triangle.getMargin();
+	Polygon face, scratch;
+	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
+	{
+		// Most triangles a mesh query returns are out of reach: the box's lowest point, in closed form, says
+		// so before any face is built.
+		const btBoxShape& box = static_cast<const btBoxShape&>(convex);
+		const btVector3 local = normal * convexTransform.getBasis();
+		const btVector3 half = box.getHalfExtentsWithMargin();
+		const btScalar lowestPoint = convexTransform.getOrigin().dot(normal) - btFabs(local.x()) * half.x() -
+		                             btFabs(local.y()) * half.y() - btFabs(local.z()) * half.z();
+		if (lowestPoint - planeOffset > reach) return kTriangleOutOfReach;
+		boxFace(box, convexTransform, local, face);
+	}
+	else
+	{
+		if (!hullFace(static_cast<const btConvexHullShape&>(convex), convexTransform, normal, planeOffset + reach,
+		              face))
+			return kTriangleOutOfReach;
+	}
+	if (face.count == 0) return kTriangleNeedsGjk;
+
+	// The face holds the convex's lowest point along the normal.
+	btScalar lowest = BT_LARGE_FLOAT;
+	for (int i = 0; i < face.count; ++i) lowest = btMin(lowest, face.corners[i].dot(normal));
+	lowest -= planeOffset;
+	if (lowest > reach) return kTriangleOutOfReach;
+	// Deep in, the face normal may not be the way out (a triangle's edge poking into a side): GJK and the
+	// depth solver decide, as for every other shape.
+	if (lowest < -kFaceDepthLimit || face.count < 3) return kTriangleNeedsGjk;
+
+	// The triangle's prism: a side plane through each edge, containing the normal, facing out. Faces
+	// inside the prism (the convex over a large triangle) need no cut.
+	Polygon* in = &face;
+	Polygon* clipped = &scratch;
+	for (int edge = 0; edge < 3 && in->count > 0; ++edge)
+	{
+		const btVector3& from = corners[edge];
+		// Outwards whichever face the convex is in front of (no test of the third corner: the sliver
+		// test above leaves no triangle whose winding rounding could turn).
+		const btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(windingNormal);
+		if (clipBySide(*in, *clipped, from, side)) btSwap(in, clipped);
+	}
+	btVector3 points[kMaxClipped];
+	btScalar distances[kMaxClipped];
+	int count = 0;
+	btScalar closest = BT_LARGE_FLOAT;
+	for (int i = 0; i < in->count; ++i)
+	{
+		const btScalar distance = in->corners[i].dot(normal) - planeOffset;
+		if (!(distance <= reach)) continue;
+		points[count] = in->corners[i];
+		distances[count] = distance;
+		closest = btMin(closest, distance);
+		++count;
+	}
+	if (count == 0) return kTriangleNeedsGjk;
+
+	int chosen[kMaxClipped];
+	int numChosen = count;
+	// At most 4 a triangle: choosing here costs less than handing the collector more points.
+	if (count > 4)
+		numChosen = chooseManifoldPoints(points, distances, count, normal, chosen);
+	else
+		for (int i = 0; i < count; ++i) chosen[i] = i;
+	for (int i = 0; i < numChosen; ++i)
+	{
+		const int k = chosen[i];
+		out.addContactPoint(normal, points[k] - normal * distances[k], distances[k]);
+	}
+	// The lowest point over the triangle: the face normal is the closest direction, nothing more to find.
+	// Otherwise the lowest point is beyond an edge, where the nearest feature may be that edge (GJK's).
+	return closest <= lowest + kFaceLevelTolerance ? kTriangleFaceContact : kTriangleFacePointsAndGjk;
+}
+}  // namespace caliber
