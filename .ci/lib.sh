@@ -39,8 +39,9 @@ caliber_package_installed() {
 caliber_ensure_packages() {
 	local missing=()
 	local tool package
-	# libpng-dev is optional for the build (the demos' pictures); CI installs it so that they are tested.
-	local libraries=(libgtest-dev libbenchmark-dev libccd-dev libpng-dev)
+	# libpng-dev (the demos' pictures) and libtinyxml2-dev (the COLLADA converter in Extras/) are optional
+	# for the build; CI installs them so that they are tested.
+	local libraries=(libgtest-dev libbenchmark-dev libccd-dev libpng-dev libtinyxml2-dev)
 	for tool in cmake g++ make pkg-config "$@"; do
 		if [[ "$tool" == *-dev ]]; then
 			libraries+=("$tool")
