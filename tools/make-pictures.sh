@@ -42,6 +42,9 @@ picture VehicleDemo
 picture CharacterDemo
 picture ForkLiftDemo
 picture SoftDemo 320x240 Impact
+picture BspDemo
+picture ConvexDecompositionDemo
+picture ColladaDemo
 picture BenchmarkDemo 320x240 pyramid_jolt 120
 
 # A contact sheet's worth of RagdollDemo: the ragdolls falling and landing, every 12 frames (0.2 s).

@@ -12,6 +12,8 @@
 // stay on top. Then it shows what a damaged file gives: a clear error, no crash.
 // Usage: BspDemo [FILE.bsp]. Exit 1 when a check fails or the file does not load.
 
+#include "DemoPictures.h"
+
 #include <stdio.h>
 
 #include <memory>
@@ -23,7 +25,13 @@
 
 int main(int argc, char** argv)
 {
-	const char* path = argc > 1 ? argv[1] : CALIBER_EXAMPLE_BSP;
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "BspDemo";
+	commandLine.maxPositional = 1;
+	commandLine.positionalUsage = "[level.bsp]";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	const char* path = pictures.positional().empty() ? CALIBER_EXAMPLE_BSP : pictures.positional()[0].c_str();
 	caliber::BspLevel level;
 	if (!caliber::loadBspFile(path, level))
 	{
@@ -130,6 +138,9 @@ int main(int argc, char** argv)
 	}
 	printf("at the end: %d bodies on pillar tops, %d on the ramp or on other bodies, %d on the floor\n", onPillars,
 	       raised, int(bodies.size()) - onPillars - raised);
+	// The picture: the world as the run ends (z up, so seen from above at a slant).
+	pictures.setViewDirection(btVector3(btScalar(0.3), btScalar(0.8), btScalar(-1)));
+	pictures.capture(world);
 	for (const auto& body : bodies) world.removeRigidBody(body.get());
 	world.removeRigidBody(&levelBody);
 
@@ -152,5 +163,5 @@ int main(int argc, char** argv)
 	       atRest, bodies.size(), lowestAtEnd, restOk ? "ok" : "FAILED");
 	printf("check: the four boxes dropped on the pillars stay on top: %s\n", onPillars == 4 ? "ok" : "FAILED");
 	printf("check: the damaged file is refused: %s\n", damaged.ok() ? "FAILED" : "ok");
-	return (!escaped && restOk && onPillars == 4 && !damaged.ok()) ? 0 : 1;
+	return pictures.finish((!escaped && restOk && onPillars == 4 && !damaged.ok()) ? 0 : 1);
 }

@@ -9,6 +9,8 @@
 // with its end still on the hinge, and the two exports are the same text (the round trip is exact). It also shows what
 // a damaged document gives. Usage: ColladaDemo [FILE.dae]. Exit 1 when a check fails.
 
+#include "DemoPictures.h"
+
 #include <stdio.h>
 
 #include <string>
@@ -29,7 +31,13 @@ struct World
 
 int main(int argc, char** argv)
 {
-	const char* path = argc > 1 ? argv[1] : CALIBER_COLLADA_DEMO_SCENE;
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "ColladaDemo";
+	commandLine.maxPositional = 1;
+	commandLine.positionalUsage = "[scene.dae]";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
+	const char* path = pictures.positional().empty() ? CALIBER_COLLADA_DEMO_SCENE : pictures.positional()[0].c_str();
 	caliber::ColladaPhysicsScene scene;
 	if (!caliber::importColladaPhysicsFile(path, scene))
 	{
@@ -57,6 +65,7 @@ int main(int argc, char** argv)
 				printf(" %s %.2f", scene.bodyNames[i].c_str(), scene.bodies[i]->getCenterOfMassPosition().y());
 		printf("\n");
 	}
+	pictures.capture(physics.world);  // the picture: the scene as the run ends
 	int resting = 0, dynamic = 0;
 	for (const auto& body : scene.bodies)
 	{
@@ -103,5 +112,5 @@ int main(int argc, char** argv)
 	printf("check: the plank swung down on its hinge: %s\n", hingeOk ? "ok" : "FAILED");
 	printf("check: export, import, export gives the same document: %s\n", roundTrip ? "ok" : "FAILED");
 	printf("check: the damaged document is refused: %s\n", damaged.ok() ? "FAILED" : "ok");
-	return (restOk && stackOk && hingeOk && roundTrip && !damaged.ok()) ? 0 : 1;
+	return pictures.finish((restOk && stackOk && hingeOk && roundTrip && !damaged.ok()) ? 0 : 1);
 }

@@ -9,6 +9,8 @@
 // least 2; after 4 s every body is at rest on the ground, none ever more than 1 cm below it, and the ball lies on the
 // cup's floor inside it (it would sit on the rim if the cup were one hull). Exit 1 when a check fails.
 
+#include "DemoPictures.h"
+
 #include <stdio.h>
 
 #include <chrono>
@@ -79,8 +81,12 @@ bool decompose(const char* name, const caliber::ExampleMesh& mesh, Decomposed& o
 }
 }  // namespace
 
-int main()
+int main(int argc, char** argv)
 {
+	caliber::demo::DemoCommandLine commandLine;
+	commandLine.name = "ConvexDecompositionDemo";
+	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	if (!pictures.ok()) return pictures.exitCode();
 	Decomposed torus, cup, bracket;
 	bool ok = decompose("torus", caliber::makeTorusMesh(btScalar(0.4), btScalar(0.12), 24, 12), torus);
 	ok =
@@ -137,6 +143,9 @@ int main()
 	for (const auto& body : bodies) resting += body->getLinearVelocity().length() < btScalar(0.1);
 	const btVector3 ballAt = ball.getCenterOfMassPosition() - bodies[1]->getCenterOfMassPosition();
 	const btScalar ballHeight = ball.getCenterOfMassPosition().z();
+	// The picture: the world as the run ends (z up, so seen from above at a slant).
+	pictures.setViewDirection(btVector3(btScalar(0.3), btScalar(0.8), btScalar(-1)));
+	pictures.capture(world);
 	for (const auto& body : bodies) world.removeRigidBody(body.get());
 	world.removeRigidBody(&ball);
 	world.removeRigidBody(&ground);
@@ -153,5 +162,5 @@ int main()
 	printf("check: bodies at rest on the ground (lowest point %.3f m, %d of 3 at rest): %s\n", lowest, resting,
 	       grounded ? "ok" : "FAILED");
 	printf("check: the ball lies in the cup (centre %.3f m up): %s\n", ballHeight, inCup ? "ok" : "FAILED");
-	return (tolerances && counts && grounded && inCup) ? 0 : 1;
+	return pictures.finish((tolerances && counts && grounded && inCup) ? 0 : 1);
 }
