@@ -43,6 +43,7 @@ picture CharacterDemo
 picture ForkLiftDemo
 picture SoftDemo 320x240 Impact
 picture BspDemo
+picture ObjDemo
 picture ConvexDecompositionDemo
 picture ColladaDemo
 picture BenchmarkDemo 320x240 pyramid_jolt 120
