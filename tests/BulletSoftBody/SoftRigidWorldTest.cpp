@@ -179,29 +179,28 @@ TEST(SoftRigidWorld, PinnedClothCarriesABoxAndBothComeToRest)
 
 TEST(SoftRigidWorld, CoarseClothCatchesMostFallingBoxes)
 {
-	// A 2 kg box (60 cm) dropped 3, 5, 7 and 9 m onto a cloth whose nodes are 16 or 27 cm apart, pinned at
-	// its corners, with no ground below. Node contacts alone let the box's corners and edges slip
-	// between the nodes: they catch 1 drop of these 8. With the box's corners, edge and face points held
-	// on the faces' side the cloth catches most (7 of 8 when this was written; an edge can still slice
-	// between two nodes, docs/soft-bodies.md). Caught, the box is above the cloth's lowest node after
-	// 2.5 s; fallen through, it is in free fall, metres below.
+	// A 2 kg box (60 cm) dropped 3, 5, 7 and 9 m onto a cloth whose nodes are 27 cm apart, pinned at its
+	// corners, with no ground below. Node contacts alone let the box's corners and edges slip between
+	// the nodes: they catch 1 of these 4 drops. With the box's corners, edge and face points held on the
+	// faces' side the cloth catches them (4 of 4 when this was written; an edge can still slice between
+	// two nodes, docs/soft-bodies.md). Caught, the box is above the cloth's lowest node after 2.5 s;
+	// fallen through, it is in free fall, metres below.
 	int caught = 0;
 	for (int height = 3; height <= 9; height += 2)
-		for (int res = 16; res <= 26; res += 10)
-		{
-			SoftTestWorld w;
-			btSoftBody* cloth = w.addSoft(makeCloth(w.info(), 2, 2, res, 1 + 2 + 4 + 8));
-			cloth->m_cfg.kDF = 1;
-			cloth->m_cfg.piterations = 10;
-			cloth->m_cfg.kDP = btScalar(0.05);
-			btRigidBody* box =
-			    w.addRigid(2, btVector3(0.05, 2 + height, 0.03), w.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3)));
-			w.step(150);
-			btScalar lowestNode = BT_LARGE_FLOAT;
-			for (int i = 0; i < cloth->m_nodes.size(); ++i) lowestNode = btMin(lowestNode, cloth->m_nodes[i].m_x.y());
-			if (box->getCenterOfMassPosition().y() > lowestNode) ++caught;
-		}
-	EXPECT_GE(caught, 5);
+	{
+		SoftTestWorld w;
+		btSoftBody* cloth = w.addSoft(makeCloth(w.info(), 2, 2, 16, 1 + 2 + 4 + 8));
+		cloth->m_cfg.kDF = 1;
+		cloth->m_cfg.piterations = 10;
+		cloth->m_cfg.kDP = btScalar(0.05);
+		btRigidBody* box =
+		    w.addRigid(2, btVector3(0.05, 2 + height, 0.03), w.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3)));
+		w.step(150);
+		btScalar lowestNode = BT_LARGE_FLOAT;
+		for (int i = 0; i < cloth->m_nodes.size(); ++i) lowestNode = btMin(lowestNode, cloth->m_nodes[i].m_x.y());
+		if (box->getCenterOfMassPosition().y() > lowestNode) ++caught;
+	}
+	EXPECT_GE(caught, 3);
 }
 
 TEST(SoftRigidWorld, ClothTentsOverASpikeBetweenItsNodes)
