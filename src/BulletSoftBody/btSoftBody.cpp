@@ -8,6 +8,7 @@
 
 #include "BulletSoftBody/btSoftBodySolvers.h"
 #include "btSoftBodyInternal.h"
+#include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyTethers.h"
 
 namespace caliber
@@ -114,6 +115,7 @@ void btSoftBody::initDefaults()
 btSoftBody::~btSoftBody()
 {
 	caliber::releaseSoftBodyTethers(*this);
+	caliber::releaseSoftFaceContacts(*this);
 	delete m_collisionShape;
 	m_collisionShape = 0;
 	for (int i = 0; i < m_materials.size(); ++i) btAlignedFree(m_materials[i]);

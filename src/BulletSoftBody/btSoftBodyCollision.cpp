@@ -14,7 +14,12 @@
 #include "BulletCollision/CollisionShapes/btTriangleCallback.h"
 #include "BulletCollision/NarrowPhaseCollision/ClosestPointOnTriangle.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkEpa2.h"
+#include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
+#include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletSoftBody/btSoftBody.h"
+#include "LinearMath/btSideTable.h"
+#include "LinearMath/btTransformUtil.h"
+#include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyInternal.h"
 
 namespace
@@ -205,6 +210,204 @@ struct ContactSearch
 };
 }  // namespace
 
+caliber::SoftFaceContacts& caliber::softFaceContacts(const btSoftBody& body)
+{
+	return sideTable<SoftFaceContacts>().acquire(&body);
+}
+
+void caliber::releaseSoftFaceContacts(const btSoftBody& body) { sideTable<SoftFaceContacts>().release(&body); }
+
+namespace
+{
+// Every face's box over the step (start and predicted corners), bucketed by low x (a counting sort
+// into as many buckets of equal width as there are faces, at most): linear in the faces whatever
+// their order, and deterministic.
+void buildFaceBoxes(btSoftBody& body, caliber::SoftFaceContacts& out)
+{
+	const int count = body.m_faces.size();
+	btAlignedObjectArray<caliber::SoftFaceContacts::FaceBox>& unsorted = out.scratch;
+	unsorted.resize(count);
+	out.widest = 0;
+	btScalar minX = BT_LARGE_FLOAT, maxX = -BT_LARGE_FLOAT;
+	for (int k = 0; k < count; ++k)
+	{
+		caliber::SoftFaceContacts::FaceBox& box = unsorted[k];
+		const btSoftBody::Face& f = body.m_faces[k];
+		box.face = k;
+		box.lo = box.hi = f.m_n[0]->m_x;
+		for (int j = 0; j < 3; ++j)
+		{
+			box.lo.setMin(f.m_n[j]->m_x);
+			box.lo.setMin(f.m_n[j]->m_q);
+			box.hi.setMax(f.m_n[j]->m_x);
+			box.hi.setMax(f.m_n[j]->m_q);
+		}
+		out.widest = btMax(out.widest, box.hi.x() - box.lo.x());
+		minX = btMin(minX, box.lo.x());
+		maxX = btMax(maxX, box.lo.x());
+	}
+	const int buckets = btMax(1, btMin(count, 4096));
+	out.minX = minX;
+	out.cell = maxX > minX ? (maxX - minX) / btScalar(buckets) * btScalar(1.0001) : btScalar(1);
+	btAlignedObjectArray<int>& start = out.bucketStart;
+	start.resize(buckets + 1);
+	for (int i = 0; i <= buckets; ++i) start[i] = 0;
+	for (int k = 0; k < count; ++k) ++start[out.bucketOf(unsorted[k].lo.x(), buckets) + 1];
+	for (int i = 0; i < buckets; ++i) start[i + 1] += start[i];
+	out.boxes.resize(count);
+	btAlignedObjectArray<int>& fill = out.fill;
+	fill.resize(buckets);
+	for (int i = 0; i < buckets; ++i) fill[i] = start[i];
+	for (int k = 0; k < count; ++k) out.boxes[fill[out.bucketOf(unsorted[k].lo.x(), buckets)]++] = unsorted[k];
+	out.boxesValid = true;
+}
+
+// Polyhedra with more corners than this are left to the node contacts (their corners are blunt).
+const int kMaxCorners = 64;
+
+// A box is held by its corners, three points along each edge and its faces' centres (8 + 36 + 6):
+// its edges and faces can pass between the nodes of a coarse cloth as well as its corners can.
+const int kBoxPoints = 50;
+btVector3 boxPoint(const btVector3& h, int i)
+{
+	if (i < 8) return btVector3((i & 1) ? -h.x() : h.x(), (i & 2) ? -h.y() : h.y(), (i & 4) ? -h.z() : h.z());
+	i -= 8;
+	if (i < 36)
+	{
+		// Edge points: along axis a at -h/2, 0, h/2; the other two axes at their signs.
+		const int a = i / 12, k = (i / 4) % 3, signs = i % 4;
+		btVector3 p;
+		p[a] = h[a] * btScalar(k - 1) * btScalar(0.5);
+		p[(a + 1) % 3] = (signs & 1) ? -h[(a + 1) % 3] : h[(a + 1) % 3];
+		p[(a + 2) % 3] = (signs & 2) ? -h[(a + 2) % 3] : h[(a + 2) % 3];
+		return p;
+	}
+	i -= 36;
+	btVector3 p(0, 0, 0);  // face centres
+	p[i / 2] = (i & 1) ? -h[i / 2] : h[i / 2];
+	return p;
+}
+
+// Rigid corners against soft faces (see btSoftBodyFaceContacts.h): each corner of a polyhedral shape,
+// moved along its body's velocity over the step, against each face whose box its path comes within
+// the margin of. The corner is judged against the face from where both started the step (the side it
+// is kept on) and where both are predicted to end (a contact when it then comes within the margin and
+// its projection falls on the face).
+void collideCornersWithFaces(btSoftBody& body, caliber::SoftFaceContacts& out, const btCollisionObject* object,
+                             const btCollisionShape* shape, const btTransform& start, const btTransform& end,
+                             btScalar margin, btScalar hardness, bool dynamic)
+{
+	if (shape->getShapeType() == COMPOUND_SHAPE_PROXYTYPE)
+	{
+		const btCompoundShape* compound = static_cast<const btCompoundShape*>(shape);
+		for (int i = 0; i < compound->getNumChildShapes(); ++i)
+			collideCornersWithFaces(body, out, object, compound->getChildShape(i),
+			                        start * compound->getChildTransform(i), end * compound->getChildTransform(i),
+			                        margin, hardness, dynamic);
+		return;
+	}
+	if (!shape->isPolyhedral()) return;
+	const btPolyhedralConvexShape* poly = static_cast<const btPolyhedralConvexShape*>(shape);
+	const bool isBox = shape->getShapeType() == BOX_SHAPE_PROXYTYPE;
+	// A moving box also brings points along its edges and on its faces; static boxes (grounds, walls)
+	// only their corners.
+	const bool boxPoints = isBox && dynamic;
+	const int count = boxPoints ? kBoxPoints : poly->getNumVertices();
+	if (count <= 0 || count > kMaxCorners) return;
+	// A box's points include its margin; other polyhedra are rounded by theirs.
+	const btScalar thickness = isBox ? btScalar(0) : shape->getMargin();
+	const btScalar reach = margin + thickness;
+	// Only corners whose path comes within reach of the body's bounds (a ground box's corners are far
+	// from everything on it).
+	btVector3 bodyLo, bodyHi;
+	body.getAabb(bodyLo, bodyHi);
+	const btVector3 r(reach, reach, reach);
+	bodyLo -= r;
+	bodyHi += r;
+	btVector3 corner0[kMaxCorners], corner1[kMaxCorners], local[kMaxCorners];
+	btVector3 lo(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), hi(-lo);
+	int corners = 0;
+	for (int i = 0; i < count; ++i)
+	{
+		if (boxPoints)
+			local[corners] = boxPoint(static_cast<const btBoxShape*>(shape)->getHalfExtentsWithMargin(), i);
+		else
+			poly->getVertex(i, local[corners]);
+		corner0[corners] = start * local[corners];
+		corner1[corners] = end * local[corners];
+		btVector3 clo = corner0[corners], chi = corner0[corners];
+		clo.setMin(corner1[corners]);
+		chi.setMax(corner1[corners]);
+		if (clo.x() > bodyHi.x() || chi.x() < bodyLo.x() || clo.y() > bodyHi.y() || chi.y() < bodyLo.y() ||
+		    clo.z() > bodyHi.z() || chi.z() < bodyLo.z())
+			continue;
+		lo.setMin(clo);
+		hi.setMax(chi);
+		++corners;
+	}
+	if (corners == 0) return;
+	if (!out.boxesValid) buildFaceBoxes(body, out);
+	// The object's transform maps the shape's frame (a compound child's) to the world: store corners in
+	// the object's own frame, where the solver finds them again.
+	const btTransform toObject = object->getWorldTransform().inverse() * start;
+	lo -= r;
+	hi += r;
+	const btScalar edgeTolerance = btScalar(1e-3);
+	const btAlignedObjectArray<caliber::SoftFaceContacts::FaceBox>& boxes = out.boxes;
+	// The buckets of the faces whose low x can reach the object's range.
+	const int buckets = out.bucketStart.size() - 1;
+	const int firstBucket = out.bucketOf(lo.x() - out.widest, buckets), lastBucket = out.bucketOf(hi.x(), buckets);
+	const int stop = out.bucketStart[lastBucket + 1];
+	for (int b = out.bucketStart[firstBucket]; b < stop; ++b)
+	{
+		const btVector3& flo = boxes[b].lo;
+		const btVector3& fhi = boxes[b].hi;
+		if (flo.x() > hi.x() || fhi.x() < lo.x() || flo.y() > hi.y() || fhi.y() < lo.y() || flo.z() > hi.z() ||
+		    fhi.z() < lo.z())
+			continue;
+		btSoftBody::Face& f = body.m_faces[boxes[b].face];
+		const btSoftBody::Node* n0 = f.m_n[0];
+		const btSoftBody::Node* n1 = f.m_n[1];
+		const btSoftBody::Node* n2 = f.m_n[2];
+		if (n0->m_im <= 0 && n1->m_im <= 0 && n2->m_im <= 0) continue;  // a fixed face is moved by nothing
+		const btVector3 startNormal = (n1->m_q - n0->m_q).cross(n2->m_q - n0->m_q);
+		btVector3 normal = (n1->m_x - n0->m_x).cross(n2->m_x - n0->m_x);
+		const btScalar area2 = normal.length2();
+		if (area2 <= SIMD_EPSILON * SIMD_EPSILON || startNormal.length2() <= SIMD_EPSILON * SIMD_EPSILON) continue;
+		normal /= btSqrt(area2);
+		const btVector3 e0 = n1->m_x - n0->m_x, e1 = n2->m_x - n0->m_x;
+		const btScalar d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1);
+		const btScalar denom = d00 * d11 - d01 * d01;
+		if (btFabs(denom) <= SIMD_EPSILON) continue;
+		// The side a point is kept on is the one it started the step on (a fast point is judged from where
+		// it came from).
+		for (int i = 0; i < corners; ++i)
+		{
+			const btScalar cornerSide = startNormal.dot(corner0[i] - n0->m_q);
+			const btScalar side = cornerSide >= 0 ? btScalar(1) : btScalar(-1);
+			const btVector3 rel = corner1[i] - n0->m_x;
+			const btScalar distance = side * normal.dot(rel);
+			if (distance >= reach) continue;  // cannot reach the face this step
+			// Barycentric weights of the corner's projection onto the face.
+			const btScalar d20 = rel.dot(e0), d21 = rel.dot(e1);
+			const btScalar wb = (d11 * d20 - d01 * d21) / denom, wc = (d00 * d21 - d01 * d20) / denom;
+			const btScalar wa = 1 - wb - wc;
+			if (wa < -edgeTolerance || wb < -edgeTolerance || wc < -edgeTolerance) continue;
+			caliber::SoftFaceContact c;
+			c.face = &f;
+			c.object = object;
+			c.local = toObject * local[i];
+			c.weights.setValue(btMax(wa, btScalar(0)), btMax(wb, btScalar(0)), btMax(wc, btScalar(0)));
+			c.weights /= c.weights[0] + c.weights[1] + c.weights[2];
+			c.side = side;
+			c.thickness = thickness;
+			c.hardness = hardness;
+			out.contacts.push_back(c);
+		}
+	}
+}
+}  // namespace
+
 void caliber::collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrapper& rigid)
 {
 	const btCollisionObject* object = rigid.getCollisionObject();
@@ -232,6 +435,16 @@ void caliber::collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrap
 			continue;
 		search.collide(n, shape, t);
 	}
+	if (body.m_faces.size() == 0) return;
+	// Corners of polyhedra against faces, along the object's motion over the step.
+	btTransform end = t;
+	if (const btRigidBody* rb = btRigidBody::upcast(object))
+		if (!rb->isStaticObject())
+			btTransformUtil::integrateTransform(t, rb->getLinearVelocity(), rb->getAngularVelocity(), body.m_sst.sdt,
+			                                    end);
+	SoftFaceContacts& faceContacts = softFaceContacts(body);
+	collideCornersWithFaces(body, faceContacts, object, shape, t, end, margin, search.hardness,
+	                        !object->isStaticOrKinematicObject());
 }
 
 void btSoftBody::defaultCollisionHandler(const btCollisionObjectWrapper* pcoWrap)

