@@ -22,31 +22,9 @@ namespace
 {
 const btScalar kStep = btScalar(1. / 60.);
 
-// Pictures (--png): each scene's world is captured as it ends, so the picture shows the last scene run.
+// Pictures (--png): each scene's world is captured as it ends, so the picture shows the last scene run
+// (soft bodies drawn by Demos/Common like everything else).
 caliber::demo::DemoPictures* g_pictures = 0;
-btSoftRigidDynamicsWorld* g_pictureWorld = 0;
-
-// The soft bodies of the world being pictured: faces as flat triangles (both sides lit by the renderer's
-// flat shading), ropes as lines. The renderer draws the rigid bodies itself.
-void drawSoftBodies(caliber::demo::Scene& scene)
-{
-	if (!g_pictureWorld) return;
-	const btVector3 clothColour(btScalar(0.85), btScalar(0.35), btScalar(0.3));
-	const btVector3 ropeColour(btScalar(0.9), btScalar(0.8), btScalar(0.2));
-	btSoftBodyArray& softs = g_pictureWorld->getSoftBodyArray();
-	for (int i = 0; i < softs.size(); ++i)
-	{
-		btSoftBody* body = softs[i];
-		for (int f = 0; f < body->m_faces.size(); ++f)
-		{
-			const btSoftBody::Face& face = body->m_faces[f];
-			scene.addFlatTriangle(face.m_n[0]->m_x, face.m_n[1]->m_x, face.m_n[2]->m_x, clothColour);
-		}
-		if (body->m_faces.size() == 0)
-			for (int l = 0; l < body->m_links.size(); ++l)
-				scene.addLine(body->m_links[l].m_n[0]->m_x, body->m_links[l].m_n[1]->m_x, ropeColour);
-	}
-}
 
 // One scene's world: the parts, the ground (top face at y = 0), and ownership of what is added.
 struct Scene
@@ -70,20 +48,8 @@ struct Scene
 	{
 		if (g_pictures && !softs.empty())
 		{
-			// Framed on the soft bodies and a margin around them (the ground is 100 m across).
-			btVector3 lo(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), hi = -lo;
-			for (btSoftBody* soft : softs)
-			{
-				btVector3 aabbMin, aabbMax;
-				soft->getAabb(aabbMin, aabbMax);
-				lo.setMin(aabbMin);
-				hi.setMax(aabbMax);
-			}
-			const btVector3 margin(1, 1, 1);
-			g_pictures->setFocus(lo - margin, hi + margin);
-			g_pictureWorld = &world;
+			// The shared renderer draws the soft bodies and frames what moves, their nodes included.
 			g_pictures->capture(world);
-			g_pictureWorld = 0;
 		}
 		for (btSoftBody* s : softs)
 		{
@@ -388,10 +354,7 @@ int main(int argc, char** argv)
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	if (pictures.wanted())
-	{
 		g_pictures = &pictures;
-		pictures.setDecorator(drawSoftBodies);
-	}
 	const std::vector<std::string>& positional = pictures.positional();
 	const std::string filter = positional.size() > 0 ? positional[0] : "all";
 	const int frames = positional.size() > 1 ? atoi(positional[1].c_str()) : 0;
