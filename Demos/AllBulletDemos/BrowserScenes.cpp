@@ -2,6 +2,7 @@
 #include "BrowserScenes.h"
 
 #include "CcdScene.h"
+#include "ConcaveScene.h"
 #include "ConstraintScene.h"
 #include "Ragdoll.h"
 
@@ -122,11 +123,23 @@ public:
 private:
 	ccd_demo::Scene m_scene{ccd_demo::kSweptCcd};
 };
+
+// ConcaveDemo's height-field run: spheres, boxes and capsules dropped on rolling terrain.
+class ConcaveDemo : public BrowserDemo
+{
+public:
+	ConcaveDemo() { m_scene.build(concave_demo::kHeightField); }
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+
+private:
+	concave_demo::Scene m_scene;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -138,6 +151,7 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "RagdollDemo") scene.reset(new RagdollScene());
 	if (name == "ConstraintDemo") return std::unique_ptr<BrowserDemo>(new ConstraintDemo());
 	if (name == "CcdPhysicsDemo") return std::unique_ptr<BrowserDemo>(new CcdDemo());
+	if (name == "ConcaveDemo") return std::unique_ptr<BrowserDemo>(new ConcaveDemo());
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
