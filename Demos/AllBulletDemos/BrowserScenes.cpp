@@ -5,6 +5,8 @@
 #include "ConcaveScene.h"
 #include "ConstraintScene.h"
 #include "Ragdoll.h"
+#include "VehicleScene.h"
+#include "WorldScene.h"
 
 namespace all_bullet_demos
 {
@@ -135,11 +137,37 @@ public:
 private:
 	concave_demo::Scene m_scene;
 };
+
+// VehicleDemo's car on its terrain, driven by the arrows (Enter brakes).
+class VehicleDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+	bool driven() const override { return true; }
+	void control(const Controls& c) override { m_scene.drive(btScalar(c.forward), btScalar(c.turn), c.brake); }
+	btVector3 driverPosition() override { return m_scene.chassis().getCenterOfMassPosition(); }
+	void decorate(caliber::demo::Scene& scene) override
+	{
+		caliber::demo::addVehicleWheels(scene, m_scene.car(), vehicle_demo::kWheelWidth);
+	}
+	// The car and the bumps ahead of it, from behind.
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-4, 0, -54);
+		focusMax = btVector3(4, 3, -40);
+		viewDirection = btVector3(btScalar(0.3), btScalar(-0.4), 1);
+		return true;
+	}
+
+private:
+	vehicle_demo::Scene m_scene;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -152,6 +180,7 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "ConstraintDemo") return std::unique_ptr<BrowserDemo>(new ConstraintDemo());
 	if (name == "CcdPhysicsDemo") return std::unique_ptr<BrowserDemo>(new CcdDemo());
 	if (name == "ConcaveDemo") return std::unique_ptr<BrowserDemo>(new ConcaveDemo());
+	if (name == "VehicleDemo") return std::unique_ptr<BrowserDemo>(new VehicleDemo());
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
