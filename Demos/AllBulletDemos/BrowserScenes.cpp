@@ -2,6 +2,7 @@
 #include "BrowserScenes.h"
 
 #include "CcdScene.h"
+#include "CharacterScene.h"
 #include "ConcaveScene.h"
 #include "ConstraintScene.h"
 #include "Ragdoll.h"
@@ -163,11 +164,33 @@ public:
 private:
 	vehicle_demo::Scene m_scene;
 };
+
+// CharacterDemo's course, walked by the arrows (Enter jumps).
+class CharacterDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(character_demo::kStep, 1, character_demo::kStep); }
+	bool driven() const override { return true; }
+	void control(const Controls& c) override { m_scene.walk(btScalar(c.forward), btScalar(c.turn), c.brake); }
+	btVector3 driverPosition() override { return m_scene.feet(); }
+	// The first lanes ahead of the character, from behind it.
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-2, 0, -2);
+		focusMax = btVector3(12, 2, 8);
+		viewDirection = btVector3(btScalar(0.4), btScalar(-0.5), 1);
+		return true;
+	}
+
+private:
+	character_demo::Scene m_scene;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -181,6 +204,7 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "CcdPhysicsDemo") return std::unique_ptr<BrowserDemo>(new CcdDemo());
 	if (name == "ConcaveDemo") return std::unique_ptr<BrowserDemo>(new ConcaveDemo());
 	if (name == "VehicleDemo") return std::unique_ptr<BrowserDemo>(new VehicleDemo());
+	if (name == "CharacterDemo") return std::unique_ptr<BrowserDemo>(new CharacterDemo());
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
