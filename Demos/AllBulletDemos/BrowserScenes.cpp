@@ -5,6 +5,7 @@
 #include "CharacterScene.h"
 #include "ConcaveScene.h"
 #include "ConstraintScene.h"
+#include "ForkLiftScene.h"
 #include "Ragdoll.h"
 #include "VehicleScene.h"
 #include "WorldScene.h"
@@ -186,11 +187,40 @@ public:
 private:
 	character_demo::Scene m_scene;
 };
+
+// ForkLiftDemo's fork lift and load, driven by the arrows (Enter brakes), U / D raise and lower the fork.
+class ForkLiftDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+	bool driven() const override { return true; }
+	void control(const Controls& c) override
+	{
+		m_scene.drive(btScalar(c.forward), btScalar(c.turn), btScalar(c.lift), c.brake);
+	}
+	btVector3 driverPosition() override { return m_scene.chassis()->getCenterOfMassPosition(); }
+	void decorate(caliber::demo::Scene& scene) override
+	{
+		caliber::demo::addVehicleWheels(scene, m_scene.vehicle(), fork_lift_demo::kWheelWidth);
+	}
+	// The fork lift and the load ahead of it, from behind and to the side.
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-2, 0, -3);
+		focusMax = btVector3(2, 3, 11);
+		viewDirection = btVector3(btScalar(0.5), btScalar(-0.4), 1);
+		return true;
+	}
+
+private:
+	fork_lift_demo::Scene m_scene;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo", "ForkLiftDemo"};
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -205,6 +235,7 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "ConcaveDemo") return std::unique_ptr<BrowserDemo>(new ConcaveDemo());
 	if (name == "VehicleDemo") return std::unique_ptr<BrowserDemo>(new VehicleDemo());
 	if (name == "CharacterDemo") return std::unique_ptr<BrowserDemo>(new CharacterDemo());
+	if (name == "ForkLiftDemo") return std::unique_ptr<BrowserDemo>(new ForkLiftDemo());
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
