@@ -7,6 +7,7 @@
 #include "ConstraintScene.h"
 #include "ForkLiftScene.h"
 #include "Ragdoll.h"
+#include "SoftScenes.h"
 #include "VehicleScene.h"
 #include "WorldScene.h"
 
@@ -216,11 +217,24 @@ public:
 private:
 	fork_lift_demo::Scene m_scene;
 };
+
+// One of SoftDemo's scenes (cloth, balls, ropes, attachments, friction, impact).
+class SoftDemo : public BrowserDemo
+{
+public:
+	explicit SoftDemo(const std::string& scene) { soft_demo::buildScene(m_scene, scene); }
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.step(1); }
+
+private:
+	soft_demo::Scene m_scene;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
 	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo", "ForkLiftDemo"};
+	for (const std::string& name : soft_demo::sceneNames()) names.push_back("SoftDemo/" + name);
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -236,6 +250,14 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "VehicleDemo") return std::unique_ptr<BrowserDemo>(new VehicleDemo());
 	if (name == "CharacterDemo") return std::unique_ptr<BrowserDemo>(new CharacterDemo());
 	if (name == "ForkLiftDemo") return std::unique_ptr<BrowserDemo>(new ForkLiftDemo());
+	const std::string soft = "SoftDemo/";
+	if (name.compare(0, soft.size(), soft) == 0)
+	{
+		const std::vector<std::string> names = soft_demo::sceneNames();
+		for (const std::string& known : names)
+			if (name.substr(soft.size()) == known) return std::unique_ptr<BrowserDemo>(new SoftDemo(known));
+		return nullptr;
+	}
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;
