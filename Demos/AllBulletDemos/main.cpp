@@ -7,6 +7,7 @@
 // left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
 // Keys: space pause, S single step, R reset, B shoot a box, W wireframe, A AABBs, C contact points,
 // J joint frames and limits, P print the step's profile (btQuickprof), F frame the scene again,
+// H hide or show the on-screen text (demo, body count, step and frame times, btQuickprof's profile),
 // N / Page Down / right arrow next demo, Page Up / left arrow previous, Esc quit. In a driven demo
 // (VehicleDemo, CharacterDemo, ForkLiftDemo) the arrows drive instead (up/down: throttle or walk,
 // left/right: steer or turn), Enter brakes (the character jumps), U / D raise and lower the fork. The title bar shows the demo, the body
@@ -34,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "BitmapFont.h"
 #include "BrowserScenes.h"
 #include "GlRenderer.h"
 #include "LinearMath/btQuickprof.h"
@@ -264,6 +266,63 @@ public:
 			m_target += driver - m_driver;
 			m_driver = driver;
 		}
+		// The on-screen profile: btQuickprof's zones averaged over the last kProfileSteps steps.
+		CProfileManager::Increment_Frame_Counter();
+		if (CProfileManager::Get_Frame_Count_Since_Reset() >= kProfileSteps)
+		{
+			m_profile = profileText();
+			CProfileManager::Reset();
+		}
+	}
+
+	/// The frame time the window loop measured (shown on screen and in the title).
+	void setFrameTime(double ms) { m_frameMs = ms; }
+
+	/// btQuickprof's tree (two levels below the root) as text lines: each zone's milliseconds per step.
+	static std::string profileText()
+	{
+		const int frames = std::max(1, CProfileManager::Get_Frame_Count_Since_Reset());
+		std::string text;
+		CProfileIterator* it = CProfileManager::Get_Iterator();
+		if (!it) return text;
+		addProfileLevel(*it, frames, 0, text);
+		CProfileManager::Release_Iterator(it);
+		return text;
+	}
+
+	static void addProfileLevel(CProfileIterator& it, int frames, int depth, std::string& text)
+	{
+		int count = 0;
+		for (it.First(); !it.Is_Done(); it.Next()) ++count;
+		for (int i = 0; i < count && text.size() < 2000; ++i)
+		{
+			it.First();
+			for (int k = 0; k < i; ++k) it.Next();
+			char line[160];
+			std::snprintf(line, sizeof(line), "%*s%-34.34s %7.3f MS\n", 2 + 2 * depth, "", it.Get_Current_Name(),
+			              double(it.Get_Current_Total_Time()) / frames);
+			text += line;
+			if (depth < 1)
+			{
+				it.Enter_Child(i);
+				addProfileLevel(it, frames, depth + 1, text);
+				it.Enter_Parent();
+			}
+		}
+	}
+
+	/// What the on-screen text says: the demo, its bodies, the step and frame times, the profile.
+	std::string overlayText() const
+	{
+		char head[256];
+		std::snprintf(head, sizeof(head), "%s   BODIES %d   STEP %.2f MS   FRAME %.1f MS%s\n",
+		              m_names[size_t(m_index)].c_str(), m_scene->world().getNumCollisionObjects(), m_stepMs, m_frameMs,
+		              m_paused ? "   PAUSED" : "");
+		std::string text = head;
+		if (m_scene->driven()) text += "ARROWS DRIVE, ENTER BRAKES OR JUMPS, U/D FORK, N NEXT DEMO\n";
+		text += "PROFILE, MS PER STEP OVER THE LAST 60 STEPS (H HIDES THIS TEXT):\n";
+		text += m_profile.empty() ? std::string("  (after 60 steps)\n") : m_profile;
+		return text;
 	}
 
 	void draw(all_bullet_demos::GlRenderer& gl)
@@ -276,6 +335,13 @@ public:
 		int width = 0, height = 0;
 		glfwGetFramebufferSize(m_window, &width, &height);
 		gl.draw(scene, camera(), width, height, m_wireframe);
+		if (m_showText)
+		{
+			m_textCells.clear();
+			const float scale = width >= 900 ? 2.0f : 1.0f;
+			caliber::demo::layoutText(overlayText(), 8 * scale, 8 * scale, scale, m_textCells);
+			gl.drawText(m_textCells, btVector3(btScalar(0.08), btScalar(0.08), btScalar(0.14)), width, height);
+		}
 	}
 
 	/// Replaces the mouse's position (automation's scripted drag).
@@ -401,6 +467,9 @@ public:
 			case GLFW_KEY_F:
 				frameCamera();
 				break;
+			case GLFW_KEY_H:
+				m_showText = !m_showText;
+				break;
 			case GLFW_KEY_RIGHT:
 			case GLFW_KEY_LEFT:
 				// In a driven demo the arrows steer (read each step), so only N and the page keys switch.
@@ -477,6 +546,11 @@ private:
 	bool m_scripted = false;
 	all_bullet_demos::Controls m_held;
 	btVector3 m_driver{0, 0, 0};
+	static const int kProfileSteps = 60;
+	double m_frameMs = 0;
+	std::string m_profile;
+	bool m_showText = true;
+	std::vector<caliber::demo::TextCell> m_textCells;
 };
 
 Browser* browserOf(GLFWwindow* window) { return static_cast<Browser*>(glfwGetWindowUserPointer(window)); }
@@ -650,8 +724,9 @@ int main(int argc, char** argv)
 				browser.draw(gl);
 				glfwSwapBuffers(window);
 				const auto now = std::chrono::steady_clock::now();
-				if (++frameCount % 15 == 0)
-					browser.updateTitle(std::chrono::duration<double, std::milli>(now - last).count());
+				const double frameMs = std::chrono::duration<double, std::milli>(now - last).count();
+				browser.setFrameTime(frameMs);
+				if (++frameCount % 15 == 0) browser.updateTitle(frameMs);
 				last = now;
 			}
 		}
