@@ -320,7 +320,7 @@ public:
 		              m_paused ? "   PAUSED" : "");
 		std::string text = head;
 		if (m_scene->driven()) text += "ARROWS DRIVE, ENTER BRAKES OR JUMPS, U/D FORK, N NEXT DEMO\n";
-		text += "PROFILE, MS PER STEP OVER THE LAST 60 STEPS (H HIDES THIS TEXT):\n";
+		text += "PROFILE, MS PER STEP (LAST 60 STEPS; H HIDES):\n";
 		text += m_profile.empty() ? std::string("  (after 60 steps)\n") : m_profile;
 		return text;
 	}
