@@ -10,8 +10,9 @@
 // H hide or show the on-screen text (demo, body count, step and frame times, btQuickprof's profile),
 // N / Page Down / right arrow next demo, Page Up / left arrow previous, Esc quit. In a driven demo
 // (VehicleDemo, CharacterDemo, ForkLiftDemo) the arrows drive instead (up/down: throttle or walk,
-// left/right: steer or turn), Enter brakes (the character jumps), U / D raise and lower the fork. The title bar shows the demo, the body
-// count, the step time and the frame time.
+// left/right: steer or turn), Enter brakes (the character jumps), U / D raise and lower the fork,
+// and the camera follows the driver. The title bar shows the demo, the body count, the step time
+// and the frame time.
 //
 // Automation: --demo NAME --frames N --screenshot PATH runs N steps without input, draws the last
 // frame and writes it as a PNG (CI runs this under Xvfb with Mesa). --drag X0,Y0,X1,Y1 (window
@@ -597,6 +598,13 @@ int main(int argc, char** argv)
 		return 2;
 	}
 
+	// --hold drives a demo: refuse one without driving keys before opening a window.
+	if (options.hold && !all_bullet_demos::makeDemo(options.demo)->driven())
+	{
+		std::fprintf(stderr, "AllBulletDemos: --hold: %s is not driven by keys (VehicleDemo, CharacterDemo and "
+		             "ForkLiftDemo are)\n", options.demo.c_str());
+		return 2;
+	}
 	glfwSetErrorCallback(onGlfwError);
 	if (!glfwInit())
 	{
@@ -644,11 +652,6 @@ int main(int argc, char** argv)
 				dragged = browser.picked();
 				if (dragged) dragStart = dragged->getCenterOfMassPosition();
 			}
-			if (options.hold && !browser.demo().driven())
-			{
-				std::fprintf(stderr, "AllBulletDemos: --hold: %s is not driven by keys\n", options.demo.c_str());
-				exitCode = 2;
-			}
 			if (options.hold) browser.holdKeys(options.held);
 			const btVector3 driverStart = browser.demo().driverPosition();
 			for (int frame = 0; frame < options.frames; ++frame)
@@ -678,7 +681,7 @@ int main(int argc, char** argv)
 				}
 				browser.releaseLeft();
 			}
-			if (options.hold && exitCode == 0)
+			if (options.hold)
 			{
 				const btVector3 end = browser.demo().driverPosition();
 				std::printf("hold: the driver moved from (%.2f, %.2f, %.2f) to (%.2f, %.2f, %.2f), %.2f m\n",
