@@ -205,5 +205,15 @@ caliber_check_browser() {
 		echo "error: the scripted drag did not pull a body up" >&2
 		return 1
 	}
-	echo "browser: every demo drawn, a body picked and dragged"
+	# Driving keys: with the up arrow held for 2 s the car, the character and the fork lift must move
+	# off (over 2 m: each goes 2 to 3 m/s once under way).
+	for demo in VehicleDemo CharacterDemo ForkLiftDemo; do
+		out="$("${xvfb[@]}" "$browser" --demo "$demo" --frames 120 --size 320x240 --hold up)"
+		echo "$out"
+		echo "$out" | awk '/^hold: the driver moved/ { if ($NF == "m" && $(NF - 1) + 0 > 3) ok = 1 } END { exit ok ? 0 : 1 }' || {
+			echo "error: the up arrow did not drive $demo" >&2
+			return 1
+		}
+	done
+	echo "browser: every demo drawn, a body picked and dragged, the driven demos driven"
 }

@@ -2,8 +2,14 @@
 #include "BrowserScenes.h"
 
 #include "CcdScene.h"
+#include "CharacterScene.h"
+#include "ConcaveScene.h"
 #include "ConstraintScene.h"
+#include "ForkLiftScene.h"
 #include "Ragdoll.h"
+#include "SoftScenes.h"
+#include "VehicleScene.h"
+#include "WorldScene.h"
 
 namespace all_bullet_demos
 {
@@ -122,11 +128,113 @@ public:
 private:
 	ccd_demo::Scene m_scene{ccd_demo::kSweptCcd};
 };
+
+// ConcaveDemo's height-field run: spheres, boxes and capsules dropped on rolling terrain.
+class ConcaveDemo : public BrowserDemo
+{
+public:
+	ConcaveDemo() { m_scene.build(concave_demo::kHeightField); }
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+
+private:
+	concave_demo::Scene m_scene;
+};
+
+// VehicleDemo's car on its terrain, driven by the arrows (Enter brakes).
+class VehicleDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+	bool driven() const override { return true; }
+	void control(const Controls& c) override { m_scene.drive(btScalar(c.forward), btScalar(c.turn), c.brake); }
+	btVector3 driverPosition() override { return m_scene.chassis().getCenterOfMassPosition(); }
+	void decorate(caliber::demo::Scene& scene) override
+	{
+		caliber::demo::addVehicleWheels(scene, m_scene.car(), vehicle_demo::kWheelWidth);
+	}
+	// The car and the bumps ahead of it, from behind.
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-4, 0, -54);
+		focusMax = btVector3(4, 3, -40);
+		viewDirection = btVector3(btScalar(0.3), btScalar(-0.4), 1);
+		return true;
+	}
+
+private:
+	vehicle_demo::Scene m_scene;
+};
+
+// CharacterDemo's course, walked by the arrows (Enter jumps).
+class CharacterDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(character_demo::kStep, 1, character_demo::kStep); }
+	bool driven() const override { return true; }
+	void control(const Controls& c) override { m_scene.walk(btScalar(c.forward), btScalar(c.turn), c.brake); }
+	btVector3 driverPosition() override { return m_scene.feet(); }
+	// The first lanes ahead of the character, from behind it.
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-2, 0, -2);
+		focusMax = btVector3(12, 2, 8);
+		viewDirection = btVector3(btScalar(0.4), btScalar(-0.5), 1);
+		return true;
+	}
+
+private:
+	character_demo::Scene m_scene;
+};
+
+// ForkLiftDemo's fork lift and load, driven by the arrows (Enter brakes), U / D raise and lower the fork.
+class ForkLiftDemo : public BrowserDemo
+{
+public:
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.)); }
+	bool driven() const override { return true; }
+	void control(const Controls& c) override
+	{
+		m_scene.drive(btScalar(c.forward), btScalar(c.turn), btScalar(c.lift), c.brake);
+	}
+	btVector3 driverPosition() override { return m_scene.chassis()->getCenterOfMassPosition(); }
+	void decorate(caliber::demo::Scene& scene) override
+	{
+		caliber::demo::addVehicleWheels(scene, m_scene.vehicle(), fork_lift_demo::kWheelWidth);
+	}
+	// The fork lift and the load ahead of it, from behind and to the side.
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		focusMin = btVector3(-2, 0, -3);
+		focusMax = btVector3(2, 3, 11);
+		viewDirection = btVector3(btScalar(0.5), btScalar(-0.4), 1);
+		return true;
+	}
+
+private:
+	fork_lift_demo::Scene m_scene;
+};
+
+// One of SoftDemo's scenes (cloth, balls, ropes, attachments, friction, impact).
+class SoftDemo : public BrowserDemo
+{
+public:
+	explicit SoftDemo(const std::string& scene) { soft_demo::buildScene(m_scene, scene); }
+	btDiscreteDynamicsWorld& world() override { return m_scene.world(); }
+	void step() override { m_scene.step(1); }
+
+private:
+	soft_demo::Scene m_scene;
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo"};
+	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo", "ForkLiftDemo"};
+	for (const std::string& name : soft_demo::sceneNames()) names.push_back("SoftDemo/" + name);
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
 }
@@ -138,6 +246,18 @@ std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 	if (name == "RagdollDemo") scene.reset(new RagdollScene());
 	if (name == "ConstraintDemo") return std::unique_ptr<BrowserDemo>(new ConstraintDemo());
 	if (name == "CcdPhysicsDemo") return std::unique_ptr<BrowserDemo>(new CcdDemo());
+	if (name == "ConcaveDemo") return std::unique_ptr<BrowserDemo>(new ConcaveDemo());
+	if (name == "VehicleDemo") return std::unique_ptr<BrowserDemo>(new VehicleDemo());
+	if (name == "CharacterDemo") return std::unique_ptr<BrowserDemo>(new CharacterDemo());
+	if (name == "ForkLiftDemo") return std::unique_ptr<BrowserDemo>(new ForkLiftDemo());
+	const std::string soft = "SoftDemo/";
+	if (name.compare(0, soft.size(), soft) == 0)
+	{
+		const std::vector<std::string> names = soft_demo::sceneNames();
+		for (const std::string& known : names)
+			if (name.substr(soft.size()) == known) return std::unique_ptr<BrowserDemo>(new SoftDemo(known));
+		return nullptr;
+	}
 	const std::string prefix = "Benchmark/";
 	if (name.compare(0, prefix.size(), prefix) == 0) scene = benchmark_demo::makeScene(name.substr(prefix.size()));
 	return scene ? std::unique_ptr<BrowserDemo>(new SceneDemo(std::move(scene))) : nullptr;

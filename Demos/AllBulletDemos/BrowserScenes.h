@@ -10,9 +10,20 @@
 #include <vector>
 
 #include "BenchmarkScenes.h"
+#include "Scene.h"
 
 namespace all_bullet_demos
 {
+/// The keys a driven demo reads each step (the vehicle, the character, the fork lift): arrows and
+/// U / D (the fork), each -1, 0 or 1.
+struct Controls
+{
+	int forward = 0;  ///< up arrow 1, down arrow -1
+	int turn = 0;     ///< left arrow 1, right arrow -1
+	int lift = 0;     ///< U 1, D -1
+	bool brake = false;  ///< Enter: brake, or jump for the character
+};
+
 /// One demo in the browser: its world and how it steps.
 class BrowserDemo
 {
@@ -21,6 +32,14 @@ public:
 	virtual btDiscreteDynamicsWorld& world() = 0;
 	/// One 1/60 s step, with whatever the demo does around it (a motor's torque, ray casts).
 	virtual void step() = 0;
+	/// True for a demo the arrow keys drive (they then no longer switch demos).
+	virtual bool driven() const { return false; }
+	/// The keys held for the next step (called before step() when driven()).
+	virtual void control(const Controls& /*controls*/) {}
+	/// Where the driven body is (the car, the character, the fork lift), for --hold's report.
+	virtual btVector3 driverPosition() { return btVector3(0, 0, 0); }
+	/// Adds what the world does not hold (a raycast vehicle's wheels) to the drawing.
+	virtual void decorate(caliber::demo::Scene& /*scene*/) {}
 	/// Where the camera starts: false to frame what moves from the default view, as the pictures do.
 	virtual bool startView(btVector3& /*focusMin*/, btVector3& /*focusMax*/, btVector3& /*viewDirection*/) const
 	{

@@ -259,4 +259,37 @@ void GlRenderer::draw(const caliber::demo::Scene& scene, const caliber::demo::Ca
 	glBindVertexArray(0);
 	glEnable(GL_DEPTH_TEST);
 }
+void GlRenderer::drawText(const std::vector<caliber::demo::TextCell>& cells, const btVector3& color, int width,
+                          int height)
+{
+	if (width < 1 || height < 1 || cells.empty()) return;
+	m_textData.clear();
+	const btVector3 shadow(btScalar(0.97), btScalar(0.97), btScalar(0.97));
+	for (int pass = 0; pass < 2; ++pass)
+	{
+		const btVector3& c = pass == 0 ? shadow : color;
+		const float offset = pass == 0 ? 1.0f : 0.0f;
+		for (const caliber::demo::TextCell& cell : cells)
+		{
+			const float x0 = cell.x + offset, y0 = cell.y + offset, x1 = x0 + cell.size, y1 = y0 + cell.size;
+			const float corners[6][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y0}, {x1, y1}, {x0, y1}};
+			for (const auto& corner : corners)
+			{
+				push(m_textData, btVector3(btScalar(corner[0]), btScalar(corner[1]), 0));
+				push(m_textData, c);
+			}
+		}
+	}
+	// Window pixels (y down) to clip space.
+	const Matrix pixels = {{2.0f / float(width), 0, 0, 0, 0, -2.0f / float(height), 0, 0, 0, 0, 1, 0, -1, 1, 0, 1}};
+	glDisable(GL_DEPTH_TEST);
+	glUseProgram(m_lineProgram);
+	glUniformMatrix4fv(glGetUniformLocation(m_lineProgram, "viewProjection"), 1, GL_FALSE, pixels.m);
+	glBindVertexArray(m_lineVao);
+	glBindBuffer(GL_ARRAY_BUFFER, m_lineVbo);
+	glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(m_textData.size() * sizeof(float)), m_textData.data(), GL_STREAM_DRAW);
+	glDrawArrays(GL_TRIANGLES, 0, GLsizei(m_textData.size() / 6));
+	glBindVertexArray(0);
+	glEnable(GL_DEPTH_TEST);
+}
 }  // namespace all_bullet_demos

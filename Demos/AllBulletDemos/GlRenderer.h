@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "BitmapFont.h"
 #include "Renderer.h"
 #include "Scene.h"
 
@@ -23,11 +24,14 @@ public:
 	/// Clears the viewport to the background and draws scene as camera sees it.
 	void draw(const caliber::demo::Scene& scene, const caliber::demo::Camera& camera, int width, int height,
 	          bool wireframe);
+	/// Draws text cells (BitmapFont's layout, in window pixels, y down) over what is drawn, in the
+	/// colour (0..1) with a near-white shadow one pixel down and right, so dark text reads on any background.
+	void drawText(const std::vector<caliber::demo::TextCell>& cells, const btVector3& color, int width, int height);
 
 private:
 	unsigned m_solidProgram = 0, m_lineProgram = 0;
 	unsigned m_solidVao = 0, m_solidVbo = 0, m_lineVao = 0, m_lineVbo = 0;
-	std::vector<float> m_solidData, m_lineData, m_pointData;
+	std::vector<float> m_solidData, m_lineData, m_pointData, m_textData;
 };
 }  // namespace all_bullet_demos
 

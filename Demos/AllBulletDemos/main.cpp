@@ -7,19 +7,26 @@
 // left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
 // Keys: space pause, S single step, R reset, B shoot a box, W wireframe, A AABBs, C contact points,
 // J joint frames and limits, P print the step's profile (btQuickprof), F frame the scene again,
-// N / right arrow next demo, left arrow previous, Esc quit. The title bar shows the demo, the body
-// count, the step time and the frame time.
+// H hide or show the on-screen text (demo, body count, step and frame times, btQuickprof's profile),
+// N / Page Down / right arrow next demo, Page Up / left arrow previous, Esc quit. In a driven demo
+// (VehicleDemo, CharacterDemo, ForkLiftDemo) the arrows drive instead (up/down: throttle or walk,
+// left/right: steer or turn), Enter brakes (the character jumps), U / D raise and lower the fork,
+// and the camera follows the driver. The title bar shows the demo, the body count, the step time
+// and the frame time.
 //
 // Automation: --demo NAME --frames N --screenshot PATH runs N steps without input, draws the last
 // frame and writes it as a PNG (CI runs this under Xvfb with Mesa). --drag X0,Y0,X1,Y1 (window
 // pixels) does what a user's left-drag would during those N steps: press at (X0, Y0), move to
 // (X1, Y1), release at the end; it reports the body it picked and how far it moved, and fails when
-// nothing was picked. --list prints the demos.
+// nothing was picked. --hold KEYS (comma-separated: up, down, left, right, enter, u, d) holds those
+// keys through the N steps of a driven demo and reports how far the driver moved. --list prints the
+// demos.
 
 #define GLFW_INCLUDE_GLCOREARB
 #define GL_GLEXT_PROTOTYPES
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "BitmapFont.h"
 #include "BrowserScenes.h"
 #include "GlRenderer.h"
 #include "LinearMath/btQuickprof.h"
@@ -52,7 +60,30 @@ struct Options
 	int width = 1024, height = 768;
 	bool drag = false;
 	double dragFrom[2] = {0, 0}, dragTo[2] = {0, 0};
+	bool hold = false;
+	all_bullet_demos::Controls held;
 };
+
+// Parses --hold's list into held; false for an unknown key.
+bool parseHeld(const std::string& list, all_bullet_demos::Controls& held)
+{
+	size_t start = 0;
+	while (start <= list.size())
+	{
+		const size_t comma = std::min(list.find(',', start), list.size());
+		const std::string key = list.substr(start, comma - start);
+		if (key == "up") held.forward = 1;
+		else if (key == "down") held.forward = -1;
+		else if (key == "left") held.turn = 1;
+		else if (key == "right") held.turn = -1;
+		else if (key == "enter") held.brake = true;
+		else if (key == "u") held.lift = 1;
+		else if (key == "d") held.lift = -1;
+		else return false;
+		start = comma + 1;
+	}
+	return true;
+}
 
 // Parses the command line; returns -1 to go on, else the exit code.
 int parse(int argc, char** argv, Options& options)
@@ -60,7 +91,8 @@ int parse(int argc, char** argv, Options& options)
 	auto usage = [&](FILE* out)
 	{
 		std::fprintf(out,
-		             "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--list]\n"
+		             "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--drag X0,Y0,X1,Y1]\n"
+		             "  [--hold KEYS] [--list]\n"
 		             "  --frames N without input: run N steps and exit; --screenshot writes the last frame as PNG\n",
 		             argv[0]);
 	};
@@ -110,6 +142,16 @@ int parse(int argc, char** argv, Options& options)
 			}
 			options.drag = true;
 		}
+		else if (option == "--hold")
+		{
+			if (!parseHeld(value, options.held))
+			{
+				std::fprintf(stderr, "AllBulletDemos: --hold needs keys from up, down, left, right, enter, u, d, got '%s'\n",
+				             value);
+				return 2;
+			}
+			options.hold = true;
+		}
 		else if (option == "--size")
 		{
 			if (std::sscanf(value, "%dx%d", &options.width, &options.height) != 2 || options.width < 1 ||
@@ -128,7 +170,7 @@ int parse(int argc, char** argv, Options& options)
 		}
 		++i;
 	}
-	if ((!options.screenshot.empty() || options.drag) && options.frames == 0) options.frames = 60;
+	if ((!options.screenshot.empty() || options.drag || options.hold) && options.frames == 0) options.frames = 60;
 	if (!options.screenshot.empty() && !caliber::demo::pngAvailable())
 	{
 		std::fprintf(stderr, "AllBulletDemos: --screenshot is unavailable: this build has no libpng\n");
@@ -149,6 +191,7 @@ public:
 		m_index = (index % int(m_names.size()) + int(m_names.size())) % int(m_names.size());
 		m_scene = all_bullet_demos::makeDemo(m_names[size_t(m_index)]);
 		m_stepMs = 0;
+		m_driver = m_scene->driverPosition();
 		frameCamera();
 	}
 
@@ -166,6 +209,7 @@ public:
 			style.solids = false;
 			style.debugMode = 0;
 			caliber::demo::addWorld(scene, m_scene->world(), style);
+			m_scene->decorate(scene);
 		}
 		int width = 1, height = 1;
 		glfwGetFramebufferSize(m_window, &width, &height);
@@ -189,11 +233,97 @@ public:
 		return camera;
 	}
 
+	/// Replaces the keyboard's driving keys (automation's --hold).
+	void holdKeys(const all_bullet_demos::Controls& held)
+	{
+		m_scripted = true;
+		m_held = held;
+	}
+	all_bullet_demos::BrowserDemo& demo() { return *m_scene; }
+
+	// The driving keys held now (or the scripted ones).
+	all_bullet_demos::Controls controls() const
+	{
+		if (m_scripted) return m_held;
+		all_bullet_demos::Controls c;
+		auto down = [&](int key) { return glfwGetKey(m_window, key) == GLFW_PRESS; };
+		c.forward = (down(GLFW_KEY_UP) ? 1 : 0) - (down(GLFW_KEY_DOWN) ? 1 : 0);
+		c.turn = (down(GLFW_KEY_LEFT) ? 1 : 0) - (down(GLFW_KEY_RIGHT) ? 1 : 0);
+		c.lift = (down(GLFW_KEY_U) ? 1 : 0) - (down(GLFW_KEY_D) ? 1 : 0);
+		c.brake = down(GLFW_KEY_ENTER);
+		return c;
+	}
+
 	void step()
 	{
+		if (m_scene->driven()) m_scene->control(controls());
 		const auto start = std::chrono::steady_clock::now();
 		m_scene->step();
 		m_stepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+		if (m_scene->driven())
+		{
+			// The camera follows the driver.
+			const btVector3 driver = m_scene->driverPosition();
+			m_target += driver - m_driver;
+			m_driver = driver;
+		}
+		// The on-screen profile: btQuickprof's zones averaged over the last kProfileSteps steps.
+		CProfileManager::Increment_Frame_Counter();
+		if (CProfileManager::Get_Frame_Count_Since_Reset() >= kProfileSteps)
+		{
+			m_profile = profileText();
+			CProfileManager::Reset();
+		}
+	}
+
+	/// The frame time the window loop measured (shown on screen and in the title).
+	void setFrameTime(double ms) { m_frameMs = ms; }
+
+	/// btQuickprof's tree (two levels below the root) as text lines: each zone's milliseconds per step.
+	static std::string profileText()
+	{
+		const int frames = std::max(1, CProfileManager::Get_Frame_Count_Since_Reset());
+		std::string text;
+		CProfileIterator* it = CProfileManager::Get_Iterator();
+		if (!it) return text;
+		addProfileLevel(*it, frames, 0, text);
+		CProfileManager::Release_Iterator(it);
+		return text;
+	}
+
+	static void addProfileLevel(CProfileIterator& it, int frames, int depth, std::string& text)
+	{
+		int count = 0;
+		for (it.First(); !it.Is_Done(); it.Next()) ++count;
+		for (int i = 0; i < count && text.size() < 2000; ++i)
+		{
+			it.First();
+			for (int k = 0; k < i; ++k) it.Next();
+			char line[160];
+			std::snprintf(line, sizeof(line), "%*s%-34.34s %7.3f MS\n", 2 + 2 * depth, "", it.Get_Current_Name(),
+			              double(it.Get_Current_Total_Time()) / frames);
+			text += line;
+			if (depth < 1)
+			{
+				it.Enter_Child(i);
+				addProfileLevel(it, frames, depth + 1, text);
+				it.Enter_Parent();
+			}
+		}
+	}
+
+	/// What the on-screen text says: the demo, its bodies, the step and frame times, the profile.
+	std::string overlayText() const
+	{
+		char head[256];
+		std::snprintf(head, sizeof(head), "%s   BODIES %d   STEP %.2f MS   FRAME %.1f MS%s\n",
+		              m_names[size_t(m_index)].c_str(), m_scene->world().getNumCollisionObjects(), m_stepMs, m_frameMs,
+		              m_paused ? "   PAUSED" : "");
+		std::string text = head;
+		if (m_scene->driven()) text += "ARROWS DRIVE, ENTER BRAKES OR JUMPS, U/D FORK, N NEXT DEMO\n";
+		text += "PROFILE, MS PER STEP (LAST 60 STEPS; H HIDES):\n";
+		text += m_profile.empty() ? std::string("  (after 60 steps)\n") : m_profile;
+		return text;
 	}
 
 	void draw(all_bullet_demos::GlRenderer& gl)
@@ -202,9 +332,17 @@ public:
 		caliber::demo::WorldStyle style;
 		style.debugMode = m_debugMode;
 		caliber::demo::addWorld(scene, m_scene->world(), style);
+		m_scene->decorate(scene);
 		int width = 0, height = 0;
 		glfwGetFramebufferSize(m_window, &width, &height);
 		gl.draw(scene, camera(), width, height, m_wireframe);
+		if (m_showText)
+		{
+			m_textCells.clear();
+			const float scale = width >= 900 ? 2.0f : 1.0f;
+			caliber::demo::layoutText(overlayText(), 8 * scale, 8 * scale, scale, m_textCells);
+			gl.drawText(m_textCells, btVector3(btScalar(0.08), btScalar(0.08), btScalar(0.14)), width, height);
+		}
 	}
 
 	/// Replaces the mouse's position (automation's scripted drag).
@@ -330,11 +468,19 @@ public:
 			case GLFW_KEY_F:
 				frameCamera();
 				break;
-			case GLFW_KEY_N:
+			case GLFW_KEY_H:
+				m_showText = !m_showText;
+				break;
 			case GLFW_KEY_RIGHT:
+			case GLFW_KEY_LEFT:
+				// In a driven demo the arrows steer (read each step), so only N and the page keys switch.
+				if (!m_scene->driven()) load(m_index + (key == GLFW_KEY_RIGHT ? 1 : -1));
+				break;
+			case GLFW_KEY_N:
+			case GLFW_KEY_PAGE_DOWN:
 				load(m_index + 1);
 				break;
-			case GLFW_KEY_LEFT:
+			case GLFW_KEY_PAGE_UP:
 				load(m_index - 1);
 				break;
 			case GLFW_KEY_ESCAPE:
@@ -398,6 +544,14 @@ private:
 	double m_cursorX = 0, m_cursorY = 0;
 	btBoxShape m_shotShape{btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5))};
 	std::vector<std::unique_ptr<btRigidBody>> m_shots;
+	bool m_scripted = false;
+	all_bullet_demos::Controls m_held;
+	btVector3 m_driver{0, 0, 0};
+	static const int kProfileSteps = 60;
+	double m_frameMs = 0;
+	std::string m_profile;
+	bool m_showText = true;
+	std::vector<caliber::demo::TextCell> m_textCells;
 };
 
 Browser* browserOf(GLFWwindow* window) { return static_cast<Browser*>(glfwGetWindowUserPointer(window)); }
@@ -444,6 +598,13 @@ int main(int argc, char** argv)
 		return 2;
 	}
 
+	// --hold drives a demo: refuse one without driving keys before opening a window.
+	if (options.hold && !all_bullet_demos::makeDemo(options.demo)->driven())
+	{
+		std::fprintf(stderr, "AllBulletDemos: --hold: %s is not driven by keys (VehicleDemo, CharacterDemo and "
+		             "ForkLiftDemo are)\n", options.demo.c_str());
+		return 2;
+	}
 	glfwSetErrorCallback(onGlfwError);
 	if (!glfwInit())
 	{
@@ -491,6 +652,8 @@ int main(int argc, char** argv)
 				dragged = browser.picked();
 				if (dragged) dragStart = dragged->getCenterOfMassPosition();
 			}
+			if (options.hold) browser.holdKeys(options.held);
+			const btVector3 driverStart = browser.demo().driverPosition();
 			for (int frame = 0; frame < options.frames; ++frame)
 			{
 				if (options.drag)
@@ -517,6 +680,13 @@ int main(int argc, char** argv)
 					            double(end.y()), double(end.z()), double((end - dragStart).length()));
 				}
 				browser.releaseLeft();
+			}
+			if (options.hold)
+			{
+				const btVector3 end = browser.demo().driverPosition();
+				std::printf("hold: the driver moved from (%.2f, %.2f, %.2f) to (%.2f, %.2f, %.2f), %.2f m\n",
+				            double(driverStart.x()), double(driverStart.y()), double(driverStart.z()), double(end.x()),
+				            double(end.y()), double(end.z()), double((end - driverStart).length()));
 			}
 			browser.draw(gl);
 			glFinish();
@@ -557,8 +727,9 @@ int main(int argc, char** argv)
 				browser.draw(gl);
 				glfwSwapBuffers(window);
 				const auto now = std::chrono::steady_clock::now();
-				if (++frameCount % 15 == 0)
-					browser.updateTitle(std::chrono::duration<double, std::milli>(now - last).count());
+				const double frameMs = std::chrono::duration<double, std::milli>(now - last).count();
+				browser.setFrameTime(frameMs);
+				if (++frameCount % 15 == 0) browser.updateTitle(frameMs);
 				last = now;
 			}
 		}

@@ -3,7 +3,9 @@
 
 #include <cstdio>
 
+#include "BulletSoftBody/btSoftBody.h"
 #include "ShapeMesher.h"
+#include "SoftBodyScene.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace caliber
@@ -39,7 +41,8 @@ btVector3 paletteColor(int index)
 
 namespace
 {
-bool isStill(const btCollisionObject& object) { return object.isStaticObject(); }
+// A soft body keeps btCollisionObject's default static flag, but it moves.
+bool isStill(const btCollisionObject& object) { return object.isStaticObject() && !btSoftBody::upcast(&object); }
 
 // A box this large is a "whole world" ground or a placeholder; framing it would shrink the scene to dots.
 bool isFramable(const btVector3& aabbMin, const btVector3& aabbMax)
@@ -75,8 +78,14 @@ int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style)
 	{
 		const btCollisionObject& object = *objects[i];
 		const btCollisionShape* shape = object.getCollisionShape();
-		if (!shape || (anyMoving && isStill(object)) || shape->getShapeType() == STATIC_PLANE_PROXYTYPE) continue;
 		btVector3 aabbMin, aabbMax;
+		if (const btSoftBody* soft = btSoftBody::upcast(&object))
+		{
+			// Always framed (it deforms), on its nodes (the collision bounds add margins and predictions).
+			if (softBodyNodeBounds(*soft, aabbMin, aabbMax)) scene.focusOn(aabbMin, aabbMax);
+			continue;
+		}
+		if (!shape || (anyMoving && isStill(object)) || shape->getShapeType() == STATIC_PLANE_PROXYTYPE) continue;
 		shape->getAabb(object.getWorldTransform(), aabbMin, aabbMax);
 		if (isFramable(aabbMin, aabbMax)) scene.focusOn(aabbMin, aabbMax);
 	}
@@ -97,6 +106,11 @@ int addWorld(Scene& scene, btCollisionWorld& world, const WorldStyle& style)
 		{
 			const btCollisionObject& object = *objects[i];
 			if (object.getCollisionFlags() & btCollisionObject::CF_DISABLE_VISUALIZE_OBJECT) continue;
+			if (const btSoftBody* soft = btSoftBody::upcast(&object))
+			{
+				addSoftBody(scene, *soft, paletteColor(coloured++));
+				continue;
+			}
 			if (isGround(object))
 			{
 				mesh.color = btVector3(0.74f, 0.74f, 0.72f);

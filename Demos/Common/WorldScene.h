@@ -2,7 +2,8 @@
 #ifndef CALIBER_DEMOS_COMMON_WORLD_SCENE_H
 #define CALIBER_DEMOS_COMMON_WORLD_SCENE_H
 // Fills a Scene from a btCollisionWorld: every object's shape as a solid (grounds and walls, static and
-// at least 4 m across two ways, grey with a 1 m checker; the others in a palette by their order), plus whatever the
+// at least 4 m across two ways, grey with a 1 m checker; the others in a palette by their order; soft bodies
+// through SoftBodyScene, framed on their nodes), plus whatever the
 // world's debugDrawWorld() draws for the chosen btIDebugDraw modes (joint frames and limits, AABBs, contact points,
 // wireframes). SceneDebugDraw is the btIDebugDraw that records into a Scene; any code can use it. Demo-side code.
 

@@ -16,8 +16,8 @@
 #include <stdio.h>
 
 #include "DemoPictures.h"
+#include "ForkLiftScene.h"
 #include "WorldScene.h"
-#include "btBulletDynamicsCommon.h"
 
 namespace
 {
@@ -30,37 +30,6 @@ void check(bool ok, const char* what)
 	if (!ok) ++failures;
 }
 
-struct Bodies
-{
-	btAlignedObjectArray<btCollisionShape*> shapes;
-	btAlignedObjectArray<btRigidBody*> bodies;
-	btDiscreteDynamicsWorld* world;
-
-	btRigidBody* box(const btVector3& halfExtents, btScalar mass, const btVector3& origin, btScalar friction = 1)
-	{
-		btBoxShape* shape = new btBoxShape(halfExtents);
-		shapes.push_back(shape);
-		btVector3 inertia(0, 0, 0);
-		if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-		btRigidBody* body = new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(
-		    mass, new btDefaultMotionState(btTransform(btQuaternion::getIdentity(), origin)), shape, inertia));
-		body->setFriction(friction);
-		if (mass > 0) body->setActivationState(DISABLE_DEACTIVATION);
-		bodies.push_back(body);
-		world->addRigidBody(body);
-		return body;
-	}
-	~Bodies()
-	{
-		for (int i = bodies.size() - 1; i >= 0; --i)
-		{
-			world->removeRigidBody(bodies[i]);
-			delete bodies[i]->getMotionState();
-			delete bodies[i];
-		}
-		for (int i = 0; i < shapes.size(); ++i) delete shapes[i];
-	}
-};
 }  // namespace
 
 int main(int argc, char** argv)
@@ -71,62 +40,17 @@ int main(int argc, char** argv)
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher(&configuration);
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-	world.setGravity(btVector3(0, -10, 0));
-	Bodies parts;
-	parts.world = &world;
+	fork_lift_demo::Scene scene;
+	btDiscreteDynamicsWorld& world = scene.world();
+	btRigidBody* load = scene.load();
+	btRigidBody* chassis = scene.chassis();
+	btRigidBody* fork = scene.fork();
+	btSliderConstraint& slider = scene.slider();
+	btRaycastVehicle& vehicle = scene.vehicle();
 
-	parts.box(btVector3(50, 1, 50), 0, btVector3(0, -1, 0));  // ground, top at y = 0
-	// Two rails 0.3 m high, 0.7 m apart inside, and the load on them.
-	parts.box(btVector3(btScalar(0.1), btScalar(0.15), btScalar(0.6)), 0, btVector3(btScalar(-0.45), btScalar(0.15), 10));
-	parts.box(btVector3(btScalar(0.1), btScalar(0.15), btScalar(0.6)), 0, btVector3(btScalar(0.45), btScalar(0.15), 10));
-	btRigidBody* load = parts.box(btVector3(btScalar(0.5), btScalar(0.4), btScalar(0.5)), 100,
-	                              btVector3(0, btScalar(0.7), 10));
-
-	// The fork lift: chassis, mast (hinged to the chassis' front), fork (sliding up the mast).
-	const btScalar chassisY = btScalar(1.05);
-	btRigidBody* chassis = parts.box(btVector3(btScalar(0.9), btScalar(0.4), btScalar(1.8)), 800, btVector3(0, chassisY, 0));
-	btRigidBody* mast = parts.box(btVector3(btScalar(0.8), btScalar(1.2), btScalar(0.05)), 50,
-	                              btVector3(0, btScalar(1.45), btScalar(1.95)));
-	const btVector3 forkStart(0, btScalar(0.15), btScalar(2.62));
-	btRigidBody* fork = parts.box(btVector3(btScalar(0.3), btScalar(0.05), btScalar(0.6)), 20, forkStart);
-
-	btHingeConstraint hinge(*chassis, *mast, btVector3(0, btScalar(0.25) - chassisY, btScalar(1.95)),
-	                        btVector3(0, btScalar(-1.2), 0), btVector3(1, 0, 0), btVector3(1, 0, 0));
-	hinge.setLimit(btScalar(-0.01), btScalar(0.01));
-	world.addConstraint(&hinge, true);
-	// The slide axis is the frames' x axis, turned to point up; position 0 is the fork's start.
-	const btQuaternion xToUp(btVector3(0, 0, 1), SIMD_HALF_PI);
-	btSliderConstraint slider(*mast, *fork,
-	                          btTransform(xToUp, forkStart - mast->getCenterOfMassPosition()),
-	                          btTransform(xToUp, btVector3(0, 0, 0)), true);
-	slider.setLowerLinLimit(0);
-	slider.setUpperLinLimit(btScalar(1.5));
-	slider.setLowerAngLimit(0);
-	slider.setUpperAngLimit(0);
-	slider.setPoweredLinMotor(true);
-	slider.setMaxLinMotorForce(5000);
-	slider.setTargetLinMotorVelocity(0);
-	world.addConstraint(&slider, true);
-
-	btRaycastVehicle::btVehicleTuning tuning;
-	tuning.m_suspensionStiffness = 40;
-	tuning.m_suspensionCompression = btScalar(6.3);  // about critical for k = 40 per kg on four wheels
-	tuning.m_suspensionDamping = btScalar(6.3);
-	tuning.m_frictionSlip = 1;
-	btDefaultVehicleRaycaster raycaster(&world);
-	btRaycastVehicle vehicle(tuning, chassis, &raycaster);
-	vehicle.setCoordinateSystem(0, 1, 2);
-	for (int i = 0; i < 4; ++i)
-		vehicle.addWheel(btVector3((i & 1) ? btScalar(-0.8) : btScalar(0.8), btScalar(-0.1), i < 2 ? btScalar(1.3) : btScalar(-1.3)),
-		                 btVector3(0, -1, 0), btVector3(-1, 0, 0), btScalar(0.6), btScalar(0.4), tuning, i < 2);
-	world.addAction(&vehicle);
-
-	pictures.setDecorator([&](caliber::demo::Scene& scene) { caliber::demo::addVehicleWheels(scene, vehicle, btScalar(0.24)); });
+	pictures.setDecorator([&](caliber::demo::Scene& drawing) {
+		caliber::demo::addVehicleWheels(drawing, vehicle, fork_lift_demo::kWheelWidth);
+	});
 
 	btScalar t = 0;
 	// --frames: once the budget is spent no phase steps any more, and the unfinished phases' checks are skipped.
@@ -236,9 +160,6 @@ int main(int argc, char** argv)
 	      "lowered, the load rests on the fork");
 
 	pictures.capture(world);
-	world.removeAction(&vehicle);
-	world.removeConstraint(&slider);
-	world.removeConstraint(&hinge);
 	printf("ForkLiftDemo: %s\n", failures ? "FAILED" : "all checks passed");
 	return pictures.finish(failures ? 1 : 0);
 }

@@ -16,111 +16,20 @@
 #include <vector>
 
 #include "DemoPictures.h"
-#include "btBulletSoftBodyCommon.h"
+#include "SoftScenes.h"
 
 namespace
 {
-const btScalar kStep = btScalar(1. / 60.);
-
-// Pictures (--png): each scene's world is captured as it ends, so the picture shows the last scene run.
+// Pictures (--png): each scene's world is captured as it ends, so the picture shows the last scene run
+// (soft bodies drawn by Demos/Common like everything else).
 caliber::demo::DemoPictures* g_pictures = 0;
-btSoftRigidDynamicsWorld* g_pictureWorld = 0;
 
-// The soft bodies of the world being pictured: faces as flat triangles (both sides lit by the renderer's
-// flat shading), ropes as lines. The renderer draws the rigid bodies itself.
-void drawSoftBodies(caliber::demo::Scene& scene)
+// A scene whose world is pictured (--png) as it ends, before its bodies are removed.
+struct Scene : soft_demo::Scene
 {
-	if (!g_pictureWorld) return;
-	const btVector3 clothColour(btScalar(0.85), btScalar(0.35), btScalar(0.3));
-	const btVector3 ropeColour(btScalar(0.9), btScalar(0.8), btScalar(0.2));
-	btSoftBodyArray& softs = g_pictureWorld->getSoftBodyArray();
-	for (int i = 0; i < softs.size(); ++i)
+	~Scene() override
 	{
-		btSoftBody* body = softs[i];
-		for (int f = 0; f < body->m_faces.size(); ++f)
-		{
-			const btSoftBody::Face& face = body->m_faces[f];
-			scene.addFlatTriangle(face.m_n[0]->m_x, face.m_n[1]->m_x, face.m_n[2]->m_x, clothColour);
-		}
-		if (body->m_faces.size() == 0)
-			for (int l = 0; l < body->m_links.size(); ++l)
-				scene.addLine(body->m_links[l].m_n[0]->m_x, body->m_links[l].m_n[1]->m_x, ropeColour);
-	}
-}
-
-// One scene's world: the parts, the ground (top face at y = 0), and ownership of what is added.
-struct Scene
-{
-	btSoftBodyRigidBodyCollisionConfiguration config;
-	btCollisionDispatcher dispatcher{&config};
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btSoftRigidDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
-	std::vector<std::unique_ptr<btCollisionShape>> shapes;
-	std::vector<std::unique_ptr<btRigidBody>> bodies;
-	std::vector<btSoftBody*> softs;
-
-	Scene()
-	{
-		world.setGravity(btVector3(0, -10, 0));
-		world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
-		addRigid(0, btVector3(0, -5, 0), own(new btBoxShape(btVector3(50, 5, 50))));
-	}
-	~Scene()
-	{
-		if (g_pictures && !softs.empty())
-		{
-			// Framed on the soft bodies and a margin around them (the ground is 100 m across).
-			btVector3 lo(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), hi = -lo;
-			for (btSoftBody* soft : softs)
-			{
-				btVector3 aabbMin, aabbMax;
-				soft->getAabb(aabbMin, aabbMax);
-				lo.setMin(aabbMin);
-				hi.setMax(aabbMax);
-			}
-			const btVector3 margin(1, 1, 1);
-			g_pictures->setFocus(lo - margin, hi + margin);
-			g_pictureWorld = &world;
-			g_pictures->capture(world);
-			g_pictureWorld = 0;
-		}
-		for (btSoftBody* s : softs)
-		{
-			world.removeSoftBody(s);
-			delete s;
-		}
-		for (auto& b : bodies) world.removeRigidBody(b.get());
-	}
-	btCollisionShape* own(btCollisionShape* s)
-	{
-		shapes.emplace_back(s);
-		return s;
-	}
-	btRigidBody* addRigid(btScalar mass, const btVector3& pos, btCollisionShape* shape)
-	{
-		return addRigid(mass, btTransform(btQuaternion::getIdentity(), pos), shape);
-	}
-	btRigidBody* addRigid(btScalar mass, const btTransform& pose, btCollisionShape* shape)
-	{
-		btVector3 inertia(0, 0, 0);
-		if (mass > 0) shape->calculateLocalInertia(mass, inertia);
-		btRigidBody::btRigidBodyConstructionInfo ci(mass, 0, shape, inertia);
-		ci.m_startWorldTransform = pose;
-		bodies.emplace_back(new btRigidBody(ci));
-		world.addRigidBody(bodies.back().get());
-		return bodies.back().get();
-	}
-	btSoftBody* addSoft(btSoftBody* s)
-	{
-		softs.push_back(s);
-		world.addSoftBody(s);
-		return s;
-	}
-	btSoftBodyWorldInfo& info() { return world.getWorldInfo(); }
-	void step(int frames)
-	{
-		for (int i = 0; i < frames; ++i) world.stepSimulation(kStep, 1, kStep);
+		if (g_pictures && hasSoftBodies()) g_pictures->capture(world());
 	}
 };
 
@@ -171,11 +80,7 @@ bool cloth(int frames)
 {
 	printf("Cloth: an 8 m cloth of 31 x 31 nodes hangs from two corners and swings down.\n");
 	Scene s;
-	btSoftBody* c =
-	    s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-4, 12, -4), btVector3(4, 12, -4),
-	                                             btVector3(-4, 12, 4), btVector3(4, 12, 4), 31, 31, 1 + 2, true));
-	c->m_cfg.piterations = 10;
-	c->setTotalMass(2);
+	btSoftBody* c = soft_demo::buildCloth(s).softs[0];
 	const btVector3 pin = c->m_nodes[0].m_x;
 	s.step(frames);
 	const btScalar low = lowestNode(c), stretch = worstStretch(c);
@@ -189,12 +94,7 @@ bool pressure(int frames)
 {
 	printf("Pressure: a ball of gas (kPR = 1000, P V = kPR) falls 3 m onto the ground and bounces.\n");
 	Scene s;
-	btSoftBody* b =
-	    s.addSoft(btSoftBodyHelpers::CreateEllipsoid(s.info(), btVector3(0, 4, 0), btVector3(1, 1, 1), 256));
-	b->m_cfg.kPR = 1000;
-	b->m_cfg.kDF = btScalar(0.5);
-	b->m_cfg.piterations = 4;
-	b->setTotalMass(1, true);
+	btSoftBody* b = soft_demo::buildPressure(s).softs[0];
 	const btScalar v0 = b->getVolume();
 	btScalar lowest = BT_LARGE_FLOAT, minVolume = v0;
 	for (int i = 0; i < frames; ++i)
@@ -215,17 +115,8 @@ bool volume(int frames)
 {
 	printf("Volume: a hollow ball of soft links keeps its volume (kVC = 500) under three 2 kg boxes.\n");
 	Scene s;
-	btSoftBody* b =
-	    s.addSoft(btSoftBodyHelpers::CreateEllipsoid(s.info(), btVector3(0, 1.5, 0), btVector3(1.5, 1.5, 1.5), 256));
-	b->m_materials[0]->m_kLST = btScalar(0.3);
-	b->m_cfg.kVC = 500;
-	b->m_cfg.piterations = 4;
-	b->m_cfg.kDP = btScalar(0.02);
-	b->setTotalMass(3);
-	b->setPose(true, false);
+	btSoftBody* b = soft_demo::buildVolume(s).softs[0];
 	const btScalar v0 = b->getVolume();
-	btCollisionShape* box = s.own(new btBoxShape(btVector3(0.4, 0.4, 0.4)));
-	for (int i = 0; i < 3; ++i) s.addRigid(2, btVector3(btScalar(0.3) * (i - 1), btScalar(3.6 + i), 0), box);
 	s.step(frames);
 	const btScalar v = b->getVolume();
 	printf("  rest volume %.2f m^3, now %.2f m^3 (%.1f%%)\n", double(v0), double(v), double(100 * v / v0));
@@ -237,16 +128,7 @@ bool ropes(int frames)
 {
 	printf("Ropes: 15 ropes of 2 to 9 m, fixed at one end, fall from horizontal and swing.\n");
 	Scene s;
-	std::vector<btSoftBody*> r;
-	for (int i = 0; i < 15; ++i)
-	{
-		const btScalar length = 2 + btScalar(i) / 2;
-		btSoftBody* rope = s.addSoft(btSoftBodyHelpers::CreateRope(s.info(), btVector3(-7 + i, 10, 0),
-		                                                           btVector3(-7 + i + length, 10, 0), 20 + 2 * i, 1));
-		rope->m_cfg.piterations = 8;
-		rope->setTotalMass(btScalar(0.1) * length);
-		r.push_back(rope);
-	}
+	const std::vector<btSoftBody*> r = soft_demo::buildRopes(s).softs;
 	s.step(frames);
 	btScalar stretch = 0;
 	bool finite = true;
@@ -267,13 +149,9 @@ bool ropeAttach(int frames)
 {
 	printf("RopeAttach: a 3 m rope fixed at its top carries a 2 kg box through an anchor (two-way).\n");
 	Scene s;
-	btSoftBody* rope =
-	    s.addSoft(btSoftBodyHelpers::CreateRope(s.info(), btVector3(0, 10, 0), btVector3(3, 10, 0), 30, 1));
-	rope->m_cfg.piterations = 10;
-	rope->setTotalMass(btScalar(0.5));
-	btRigidBody* box =
-	    s.addRigid(2, btVector3(3, btScalar(9.75), 0), s.own(new btBoxShape(btVector3(0.25, 0.25, 0.25))));
-	rope->appendAnchor(rope->m_nodes.size() - 1, box);
+	const soft_demo::Parts parts = soft_demo::buildRopeAttach(s);
+	btSoftBody* rope = parts.softs[0];
+	btRigidBody* box = parts.rigids[0];
 	btScalar worstReach = 0;
 	for (int i = 0; i < frames; ++i)
 	{
@@ -291,14 +169,9 @@ bool clothAttach(int frames)
 {
 	printf("ClothAttach: a cloth hangs from a 5 kg box at two corners; the box lies on the ground.\n");
 	Scene s;
-	btRigidBody* box = s.addRigid(5, btVector3(0, 4, 0), s.own(new btBoxShape(btVector3(1, 0.5, 1))));
-	btSoftBody* c = s.addSoft(
-	    btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-1, btScalar(4.5), 1), btVector3(1, btScalar(4.5), 1),
-	                                   btVector3(-1, btScalar(4.5), 3), btVector3(1, btScalar(4.5), 3), 9, 9, 0, true));
-	c->m_cfg.piterations = 10;
-	c->setTotalMass(btScalar(0.5));
-	c->appendAnchor(0, box);
-	c->appendAnchor(8, box);
+	const soft_demo::Parts parts = soft_demo::buildClothAttach(s);
+	btRigidBody* box = parts.rigids[0];
+	btSoftBody* c = parts.softs[0];
 	s.step(frames);
 	btScalar error = 0;
 	for (int i = 0; i < c->m_anchors.size(); ++i)
@@ -317,26 +190,11 @@ bool friction(int frames)
 {
 	printf("Friction: three cloths slide down a 30 degree slope with kDF = 0.1, 0.5 and 0.9.\n");
 	Scene s;
-	const btScalar angle = SIMD_PI / 6;
-	const btTransform t(btQuaternion(btVector3(0, 0, 1), angle), btVector3(0, 3, 0));
-	s.addRigid(0, t, s.own(new btBoxShape(btVector3(8, 0.1, 3))));
+	const std::vector<btSoftBody*> cloths = soft_demo::buildFriction(s).softs;
 	btScalar travelled[3];
-	btSoftBody* cloths[3];
-	const btScalar kDF[3] = {btScalar(0.1), btScalar(0.5), btScalar(0.9)};
-	for (int i = 0; i < 3; ++i)
-	{
-		// A 1 m square laid on the slope (its top face is at 0.1 m above the slope's mid-plane).
-		const btVector3 centre = t * btVector3(0, btScalar(0.12), btScalar(-2 + 2 * i));
-		const btVector3 u = t.getBasis() * btVector3(0.5, 0, 0), w = btVector3(0, 0, 0.5);
-		cloths[i] = s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), centre - u - w, centre + u - w, centre - u + w,
-		                                                     centre + u + w, 6, 6, 0, true));
-		cloths[i]->m_cfg.kDF = kDF[i];
-		cloths[i]->m_cfg.piterations = 4;
-		cloths[i]->setTotalMass(btScalar(0.2));
-		travelled[i] = cloths[i]->evaluateCom().x();
-	}
+	for (int i = 0; i < 3; ++i) travelled[i] = cloths[size_t(i)]->evaluateCom().x();
 	s.step(frames);
-	for (int i = 0; i < 3; ++i) travelled[i] = travelled[i] - cloths[i]->evaluateCom().x();
+	for (int i = 0; i < 3; ++i) travelled[i] = travelled[i] - cloths[size_t(i)]->evaluateCom().x();
 	// mu = kDF times the slope's friction (0.5): tan 30 = 0.58 > mu for all three, but the slides differ.
 	printf("  slid %.2f, %.2f, %.2f m down the slope (mu = kDF x 0.5 = 0.05, 0.25, 0.45 < tan 30 = 0.58)\n",
 	       double(travelled[0]), double(travelled[1]), double(travelled[2]));
@@ -348,14 +206,9 @@ bool impact(int frames)
 {
 	printf("Impact: a 1 kg box falls 3 m onto a cloth (nodes 16 cm apart, kDF = 1) stretched over four posts.\n");
 	Scene s;
-	btSoftBody* c =
-	    s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-2, 2, -2), btVector3(2, 2, -2),
-	                                             btVector3(-2, 2, 2), btVector3(2, 2, 2), 26, 26, 1 + 2 + 4 + 8, true));
-	c->m_cfg.kDF = 1;
-	c->m_cfg.piterations = 10;
-	c->m_cfg.kDP = btScalar(0.05);
-	c->setTotalMass(1);
-	btRigidBody* box = s.addRigid(1, btVector3(0, 5, 0), s.own(new btBoxShape(btVector3(0.3, 0.3, 0.3))));
+	const soft_demo::Parts parts = soft_demo::buildImpact(s);
+	btSoftBody* c = parts.softs[0];
+	btRigidBody* box = parts.rigids[0];
 	btScalar lowest = BT_LARGE_FLOAT;
 	for (int i = 0; i < frames; ++i)
 	{
@@ -388,10 +241,7 @@ int main(int argc, char** argv)
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	if (pictures.wanted())
-	{
 		g_pictures = &pictures;
-		pictures.setDecorator(drawSoftBodies);
-	}
 	const std::vector<std::string>& positional = pictures.positional();
 	const std::string filter = positional.size() > 0 ? positional[0] : "all";
 	const int frames = positional.size() > 1 ? atoi(positional[1].c_str()) : 0;

@@ -16,32 +16,14 @@
 
 #include <vector>
 
-#include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
 #include "DemoPictures.h"
+#include "VehicleScene.h"
 #include "WorldScene.h"
-#include "btBulletDynamicsCommon.h"
 
 namespace
 {
-const int kSamples = 129;        // height field samples per side, 1 m apart
+using namespace vehicle_demo;
 const btScalar kStep = btScalar(1. / 60.);
-const btScalar kGravity = 10;
-const btScalar kMass = 800;
-const btScalar kStiffness = 20;  // per unit chassis mass, Bullet's convention
-const btScalar kFriction = 1;
-const btScalar kHalfWheelbase = btScalar(1.3), kHalfTrack = btScalar(0.8), kRestLength = btScalar(0.6);
-
-// Terrain height at (x, z): bumps 4 cm high for z in [-35, -20], a ramp from z = -10 up to 1 m at
-// z = 0, a plateau to z = 8 and a ramp down to z = 18.
-btScalar terrain(btScalar x, btScalar z)
-{
-	(void)x;
-	if (z > -35 && z < -20) return btScalar(0.04) * btScalar(0.5 - 0.5 * cos(2 * M_PI * (z + 35) / 3));
-	if (z >= -10 && z < 0) return (z + 10) / 10;
-	if (z >= 0 && z < 8) return 1;
-	if (z >= 8 && z < 18) return 1 - (z - 8) / 10;
-	return 0;
-}
 
 int failures = 0;
 void check(bool ok, const char* what)
@@ -101,49 +83,16 @@ int main(int argc, char** argv)
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher(&configuration);
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-	world.setGravity(btVector3(0, -kGravity, 0));
+	vehicle_demo::Scene scene;
+	btDiscreteDynamicsWorld& world = scene.world();
+	btRigidBody& chassis = scene.chassis();
+	btRaycastVehicle& car = scene.car();
 
-	// The height field is centred on the origin, between its lowest and highest sample.
-	std::vector<float> heights(kSamples * kSamples);
-	for (int j = 0; j < kSamples; ++j)
-		for (int i = 0; i < kSamples; ++i)
-			heights[j * kSamples + i] = float(terrain(btScalar(i - kSamples / 2), btScalar(j - kSamples / 2)));
-	btHeightfieldTerrainShape terrainShape(kSamples, kSamples, heights.data(), btScalar(0), btScalar(1), 1, false);
-	btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, 0, &terrainShape));
-	ground.getWorldTransform().setOrigin(btVector3(0, btScalar(0.5), 0));
-	world.addRigidBody(&ground);
-
-	btBoxShape chassisShape(btVector3(btScalar(0.9), btScalar(0.3), btScalar(2.0)));
-	btVector3 inertia;
-	chassisShape.calculateLocalInertia(kMass, inertia);
-	btDefaultMotionState chassisMotion(btTransform(btQuaternion::getIdentity(), btVector3(0, 1, -50)));
-	btRigidBody chassis(btRigidBody::btRigidBodyConstructionInfo(kMass, &chassisMotion, &chassisShape, inertia));
-	chassis.setActivationState(DISABLE_DEACTIVATION);
-	world.addRigidBody(&chassis);
-
-	btRaycastVehicle::btVehicleTuning tuning;
-	tuning.m_suspensionStiffness = kStiffness;
-	tuning.m_suspensionCompression = btScalar(2.2);  // near critical damping of the car's bounce
-	tuning.m_suspensionDamping = btScalar(2.2);
-	tuning.m_frictionSlip = kFriction;
-	btDefaultVehicleRaycaster raycaster(&world);
-	btRaycastVehicle car(tuning, &chassis, &raycaster);
-	car.setCoordinateSystem(0, 1, 2);  // x right, y up, z forward
-	for (int i = 0; i < 4; ++i)
-		car.addWheel(btVector3((i & 1) ? -kHalfTrack : kHalfTrack, btScalar(-0.1), i < 2 ? kHalfWheelbase : -kHalfWheelbase),
-		             btVector3(0, -1, 0), btVector3(-1, 0, 0), kRestLength, btScalar(0.4), tuning, i < 2);
-	world.addAction(&car);
-
-	pictures.setDecorator([&](caliber::demo::Scene& scene) {
-		caliber::demo::addVehicleWheels(scene, car, btScalar(0.3));
+	pictures.setDecorator([&](caliber::demo::Scene& drawing) {
+		caliber::demo::addVehicleWheels(drawing, car, kWheelWidth);
 		// Frame the car and a few metres around it.
 		const btVector3 p = chassis.getCenterOfMassPosition();
-		scene.focusOn(p - btVector3(3, 1, 4), p + btVector3(3, 2, 4));
+		drawing.focusOn(p - btVector3(3, 1, 4), p + btVector3(3, 2, 4));
 	});
 
 	btScalar t = 0;
@@ -235,9 +184,6 @@ int main(int argc, char** argv)
 	check(upright, "the chassis stayed upright");
 
 	pictures.capture(world);
-	world.removeAction(&car);
-	world.removeRigidBody(&chassis);
-	world.removeRigidBody(&ground);
 	printf("VehicleDemo: %s\n", failures ? "FAILED" : "all checks passed");
 	return pictures.finish(failures ? 1 : 0);
 }

@@ -1,0 +1,213 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#include "SoftScenes.h"
+
+namespace soft_demo
+{
+Scene::Scene()
+{
+	m_world.setGravity(btVector3(0, -10, 0));
+	m_world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
+	addRigid(0, btVector3(0, -5, 0), own(new btBoxShape(btVector3(50, 5, 50))));
+}
+
+Scene::~Scene()
+{
+	for (btSoftBody* s : m_softs)
+	{
+		m_world.removeSoftBody(s);
+		delete s;
+	}
+	for (auto& b : m_bodies) m_world.removeRigidBody(b.get());
+}
+
+btCollisionShape* Scene::own(btCollisionShape* shape)
+{
+	m_shapes.emplace_back(shape);
+	return shape;
+}
+
+btRigidBody* Scene::addRigid(btScalar mass, const btVector3& position, btCollisionShape* shape)
+{
+	return addRigid(mass, btTransform(btQuaternion::getIdentity(), position), shape);
+}
+
+btRigidBody* Scene::addRigid(btScalar mass, const btTransform& pose, btCollisionShape* shape)
+{
+	btVector3 inertia(0, 0, 0);
+	if (mass > 0) shape->calculateLocalInertia(mass, inertia);
+	btRigidBody::btRigidBodyConstructionInfo ci(mass, 0, shape, inertia);
+	ci.m_startWorldTransform = pose;
+	m_bodies.emplace_back(new btRigidBody(ci));
+	m_world.addRigidBody(m_bodies.back().get());
+	return m_bodies.back().get();
+}
+
+btSoftBody* Scene::addSoft(btSoftBody* body)
+{
+	m_softs.push_back(body);
+	m_world.addSoftBody(body);
+	return body;
+}
+
+void Scene::step(int frames)
+{
+	for (int i = 0; i < frames; ++i) m_world.stepSimulation(kStep, 1, kStep);
+}
+
+Parts buildCloth(Scene& s)
+{
+	Parts p;
+	btSoftBody* c =
+	    s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-4, 12, -4), btVector3(4, 12, -4),
+	                                             btVector3(-4, 12, 4), btVector3(4, 12, 4), 31, 31, 1 + 2, true));
+	c->m_cfg.piterations = 10;
+	c->setTotalMass(2);
+	p.softs.push_back(c);
+	return p;
+}
+
+Parts buildPressure(Scene& s)
+{
+	Parts p;
+	btSoftBody* b =
+	    s.addSoft(btSoftBodyHelpers::CreateEllipsoid(s.info(), btVector3(0, 4, 0), btVector3(1, 1, 1), 256));
+	b->m_cfg.kPR = 1000;
+	b->m_cfg.kDF = btScalar(0.5);
+	b->m_cfg.piterations = 4;
+	b->setTotalMass(1, true);
+	p.softs.push_back(b);
+	return p;
+}
+
+Parts buildVolume(Scene& s)
+{
+	Parts p;
+	btSoftBody* b =
+	    s.addSoft(btSoftBodyHelpers::CreateEllipsoid(s.info(), btVector3(0, 1.5, 0), btVector3(1.5, 1.5, 1.5), 256));
+	b->m_materials[0]->m_kLST = btScalar(0.3);
+	b->m_cfg.kVC = 500;
+	b->m_cfg.piterations = 4;
+	b->m_cfg.kDP = btScalar(0.02);
+	b->setTotalMass(3);
+	b->setPose(true, false);
+	p.softs.push_back(b);
+	btCollisionShape* box = s.own(new btBoxShape(btVector3(0.4, 0.4, 0.4)));
+	for (int i = 0; i < 3; ++i)
+		p.rigids.push_back(s.addRigid(2, btVector3(btScalar(0.3) * (i - 1), btScalar(3.6 + i), 0), box));
+	return p;
+}
+
+Parts buildRopes(Scene& s)
+{
+	Parts p;
+	for (int i = 0; i < 15; ++i)
+	{
+		const btScalar length = 2 + btScalar(i) / 2;
+		btSoftBody* rope = s.addSoft(btSoftBodyHelpers::CreateRope(s.info(), btVector3(-7 + i, 10, 0),
+		                                                           btVector3(-7 + i + length, 10, 0), 20 + 2 * i, 1));
+		rope->m_cfg.piterations = 8;
+		rope->setTotalMass(btScalar(0.1) * length);
+		p.softs.push_back(rope);
+	}
+	return p;
+}
+
+Parts buildRopeAttach(Scene& s)
+{
+	Parts p;
+	btSoftBody* rope =
+	    s.addSoft(btSoftBodyHelpers::CreateRope(s.info(), btVector3(0, 10, 0), btVector3(3, 10, 0), 30, 1));
+	rope->m_cfg.piterations = 10;
+	rope->setTotalMass(btScalar(0.5));
+	btRigidBody* box =
+	    s.addRigid(2, btVector3(3, btScalar(9.75), 0), s.own(new btBoxShape(btVector3(0.25, 0.25, 0.25))));
+	rope->appendAnchor(rope->m_nodes.size() - 1, box);
+	p.softs.push_back(rope);
+	p.rigids.push_back(box);
+	return p;
+}
+
+Parts buildClothAttach(Scene& s)
+{
+	Parts p;
+	btRigidBody* box = s.addRigid(5, btVector3(0, 4, 0), s.own(new btBoxShape(btVector3(1, 0.5, 1))));
+	btSoftBody* c = s.addSoft(
+	    btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-1, btScalar(4.5), 1), btVector3(1, btScalar(4.5), 1),
+	                                   btVector3(-1, btScalar(4.5), 3), btVector3(1, btScalar(4.5), 3), 9, 9, 0, true));
+	c->m_cfg.piterations = 10;
+	c->setTotalMass(btScalar(0.5));
+	c->appendAnchor(0, box);
+	c->appendAnchor(8, box);
+	p.softs.push_back(c);
+	p.rigids.push_back(box);
+	return p;
+}
+
+Parts buildFriction(Scene& s)
+{
+	Parts p;
+	const btScalar angle = SIMD_PI / 6;
+	const btTransform t(btQuaternion(btVector3(0, 0, 1), angle), btVector3(0, 3, 0));
+	s.addRigid(0, t, s.own(new btBoxShape(btVector3(8, 0.1, 3))));
+	const btScalar kDF[3] = {btScalar(0.1), btScalar(0.5), btScalar(0.9)};
+	for (int i = 0; i < 3; ++i)
+	{
+		// A 1 m square laid on the slope (its top face is at 0.1 m above the slope's mid-plane).
+		const btVector3 centre = t * btVector3(0, btScalar(0.12), btScalar(-2 + 2 * i));
+		const btVector3 u = t.getBasis() * btVector3(0.5, 0, 0), w = btVector3(0, 0, 0.5);
+		btSoftBody* cloth = s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), centre - u - w, centre + u - w,
+		                                                             centre - u + w, centre + u + w, 6, 6, 0, true));
+		cloth->m_cfg.kDF = kDF[i];
+		cloth->m_cfg.piterations = 4;
+		cloth->setTotalMass(btScalar(0.2));
+		p.softs.push_back(cloth);
+	}
+	return p;
+}
+
+Parts buildImpact(Scene& s)
+{
+	Parts p;
+	btSoftBody* c =
+	    s.addSoft(btSoftBodyHelpers::CreatePatch(s.info(), btVector3(-2, 2, -2), btVector3(2, 2, -2),
+	                                             btVector3(-2, 2, 2), btVector3(2, 2, 2), 26, 26, 1 + 2 + 4 + 8, true));
+	c->m_cfg.kDF = 1;
+	c->m_cfg.piterations = 10;
+	c->m_cfg.kDP = btScalar(0.05);
+	c->setTotalMass(1);
+	p.softs.push_back(c);
+	p.rigids.push_back(s.addRigid(1, btVector3(0, 5, 0), s.own(new btBoxShape(btVector3(0.3, 0.3, 0.3)))));
+	return p;
+}
+
+namespace
+{
+struct Builder
+{
+	const char* name;
+	Parts (*build)(Scene&);
+};
+const Builder kBuilders[] = {{"Cloth", buildCloth},           {"Pressure", buildPressure},
+                             {"Volume", buildVolume},         {"Ropes", buildRopes},
+                             {"RopeAttach", buildRopeAttach}, {"ClothAttach", buildClothAttach},
+                             {"Friction", buildFriction},     {"Impact", buildImpact}};
+}  // namespace
+
+std::vector<std::string> sceneNames()
+{
+	std::vector<std::string> names;
+	for (const Builder& b : kBuilders) names.push_back(b.name);
+	return names;
+}
+
+bool buildScene(Scene& scene, const std::string& name)
+{
+	for (const Builder& b : kBuilders)
+		if (name == b.name)
+		{
+			b.build(scene);
+			return true;
+		}
+	return false;
+}
+}  // namespace soft_demo

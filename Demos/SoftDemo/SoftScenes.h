@@ -1,0 +1,78 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_DEMOS_SOFT_SCENES_H
+#define CALIBER_DEMOS_SOFT_SCENES_H
+// SoftDemo's scenes (our own set-ups after Bullet's SoftDemo): Cloth, Pressure, Volume, Ropes,
+// RopeAttach, ClothAttach, Friction, Impact, each built into a soft-rigid world with a 100 m ground
+// (top face at y = 0). Used by SoftDemo, which runs and measures them, and by the demo browser.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "btBulletSoftBodyCommon.h"
+
+namespace soft_demo
+{
+const btScalar kStep = btScalar(1. / 60.);
+
+/// One scene's world: the parts, the ground, and ownership of what is added.
+class Scene
+{
+public:
+	Scene();
+	virtual ~Scene();
+	Scene(const Scene&) = delete;
+	Scene& operator=(const Scene&) = delete;
+	btSoftRigidDynamicsWorld& world() { return m_world; }
+	btSoftBodyWorldInfo& info() { return m_world.getWorldInfo(); }
+	/// True once a soft body was added.
+	bool hasSoftBodies() const { return !m_softs.empty(); }
+	btCollisionShape* own(btCollisionShape* shape);
+	btRigidBody* addRigid(btScalar mass, const btVector3& position, btCollisionShape* shape);
+	btRigidBody* addRigid(btScalar mass, const btTransform& pose, btCollisionShape* shape);
+	btSoftBody* addSoft(btSoftBody* body);
+	/// frames steps of 1/60 s.
+	void step(int frames);
+
+private:
+	btSoftBodyRigidBodyCollisionConfiguration m_config;
+	btCollisionDispatcher m_dispatcher{&m_config};
+	btDbvtBroadphase m_broadphase;
+	btSequentialImpulseConstraintSolver m_solver;
+	btSoftRigidDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_config};
+	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
+	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
+	std::vector<btSoftBody*> m_softs;
+};
+
+/// What each scene adds (the bodies SoftDemo measures).
+struct Parts
+{
+	std::vector<btSoftBody*> softs;
+	std::vector<btRigidBody*> rigids;
+};
+
+/// An 8 m cloth of 31 x 31 nodes pinned at two corners.
+Parts buildCloth(Scene& scene);
+/// A ball of gas (kPR = 1000) 3 m up.
+Parts buildPressure(Scene& scene);
+/// A hollow ball of soft links keeping its volume (kVC = 500) under three 2 kg boxes (rigids).
+Parts buildVolume(Scene& scene);
+/// 15 ropes of 2 to 9 m, fixed at one end, horizontal.
+Parts buildRopes(Scene& scene);
+/// A 3 m rope fixed at its top, a 2 kg box anchored to its end.
+Parts buildRopeAttach(Scene& scene);
+/// A cloth hanging from a 5 kg box (rigids[0]) at two corners.
+Parts buildClothAttach(Scene& scene);
+/// Three cloths on a 30 degree slope with kDF = 0.1, 0.5, 0.9 (the slope is not in rigids).
+Parts buildFriction(Scene& scene);
+/// A cloth stretched over four posts and a 1 kg box 3 m above it.
+Parts buildImpact(Scene& scene);
+
+/// The scenes' names, in SoftDemo's order.
+std::vector<std::string> sceneNames();
+/// Builds the named scene into scene; false for an unknown name.
+bool buildScene(Scene& scene, const std::string& name);
+}  // namespace soft_demo
+
+#endif
