@@ -578,6 +578,22 @@ private:
 			parts.emplace_back(shape, local);
 		}
 		if (parts.empty()) return fail(common, "the rigid body has no <shape>");
+		// mass_frame: the centre of mass and principal axes in the body's (node's) frame. A Bullet body's frame
+		// is its centre of mass, so a dynamic body's shapes move into that frame and its pose onto it; for a
+		// static body it means nothing.
+		btTransform massFrame = btTransform::getIdentity();
+		if (const XMLElement* frame = common->FirstChildElement("mass_frame"))
+		{
+			bool any;
+			if (!transformOf(frame, massFrame, any)) return false;
+			if (!dynamic || !any) massFrame.setIdentity();
+			if (dynamic && any)
+			{
+				const btTransform toCentre = massFrame.inverse();
+				for (auto& part : parts) part.second = toCentre * part.second;
+				anyPlaced = true;
+			}
+		}
 		btCollisionShape* shape = parts[0].first;
 		if (parts.size() > 1 || anyPlaced)
 		{
@@ -620,7 +636,7 @@ private:
 					return fail(mc, "friction and restitution must not be negative");
 			}
 		}
-		info.m_startWorldTransform = pose;
+		info.m_startWorldTransform = massFrame == btTransform::getIdentity() ? pose : pose * massFrame;
 		std::unique_ptr<btRigidBody> body(new btRigidBody(info));
 		if (const XMLElement* ic = instance->FirstChildElement("technique_common"))
 		{
@@ -651,6 +667,7 @@ private:
 		else
 			known->second = -1;
 		m_scene.bodies.push_back(std::move(body));
+		m_massFrames.push_back(massFrame);
 		m_scene.bodyNames.push_back(rigidBody->Attribute("name") ? rigidBody->Attribute("name") : sid);
 		return true;
 	}
@@ -684,7 +701,8 @@ private:
 	}
 
 	// The body an attachment names, and the attachment's frame in that body.
-	bool attachmentOf(const XMLElement* constraint, const char* name, btRigidBody*& body, btTransform& frame)
+	bool attachmentOf(const XMLElement* constraint, const char* name, btRigidBody*& body, btTransform& frame,
+	                  btTransform& massFrame)
 	{
 		const XMLElement* element = constraint->FirstChildElement(name);
 		if (!element) return fail(constraint, std::string("<rigid_constraint> has no <") + name + ">");
@@ -695,6 +713,7 @@ private:
 		if (found->second < 0)
 			return fail(element, std::string("the rigid body '") + sid + "' is instanced more than once");
 		body = m_scene.bodies[std::size_t(found->second)].get();
+		massFrame = m_massFrames[std::size_t(found->second)];
 		bool any;
 		return transformOf(element, frame, any);
 	}
@@ -710,8 +729,9 @@ private:
 			return fail(instance, std::string("the physics model has no rigid constraint '") + (sid ? sid : "") + "'");
 		btRigidBody *bodyA, *bodyB;
 		btTransform frameA, frameB;
-		if (!attachmentOf(constraint, "ref_attachment", bodyA, frameA) ||
-		    !attachmentOf(constraint, "attachment", bodyB, frameB))
+		btTransform massFrameA, massFrameB;
+		if (!attachmentOf(constraint, "ref_attachment", bodyA, frameA, massFrameA) ||
+		    !attachmentOf(constraint, "attachment", bodyB, frameB, massFrameB))
 			return false;
 		if (bodyA == bodyB) return fail(constraint, "a joint needs two different bodies");
 		// Bullet's defaults: every axis locked, enabled, the linked bodies still collide.
@@ -757,6 +777,10 @@ private:
 			if (const XMLElement* e = exact->FirstChildElement("linear_reference_frame_a"))
 				if (!boolean(e, referenceFrameA)) return false;
 		}
+		// Attachments are given in the bodies' frames; Bullet's joint frames are in their centre-of-mass frames.
+		// (Only when there is a mass frame: multiplying by the identity could turn -0 into 0 in the round trip.)
+		if (!(massFrameA == btTransform::getIdentity())) frameA = massFrameA.inverse() * frameA;
+		if (!(massFrameB == btTransform::getIdentity())) frameB = massFrameB.inverse() * frameB;
 		std::unique_ptr<btGeneric6DofConstraint> joint(
 		    new btGeneric6DofConstraint(*bodyA, *bodyB, frameA, frameB, referenceFrameA));
 		joint->setLinearLowerLimit(linearLower);
@@ -774,6 +798,7 @@ private:
 	std::unordered_map<std::string, int> m_instancedBodies;  // body sid -> index, -1 when instanced twice
 	tinyxml2::XMLDocument m_document;
 	std::unordered_map<std::string, const XMLElement*> m_ids;
+	std::vector<btTransform> m_massFrames;                     // per body: its centre-of-mass frame in its node's frame
 	std::unordered_map<std::string, btTransform> m_nodePoses;  // in the document's axes, in metres
 	btScalar m_scale = 1;
 	btMatrix3x3 m_up = btMatrix3x3::getIdentity();
