@@ -6,16 +6,15 @@
 
 #include <string>
 
+#include "Extras/ColladaTestSupport.h"
 #include "Serialize/ColladaConverter/ColladaPhysics.h"
 
 using caliber::ColladaPhysicsScene;
+using collada_test::EmptyWorld;
+using collada_test::import;
 
 namespace
 {
-bool import(const std::string& text, ColladaPhysicsScene& scene)
-{
-	return caliber::importColladaPhysics(text.data(), text.size(), scene);
-}
 
 // A dynamic box (inertia given) on a node turned 90 degrees about y, joined to a static ball; massFrame is
 // put into the box's technique_common.
@@ -53,15 +52,6 @@ void expectNear(const btVector3& a, const btVector3& b, double tolerance, const 
 {
 	for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], tolerance) << what << ", axis " << i;
 }
-
-struct EmptyWorld
-{
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher{&configuration};
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
-};
 
 // Float rounding of a few unit-sized products (quaternion to matrix, frame inverses): 1e-5.
 const double kRounding = 1e-5;

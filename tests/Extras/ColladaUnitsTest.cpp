@@ -4,38 +4,20 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "BulletCollision/CollisionShapes/btTriangleCallback.h"
+#include "Extras/ColladaTestSupport.h"
 #include "Serialize/ColladaConverter/ColladaPhysics.h"
 
 using caliber::ColladaPhysicsScene;
+using collada_test::EmptyWorld;
+using collada_test::import;
+using collada_test::replaced;
 
 namespace
 {
-bool import(const std::string& text, ColladaPhysicsScene& scene)
-{
-	return caliber::importColladaPhysics(text.data(), text.size(), scene);
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to)
-{
-	const std::size_t at = text.find(from);
-	EXPECT_NE(at, std::string::npos) << from;
-	if (at != std::string::npos) text.replace(at, from.size(), to);
-	return text;
-}
-
-struct EmptyWorld
-{
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher{&configuration};
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
-};
 
 // One scene, written either in Caliber's frame (Y_UP, metres) or as a Blender export would (Z_UP,
 // centimetres): there every node hangs under a root turned +90 degrees about x (the document's axes seen
@@ -359,22 +341,5 @@ TEST(ColladaMeshes, PolylistAndPolygonsWithBadCountsFail)
 // (the sanitizer build checks for undefined behaviour on the way).
 TEST(ColladaUnits, TruncatedOrEditedDocumentsNeverCrash)
 {
-	const std::string text = scene(true);
-	int loaded = 0;
-	for (std::size_t length = 0; length < text.size(); length += 7)
-	{
-		ColladaPhysicsScene cut;
-		loaded += import(text.substr(0, length), cut);
-	}
-	EXPECT_EQ(loaded, 0) << "a cut document misses its closing tag";
-	std::mt19937 random(22);
-	int failed = 0;
-	for (int trial = 0; trial < 300; ++trial)
-	{
-		std::string damaged = text;
-		for (int e = 0; e < 3; ++e) damaged[random() % damaged.size()] = char(random() % 256);
-		ColladaPhysicsScene edited;
-		failed += !import(damaged, edited);
-	}
-	EXPECT_GT(failed, 0);
+	collada_test::expectCutOrEditedDocumentsNeverCrash(scene(true), 7, 300, 22);
 }
