@@ -427,7 +427,12 @@ private:
 		if (!numberList(p, indices)) return false;
 		std::vector<btScalar> corners;
 		if (kind == "triangles")
+		{
+			// Checked before the corner list is made, so a huge count cannot ask for a huge allocation.
+			if (std::size_t(count) * 3 * std::size_t(stride) != indices.size())
+				return fail(p, "<triangles>' count does not match its indices");
 			corners.assign(std::size_t(count), btScalar(3));
+		}
 		else
 		{
 			const XMLElement* vcount = primitive->FirstChildElement("vcount");
