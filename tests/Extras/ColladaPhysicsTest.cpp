@@ -4,15 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <random>
 
 #include "BulletCollision/CollisionShapes/btCapsuleShape.h"
 #include "BulletCollision/CollisionShapes/btConeShape.h"
 #include "BulletCollision/CollisionShapes/btCylinderShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleMesh.h"
+#include "Extras/ColladaTestSupport.h"
 #include "Serialize/ColladaConverter/ColladaPhysics.h"
 
 using caliber::ColladaPhysicsScene;
+using collada_test::EmptyWorld;
+using collada_test::import;
+using collada_test::replaced;
 
 namespace
 {
@@ -110,20 +113,6 @@ std::string exportOf(const btDiscreteDynamicsWorld& world)
 	return text;
 }
 
-bool import(const std::string& text, ColladaPhysicsScene& scene)
-{
-	return caliber::importColladaPhysics(text.data(), text.size(), scene);
-}
-
-struct EmptyWorld
-{
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher{&configuration};
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
-};
-
 // A small valid document to damage: one dynamic box on a node.
 const char* const kBoxDocument = R"(<?xml version="1.0"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
@@ -148,13 +137,6 @@ const char* const kBoxDocument = R"(<?xml version="1.0"?>
 </COLLADA>
 )";
 
-std::string replaced(std::string text, const std::string& from, const std::string& to)
-{
-	const std::size_t at = text.find(from);
-	EXPECT_NE(at, std::string::npos) << from;
-	if (at != std::string::npos) text.replace(at, from.size(), to);
-	return text;
-}
 }  // namespace
 
 // Export, import, export again: the second document is the first, character for character, and every body
@@ -362,24 +344,7 @@ TEST(ColladaPhysics, MeshesWithBadCountsOrIndicesFail)
 // Every prefix of an exported document and random byte edits (fixed seed) import or fail, never crash.
 TEST(ColladaPhysics, TruncatedOrEditedDocumentsNeverCrash)
 {
-	const std::string text = kBoxDocument;
-	int loaded = 0;
-	for (std::size_t length = 0; length < text.size(); length += 3)
-	{
-		ColladaPhysicsScene scene;
-		loaded += import(text.substr(0, length), scene);
-	}
-	EXPECT_EQ(loaded, 0) << "a cut document misses its closing tag";
-	std::mt19937 random(14);
-	int failed = 0;
-	for (int trial = 0; trial < 500; ++trial)
-	{
-		std::string damaged = text;
-		for (int e = 0; e < 3; ++e) damaged[random() % damaged.size()] = char(random() % 256);
-		ColladaPhysicsScene scene;
-		failed += !import(damaged, scene);
-	}
-	EXPECT_GT(failed, 0);
+	collada_test::expectCutOrEditedDocumentsNeverCrash(kBoxDocument, 3, 500, 14);
 }
 
 TEST(ColladaPhysics, ExportRefusesObjectsAndShapesItCannotWrite)

@@ -41,7 +41,7 @@ public:
 		if (!root || std::strcmp(root->Name(), "COLLADA") != 0)
 			return fail(root, "the document is not COLLADA (its root element is not <COLLADA>)");
 		collectIds(root);
-		if (!readNodes(root)) return false;
+		if (!readAsset(root) || !readNodes(root)) return false;
 		const XMLElement* physicsScene = nullptr;
 		if (const XMLElement* instance = path(root, {"scene", "instance_physics_scene"}))
 		{
@@ -53,7 +53,10 @@ public:
 		if (const XMLElement* common = physicsScene->FirstChildElement("technique_common"))
 		{
 			if (const XMLElement* gravity = common->FirstChildElement("gravity"))
+			{
 				if (!vector(gravity, m_scene.gravity)) return false;
+				m_scene.gravity = toWorld(m_scene.gravity * m_scale);
+			}
 			if (const XMLElement* step = common->FirstChildElement("time_step"))
 			{
 				if (!numbers(step, 1, &m_scene.timeStep)) return false;
@@ -77,6 +80,41 @@ public:
 	}
 
 private:
+	// <asset>'s unit and up axis: lengths are multiplied by m_scale (metres per unit) and world vectors
+	// turned by m_up (the document's up axis to +y). Body-local values (shapes, attachment frames) are only
+	// scaled, since the body's pose carries the turn.
+	bool readAsset(const XMLElement* root)
+	{
+		const XMLElement* asset = root->FirstChildElement("asset");
+		if (!asset) return true;
+		if (const XMLElement* unit = asset->FirstChildElement("unit"))
+			if (const char* meter = unit->Attribute("meter"))
+			{
+				const char* end = meter + std::strlen(meter);
+				btScalar value = 0;
+				const std::from_chars_result r = std::from_chars(meter, end, value);
+				if (r.ec != std::errc() || r.ptr != end || !(value >= btScalar(1e-6) && value <= btScalar(1e6)))
+					return fail(unit, "<unit>'s meter must be a number from 1e-6 to 1e6");
+				m_scale = value;
+			}
+		if (const XMLElement* up = asset->FirstChildElement("up_axis"))
+		{
+			std::string axis = up->GetText() ? up->GetText() : "";
+			const std::size_t first = axis.find_first_not_of(" \t\r\n");
+			axis = first == std::string::npos ? "" : axis.substr(first, axis.find_last_not_of(" \t\r\n") - first + 1);
+			if (axis == "X_UP")  // x to y, y to -x
+				m_up.setValue(0, -1, 0, 1, 0, 0, 0, 0, 1);
+			else if (axis == "Z_UP")  // z to y, y to -z
+				m_up.setValue(1, 0, 0, 0, 0, 1, 0, -1, 0);
+			else if (axis != "Y_UP")
+				return fail(up, "<up_axis> must be X_UP, Y_UP or Z_UP");
+			m_turn = axis != "Y_UP";
+		}
+		return true;
+	}
+
+	btVector3 toWorld(const btVector3& v) const { return m_turn ? m_up * v : v; }
+
 	bool fail(const XMLElement* at, const std::string& message)
 	{
 		m_scene.error = "line " + std::to_string(at ? at->GetLineNum() : 0) + ": " + message;
@@ -176,7 +214,7 @@ private:
 			{
 				btVector3 offset;
 				if (!vector(child, offset)) return false;
-				step.setOrigin(offset);
+				step.setOrigin(offset * m_scale);
 			}
 			else if (std::strcmp(child->Name(), "rotate") == 0)
 			{
@@ -204,7 +242,7 @@ private:
 					return fail(child,
 					            "<matrix> is not a rotation and translation (scale and shear are not supported)");
 				step.setBasis(basis);
-				step.setOrigin(btVector3(m[3], m[7], m[11]));
+				step.setOrigin(btVector3(m[3], m[7], m[11]) * m_scale);
 			}
 			else if (std::strcmp(child->Name(), "scale") == 0 || std::strcmp(child->Name(), "skew") == 0 ||
 			         std::strcmp(child->Name(), "lookat") == 0)
@@ -260,7 +298,7 @@ private:
 			            "<float_array>'s count does not match its " + std::to_string(values.size()) + " numbers");
 		if (values.size() % 3 != 0 || values.empty()) return fail(array, "the positions are not whole x y z triples");
 		for (std::size_t i = 0; i < values.size(); i += 3)
-			points.push_back(btVector3(values[i], values[i + 1], values[i + 2]));
+			points.push_back(btVector3(values[i], values[i + 1], values[i + 2]) * m_scale);
 		return true;
 	}
 
@@ -293,36 +331,136 @@ private:
 			return fail(instance, "a triangle mesh can only be static (make it a convex_mesh, or decompose it)");
 		btAlignedObjectArray<btVector3> points;
 		if (!positions(mesh, points)) return false;
-		const XMLElement* triangles = mesh->FirstChildElement("triangles");
-		if (!triangles) return fail(mesh, "only <triangles> meshes are read (not polylist or polygons)");
-		int inputs = 0;
-		for (const XMLElement* input = triangles->FirstChildElement("input"); input;
-		     input = input->NextSiblingElement("input"))
-			inputs = std::max(inputs, input->IntAttribute("offset", 0) + 1);
-		std::vector<btScalar> indexValues;
-		const XMLElement* p = triangles->FirstChildElement("p");
-		if (!p || !numberList(p, indexValues)) return p ? false : fail(triangles, "<triangles> has no <p>");
-		const int count = triangles->IntAttribute("count", -1);
-		if (count < 1 || std::size_t(count) * 3 * std::size_t(inputs) != indexValues.size())
-			return fail(triangles, "<triangles>' count does not match its indices");
 		std::unique_ptr<btTriangleMesh> triangleMesh(new btTriangleMesh());
 		for (int i = 0; i < points.size(); ++i) triangleMesh->findOrAddVertex(points[i], false);
-		for (int t = 0; t < count; ++t)
+		bool anyPrimitive = false;
+		for (const XMLElement* primitive = mesh->FirstChildElement(); primitive;
+		     primitive = primitive->NextSiblingElement())
 		{
-			int corner[3];
-			for (int k = 0; k < 3; ++k)
+			const char* kind = primitive->Name();
+			if (std::strcmp(kind, "triangles") != 0 && std::strcmp(kind, "polylist") != 0 &&
+			    std::strcmp(kind, "polygons") != 0)
 			{
-				const btScalar value = indexValues[(std::size_t(t) * 3 + k) * inputs];
-				if (value != std::floor(value) || value < 0 || value >= btScalar(points.size()))
-					return fail(p, "triangle " + std::to_string(t) + " has an index out of range");
-				corner[k] = int(value);
+				if (std::strcmp(kind, "lines") == 0 || std::strcmp(kind, "linestrips") == 0 ||
+				    std::strcmp(kind, "trifans") == 0 || std::strcmp(kind, "tristrips") == 0)
+					return fail(primitive, std::string("<") + kind + "> meshes are not read");
+				continue;
 			}
-			triangleMesh->addTriangleIndices(corner[0], corner[1], corner[2]);
+			anyPrimitive = true;
+			if (!readPrimitive(primitive, points.size(), *triangleMesh)) return false;
 		}
+		if (!anyPrimitive) return fail(mesh, "the mesh has no <triangles>, <polylist> or <polygons>");
 		btBvhTriangleMeshShape* meshShape = new btBvhTriangleMeshShape(triangleMesh.get(), true);
 		m_scene.meshes.push_back(std::move(triangleMesh));
 		m_scene.shapes.emplace_back(meshShape);
 		shape = meshShape;
+		return true;
+	}
+
+	// The stride of a primitive's <p> (its largest input offset plus one) and the VERTEX input's offset.
+	bool primitiveLayout(const XMLElement* primitive, int& stride, int& vertexOffset)
+	{
+		stride = 1;
+		vertexOffset = 0;
+		for (const XMLElement* input = primitive->FirstChildElement("input"); input;
+		     input = input->NextSiblingElement("input"))
+		{
+			const int offset = input->IntAttribute("offset", 0);
+			if (offset < 0 || offset > 63) return fail(input, "an <input>'s offset must be from 0 to 63");
+			stride = std::max(stride, offset + 1);
+			if (input->Attribute("semantic") && std::strcmp(input->Attribute("semantic"), "VERTEX") == 0)
+				vertexOffset = offset;
+		}
+		return true;
+	}
+
+	// Corners [first, first + corners) of a <p>'s indices as a triangle fan (right for convex polygons,
+	// which is what modelling tools write as quads and n-gons).
+	bool addFan(const XMLElement* p, const std::vector<btScalar>& indices, std::size_t first, std::size_t corners,
+	            int stride, int vertexOffset, int pointCount, std::size_t polygon, btTriangleMesh& mesh)
+	{
+		int corner[3] = {0, 0, 0};
+		for (std::size_t k = 0; k < corners; ++k)
+		{
+			const btScalar value = indices[(first + k) * std::size_t(stride) + std::size_t(vertexOffset)];
+			if (value != std::floor(value) || value < 0 || value >= btScalar(pointCount))
+				return fail(p, "polygon " + std::to_string(polygon) + " has an index out of range");
+			corner[k < 2 ? k : 2] = int(value);
+			if (k >= 2)
+			{
+				mesh.addTriangleIndices(corner[0], corner[1], corner[2]);
+				corner[1] = corner[2];
+			}
+		}
+		return true;
+	}
+
+	// A <triangles>, <polylist> (<vcount> corners per polygon) or <polygons> (one <p> per polygon) element,
+	// triangulated into mesh.
+	bool readPrimitive(const XMLElement* primitive, int pointCount, btTriangleMesh& mesh)
+	{
+		const std::string kind = primitive->Name();
+		int stride, vertexOffset;
+		if (!primitiveLayout(primitive, stride, vertexOffset)) return false;
+		const int count = primitive->IntAttribute("count", -1);
+		if (count < 1) return fail(primitive, "<" + kind + "> needs a positive count");
+		std::vector<btScalar> indices;
+		if (kind == "polygons")
+		{
+			if (primitive->FirstChildElement("ph")) return fail(primitive, "<polygons> with holes (<ph>) are not read");
+			int polygon = 0;
+			for (const XMLElement* p = primitive->FirstChildElement("p"); p; p = p->NextSiblingElement("p"), ++polygon)
+			{
+				if (!numberList(p, indices)) return false;
+				if (indices.size() % std::size_t(stride) != 0 || indices.size() / std::size_t(stride) < 3)
+					return fail(p, "a polygon needs whole groups of " + std::to_string(stride) +
+					                   " indices, at least 3 corners");
+				if (!addFan(p, indices, 0, indices.size() / std::size_t(stride), stride, vertexOffset, pointCount,
+				            std::size_t(polygon), mesh))
+					return false;
+			}
+			if (polygon != count) return fail(primitive, "<polygons>' count does not match its <p> elements");
+			return true;
+		}
+		const XMLElement* p = primitive->FirstChildElement("p");
+		if (!p) return fail(primitive, "<" + kind + "> has no <p>");
+		if (!numberList(p, indices)) return false;
+		std::vector<btScalar> corners;
+		if (kind == "triangles")
+		{
+			// Checked before the corner list is made, so a huge count cannot ask for a huge allocation.
+			if (std::size_t(count) * 3 * std::size_t(stride) != indices.size())
+				return fail(p, "<triangles>' count does not match its indices");
+			corners.assign(std::size_t(count), btScalar(3));
+		}
+		else
+		{
+			const XMLElement* vcount = primitive->FirstChildElement("vcount");
+			if (!vcount) return fail(primitive, "<polylist> has no <vcount>");
+			if (!numberList(vcount, corners)) return false;
+			if (corners.size() != std::size_t(count))
+				return fail(vcount, "<polylist>'s count does not match its <vcount>'s " +
+				                        std::to_string(corners.size()) + " numbers");
+		}
+		std::size_t total = 0;
+		for (const btScalar n : corners)
+		{
+			if (n != std::floor(n) || n < 3 || n > btScalar(1e6))
+				return fail(p, "<vcount> needs whole numbers of at least 3 corners");
+			total += std::size_t(n);
+		}
+		if (total * std::size_t(stride) != indices.size())
+			return fail(p, "<" + kind + ">' count does not match its indices (" + std::to_string(total) +
+			                   " corners of " + std::to_string(stride) + " indices expected, " +
+			                   std::to_string(indices.size()) + " found)");
+		std::size_t first = 0;
+		for (std::size_t polygon = 0; polygon < corners.size(); ++polygon)
+		{
+			if (!addFan(p, indices, first, std::size_t(corners[polygon]), stride, vertexOffset, pointCount, polygon,
+			            mesh))
+				return false;
+			first += std::size_t(corners[polygon]);
+		}
 		return true;
 	}
 
@@ -347,7 +485,7 @@ private:
 				if (!vector(half, extents)) return false;
 				if (!(extents.x() > 0 && extents.y() > 0 && extents.z() > 0))
 					return fail(half, "half extents must be positive");
-				made = new btBoxShape(extents);
+				made = new btBoxShape(extents * m_scale);
 			}
 			else if (std::strcmp(name, "sphere") == 0)
 			{
@@ -355,7 +493,7 @@ private:
 				btScalar r = 0;
 				if (!radius) return fail(kind, "<sphere> has no <radius>");
 				if (!numbers(radius, 1, &r) || !positive(radius, r, "the radius")) return false;
-				made = new btSphereShape(r);
+				made = new btSphereShape(r * m_scale);
 			}
 			else if (std::strcmp(name, "plane") == 0)
 			{
@@ -365,7 +503,7 @@ private:
 				if (!numbers(equation, 4, e)) return false;
 				if (dynamic) return fail(kind, "a plane can only be static");
 				btVector3 normal(e[0], e[1], e[2]);
-				btScalar constant = -e[3];
+				btScalar constant = -e[3] * m_scale;
 				const btScalar length = normal.length();
 				if (!(length > btScalar(1e-6))) return fail(equation, "the plane's normal is zero");
 				if (btFabs(length - 1) > btScalar(1e-6))  // keep exact unit normals exact
@@ -386,9 +524,9 @@ private:
 				if (!positive(radius, r[0], "the radius")) return false;
 				if (!(h >= 0)) return fail(height, "the height must not be negative");
 				if (std::strcmp(name, "cylinder") == 0)
-					made = new btCylinderShape(btVector3(r[0], h / 2, r[0]));
+					made = new btCylinderShape(btVector3(r[0], h / 2, r[0]) * m_scale);
 				else
-					made = new btCapsuleShape(r[0], h);
+					made = new btCapsuleShape(r[0] * m_scale, h * m_scale);
 			}
 			else if (std::strcmp(name, "instance_geometry") == 0)
 			{
@@ -417,7 +555,8 @@ private:
 		const char* target = instance->Attribute("target");
 		if (!target || target[0] != '#' || !m_nodePoses.count(target + 1))
 			return fail(instance, std::string("the target '") + (target ? target : "") + "' names no node");
-		const btTransform pose = m_nodePoses[target + 1];
+		btTransform pose = m_nodePoses[target + 1];
+		if (m_turn) pose = btTransform(m_up * pose.getBasis(), m_up * pose.getOrigin());
 		const XMLElement* common = rigidBody->FirstChildElement("technique_common");
 		if (!common) return fail(rigidBody, "<rigid_body> has no <technique_common>");
 
@@ -444,6 +583,22 @@ private:
 			parts.emplace_back(shape, local);
 		}
 		if (parts.empty()) return fail(common, "the rigid body has no <shape>");
+		// mass_frame: the centre of mass and principal axes in the body's (node's) frame. A Bullet body's frame
+		// is its centre of mass, so a dynamic body's shapes move into that frame and its pose onto it; for a
+		// static body it means nothing.
+		btTransform massFrame = btTransform::getIdentity();
+		if (const XMLElement* frame = common->FirstChildElement("mass_frame"))
+		{
+			bool any;
+			if (!transformOf(frame, massFrame, any)) return false;
+			if (!dynamic || !any) massFrame.setIdentity();
+			if (dynamic && any)
+			{
+				const btTransform toCentre = massFrame.inverse();
+				for (auto& part : parts) part.second = toCentre * part.second;
+				anyPlaced = true;
+			}
+		}
 		btCollisionShape* shape = parts[0].first;
 		if (parts.size() > 1 || anyPlaced)
 		{
@@ -466,6 +621,7 @@ private:
 				if (!vector(i, inertia)) return false;
 				if (!(inertia.x() >= 0 && inertia.y() >= 0 && inertia.z() >= 0))
 					return fail(i, "the inertia must not be negative");
+				inertia *= m_scale * m_scale;  // mass times length squared
 			}
 			else
 				shape->calculateLocalInertia(mass, inertia);
@@ -485,7 +641,7 @@ private:
 					return fail(mc, "friction and restitution must not be negative");
 			}
 		}
-		info.m_startWorldTransform = pose;
+		info.m_startWorldTransform = massFrame == btTransform::getIdentity() ? pose : pose * massFrame;
 		std::unique_ptr<btRigidBody> body(new btRigidBody(info));
 		if (const XMLElement* ic = instance->FirstChildElement("technique_common"))
 		{
@@ -493,12 +649,12 @@ private:
 			if (const XMLElement* v = ic->FirstChildElement("velocity"))
 			{
 				if (!vector(v, velocity)) return false;
-				body->setLinearVelocity(velocity);
+				body->setLinearVelocity(toWorld(velocity * m_scale));
 			}
 			if (const XMLElement* w = ic->FirstChildElement("angular_velocity"))
 			{
 				if (!vector(w, velocity)) return false;
-				body->setAngularVelocity(velocity * (SIMD_PI / 180));  // COLLADA gives degrees per second
+				body->setAngularVelocity(toWorld(velocity * (SIMD_PI / 180)));  // COLLADA gives degrees per second
 			}
 		}
 		// Caliber's exact radians, when the document came from Caliber's writer.
@@ -507,7 +663,7 @@ private:
 			{
 				btVector3 radians;
 				if (!vector(w, radians)) return false;
-				body->setAngularVelocity(radians);
+				body->setAngularVelocity(toWorld(radians));
 			}
 		// A sid instanced twice cannot name one body for a joint.
 		const auto known = m_instancedBodies.find(sid);
@@ -516,6 +672,7 @@ private:
 		else
 			known->second = -1;
 		m_scene.bodies.push_back(std::move(body));
+		m_massFrames.push_back(massFrame);
 		m_scene.bodyNames.push_back(rigidBody->Attribute("name") ? rigidBody->Attribute("name") : sid);
 		return true;
 	}
@@ -544,12 +701,13 @@ private:
 		btScalar m[12] = {};
 		if (!numbers(element, 12, m)) return false;
 		out.setBasis(btMatrix3x3(m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]));
-		out.setOrigin(btVector3(m[3], m[7], m[11]));
+		out.setOrigin(btVector3(m[3], m[7], m[11]) * m_scale);
 		return true;
 	}
 
 	// The body an attachment names, and the attachment's frame in that body.
-	bool attachmentOf(const XMLElement* constraint, const char* name, btRigidBody*& body, btTransform& frame)
+	bool attachmentOf(const XMLElement* constraint, const char* name, btRigidBody*& body, btTransform& frame,
+	                  btTransform& massFrame)
 	{
 		const XMLElement* element = constraint->FirstChildElement(name);
 		if (!element) return fail(constraint, std::string("<rigid_constraint> has no <") + name + ">");
@@ -560,6 +718,7 @@ private:
 		if (found->second < 0)
 			return fail(element, std::string("the rigid body '") + sid + "' is instanced more than once");
 		body = m_scene.bodies[std::size_t(found->second)].get();
+		massFrame = m_massFrames[std::size_t(found->second)];
 		bool any;
 		return transformOf(element, frame, any);
 	}
@@ -575,8 +734,9 @@ private:
 			return fail(instance, std::string("the physics model has no rigid constraint '") + (sid ? sid : "") + "'");
 		btRigidBody *bodyA, *bodyB;
 		btTransform frameA, frameB;
-		if (!attachmentOf(constraint, "ref_attachment", bodyA, frameA) ||
-		    !attachmentOf(constraint, "attachment", bodyB, frameB))
+		btTransform massFrameA, massFrameB;
+		if (!attachmentOf(constraint, "ref_attachment", bodyA, frameA, massFrameA) ||
+		    !attachmentOf(constraint, "attachment", bodyB, frameB, massFrameB))
 			return false;
 		if (bodyA == bodyB) return fail(constraint, "a joint needs two different bodies");
 		// Bullet's defaults: every axis locked, enabled, the linked bodies still collide.
@@ -603,6 +763,8 @@ private:
 					const XMLElement *lo = linear->FirstChildElement("min"), *hi = linear->FirstChildElement("max");
 					if (lo && !vector(lo, linearLower)) return false;
 					if (hi && !vector(hi, linearUpper)) return false;
+					linearLower *= m_scale;
+					linearUpper *= m_scale;
 				}
 			}
 		}
@@ -620,6 +782,10 @@ private:
 			if (const XMLElement* e = exact->FirstChildElement("linear_reference_frame_a"))
 				if (!boolean(e, referenceFrameA)) return false;
 		}
+		// Attachments are given in the bodies' frames; Bullet's joint frames are in their centre-of-mass frames.
+		// (Only when there is a mass frame: multiplying by the identity could turn -0 into 0 in the round trip.)
+		if (!(massFrameA == btTransform::getIdentity())) frameA = massFrameA.inverse() * frameA;
+		if (!(massFrameB == btTransform::getIdentity())) frameB = massFrameB.inverse() * frameB;
 		std::unique_ptr<btGeneric6DofConstraint> joint(
 		    new btGeneric6DofConstraint(*bodyA, *bodyB, frameA, frameB, referenceFrameA));
 		joint->setLinearLowerLimit(linearLower);
@@ -637,7 +803,11 @@ private:
 	std::unordered_map<std::string, int> m_instancedBodies;  // body sid -> index, -1 when instanced twice
 	tinyxml2::XMLDocument m_document;
 	std::unordered_map<std::string, const XMLElement*> m_ids;
-	std::unordered_map<std::string, btTransform> m_nodePoses;
+	std::vector<btTransform> m_massFrames;                     // per body: its centre-of-mass frame in its node's frame
+	std::unordered_map<std::string, btTransform> m_nodePoses;  // in the document's axes, in metres
+	btScalar m_scale = 1;
+	btMatrix3x3 m_up = btMatrix3x3::getIdentity();
+	bool m_turn = false;
 };
 }  // namespace
 

@@ -56,6 +56,8 @@ private:
 };
 
 /// Reads a COLLADA document of size bytes into scene (which must be fresh: no bodies yet). Returns scene.ok().
+/// The document's <asset> unit and up axis are converted into metres and a y-up world; polylist and polygons
+/// meshes are triangulated as fans; a dynamic body's mass_frame puts it on its centre of mass (shapes in a compound).
 /// Any problem fails the whole import with one message naming the line: malformed XML, a missing or
 /// dangling reference, a number that is not finite, a count that does not match, a non-positive size, a
 /// dynamic body without a positive mass, a node transform with scale or shear, an unsupported shape.
