@@ -5,12 +5,14 @@
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "LinearMath/btThreads.h"
 
-/// Bullet 2.89's multithreaded dispatcher. In this version the narrowphase over pairs still runs on the
-/// calling thread, exactly as btCollisionDispatcher (docs/threading.md lists the parallel stages).
+/// Bullet 2.89's multithreaded dispatcher: the narrowphase over pairs runs in chunks of grainSize pairs on
+/// the task scheduler's threads, with the same results, bit for bit, as btCollisionDispatcher's serial
+/// narrowphase (docs/threading.md). Near callbacks and contact callbacks are then called from those
+/// threads, as in Bullet.
 class btCollisionDispatcherMt : public btCollisionDispatcher
 {
 public:
-	/// grainSize: pairs per task once the narrowphase runs in parallel (below 1 counts as 1).
+	/// grainSize: pairs per task (below 1 counts as 1).
 	btCollisionDispatcherMt(btCollisionConfiguration* config, int grainSize = 40);
 
 	/// A new manifold for the pair, as btCollisionDispatcher's.

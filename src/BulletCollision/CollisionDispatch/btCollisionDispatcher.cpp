@@ -8,6 +8,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionConfiguration.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
+#include "BulletCollision/CollisionDispatch/btManifoldAllocation.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "LinearMath/btAlignedAllocator.h"
 #include "LinearMath/btPoolAllocator.h"
@@ -89,37 +90,14 @@ void btCollisionDispatcher::registerClosestPointsCreateFunc(int proxyType0, int 
 btPersistentManifold* btCollisionDispatcher::getNewManifold(const btCollisionObject* b0, const btCollisionObject* b1)
 {
 	btAssert(b0 && b1 && b0->getCollisionShape() && b1->getCollisionShape());
-	btScalar breakingThreshold = gContactBreakingThreshold;
-	btScalar processingThreshold = BT_LARGE_FLOAT;
-	if (b0 && b1)
-	{
-		// A pair keeps points as long as the smaller object tolerates: a large shape's relative threshold
-		// would let a small one's points drift too far.
-		const btCollisionShape* shape0 = b0->getCollisionShape();
-		const btCollisionShape* shape1 = b1->getCollisionShape();
-		if ((m_dispatcherFlags & CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD) && shape0 && shape1)
-		{
-			breakingThreshold = btMin(shape0->getContactBreakingThreshold(gContactBreakingThreshold),
-			                          shape1->getContactBreakingThreshold(gContactBreakingThreshold));
-		}
-		processingThreshold = btMin(b0->getContactProcessingThreshold(), b1->getContactProcessingThreshold());
-	}
+	const caliber::ManifoldThresholds thresholds =
+	    caliber::manifoldThresholds(b0, b1, (m_dispatcherFlags & CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD) != 0);
 
-	void* memory = m_persistentManifoldPoolAllocator
-	                   ? m_persistentManifoldPoolAllocator->allocate(int(sizeof(btPersistentManifold)))
-	                   : 0;
-	if (!memory)
-	{
-		if (m_dispatcherFlags & CD_DISABLE_CONTACTPOOL_DYNAMIC_ALLOCATION)
-		{
-			btAssert(!"manifold pool exhausted: raise m_defaultMaxPersistentManifoldPoolSize");
-			return 0;
-		}
-		memory = btAlignedAlloc(sizeof(btPersistentManifold), 16);
-		if (!memory) return 0;
-	}
+	void* memory = caliber::allocateManifoldMemory(
+	    m_persistentManifoldPoolAllocator, !(m_dispatcherFlags & CD_DISABLE_CONTACTPOOL_DYNAMIC_ALLOCATION));
+	if (!memory) return 0;
 	btPersistentManifold* manifold =
-	    new (memory) btPersistentManifold(b0, b1, 0, breakingThreshold, processingThreshold);
+	    new (memory) btPersistentManifold(b0, b1, 0, thresholds.breaking, thresholds.processing);
 	manifold->m_index1a = m_manifoldsPtr.size();
 	m_manifoldsPtr.push_back(manifold);
 	return manifold;

@@ -1,7 +1,71 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
-// The multithreaded dispatcher's first step: Bullet's interface over the serial narrowphase, so that a
-// program set up for Bullet's multithreaded world runs unchanged (and gives the same state bits).
+// The multithreaded dispatcher: the narrowphase over pairs in chunks on the task scheduler's threads,
+// with the same bits as the serial narrowphase.
+//
+// Pairs are independent (each has its own algorithm and manifolds); what they share is the
+// dispatcher's manifold array, whose order decides the solver's order. So while chunks run, new and
+// released manifolds are only written into their chunk's log (m_batchManifoldsPtr[chunk]); afterwards
+// the logs are replayed in chunk order on the calling thread, which performs exactly the array
+// operations the serial narrowphase performs, in the same order. A log entry is a creation when the
+// manifold is not in the array yet (m_index1a == -1, set when it is made), a release otherwise; a
+// manifold made and released in one chunk appears twice, and the first entry puts it in the array.
+// Released manifolds are cleared at once (their contact callbacks run on the worker) but destroyed at
+// the replay, so no memory is reused while chunks run.
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
+
+#include <new>
+
+#include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/CollisionDispatch/btManifoldAllocation.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "LinearMath/btAlignedAllocator.h"
+#include "LinearMath/btPoolAllocator.h"
+
+namespace
+{
+typedef btAlignedObjectArray<btPersistentManifold*> ManifoldOpLog;
+
+// The log of the chunk this thread is running, and the dispatcher it belongs to (a worker never runs
+// two dispatchers' chunks at once: nested loops run serially on their caller).
+thread_local ManifoldOpLog* t_chunkLog = 0;
+thread_local const btCollisionDispatcherMt* t_chunkDispatcher = 0;
+
+struct ChunkScope
+{
+	ChunkScope(ManifoldOpLog* log, const btCollisionDispatcherMt* dispatcher)
+	    : m_previousLog(t_chunkLog), m_previousDispatcher(t_chunkDispatcher)
+	{
+		t_chunkLog = log;
+		t_chunkDispatcher = dispatcher;
+	}
+	~ChunkScope()
+	{
+		t_chunkLog = m_previousLog;
+		t_chunkDispatcher = m_previousDispatcher;
+	}
+	ManifoldOpLog* m_previousLog;
+	const btCollisionDispatcherMt* m_previousDispatcher;
+};
+
+struct NarrowphaseChunks : public btIParallelForBody
+{
+	btCollisionDispatcherMt* dispatcher;
+	btBroadphasePair* pairs;
+	const btDispatcherInfo* info;
+	btAlignedObjectArray<ManifoldOpLog>* logs;
+	int grainSize;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		ManifoldOpLog& log = (*logs)[iBegin / grainSize];
+		log.resize(0);
+		ChunkScope scope(&log, dispatcher);
+		btNearCallback nearCallback = dispatcher->getNearCallback();
+		for (int i = iBegin; i < iEnd; ++i) (*nearCallback)(pairs[i], *dispatcher, *info);
+	}
+};
+}  // namespace
 
 btCollisionDispatcherMt::btCollisionDispatcherMt(btCollisionConfiguration* config, int grainSize)
     : btCollisionDispatcher(config), m_batchUpdating(false), m_grainSize(grainSize < 1 ? 1 : grainSize)
@@ -11,16 +75,78 @@ btCollisionDispatcherMt::btCollisionDispatcherMt(btCollisionConfiguration* confi
 btPersistentManifold* btCollisionDispatcherMt::getNewManifold(const btCollisionObject* body0,
                                                               const btCollisionObject* body1)
 {
-	return btCollisionDispatcher::getNewManifold(body0, body1);
+	if (!m_batchUpdating || t_chunkDispatcher != this || !t_chunkLog)
+		return btCollisionDispatcher::getNewManifold(body0, body1);
+	btAssert(body0 && body1 && body0->getCollisionShape() && body1->getCollisionShape());
+	const caliber::ManifoldThresholds thresholds = caliber::manifoldThresholds(
+	    body0, body1, (m_dispatcherFlags & CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD) != 0);
+	void* memory = caliber::allocateManifoldMemory(
+	    m_persistentManifoldPoolAllocator, !(m_dispatcherFlags & CD_DISABLE_CONTACTPOOL_DYNAMIC_ALLOCATION));
+	if (!memory) return 0;
+	btPersistentManifold* manifold =
+	    new (memory) btPersistentManifold(body0, body1, 0, thresholds.breaking, thresholds.processing);
+	manifold->m_index1a = -1;  // not in the array until the replay
+	t_chunkLog->push_back(manifold);
+	return manifold;
 }
 
 void btCollisionDispatcherMt::releaseManifold(btPersistentManifold* manifold)
 {
-	btCollisionDispatcher::releaseManifold(manifold);
+	if (!m_batchUpdating || t_chunkDispatcher != this || !t_chunkLog)
+	{
+		btCollisionDispatcher::releaseManifold(manifold);
+		return;
+	}
+	if (!manifold) return;
+	clearManifold(manifold);
+	t_chunkLog->push_back(manifold);
 }
 
 void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* pairCache, const btDispatcherInfo& info,
                                                         btDispatcher* dispatcher)
 {
-	btCollisionDispatcher::dispatchAllCollisionPairs(pairCache, info, dispatcher);
+	btAssert(pairCache);
+	if (!pairCache) return;
+	const int numPairs = pairCache->getNumOverlappingPairs();
+	// Serial when there is no second thread or one chunk only, and for the time-of-impact dispatch
+	// (every pair lowers the one shared m_timeOfImpact).
+	if (btGetTaskScheduler()->getNumThreads() < 2 || numPairs <= m_grainSize || m_batchUpdating ||
+	    info.m_dispatchFunc != btDispatcherInfo::DISPATCH_DISCRETE)
+	{
+		btCollisionDispatcher::dispatchAllCollisionPairs(pairCache, info, dispatcher);
+		return;
+	}
+	if (info.m_deterministicOverlappingPairs) pairCache->sortOverlappingPairs(this);
+	// Chunk logs keep their capacity from step to step, so the steady state allocates nothing.
+	const int numChunks = (numPairs + m_grainSize - 1) / m_grainSize;
+	if (m_batchManifoldsPtr.size() < numChunks) m_batchManifoldsPtr.resize(numChunks);
+
+	NarrowphaseChunks chunks;
+	chunks.dispatcher = this;
+	chunks.pairs = pairCache->getOverlappingPairArrayPtr();
+	chunks.info = &info;
+	chunks.logs = &m_batchManifoldsPtr;
+	chunks.grainSize = m_grainSize;
+	m_batchUpdating = true;
+	btParallelFor(0, numPairs, m_grainSize, chunks);
+	m_batchUpdating = false;
+
+	// The serial narrowphase's array operations, in its order.
+	for (int c = 0; c < numChunks; ++c)
+	{
+		const ManifoldOpLog& log = m_batchManifoldsPtr[c];
+		for (int k = 0; k < log.size(); ++k)
+		{
+			btPersistentManifold* manifold = log[k];
+			if (manifold->m_index1a == -1)
+			{
+				manifold->m_index1a = m_manifoldsPtr.size();
+				m_manifoldsPtr.push_back(manifold);
+			}
+			else
+			{
+				btCollisionDispatcher::releaseManifold(manifold);
+			}
+		}
+	}
 }

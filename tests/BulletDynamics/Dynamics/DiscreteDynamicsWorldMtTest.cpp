@@ -82,6 +82,41 @@ public:
 				previous = next;
 			}
 		}
+		// A small triangle mesh with boxes, capsules and compounds dropped on it: mesh and compound pairs
+		// make and drop manifolds of their child pairs while the narrowphase runs.
+		m_meshVertices.clear();
+		m_meshIndices.clear();
+		for (int z = 0; z <= 6; ++z)
+			for (int x = 0; x <= 6; ++x)
+			{
+				m_meshVertices.push_back(btScalar(x * 2 - 6));
+				m_meshVertices.push_back(btScalar(0.3f * ((x * 7 + z * 3) % 4)));
+				m_meshVertices.push_back(btScalar(z * 2 - 6));
+			}
+		for (int z = 0; z < 6; ++z)
+			for (int x = 0; x < 6; ++x)
+			{
+				const int v = z * 7 + x;
+				const int quad[6] = {v, v + 7, v + 1, v + 1, v + 7, v + 8};
+				m_meshIndices.insert(m_meshIndices.end(), quad, quad + 6);
+			}
+		m_meshArray.reset(new btTriangleIndexVertexArray(int(m_meshIndices.size() / 3), &m_meshIndices[0],
+		                                                 3 * sizeof(int), int(m_meshVertices.size() / 3),
+		                                                 &m_meshVertices[0], 3 * sizeof(btScalar)));
+		m_shapes.emplace_back(new btBvhTriangleMeshShape(m_meshArray.get(), true));
+		addBody(0, btVector3(0, 0, 30), m_shapes.back().get());
+		m_shapes.emplace_back(new btCapsuleShape(0.3f, 0.8f));
+		btCollisionShape* capsule = m_shapes.back().get();
+		btCompoundShape* compound = new btCompoundShape();
+		m_shapes.emplace_back(compound);
+		compound->addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(-0.6f, 0, 0)), box);
+		compound->addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(0.6f, 0, 0)), sphere);
+		for (int i = 0; i < 30; ++i)
+		{
+			btCollisionShape* shape = i % 3 == 0 ? compound : (i % 3 == 1 ? capsule : box);
+			btRigidBody* body = addBody(1, btVector3(-4.5f + (i % 6) * 1.8f, 2 + (i / 6) * 1.5f, 30 - 4 + (i % 4) * 2.0f), shape);
+			body->setAngularVelocity(btVector3(0.3f * (i % 5), 0.2f, -0.1f * (i % 3)));
+		}
 		for (int i = 0; i < 40; ++i)
 		{
 			btRigidBody* body = addBody(1, btVector3(20 + (i % 5) * 2.0f, 3 + i * 0.5f, -20 + (i / 5) * 2.0f), sphere);
@@ -103,7 +138,8 @@ public:
 		for (int i = 0; i < steps; ++i) m_world->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
 	}
 
-	// FNV-1a over the bits of every body's transform and velocities.
+	// FNV-1a over the bits of every body's transform and velocities, and of every manifold in the
+	// dispatcher's order: its two bodies (by index in the world) and its points.
 	std::uint64_t hash() const
 	{
 		std::uint64_t h = 1469598103934665603ull;
@@ -118,6 +154,22 @@ public:
 			mix(&t.getOrigin()[0], 3 * sizeof(btScalar));
 			mix(&body->getLinearVelocity()[0], 3 * sizeof(btScalar));
 			mix(&body->getAngularVelocity()[0], 3 * sizeof(btScalar));
+		}
+		btDispatcher* dispatcher = m_world->getDispatcher();
+		for (int i = 0; i < dispatcher->getNumManifolds(); ++i)
+		{
+			const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(i);
+			const int ids[2] = {manifold->getBody0()->getWorldArrayIndex(), manifold->getBody1()->getWorldArrayIndex()};
+			mix(ids, sizeof(ids));
+			for (int p = 0; p < manifold->getNumContacts(); ++p)
+			{
+				const btManifoldPoint& point = manifold->getContactPoint(p);
+				mix(&point.m_positionWorldOnB[0], 3 * sizeof(btScalar));
+				mix(&point.m_normalWorldOnB[0], 3 * sizeof(btScalar));
+				mix(&point.m_distance1, sizeof(btScalar));
+				mix(&point.m_appliedImpulse, sizeof(btScalar));
+				mix(&point.m_lifeTime, sizeof(int));
+			}
 		}
 		return h;
 	}
@@ -140,6 +192,9 @@ private:
 	std::unique_ptr<btConstraintSolverPoolMt> m_pool;
 	std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
 	std::unique_ptr<btDiscreteDynamicsWorld> m_world;
+	std::vector<btScalar> m_meshVertices;
+	std::vector<int> m_meshIndices;
+	std::unique_ptr<btTriangleIndexVertexArray> m_meshArray;  // outlives the mesh shape
 	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
 	std::vector<std::unique_ptr<btDefaultMotionState>> m_motionStates;
 	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
