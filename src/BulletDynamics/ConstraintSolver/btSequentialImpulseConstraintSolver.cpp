@@ -173,7 +173,8 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	if (scratch.manifoldFirstRow.size() == 0 && m_tmpSolverContactConstraintPool.size() > 0)
 		scratch.manifoldFirstRow.push_back(0);
 	scratch.manifoldFirstRow.push_back(m_tmpSolverContactConstraintPool.size());
-	++scratch.solveCount;
+	unsigned int solveIndex;
+	scratch.solveCount = caliber::scopedSolveIndex(solveIndex) ? solveIndex : scratch.solveCount + 1u;
 	caliber::findBouncesAndMassRatios(scratch, m_tmpSolverBodyPool, m_tmpSolverContactConstraintPool, infoGlobal);
 
 	identityOrder(m_orderNonContactConstraintPool, scratch.joints.size());

@@ -259,10 +259,10 @@ void btSequentialImpulseConstraintSolver::convertJoints(btTypedConstraint** cons
 	// Each joint's warm-start entry, once per solve (a joint without rows this step starts cold later).
 	scratch.jointWarmStart.resizeNoInitialize(scratch.joints.size());
 	{
-		std::lock_guard<std::mutex> lock(scratch.warmStarts.mutex());
-		for (int i = 0; i < scratch.idleJoints.size(); ++i) scratch.warmStarts.forget(scratch.idleJoints[i]);
-		if (scratch.joints.size())
-			scratch.warmStarts.resolve(&scratch.joints[0], scratch.joints.size(), &scratch.jointWarmStart[0]);
+		caliber::JointWarmStartStore& store = scratch.jointWarmStarts();
+		std::lock_guard<std::mutex> lock(store.mutex());
+		for (int i = 0; i < scratch.idleJoints.size(); ++i) store.forget(scratch.idleJoints[i]);
+		if (scratch.joints.size()) store.resolve(&scratch.joints[0], scratch.joints.size(), &scratch.jointWarmStart[0]);
 	}
 
 	int kept = 0;

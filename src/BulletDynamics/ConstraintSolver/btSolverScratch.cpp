@@ -3,8 +3,38 @@
 
 #include "LinearMath/btSideTable.h"
 
+namespace
+{
+thread_local bool t_hasSolveIndex = false;
+thread_local unsigned int t_solveIndex = 0;
+}  // namespace
+
 namespace caliber
 {
+SolveIndexScope::SolveIndexScope(unsigned int index) : m_hadIndex(t_hasSolveIndex), m_previousIndex(t_solveIndex)
+{
+	t_hasSolveIndex = true;
+	t_solveIndex = index;
+}
+
+SolveIndexScope::~SolveIndexScope()
+{
+	t_hasSolveIndex = m_hadIndex;
+	t_solveIndex = m_previousIndex;
+}
+
+bool scopedSolveIndex(unsigned int& index)
+{
+	index = t_solveIndex;
+	return t_hasSolveIndex;
+}
+
+void shareJointWarmStarts(const btSequentialImpulseConstraintSolver& solver, JointWarmStartStore* shared)
+{
+	SolverScratch& scratch = solverScratchOf(solver);
+	scratch.sharedWarmStarts = shared == &scratch.warmStarts ? nullptr : shared;
+}
+
 SolverScratch& solverScratchOf(const btSequentialImpulseConstraintSolver& solver)
 {
 	return sideTable<SolverScratch>().acquire(&solver);

@@ -43,6 +43,9 @@ struct SolverScratch
 	btAlignedObjectArray<btTypedConstraint*> idleJoints;
 	/// The row impulses of every joint this solver has solved, for warm starting the next solve.
 	JointWarmStartStore warmStarts;
+	/// Another solver's store this one uses instead (shareJointWarmStarts), or null.
+	JointWarmStartStore* sharedWarmStarts = nullptr;
+	JointWarmStartStore& jointWarmStarts() { return sharedWarmStarts ? *sharedWarmStarts : warmStarts; }
 	/// First contact row of each manifold (plus one past the last), so that sweeps can vary the order
 	/// of the points within a manifold.
 	btAlignedObjectArray<int> manifoldFirstRow;
@@ -62,6 +65,31 @@ struct SolverScratch
 	/// Counts solves, so that the in-manifold order also changes from step to step (reset() clears it).
 	unsigned int solveCount = 0;
 };
+
+/// The world numbers the solves of its steps and tells the solver which one a solveGroup call is, on the
+/// calling thread, for the length of the scope: the solver's step-to-step variation of its row order
+/// (SolverScratch::solveCount) then follows the world's sequence of batches, not the history of the
+/// solver instance, so a pool of solvers on any number of threads solves every batch as one solver
+/// would. Without a scope (a solver called outside a world) the solver counts its own solves.
+class SolveIndexScope
+{
+public:
+	explicit SolveIndexScope(unsigned int index);
+	~SolveIndexScope();
+	SolveIndexScope(const SolveIndexScope&) = delete;
+	SolveIndexScope& operator=(const SolveIndexScope&) = delete;
+
+private:
+	bool m_hadIndex;
+	unsigned int m_previousIndex;
+};
+/// The index of the innermost SolveIndexScope of this thread, if there is one.
+bool scopedSolveIndex(unsigned int& index);
+
+/// Makes solver use shared's joint warm-start store instead of its own (null: its own again), so that
+/// the solvers of a pool warm-start every joint alike whichever of them solves it. shared must outlive
+/// solver's use of it.
+void shareJointWarmStarts(const btSequentialImpulseConstraintSolver& solver, JointWarmStartStore* shared);
 
 /// solver's scratch (made on first use).
 SolverScratch& solverScratchOf(const btSequentialImpulseConstraintSolver& solver);

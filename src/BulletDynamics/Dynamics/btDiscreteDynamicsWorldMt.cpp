@@ -7,6 +7,7 @@
 #include <new>
 
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "LinearMath/btAlignedObject.h"
 #include "LinearMath/btWarningHook.h"
 
@@ -45,11 +46,21 @@ void btConstraintSolverPoolMt::init(btConstraintSolver** solvers, int numSolvers
 		new (&m_solvers[i].mutex) btSpinMutex();
 		m_solvers[i].solver = solvers[i];
 	}
+	// A joint is solved by whichever solver of the pool is free: the sequential-impulse solvers of the
+	// pool keep their joints' warm-start impulses in the first one's store, so every joint starts from
+	// its own last impulses whichever solver solved it last (and the results do not depend on threads).
+	const btSequentialImpulseConstraintSolver* first = dynamic_cast<btSequentialImpulseConstraintSolver*>(solvers[0]);
+	if (!first) return;
+	caliber::JointWarmStartStore* shared = &caliber::solverScratchOf(*first).warmStarts;
+	for (int i = 1; i < numSolvers; ++i)
+		if (const btSequentialImpulseConstraintSolver* solver = dynamic_cast<btSequentialImpulseConstraintSolver*>(solvers[i]))
+			caliber::shareJointWarmStarts(*solver, shared);
 }
 
 btConstraintSolverPoolMt::~btConstraintSolverPoolMt()
 {
-	for (int i = 0; i < m_solvers.size(); ++i)
+	// Last first: the first solver holds the store the others share.
+	for (int i = m_solvers.size() - 1; i >= 0; --i)
 	{
 		delete m_solvers[i].solver;
 		m_solvers[i].solver = 0;

@@ -9,6 +9,7 @@
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "BulletDynamics/Dynamics/btSpinMomentum.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
@@ -314,7 +315,15 @@ void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
 	m_constraintSolver->prepareSolve(getCollisionWorld()->getNumCollisionObjects(), numManifolds);
 	m_islandManager->buildAndProcessIslands(getCollisionWorld()->getDispatcher(), getCollisionWorld(),
 	                                        m_solverIslandCallback);
+	// Batches in parallel only with a pool of solvers (btDiscreteDynamicsWorldMt's), and not in Bullet's
+	// shuffled order, whose random sequence belongs to one solver.
+	const bool parallel = btGetTaskScheduler()->getNumThreads() > 1 &&
+	                      dynamic_cast<btConstraintSolverPoolMt*>(m_constraintSolver) != 0 &&
+	                      !(solverInfo.m_solverMode & SOLVER_RANDMIZE_ORDER);
 	m_solverIslandCallback->flush();
+	const int numBatches = m_solverIslandCallback->numBatches();
+	m_solverIslandCallback->solveBatches(parallel, context.solveCounter + 1u);
+	context.solveCounter += unsigned(numBatches);
 	m_constraintSolver->allSolved(solverInfo, m_debugDrawer);
 }
 

@@ -17,8 +17,24 @@ class btTypedConstraint;
 // m_minimumSolverBatchSize bodies and manifolds) and solved together: islands share no moving body, so
 // solving them in one call gives the same answer, without paying the solver's per-call setup for each
 // of a thousand two-body islands.
+//
+// The island manager's walk only gathers the batches; solveBatches then solves them, one after another
+// or, in btDiscreteDynamicsWorldMt, on the task scheduler's threads. Batches share no dynamic body, so
+// the order they are solved in does not change a bit of the result. Each batch's solve gets the index
+// it has in the step (caliber::SolveIndexScope), so that the solver's step-to-step variation of its row
+// order depends on the batch, never on which solver or thread solves it.
 struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCallback
 {
+	struct Batch
+	{
+		int firstBody, numBodies;
+		int firstManifold, numManifolds;
+		int firstConstraint, numConstraints;
+		// A kinematic body gets a solver entry in every batch that touches it (its companion id is
+		// written), so such batches are never solved at the same time.
+		bool touchesKinematic;
+	};
+
 	btContactSolverInfo* m_solverInfo;
 	btConstraintSolver* m_solver;
 	btIDebugDraw* m_debugDrawer;
@@ -26,6 +42,9 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 	btAlignedObjectArray<btCollisionObject*> m_bodies;
 	btAlignedObjectArray<btPersistentManifold*> m_manifolds;
 	btAlignedObjectArray<btTypedConstraint*> m_gatheredConstraints;
+	btAlignedObjectArray<Batch> m_batches;
+	btAlignedObjectArray<int> m_parallelBatches;
+	Batch m_open;
 	// The step's joints grouped by island (see caliber::sortConstraintsByIsland).
 	btTypedConstraint** m_sortedConstraints;
 	int m_numConstraints;
@@ -42,6 +61,7 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 	      m_islandConstraintStart(0),
 	      m_numIslands(0)
 	{
+		openBatch();
 	}
 
 	void setConstraints(btTypedConstraint** sortedConstraints, int numConstraints, const int* islandStart,
@@ -60,6 +80,8 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 		m_bodies.resize(0);
 		m_manifolds.resize(0);
 		m_gatheredConstraints.resize(0);
+		m_batches.resize(0);
+		openBatch();
 	}
 
 	void processIsland(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
@@ -73,33 +95,40 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 			constraints = known ? m_sortedConstraints + m_islandConstraintStart[islandId] : 0;
 			numConstraints = known ? m_islandConstraintStart[islandId + 1] - m_islandConstraintStart[islandId] : 0;
 		}
-		if (islandId < 0 || m_solverInfo->m_minimumSolverBatchSize <= 1)
-		{
-			// Everything at once (islands not split), or batching switched off.
-			m_solver->solveGroup(bodies, numBodies, manifolds, numManifolds, numConstraints ? constraints : 0,
-			                     numConstraints, *m_solverInfo, m_debugDrawer, m_dispatcher);
-			return;
-		}
+		// The island manager reuses its island arrays, so the island is copied.
 		for (int i = 0; i < numBodies; ++i) m_bodies.push_back(bodies[i]);
 		for (int i = 0; i < numManifolds; ++i) m_manifolds.push_back(manifolds[i]);
 		for (int i = 0; i < numConstraints; ++i) m_gatheredConstraints.push_back(constraints[i]);
-		if (m_bodies.size() + m_manifolds.size() + m_gatheredConstraints.size() >=
-		    m_solverInfo->m_minimumSolverBatchSize)
+		// Everything at once (islands not split) or batching switched off: the island is a batch.
+		const bool alone = islandId < 0 || m_solverInfo->m_minimumSolverBatchSize <= 1;
+		if (alone || (m_bodies.size() - m_open.firstBody) + (m_manifolds.size() - m_open.firstManifold) +
+		                     (m_gatheredConstraints.size() - m_open.firstConstraint) >=
+		                 m_solverInfo->m_minimumSolverBatchSize)
 			flush();
 	}
 
-	// Solves what has been gathered.
-	void flush()
+	/// Closes the batch being gathered (nothing if it is empty).
+	void flush();
+
+	/// Solves the gathered batches with m_solver, on the task scheduler's threads when parallel is true
+	/// (m_solver must then be safe to call from several threads, as btConstraintSolverPoolMt is), else
+	/// one after another on the calling thread. firstSolveIndex: the index the first batch's solve gets.
+	void solveBatches(bool parallel, unsigned int firstSolveIndex);
+	/// Solves batch index (solveBatches's loop body).
+	void solveBatchAt(int index, unsigned int firstSolveIndex);
+	/// Batches gathered since setup.
+	int numBatches() const { return m_batches.size(); }
+
+private:
+	void openBatch()
 	{
-		if (m_bodies.size() == 0 && m_manifolds.size() == 0 && m_gatheredConstraints.size() == 0) return;
-		m_solver->solveGroup(m_bodies.size() ? &m_bodies[0] : 0, m_bodies.size(),
-		                     m_manifolds.size() ? &m_manifolds[0] : 0, m_manifolds.size(),
-		                     m_gatheredConstraints.size() ? &m_gatheredConstraints[0] : 0, m_gatheredConstraints.size(),
-		                     *m_solverInfo, m_debugDrawer, m_dispatcher);
-		m_bodies.resize(0);
-		m_manifolds.resize(0);
-		m_gatheredConstraints.resize(0);
+		m_open.firstBody = m_bodies.size();
+		m_open.firstManifold = m_manifolds.size();
+		m_open.firstConstraint = m_gatheredConstraints.size();
+		m_open.numBodies = m_open.numManifolds = m_open.numConstraints = 0;
+		m_open.touchesKinematic = false;
 	}
+	bool touchesKinematic(const Batch& batch) const;
 };
 
 #endif  // CALIBER_INPLACE_SOLVER_ISLAND_CALLBACK_H

@@ -35,6 +35,9 @@ struct WorldStepContext
 	btAlignedObjectArray<btTypedConstraint*> jointCorrectionLeftOver;
 	/// The exact tree solve of the position correction.
 	JointAnchorTree jointAnchorTree;
+	/// Solver batches solved so far (the solve index of caliber::SolveIndexScope: each batch's solve is
+	/// numbered in the world's sequence, whichever solver and thread solves it).
+	unsigned int solveCounter = 0;
 	/// Sweeps of the joint position correction after each substep (0: off); see
 	/// include/Caliber/JointPositionCorrection.h.
 	int jointPositionIterations = 3;
