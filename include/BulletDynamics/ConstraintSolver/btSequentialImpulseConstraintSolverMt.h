@@ -6,8 +6,12 @@
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "LinearMath/btThreads.h"
 
-/// Bullet 2.89's multithreaded sequential-impulse solver. Its tuning knobs are accepted; in this
-/// version it solves exactly as btSequentialImpulseConstraintSolver (docs/threading.md).
+/// Bullet 2.89's multithreaded sequential-impulse solver. A solve with at least
+/// s_minimumContactManifoldsForBatching manifolds colours its contacts: manifolds that share no dynamic
+/// body get the same colour, the colours are solved one after another, and the manifolds of one colour
+/// in batches on the task scheduler's threads. The result does not depend on the thread count or the
+/// scheduler, bit for bit; it differs from btSequentialImpulseConstraintSolver's (another Gauss-Seidel
+/// order). Smaller solves are btSequentialImpulseConstraintSolver's (docs/threading.md).
 ATTRIBUTE_ALIGNED16(class)
 btSequentialImpulseConstraintSolverMt : public btSequentialImpulseConstraintSolver
 {
@@ -37,6 +41,20 @@ public:
 
 	btSequentialImpulseConstraintSolverMt();
 	virtual ~btSequentialImpulseConstraintSolverMt();
+
+protected:
+	/// The contact rows of the solve grouped by colour (phases) into batches, when m_useBatching.
+	btBatchedConstraints m_batchedContactConstraints;
+	/// Whether this solve colours its contacts.
+	bool m_useBatching;
+
+	btScalar solveGroupCacheFriendlySetup(btCollisionObject * *bodies, int numBodies, btPersistentManifold** manifoldPtr,
+	                                      int numManifolds, btTypedConstraint** constraints, int numConstraints,
+	                                      const btContactSolverInfo& infoGlobal, btIDebugDraw* debugDrawer) override;
+	btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
+	                              btPersistentManifold** manifoldPtr, int numManifolds, btTypedConstraint** constraints,
+	                              int numConstraints, const btContactSolverInfo& infoGlobal,
+	                              btIDebugDraw* debugDrawer) override;
 };
 
 #endif  // BT_SEQUENTIAL_IMPULSE_CONSTRAINT_SOLVER_MT_H

@@ -1,6 +1,22 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
-// The multithreaded solver's first step: Bullet's class and knobs over the serial solver.
+// The multithreaded sequential-impulse solver: the contacts of a large solve coloured so that the
+// manifolds of one colour share no dynamic body, and each colour's manifolds solved in batches on the
+// task scheduler's threads.
+//
+// Why the bits do not depend on threads: the manifolds of a colour touch disjoint dynamic bodies, so
+// solving them in any order, on any threads, gives the same numbers; colours run one after another in
+// a fixed order, and the residual is summed batch by batch in batch order (btParallelSum). The one body
+// many manifolds of a colour share is the solver's fixed entry for static objects: it takes impulses of
+// zero, but concurrent writes would still race, so each batch gets its own copy of it (identical,
+// and it stays zero).
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
+
+#include <stdint.h>
+
+#include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
+#include "LinearMath/btSideTable.h"
 
 bool btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = false;
 int btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 250;
@@ -11,6 +27,296 @@ btBatchedConstraints::BatchingMethod btSequentialImpulseConstraintSolverMt::s_co
 btBatchedConstraints::BatchingMethod btSequentialImpulseConstraintSolverMt::s_jointBatchingMethod =
     btBatchedConstraints::BATCHING_METHOD_SPATIAL_GRID_2D;
 
-btSequentialImpulseConstraintSolverMt::btSequentialImpulseConstraintSolverMt() {}
+namespace
+{
+// Colours a body can take; manifolds that find all of them taken at one of their bodies go to a last,
+// serial phase.
+const int kColours = 32;
 
-btSequentialImpulseConstraintSolverMt::~btSequentialImpulseConstraintSolverMt() {}
+// The Mt solver's own per-solve state (beside Bullet's class), reused from solve to solve.
+struct MtSolverScratch
+{
+	btAlignedObjectArray<uint32_t> bodyColours;  // per solver body: the colours its manifolds took
+	btAlignedObjectArray<int> manifoldColour;    // per manifold of the solve
+	btAlignedObjectArray<int> colourCount;       // manifolds per colour (kColours + 1: the serial one)
+	btAlignedObjectArray<int> colourRows;        // contact rows per colour
+	btAlignedObjectArray<int> colourCursor;
+	btAlignedObjectArray<int> orderedManifolds;  // manifolds colour by colour
+	btAlignedObjectArray<int> rollingStart;      // per contact row, its first rolling row in rollingRows
+	btAlignedObjectArray<int> rollingRows;       // rolling rows grouped by contact row
+};
+
+MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
+{
+	return caliber::sideTable<MtSolverScratch>().acquire(&solver);
+}
+
+int lowestFreeColour(uint32_t taken)
+{
+	for (int c = 0; c < kColours; ++c)
+		if (!(taken & (uint32_t(1) << c))) return c;
+	return kColours;
+}
+
+// One sweep over a batch of contact rows: normals, then their friction, then their rolling rows.
+struct BatchSweep : public btIParallelSumBody
+{
+	const btBatchedConstraints* batched;
+	btSolverBody* bodies;
+	btConstraintArray* contacts;
+	btConstraintArray* friction;
+	btConstraintArray* rolling;
+	const MtSolverScratch* scratch;
+	int firstBatch;
+	int frictionRowsPerContact;
+	bool reverse;
+	int pass;  // 0: normal rows, 1: friction and rolling rows
+
+	btScalar sumLoop(int iBegin, int iEnd) const override
+	{
+		btScalar residual = btScalar(0);
+		for (int b = iBegin; b < iEnd; ++b) residual += sweepBatch(batched->m_batches[firstBatch + b]);
+		return residual;
+	}
+
+	btScalar sweepBatch(const btBatchedConstraints::Range& batch) const
+	{
+		btScalar residual = btScalar(0);
+		const int count = batch.end - batch.begin;
+		const int* rows = &batched->m_constraintIndices[0];
+		if (pass == 0)
+		{
+			for (int k = 0; k < count; ++k)
+			{
+				btSolverConstraint& row = (*contacts)[rows[batch.begin + (reverse ? count - 1 - k : k)]];
+				residual += caliber::resolveRow(bodies[row.m_solverBodyIdA], bodies[row.m_solverBodyIdB], row,
+				                                row.m_lowerLimit, row.m_upperLimit);
+			}
+			return residual;
+		}
+		for (int k = 0; k < count; ++k)
+		{
+			const int j = rows[batch.begin + (reverse ? count - 1 - k : k)];
+			for (int f = 0; f < frictionRowsPerContact; ++f)
+				residual += caliber::solveFrictionRow(bodies, *contacts, *friction, j * frictionRowsPerContact + f);
+		}
+		if (rolling->size() == 0) return residual;
+		for (int k = 0; k < count; ++k)
+		{
+			const int j = rows[batch.begin + k];
+			const btScalar normalImpulse = (*contacts)[j].m_appliedImpulse;
+			if (!(normalImpulse > btScalar(0))) continue;
+			for (int r = scratch->rollingStart[j]; r < scratch->rollingStart[j + 1]; ++r)
+			{
+				btSolverConstraint& row = (*rolling)[scratch->rollingRows[r]];
+				const btScalar bound = row.m_friction * normalImpulse;
+				residual += caliber::resolveRow(bodies[row.m_solverBodyIdA], bodies[row.m_solverBodyIdB], row, -bound,
+				                                bound);
+			}
+		}
+		return residual;
+	}
+};
+}  // namespace
+
+btSequentialImpulseConstraintSolverMt::btSequentialImpulseConstraintSolverMt() : m_useBatching(false) {}
+
+btSequentialImpulseConstraintSolverMt::~btSequentialImpulseConstraintSolverMt()
+{
+	caliber::sideTable<MtSolverScratch>().release(this);
+}
+
+btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
+    btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
+    btIDebugDraw* debugDrawer)
+{
+	const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
+	    bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints, infoGlobal, debugDrawer);
+	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	const int numManifoldsWithRows = scratch.manifoldFirstRow.size() - 1;
+	m_useBatching = numManifoldsWithRows >= s_minimumContactManifoldsForBatching &&
+	                !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) &&
+	                caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric,
+	                                               m_resolveSingleConstraintRowLowerLimit);
+	btBatchedConstraints& batched = m_batchedContactConstraints;
+	batched.m_constraintIndices.resize(0);
+	batched.m_batches.resize(0);
+	batched.m_phases.resize(0);
+	batched.m_phaseGrainSize.resize(0);
+	batched.m_phaseOrder.resize(0);
+	if (!m_useBatching) return result;
+
+	MtSolverScratch& mt = mtScratchOf(*this);
+	const btConstraintArray& contacts = m_tmpSolverContactConstraintPool;
+	const int numSolverBodies = m_tmpSolverBodyPool.size();
+	// Greedy colouring in manifold order: each manifold takes the lowest colour neither of its moving
+	// bodies has (the fixed entry is shared freely).
+	mt.bodyColours.resize(0);
+	mt.bodyColours.resize(numSolverBodies, 0);
+	mt.manifoldColour.resize(numManifoldsWithRows);
+	mt.colourCount.resize(0);
+	mt.colourCount.resize(kColours + 1, 0);
+	mt.colourRows.resize(0);
+	mt.colourRows.resize(kColours + 1, 0);
+	for (int m = 0; m < numManifoldsWithRows; ++m)
+	{
+		const btSolverConstraint& first = contacts[scratch.manifoldFirstRow[m]];
+		const int a = first.m_solverBodyIdA, b = first.m_solverBodyIdB;
+		const uint32_t takenA = a == m_fixedBodyId ? 0u : mt.bodyColours[a];
+		const uint32_t takenB = b == m_fixedBodyId ? 0u : mt.bodyColours[b];
+		const int colour = lowestFreeColour(takenA | takenB);
+		if (colour < kColours)
+		{
+			if (a != m_fixedBodyId) mt.bodyColours[a] |= uint32_t(1) << colour;
+			if (b != m_fixedBodyId) mt.bodyColours[b] |= uint32_t(1) << colour;
+		}
+		mt.manifoldColour[m] = colour;
+		++mt.colourCount[colour];
+		mt.colourRows[colour] += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+	}
+	// Manifolds colour by colour (counting sort, stable: manifold order within a colour).
+	mt.colourCursor.resize(kColours + 1);
+	int start = 0;
+	for (int c = 0; c <= kColours; ++c)
+	{
+		mt.colourCursor[c] = start;
+		start += mt.colourCount[c];
+	}
+	mt.orderedManifolds.resize(numManifoldsWithRows);
+	for (int m = 0; m < numManifoldsWithRows; ++m) mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
+
+	// Batches: whole manifolds, at least s_minBatchSize rows, and about a sixteenth of the colour, so that
+	// every thread finds work; the last colour (the manifolds no colour was left for) is one batch.
+	int nextManifold = 0;
+	for (int c = 0; c <= kColours; ++c)
+	{
+		if (mt.colourCount[c] == 0) continue;
+		const int phaseBegin = batched.m_batches.size();
+		const int targetRows =
+		    c == kColours ? mt.colourRows[c] : btMax(btMax(1, s_minBatchSize), (mt.colourRows[c] + 15) / 16);
+		int batchBegin = batched.m_constraintIndices.size();
+		for (int k = 0; k < mt.colourCount[c]; ++k)
+		{
+			// As in the serial solver, the manifold's first point changes from solve to solve, so that no
+			// point takes more than its share of the impulse step after step.
+			const int m = mt.orderedManifolds[nextManifold++];
+			const int first = scratch.manifoldFirstRow[m];
+			const int count = scratch.manifoldFirstRow[m + 1] - first;
+			const int rotation = int(scratch.solveCount % unsigned(count));
+			for (int p = 0; p < count; ++p)
+				batched.m_constraintIndices.push_back(first + (p + rotation < count ? p + rotation : p + rotation - count));
+			if (batched.m_constraintIndices.size() - batchBegin >= targetRows || k + 1 == mt.colourCount[c])
+			{
+				batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
+				batchBegin = batched.m_constraintIndices.size();
+			}
+		}
+		batched.m_phaseOrder.push_back(batched.m_phases.size());
+		batched.m_phases.push_back(btBatchedConstraints::Range(phaseBegin, batched.m_batches.size()));
+		batched.m_phaseGrainSize.push_back(1);
+	}
+
+	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
+	// rolling rows.
+	if (m_fixedBodyId >= 0)
+	{
+		const int firstCopy = m_tmpSolverBodyPool.size();
+		const btSolverBody fixedBody = m_tmpSolverBodyPool[m_fixedBodyId];
+		m_tmpSolverBodyPool.resize(firstCopy + batched.m_batches.size(), fixedBody);
+		const int frictionRows = caliber::frictionRowsPerContact(infoGlobal);
+		for (int b = 0; b < batched.m_batches.size(); ++b)
+		{
+			const int copy = firstCopy + b;
+			for (int i = batched.m_batches[b].begin; i < batched.m_batches[b].end; ++i)
+			{
+				const int j = batched.m_constraintIndices[i];
+				btSolverConstraint& row = m_tmpSolverContactConstraintPool[j];
+				if (row.m_solverBodyIdA == m_fixedBodyId) row.m_solverBodyIdA = copy;
+				if (row.m_solverBodyIdB == m_fixedBodyId) row.m_solverBodyIdB = copy;
+				for (int f = 0; f < frictionRows; ++f)
+				{
+					btSolverConstraint& frictionRow = m_tmpSolverContactFrictionConstraintPool[j * frictionRows + f];
+					if (frictionRow.m_solverBodyIdA == m_fixedBodyId) frictionRow.m_solverBodyIdA = copy;
+					if (frictionRow.m_solverBodyIdB == m_fixedBodyId) frictionRow.m_solverBodyIdB = copy;
+				}
+			}
+		}
+		for (int r = 0; r < m_tmpSolverContactRollingFrictionConstraintPool.size(); ++r)
+		{
+			btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool[r];
+			const btSolverConstraint& contact = m_tmpSolverContactConstraintPool[row.m_frictionIndex];
+			if (row.m_solverBodyIdA == m_fixedBodyId) row.m_solverBodyIdA = contact.m_solverBodyIdA;
+			if (row.m_solverBodyIdB == m_fixedBodyId) row.m_solverBodyIdB = contact.m_solverBodyIdB;
+		}
+	}
+
+	// Rolling rows grouped by their contact row (counting sort).
+	const int numContacts = contacts.size();
+	mt.rollingStart.resize(0);
+	mt.rollingStart.resize(numContacts + 1, 0);
+	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
+	for (int r = 0; r < numRolling; ++r) ++mt.rollingStart[m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex + 1];
+	for (int j = 0; j < numContacts; ++j) mt.rollingStart[j + 1] += mt.rollingStart[j];
+	mt.rollingRows.resize(numRolling);
+	mt.colourCursor.resize(0);
+	mt.colourCursor.resize(numContacts, 0);
+	for (int r = 0; r < numRolling; ++r)
+	{
+		const int j = m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex;
+		mt.rollingRows[mt.rollingStart[j] + mt.colourCursor[j]++] = r;
+	}
+	return result;
+}
+
+btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
+    int iteration, btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
+    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
+    btIDebugDraw* debugDrawer)
+{
+	if (!m_useBatching)
+		return btSequentialImpulseConstraintSolver::solveSingleIteration(iteration, bodies, numBodies, manifoldPtr,
+		                                                                 numManifolds, constraints, numConstraints,
+		                                                                 infoGlobal, debugDrawer);
+	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
+	// As the serial solver: every other sweep backwards, joints first (on this thread).
+	const bool reverse = ((unsigned(iteration) + scratch.solveCount) & 1u) != 0;
+	btScalar residual = btScalar(0);
+	const int numJoints = scratch.joints.size();
+	for (int k = 0; k < numJoints; ++k)
+	{
+		const int j = m_orderNonContactConstraintPool[reverse ? numJoints - 1 - k : k];
+		if (iteration >= m_tmpSolverNonContactConstraintPool[scratch.jointFirstRow[j]].m_overrideNumSolverIterations)
+			continue;
+		residual += caliber::solveJoint(scratch, solverBodies, m_tmpSolverNonContactConstraintPool,
+		                                m_tmpConstraintSizesPool, j);
+	}
+	if (iteration >= infoGlobal.m_numIterations) return residual;
+
+	const btBatchedConstraints& batched = m_batchedContactConstraints;
+	BatchSweep sweep;
+	sweep.batched = &batched;
+	sweep.bodies = solverBodies;
+	sweep.contacts = &m_tmpSolverContactConstraintPool;
+	sweep.friction = &m_tmpSolverContactFrictionConstraintPool;
+	sweep.rolling = &m_tmpSolverContactRollingFrictionConstraintPool;
+	sweep.scratch = &mtScratchOf(*this);
+	sweep.frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	sweep.reverse = reverse;
+	// As in the serial solver, the normal rows of every colour first, so that friction is bounded by this
+	// sweep's normal impulses.
+	const int numPhases = batched.m_phases.size();
+	for (int pass = 0; pass < 2; ++pass)
+	{
+		sweep.pass = pass;
+		for (int k = 0; k < numPhases; ++k)
+		{
+			const btBatchedConstraints::Range& phase =
+			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+			sweep.firstBatch = phase.begin;
+			residual += btParallelSum(0, phase.end - phase.begin, 1, sweep);
+		}
+	}
+	return residual;
+}

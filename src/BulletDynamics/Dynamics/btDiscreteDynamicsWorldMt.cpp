@@ -8,8 +8,20 @@
 
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
+#include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btAlignedObject.h"
+#include "LinearMath/btSideTable.h"
 #include "LinearMath/btWarningHook.h"
+
+namespace
+{
+// The joint warm-start store a pool's sequential-impulse solvers share (see init), for the world's
+// large-batch solver to share too.
+struct PoolState
+{
+	caliber::JointWarmStartStore* sharedWarmStarts = nullptr;
+};
+}  // namespace
 
 // ---- btConstraintSolverPoolMt ------------------------------------------------------------------------
 
@@ -52,6 +64,7 @@ void btConstraintSolverPoolMt::init(btConstraintSolver** solvers, int numSolvers
 	const btSequentialImpulseConstraintSolver* first = dynamic_cast<btSequentialImpulseConstraintSolver*>(solvers[0]);
 	if (!first) return;
 	caliber::JointWarmStartStore* shared = &caliber::solverScratchOf(*first).warmStarts;
+	caliber::sideTable<PoolState>().acquire(this).sharedWarmStarts = shared;
 	for (int i = 1; i < numSolvers; ++i)
 		if (const btSequentialImpulseConstraintSolver* solver = dynamic_cast<btSequentialImpulseConstraintSolver*>(solvers[i]))
 			caliber::shareJointWarmStarts(*solver, shared);
@@ -59,6 +72,7 @@ void btConstraintSolverPoolMt::init(btConstraintSolver** solvers, int numSolvers
 
 btConstraintSolverPoolMt::~btConstraintSolverPoolMt()
 {
+	caliber::sideTable<PoolState>().release(this);
 	// Last first: the first solver holds the store the others share.
 	for (int i = m_solvers.size() - 1; i >= 0; --i)
 	{
@@ -125,6 +139,16 @@ btDiscreteDynamicsWorldMt::btDiscreteDynamicsWorldMt(btDispatcher* dispatcher, b
 	islandManager->setMinimumSolverBatchSize(m_solverInfo.m_minimumSolverBatchSize);
 	m_islandManager = islandManager;
 	m_ownsIslandManager = true;
+	// Large batches go to constraintSolverMt, which shares the pool's joint warm starts, so a joint keeps
+	// its impulses when its island grows past the threshold or shrinks below it.
+	if (constraintSolverMt && constraintSolverMt != solverPool)
+	{
+		caliber::stepContextOf(*this).largeBatchSolver = constraintSolverMt;
+		const btSequentialImpulseConstraintSolver* mt = dynamic_cast<btSequentialImpulseConstraintSolver*>(constraintSolverMt);
+		caliber::JointWarmStartStore* shared =
+		    solverPool ? caliber::sideTable<PoolState>().acquire(solverPool).sharedWarmStarts : nullptr;
+		if (mt && shared) caliber::shareJointWarmStarts(*mt, shared);
+	}
 }
 
 btDiscreteDynamicsWorldMt::~btDiscreteDynamicsWorldMt() {}

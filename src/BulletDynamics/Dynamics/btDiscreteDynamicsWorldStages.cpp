@@ -7,6 +7,7 @@
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
@@ -309,6 +310,9 @@ void btDiscreteDynamicsWorld::solveConstraints(btContactSolverInfo& solverInfo)
 	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
 	caliber::sortConstraintsByIsland(*this, m_constraints, m_sortedConstraints, context);
 	m_solverIslandCallback->setup(&solverInfo, getDebugDrawer());
+	m_solverIslandCallback->m_largeBatchSolver = context.largeBatchSolver;
+	m_solverIslandCallback->m_largeBatchManifolds =
+	    btMax(1, btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching);
 	m_solverIslandCallback->setConstraints(m_sortedConstraints.size() ? &m_sortedConstraints[0] : 0,
 	                                       m_sortedConstraints.size(), &context.constraintIslandStart[0],
 	                                       context.constraintIslandStart.size() - 1);

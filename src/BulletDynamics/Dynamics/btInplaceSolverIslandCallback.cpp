@@ -29,6 +29,7 @@ void InplaceSolverIslandCallback::flush()
 	m_open.numConstraints = m_gatheredConstraints.size() - m_open.firstConstraint;
 	if (m_open.numBodies == 0 && m_open.numManifolds == 0 && m_open.numConstraints == 0) return;
 	m_open.touchesKinematic = touchesKinematic(m_open);
+	m_open.large = m_largeBatchSolver && m_open.numManifolds >= m_largeBatchManifolds;
 	m_batches.push_back(m_open);
 	openBatch();
 }
@@ -54,7 +55,8 @@ void InplaceSolverIslandCallback::solveBatchAt(int index, unsigned int firstSolv
 {
 	const Batch& batch = m_batches[index];
 	caliber::SolveIndexScope solveIndex(firstSolveIndex + unsigned(index));
-	m_solver->solveGroup(batch.numBodies ? &m_bodies[batch.firstBody] : 0, batch.numBodies,
+	btConstraintSolver* solver = batch.large ? m_largeBatchSolver : m_solver;
+	solver->solveGroup(batch.numBodies ? &m_bodies[batch.firstBody] : 0, batch.numBodies,
 	                     batch.numManifolds ? &m_manifolds[batch.firstManifold] : 0, batch.numManifolds,
 	                     batch.numConstraints ? &m_gatheredConstraints[batch.firstConstraint] : 0,
 	                     batch.numConstraints, *m_solverInfo, m_debugDrawer, m_dispatcher);
@@ -69,11 +71,12 @@ void InplaceSolverIslandCallback::solveBatches(bool parallel, unsigned int first
 		for (int i = 0; i < numBatches; ++i) solveBatchAt(i, firstSolveIndex);
 		return;
 	}
-	// Batches with a kinematic body one after another here, the rest on the scheduler's threads.
+	// Large batches (whose solver is parallel inside) and batches with a kinematic body one after another
+	// here, the rest on the scheduler's threads.
 	m_parallelBatches.resize(0);
 	for (int i = 0; i < numBatches; ++i)
 	{
-		if (m_batches[i].touchesKinematic)
+		if (m_batches[i].touchesKinematic || m_batches[i].large)
 			solveBatchAt(i, firstSolveIndex);
 		else
 			m_parallelBatches.push_back(i);

@@ -33,10 +33,15 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 		// A kinematic body gets a solver entry in every batch that touches it (its companion id is
 		// written), so such batches are never solved at the same time.
 		bool touchesKinematic;
+		bool large;  // for m_largeBatchSolver
 	};
 
 	btContactSolverInfo* m_solverInfo;
 	btConstraintSolver* m_solver;
+	// btDiscreteDynamicsWorldMt's solver for batches of at least m_largeBatchManifolds manifolds (it
+	// spreads one solve over the threads itself), or null.
+	btConstraintSolver* m_largeBatchSolver;
+	int m_largeBatchManifolds;
 	btIDebugDraw* m_debugDrawer;
 	btDispatcher* m_dispatcher;
 	btAlignedObjectArray<btCollisionObject*> m_bodies;
@@ -54,6 +59,8 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 	InplaceSolverIslandCallback(btConstraintSolver* solver, btDispatcher* dispatcher)
 	    : m_solverInfo(0),
 	      m_solver(solver),
+	      m_largeBatchSolver(0),
+	      m_largeBatchManifolds(0),
 	      m_debugDrawer(0),
 	      m_dispatcher(dispatcher),
 	      m_sortedConstraints(0),
@@ -127,6 +134,7 @@ private:
 		m_open.firstConstraint = m_gatheredConstraints.size();
 		m_open.numBodies = m_open.numManifolds = m_open.numConstraints = 0;
 		m_open.touchesKinematic = false;
+		m_open.large = false;
 	}
 	bool touchesKinematic(const Batch& batch) const;
 };

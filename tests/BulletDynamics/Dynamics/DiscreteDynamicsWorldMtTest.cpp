@@ -201,13 +201,13 @@ private:
 	std::vector<std::unique_ptr<btTypedConstraint>> m_joints;
 };
 
-const int kSteps = 90;
+const int kSteps = 60;
 const int kThreadCounts[] = {1, 2, 3, 4, 8};
 
-std::uint64_t singleThreadedHash()
+std::uint64_t singleThreadedHash(WorldSetup setup = WorldSetup::Plain)
 {
 	btSetTaskScheduler(0);
-	Scene scene(WorldSetup::Plain);
+	Scene scene(setup);
 	scene.step(kSteps);
 	return scene.hash();
 }
@@ -222,9 +222,10 @@ std::vector<btITaskScheduler*> schedulersOfThisBuild(btITaskScheduler* pool)
 }
 }  // namespace
 
-TEST(DiscreteDynamicsWorldMt, SameStateBitsAsTheSingleThreadedWorldAtAnyThreadCount)
+TEST(DiscreteDynamicsWorldMt, SameStateBitsAsWithoutASchedulerAtAnyThreadCount)
 {
 	const std::uint64_t reference = singleThreadedHash();
+	const std::uint64_t referenceMt = singleThreadedHash(WorldSetup::Mt);
 	{
 		// The same world stepped twice gives the same bits (the test could not tell otherwise).
 		Scene again(WorldSetup::Plain);
@@ -244,17 +245,30 @@ TEST(DiscreteDynamicsWorldMt, SameStateBitsAsTheSingleThreadedWorldAtAnyThreadCo
 			{
 				Scene scene(setup);
 				scene.step(kSteps);
-				EXPECT_EQ(scene.hash(), reference) << scheduler->getName() << " threads " << threads
-				                                   << (setup == WorldSetup::Mt ? " Mt world" : " plain world");
+				EXPECT_EQ(scene.hash(), setup == WorldSetup::Mt ? referenceMt : reference)
+				    << scheduler->getName() << " threads " << threads
+				    << (setup == WorldSetup::Mt ? " Mt world" : " plain world");
 			}
 		}
 	}
 	btSetTaskScheduler(0);
 }
 
+TEST(DiscreteDynamicsWorldMt, TheMtSolverColoursOnlyLargeSolvesAndIsThePlainSolverBelow)
+{
+	// The scene's pile is one island of more than 250 manifolds: the Mt world's solver colours it (another
+	// Gauss-Seidel order, so other bits than the plain world's), and below the threshold the Mt world is
+	// the plain world, bit for bit.
+	const int threshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
+	EXPECT_NE(singleThreadedHash(WorldSetup::Mt), singleThreadedHash());
+	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1 << 30;
+	EXPECT_EQ(singleThreadedHash(WorldSetup::Mt), singleThreadedHash());
+	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = threshold;
+}
+
 TEST(DiscreteDynamicsWorldMt, SwitchingSchedulersBetweenStepsKeepsTheBits)
 {
-	const std::uint64_t reference = singleThreadedHash();
+	const std::uint64_t reference = singleThreadedHash(WorldSetup::Mt);
 	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
 	std::vector<btITaskScheduler*> schedulers = schedulersOfThisBuild(pool.get());
 	schedulers.push_back(btGetSequentialTaskScheduler());
@@ -284,13 +298,21 @@ TEST(DiscreteDynamicsWorldMt, TheMtWorldHasBulletsMtIslandManagerAndSolverPool)
 	EXPECT_EQ(islands->getIslandDispatchFunction(), &btSimulationIslandManagerMt::serialIslandDispatch);
 	islands->setMinimumSolverBatchSize(-4);
 	EXPECT_EQ(islands->getMinimumSolverBatchSize(), 1);
-	// The solver's knobs are accepted (they do not change this version's results).
+	// The solver's knobs are accepted; they are put back for the other tests.
+	const int threshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
+	const int minBatch = btSequentialImpulseConstraintSolverMt::s_minBatchSize;
+	const int maxBatch = btSequentialImpulseConstraintSolverMt::s_maxBatchSize;
+	const btBatchedConstraints::BatchingMethod method = btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod;
 	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 100;
 	btSequentialImpulseConstraintSolverMt::s_minBatchSize = 30;
 	btSequentialImpulseConstraintSolverMt::s_maxBatchSize = 60;
 	btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = true;
 	btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod = btBatchedConstraints::BATCHING_METHOD_SPATIAL_GRID_3D;
 	scene.step(5);
+	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = threshold;
+	btSequentialImpulseConstraintSolverMt::s_minBatchSize = minBatch;
+	btSequentialImpulseConstraintSolverMt::s_maxBatchSize = maxBatch;
+	btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod = method;
 	btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = false;
 }
 
