@@ -8,6 +8,8 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btQuickprof.h"
+#include "LinearMath/btSideTable.h"
+#include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
 
 // The world's bookkeeping: objects, proxies, AABBs and the discrete collision step. The queries live in
@@ -87,6 +89,19 @@ AabbOverflowReports& aabbOverflowReports()
 	static AabbOverflowReports* reports = new AabbOverflowReports;
 	return *reports;
 }
+// One object's new box, computed on any thread (status: 0 no update, 1 box ready, 2 overflow).
+struct PendingAabb
+{
+	btVector3 aabbMin, aabbMax;
+	int status;
+};
+
+// Per world, reused from step to step.
+struct CollisionWorldScratch
+{
+	btAlignedObjectArray<PendingAabb> pending;
+};
+
 }  // namespace
 
 btCollisionWorld::btCollisionWorld(btDispatcher* dispatcher, btBroadphaseInterface* broadphasePairCache,
@@ -104,6 +119,7 @@ btCollisionWorld::btCollisionWorld(btDispatcher* dispatcher, btBroadphaseInterfa
 btCollisionWorld::~btCollisionWorld()
 {
 	aabbOverflowReports().forget(this);
+	caliber::sideTable<CollisionWorldScratch>().release(this);
 	// The objects belong to the user and may outlive the world; their proxies belong to the broadphase,
 	// which may be reused, so they go now.
 	for (int i = 0; i < m_collisionObjects.size(); i++)
@@ -229,15 +245,73 @@ void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
 	}
 }
 
+namespace
+{
+// Objects per task of the parallel box computation.
+const int kObjectsPerTask = 128;
+
+struct ComputeAabbs : public btIParallelForBody
+{
+	btCollisionObject* const* objects;
+	PendingAabb* pending;
+	bool forceAll;
+	bool useContinuous;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			const btCollisionObject* colObj = objects[i];
+			PendingAabb& box = pending[i];
+			box.status = 0;
+			if (!(forceAll || (colObj->isActive() && !colObj->isStaticObject())) || !colObj->getCollisionShape())
+				continue;
+			const bool finite = computeBroadphaseAabb(colObj, useContinuous, box.aabbMin, box.aabbMax);
+			const bool acceptable = finite && (colObj->isStaticOrKinematicObject() ||
+			                                   (box.aabbMax - box.aabbMin).length2() < kMaxAabbExtentSquared);
+			box.status = acceptable ? 1 : 2;
+		}
+	}
+};
+}  // namespace
+
 void btCollisionWorld::updateAabbs()
 {
 	BT_PROFILE("updateAabbs");
-	for (int i = 0; i < m_collisionObjects.size(); i++)
+	const int numObjects = m_collisionObjects.size();
+	if (btGetTaskScheduler()->getNumThreads() < 2 || numObjects < 2 * kObjectsPerTask)
 	{
+		for (int i = 0; i < numObjects; i++)
+		{
+			btCollisionObject* colObj = m_collisionObjects[i];
+			// Static objects got their box when added (and when the user calls updateSingleAabb); sleeping
+			// and disabled objects keep theirs.
+			if (m_forceUpdateAllAabbs || (colObj->isActive() && !colObj->isStaticObject())) updateSingleAabb(colObj);
+		}
+		return;
+	}
+	// With a scheduler: the boxes (the shapes' support work) on its threads, then the broadphase updates
+	// in object order on this thread, exactly as updateSingleAabb would make them.
+	CollisionWorldScratch& scratch = caliber::sideTable<CollisionWorldScratch>().acquire(this);
+	scratch.pending.resizeNoInitialize(numObjects);
+	ComputeAabbs compute;
+	compute.objects = &m_collisionObjects[0];
+	compute.pending = &scratch.pending[0];
+	compute.forceAll = m_forceUpdateAllAabbs;
+	compute.useContinuous = m_dispatchInfo.m_useContinuous;
+	btParallelFor(0, numObjects, kObjectsPerTask, compute);
+	for (int i = 0; i < numObjects; i++)
+	{
+		const PendingAabb& box = scratch.pending[i];
+		if (box.status == 0) continue;
 		btCollisionObject* colObj = m_collisionObjects[i];
-		// Static objects got their box when added (and when the user calls updateSingleAabb); sleeping and
-		// disabled objects keep theirs.
-		if (m_forceUpdateAllAabbs || (colObj->isActive() && !colObj->isStaticObject())) updateSingleAabb(colObj);
+		if (box.status == 1)
+		{
+			if (colObj->getBroadphaseHandle() && m_broadphasePairCache)
+				m_broadphasePairCache->setAabb(colObj->getBroadphaseHandle(), box.aabbMin, box.aabbMax, m_dispatcher1);
+			continue;
+		}
+		updateSingleAabb(colObj);  // the overflow: its warning and quarantine, as without a scheduler
 	}
 }
 
