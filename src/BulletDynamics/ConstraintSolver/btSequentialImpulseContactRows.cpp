@@ -6,6 +6,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
+#include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 
@@ -223,17 +224,27 @@ bool isFinitePoint(const btManifoldPoint& cp)
 	const btVector3& n = cp.m_normalWorldOnB;
 	return btIsFinite(a.x() + a.y() + a.z() + b.x() + b.y() + b.z() + n.x() + n.y() + n.z() + cp.m_distance1);
 }
-}  // namespace
 
-void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstraint& row, int solverBodyIdA,
-                                                                 int solverBodyIdB, btManifoldPoint& cp,
-                                                                 const btContactSolverInfo& infoGlobal,
-                                                                 btScalar& relaxation, const btVector3& rel_pos1,
-                                                                 const btVector3& rel_pos2)
+// Scales a friction direction by the object's anisotropic friction when the object has the mode's flag:
+// in the object's frame, each local axis's friction is the direction's component along it times that
+// axis's factor (Bullet's convention; the row is not renormalised, so a factor also scales the row's
+// impulse per unit of sliding speed).
+void scaleByAnisotropicFriction(const btCollisionObject* colObj, btVector3& frictionDirection, int frictionMode)
+{
+	if (!colObj || !colObj->hasAnisotropicFriction(frictionMode)) return;
+	const btMatrix3x3& basis = colObj->getWorldTransform().getBasis();
+	const btVector3 local = frictionDirection * basis;
+	frictionDirection = basis * (local * colObj->getAnisotropicFriction());
+}
+
+// Fills a contact's normal row; its warm-start impulse is set but not applied to the bodies.
+void setupContactRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint& row, int solverBodyIdA,
+                     int solverBodyIdB, btManifoldPoint& cp, const btContactSolverInfo& infoGlobal,
+                     btScalar& relaxation, const btVector3& rel_pos1, const btVector3& rel_pos2)
 {
 	relaxation = infoGlobal.m_sor;
-	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
-	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
+	btSolverBody& bodyA = bodies[solverBodyIdA];
+	btSolverBody& bodyB = bodies[solverBodyIdB];
 	const RowBody a = {&bodyA, bodyA.m_originalBody};
 	const RowBody b = {&bodyB, bodyB.m_originalBody};
 	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
@@ -295,15 +306,46 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
 		row.m_rhsPenetration = penetrationImpulse;
 	}
 
-	if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
-	{
-		row.m_appliedImpulse = cp.m_appliedImpulse * infoGlobal.m_warmstartingFactor;
-		applyWarmStart(row, bodyA, bodyB);
-	}
-	else
-	{
-		row.m_appliedImpulse = btScalar(0);
-	}
+	// The warm start: the impulse is set here, applied to the bodies by the caller (see applyWarmStart).
+	row.m_appliedImpulse = (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
+	                           ? cp.m_appliedImpulse * infoGlobal.m_warmstartingFactor
+	                           : btScalar(0);
+}
+
+// Fills a friction row along normalAxis (its m_frictionIndex set by the caller).
+void setupFrictionRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint& row, const btVector3& normalAxis,
+                      int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, const btVector3& rel_pos1,
+                      const btVector3& rel_pos2, btScalar desiredVelocity, btScalar cfmSlip)
+{
+	const RowBody a = {&bodies[solverBodyIdA], bodies[solverBodyIdA].m_originalBody};
+	const RowBody b = {&bodies[solverBodyIdB], bodies[solverBodyIdB].m_originalBody};
+	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
+	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, row.m_frictionIndex,
+	                  denominator, cfmSlip + cp.m_frictionCFM, desiredVelocity);
+}
+
+// Fills an angular friction row about normalAxis (its m_frictionIndex set by the caller).
+void setupTorsionalRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint& row, const btVector3& normalAxis,
+                       int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, btScalar combinedTorsionalFriction,
+                       btScalar desiredVelocity, btScalar cfmSlip)
+{
+	const RowBody a = {&bodies[solverBodyIdA], bodies[solverBodyIdA].m_originalBody};
+	const RowBody b = {&bodies[solverBodyIdB], bodies[solverBodyIdB].m_originalBody};
+	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
+	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, combinedTorsionalFriction, row.m_frictionIndex,
+	                  denominator, cfmSlip, desiredVelocity);
+}
+}  // namespace
+
+void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstraint& row, int solverBodyIdA,
+                                                                 int solverBodyIdB, btManifoldPoint& cp,
+                                                                 const btContactSolverInfo& infoGlobal,
+                                                                 btScalar& relaxation, const btVector3& rel_pos1,
+                                                                 const btVector3& rel_pos2)
+{
+	setupContactRow(m_tmpSolverBodyPool, row, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1,
+	                rel_pos2);
+	applyWarmStart(row, m_tmpSolverBodyPool[solverBodyIdA], m_tmpSolverBodyPool[solverBodyIdB]);
 }
 
 void btSequentialImpulseConstraintSolver::setupFrictionConstraint(
@@ -315,13 +357,8 @@ void btSequentialImpulseConstraintSolver::setupFrictionConstraint(
 	(void)colObj1;
 	(void)relaxation;
 	(void)infoGlobal;
-	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
-	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
-	const RowBody a = {&bodyA, bodyA.m_originalBody};
-	const RowBody b = {&bodyB, bodyB.m_originalBody};
-	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
-	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, row.m_frictionIndex,
-	                  denominator, cfmSlip + cp.m_frictionCFM, desiredVelocity);
+	setupFrictionRow(m_tmpSolverBodyPool, row, normalAxis, solverBodyIdA, solverBodyIdB, cp, rel_pos1, rel_pos2,
+	                 desiredVelocity, cfmSlip);
 }
 
 void btSequentialImpulseConstraintSolver::setupTorsionalFrictionConstraint(
@@ -335,13 +372,8 @@ void btSequentialImpulseConstraintSolver::setupTorsionalFrictionConstraint(
 	(void)colObj0;
 	(void)colObj1;
 	(void)relaxation;
-	btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
-	btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
-	const RowBody a = {&bodyA, bodyA.m_originalBody};
-	const RowBody b = {&bodyB, bodyB.m_originalBody};
-	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
-	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, combinedTorsionalFriction, row.m_frictionIndex,
-	                  denominator, cfmSlip, desiredVelocity);
+	setupTorsionalRow(m_tmpSolverBodyPool, row, normalAxis, solverBodyIdA, solverBodyIdB, cp, combinedTorsionalFriction,
+	                  desiredVelocity, cfmSlip);
 }
 
 btSolverConstraint& btSequentialImpulseConstraintSolver::addFrictionConstraint(
@@ -373,13 +405,7 @@ btSolverConstraint& btSequentialImpulseConstraintSolver::addTorsionalFrictionCon
 void btSequentialImpulseConstraintSolver::applyAnisotropicFriction(btCollisionObject* colObj,
                                                                    btVector3& frictionDirection, int frictionMode)
 {
-	if (!colObj || !colObj->hasAnisotropicFriction(frictionMode)) return;
-	// Scaled in the object's frame: each local axis's friction is the direction's component along it times
-	// that axis's factor (Bullet's convention; the row is not renormalised, so a factor also scales the
-	// row's impulse per unit of sliding speed).
-	const btMatrix3x3& basis = colObj->getWorldTransform().getBasis();
-	const btVector3 local = frictionDirection * basis;
-	frictionDirection = basis * (local * colObj->getAnisotropicFriction());
+	scaleByAnisotropicFriction(colObj, frictionDirection, frictionMode);
 }
 
 void btSequentialImpulseConstraintSolver::setFrictionConstraintImpulse(btSolverConstraint& contactRow,
@@ -439,155 +465,203 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 	btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
 	btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
 	if (!colObj0 || !colObj1) return;
-	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
 	const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
-	// Two bodies that nothing can move (static or kinematic against each other) need no rows.
-	{
-		const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
-		const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
-		const bool aMoves = a.m_originalBody && !a.m_originalBody->isStaticOrKinematicObject();
-		const bool bMoves = b.m_originalBody && !b.m_originalBody->isStaticOrKinematicObject();
-		if (!aMoves && !bMoves) return;
-	}
-
+	if (!caliber::solverBodiesCanMove(m_tmpSolverBodyPool, solverBodyIdA, solverBodyIdB)) return;
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	const caliber::ContactRowPools pools = {&m_tmpSolverBodyPool, &m_tmpSolverContactConstraintPool,
+	                                        &m_tmpSolverContactFrictionConstraintPool,
+	                                        &m_tmpSolverContactRollingFrictionConstraintPool};
+	caliber::ContactPointRows point;
 	for (int j = 0; j < manifold->getNumContacts(); ++j)
 	{
-		btManifoldPoint& cp = manifold->getContactPoint(j);
-		if (cp.getDistance() > manifold->getContactProcessingThreshold()) continue;
-		btAssert(isFinitePoint(cp));
-		if (!isFinitePoint(cp)) continue;
+		if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, solverBodyIdA, solverBodyIdB,
+		                               m_tmpSolverBodyPool, infoGlobal, point))
+			continue;
+		point.contactRow = m_tmpSolverContactConstraintPool.size();
+		point.firstFrictionRow = m_tmpSolverContactFrictionConstraintPool.size();
+		point.firstRollingRow = m_tmpSolverContactRollingFrictionConstraintPool.size();
+		m_tmpSolverContactConstraintPool.expandNonInitializing();
+		m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(point.firstFrictionRow + frictionRowsPerContact);
+		m_tmpSolverContactRollingFrictionConstraintPool.resizeNoInitialize(point.firstRollingRow +
+		                                                                   caliber::rollingRowsOf(*point.cp));
+		caliber::fillContactPointRows(pools, point, infoGlobal);
+		caliber::applyContactPointWarmStarts(pools, point, infoGlobal);
+	}
+}
 
-		// Both bodies are pushed at the same point, halfway between the two witness points. With Bullet's
-		// choice (each body at its own witness point) a friction impulse on a penetrating contact has
-		// lever arms that differ by the depth, which creates angular momentum out of nothing.
-		const btVector3 contactPoint = (cp.getPositionWorldOnA() + cp.getPositionWorldOnB()) * btScalar(0.5);
-		const btVector3 rel_pos1 = contactPoint - colObj0->getWorldTransform().getOrigin();
-		const btVector3 rel_pos2 = contactPoint - colObj1->getWorldTransform().getOrigin();
+bool caliber::solverBodiesCanMove(const btAlignedObjectArray<btSolverBody>& bodies, int solverBodyIdA,
+                                  int solverBodyIdB)
+{
+	// Two bodies that nothing can move (static or kinematic against each other) need no rows.
+	const btSolverBody& a = bodies[solverBodyIdA];
+	const btSolverBody& b = bodies[solverBodyIdB];
+	const bool aMoves = a.m_originalBody && !a.m_originalBody->isStaticOrKinematicObject();
+	const bool bMoves = b.m_originalBody && !b.m_originalBody->isStaticOrKinematicObject();
+	return aMoves || bMoves;
+}
 
-		if (cp.getDistance() > btScalar(0))
+bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
+                               btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
+                               const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
+                               ContactPointRows& point)
+{
+	btManifoldPoint& cp = manifold.getContactPoint(index);
+	if (cp.getDistance() > manifold.getContactProcessingThreshold()) return false;
+	btAssert(isFinitePoint(cp));
+	if (!isFinitePoint(cp)) return false;
+
+	// Both bodies are pushed at the same point, halfway between the two witness points. With Bullet's
+	// choice (each body at its own witness point) a friction impulse on a penetrating contact has
+	// lever arms that differ by the depth, which creates angular momentum out of nothing.
+	const btVector3 contactPoint = (cp.getPositionWorldOnA() + cp.getPositionWorldOnB()) * btScalar(0.5);
+	point.relPos1 = contactPoint - colObj0->getWorldTransform().getOrigin();
+	point.relPos2 = contactPoint - colObj1->getWorldTransform().getOrigin();
+
+	if (cp.getDistance() > btScalar(0))
+	{
+		// A speculative point (apart, kept because the pair might close the gap this step) that its
+		// bodies could not close even if each moved along the normal at twice its present normal speed
+		// needs no rows: they would carry no impulse. Each body's own normal speed counts, not the
+		// pair's relative approach: two boxes falling together do not approach, but the ground may
+		// stop the lower one during the solve. Neighbours side by side (normal across the fall) and
+		// fast approaches (what speculative contacts are for) are told apart. The point's old
+		// impulses are cleared: a gap that wide means it carries none.
+		const btSolverBody& a = bodies[solverBodyIdA];
+		const btSolverBody& b = bodies[solverBodyIdB];
+		const btVector3& n = cp.m_normalWorldOnB;
+		const btScalar approach = btFabs(n.dot(a.m_linearVelocity + a.m_angularVelocity.cross(point.relPos1))) +
+		                          btFabs(n.dot(b.m_linearVelocity + b.m_angularVelocity.cross(point.relPos2)));
+		if (cp.getDistance() > btScalar(2) * approach * infoGlobal.m_timeStep ||
+		    slidesPastWithoutTouching(*colObj0, *colObj1, a, b, cp, infoGlobal.m_timeStep))
 		{
-			// A speculative point (apart, kept because the pair might close the gap this step) that its
-			// bodies could not close even if each moved along the normal at twice its present normal speed
-			// needs no rows: they would carry no impulse. Each body's own normal speed counts, not the
-			// pair's relative approach: two boxes falling together do not approach, but the ground may
-			// stop the lower one during the solve. Neighbours side by side (normal across the fall) and
-			// fast approaches (what speculative contacts are for) are told apart. The point's old
-			// impulses are cleared: a gap that wide means it carries none.
-			const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
-			const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
-			const btVector3& n = cp.m_normalWorldOnB;
-			const btScalar approach = btFabs(n.dot(a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1))) +
-			                          btFabs(n.dot(b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2)));
-			if (cp.getDistance() > btScalar(2) * approach * infoGlobal.m_timeStep ||
-			    slidesPastWithoutTouching(*colObj0, *colObj1, a, b, cp, infoGlobal.m_timeStep))
-			{
-				cp.m_appliedImpulse = cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = btScalar(0);
-				continue;
-			}
-		}
-
-		// The friction impulse of the last step as a vector, to warm start the new directions with its
-		// projection (the directions follow the sliding velocity and turn from step to step).
-		const btVector3 previousFrictionImpulse = cp.m_lateralFrictionDir1 * cp.m_appliedImpulseLateral1 +
-		                                          cp.m_lateralFrictionDir2 * cp.m_appliedImpulseLateral2;
-
-		const int frictionIndex = m_tmpSolverContactConstraintPool.size();
-		btSolverConstraint& contactRow = m_tmpSolverContactConstraintPool.expandNonInitializing();
-		btScalar relaxation;
-		setupContactConstraint(contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1,
-		                       rel_pos2);
-
-		const btSolverBody& a = m_tmpSolverBodyPool[solverBodyIdA];
-		const btSolverBody& b = m_tmpSolverBodyPool[solverBodyIdB];
-		const btVector3& normal = cp.m_normalWorldOnB;
-
-		// Rolling and spinning friction: angular rows about the normal and about two axes across it.
-		if (cp.m_combinedSpinningFriction > btScalar(0))
-			addTorsionalFrictionConstraint(normal, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
-			                               cp.m_combinedSpinningFriction, rel_pos1, rel_pos2, colObj0, colObj1,
-			                               relaxation, infoGlobal);
-		if (cp.m_combinedRollingFriction > btScalar(0))
-		{
-			btVector3 axis0, axis1;
-			btPlaneSpace1(normal, axis0, axis1);
-			const btVector3 relativeSpin = a.m_angularVelocity - b.m_angularVelocity;
-			btVector3 rolling = relativeSpin - normal * normal.dot(relativeSpin);
-			if (rolling.length2() > SIMD_EPSILON)
-			{
-				axis0 = rolling.normalized();
-				axis1 = normal.cross(axis0);
-			}
-			for (btVector3* axis : {&axis0, &axis1})
-			{
-				applyAnisotropicFriction(colObj0, *axis, btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
-				applyAnisotropicFriction(colObj1, *axis, btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
-			}
-			addTorsionalFrictionConstraint(axis0, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
-			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1,
-			                               relaxation, infoGlobal);
-			addTorsionalFrictionConstraint(axis1, solverBodyIdA, solverBodyIdB, frictionIndex, cp,
-			                               cp.m_combinedRollingFriction, rel_pos1, rel_pos2, colObj0, colObj1,
-			                               relaxation, infoGlobal);
-		}
-
-		// Sliding friction. The first direction follows the tangential relative velocity when there is
-		// one, so that a sliding contact needs a single row and its friction opposes the sliding exactly;
-		// the second, across it, is added with SOLVER_USE_2_FRICTION_DIRECTIONS.
-		const bool keepUserDirections = (infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
-		                                (cp.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED);
-		if (!keepUserDirections)
-		{
-			const btVector3 velocity = (a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)) -
-			                           (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2));
-			const btVector3 tangential = velocity - normal * normal.dot(velocity);
-			const btScalar tangentialSpeed2 = tangential.length2();
-			if (!(infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION) &&
-			    tangentialSpeed2 > SIMD_EPSILON)
-			{
-				cp.m_lateralFrictionDir1 = tangential / btSqrt(tangentialSpeed2);
-				cp.m_lateralFrictionDir2 = cp.m_lateralFrictionDir1.cross(normal).normalized();
-			}
-			else
-			{
-				btPlaneSpace1(normal, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
-			}
-			if ((infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
-			    (infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION))
-				cp.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
-		}
-		const int friction1Index = m_tmpSolverContactFrictionConstraintPool.size();
-		// Bullet's link from a contact row to its first friction row.
-		m_tmpSolverContactConstraintPool[frictionIndex].m_frictionIndex = friction1Index;
-		btVector3 direction1 = cp.m_lateralFrictionDir1, direction2 = cp.m_lateralFrictionDir2;
-		if (colObj0->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION) ||
-		    colObj1->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
-		{
-			for (btVector3* direction : {&direction1, &direction2})
-			{
-				applyAnisotropicFriction(colObj0, *direction, btCollisionObject::CF_ANISOTROPIC_FRICTION);
-				applyAnisotropicFriction(colObj1, *direction, btCollisionObject::CF_ANISOTROPIC_FRICTION);
-			}
-		}
-		addFrictionConstraint(direction1, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1, rel_pos2, colObj0,
-		                      colObj1, relaxation, infoGlobal, cp.m_contactMotion1);
-		if (frictionRowsPerContact == 2)
-			addFrictionConstraint(direction2, solverBodyIdA, solverBodyIdB, frictionIndex, cp, rel_pos1, rel_pos2,
-			                      colObj0, colObj1, relaxation, infoGlobal, cp.m_contactMotion2);
-		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
-		{
-			// Indices, not references: the second row may have grown the pool.
-			btSolverBody& bodyA = m_tmpSolverBodyPool[solverBodyIdA];
-			btSolverBody& bodyB = m_tmpSolverBodyPool[solverBodyIdB];
-			for (int f = 0; f < frictionRowsPerContact; ++f)
-			{
-				btSolverConstraint& friction = m_tmpSolverContactFrictionConstraintPool[friction1Index + f];
-				const btVector3& direction = f == 0 ? cp.m_lateralFrictionDir1 : cp.m_lateralFrictionDir2;
-				friction.m_appliedImpulse = previousFrictionImpulse.dot(direction) * infoGlobal.m_warmstartingFactor;
-				applyWarmStart(friction, bodyA, bodyB);
-			}
+			cp.m_appliedImpulse = cp.m_appliedImpulseLateral1 = cp.m_appliedImpulseLateral2 = btScalar(0);
+			return false;
 		}
 	}
+	point.cp = &cp;
+	point.object0 = colObj0;
+	point.object1 = colObj1;
+	point.solverBodyIdA = solverBodyIdA;
+	point.solverBodyIdB = solverBodyIdB;
+	return true;
+}
+
+void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& point,
+                                   const btContactSolverInfo& infoGlobal)
+{
+	btAlignedObjectArray<btSolverBody>& bodies = *pools.bodies;
+	btManifoldPoint& cp = *point.cp;
+	btCollisionObject* colObj0 = point.object0;
+	btCollisionObject* colObj1 = point.object1;
+	const int solverBodyIdA = point.solverBodyIdA, solverBodyIdB = point.solverBodyIdB;
+	const btVector3& rel_pos1 = point.relPos1;
+	const btVector3& rel_pos2 = point.relPos2;
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+
+	// The friction impulse of the last step as a vector, to warm start the new directions with its
+	// projection (the directions follow the sliding velocity and turn from step to step).
+	const btVector3 previousFrictionImpulse = cp.m_lateralFrictionDir1 * cp.m_appliedImpulseLateral1 +
+	                                          cp.m_lateralFrictionDir2 * cp.m_appliedImpulseLateral2;
+
+	const int frictionIndex = point.contactRow;
+	btSolverConstraint& contactRow = (*pools.contacts)[frictionIndex];
+	btScalar relaxation;
+	setupContactRow(bodies, contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1, rel_pos2);
+
+	const btSolverBody& a = bodies[solverBodyIdA];
+	const btSolverBody& b = bodies[solverBodyIdB];
+	const btVector3& normal = cp.m_normalWorldOnB;
+
+	// Rolling and spinning friction: angular rows about the normal and about two axes across it.
+	int rollingRow = point.firstRollingRow;
+	const auto addTorsional = [&](const btVector3& axis, btScalar friction) {
+		btSolverConstraint& row = (*pools.rolling)[rollingRow++];
+		row.m_frictionIndex = frictionIndex;
+		setupTorsionalRow(bodies, row, axis, solverBodyIdA, solverBodyIdB, cp, friction, btScalar(0), btScalar(0));
+	};
+	if (cp.m_combinedSpinningFriction > btScalar(0)) addTorsional(normal, cp.m_combinedSpinningFriction);
+	if (cp.m_combinedRollingFriction > btScalar(0))
+	{
+		btVector3 axis0, axis1;
+		btPlaneSpace1(normal, axis0, axis1);
+		const btVector3 relativeSpin = a.m_angularVelocity - b.m_angularVelocity;
+		btVector3 rolling = relativeSpin - normal * normal.dot(relativeSpin);
+		if (rolling.length2() > SIMD_EPSILON)
+		{
+			axis0 = rolling.normalized();
+			axis1 = normal.cross(axis0);
+		}
+		for (btVector3* axis : {&axis0, &axis1})
+		{
+			scaleByAnisotropicFriction(colObj0, *axis, btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+			scaleByAnisotropicFriction(colObj1, *axis, btCollisionObject::CF_ANISOTROPIC_ROLLING_FRICTION);
+		}
+		addTorsional(axis0, cp.m_combinedRollingFriction);
+		addTorsional(axis1, cp.m_combinedRollingFriction);
+	}
+
+	// Sliding friction. The first direction follows the tangential relative velocity when there is
+	// one, so that a sliding contact needs a single row and its friction opposes the sliding exactly;
+	// the second, across it, is added with SOLVER_USE_2_FRICTION_DIRECTIONS.
+	const bool keepUserDirections = (infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
+	                                (cp.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED);
+	if (!keepUserDirections)
+	{
+		const btVector3 velocity = (a.m_linearVelocity + a.m_angularVelocity.cross(rel_pos1)) -
+		                           (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2));
+		const btVector3 tangential = velocity - normal * normal.dot(velocity);
+		const btScalar tangentialSpeed2 = tangential.length2();
+		if (!(infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION) &&
+		    tangentialSpeed2 > SIMD_EPSILON)
+		{
+			cp.m_lateralFrictionDir1 = tangential / btSqrt(tangentialSpeed2);
+			cp.m_lateralFrictionDir2 = cp.m_lateralFrictionDir1.cross(normal).normalized();
+		}
+		else
+		{
+			btPlaneSpace1(normal, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
+		}
+		if ((infoGlobal.m_solverMode & SOLVER_ENABLE_FRICTION_DIRECTION_CACHING) &&
+		    (infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION))
+			cp.m_contactPointFlags |= BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED;
+	}
+	// Bullet's link from a contact row to its first friction row.
+	contactRow.m_frictionIndex = point.firstFrictionRow;
+	btVector3 direction1 = cp.m_lateralFrictionDir1, direction2 = cp.m_lateralFrictionDir2;
+	if (colObj0->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION) ||
+	    colObj1->hasAnisotropicFriction(btCollisionObject::CF_ANISOTROPIC_FRICTION))
+	{
+		for (btVector3* direction : {&direction1, &direction2})
+		{
+			scaleByAnisotropicFriction(colObj0, *direction, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+			scaleByAnisotropicFriction(colObj1, *direction, btCollisionObject::CF_ANISOTROPIC_FRICTION);
+		}
+	}
+	for (int f = 0; f < frictionRowsPerContact; ++f)
+	{
+		btSolverConstraint& row = (*pools.friction)[point.firstFrictionRow + f];
+		row.m_frictionIndex = frictionIndex;
+		setupFrictionRow(bodies, row, f == 0 ? direction1 : direction2, solverBodyIdA, solverBodyIdB, cp, rel_pos1,
+		                 rel_pos2, f == 0 ? cp.m_contactMotion1 : cp.m_contactMotion2, btScalar(0));
+		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
+		{
+			const btVector3& direction = f == 0 ? cp.m_lateralFrictionDir1 : cp.m_lateralFrictionDir2;
+			row.m_appliedImpulse = previousFrictionImpulse.dot(direction) * infoGlobal.m_warmstartingFactor;
+		}
+	}
+}
+
+void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
+                                          const btContactSolverInfo& infoGlobal)
+{
+	if (!(infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)) return;
+	btSolverBody& bodyA = (*pools.bodies)[point.solverBodyIdA];
+	btSolverBody& bodyB = (*pools.bodies)[point.solverBodyIdB];
+	applyWarmStart((*pools.contacts)[point.contactRow], bodyA, bodyB);
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	for (int f = 0; f < frictionRowsPerContact; ++f)
+		applyWarmStart((*pools.friction)[point.firstFrictionRow + f], bodyA, bodyB);
 }
 
 void caliber::findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodies,
