@@ -11,7 +11,8 @@
 /// body get the same colour, the colours are solved one after another, and the manifolds of one colour
 /// in batches on the task scheduler's threads. The result does not depend on the thread count or the
 /// scheduler, bit for bit; it differs from btSequentialImpulseConstraintSolver's (another Gauss-Seidel
-/// order). Smaller solves are btSequentialImpulseConstraintSolver's (docs/threading.md).
+/// order). Its contact rows are set up on the threads too, with the serial setup's bits. Smaller solves
+/// are btSequentialImpulseConstraintSolver's (docs/threading.md).
 ATTRIBUTE_ALIGNED16(class)
 btSequentialImpulseConstraintSolverMt : public btSequentialImpulseConstraintSolver
 {
@@ -48,6 +49,9 @@ protected:
 	/// Whether this solve colours its contacts.
 	bool m_useBatching;
 
+	/// Large solves: the points' rows filled on the scheduler's threads (the serial solver's bits).
+	void convertContacts(btPersistentManifold * *manifoldPtr, int numManifolds,
+	                     const btContactSolverInfo& infoGlobal) override;
 	btScalar solveGroupCacheFriendlySetup(btCollisionObject * *bodies, int numBodies, btPersistentManifold** manifoldPtr,
 	                                      int numManifolds, btTypedConstraint** constraints, int numConstraints,
 	                                      const btContactSolverInfo& infoGlobal, btIDebugDraw* debugDrawer) override;

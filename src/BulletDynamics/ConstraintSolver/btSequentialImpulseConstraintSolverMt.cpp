@@ -13,6 +13,8 @@
 
 #include <stdint.h>
 
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
@@ -44,6 +46,7 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> orderedManifolds;  // manifolds colour by colour
 	btAlignedObjectArray<int> rollingStart;      // per contact row, its first rolling row in rollingRows
 	btAlignedObjectArray<int> rollingRows;       // rolling rows grouped by contact row
+	btAlignedObjectArray<caliber::ContactPointRows> points;  // the points with rows, in order
 };
 
 MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
@@ -57,6 +60,21 @@ int lowestFreeColour(uint32_t taken)
 		if (!(taken & (uint32_t(1) << c))) return c;
 	return kColours;
 }
+
+// Points per task of the parallel row setup.
+const int kPointsPerTask = 64;
+
+struct FillPointRows : public btIParallelForBody
+{
+	caliber::ContactRowPools pools;
+	const caliber::ContactPointRows* points;
+	const btContactSolverInfo* info;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i) caliber::fillContactPointRows(pools, points[i], *info);
+	}
+};
 
 // One sweep over a batch of contact rows: normals, then their friction, then their rolling rows.
 struct BatchSweep : public btIParallelSumBody
@@ -126,19 +144,83 @@ btSequentialImpulseConstraintSolverMt::~btSequentialImpulseConstraintSolverMt()
 	caliber::sideTable<MtSolverScratch>().release(this);
 }
 
+void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold** manifoldPtr, int numManifolds,
+                                                            const btContactSolverInfo& infoGlobal)
+{
+	if (!m_useBatching)
+	{
+		btSequentialImpulseConstraintSolver::convertContacts(manifoldPtr, numManifolds, infoGlobal);
+		return;
+	}
+	// Where every point's rows go, in the serial order (this also makes the solver bodies, in order);
+	// then the rows filled on the threads; then the warm starts applied in the serial order.
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	MtSolverScratch& mt = mtScratchOf(*this);
+	mt.points.resize(0);
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	int nextContact = m_tmpSolverContactConstraintPool.size();
+	int nextFriction = m_tmpSolverContactFrictionConstraintPool.size();
+	int nextRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
+	caliber::ContactPointRows point;
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		btPersistentManifold* manifold = manifoldPtr[i];
+		btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
+		btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
+		if (!colObj0 || !colObj1) continue;
+		const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
+		const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
+		if (!caliber::solverBodiesCanMove(m_tmpSolverBodyPool, solverBodyIdA, solverBodyIdB)) continue;
+		const int firstRow = nextContact;
+		for (int j = 0; j < manifold->getNumContacts(); ++j)
+		{
+			if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, solverBodyIdA, solverBodyIdB,
+			                               m_tmpSolverBodyPool, infoGlobal, point))
+				continue;
+			point.contactRow = nextContact++;
+			point.firstFrictionRow = nextFriction;
+			point.firstRollingRow = nextRolling;
+			nextFriction += frictionRowsPerContact;
+			nextRolling += caliber::rollingRowsOf(*point.cp);
+			mt.points.push_back(point);
+		}
+		if (nextContact > firstRow) scratch.manifoldFirstRow.push_back(firstRow);
+	}
+	m_tmpSolverContactConstraintPool.resizeNoInitialize(nextContact);
+	m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(nextFriction);
+	m_tmpSolverContactRollingFrictionConstraintPool.resizeNoInitialize(nextRolling);
+	if (mt.points.size() == 0) return;
+
+	FillPointRows fill;
+	fill.pools.bodies = &m_tmpSolverBodyPool;
+	fill.pools.contacts = &m_tmpSolverContactConstraintPool;
+	fill.pools.friction = &m_tmpSolverContactFrictionConstraintPool;
+	fill.pools.rolling = &m_tmpSolverContactRollingFrictionConstraintPool;
+	fill.points = &mt.points[0];
+	fill.info = &infoGlobal;
+	btParallelFor(0, mt.points.size(), kPointsPerTask, fill);
+	for (int i = 0; i < mt.points.size(); ++i) caliber::applyContactPointWarmStarts(fill.pools, mt.points[i], infoGlobal);
+}
+
 btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
     btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
     btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
     btIDebugDraw* debugDrawer)
 {
+	// Decided before the setup, which converts the contacts (in parallel when batching), on the manifolds
+	// that hold points (the island's other manifolds are pairs whose boxes merely overlap).
+	int manifoldsWithPoints = 0;
+	for (int i = 0; i < numManifolds && manifoldsWithPoints < s_minimumContactManifoldsForBatching; ++i)
+		if (manifoldPtr[i]->getNumContacts() > 0) ++manifoldsWithPoints;
+	m_useBatching = manifoldsWithPoints >= s_minimumContactManifoldsForBatching &&
+	                !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) &&
+	                caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric,
+	                                               m_resolveSingleConstraintRowLowerLimit);
 	const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	    bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints, infoGlobal, debugDrawer);
 	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	const int numManifoldsWithRows = scratch.manifoldFirstRow.size() - 1;
-	m_useBatching = numManifoldsWithRows >= s_minimumContactManifoldsForBatching &&
-	                !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) &&
-	                caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric,
-	                                               m_resolveSingleConstraintRowLowerLimit);
+	m_useBatching = m_useBatching && numManifoldsWithRows > 0;
 	btBatchedConstraints& batched = m_batchedContactConstraints;
 	batched.m_constraintIndices.resize(0);
 	batched.m_batches.resize(0);
