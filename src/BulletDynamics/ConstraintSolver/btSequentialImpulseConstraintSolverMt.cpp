@@ -47,6 +47,10 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> rollingStart;      // per contact row, its first rolling row in rollingRows
 	btAlignedObjectArray<int> rollingRows;       // rolling rows grouped by contact row
 	btAlignedObjectArray<caliber::ContactPointRows> points;  // the points with rows, in order
+	// Per manifold of the solve: its solver bodies (-1: no rows), and its planned points.
+	btAlignedObjectArray<int> manifoldBodies;                  // two per manifold
+	btAlignedObjectArray<int> plannedCount;                    // per manifold
+	btAlignedObjectArray<caliber::ContactPointRows> planned;  // MANIFOLD_CACHE_SIZE per manifold
 };
 
 MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
@@ -63,6 +67,38 @@ int lowestFreeColour(uint32_t taken)
 
 // Points per task of the parallel row setup.
 const int kPointsPerTask = 64;
+
+// Manifolds per task of the parallel planning.
+const int kManifoldsPerTask = 32;
+
+// Which points of each manifold get rows (each manifold's own points: any order, any thread).
+struct PlanManifolds : public btIParallelForBody
+{
+	btPersistentManifold** manifolds;
+	MtSolverScratch* mt;
+	const btAlignedObjectArray<btSolverBody>* bodies;
+	const btContactSolverInfo* info;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			int& count = mt->plannedCount[i];
+			count = 0;
+			const int idA = mt->manifoldBodies[2 * i], idB = mt->manifoldBodies[2 * i + 1];
+			if (idA < 0) continue;
+			btPersistentManifold* manifold = manifolds[i];
+			btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
+			btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
+			const int numContacts = btMin(manifold->getNumContacts(), int(MANIFOLD_CACHE_SIZE));
+			for (int j = 0; j < numContacts; ++j)
+			{
+				caliber::ContactPointRows& point = mt->planned[i * MANIFOLD_CACHE_SIZE + count];
+				if (caliber::planContactPoint(*manifold, j, colObj0, colObj1, idA, idB, *bodies, *info, point)) ++count;
+			}
+		}
+	}
+};
 
 struct FillPointRows : public btIParallelForBody
 {
@@ -152,31 +188,47 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 		btSequentialImpulseConstraintSolver::convertContacts(manifoldPtr, numManifolds, infoGlobal);
 		return;
 	}
-	// Where every point's rows go, in the serial order (this also makes the solver bodies, in order);
-	// then the rows filled on the threads; then the warm starts applied in the serial order.
+	// The solver bodies, made in the serial order; which points get rows, on the threads; where their rows
+	// go, in the serial order; the rows filled on the threads; the warm starts applied in the serial order.
 	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	MtSolverScratch& mt = mtScratchOf(*this);
-	mt.points.resize(0);
-	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
-	int nextContact = m_tmpSolverContactConstraintPool.size();
-	int nextFriction = m_tmpSolverContactFrictionConstraintPool.size();
-	int nextRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
-	caliber::ContactPointRows point;
+	mt.manifoldBodies.resizeNoInitialize(2 * numManifolds);
+	mt.plannedCount.resizeNoInitialize(numManifolds);
+	mt.planned.resizeNoInitialize(numManifolds * MANIFOLD_CACHE_SIZE);
 	for (int i = 0; i < numManifolds; ++i)
 	{
 		btPersistentManifold* manifold = manifoldPtr[i];
 		btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
 		btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
+		mt.manifoldBodies[2 * i] = mt.manifoldBodies[2 * i + 1] = -1;
 		if (!colObj0 || !colObj1) continue;
 		const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
 		const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
 		if (!caliber::solverBodiesCanMove(m_tmpSolverBodyPool, solverBodyIdA, solverBodyIdB)) continue;
-		const int firstRow = nextContact;
-		for (int j = 0; j < manifold->getNumContacts(); ++j)
+		mt.manifoldBodies[2 * i] = solverBodyIdA;
+		mt.manifoldBodies[2 * i + 1] = solverBodyIdB;
+	}
+	if (numManifolds == 0) return;
+	PlanManifolds plan;
+	plan.manifolds = manifoldPtr;
+	plan.mt = &mt;
+	plan.bodies = &m_tmpSolverBodyPool;
+	plan.info = &infoGlobal;
+	btParallelFor(0, numManifolds, kManifoldsPerTask, plan);
+
+	mt.points.resize(0);
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	int nextContact = m_tmpSolverContactConstraintPool.size();
+	int nextFriction = m_tmpSolverContactFrictionConstraintPool.size();
+	int nextRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		const int count = mt.plannedCount[i];
+		if (count == 0) continue;
+		scratch.manifoldFirstRow.push_back(nextContact);
+		for (int k = 0; k < count; ++k)
 		{
-			if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, solverBodyIdA, solverBodyIdB,
-			                               m_tmpSolverBodyPool, infoGlobal, point))
-				continue;
+			caliber::ContactPointRows point = mt.planned[i * MANIFOLD_CACHE_SIZE + k];
 			point.contactRow = nextContact++;
 			point.firstFrictionRow = nextFriction;
 			point.firstRollingRow = nextRolling;
@@ -184,7 +236,6 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 			nextRolling += caliber::rollingRowsOf(*point.cp);
 			mt.points.push_back(point);
 		}
-		if (nextContact > firstRow) scratch.manifoldFirstRow.push_back(firstRow);
 	}
 	m_tmpSolverContactConstraintPool.resizeNoInitialize(nextContact);
 	m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(nextFriction);
