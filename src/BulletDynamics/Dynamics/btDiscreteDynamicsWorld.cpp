@@ -15,6 +15,7 @@
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btMotionState.h"
 #include "LinearMath/btQuickprof.h"
+#include "LinearMath/btThreads.h"
 #include "LinearMath/btTransformUtil.h"
 #include "LinearMath/btWarningHook.h"
 
@@ -394,20 +395,49 @@ void btDiscreteDynamicsWorld::applyGravity()
 	}
 }
 
+namespace
+{
+// The pose a body's motion state is given: with latency interpolation it lies between the last two
+// substeps (localTime - fixedTimeStep is in [-fixedTimeStep, 0)); without it, the pose is extrapolated
+// by localTime.
+btTransform interpolatedPose(const btRigidBody& body, bool latencyInterpolation, btScalar localTime,
+                             btScalar fixedTimeStep)
+{
+	const btScalar interpolationTime = (latencyInterpolation && fixedTimeStep != btScalar(0))
+	                                       ? localTime - fixedTimeStep
+	                                       : localTime * body.getHitFraction();
+	btTransform pose;
+	btTransformUtil::integrateTransform(body.getInterpolationWorldTransform(), body.getInterpolationLinearVelocity(),
+	                                    body.getInterpolationAngularVelocity(), interpolationTime, pose);
+	return pose;
+}
+
+// Bodies per task of the parallel motion-state poses.
+const int kMotionStatesPerTask = 128;
+
+struct InterpolatePoses : public btIParallelForBody
+{
+	btRigidBody* const* bodies;
+	btTransform* poses;
+	bool latencyInterpolation;
+	btScalar localTime;
+	btScalar fixedTimeStep;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+			if (bodies[i]->isActive())
+				poses[i] = interpolatedPose(*bodies[i], latencyInterpolation, localTime, fixedTimeStep);
+	}
+};
+}  // namespace
+
 void btDiscreteDynamicsWorld::synchronizeSingleMotionState(btRigidBody* body)
 {
 	btAssert(body);
 	if (!body || !body->getMotionState() || body->isStaticOrKinematicObject()) return;
-	// With latency interpolation the pose handed out lies between the last two substeps (m_localTime -
-	// m_fixedTimeStep is in [-fixedTimeStep, 0)); without it, the pose is extrapolated by m_localTime.
-	const btScalar interpolationTime = (m_latencyMotionStateInterpolation && m_fixedTimeStep != btScalar(0))
-	                                       ? m_localTime - m_fixedTimeStep
-	                                       : m_localTime * body->getHitFraction();
-	btTransform interpolatedTransform;
-	btTransformUtil::integrateTransform(body->getInterpolationWorldTransform(), body->getInterpolationLinearVelocity(),
-	                                    body->getInterpolationAngularVelocity(), interpolationTime,
-	                                    interpolatedTransform);
-	body->getMotionState()->setWorldTransform(interpolatedTransform);
+	body->getMotionState()->setWorldTransform(
+	    interpolatedPose(*body, m_latencyMotionStateInterpolation, m_localTime, m_fixedTimeStep));
 }
 
 void btDiscreteDynamicsWorld::synchronizeMotionStates()
@@ -422,10 +452,32 @@ void btDiscreteDynamicsWorld::synchronizeMotionStates()
 		}
 		return;
 	}
-	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
+	const int numBodies = m_nonStaticRigidBodies.size();
+	if (btGetTaskScheduler()->getNumThreads() < 2 || numBodies < 2 * kMotionStatesPerTask)
+	{
+		for (int i = 0; i < numBodies; ++i)
+		{
+			btRigidBody* body = m_nonStaticRigidBodies[i];
+			if (body->isActive()) synchronizeSingleMotionState(body);
+		}
+		return;
+	}
+	// With a scheduler: the interpolated poses on its threads, then the motion states told in body order
+	// on this thread (a user's motion state need not be thread-safe). Same poses, same calls, same order.
+	btAlignedObjectArray<btTransform>& poses = caliber::stepContextOf(*this).motionStatePoses;
+	poses.resizeNoInitialize(numBodies);
+	InterpolatePoses interpolate;
+	interpolate.bodies = &m_nonStaticRigidBodies[0];
+	interpolate.poses = &poses[0];
+	interpolate.latencyInterpolation = m_latencyMotionStateInterpolation;
+	interpolate.localTime = m_localTime;
+	interpolate.fixedTimeStep = m_fixedTimeStep;
+	btParallelFor(0, numBodies, kMotionStatesPerTask, interpolate);
+	for (int i = 0; i < numBodies; ++i)
 	{
 		btRigidBody* body = m_nonStaticRigidBodies[i];
-		if (body->isActive()) synchronizeSingleMotionState(body);
+		if (body->isActive() && body->getMotionState() && !body->isStaticOrKinematicObject())
+			body->getMotionState()->setWorldTransform(poses[i]);
 	}
 }
 

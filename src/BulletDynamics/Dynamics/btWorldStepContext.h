@@ -39,6 +39,8 @@ struct WorldStepContext
 	/// Solver batches solved so far (the solve index of caliber::SolveIndexScope: each batch's solve is
 	/// numbered in the world's sequence, whichever solver and thread solves it).
 	unsigned int solveCounter = 0;
+	/// The motion states' poses of a parallel synchronizeMotionStates.
+	btAlignedObjectArray<btTransform> motionStatePoses;
 	/// btDiscreteDynamicsWorldMt's solver for large batches (its constraintSolverMt), or null.
 	btConstraintSolver* largeBatchSolver = nullptr;
 	/// Sweeps of the joint position correction after each substep (0: off); see

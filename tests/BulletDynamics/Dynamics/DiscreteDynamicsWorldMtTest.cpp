@@ -138,8 +138,8 @@ public:
 		for (int i = 0; i < steps; ++i) m_world->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
 	}
 
-	// FNV-1a over the bits of every body's transform and velocities, and of every manifold in the
-	// dispatcher's order: its two bodies (by index in the world) and its points.
+	// FNV-1a over the bits of every body's transform and velocities and of its motion state's pose, and of
+	// every manifold in the dispatcher's order: its two bodies (by index in the world) and its points.
 	std::uint64_t hash() const
 	{
 		std::uint64_t h = 1469598103934665603ull;
@@ -154,6 +154,10 @@ public:
 			mix(&t.getOrigin()[0], 3 * sizeof(btScalar));
 			mix(&body->getLinearVelocity()[0], 3 * sizeof(btScalar));
 			mix(&body->getAngularVelocity()[0], 3 * sizeof(btScalar));
+			btTransform shown;  // what the motion state was told
+			body->getMotionState()->getWorldTransform(shown);
+			for (int r = 0; r < 3; ++r) mix(&shown.getBasis()[r][0], 3 * sizeof(btScalar));
+			mix(&shown.getOrigin()[0], 3 * sizeof(btScalar));
 		}
 		btDispatcher* dispatcher = m_world->getDispatcher();
 		for (int i = 0; i < dispatcher->getNumManifolds(); ++i)
