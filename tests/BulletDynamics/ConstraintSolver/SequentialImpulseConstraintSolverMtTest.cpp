@@ -200,8 +200,11 @@ TEST(SequentialImpulseConstraintSolverMt, PyramidRestsWithTheColouredSolveOnAnyT
 	serial.motion(serialShift, serialSpeed);
 
 	ColourEverySolve colourAll;
-	std::unique_ptr<btITaskScheduler> scheduler(btCreateDefaultTaskScheduler());
-	btSetTaskScheduler(scheduler.get());
+	// A library built without threads (CALIBER_THREADSAFE=OFF) has no pool: the sequential scheduler
+	// stands in.
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	btITaskScheduler* scheduler = pool ? pool.get() : btGetSequentialTaskScheduler();
+	btSetTaskScheduler(scheduler);
 	for (int threads : {1, 2, 4})
 	{
 		scheduler->setNumThreads(threads);
@@ -223,8 +226,11 @@ TEST(SequentialImpulseConstraintSolverMt, ParallelContactSetupGivesTheSerialSetu
 	// The rows of a large solve are filled on the threads and their warm starts applied in the serial
 	// order: the same bits as the serial setup, so the two solvers give the same world, step after step.
 	ColourEverySolve colourAll;
-	std::unique_ptr<btITaskScheduler> scheduler(btCreateDefaultTaskScheduler());
-	btSetTaskScheduler(scheduler.get());
+	// A library built without threads (CALIBER_THREADSAFE=OFF) has no pool: the sequential scheduler
+	// stands in.
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	btITaskScheduler* scheduler = pool ? pool.get() : btGetSequentialTaskScheduler();
+	btSetTaskScheduler(scheduler);
 	scheduler->setNumThreads(2);
 	Pyramid parallelSetup(true), serialSetup(true, true);
 	parallelSetup.step(40);
