@@ -210,10 +210,12 @@ private:
 	const btIParallelSumBody* m_sumBody = 0;
 	btAlignedObjectArray<btScalar> m_partials;
 	unsigned long long m_post = 0;  // the posting thread's copy of m_posted
-	std::atomic<int> m_nextChunk{0};
-	std::atomic<int> m_busyWorkers{0};
-	std::atomic<unsigned long long> m_posted{0};
-	std::atomic<bool> m_sleepHint{false};
+	// Each on a cache line of its own: every thread takes chunks from m_nextChunk while idle workers
+	// spin on m_posted, and sharing a line would make each take a cache miss for the other.
+	alignas(64) std::atomic<int> m_nextChunk{0};
+	alignas(64) std::atomic<int> m_busyWorkers{0};
+	alignas(64) std::atomic<unsigned long long> m_posted{0};
+	alignas(64) std::atomic<bool> m_sleepHint{false};
 	std::atomic<bool> m_quit{false};
 	std::mutex m_sleepMutex;
 	std::condition_variable m_wake;
