@@ -44,6 +44,9 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> colourRows;        // contact rows per colour
 	btAlignedObjectArray<int> colourCursor;
 	btAlignedObjectArray<int> orderedManifolds;  // manifolds colour by colour
+	btAlignedObjectArray<int> bodyOrder;         // counting sort by first moving body
+	btAlignedObjectArray<int> byBody;
+	btAlignedObjectArray<btScalar> batchResidual;
 	btAlignedObjectArray<int> rollingStart;      // per contact row, its first rolling row in rollingRows
 	btAlignedObjectArray<int> rollingRows;       // rolling rows grouped by contact row
 	btAlignedObjectArray<caliber::ContactPointRows> points;  // the points with rows, in order
@@ -56,6 +59,14 @@ struct MtSolverScratch
 MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
 {
 	return caliber::sideTable<MtSolverScratch>().acquire(&solver);
+}
+
+// The lower solver body of a row that is not the fixed entry (the sort key of its manifold).
+int firstMovingBody(const btSolverConstraint& row, int fixedBodyId)
+{
+	if (row.m_solverBodyIdA == fixedBodyId) return row.m_solverBodyIdB;
+	if (row.m_solverBodyIdB == fixedBodyId) return row.m_solverBodyIdA;
+	return btMin(row.m_solverBodyIdA, row.m_solverBodyIdB);
 }
 
 int lowestFreeColour(uint32_t taken)
@@ -113,7 +124,7 @@ struct FillPointRows : public btIParallelForBody
 };
 
 // One sweep over a batch of contact rows: normals, then their friction, then their rolling rows.
-struct BatchSweep : public btIParallelSumBody
+struct BatchSweep : public btIParallelForBody
 {
 	const btBatchedConstraints* batched;
 	btSolverBody* bodies;
@@ -125,12 +136,11 @@ struct BatchSweep : public btIParallelSumBody
 	int frictionRowsPerContact;
 	bool reverse;
 	int pass;  // 0: normal rows, 1: friction and rolling rows
+	btScalar* batchResidual;  // per batch of the phase
 
-	btScalar sumLoop(int iBegin, int iEnd) const override
+	void forLoop(int iBegin, int iEnd) const override
 	{
-		btScalar residual = btScalar(0);
-		for (int b = iBegin; b < iEnd; ++b) residual += sweepBatch(batched->m_batches[firstBatch + b]);
-		return residual;
+		for (int b = iBegin; b < iEnd; ++b) batchResidual[b] = sweepBatch(batched->m_batches[firstBatch + b]);
 	}
 
 	btScalar sweepBatch(const btBatchedConstraints::Range& batch) const
@@ -308,7 +318,16 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		++mt.colourCount[colour];
 		mt.colourRows[colour] += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
 	}
-	// Manifolds colour by colour (counting sort, stable: manifold order within a colour).
+	// Manifolds colour by colour, and within a colour by their first moving body (two stable counting
+	// sorts): a run of batches then holds the bodies of one region of the island (see the sweep).
+	mt.bodyOrder.resize(0);
+	mt.bodyOrder.resize(numSolverBodies + 1, 0);
+	for (int m = 0; m < numManifoldsWithRows; ++m)
+		++mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], m_fixedBodyId) + 1];
+	for (int b = 0; b < numSolverBodies; ++b) mt.bodyOrder[b + 1] += mt.bodyOrder[b];
+	mt.byBody.resize(numManifoldsWithRows);
+	for (int m = 0; m < numManifoldsWithRows; ++m)
+		mt.byBody[mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], m_fixedBodyId)]++] = m;
 	mt.colourCursor.resize(kColours + 1);
 	int start = 0;
 	for (int c = 0; c <= kColours; ++c)
@@ -317,7 +336,11 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		start += mt.colourCount[c];
 	}
 	mt.orderedManifolds.resize(numManifoldsWithRows);
-	for (int m = 0; m < numManifoldsWithRows; ++m) mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
+	for (int k = 0; k < numManifoldsWithRows; ++k)
+	{
+		const int m = mt.byBody[k];
+		mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
+	}
 
 	// Batches: whole manifolds, at least s_minBatchSize rows, and about a sixteenth of the colour, so that
 	// every thread finds work; the last colour (the manifolds no colour was left for) is one batch.
@@ -435,11 +458,20 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 	sweep.friction = &m_tmpSolverContactFrictionConstraintPool;
 	sweep.rolling = &m_tmpSolverContactRollingFrictionConstraintPool;
 	sweep.scratch = &mtScratchOf(*this);
+	sweep.batchResidual = 0;
 	sweep.frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	sweep.reverse = reverse;
 	// As in the serial solver, the normal rows of every colour first, so that friction is bounded by this
 	// sweep's normal impulses.
+	//
+	// Each thread takes one run of consecutive batches of a colour (the batches are in body order), so
+	// that from colour to colour and sweep to sweep a thread mostly finds its bodies and rows in its own
+	// cache: handing out single batches lets them wander between cores, and each core then runs at half
+	// speed on cache misses. The runs depend on the thread count, the batches do not; each batch's
+	// residual is kept and the sweep's residual summed batch by batch, so the bits do not depend on it.
+	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
 	const int numPhases = batched.m_phases.size();
+	MtSolverScratch& mt = mtScratchOf(*this);
 	for (int pass = 0; pass < 2; ++pass)
 	{
 		sweep.pass = pass;
@@ -447,8 +479,12 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 		{
 			const btBatchedConstraints::Range& phase =
 			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+			const int numBatches = phase.end - phase.begin;
+			mt.batchResidual.resizeNoInitialize(numBatches);
 			sweep.firstBatch = phase.begin;
-			residual += btParallelSum(0, phase.end - phase.begin, 1, sweep);
+			sweep.batchResidual = &mt.batchResidual[0];
+			btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);
+			for (int b = 0; b < numBatches; ++b) residual += mt.batchResidual[b];
 		}
 	}
 	return residual;
