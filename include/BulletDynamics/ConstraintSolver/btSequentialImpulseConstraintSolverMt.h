@@ -55,6 +55,9 @@ protected:
 	btScalar solveGroupCacheFriendlySetup(btCollisionObject * *bodies, int numBodies, btPersistentManifold** manifoldPtr,
 	                                      int numManifolds, btTypedConstraint** constraints, int numConstraints,
 	                                      const btContactSolverInfo& infoGlobal, btIDebugDraw* debugDrawer) override;
+	/// Large solves: contacts and bodies written back on the scheduler's threads.
+	btScalar solveGroupCacheFriendlyFinish(btCollisionObject * *bodies, int numBodies,
+	                                       const btContactSolverInfo& infoGlobal) override;
 	btScalar solveSingleIteration(int iteration, btCollisionObject** bodies, int numBodies,
 	                              btPersistentManifold** manifoldPtr, int numManifolds, btTypedConstraint** constraints,
 	                              int numConstraints, const btContactSolverInfo& infoGlobal,

@@ -76,6 +76,10 @@ int lowestFreeColour(uint32_t taken)
 	return kColours;
 }
 
+// Rows and bodies per task of the parallel write-back.
+const int kRowsPerWriteBackTask = 256;
+const int kBodiesPerWriteBackTask = 128;
+
 // Points per task of the parallel row setup.
 const int kPointsPerTask = 64;
 
@@ -488,4 +492,35 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 		}
 	}
 	return residual;
+}
+
+btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
+                                                                              const btContactSolverInfo& infoGlobal)
+{
+	if (!m_useBatching) return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, infoGlobal);
+	// Each contact row into its own manifold point and each solver body into its own body: any order,
+	// any thread, the same bits. Joints (feedback, breaking) on this thread.
+	struct WriteBack : public btIParallelForBody
+	{
+		btSequentialImpulseConstraintSolverMt* solver;
+		const btContactSolverInfo* info;
+		bool contacts;  // else bodies
+
+		void forLoop(int iBegin, int iEnd) const override
+		{
+			if (contacts)
+				solver->writeBackContacts(iBegin, iEnd, *info);
+			else
+				solver->writeBackBodies(iBegin, iEnd, *info);
+		}
+	};
+	WriteBack writeBack;
+	writeBack.solver = this;
+	writeBack.info = &infoGlobal;
+	writeBack.contacts = true;
+	btParallelFor(0, m_tmpSolverContactConstraintPool.size(), kRowsPerWriteBackTask, writeBack);
+	writeBackJoints(0, caliber::solverScratchOf(*this).joints.size(), infoGlobal);
+	writeBack.contacts = false;
+	btParallelFor(0, m_tmpSolverBodyPool.size(), kBodiesPerWriteBackTask, writeBack);
+	return btScalar(0);
 }
