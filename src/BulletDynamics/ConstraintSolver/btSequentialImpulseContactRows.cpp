@@ -481,10 +481,12 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 		point.contactRow = m_tmpSolverContactConstraintPool.size();
 		point.firstFrictionRow = m_tmpSolverContactFrictionConstraintPool.size();
 		point.firstRollingRow = m_tmpSolverContactRollingFrictionConstraintPool.size();
+		// One row at a time: expandNonInitializing grows the pools geometrically (resizeNoInitialize would
+		// reallocate them to the exact size for every point).
 		m_tmpSolverContactConstraintPool.expandNonInitializing();
-		m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(point.firstFrictionRow + frictionRowsPerContact);
-		m_tmpSolverContactRollingFrictionConstraintPool.resizeNoInitialize(point.firstRollingRow +
-		                                                                   caliber::rollingRowsOf(*point.cp));
+		for (int f = 0; f < frictionRowsPerContact; ++f) m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
+		for (int r = caliber::rollingRowsOf(*point.cp); r > 0; --r)
+			m_tmpSolverContactRollingFrictionConstraintPool.expandNonInitializing();
 		caliber::fillContactPointRows(pools, point, infoGlobal);
 		caliber::applyContactPointWarmStarts(pools, point, infoGlobal);
 	}
