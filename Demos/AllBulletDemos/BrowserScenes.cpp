@@ -8,6 +8,8 @@
 #include "ForkLiftScene.h"
 #include "Ragdoll.h"
 #include "SoftScenes.h"
+#include "DemoPictures.h"
+#include "DemoPrograms.h"
 #include "VehicleScene.h"
 #include "WorldScene.h"
 
@@ -229,11 +231,105 @@ public:
 private:
 	soft_demo::Scene m_scene;
 };
+// An empty world (gravity -y) for demos that draw without one: it holds only the boxes the user shoots.
+class EmptyWorld
+{
+public:
+	EmptyWorld() { m_world.setGravity(btVector3(0, -10, 0)); }
+	btDiscreteDynamicsWorld& world() { return m_world; }
+
+private:
+	btDefaultCollisionConfiguration m_configuration;
+	btCollisionDispatcher m_dispatcher{&m_configuration};
+	btDbvtBroadphase m_broadphase;
+	btSequentialImpulseConstraintSolver m_solver;
+	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+};
+
+// A demo without a world to step: its program runs once with a SceneRecording set (its report goes to
+// the terminal), and the browser plays back what it drew, one shot every half second, holding the last.
+class RecordedDemo : public BrowserDemo
+{
+public:
+	RecordedDemo(const std::string& name, int (*program)(int, char**)) : m_name(name)
+	{
+		std::printf("AllBulletDemos: %s's program runs; its report:\n", name.c_str());
+		std::vector<char> argument(name.begin(), name.end());
+		argument.push_back('\0');
+		char* argv[] = {argument.data(), nullptr};
+		caliber::demo::setSceneRecording(&m_recording);
+		m_exitCode = program(1, argv);
+		caliber::demo::setSceneRecording(nullptr);
+		std::fflush(stdout);
+	}
+	btDiscreteDynamicsWorld& world() override { return m_empty.world(); }
+	void step() override
+	{
+		m_empty.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		++m_steps;
+	}
+	void decorate(caliber::demo::Scene& scene) override
+	{
+		if (!m_recording.shots.empty()) scene.append(m_recording.shots[size_t(shot())].scene);
+	}
+	bool startView(btVector3& focusMin, btVector3& focusMax, btVector3& viewDirection) const override
+	{
+		if (m_recording.shots.empty()) return false;
+		// Every shot's focus: the camera does not have to move during the replay.
+		focusMin = m_recording.shots[0].focusMin;
+		focusMax = m_recording.shots[0].focusMax;
+		for (const caliber::demo::SceneRecording::Shot& s : m_recording.shots)
+		{
+			focusMin.setMin(s.focusMin);
+			focusMax.setMax(s.focusMax);
+		}
+		viewDirection = m_recording.shots.back().viewDirection;
+		return true;
+	}
+	std::string notice() const override
+	{
+		char line[160];
+		std::snprintf(line, sizeof(line), "%s'S PROGRAM: %s; ITS DRAWING, SHOT %d OF %d (REPORT IN THE TERMINAL)",
+		              m_name.c_str(), m_exitCode == 0 ? "CHECKS PASSED" : "A CHECK FAILED", shot() + 1,
+		              int(m_recording.shots.size()));
+		return line;
+	}
+
+private:
+	int shot() const
+	{
+		const int shots = int(m_recording.shots.size());
+		return shots == 0 ? 0 : btMin(shots - 1, m_steps / kStepsPerShot);
+	}
+	static const int kStepsPerShot = 30;
+	std::string m_name;
+	EmptyWorld m_empty;
+	caliber::demo::SceneRecording m_recording;
+	int m_exitCode = 0;
+	int m_steps = 0;
+};
+
+struct RecordedProgram
+{
+	const char* name;
+	int (*program)(int, char**);
+};
+const RecordedProgram kRecordedPrograms[] = {
+    {"LinearMathDemo", caliber::demo::linearMathDemo},
+    {"SimplexDemo", caliber::demo::simplexDemo},
+    {"GjkConvexCastDemo", caliber::demo::gjkConvexCastDemo},
+    {"CollisionInterfaceDemo", caliber::demo::collisionInterfaceDemo},
+    {"Raytracer", caliber::demo::raytracerDemo},
+    {"UserCollisionAlgorithm", caliber::demo::userCollisionAlgorithmDemo},
+};
 }  // namespace
 
 std::vector<std::string> demoNames()
 {
-	std::vector<std::string> names = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo", "ForkLiftDemo"};
+	std::vector<std::string> names;
+	for (const RecordedProgram& program : kRecordedPrograms) names.push_back(program.name);
+	const std::vector<std::string> stepped = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo", "ForkLiftDemo"};
+	names.insert(names.end(), stepped.begin(), stepped.end());
 	for (const std::string& name : soft_demo::sceneNames()) names.push_back("SoftDemo/" + name);
 	for (const std::string& name : benchmark_demo::sceneNames()) names.push_back("Benchmark/" + name);
 	return names;
@@ -241,6 +337,8 @@ std::vector<std::string> demoNames()
 
 std::unique_ptr<BrowserDemo> makeDemo(const std::string& name)
 {
+	for (const RecordedProgram& program : kRecordedPrograms)
+		if (name == program.name) return std::unique_ptr<BrowserDemo>(new RecordedDemo(name, program.program));
 	std::unique_ptr<benchmark_demo::Scene> scene;
 	if (name == "BasicDemo") scene.reset(new BasicScene());
 	if (name == "RagdollDemo") scene.reset(new RagdollScene());

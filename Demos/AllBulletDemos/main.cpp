@@ -321,6 +321,7 @@ public:
 		              m_paused ? "   PAUSED" : "");
 		std::string text = head;
 		if (m_scene->driven()) text += "ARROWS DRIVE, ENTER BRAKES OR JUMPS, U/D FORK, N NEXT DEMO\n";
+		if (!m_scene->notice().empty()) text += m_scene->notice() + "\n";
 		text += "PROFILE, MS PER STEP (LAST 60 STEPS; H HIDES):\n";
 		text += m_profile.empty() ? std::string("  (after 60 steps)\n") : m_profile;
 		return text;
