@@ -1,0 +1,35 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_DEMOS_COLLADA_SCENE_H
+#define CALIBER_DEMOS_COLLADA_SCENE_H
+// ColladaDemo's world: a COLLADA physics document's bodies and joints (by default playground.dae: a
+// stack, a rolling ball, a hinged plank) added to a world with the document's gravity. Used by
+// ColladaDemo, which checks the run and the export round trip, and by the demo browser.
+
+#include "Serialize/ColladaConverter/ColladaPhysics.h"
+#include "btBulletDynamicsCommon.h"
+
+namespace collada_demo
+{
+/// A loaded document and the world that holds its bodies.
+class Scene
+{
+public:
+	~Scene();
+	/// Imports the file and adds its bodies and joints to the world; false (document().error says why)
+	/// when it does not load.
+	bool load(const char* path);
+	btDiscreteDynamicsWorld& world() { return m_world; }
+	caliber::ColladaPhysicsScene& document() { return m_document; }
+
+private:
+	btDefaultCollisionConfiguration m_configuration;
+	btCollisionDispatcher m_dispatcher{&m_configuration};
+	btDbvtBroadphase m_broadphase;
+	btSequentialImpulseConstraintSolver m_solver;
+	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::ColladaPhysicsScene m_document;
+	bool m_added = false;
+};
+}  // namespace collada_demo
+
+#endif
