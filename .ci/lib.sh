@@ -207,7 +207,7 @@ caliber_check_browser() {
 		return 1
 	}
 	# Driving keys: with the up arrow held for 2 s the car, the character and the fork lift must move
-	# off (over 2 m: each goes 2 to 3 m/s once under way).
+	# off (over 3 m: each goes 2 to 3 m/s once under way).
 	for demo in VehicleDemo CharacterDemo ForkLiftDemo; do
 		out="$("${xvfb[@]}" "$browser" --demo "$demo" --frames 120 --size 320x240 --hold up)"
 		echo "$out"

@@ -357,7 +357,8 @@ std::unique_ptr<BrowserDemo> makeBspDemo()
 	if (!caliber::loadBspFile(CALIBER_EXAMPLE_BSP, level))
 		return std::unique_ptr<BrowserDemo>(new MissingDemo("BspDemo", level.error));
 	caliber::BspLevelShape shape = caliber::buildBspLevelShape(caliber::convertBspBrushes(level, bsp_demo::kScale));
-	if (!shape.compound) return std::unique_ptr<BrowserDemo>(new MissingDemo("BspDemo", "the level has no solid brush"));
+	if (!shape.compound)
+		return std::unique_ptr<BrowserDemo>(new MissingDemo("BspDemo", "the level has no solid brush"));
 	return std::unique_ptr<BrowserDemo>(new BspDemo(std::move(shape)));
 }
 #endif
@@ -443,7 +444,8 @@ std::unique_ptr<BrowserDemo> makeExtrasDemo(const std::string& name)
 #ifdef CALIBER_BROWSER_BSP
 		return makeBspDemo();
 #else
-		return std::unique_ptr<BrowserDemo>(new MissingDemo(name, "this build has no BspLoader (CALIBER_BUILD_EXTRAS)"));
+		return std::unique_ptr<BrowserDemo>(
+		    new MissingDemo(name, "this build has no BspLoader (CALIBER_BUILD_EXTRAS)"));
 #endif
 	}
 	if (name == "ObjDemo")
@@ -451,7 +453,8 @@ std::unique_ptr<BrowserDemo> makeExtrasDemo(const std::string& name)
 #ifdef CALIBER_BROWSER_OBJ
 		return makeObjDemo();
 #else
-		return std::unique_ptr<BrowserDemo>(new MissingDemo(name, "this build has no ObjLoader (CALIBER_BUILD_EXTRAS)"));
+		return std::unique_ptr<BrowserDemo>(
+		    new MissingDemo(name, "this build has no ObjLoader (CALIBER_BUILD_EXTRAS)"));
 #endif
 	}
 	if (name == "ConvexDecompositionDemo")
@@ -564,7 +567,8 @@ std::vector<std::string> demoNames()
 	std::vector<std::string> names;
 	for (const RecordedProgram& program : kRecordedPrograms) names.push_back(program.name);
 	names.push_back("HelloWorld");
-	const std::vector<std::string> stepped = {"BasicDemo", "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo", "ConcaveDemo", "VehicleDemo", "CharacterDemo", "ForkLiftDemo"};
+	const std::vector<std::string> stepped = {"BasicDemo",   "RagdollDemo", "ConstraintDemo", "CcdPhysicsDemo",
+	                                          "ConcaveDemo", "VehicleDemo", "CharacterDemo",  "ForkLiftDemo"};
 	names.insert(names.end(), stepped.begin(), stepped.end());
 	for (const char* name : kExtrasDemos) names.push_back(name);
 	for (const std::string& name : soft_demo::sceneNames()) names.push_back("SoftDemo/" + name);

@@ -20,9 +20,9 @@ namespace all_bullet_demos
 /// U / D (the fork), each -1, 0 or 1.
 struct Controls
 {
-	int forward = 0;  ///< up arrow 1, down arrow -1
-	int turn = 0;     ///< left arrow 1, right arrow -1
-	int lift = 0;     ///< U 1, D -1
+	int forward = 0;     ///< up arrow 1, down arrow -1
+	int turn = 0;        ///< left arrow 1, right arrow -1
+	int lift = 0;        ///< U 1, D -1
 	bool brake = false;  ///< Enter: brake, or jump for the character
 };
 

@@ -80,10 +80,22 @@ struct NamedKey
 	int key;
 };
 const NamedKey kNamedKeys[] = {
-    {"space", GLFW_KEY_SPACE}, {"s", GLFW_KEY_S}, {"r", GLFW_KEY_R}, {"b", GLFW_KEY_B}, {"w", GLFW_KEY_W},
-    {"a", GLFW_KEY_A}, {"c", GLFW_KEY_C}, {"j", GLFW_KEY_J}, {"p", GLFW_KEY_P}, {"f", GLFW_KEY_F},
-    {"h", GLFW_KEY_H}, {"n", GLFW_KEY_N}, {"pagedown", GLFW_KEY_PAGE_DOWN}, {"pageup", GLFW_KEY_PAGE_UP},
-    {"left", GLFW_KEY_LEFT}, {"right", GLFW_KEY_RIGHT},
+    {"space", GLFW_KEY_SPACE},
+    {"s", GLFW_KEY_S},
+    {"r", GLFW_KEY_R},
+    {"b", GLFW_KEY_B},
+    {"w", GLFW_KEY_W},
+    {"a", GLFW_KEY_A},
+    {"c", GLFW_KEY_C},
+    {"j", GLFW_KEY_J},
+    {"p", GLFW_KEY_P},
+    {"f", GLFW_KEY_F},
+    {"h", GLFW_KEY_H},
+    {"n", GLFW_KEY_N},
+    {"pagedown", GLFW_KEY_PAGE_DOWN},
+    {"pageup", GLFW_KEY_PAGE_UP},
+    {"left", GLFW_KEY_LEFT},
+    {"right", GLFW_KEY_RIGHT},
 };
 
 // Parses --keys' list (KEY@FRAME, comma-separated) into keys; false for an unknown key or a bad frame.
@@ -118,14 +130,22 @@ bool parseHeld(const std::string& list, all_bullet_demos::Controls& held)
 	{
 		const size_t comma = std::min(list.find(',', start), list.size());
 		const std::string key = list.substr(start, comma - start);
-		if (key == "up") held.forward = 1;
-		else if (key == "down") held.forward = -1;
-		else if (key == "left") held.turn = 1;
-		else if (key == "right") held.turn = -1;
-		else if (key == "enter") held.brake = true;
-		else if (key == "u") held.lift = 1;
-		else if (key == "d") held.lift = -1;
-		else return false;
+		if (key == "up")
+			held.forward = 1;
+		else if (key == "down")
+			held.forward = -1;
+		else if (key == "left")
+			held.turn = 1;
+		else if (key == "right")
+			held.turn = -1;
+		else if (key == "enter")
+			held.brake = true;
+		else if (key == "u")
+			held.lift = 1;
+		else if (key == "d")
+			held.lift = -1;
+		else
+			return false;
 		start = comma + 1;
 	}
 	return true;
@@ -136,12 +156,13 @@ int parse(int argc, char** argv, Options& options)
 {
 	auto usage = [&](FILE* out)
 	{
-		std::fprintf(out,
-		             "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--drag X0,Y0,X1,Y1]\n"
-		             "  [--hold KEYS] [--orbit DX,DY] [--pan DX,DY] [--wheel N] [--keys KEY@FRAME,...] [--list]\n"
-		             "  --frames N without input: run N steps and exit; --screenshot writes the last frame as PNG\n"
-		             "  --keys: space s r b w a c j p f h n pageup pagedown left right, each before step FRAME (0: first)\n",
-		             argv[0]);
+		std::fprintf(
+		    out,
+		    "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--drag X0,Y0,X1,Y1]\n"
+		    "  [--hold KEYS] [--orbit DX,DY] [--pan DX,DY] [--wheel N] [--keys KEY@FRAME,...] [--list]\n"
+		    "  --frames N without input: run N steps and exit; --screenshot writes the last frame as PNG\n"
+		    "  --keys: space s r b w a c j p f h n pageup pagedown left right, each before step FRAME (0: first)\n",
+		    argv[0]);
 	};
 	for (int i = 1; i < argc; ++i)
 	{
@@ -194,7 +215,8 @@ int parse(int argc, char** argv, Options& options)
 		{
 			if (!parseHeld(value, options.held))
 			{
-				std::fprintf(stderr, "AllBulletDemos: --hold needs keys from up, down, left, right, enter, u, d, got '%s'\n",
+				std::fprintf(stderr,
+				             "AllBulletDemos: --hold needs keys from up, down, left, right, enter, u, d, got '%s'\n",
 				             value);
 				return 2;
 			}
@@ -800,8 +822,10 @@ int main(int argc, char** argv)
 	// --hold drives a demo: refuse one without driving keys before opening a window.
 	if (options.hold && !all_bullet_demos::makeDemo(options.demo)->driven())
 	{
-		std::fprintf(stderr, "AllBulletDemos: --hold: %s is not driven by keys (VehicleDemo, CharacterDemo and "
-		             "ForkLiftDemo are)\n", options.demo.c_str());
+		std::fprintf(stderr,
+		             "AllBulletDemos: --hold: %s is not driven by keys (VehicleDemo, CharacterDemo and "
+		             "ForkLiftDemo are)\n",
+		             options.demo.c_str());
 		return 2;
 	}
 	glfwSetErrorCallback(onGlfwError);
@@ -887,11 +911,12 @@ int main(int argc, char** argv)
 				{
 					// The node the cursor holds, against where the cursor's point went.
 					const btVector3 end = draggedSoft->m_nodes[draggedNode].m_x, target = browser.softTarget();
-					std::printf("drag: picked node %d of a soft body at (%.2f, %.2f, %.2f), dragged to (%.2f, %.2f, "
-					            "%.2f), %.2f m; the cursor's point moved %.2f m and is %.2f m from the node\n",
-					            draggedNode, double(dragStart.x()), double(dragStart.y()), double(dragStart.z()),
-					            double(end.x()), double(end.y()), double(end.z()), double((end - dragStart).length()),
-					            double((target - softTargetStart).length()), double((target - end).length()));
+					std::printf(
+					    "drag: picked node %d of a soft body at (%.2f, %.2f, %.2f), dragged to (%.2f, %.2f, "
+					    "%.2f), %.2f m; the cursor's point moved %.2f m and is %.2f m from the node\n",
+					    draggedNode, double(dragStart.x()), double(dragStart.y()), double(dragStart.z()),
+					    double(end.x()), double(end.y()), double(end.z()), double((end - dragStart).length()),
+					    double((target - softTargetStart).length()), double((target - end).length()));
 				}
 				else if (!dragged)
 				{

@@ -107,7 +107,8 @@ int diff(const char* a, const char* b)
 	}
 	if (first.width != second.width || first.height != second.height)
 	{
-		std::printf("--diff: FAILED: %d x %d against %d x %d\n", first.width, first.height, second.width, second.height);
+		std::printf("--diff: FAILED: %d x %d against %d x %d\n", first.width, first.height, second.width,
+		            second.height);
 		return 1;
 	}
 	int differ = 0;
@@ -136,8 +137,8 @@ int main(int argc, char** argv)
 		if (std::strcmp(argv[first], "--near") == 0)
 		{
 			char trailing = 0;
-			const int read = std::sscanf(value, "%d,%d,%d%c", &measures.color[0], &measures.color[1], &measures.color[2],
-			                             &trailing);
+			const int read =
+			    std::sscanf(value, "%d,%d,%d%c", &measures.color[0], &measures.color[1], &measures.color[2], &trailing);
 			bool inRange = read == 3;
 			for (int c = 0; c < 3; ++c) inRange = inRange && measures.color[c] >= 0 && measures.color[c] <= 255;
 			if (!inRange)

@@ -22,7 +22,8 @@ namespace
 {
 bool load(const char* path, const std::string& builtIn, caliber::ObjModel& model)
 {
-	const bool ok = path ? caliber::loadObjFile(path, model) : caliber::loadObjFromMemory(builtIn.data(), builtIn.size(), model);
+	const bool ok =
+	    path ? caliber::loadObjFile(path, model) : caliber::loadObjFromMemory(builtIn.data(), builtIn.size(), model);
 	if (!ok) printf("ObjDemo: %s:\n%s", path ? path : "built-in model", model.describeErrors().c_str());
 	return ok;
 }
@@ -41,9 +42,11 @@ int main(int argc, char** argv)
 	if (!load(files.size() > 0 ? files[0].c_str() : 0, obj_demo::levelText(), level)) return 1;
 	if (!load(files.size() > 1 ? files[1].c_str() : 0, obj_demo::piecesText(), pieces)) return 1;
 	for (const caliber::ObjMesh& mesh : level.meshes)
-		printf("level group '%s': %d vertices, %d triangles\n", mesh.name.c_str(), mesh.vertices.size(), mesh.numTriangles());
+		printf("level group '%s': %d vertices, %d triangles\n", mesh.name.c_str(), mesh.vertices.size(),
+		       mesh.numTriangles());
 	for (const caliber::ObjMesh& mesh : pieces.meshes)
-		printf("piece group '%s': %d vertices, %d triangles\n", mesh.name.c_str(), mesh.vertices.size(), mesh.numTriangles());
+		printf("piece group '%s': %d vertices, %d triangles\n", mesh.name.c_str(), mesh.vertices.size(),
+		       mesh.numTriangles());
 
 	caliber::StaticMeshShape levelShape = caliber::buildStaticMeshShape(level);
 	std::vector<std::unique_ptr<btConvexHullShape>> hulls = caliber::buildConvexHullShapes(pieces);
@@ -65,17 +68,21 @@ int main(int argc, char** argv)
 	{
 		const btVector3& p = body->getCenterOfMassPosition();
 		resting += body->getLinearVelocity().length() < btScalar(0.05);
-		inside += btFabs(p.x()) < 6 && btFabs(p.z()) < 6 && p.y() > btScalar(0.04) * (p.x() * p.x() + p.z() * p.z()) - btScalar(0.87);
-		printf("  piece at (%.2f %.2f %.2f), speed %.3f m/s\n", p.x(), p.y(), p.z(), body->getLinearVelocity().length());
+		inside += btFabs(p.x()) < 6 && btFabs(p.z()) < 6 &&
+		          p.y() > btScalar(0.04) * (p.x() * p.x() + p.z() * p.z()) - btScalar(0.87);
+		printf("  piece at (%.2f %.2f %.2f), speed %.3f m/s\n", p.x(), p.y(), p.z(),
+		       body->getLinearVelocity().length());
 	}
 	pictures.capture(world);
 	const bool settled = resting == int(bodies.size()) && inside == int(bodies.size());
-	printf("check: all %d pieces rest inside the bowl, on its surface: %s\n", int(bodies.size()), settled ? "ok" : "FAILED");
+	printf("check: all %d pieces rest inside the bowl, on its surface: %s\n", int(bodies.size()),
+	       settled ? "ok" : "FAILED");
 
 	// A malformed file: the loader names the line.
 	const char broken[] = "v 0 0 0\nv 1 0 0\nv 0 1\nf 1 2 3\n";
 	caliber::ObjModel bad;
-	const bool refused = !caliber::loadObjFromMemory(broken, sizeof(broken) - 1, bad) && !bad.errors.empty() && bad.errors[0].line == 3;
+	const bool refused =
+	    !caliber::loadObjFromMemory(broken, sizeof(broken) - 1, bad) && !bad.errors.empty() && bad.errors[0].line == 3;
 	printf("a file with a vertex of two coordinates:\n%s", bad.describeErrors().c_str());
 	printf("check: the malformed file is refused at line 3: %s\n", refused ? "ok" : "FAILED");
 	return pictures.finish(settled && refused ? 0 : 1);
