@@ -3,8 +3,8 @@
 // AllBulletDemos: the demo browser. Every demo of its list in one window (GLFW, OpenGL 3.3 core),
 // drawn with the same scene the headless pictures use (Demos/Common) and stepped at 60 Hz.
 //
-// Mouse: left-drag a body to pull it (a point-to-point joint to the cursor, as Bullet's demos do),
-// left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
+// Mouse: left-drag a body to pull it (a point-to-point joint to the cursor, as Bullet's demos do) or
+// a soft body to hold its nearest node, left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
 // Keys: space pause, S single step, R reset, B shoot a box, W wireframe, A AABBs, C contact points,
 // J joint frames and limits, P print the step's profile (btQuickprof), F frame the scene again,
 // H hide or show the on-screen text (demo, body count, step and frame times, btQuickprof's profile),
@@ -19,8 +19,10 @@
 // pixels) does what a user's left-drag would during those N steps: press at (X0, Y0), move to
 // (X1, Y1), release at the end; it reports the body it picked and how far it moved, and fails when
 // nothing was picked. --hold KEYS (comma-separated: up, down, left, right, enter, u, d) holds those
-// keys through the N steps of a driven demo and reports how far the driver moved. --list prints the
-// demos.
+// keys through the N steps of a driven demo and reports how far the driver moved. --orbit DX,DY,
+// --pan DX,DY and --wheel N move the camera before the first step; --keys KEY@FRAME,... presses keys
+// before given steps. A scripted run prints the bodies at its start and end (with a hash of their
+// exact positions) and the camera, for .ci/lib.sh's tests. --list prints the demos.
 
 #define GLFW_INCLUDE_GLCOREARB
 #define GL_GLEXT_PROTOTYPES
@@ -299,6 +301,7 @@ public:
 	void load(int index)
 	{
 		unload();
+		++m_loads;
 		m_index = (index % int(m_names.size()) + int(m_names.size())) % int(m_names.size());
 		m_scene = all_bullet_demos::makeDemo(m_names[size_t(m_index)]);
 		m_stepMs = 0;
@@ -351,6 +354,8 @@ public:
 		m_held = held;
 	}
 	all_bullet_demos::BrowserDemo& demo() { return *m_scene; }
+	/// How many times a demo was loaded (R and N load again: what was picked before is gone).
+	int loads() const { return m_loads; }
 	/// The name of the demo shown now.
 	const std::string& name() const { return m_names[size_t(m_index)]; }
 
@@ -765,6 +770,7 @@ private:
 	double m_cursorX = 0, m_cursorY = 0;
 	btBoxShape m_shotShape{btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5))};
 	std::vector<std::unique_ptr<btRigidBody>> m_shots;
+	int m_loads = 0;
 	bool m_scripted = false;
 	all_bullet_demos::Controls m_held;
 	btVector3 m_driver{0, 0, 0};
@@ -874,10 +880,12 @@ int main(int argc, char** argv)
 			btSoftBody* draggedSoft = nullptr;
 			int draggedNode = -1;
 			btVector3 dragStart(0, 0, 0), softTargetStart(0, 0, 0);
+			int pickedAt = 0;
 			if (options.drag)
 			{
 				browser.setCursor(options.dragFrom[0], options.dragFrom[1]);
 				browser.pressLeft();
+				pickedAt = browser.loads();
 				dragged = browser.picked();
 				if (dragged) dragStart = dragged->getCenterOfMassPosition();
 				draggedSoft = browser.pickedSoft();
@@ -907,7 +915,13 @@ int main(int argc, char** argv)
 			pressKeys(options.frames);
 			if (options.drag)
 			{
-				if (draggedSoft)
+				if (browser.loads() != pickedAt && (dragged || draggedSoft))
+				{
+					// R or N during the drag: the picked body went with the demo it was in.
+					std::printf("drag: the demo was loaded again during the drag; the picked body is gone\n");
+					exitCode = 1;
+				}
+				else if (draggedSoft)
 				{
 					// The node the cursor holds, against where the cursor's point went.
 					const btVector3 end = draggedSoft->m_nodes[draggedNode].m_x, target = browser.softTarget();
