@@ -333,6 +333,14 @@ caliber_check_browser_input() {
 	awk '/^drag: picked node/ { if ($(NF - 14) + 0 > 2 && $(NF - 4) + 0 < 0.5) ok = 1 } END { exit !ok }' \
 		"$shots/cloth.out" || fail "the drag did not pull the cloth's node"
 
+	# R during a drag takes the picked body away with the demo: the report says so and exits 1, it does
+	# not read the body that is gone.
+	if browse gone --demo BasicDemo --frames 10 --drag 160,125,160,30 --keys h@0,r@5; then
+		fail "a drag across a reset was reported as a success"
+	fi
+	grep -q "^drag: the demo was loaded again during the drag" "$shots/gone.out" || fail "a drag across a reset"
+	echo "R during a drag: the pick is dropped and reported"
+
 	# Bad input is refused with exit 2 before a window opens.
 	local bad
 	for bad in "--keys x@0" "--keys s" "--keys s@20 --frames 10" "--wheel many" "--orbit 1" "--pan 1,2,3"; do
