@@ -9,6 +9,7 @@
 #include "Ragdoll.h"
 #include "SoftScenes.h"
 #include "DemoPictures.h"
+#include "DemoWorld.h"
 #include "DemoPrograms.h"
 #include "HelloWorldScene.h"
 #include "VehicleScene.h"
@@ -248,19 +249,16 @@ public:
 private:
 	soft_demo::Scene m_scene;
 };
+
 // An empty world (gravity -y) for demos that draw without one: it holds only the boxes the user shoots.
 class EmptyWorld
 {
 public:
-	EmptyWorld() { m_world.setGravity(btVector3(0, -10, 0)); }
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	EmptyWorld() { world().setGravity(btVector3(0, -10, 0)); }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_physics;
 };
 
 // HelloWorld's ball dropped on the ground, stepped as HelloWorld steps it.

@@ -5,9 +5,9 @@ namespace bsp_demo
 {
 Scene::Scene(btCollisionShape* level)
 {
-	m_world.setGravity(btVector3(0, 0, btScalar(-9.81)));
+	world().setGravity(btVector3(0, 0, btScalar(-9.81)));
 	m_level.reset(new btRigidBody(0, nullptr, level));
-	m_world.addRigidBody(m_level.get());
+	world().addRigidBody(m_level.get());
 
 	btCollisionShape* shapes[3] = {&m_sphere, &m_box, &m_cylinder};
 	for (int i = 0; i < 40; ++i)
@@ -24,7 +24,7 @@ Scene::Scene(btCollisionShape* level)
 		body->setWorldTransform(pose);
 		body->setFriction(btScalar(0.7));
 		body->setRollingFriction(btScalar(0.05));
-		m_world.addRigidBody(body.get());
+		world().addRigidBody(body.get());
 		m_bodies.push_back(std::move(body));
 	}
 	// One box over each pillar top (1 m across, 6 m up).
@@ -36,14 +36,14 @@ Scene::Scene(btCollisionShape* level)
 		std::unique_ptr<btRigidBody> body(new btRigidBody(1, nullptr, &m_box, inertia));
 		body->setWorldTransform(btTransform(btQuaternion::getIdentity(), top));
 		body->setFriction(btScalar(0.7));
-		m_world.addRigidBody(body.get());
+		world().addRigidBody(body.get());
 		m_bodies.push_back(std::move(body));
 	}
 }
 
 Scene::~Scene()
 {
-	for (const auto& body : m_bodies) m_world.removeRigidBody(body.get());
-	m_world.removeRigidBody(m_level.get());
+	for (const auto& body : m_bodies) world().removeRigidBody(body.get());
+	world().removeRigidBody(m_level.get());
 }
 }  // namespace bsp_demo

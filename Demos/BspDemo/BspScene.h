@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace bsp_demo
@@ -22,15 +23,11 @@ class Scene
 public:
 	explicit Scene(btCollisionShape* level);
 	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 	const std::vector<std::unique_ptr<btRigidBody>>& bodies() const { return m_bodies; }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	std::unique_ptr<btRigidBody> m_level;
 	btSphereShape m_sphere{btScalar(0.25)};
 	btBoxShape m_box{btVector3(btScalar(0.25), btScalar(0.25), btScalar(0.25))};

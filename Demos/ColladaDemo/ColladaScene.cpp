@@ -6,7 +6,7 @@ namespace collada_demo
 bool Scene::load(const char* path)
 {
 	if (m_added || !caliber::importColladaPhysicsFile(path, m_document)) return false;
-	m_document.addTo(m_world);
+	m_document.addTo(world());
 	m_added = true;
 	return true;
 }
@@ -14,6 +14,6 @@ bool Scene::load(const char* path)
 Scene::~Scene()
 {
 	// The bodies leave the world before either is destroyed.
-	if (m_added) m_document.removeFrom(m_world);
+	if (m_added) m_document.removeFrom(world());
 }
 }  // namespace collada_demo

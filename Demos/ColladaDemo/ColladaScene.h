@@ -6,6 +6,7 @@
 // ColladaDemo, which checks the run and the export round trip, and by the demo browser.
 
 #include "Serialize/ColladaConverter/ColladaPhysics.h"
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace collada_demo
@@ -18,15 +19,11 @@ public:
 	/// Imports the file and adds its bodies and joints to the world; false (document().error says why)
 	/// when it does not load.
 	bool load(const char* path);
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 	caliber::ColladaPhysicsScene& document() { return m_document; }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	caliber::ColladaPhysicsScene m_document;
 	bool m_added = false;
 };

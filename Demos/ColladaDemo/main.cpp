@@ -16,19 +16,8 @@
 #include <string>
 
 #include "ColladaScene.h"
+#include "DemoWorld.h"
 #include "Serialize/ColladaConverter/ColladaPhysics.h"
-
-namespace
-{
-struct World
-{
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher{&configuration};
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
-};
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -90,10 +79,10 @@ int main(int argc, char** argv)
 	bool roundTrip = caliber::exportColladaPhysics(world, scene.timeStep, first, error);
 	caliber::ColladaPhysicsScene copy;
 	roundTrip = roundTrip && caliber::importColladaPhysics(first.data(), first.size(), copy);
-	World copyPhysics;
-	copy.addTo(copyPhysics.world);
+	caliber::demo::DemoWorld copyPhysics;  // a world of its own for the imported export
+	copy.addTo(copyPhysics.world());
 	roundTrip =
-	    roundTrip && caliber::exportColladaPhysics(copyPhysics.world, copy.timeStep, second, error) && first == second;
+	    roundTrip && caliber::exportColladaPhysics(copyPhysics.world(), copy.timeStep, second, error) && first == second;
 	printf("export: %zu bytes; imported again and exported: %s\n", first.size(),
 	       roundTrip ? "the same text" : (error.empty() ? copy.error.c_str() : error.c_str()));
 
@@ -102,7 +91,7 @@ int main(int argc, char** argv)
 	caliber::importColladaPhysics(cut.data(), cut.size(), damaged);
 	printf("the export cut in half: %s\n", damaged.ok() ? "loaded" : damaged.error.c_str());
 
-	copy.removeFrom(copyPhysics.world);  // bodies leave their worlds before either is destroyed
+	copy.removeFrom(copyPhysics.world());  // bodies leave their worlds before either is destroyed
 
 	const bool restOk = resting == dynamic && lowest > 0;
 	const bool stackOk = top > btScalar(2.4) && top < btScalar(2.6);

@@ -40,9 +40,9 @@ bool decompose(const char* name, const caliber::ExampleMesh& mesh, Decomposed& o
 
 Scene::Scene(Decomposed& torus, Decomposed& cup, Decomposed& bracket)
 {
-	m_world.setGravity(btVector3(0, 0, btScalar(-9.81)));
+	world().setGravity(btVector3(0, 0, btScalar(-9.81)));
 	m_ground.reset(new btRigidBody(0, nullptr, &m_groundShape));
-	m_world.addRigidBody(m_ground.get());
+	world().addRigidBody(m_ground.get());
 
 	// The torus and the bracket fall from 0.5 m, tilted; the cup stands upright at x = 0 with a ball above it.
 	const auto add = [&](Decomposed& d, const btVector3& at, const btQuaternion& tilt)
@@ -51,7 +51,7 @@ Scene::Scene(Decomposed& torus, Decomposed& cup, Decomposed& bracket)
 		m_bodies.emplace_back(new btRigidBody(1, nullptr, d.centred.get(), d.inertia));
 		m_bodies.back()->setWorldTransform(pose * d.principal);
 		m_bodies.back()->setFriction(btScalar(0.8));
-		m_world.addRigidBody(m_bodies.back().get());
+		world().addRigidBody(m_bodies.back().get());
 	};
 	add(torus, btVector3(-1.2, 0, btScalar(0.5)), btQuaternion(btVector3(1, 0, 0), btScalar(0.3)));
 	add(cup, btVector3(0, 0, btScalar(0.001)), btQuaternion::getIdentity());
@@ -61,13 +61,13 @@ Scene::Scene(Decomposed& torus, Decomposed& cup, Decomposed& bracket)
 	m_ball.reset(new btRigidBody(btScalar(0.1), nullptr, &m_ballShape, ballInertia));
 	m_ball->setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(0.02), btScalar(0.8))));
 	m_ball->setRollingFriction(btScalar(0.02));
-	m_world.addRigidBody(m_ball.get());
+	world().addRigidBody(m_ball.get());
 }
 
 Scene::~Scene()
 {
-	for (const auto& body : m_bodies) m_world.removeRigidBody(body.get());
-	m_world.removeRigidBody(m_ball.get());
-	m_world.removeRigidBody(m_ground.get());
+	for (const auto& body : m_bodies) world().removeRigidBody(body.get());
+	world().removeRigidBody(m_ball.get());
+	world().removeRigidBody(m_ground.get());
 }
 }  // namespace convex_decomposition_demo

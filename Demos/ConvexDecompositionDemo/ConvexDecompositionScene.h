@@ -11,6 +11,7 @@
 
 #include "ConvexDecomposition/ConvexDecomposition.h"
 #include "ConvexDecomposition/ExampleMeshes.h"
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace convex_decomposition_demo
@@ -36,17 +37,13 @@ class Scene
 public:
 	Scene(Decomposed& torus, Decomposed& cup, Decomposed& bracket);
 	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 	/// The torus, the cup and the bracket, in that order.
 	const std::vector<std::unique_ptr<btRigidBody>>& bodies() const { return m_bodies; }
 	btRigidBody& ball() { return *m_ball; }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	btStaticPlaneShape m_groundShape{btVector3(0, 0, 1), 0};
 	std::unique_ptr<btRigidBody> m_ground;
 	std::vector<std::unique_ptr<btRigidBody>> m_bodies;

@@ -61,9 +61,9 @@ std::string piecesText()
 
 Scene::Scene(btCollisionShape* level, const std::vector<std::unique_ptr<btConvexHullShape>>& hulls)
 {
-	m_world.setGravity(btVector3(0, btScalar(-9.81), 0));
+	world().setGravity(btVector3(0, btScalar(-9.81), 0));
 	m_level.reset(new btRigidBody(0, 0, level));
-	m_world.addRigidBody(m_level.get());
+	world().addRigidBody(m_level.get());
 	for (int k = 0; k < 6 && !hulls.empty(); ++k)
 	{
 		btConvexHullShape* hull = hulls[k % hulls.size()].get();
@@ -74,13 +74,13 @@ Scene::Scene(btCollisionShape* level, const std::vector<std::unique_ptr<btConvex
 		const btScalar x = btScalar(-2.5 + k), z = btScalar(k % 2 ? 1 : -1);
 		m_bodies.back()->setWorldTransform(btTransform(btQuaternion(btVector3(1, 1, 0).normalized(), btScalar(0.3 * k)),
 		                                               btVector3(x, 4 + btScalar(0.5) * k, z)));
-		m_world.addRigidBody(m_bodies.back().get());
+		world().addRigidBody(m_bodies.back().get());
 	}
 }
 
 Scene::~Scene()
 {
-	for (const auto& body : m_bodies) m_world.removeRigidBody(body.get());
-	m_world.removeRigidBody(m_level.get());
+	for (const auto& body : m_bodies) world().removeRigidBody(body.get());
+	world().removeRigidBody(m_level.get());
 }
 }  // namespace obj_demo

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace obj_demo
@@ -24,15 +25,11 @@ class Scene
 public:
 	Scene(btCollisionShape* level, const std::vector<std::unique_ptr<btConvexHullShape>>& hulls);
 	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 	const std::vector<std::unique_ptr<btRigidBody>>& bodies() const { return m_bodies; }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	std::unique_ptr<btRigidBody> m_level;
 	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
 };
