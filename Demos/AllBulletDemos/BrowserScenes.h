@@ -2,8 +2,10 @@
 #ifndef CALIBER_ALL_BULLET_DEMOS_BROWSER_SCENES_H
 #define CALIBER_ALL_BULLET_DEMOS_BROWSER_SCENES_H
 // The demos AllBulletDemos lists: each owns a world that the browser steps, draws and lets the user
-// poke. The scenes are the demos' own (BenchmarkScenes, ConstraintScene, Ragdoll), shared with the
-// headless programs.
+// poke. The scenes are the demos' own (BenchmarkScenes, ConstraintScene, Ragdoll, ...), shared with
+// the headless programs. The demos without a world to step (LinearMathDemo, SimplexDemo, ...) run
+// their program once and the browser replays what they drew (DemoPictures' SceneRecording), in a
+// world of their own that holds only the boxes the user shoots.
 
 #include <memory>
 #include <string>
@@ -18,9 +20,9 @@ namespace all_bullet_demos
 /// U / D (the fork), each -1, 0 or 1.
 struct Controls
 {
-	int forward = 0;  ///< up arrow 1, down arrow -1
-	int turn = 0;     ///< left arrow 1, right arrow -1
-	int lift = 0;     ///< U 1, D -1
+	int forward = 0;     ///< up arrow 1, down arrow -1
+	int turn = 0;        ///< left arrow 1, right arrow -1
+	int lift = 0;        ///< U 1, D -1
 	bool brake = false;  ///< Enter: brake, or jump for the character
 };
 
@@ -40,6 +42,8 @@ public:
 	virtual btVector3 driverPosition() { return btVector3(0, 0, 0); }
 	/// Adds what the world does not hold (a raycast vehicle's wheels) to the drawing.
 	virtual void decorate(caliber::demo::Scene& /*scene*/) {}
+	/// A line for the on-screen text (a replay's progress, why a demo is missing), or empty.
+	virtual std::string notice() const { return std::string(); }
 	/// Where the camera starts: false to frame what moves from the default view, as the pictures do.
 	virtual bool startView(btVector3& /*focusMin*/, btVector3& /*focusMax*/, btVector3& /*viewDirection*/) const
 	{

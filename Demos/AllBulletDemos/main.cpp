@@ -3,8 +3,8 @@
 // AllBulletDemos: the demo browser. Every demo of its list in one window (GLFW, OpenGL 3.3 core),
 // drawn with the same scene the headless pictures use (Demos/Common) and stepped at 60 Hz.
 //
-// Mouse: left-drag a body to pull it (a point-to-point joint to the cursor, as Bullet's demos do),
-// left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
+// Mouse: left-drag a body to pull it (a point-to-point joint to the cursor, as Bullet's demos do) or
+// a soft body to hold its nearest node, left-drag elsewhere to orbit, right-drag to pan, wheel to zoom.
 // Keys: space pause, S single step, R reset, B shoot a box, W wireframe, A AABBs, C contact points,
 // J joint frames and limits, P print the step's profile (btQuickprof), F frame the scene again,
 // H hide or show the on-screen text (demo, body count, step and frame times, btQuickprof's profile),
@@ -19,8 +19,10 @@
 // pixels) does what a user's left-drag would during those N steps: press at (X0, Y0), move to
 // (X1, Y1), release at the end; it reports the body it picked and how far it moved, and fails when
 // nothing was picked. --hold KEYS (comma-separated: up, down, left, right, enter, u, d) holds those
-// keys through the N steps of a driven demo and reports how far the driver moved. --list prints the
-// demos.
+// keys through the N steps of a driven demo and reports how far the driver moved. --orbit DX,DY,
+// --pan DX,DY and --wheel N move the camera before the first step; --keys KEY@FRAME,... presses keys
+// before given steps. A scripted run prints the bodies at its start and end (with a hash of their
+// exact positions) and the camera, for .ci/lib.sh's tests. --list prints the demos.
 
 #define GLFW_INCLUDE_GLCOREARB
 #define GL_GLEXT_PROTOTYPES
@@ -31,6 +33,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -39,6 +42,7 @@
 #include "BitmapFont.h"
 #include "BrowserScenes.h"
 #include "GlRenderer.h"
+#include "BulletSoftBody/btSoftBody.h"
 #include "LinearMath/btQuickprof.h"
 #include "Png.h"
 #include "WorldScene.h"
@@ -62,7 +66,63 @@ struct Options
 	double dragFrom[2] = {0, 0}, dragTo[2] = {0, 0};
 	bool hold = false;
 	all_bullet_demos::Controls held;
+	double orbit[2] = {0, 0}, pan[2] = {0, 0}, wheel = 0;
+	struct KeyPress
+	{
+		int key;
+		int frame;
+	};
+	std::vector<KeyPress> keys;
 };
+
+// The keys --keys knows, by name.
+struct NamedKey
+{
+	const char* name;
+	int key;
+};
+const NamedKey kNamedKeys[] = {
+    {"space", GLFW_KEY_SPACE},
+    {"s", GLFW_KEY_S},
+    {"r", GLFW_KEY_R},
+    {"b", GLFW_KEY_B},
+    {"w", GLFW_KEY_W},
+    {"a", GLFW_KEY_A},
+    {"c", GLFW_KEY_C},
+    {"j", GLFW_KEY_J},
+    {"p", GLFW_KEY_P},
+    {"f", GLFW_KEY_F},
+    {"h", GLFW_KEY_H},
+    {"n", GLFW_KEY_N},
+    {"pagedown", GLFW_KEY_PAGE_DOWN},
+    {"pageup", GLFW_KEY_PAGE_UP},
+    {"left", GLFW_KEY_LEFT},
+    {"right", GLFW_KEY_RIGHT},
+};
+
+// Parses --keys' list (KEY@FRAME, comma-separated) into keys; false for an unknown key or a bad frame.
+bool parseKeys(const std::string& list, std::vector<Options::KeyPress>& keys)
+{
+	size_t start = 0;
+	while (start <= list.size())
+	{
+		const size_t comma = std::min(list.find(',', start), list.size());
+		const std::string item = list.substr(start, comma - start);
+		const size_t at = item.find('@');
+		if (at == std::string::npos) return false;
+		const std::string name = item.substr(0, at), frameText = item.substr(at + 1);
+		char* end = nullptr;
+		const long frame = std::strtol(frameText.c_str(), &end, 10);
+		if (frameText.empty() || *end != '\0' || frame < 0 || frame > 10000000) return false;
+		int key = -1;
+		for (const NamedKey& named : kNamedKeys)
+			if (name == named.name) key = named.key;
+		if (key < 0) return false;
+		keys.push_back({key, int(frame)});
+		start = comma + 1;
+	}
+	return true;
+}
 
 // Parses --hold's list into held; false for an unknown key.
 bool parseHeld(const std::string& list, all_bullet_demos::Controls& held)
@@ -72,14 +132,22 @@ bool parseHeld(const std::string& list, all_bullet_demos::Controls& held)
 	{
 		const size_t comma = std::min(list.find(',', start), list.size());
 		const std::string key = list.substr(start, comma - start);
-		if (key == "up") held.forward = 1;
-		else if (key == "down") held.forward = -1;
-		else if (key == "left") held.turn = 1;
-		else if (key == "right") held.turn = -1;
-		else if (key == "enter") held.brake = true;
-		else if (key == "u") held.lift = 1;
-		else if (key == "d") held.lift = -1;
-		else return false;
+		if (key == "up")
+			held.forward = 1;
+		else if (key == "down")
+			held.forward = -1;
+		else if (key == "left")
+			held.turn = 1;
+		else if (key == "right")
+			held.turn = -1;
+		else if (key == "enter")
+			held.brake = true;
+		else if (key == "u")
+			held.lift = 1;
+		else if (key == "d")
+			held.lift = -1;
+		else
+			return false;
 		start = comma + 1;
 	}
 	return true;
@@ -90,11 +158,13 @@ int parse(int argc, char** argv, Options& options)
 {
 	auto usage = [&](FILE* out)
 	{
-		std::fprintf(out,
-		             "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--drag X0,Y0,X1,Y1]\n"
-		             "  [--hold KEYS] [--list]\n"
-		             "  --frames N without input: run N steps and exit; --screenshot writes the last frame as PNG\n",
-		             argv[0]);
+		std::fprintf(
+		    out,
+		    "usage: %s [--demo NAME] [--frames N] [--screenshot PATH] [--size WxH] [--drag X0,Y0,X1,Y1]\n"
+		    "  [--hold KEYS] [--orbit DX,DY] [--pan DX,DY] [--wheel N] [--keys KEY@FRAME,...] [--list]\n"
+		    "  --frames N without input: run N steps and exit; --screenshot writes the last frame as PNG\n"
+		    "  --keys: space s r b w a c j p f h n pageup pagedown left right, each before step FRAME (0: first)\n",
+		    argv[0]);
 	};
 	for (int i = 1; i < argc; ++i)
 	{
@@ -117,6 +187,7 @@ int parse(int argc, char** argv, Options& options)
 			return 2;
 		}
 		char* end = nullptr;
+		char trailing = 0;
 		if (option == "--demo")
 			options.demo = value;
 		else if (option == "--frames")
@@ -146,11 +217,43 @@ int parse(int argc, char** argv, Options& options)
 		{
 			if (!parseHeld(value, options.held))
 			{
-				std::fprintf(stderr, "AllBulletDemos: --hold needs keys from up, down, left, right, enter, u, d, got '%s'\n",
+				std::fprintf(stderr,
+				             "AllBulletDemos: --hold needs keys from up, down, left, right, enter, u, d, got '%s'\n",
 				             value);
 				return 2;
 			}
 			options.hold = true;
+		}
+		else if (option == "--orbit" || option == "--pan")
+		{
+			double* pixels = option == "--orbit" ? options.orbit : options.pan;
+			if (std::sscanf(value, "%lf,%lf%c", &pixels[0], &pixels[1], &trailing) != 2 || !std::isfinite(pixels[0]) ||
+			    !std::isfinite(pixels[1]) || std::fabs(pixels[0]) > 1e5 || std::fabs(pixels[1]) > 1e5)
+			{
+				std::fprintf(stderr, "AllBulletDemos: %s needs DX,DY in window pixels (up to 100000), got '%s'\n",
+				             option.c_str(), value);
+				return 2;
+			}
+		}
+		else if (option == "--wheel")
+		{
+			options.wheel = std::strtod(value, &end);
+			if (*end != '\0' || end == value || !(std::fabs(options.wheel) <= 100))
+			{
+				std::fprintf(stderr, "AllBulletDemos: --wheel needs wheel steps from -100 to 100, got '%s'\n", value);
+				return 2;
+			}
+		}
+		else if (option == "--keys")
+		{
+			if (!parseKeys(value, options.keys))
+			{
+				std::fprintf(stderr,
+				             "AllBulletDemos: --keys needs KEY@FRAME,... with KEY one of space s r b w a c j p f h n "
+				             "pageup pagedown left right and FRAME from 0, got '%s'\n",
+				             value);
+				return 2;
+			}
 		}
 		else if (option == "--size")
 		{
@@ -170,7 +273,17 @@ int parse(int argc, char** argv, Options& options)
 		}
 		++i;
 	}
-	if ((!options.screenshot.empty() || options.drag || options.hold) && options.frames == 0) options.frames = 60;
+	const bool scripted = !options.screenshot.empty() || options.drag || options.hold || !options.keys.empty() ||
+	                      options.wheel != 0 || options.orbit[0] != 0 || options.orbit[1] != 0 || options.pan[0] != 0 ||
+	                      options.pan[1] != 0;
+	if (scripted && options.frames == 0) options.frames = 60;
+	for (const Options::KeyPress& press : options.keys)
+		if (press.frame > options.frames)
+		{
+			std::fprintf(stderr, "AllBulletDemos: --keys: frame %d is after the last step (--frames %d)\n", press.frame,
+			             options.frames);
+			return 2;
+		}
 	if (!options.screenshot.empty() && !caliber::demo::pngAvailable())
 	{
 		std::fprintf(stderr, "AllBulletDemos: --screenshot is unavailable: this build has no libpng\n");
@@ -188,6 +301,7 @@ public:
 	void load(int index)
 	{
 		unload();
+		++m_loads;
 		m_index = (index % int(m_names.size()) + int(m_names.size())) % int(m_names.size());
 		m_scene = all_bullet_demos::makeDemo(m_names[size_t(m_index)]);
 		m_stepMs = 0;
@@ -240,6 +354,10 @@ public:
 		m_held = held;
 	}
 	all_bullet_demos::BrowserDemo& demo() { return *m_scene; }
+	/// How many times a demo was loaded (R and N load again: what was picked before is gone).
+	int loads() const { return m_loads; }
+	/// The name of the demo shown now.
+	const std::string& name() const { return m_names[size_t(m_index)]; }
 
 	// The driving keys held now (or the scripted ones).
 	all_bullet_demos::Controls controls() const
@@ -257,6 +375,7 @@ public:
 	void step()
 	{
 		if (m_scene->driven()) m_scene->control(controls());
+		if (m_pickedSoft) pullNode();
 		const auto start = std::chrono::steady_clock::now();
 		m_scene->step();
 		m_stepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -274,6 +393,18 @@ public:
 			m_profile = profileText();
 			CProfileManager::Reset();
 		}
+	}
+
+	// The held node follows the cursor: each step it closes a quarter of the gap, at most 0.3 m (18 m/s),
+	// so a fast flick does not tear the body's links.
+	void pullNode()
+	{
+		btSoftBody::Node& node = m_pickedSoft->m_nodes[m_pickedNode];
+		btVector3 move = (m_softTarget - node.m_x) * btScalar(0.25);
+		const btScalar length = move.length();
+		if (length > btScalar(0.3)) move *= btScalar(0.3) / length;
+		node.m_x += move;
+		m_pickedSoft->activate(true);
 	}
 
 	/// The frame time the window loop measured (shown on screen and in the title).
@@ -321,6 +452,7 @@ public:
 		              m_paused ? "   PAUSED" : "");
 		std::string text = head;
 		if (m_scene->driven()) text += "ARROWS DRIVE, ENTER BRAKES OR JUMPS, U/D FORK, N NEXT DEMO\n";
+		if (!m_scene->notice().empty()) text += m_scene->notice() + "\n";
 		text += "PROFILE, MS PER STEP (LAST 60 STEPS; H HIDES):\n";
 		text += m_profile.empty() ? std::string("  (after 60 steps)\n") : m_profile;
 		return text;
@@ -377,6 +509,13 @@ public:
 		const btVector3 to = eye + direction * btScalar(1e4);
 		btCollisionWorld::ClosestRayResultCallback hit(eye, to);
 		m_scene->world().rayTest(eye, to, hit);
+		btSoftBody* soft =
+		    hit.hasHit() ? btSoftBody::upcast(const_cast<btCollisionObject*>(hit.m_collisionObject)) : nullptr;
+		if (soft && pickNode(*soft, hit.m_hitPointWorld))
+		{
+			m_pickDistance = (hit.m_hitPointWorld - eye).length();
+			return;
+		}
 		btRigidBody* body =
 		    hit.hasHit() ? const_cast<btRigidBody*>(btRigidBody::upcast(hit.m_collisionObject)) : nullptr;
 		if (!body || body->isStaticOrKinematicObject())
@@ -395,6 +534,36 @@ public:
 		m_pickDistance = (hit.m_hitPointWorld - eye).length();
 	}
 
+	// Takes the soft body's free node nearest to the point hit; false when every node is fixed.
+	bool pickNode(btSoftBody& soft, const btVector3& at)
+	{
+		int nearest = -1;
+		btScalar best = BT_LARGE_FLOAT;
+		for (int i = 0; i < soft.m_nodes.size(); ++i)
+		{
+			const btScalar d = (soft.m_nodes[i].m_x - at).length2();
+			if (soft.m_nodes[i].m_im > 0 && d < best)
+			{
+				best = d;
+				nearest = i;
+			}
+		}
+		if (nearest < 0) return false;
+		m_pickedSoft = &soft;
+		m_pickedNode = nearest;
+		m_softTarget = soft.m_nodes[nearest].m_x;
+		// While held, the node is fixed (mass 0) and moved by the cursor: the links then pull the rest of
+		// the body along, however heavy, as a hand holding a cloth would. Its mass comes back on release.
+		m_pickedNodeMass = soft.getMass(nearest);
+		soft.setMass(nearest, 0);
+		return true;
+	}
+
+	/// The soft body and node a left-drag holds (null, -1 when none).
+	btSoftBody* pickedSoft() const { return m_pickedSoft; }
+	int pickedNode() const { return m_pickedNode; }
+	const btVector3& softTarget() const { return m_softTarget; }
+
 	void releaseLeft()
 	{
 		m_orbiting = false;
@@ -405,19 +574,69 @@ public:
 	{
 		if (m_pickJoint)
 			m_pickJoint->setPivotB(camera().eye + rayThroughCursor() * m_pickDistance);
+		else if (m_pickedSoft)
+			m_softTarget = camera().eye + rayThroughCursor() * m_pickDistance;
 		else if (m_orbiting && !right)
-		{
-			m_yaw -= btScalar(dx * 0.005);
-			m_pitch = btClamped(m_pitch + btScalar(dy * 0.005), btScalar(-1.5), btScalar(1.5));
-		}
+			orbit(dx, dy);
 		else if (right)
+			pan(dx, dy);
+	}
+
+	/// A left-drag over empty space: turns the camera around its target, 0.005 rad a pixel.
+	void orbit(double dx, double dy)
+	{
+		m_yaw -= btScalar(dx * 0.005);
+		m_pitch = btClamped(m_pitch + btScalar(dy * 0.005), btScalar(-1.5), btScalar(1.5));
+	}
+
+	/// A right-drag: moves the target with the cursor (the scene follows the mouse), in proportion to the distance.
+	void pan(double dx, double dy)
+	{
+		const caliber::demo::Camera c = camera();
+		const btVector3 forward = (c.target - c.eye).normalized();
+		const btVector3 side = forward.cross(c.up).normalized();
+		const btVector3 up = side.cross(forward);
+		m_target += (side * btScalar(-dx) + up * btScalar(dy)) * m_distance * btScalar(0.0015);
+	}
+
+	/// The camera as text, for automation's report.
+	std::string cameraText() const
+	{
+		char text[200];
+		std::snprintf(text, sizeof(text), "target (%.3f, %.3f, %.3f), yaw %.4f, pitch %.4f, distance %.4f",
+		              double(m_target.x()), double(m_target.y()), double(m_target.z()), double(m_yaw), double(m_pitch),
+		              double(m_distance));
+		return text;
+	}
+
+	/// The world's state as text, for automation's report: its objects, the dynamic rigid bodies' mean
+	/// centre and a hash of their exact positions (equal hashes: the same state).
+	std::string stateText()
+	{
+		btDiscreteDynamicsWorld& world = m_scene->world();
+		int dynamic = 0;
+		btVector3 sum(0, 0, 0);
+		std::uint64_t hash = 1469598103934665603ull;  // FNV-1a over the positions' bytes
+		for (int i = 0; i < world.getNumCollisionObjects(); ++i)
 		{
-			const caliber::demo::Camera c = camera();
-			const btVector3 forward = (c.target - c.eye).normalized();
-			const btVector3 side = forward.cross(c.up).normalized();
-			const btVector3 up = side.cross(forward);
-			m_target += (side * btScalar(-dx) + up * btScalar(dy)) * m_distance * btScalar(0.0015);
+			const btRigidBody* body = btRigidBody::upcast(world.getCollisionObjectArray()[i]);
+			if (!body || body->isStaticOrKinematicObject()) continue;
+			++dynamic;
+			const btVector3 at = body->getCenterOfMassPosition();
+			sum += at;
+			for (int k = 0; k < 3; ++k)
+			{
+				unsigned char bytes[sizeof(btScalar)];
+				std::memcpy(bytes, &at[k], sizeof(btScalar));
+				for (unsigned char byte : bytes) hash = (hash ^ byte) * 1099511628211ull;
+			}
 		}
+		const btVector3 mean = dynamic > 0 ? sum / btScalar(dynamic) : sum;
+		char text[200];
+		std::snprintf(text, sizeof(text), "%d objects, %d dynamic, mean centre (%.4f, %.4f, %.4f), hash %016llx%s",
+		              world.getNumCollisionObjects(), dynamic, double(mean.x()), double(mean.y()), double(mean.z()),
+		              static_cast<unsigned long long>(hash), m_paused ? ", paused" : "");
+		return text;
 	}
 
 	void zoom(double steps) { m_distance *= btScalar(std::pow(0.9, steps)); }
@@ -510,6 +729,9 @@ public:
 private:
 	void dropPick()
 	{
+		if (m_pickedSoft) m_pickedSoft->setMass(m_pickedNode, m_pickedNodeMass);
+		m_pickedSoft = nullptr;
+		m_pickedNode = -1;
 		if (!m_pickJoint) return;
 		m_scene->world().removeConstraint(m_pickJoint.get());
 		m_pickJoint.reset();
@@ -538,12 +760,17 @@ private:
 	int m_debugMode = 0;  // solids only; W, A, C and J add the overlays
 	double m_stepMs = 0;
 	btRigidBody* m_picked = nullptr;
+	btSoftBody* m_pickedSoft = nullptr;
+	int m_pickedNode = -1;
+	btScalar m_pickedNodeMass = 0;
+	btVector3 m_softTarget{0, 0, 0};
 	std::unique_ptr<btPoint2PointConstraint> m_pickJoint;
 	btScalar m_pickDistance = 0;
 	bool m_cursorSet = false;
 	double m_cursorX = 0, m_cursorY = 0;
 	btBoxShape m_shotShape{btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5))};
 	std::vector<std::unique_ptr<btRigidBody>> m_shots;
+	int m_loads = 0;
 	bool m_scripted = false;
 	all_bullet_demos::Controls m_held;
 	btVector3 m_driver{0, 0, 0};
@@ -601,8 +828,10 @@ int main(int argc, char** argv)
 	// --hold drives a demo: refuse one without driving keys before opening a window.
 	if (options.hold && !all_bullet_demos::makeDemo(options.demo)->driven())
 	{
-		std::fprintf(stderr, "AllBulletDemos: --hold: %s is not driven by keys (VehicleDemo, CharacterDemo and "
-		             "ForkLiftDemo are)\n", options.demo.c_str());
+		std::fprintf(stderr,
+		             "AllBulletDemos: --hold: %s is not driven by keys (VehicleDemo, CharacterDemo and "
+		             "ForkLiftDemo are)\n",
+		             options.demo.c_str());
 		return 2;
 	}
 	glfwSetErrorCallback(onGlfwError);
@@ -642,32 +871,68 @@ int main(int argc, char** argv)
 		glfwSetWindowUserPointer(window, &browser);
 		if (options.frames > 0)
 		{
-			// Automation: no input (or a scripted drag), N steps, one drawn frame.
+			// Automation: scripted input (camera moves, a drag, held keys, key presses), N steps, one drawn frame.
+			if (options.orbit[0] != 0 || options.orbit[1] != 0) browser.orbit(options.orbit[0], options.orbit[1]);
+			if (options.pan[0] != 0 || options.pan[1] != 0) browser.pan(options.pan[0], options.pan[1]);
+			if (options.wheel != 0) browser.zoom(options.wheel);
+			std::printf("start: %s\n", browser.stateText().c_str());
 			btRigidBody* dragged = nullptr;
-			btVector3 dragStart(0, 0, 0);
+			btSoftBody* draggedSoft = nullptr;
+			int draggedNode = -1;
+			btVector3 dragStart(0, 0, 0), softTargetStart(0, 0, 0);
+			int pickedAt = 0;
 			if (options.drag)
 			{
 				browser.setCursor(options.dragFrom[0], options.dragFrom[1]);
 				browser.pressLeft();
+				pickedAt = browser.loads();
 				dragged = browser.picked();
 				if (dragged) dragStart = dragged->getCenterOfMassPosition();
+				draggedSoft = browser.pickedSoft();
+				draggedNode = browser.pickedNode();
+				if (draggedSoft) dragStart = draggedSoft->m_nodes[draggedNode].m_x;
 			}
 			if (options.hold) browser.holdKeys(options.held);
 			const btVector3 driverStart = browser.demo().driverPosition();
+			auto pressKeys = [&](int frame)
+			{
+				for (const Options::KeyPress& press : options.keys)
+					if (press.frame == frame) browser.key(press.key);
+			};
 			for (int frame = 0; frame < options.frames; ++frame)
 			{
+				pressKeys(frame);
 				if (options.drag)
 				{
 					const double t = double(frame + 1) / options.frames;
 					browser.setCursor(options.dragFrom[0] + (options.dragTo[0] - options.dragFrom[0]) * t,
 					                  options.dragFrom[1] + (options.dragTo[1] - options.dragFrom[1]) * t);
 					browser.drag(0, 0, false);
+					if (frame == 0) softTargetStart = browser.softTarget();
 				}
-				browser.step();
+				browser.advance();
 			}
+			pressKeys(options.frames);
 			if (options.drag)
 			{
-				if (!dragged)
+				if (browser.loads() != pickedAt && (dragged || draggedSoft))
+				{
+					// R or N during the drag: the picked body went with the demo it was in.
+					std::printf("drag: the demo was loaded again during the drag; the picked body is gone\n");
+					exitCode = 1;
+				}
+				else if (draggedSoft)
+				{
+					// The node the cursor holds, against where the cursor's point went.
+					const btVector3 end = draggedSoft->m_nodes[draggedNode].m_x, target = browser.softTarget();
+					std::printf(
+					    "drag: picked node %d of a soft body at (%.2f, %.2f, %.2f), dragged to (%.2f, %.2f, "
+					    "%.2f), %.2f m; the cursor's point moved %.2f m and is %.2f m from the node\n",
+					    draggedNode, double(dragStart.x()), double(dragStart.y()), double(dragStart.z()),
+					    double(end.x()), double(end.y()), double(end.z()), double((end - dragStart).length()),
+					    double((target - softTargetStart).length()), double((target - end).length()));
+				}
+				else if (!dragged)
 				{
 					std::printf("drag: nothing to pick at (%.0f, %.0f)\n", options.dragFrom[0], options.dragFrom[1]);
 					exitCode = 1;
@@ -688,10 +953,12 @@ int main(int argc, char** argv)
 				            double(driverStart.x()), double(driverStart.y()), double(driverStart.z()), double(end.x()),
 				            double(end.y()), double(end.z()), double((end - driverStart).length()));
 			}
+			std::printf("end: %s\n", browser.stateText().c_str());
+			std::printf("camera: %s\n", browser.cameraText().c_str());
 			browser.draw(gl);
 			glFinish();
 			if (!options.screenshot.empty() && !writeScreenshot(window, options.screenshot)) exitCode = 1;
-			std::printf("AllBulletDemos: %s, %d frames\n", options.demo.c_str(), options.frames);
+			std::printf("AllBulletDemos: %s, %d frames\n", browser.name().c_str(), options.frames);
 		}
 		else
 		{

@@ -21,7 +21,7 @@
 
 #include "BspLoader/BspConverter.h"
 #include "BspLoader/BspLoader.h"
-#include "btBulletDynamicsCommon.h"
+#include "BspScene.h"
 
 int main(int argc, char** argv)
 {
@@ -38,7 +38,7 @@ int main(int argc, char** argv)
 		printf("BspDemo: %s\n", level.error.c_str());
 		return 1;
 	}
-	const btScalar scale = btScalar(1) / 32;
+	const btScalar scale = bsp_demo::kScale;
 	const caliber::BspConversion conversion = caliber::convertBspBrushes(level, scale);
 	for (const std::string& warning : conversion.warnings) printf("  warning: %s\n", warning.c_str());
 	printf("level %s: %zu textures, %zu world brushes: %zu solid hulls, %d not solid, %zu skipped\n", path,
@@ -57,49 +57,9 @@ int main(int argc, char** argv)
 	printf("level bounds (m): (%.2f %.2f %.2f) to (%.2f %.2f %.2f)\n", levelMin.x(), levelMin.y(), levelMin.z(),
 	       levelMax.x(), levelMax.y(), levelMax.z());
 
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher(&configuration);
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-	world.setGravity(btVector3(0, 0, btScalar(-9.81)));
-	btRigidBody levelBody(0, nullptr, levelShape.compound.get());
-	world.addRigidBody(&levelBody);
-
-	btSphereShape sphere(btScalar(0.25));
-	btBoxShape box(btVector3(btScalar(0.25), btScalar(0.25), btScalar(0.25)));
-	btCylinderShapeZ cylinder(btVector3(btScalar(0.2), btScalar(0.2), btScalar(0.3)));
-	btCollisionShape* shapes[3] = {&sphere, &box, &cylinder};
-	std::vector<std::unique_ptr<btRigidBody>> bodies;
-	for (int i = 0; i < 40; ++i)
-	{
-		btCollisionShape* shape = shapes[i % 3];
-		btVector3 inertia;
-		shape->calculateLocalInertia(1, inertia);
-		// An 8 x 5 grid 1.6 m apart covering pillars (4, 4), (4, -4), (-4, 5) and the ramp (x -7 to -3).
-		const btScalar x = btScalar(1.6) * btScalar(i % 8) - btScalar(5.6);
-		const btScalar y = btScalar(1.6) * btScalar(i / 8) - btScalar(3.2) + btScalar(0.5) * btScalar(i % 2);
-		btTransform pose(btQuaternion(btVector3(1, 0, 1).normalized(), btScalar(0.4) * btScalar(i)),
-		                 btVector3(x, y, btScalar(3 + (i % 4) * 2)));
-		std::unique_ptr<btRigidBody> body(new btRigidBody(1, nullptr, shape, inertia));
-		body->setWorldTransform(pose);
-		body->setFriction(btScalar(0.7));
-		body->setRollingFriction(btScalar(0.05));
-		world.addRigidBody(body.get());
-		bodies.push_back(std::move(body));
-	}
-	// One box over each pillar top (1 m across, 6 m up).
-	const btVector3 pillarTops[4] = {btVector3(4, 4, 9), btVector3(4, -4, 9), btVector3(-4, 5, 9), btVector3(0, -5, 9)};
-	for (const btVector3& top : pillarTops)
-	{
-		btVector3 inertia;
-		box.calculateLocalInertia(1, inertia);
-		std::unique_ptr<btRigidBody> body(new btRigidBody(1, nullptr, &box, inertia));
-		body->setWorldTransform(btTransform(btQuaternion::getIdentity(), top));
-		body->setFriction(btScalar(0.7));
-		world.addRigidBody(body.get());
-		bodies.push_back(std::move(body));
-	}
+	bsp_demo::Scene scene(levelShape.compound.get());  // BspScene.h: the world and the 44 bodies
+	btDiscreteDynamicsWorld& world = scene.world();
+	const std::vector<std::unique_ptr<btRigidBody>>& bodies = scene.bodies();
 
 	const btScalar wallInside = btScalar(8);  // the walls' inner faces are at +-256 units = +-8 m
 	bool escaped = false;
@@ -141,8 +101,6 @@ int main(int argc, char** argv)
 	// The picture: the world as the run ends (z up, so seen from above at a slant).
 	pictures.setViewDirection(btVector3(btScalar(0.3), btScalar(0.8), btScalar(-1)));
 	pictures.capture(world);
-	for (const auto& body : bodies) world.removeRigidBody(body.get());
-	world.removeRigidBody(&levelBody);
 
 	// A damaged copy of the file: cut in half. The loader names what is wrong instead of crashing.
 	std::vector<unsigned char> bytes;

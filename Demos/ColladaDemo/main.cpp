@@ -15,19 +15,9 @@
 
 #include <string>
 
+#include "ColladaScene.h"
+#include "DemoWorld.h"
 #include "Serialize/ColladaConverter/ColladaPhysics.h"
-
-namespace
-{
-struct World
-{
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher{&configuration};
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world{&dispatcher, &broadphase, &solver, &configuration};
-};
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -38,23 +28,23 @@ int main(int argc, char** argv)
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	const char* path = pictures.positional().empty() ? CALIBER_COLLADA_DEMO_SCENE : pictures.positional()[0].c_str();
-	caliber::ColladaPhysicsScene scene;
-	if (!caliber::importColladaPhysicsFile(path, scene))
+	collada_demo::Scene loaded;  // ColladaScene.h: the document's bodies in a world
+	caliber::ColladaPhysicsScene& scene = loaded.document();
+	btDiscreteDynamicsWorld& world = loaded.world();
+	if (!loaded.load(path))
 	{
 		printf("ColladaDemo: %s: %s\n", path, scene.error.c_str());
 		return 1;
 	}
 	printf("loaded %s: %zu rigid bodies, gravity (%.2f %.2f %.2f), time step %.4f s\n", path, scene.bodies.size(),
 	       scene.gravity.x(), scene.gravity.y(), scene.gravity.z(), scene.timeStep);
-	World physics;
-	scene.addTo(physics.world);
 	const int stepsPerSecond = int(btScalar(1) / scene.timeStep + btScalar(0.5));
 	btScalar lowest = BT_LARGE_FLOAT;
 	for (int second = 1; second <= 4; ++second)
 	{
 		for (int step = 0; step < stepsPerSecond; ++step)
 		{
-			physics.world.stepSimulation(scene.timeStep, 0);
+			world.stepSimulation(scene.timeStep, 0);
 			for (std::size_t i = 0; i < scene.bodies.size(); ++i)
 				if (scene.bodies[i]->getInvMass() > 0)
 					lowest = btMin(lowest, scene.bodies[i]->getCenterOfMassPosition().y());
@@ -65,7 +55,7 @@ int main(int argc, char** argv)
 				printf(" %s %.2f", scene.bodyNames[i].c_str(), scene.bodies[i]->getCenterOfMassPosition().y());
 		printf("\n");
 	}
-	pictures.capture(physics.world);  // the picture: the scene as the run ends
+	pictures.capture(world);  // the picture: the scene as the run ends
 	int resting = 0, dynamic = 0;
 	for (const auto& body : scene.bodies)
 	{
@@ -86,13 +76,13 @@ int main(int argc, char** argv)
 	       plank.getCenterOfMassPosition().y());
 
 	std::string first, second, error;
-	bool roundTrip = caliber::exportColladaPhysics(physics.world, scene.timeStep, first, error);
+	bool roundTrip = caliber::exportColladaPhysics(world, scene.timeStep, first, error);
 	caliber::ColladaPhysicsScene copy;
 	roundTrip = roundTrip && caliber::importColladaPhysics(first.data(), first.size(), copy);
-	World copyPhysics;
-	copy.addTo(copyPhysics.world);
+	caliber::demo::DemoWorld copyPhysics;  // a world of its own for the imported export
+	copy.addTo(copyPhysics.world());
 	roundTrip =
-	    roundTrip && caliber::exportColladaPhysics(copyPhysics.world, copy.timeStep, second, error) && first == second;
+	    roundTrip && caliber::exportColladaPhysics(copyPhysics.world(), copy.timeStep, second, error) && first == second;
 	printf("export: %zu bytes; imported again and exported: %s\n", first.size(),
 	       roundTrip ? "the same text" : (error.empty() ? copy.error.c_str() : error.c_str()));
 
@@ -101,8 +91,7 @@ int main(int argc, char** argv)
 	caliber::importColladaPhysics(cut.data(), cut.size(), damaged);
 	printf("the export cut in half: %s\n", damaged.ok() ? "loaded" : damaged.error.c_str());
 
-	copy.removeFrom(copyPhysics.world);  // bodies leave their worlds before either is destroyed
-	scene.removeFrom(physics.world);
+	copy.removeFrom(copyPhysics.world());  // bodies leave their worlds before either is destroyed
 
 	const bool restOk = resting == dynamic && lowest > 0;
 	const bool stackOk = top > btScalar(2.4) && top < btScalar(2.6);

@@ -62,7 +62,10 @@ bool parseDraw(const std::string& list, int& mode)
 	}
 	return true;
 }
+SceneRecording* gRecording = nullptr;
 }  // namespace
+
+void setSceneRecording(SceneRecording* recording) { gRecording = recording; }
 
 bool StepBudget::reached(const char* what) const
 {
@@ -72,7 +75,7 @@ bool StepBudget::reached(const char* what) const
 }
 
 DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& commandLine)
-    : m_commandLine(commandLine), m_frames(commandLine.defaultFrames)
+    : m_commandLine(commandLine), m_frames(commandLine.defaultFrames), m_recording(gRecording)
 {
 	m_debugMode = commandLine.debugDrawMode;
 	m_options.width = commandLine.defaultWidth;
@@ -181,7 +184,14 @@ DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& command
 		m_exitCode = 2;
 		return;
 	}
-	if (wanted() && !pngAvailable())
+	if (m_recording && (!m_pngPath.empty() || !m_sequenceDir.empty()))
+	{
+		std::fprintf(stderr, "%s: pictures are not written while the browser records the scenes\n", commandLine.name);
+		m_ok = false;
+		m_exitCode = 2;
+		return;
+	}
+	if (wanted() && !m_recording && !pngAvailable())
 	{
 		std::fprintf(stderr,
 		             "%s: pictures are unavailable: this build has no libpng (install the Debian package libpng-dev "
@@ -218,10 +228,11 @@ void DemoPictures::fail(const std::string& message)
 	m_failed = true;
 }
 
-bool DemoPictures::renderScene(Scene& scene, Image& image, bool sequence)
+void DemoPictures::focusOf(const Scene& scene, btVector3& focusMin, btVector3& focusMax) const
 {
 	// What to frame: the demo's own focus, else the scene's (what moves), else everything in it.
-	btVector3 focusMin(-1, -1, -1), focusMax(1, 1, 1);
+	focusMin = btVector3(-1, -1, -1);
+	focusMax = btVector3(1, 1, 1);
 	if (m_hasFocus)
 	{
 		focusMin = m_focusMin;
@@ -234,6 +245,21 @@ bool DemoPictures::renderScene(Scene& scene, Image& image, bool sequence)
 	}
 	else
 		scene.contentBounds(focusMin, focusMax);
+}
+
+void DemoPictures::record(const Scene& scene)
+{
+	m_recording->shots.emplace_back();
+	SceneRecording::Shot& shot = m_recording->shots.back();
+	shot.scene = scene;
+	focusOf(scene, shot.focusMin, shot.focusMax);
+	shot.viewDirection = m_viewDirection;
+}
+
+bool DemoPictures::renderScene(Scene& scene, Image& image, bool sequence)
+{
+	btVector3 focusMin, focusMax;
+	focusOf(scene, focusMin, focusMax);
 	if (sequence)
 	{
 		// A sequence keeps one camera that only widens, so that its pictures can be compared side by side.
@@ -270,6 +296,12 @@ void DemoPictures::buildWorldScene(btCollisionWorld& world)
 void DemoPictures::frame(btCollisionWorld& world, int n)
 {
 	if (!wanted()) return;
+	if (m_recording)
+	{
+		buildWorldScene(world);
+		record(m_scene);
+		return;
+	}
 	const bool sequence = !m_sequenceDir.empty() && n % m_every == 0;
 	if (!sequence && (n != m_frames || m_pngPath.empty())) return;
 	buildWorldScene(world);
@@ -295,6 +327,12 @@ void DemoPictures::frame(btCollisionWorld& world, int n)
 
 void DemoPictures::capture(btCollisionWorld& world)
 {
+	if (m_recording)
+	{
+		buildWorldScene(world);
+		record(m_scene);
+		return;
+	}
 	if (m_pngPath.empty()) return;
 	buildWorldScene(world);
 	m_captured = renderScene(m_scene, m_last, false);
@@ -302,6 +340,11 @@ void DemoPictures::capture(btCollisionWorld& world)
 
 void DemoPictures::capture(const Scene& scene)
 {
+	if (m_recording)
+	{
+		record(scene);
+		return;
+	}
 	if (m_pngPath.empty()) return;
 	m_scene = scene;
 	m_captured = renderScene(m_scene, m_last, false);

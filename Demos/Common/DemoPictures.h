@@ -48,6 +48,24 @@ struct DemoCommandLine
 	const char* positionalUsage = "";
 };
 
+/// What the demos drew, kept instead of pictures while a recording is set (setSceneRecording): the
+/// demo browser shows the demos without a world of their own to step this way. One shot per picture
+/// a demo takes (capture()) and per frame() of its run, each with the camera the picture would use.
+struct SceneRecording
+{
+	struct Shot
+	{
+		Scene scene;
+		btVector3 focusMin, focusMax, viewDirection;
+	};
+	std::vector<Shot> shots;
+};
+
+/// While recording is set (not null), every DemoPictures made records its scenes there instead of
+/// writing pictures (wanted() and recording() are true, --png is refused); null ends it. One thread:
+/// the browser sets it around one run of a demo.
+void setSceneRecording(SceneRecording* recording);
+
 /// A scripted demo's step budget under --frames: counts the steps, says when the budget is spent (no
 /// phase steps any more) and whether a phase's check may be judged.
 class StepBudget
@@ -92,7 +110,9 @@ public:
 	/// The positional arguments, in order.
 	const std::vector<std::string>& positional() const { return m_positional; }
 	/// True when --png or --png-sequence was given (a demo may skip building a picture scene otherwise).
-	bool wanted() const { return !m_pngPath.empty() || !m_sequenceDir.empty(); }
+	bool wanted() const { return !m_pngPath.empty() || !m_sequenceDir.empty() || m_recording; }
+	/// True while the browser records the demo's scenes (setSceneRecording).
+	bool recording() const { return m_recording != nullptr; }
 
 	/// Call after step n (1-based) of a world: writes a sequence picture every K frames, and keeps a
 	/// picture of the world when n == frames() (the last frame).
@@ -121,6 +141,8 @@ public:
 
 private:
 	bool renderScene(Scene& scene, Image& image, bool sequence);
+	void focusOf(const Scene& scene, btVector3& focusMin, btVector3& focusMax) const;
+	void record(const Scene& scene);
 	void buildWorldScene(btCollisionWorld& world);
 	void fail(const std::string& message);
 
@@ -146,6 +168,7 @@ private:
 	btVector3 m_sequenceFocusMin{0, 0, 0}, m_sequenceFocusMax{0, 0, 0};
 	bool m_sequenceFramed = false;
 	bool m_failed = false;
+	SceneRecording* m_recording = nullptr;
 };
 }  // namespace demo
 }  // namespace caliber

@@ -110,6 +110,20 @@ bool Scene::contentBounds(btVector3& aabbMin, btVector3& aabbMax) const
 	return any;
 }
 
+void Scene::append(const Scene& other)
+{
+	// A vector's insert from its own range is undefined: appending itself appends a copy.
+	if (&other == this)
+	{
+		const Scene copy = other;
+		append(copy);
+		return;
+	}
+	m_triangles.insert(m_triangles.end(), other.m_triangles.begin(), other.m_triangles.end());
+	m_lines.insert(m_lines.end(), other.m_lines.begin(), other.m_lines.end());
+	m_points.insert(m_points.end(), other.m_points.begin(), other.m_points.end());
+}
+
 void Scene::clear()
 {
 	m_triangles.clear();

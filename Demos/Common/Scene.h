@@ -64,6 +64,8 @@ public:
 	const std::vector<ScenePoint>& points() const { return m_points; }
 	/// How many primitives were dropped because a coordinate was NaN or infinite.
 	int skippedNonFinite() const { return m_skippedNonFinite; }
+	/// Adds another scene's triangles, lines and points (not its focus), already checked when it was built.
+	void append(const Scene& other);
 	/// Empties the scene (keeps its memory for the next frame).
 	void clear();
 

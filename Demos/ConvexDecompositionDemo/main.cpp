@@ -13,26 +13,16 @@
 
 #include <stdio.h>
 
-#include <chrono>
 #include <memory>
 #include <vector>
 
-#include "ConvexDecomposition/ConvexDecomposition.h"
 #include "ConvexDecomposition/ExampleMeshes.h"
-#include "btBulletDynamicsCommon.h"
+#include "ConvexDecompositionScene.h"
 
 namespace
 {
-struct Decomposed
-{
-	const char* name;
-	caliber::ConvexDecompositionResult result;
-	caliber::DecompositionShape shape;
-	std::unique_ptr<btCompoundShape> centred;  // children moved so that the centre of mass is the origin
-	btTransform principal;
-	btVector3 inertia;
-	double milliseconds = 0;
-};
+using convex_decomposition_demo::decompose;
+using convex_decomposition_demo::Decomposed;
 
 // The lowest point of a body made of convex children (margins included), from their support points.
 btScalar lowestPoint(const btRigidBody& body)
@@ -47,37 +37,6 @@ btScalar lowestPoint(const btRigidBody& body)
 		lowest = btMin(lowest, (child * shape->localGetSupportingVertex(down)).z());
 	}
 	return lowest;
-}
-
-bool decompose(const char* name, const caliber::ExampleMesh& mesh, Decomposed& out)
-{
-	caliber::ConvexDecompositionParameters parameters;
-	parameters.maxHulls = 32;
-	parameters.concavityTolerance = 0.05;
-	out.name = name;
-	const auto start = std::chrono::steady_clock::now();
-	const bool ok = caliber::decomposeConvex(&mesh.vertices[0], mesh.vertices.size(), &mesh.indices[0],
-	                                         mesh.indices.size(), parameters, out.result);
-	out.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-	if (!ok)
-	{
-		printf("%-8s: %s\n", name, out.result.error.c_str());
-		return false;
-	}
-	printf(
-	    "%-8s: %4d triangles -> %2zu hulls, mesh volume %.5f m^3, hulls %.5f m^3, volume error %5.2f %% (%s), %.1f "
-	    "ms\n",
-	    name, mesh.indices.size() / 3, out.result.hulls.size(), out.result.meshVolume, out.result.hullVolume,
-	    100 * out.result.volumeError(), out.result.withinTolerance ? "within 5 %" : "NOT within 5 %", out.milliseconds);
-	out.shape = caliber::buildDecompositionShape(out.result);
-	btAlignedObjectArray<btScalar> masses;
-	for (const auto& hull : out.result.hulls) masses.push_back(btScalar(hull.meshVolume / out.result.meshVolume));
-	out.shape.compound->calculatePrincipalAxisTransform(&masses[0], out.principal, out.inertia);
-	out.centred.reset(new btCompoundShape());
-	for (int i = 0; i < out.shape.compound->getNumChildShapes(); ++i)
-		out.centred->addChildShape(out.principal.inverse() * out.shape.compound->getChildTransform(i),
-		                           out.shape.compound->getChildShape(i));
-	return true;
 }
 }  // namespace
 
@@ -95,36 +54,11 @@ int main(int argc, char** argv)
 	ok = decompose("bracket", caliber::makeLBracketMesh(btScalar(0.6), btScalar(0.15), btScalar(0.15)), bracket) && ok;
 	if (!ok) return 1;
 
-	btDefaultCollisionConfiguration configuration;
-	btCollisionDispatcher dispatcher(&configuration);
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
-	world.setGravity(btVector3(0, 0, btScalar(-9.81)));
-	btStaticPlaneShape groundShape(btVector3(0, 0, 1), 0);
-	btRigidBody ground(0, nullptr, &groundShape);
-	world.addRigidBody(&ground);
-
-	// The torus and the bracket fall from 0.5 m, tilted; the cup stands upright at x = 0 with a ball above it.
-	std::vector<std::unique_ptr<btRigidBody>> bodies;
-	const auto add = [&](Decomposed& d, const btVector3& at, const btQuaternion& tilt)
-	{
-		btTransform pose(tilt, at);
-		bodies.emplace_back(new btRigidBody(1, nullptr, d.centred.get(), d.inertia));
-		bodies.back()->setWorldTransform(pose * d.principal);
-		bodies.back()->setFriction(btScalar(0.8));
-		world.addRigidBody(bodies.back().get());
-	};
-	add(torus, btVector3(-1.2, 0, btScalar(0.5)), btQuaternion(btVector3(1, 0, 0), btScalar(0.3)));
-	add(cup, btVector3(0, 0, btScalar(0.001)), btQuaternion::getIdentity());
-	add(bracket, btVector3(1.2, 0, btScalar(0.5)), btQuaternion(btVector3(0, 1, 0), btScalar(0.2)));
-	btSphereShape ballShape(btScalar(0.08));
-	btVector3 ballInertia;
-	ballShape.calculateLocalInertia(btScalar(0.1), ballInertia);
-	btRigidBody ball(btScalar(0.1), nullptr, &ballShape, ballInertia);
-	ball.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(0, btScalar(0.02), btScalar(0.8))));
-	ball.setRollingFriction(btScalar(0.02));
-	world.addRigidBody(&ball);
+	// ConvexDecompositionScene.h: the torus and the bracket dropped, the cup upright with a ball above it.
+	convex_decomposition_demo::Scene scene(torus, cup, bracket);
+	btDiscreteDynamicsWorld& world = scene.world();
+	const std::vector<std::unique_ptr<btRigidBody>>& bodies = scene.bodies();
+	btRigidBody& ball = scene.ball();
 
 	btScalar lowest = BT_LARGE_FLOAT;
 	for (int second = 1; second <= 4; ++second)
@@ -146,9 +80,6 @@ int main(int argc, char** argv)
 	// The picture: the world as the run ends (z up, so seen from above at a slant).
 	pictures.setViewDirection(btVector3(btScalar(0.3), btScalar(0.8), btScalar(-1)));
 	pictures.capture(world);
-	for (const auto& body : bodies) world.removeRigidBody(body.get());
-	world.removeRigidBody(&ball);
-	world.removeRigidBody(&ground);
 
 	const bool tolerances =
 	    torus.result.withinTolerance && cup.result.withinTolerance && bracket.result.withinTolerance;

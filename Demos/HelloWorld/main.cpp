@@ -16,7 +16,7 @@
 #include <stdio.h>
 
 #include "DemoPictures.h"
-#include "btBulletDynamicsCommon.h"
+#include "HelloWorldScene.h"
 
 int main(int argc, char** argv)
 {
@@ -26,26 +26,11 @@ int main(int argc, char** argv)
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 
-	btDefaultCollisionConfiguration collisionConfiguration;
-	btCollisionDispatcher dispatcher(&collisionConfiguration);
-	btDbvtBroadphase broadphase;
-	btSequentialImpulseConstraintSolver solver;
-	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &collisionConfiguration);
-	const btScalar gravity = 10;
-	world.setGravity(btVector3(0, -gravity, 0));
-
-	btBoxShape groundShape(btVector3(50, 50, 50));
-	btDefaultMotionState groundMotionState(btTransform(btQuaternion::getIdentity(), btVector3(0, -50, 0)));
-	btRigidBody ground(btRigidBody::btRigidBodyConstructionInfo(0, &groundMotionState, &groundShape));
-	world.addRigidBody(&ground);
-
-	const btScalar ballMass = 1, ballRadius = 1, releaseHeight = 10;
-	btSphereShape ballShape(ballRadius);
-	btVector3 ballInertia(0, 0, 0);
-	ballShape.calculateLocalInertia(ballMass, ballInertia);
-	btDefaultMotionState ballMotionState(btTransform(btQuaternion::getIdentity(), btVector3(0, releaseHeight, 0)));
-	btRigidBody ball(btRigidBody::btRigidBodyConstructionInfo(ballMass, &ballMotionState, &ballShape, ballInertia));
-	world.addRigidBody(&ball);
+	hello_world::Scene scene;  // HelloWorldScene.h: the world, the ground and the ball
+	btDiscreteDynamicsWorld& world = scene.world();
+	btDefaultMotionState& ballMotionState = scene.ballMotionState();
+	const btScalar gravity = hello_world::kGravity;
+	const btScalar ballRadius = hello_world::kBallRadius, releaseHeight = hello_world::kReleaseHeight;
 
 	const btScalar stepSeconds = btScalar(1) / 60;
 	double worstFreeFallError = 0;
@@ -78,7 +63,5 @@ int main(int argc, char** argv)
 	else
 		printf("at rest: height %.4f m, the radius is 1 (limit 0.01): %s\n", double(height), restOk ? "ok" : "FAILED");
 
-	world.removeRigidBody(&ball);
-	world.removeRigidBody(&ground);
 	return pictures.finish(freeFallOk && restOk ? 0 : 1);
 }

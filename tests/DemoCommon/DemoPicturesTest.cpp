@@ -271,3 +271,80 @@ TEST(DemoWorldScene, VehicleWheelsAreDrawnAtTheWheels)
 		}
 	world.removeRigidBody(&chassis);
 }
+
+// The browser's recording: while set, a demo's pictures become shots (one per frame of its run and
+// per capture, each framed as its picture would be), nothing is written, and --png is refused (it
+// would write behind the browser's back). Cleared, everything is as before.
+TEST(DemoSceneRecording, KeepsAShotPerFrameAndCaptureAndWritesNothing)
+{
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btDiscreteDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	btSphereShape shape(1);
+	btRigidBody ball(btRigidBody::btRigidBodyConstructionInfo(1, nullptr, &shape, btVector3(1, 1, 1)));
+	world.addRigidBody(&ball);
+
+	SceneRecording recording;
+	setSceneRecording(&recording);
+	{
+		DemoPictures pictures = parse({"demo", "--frames", "3"}, false);
+		ASSERT_TRUE(pictures.ok());
+		EXPECT_TRUE(pictures.recording());
+		EXPECT_TRUE(pictures.wanted()) << "demos build their picture scenes for the recording";
+		for (int n = 1; n <= pictures.frames(); ++n)
+		{
+			world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+			pictures.frame(world, n);
+		}
+		Scene own;
+		own.addPoint(btVector3(5, 0, 0), btVector3(1, 0, 0));
+		pictures.setViewDirection(btVector3(0, -1, 0));
+		pictures.capture(own);
+		EXPECT_EQ(pictures.finish(0), 0);
+		DemoPictures refused = parse({"demo", "--png", "never-written.png"}, false);
+		EXPECT_FALSE(refused.ok());
+		EXPECT_EQ(refused.exitCode(), 2);
+	}
+	setSceneRecording(nullptr);
+	ASSERT_EQ(recording.shots.size(), 4u);
+	// The frames show the falling ball, framed on it (unit radius: a box about 2 m across, lower each frame).
+	for (int n = 0; n < 3; ++n)
+	{
+		EXPECT_FALSE(recording.shots[size_t(n)].scene.triangles().empty());
+		EXPECT_NEAR(double(recording.shots[size_t(n)].focusMax.x() - recording.shots[size_t(n)].focusMin.x()), 2, 0.2);
+	}
+	EXPECT_LT(recording.shots[2].focusMax.y(), recording.shots[0].focusMax.y());
+	// The captured scene is framed on its content (a point at x = 5), seen from the direction set.
+	EXPECT_EQ(recording.shots[3].scene.points().size(), 1u);
+	EXPECT_EQ(recording.shots[3].focusMin, btVector3(5, 0, 0));
+	EXPECT_EQ(recording.shots[3].viewDirection, btVector3(0, -1, 0));
+	std::FILE* file = std::fopen("never-written.png", "rb");
+	EXPECT_EQ(file, nullptr);
+	if (file) std::fclose(file);
+	DemoPictures after = parse({"demo"});
+	EXPECT_FALSE(after.recording());
+	EXPECT_FALSE(after.wanted());
+	world.removeRigidBody(&ball);
+}
+
+// Scene::append adds another scene's primitives, not its focus.
+TEST(DemoScene, AppendAddsPrimitivesAndKeepsTheFocus)
+{
+	Scene a, b;
+	a.addLine(btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(1, 1, 1));
+	a.focusOn(btVector3(-1, -1, -1), btVector3(1, 1, 1));
+	b.addFlatTriangle(btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 1, 0), btVector3(1, 0, 0), true);
+	b.addPoint(btVector3(9, 9, 9), btVector3(0, 1, 0));
+	b.focusOn(btVector3(8, 8, 8), btVector3(10, 10, 10));
+	a.append(b);
+	EXPECT_EQ(a.lines().size(), 1u);
+	ASSERT_EQ(a.triangles().size(), 1u);
+	EXPECT_TRUE(a.triangles()[0].checker);
+	EXPECT_EQ(a.points().size(), 1u);
+	EXPECT_EQ(a.focusMax(), btVector3(1, 1, 1));
+	a.append(a);  // appending itself doubles it
+	EXPECT_EQ(a.lines().size(), 2u);
+	EXPECT_EQ(a.triangles().size(), 2u);
+}
