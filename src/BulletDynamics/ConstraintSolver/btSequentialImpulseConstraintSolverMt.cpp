@@ -127,6 +127,19 @@ struct FillPointRows : public btIParallelForBody
 	}
 };
 
+// Asks for count consecutive rows from first.
+inline void prefetchRows(const btSolverConstraint* first, int count)
+{
+#if defined(__GNUC__)
+	const char* bytes = reinterpret_cast<const char*>(first);
+	const int size = int(sizeof(btSolverConstraint)) * count;
+	for (int offset = 0; offset < size; offset += 64) __builtin_prefetch(bytes + offset);
+#else
+	(void)first;
+	(void)count;
+#endif
+}
+
 // One sweep over a batch of contact rows: normals, then their friction, then their rolling rows.
 struct BatchSweep : public btIParallelForBody
 {
@@ -152,10 +165,15 @@ struct BatchSweep : public btIParallelForBody
 		btScalar residual = btScalar(0);
 		const int count = batch.end - batch.begin;
 		const int* rows = &batched->m_constraintIndices[0];
+		// A batch jumps from manifold to manifold over the row pools, which the hardware prefetcher does not
+		// follow: rows are asked for a manifold ahead.
+		const int kAhead = 4;
 		if (pass == 0)
 		{
 			for (int k = 0; k < count; ++k)
 			{
+				if (k + kAhead < count)
+					prefetchRows(&(*contacts)[rows[batch.begin + (reverse ? count - 1 - k - kAhead : k + kAhead)]], 1);
 				btSolverConstraint& row = (*contacts)[rows[batch.begin + (reverse ? count - 1 - k : k)]];
 				residual += caliber::resolveRow(bodies[row.m_solverBodyIdA], bodies[row.m_solverBodyIdB], row,
 				                                row.m_lowerLimit, row.m_upperLimit);
@@ -164,6 +182,11 @@ struct BatchSweep : public btIParallelForBody
 		}
 		for (int k = 0; k < count; ++k)
 		{
+			if (k + kAhead < count)
+			{
+				const int ahead = rows[batch.begin + (reverse ? count - 1 - k - kAhead : k + kAhead)];
+				prefetchRows(&(*friction)[ahead * frictionRowsPerContact], frictionRowsPerContact);
+			}
 			const int j = rows[batch.begin + (reverse ? count - 1 - k : k)];
 			for (int f = 0; f < frictionRowsPerContact; ++f)
 				residual += caliber::solveFrictionRow(bodies, *contacts, *friction, j * frictionRowsPerContact + f);
