@@ -236,6 +236,22 @@ btScalar caliber::solveFrictionRow(btSolverBody* solverBodies, btConstraintArray
 	                           bound);
 }
 
+btScalar caliber::sweepJoints(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,
+                              const btAlignedObjectArray<btTypedConstraint::btConstraintInfo1>& sizes,
+                              const btAlignedObjectArray<int>& order, int iteration, bool reverse)
+{
+	// A joint with its own iteration count stops when it is used up.
+	btScalar residual = btScalar(0);
+	const int numJoints = scratch.joints.size();
+	for (int k = 0; k < numJoints; ++k)
+	{
+		const int j = order[reverse ? numJoints - 1 - k : k];
+		if (iteration >= jointRows[scratch.jointFirstRow[j]].m_overrideNumSolverIterations) continue;
+		residual += solveJoint(scratch, bodies, jointRows, sizes, j);
+	}
+	return residual;
+}
+
 btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration, btCollisionObject** bodies,
                                                                    int numBodies, btPersistentManifold** manifoldPtr,
                                                                    int numManifolds, btTypedConstraint** constraints,
@@ -275,16 +291,9 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	// odd iteration count is balanced too (not in Bullet's shuffled mode).
 	const bool reverse =
 	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) && ((unsigned(iteration) + scratch.solveCount) & 1u) != 0;
-	// Joint rows first (as in Bullet); a joint with its own iteration count stops when it is used up.
-	const int numJoints = scratch.joints.size();
-	for (int k = 0; k < numJoints; ++k)
-	{
-		const int j = m_orderNonContactConstraintPool[reverse ? numJoints - 1 - k : k];
-		if (iteration >= m_tmpSolverNonContactConstraintPool[scratch.jointFirstRow[j]].m_overrideNumSolverIterations)
-			continue;
-		residual += caliber::solveJoint(scratch, solverBodies, m_tmpSolverNonContactConstraintPool,
-		                                m_tmpConstraintSizesPool, j);
-	}
+	// Joint rows first (as in Bullet).
+	residual += caliber::sweepJoints(scratch, solverBodies, m_tmpSolverNonContactConstraintPool, m_tmpConstraintSizesPool,
+	                                 m_orderNonContactConstraintPool, iteration, reverse);
 	// Contacts run the world's iteration count; only joints that ask for more go on beyond it.
 	if (iteration >= infoGlobal.m_numIterations) return residual;
 

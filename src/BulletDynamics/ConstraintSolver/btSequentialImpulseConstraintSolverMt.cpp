@@ -465,16 +465,8 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
 	// As the serial solver: every other sweep backwards, joints first (on this thread).
 	const bool reverse = ((unsigned(iteration) + scratch.solveCount) & 1u) != 0;
-	btScalar residual = btScalar(0);
-	const int numJoints = scratch.joints.size();
-	for (int k = 0; k < numJoints; ++k)
-	{
-		const int j = m_orderNonContactConstraintPool[reverse ? numJoints - 1 - k : k];
-		if (iteration >= m_tmpSolverNonContactConstraintPool[scratch.jointFirstRow[j]].m_overrideNumSolverIterations)
-			continue;
-		residual += caliber::solveJoint(scratch, solverBodies, m_tmpSolverNonContactConstraintPool,
-		                                m_tmpConstraintSizesPool, j);
-	}
+	btScalar residual = caliber::sweepJoints(scratch, solverBodies, m_tmpSolverNonContactConstraintPool,
+	                                         m_tmpConstraintSizesPool, m_orderNonContactConstraintPool, iteration, reverse);
 	if (iteration >= infoGlobal.m_numIterations) return residual;
 
 	const btBatchedConstraints& batched = m_batchedContactConstraints;

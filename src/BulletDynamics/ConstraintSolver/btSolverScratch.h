@@ -123,6 +123,12 @@ bool convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint
 btScalar solveJoint(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,
                     const btAlignedObjectArray<btTypedConstraint::btConstraintInfo1>& sizes, int jointIndex);
 
+/// One sweep over the joints in order (backwards when reverse), skipping joints whose own iteration count
+/// is used up; returns the squared impulse change.
+btScalar sweepJoints(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,
+                     const btAlignedObjectArray<btTypedConstraint::btConstraintInfo1>& sizes,
+                     const btAlignedObjectArray<int>& order, int iteration, bool reverse);
+
 /// The restitution pass, after the velocity sweeps: every bouncing row of a manifold that was met is
 /// driven to its rebound velocity (accumulated impulse kept >= 0).
 void solveRestitution(SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& contacts,
