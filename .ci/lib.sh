@@ -104,6 +104,21 @@ caliber_ctest() {
 # frame with --png to BUILD_DIR/pictures/<demo>.png, and the checker then makes sure every picture
 # decodes, has the size the demo reported ("picture: PATH (W x H)") and shows a scene (not a blank or
 # one-colour frame).
+# BenchmarkDemo's scenes in Bullet 2.89's multithreaded world at 1 and 2 threads: every scene must be
+# sane and print the same state hash (docs/threading.md).
+caliber_check_threaded_benchmark() {
+	local demo="$CALIBER_ROOT/$1/Demos/BenchmarkDemo/BenchmarkDemo"
+	local one two
+	one=$("$demo" all 30 --threads 1 | grep -o '^[a-z_0-9][a-z_0-9]* \|hash [0-9a-f]*') || return 1
+	two=$("$demo" all 30 --threads 2 | grep -o '^[a-z_0-9][a-z_0-9]* \|hash [0-9a-f]*') || return 1
+	echo "$two" | paste - -
+	if [ "$one" != "$two" ] || [ -z "$one" ]; then
+		echo "BenchmarkDemo --threads: the state hashes differ between 1 and 2 threads" >&2
+		return 1
+	fi
+	echo "BenchmarkDemo --threads: the same state hashes at 1 and 2 threads: ok"
+}
+
 caliber_run_demos() {
 	local list="$CALIBER_ROOT/$1/Demos/demos.txt"
 	if [ ! -s "$list" ]; then

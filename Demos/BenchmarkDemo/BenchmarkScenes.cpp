@@ -1,6 +1,9 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BenchmarkScenes.h"
 
+#include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
+
 #include "../RagdollDemo/Ragdoll.h"
 
 #include <stdio.h>
@@ -484,13 +487,36 @@ btScalar landscapeHeight(btScalar x, btScalar z)
 	                0.8 * std::sin(.29 * xd + .9) * std::sin(.31 * zd));
 }
 
+namespace
+{
+bool gMultithreadedWorld = false;
+
+btDefaultCollisionConfiguration* makeConfiguration()
+{
+	if (!gMultithreadedWorld) return new btDefaultCollisionConfiguration();
+	// Bullet's multithreaded examples give the pools room for every pair of a large scene.
+	btDefaultCollisionConstructionInfo info;
+	info.m_defaultMaxPersistentManifoldPoolSize = 80000;
+	info.m_defaultMaxCollisionAlgorithmPoolSize = 80000;
+	return new btDefaultCollisionConfiguration(info);
+}
+}  // namespace
+
+void setMultithreadedWorld(bool multithreaded) { gMultithreadedWorld = multithreaded; }
+
 Scene::Scene()
-    : m_configuration(new btDefaultCollisionConfiguration()),
-      m_dispatcher(new btCollisionDispatcher(m_configuration.get())),
+    : m_configuration(makeConfiguration()),
+      m_dispatcher(gMultithreadedWorld ? new btCollisionDispatcherMt(m_configuration.get(), 40)
+                                       : new btCollisionDispatcher(m_configuration.get())),
       m_broadphase(new btDbvtBroadphase()),
-      m_solver(new btSequentialImpulseConstraintSolver()),
-      m_world(
-          new btDiscreteDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(), m_configuration.get()))
+      m_solver(gMultithreadedWorld ? new btSequentialImpulseConstraintSolverMt()
+                                   : new btSequentialImpulseConstraintSolver()),
+      m_solverPool(gMultithreadedWorld ? new btConstraintSolverPoolMt(BT_MAX_THREAD_COUNT) : 0),
+      m_world(gMultithreadedWorld
+                  ? new btDiscreteDynamicsWorldMt(m_dispatcher.get(), m_broadphase.get(), m_solverPool.get(),
+                                                  m_solver.get(), m_configuration.get())
+                  : new btDiscreteDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(),
+                                                m_configuration.get()))
 {
 	m_world->setGravity(btVector3(0, -10, 0));
 	btContactSolverInfo& info = m_world->getSolverInfo();

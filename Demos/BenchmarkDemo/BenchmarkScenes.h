@@ -10,10 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace benchmark_demo
 {
+/// The world the scenes are built in: 0 (the default), btDiscreteDynamicsWorld as Bullet's benchmark
+/// builds it; 1 or more, Bullet 2.89's multithreaded world (btCollisionDispatcherMt, a solver pool, the
+/// Mt solver, btDiscreteDynamicsWorldMt) as Bullet's multithreaded examples build it. The caller sets the
+/// task scheduler and its thread count.
+void setMultithreadedWorld(bool multithreaded);
+
 /// One world and everything it owns.
 class Scene
 {
@@ -55,6 +62,7 @@ private:
 	std::unique_ptr<btCollisionDispatcher> m_dispatcher;
 	std::unique_ptr<btDbvtBroadphase> m_broadphase;
 	std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
+	std::unique_ptr<btConstraintSolverPoolMt> m_solverPool;  // the multithreaded world's
 	std::unique_ptr<btDiscreteDynamicsWorld> m_world;
 	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
 	std::vector<std::unique_ptr<btStridingMeshInterface>> m_meshes;

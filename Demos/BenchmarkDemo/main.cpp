@@ -21,11 +21,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "BenchmarkScenes.h"
 #include "DemoPictures.h"
+#include "LinearMath/btThreads.h"
 
 namespace
 {
@@ -72,13 +74,45 @@ uint64_t stateHash(const std::vector<btRigidBody*>& bodies)
 
 int main(int argc, char** argv)
 {
+	// --threads N (N >= 1): the scenes in Bullet 2.89's multithreaded world with the thread pool set to
+	// N threads (docs/threading.md); its state hashes are the same at every N. Taken out before the
+	// picture options are read.
+	int threads = 0;
+	std::vector<char*> arguments;
+	for (int i = 0; i < argc; ++i)
+	{
+		if (std::string(argv[i]) == "--threads")
+		{
+			threads = i + 1 < argc ? atoi(argv[i + 1]) : 0;
+			if (threads < 1)
+			{
+				fprintf(stderr, "%s: --threads needs a count of at least 1\n", argv[0]);
+				return 2;
+			}
+			++i;
+			continue;
+		}
+		arguments.push_back(argv[i]);
+	}
+	argc = int(arguments.size());
+	argv = arguments.data();
+	std::unique_ptr<btITaskScheduler> scheduler;
+	if (threads > 0)
+	{
+		scheduler.reset(btCreateDefaultTaskScheduler());
+		btITaskScheduler* used = scheduler ? scheduler.get() : btGetSequentialTaskScheduler();
+		btSetTaskScheduler(used);
+		used->setNumThreads(threads);
+		benchmark_demo::setMultithreadedWorld(true);
+	}
+
 	// Positional arguments as before: the scenes, then the frames (which --frames replaces). --png
 	// pictures the last frame of the last scene run (docs/demos.md); it is drawn after the timing.
 	caliber::demo::DemoCommandLine commandLine;
 	commandLine.name = "BenchmarkDemo";
 	commandLine.defaultFrames = 30;
 	commandLine.maxPositional = 2;
-	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0]";
+	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0] [--threads N]";
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	const std::vector<std::string>& positional = pictures.positional();
@@ -96,6 +130,9 @@ int main(int argc, char** argv)
 	    "frames per scene\n",
 	    CALIBER_VERSION_MAJOR, CALIBER_VERSION_MINOR, CALIBER_VERSION_PATCH, btGetVersion() / 100, btGetVersion() % 100,
 	    sizeof(btScalar) == 8 ? "double" : "float", frames);
+	if (threads > 0)
+		printf("# Bullet 2.89's multithreaded world, task scheduler %s with %d threads\n", btGetTaskScheduler()->getName(),
+		       btGetTaskScheduler()->getNumThreads());
 	bool allSane = true;
 	int ran = 0;
 	// The picture is of the last scene run; only that one is drawn (drawing 3000 boxes is not free).
@@ -140,5 +177,7 @@ int main(int argc, char** argv)
 		fprintf(stderr, "no scene matches '%s'\n", filter.c_str());
 		return 2;
 	}
-	return pictures.finish(allSane ? 0 : 1);
+	const int status = pictures.finish(allSane ? 0 : 1);
+	btSetTaskScheduler(0);
+	return status;
 }
