@@ -295,13 +295,13 @@ public:
 	/// their centre of mass, see docs/soft-bodies.md "Clusters").
 	struct Cluster
 	{
-		btAlignedObjectArray<btScalar>
-		    m_masses;                         ///< Masses of the nodes (a fixed node: 0, and the cluster is immovable).
+		btAlignedObjectArray<btScalar> m_masses;  ///< The nodes' masses, each split among the clusters sharing it (a
+		                                          ///< fixed node: 0, the cluster is immovable).
 		btAlignedObjectArray<Node*> m_nodes;  ///< The nodes (neighbouring clusters share the nodes along their border).
 		btAlignedObjectArray<btVector3>
 		    m_framerefs;           ///< Rest positions of the nodes relative to the rest centre of mass.
 		btTransform m_framexform;  ///< Current frame: the centre of mass and the best-fit rotation.
-		btScalar m_idmass;         ///< Inverse mass of the rest shape (as m_imass at initializeClusters).
+		btScalar m_idmass;         ///< Inverse mass a push sees (below m_imass when nodes are shared; see docs).
 		btScalar m_imass;          ///< Inverse mass (0 when a node is fixed).
 		btMatrix3x3 m_locii;       ///< Inverse inertia of the rest shape about its centre of mass.
 		btMatrix3x3 m_invwi;       ///< Current inverse inertia in world axes (zero when a node is fixed).

@@ -65,6 +65,7 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 	const btScalar friction = body.m_cfg.kDF * object->getFriction();
 	btConvexPointCloudShape hull;
 	const btTransform inverse = t.inverse();
+	const btVector3 slack(reach / 8, reach / 8, reach / 8);  // the plane lies on the box's face, give or take rounding
 	for (int i = 0; i < body.m_clusters.size(); ++i)
 	{
 		btSoftBody::Cluster& c = *body.m_clusters[i];
@@ -72,15 +73,17 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 		fillHull(c, state.points, hull, 0);
 		btGjkEpaSolver2::sResults res;
 		const btTransform hullAt = at(c.m_com);
-		btGjkEpaSolver2::Penetration(&hull, hullAt, shape, t, c.m_com - t.getOrigin(), res);
-		if (res.status != btGjkEpaSolver2::sResults::Penetrating &&
-		    !(res.status == btGjkEpaSolver2::sResults::Separated && res.distance < reach))
+		// Signed distance between the surfaces (margins included); contacts are kept within reach, so that
+		// a cluster closing in during the step is held too.
+		if (!btGjkEpaSolver2::SignedDistance(&hull, hullAt, shape, t, c.m_com - t.getOrigin(), res) ||
+		    !(res.distance < reach))
 			continue;
 		caliber::ClusterContact contact;
 		contact.cluster = &c;
 		contact.other = 0;
 		contact.object = object;
 		contact.node = 0;
+		contact.distance = 0;
 		contact.localA = c.m_framexform.inverse() * res.witnesses[0];
 		contact.localB = inverse * res.witnesses[1];
 		contact.normal = inverse.getBasis() * res.normal;  // from the shape towards the cluster, in its frame
@@ -96,8 +99,11 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 			btSoftBody::Node* node = c.m_nodes[j];
 			const btScalar d = n.dot(node->m_x - res.witnesses[1]);
 			if (d >= reach || node->m_im <= 0) continue;
+			// Only nodes over the shape: beside a small shape the contact plane is not its surface.
+			const btVector3 onPlane = node->m_x - n * d;
+			if (!Box{onPlane - slack, onPlane + slack}.overlaps(shapeBox)) continue;
 			contact.localA = c.m_framexform.inverse() * node->m_x;
-			contact.localB = inverse * (node->m_x - n * d);
+			contact.localB = inverse * onPlane;
 			contact.node = node;
 			state.contacts.push_back(contact);
 		}
@@ -143,18 +149,19 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 	const btScalar hardness =
 	    btClamped(btScalar(0.5) * (a.m_cfg.kSSHR_CL + b.m_cfg.kSSHR_CL), btScalar(0), btScalar(1));
 	const btScalar friction = btMax(a.m_cfg.kDF, b.m_cfg.kDF);
+	const btScalar reach = btMin(a.getCollisionShape()->getMargin(), b.getCollisionShape()->getMargin());
 	ClusterState& state = clusterState(a);
 	btAlignedObjectArray<Box> boxesB;
 	boxesB.resize(b.m_clusters.size());
 	for (int j = 0; j < b.m_clusters.size(); ++j)
-		if (b.m_clusters[j]->m_nodes.size() > 0) boxesB[j] = clusterBox(*b.m_clusters[j], 2 * thickness);
+		if (b.m_clusters[j]->m_nodes.size() > 0) boxesB[j] = clusterBox(*b.m_clusters[j], thickness + reach);
 	const int countA = a.m_clusters.size();
 	btConvexPointCloudShape hullA, hullB;
 	for (int i = 0; i < countA; ++i)
 	{
 		btSoftBody::Cluster& ca = *a.m_clusters[i];
 		if (!ca.m_collide || ca.m_nodes.size() == 0) continue;
-		const Box boxA = clusterBox(ca, 2 * thickness);
+		const Box boxA = clusterBox(ca, thickness + reach);
 		bool filled = false;
 		for (int j = self ? i + 1 : 0; j < b.m_clusters.size(); ++j)
 		{
@@ -166,15 +173,18 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 			filled = true;
 			fillHull(cb, state.points2, hullB, thickness);
 			btGjkEpaSolver2::sResults res;
-			btGjkEpaSolver2::Penetration(&hullA, at(ca.m_com), &hullB, at(cb.m_com), ca.m_com - cb.m_com, res);
-			if (res.status != btGjkEpaSolver2::sResults::Penetrating) continue;
+			if (!btGjkEpaSolver2::SignedDistance(&hullA, at(ca.m_com), &hullB, at(cb.m_com), ca.m_com - cb.m_com,
+			                                     res) ||
+			    !(res.distance < reach))
+				continue;
 			caliber::ClusterContact contact;
 			contact.cluster = &ca;
 			contact.other = &cb;
 			contact.object = 0;
 			contact.node = 0;
-			contact.localA = ca.m_framexform.inverse() * res.witnesses[0];
-			contact.localB = cb.m_framexform.inverse() * res.witnesses[1];
+			contact.localA = ca.m_com;
+			contact.localB = cb.m_com;
+			contact.distance = res.distance;
 			contact.normal = res.normal;  // from b's hull towards a's
 			contact.hardness = hardness;
 			contact.friction = friction;

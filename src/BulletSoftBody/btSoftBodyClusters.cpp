@@ -137,31 +137,62 @@ btScalar caliber::clusterInverseMass(const btSoftBody::Cluster& c, const btVecto
 {
 	if (!(c.m_imass > 0)) return 0;
 	const btVector3 rn = r.cross(n);
-	return c.m_imass + rn.dot(c.m_invwi * rn);
+	// A push moves the centre by m_idmass per unit (shared nodes move by their share only).
+	return c.m_idmass + (c.m_idmass / c.m_imass) * rn.dot(c.m_invwi * rn);
+}
+
+void caliber::clusterMotion(const btSoftBody::Cluster& c, btScalar dt, btVector3& com, btVector3& velocity)
+{
+	com.setValue(0, 0, 0);
+	velocity.setValue(0, 0, 0);
+	btScalar total = 0;
+	for (int j = 0; j < c.m_nodes.size(); ++j)
+	{
+		const btSoftBody::Node& node = *c.m_nodes[j];
+		const btScalar w = frameWeight(c, j);
+		com += node.m_x * w;
+		velocity += (node.m_x - node.m_q) * w;
+		total += w;
+	}
+	if (!(total > 0)) return;
+	com /= total;
+	velocity /= total * dt;
+}
+
+btScalar caliber::clusterAngularInverseMass(const btSoftBody::Cluster& c, const btVector3& n)
+{
+	if (!(c.m_imass > 0)) return 0;
+	return (c.m_idmass / c.m_imass) * n.dot(c.m_invwi * n);
 }
 
 namespace
 {
-// Moves every free node of c by the rigid displacement dx + dw x (x - com); velocities by share of it.
+// Moves every free node of c by its share of the rigid displacement dx + dw x (x - com) (a node shared
+// by n clusters carries 1/n of its mass in each, and moves by 1/n of each cluster's displacement, so the
+// nodes' momentum changes by exactly the push); the frame and tracked velocities follow the centre.
 void displaceCluster(btSoftBody::Cluster& c, const btVector3& dx, const btVector3& dw, btScalar dt, btScalar share)
 {
+	btVector3 moved(0, 0, 0);
 	for (int j = 0; j < c.m_nodes.size(); ++j)
 	{
 		btSoftBody::Node& node = *c.m_nodes[j];
 		if (node.m_im <= 0) continue;
-		const btVector3 d = dx + dw.cross(node.m_x - c.m_com);
+		const btVector3 d = (dx + dw.cross(node.m_x - c.m_com)) * (c.m_masses[j] * node.m_im);
 		node.m_x += d;
 		node.m_q += d * (1 - share);
+		moved += d * c.m_masses[j];
 	}
-	c.m_com += dx;
-	const btScalar angle = dw.length();
+	const btVector3 dcom = moved * c.m_imass;
+	const btVector3 turn = dw * (c.m_idmass / c.m_imass);
+	c.m_com += dcom;
+	const btScalar angle = turn.length();
 	if (angle > SIMD_EPSILON)
-		c.m_framexform.setBasis(btMatrix3x3(btQuaternion(dw / angle, angle)) * c.m_framexform.getBasis());
+		c.m_framexform.setBasis(btMatrix3x3(btQuaternion(turn / angle, angle)) * c.m_framexform.getBasis());
 	c.m_framexform.setOrigin(c.m_com);
 	if (dt > 0)
 	{
-		c.m_lv += dx * (share / dt);
-		c.m_av += dw * (share / dt);
+		c.m_lv += dcom * (share / dt);
+		c.m_av += turn * (share / dt);
 	}
 }
 }  // namespace
@@ -327,6 +358,11 @@ int btSoftBody::generateClusters(int k, int maxiterations)
 
 void btSoftBody::initializeClusters()
 {
+	btAlignedObjectArray<int> memberships;
+	memberships.resize(m_nodes.size(), 0);
+	for (int i = 0; i < m_clusters.size(); ++i)
+		for (int j = 0; j < m_clusters[i]->m_nodes.size(); ++j)
+			++memberships[int(m_clusters[i]->m_nodes[j] - &m_nodes[0])];
 	for (int i = 0; i < m_clusters.size(); ++i)
 	{
 		Cluster& c = *m_clusters[i];
@@ -338,14 +374,22 @@ void btSoftBody::initializeClusters()
 		for (int j = 0; j < n; ++j)
 		{
 			const Node& node = *c.m_nodes[j];
-			c.m_masses[j] = node.m_im > 0 ? btScalar(1) / node.m_im : btScalar(0);
+			// A node shared by several clusters gives each an equal part of its mass: the clusters' masses
+			// add up to the body's.
+			const int shared = memberships[int(c.m_nodes[j] - &m_nodes[0])];
+			c.m_masses[j] = node.m_im > 0 ? btScalar(1) / (node.m_im * btScalar(shared)) : btScalar(0);
 			fixed = fixed || node.m_im <= 0;
 			total += c.m_masses[j];
 			if (node.m_battach) c.m_containsAnchor = true;
 		}
 		// A cluster with a fixed node does not move as a whole (its free nodes still move with the links).
 		c.m_imass = (fixed || !(total > 0)) ? btScalar(0) : btScalar(1) / total;
-		c.m_idmass = c.m_imass;
+		// A push P moves node j by its share s_j = m_masses[j] / (node mass) of the rigid displacement
+		// P / mass, so the centre moves by P sum(m_masses[j] s_j) / mass^2: that is the inverse mass a
+		// contact sees (m_imass when no node is shared).
+		btScalar seen = 0;
+		for (int j = 0; j < n; ++j) seen += c.m_masses[j] * c.m_masses[j] * c.m_nodes[j]->m_im;
+		c.m_idmass = c.m_imass * c.m_imass * seen;
 		btVector3 com(0, 0, 0);
 		btScalar weights = 0;
 		for (int j = 0; j < n; ++j)
@@ -414,13 +458,14 @@ void btSoftBody::applyClusters(bool drift)
 		if ((drift ? c.m_ndimpulses : c.m_nvimpulses) == 0) continue;
 		const btVector3& lin = drift ? c.m_dimpulses[0] : c.m_vimpulses[0];
 		const btVector3& ang = drift ? c.m_dimpulses[1] : c.m_vimpulses[1];
-		// Each cluster moves its own nodes as a rigid body (summed over the clusters a node is in), so
-		// the nodes' momentum changes by exactly the impulses given.
+		// Each cluster moves its own nodes as a rigid body, each node by its share (summed over the
+		// clusters it is in), so the nodes' momentum changes by exactly the impulses given.
 		for (int j = 0; j < c.m_nodes.size(); ++j)
 		{
 			Node& node = *c.m_nodes[j];
 			if (node.m_im <= 0) continue;
-			const btVector3 dv = lin + ang.cross(node.m_x - c.m_com);
+			// The node's share of the cluster's rigid motion (1/n for a node in n clusters).
+			const btVector3 dv = (lin + ang.cross(node.m_x - c.m_com)) * (c.m_masses[j] * node.m_im);
 			if (drift)
 				node.m_x += dv * dt;
 			else

@@ -14,15 +14,19 @@
 namespace caliber
 {
 /// A contact of one of the body's clusters with a rigid object or another cluster, found this step.
-/// The constraint is normal . (pA - pB) >= 0, pA and pB the witness points carried by their sides' frames.
+/// Against an object the constraint is normal . (pA - pB) >= 0, pA the node (or the witness point carried
+/// by the cluster's frame), pB carried by the object. Between clusters it is distance + normal . (the
+/// clusters' centres' moves since) >= 0, pushing the centres (a cluster's frame can turn abruptly as its
+/// nodes deform, which would move a witness point carried by it).
 struct ClusterContact
 {
 	btSoftBody::Cluster* cluster;     // side A: a cluster of the body
 	btSoftBody::Cluster* other;       // side B when a cluster (of this or another soft body), else 0
 	const btCollisionObject* object;  // side B when a rigid object, else 0
 	btSoftBody::Node* node;           // the node at pA (manifold points against objects), else 0
-	btVector3 localA;                 // pA in A's frame (m_framexform)
-	btVector3 localB;                 // pB in B's frame (the other cluster's or the object's)
+	btVector3 localA;                 // pA in A's frame (m_framexform); between clusters, A's centre when found
+	btVector3 localB;                 // pB in the object's frame; between clusters, B's centre when found
+	btScalar distance;                // between clusters: the signed distance when found
 	btVector3 normal;                 // from B towards A: world axes for clusters, B's frame for objects
 	btScalar hardness;                // fraction of the error closed per solve
 	btScalar friction;                // Coulomb coefficient
@@ -49,6 +53,11 @@ btSoftBody* clusterOwner(const btSoftBody::Cluster* cluster);
 void refreshCluster(btSoftBody::Cluster& c, btScalar dt);
 /// Effective inverse mass of a cluster at offset r from its centre of mass along unit direction n.
 btScalar clusterInverseMass(const btSoftBody::Cluster& c, const btVector3& r, const btVector3& n);
+/// A cluster's centre of mass and its velocity over the step so far ((x - q) / dt), from its nodes now:
+/// every move of a neighbour sharing nodes shows in them.
+void clusterMotion(const btSoftBody::Cluster& c, btScalar dt, btVector3& com, btVector3& velocity);
+/// Effective inverse angular mass of a cluster about unit axis n.
+btScalar clusterAngularInverseMass(const btSoftBody::Cluster& c, const btVector3& n);
 /// Moves a cluster as a rigid body by the position impulse p (kg m) at offset r, over a step dt: its
 /// nodes by the rigid displacement, its frame and tracked velocities with them. Velocities change by
 /// velocityShare of the move (the rest moves positions alone, the nodes' start points with them).

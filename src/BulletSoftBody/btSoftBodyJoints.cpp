@@ -42,7 +42,7 @@ btScalar sideInverseMass(const btSoftBody::Body& b, const btVector3& r, const bt
 
 btScalar sideAngularInverseMass(const btSoftBody::Body& b, const btVector3& n)
 {
-	if (b.m_soft) return n.dot(b.m_soft->m_invwi * n);
+	if (b.m_soft) return caliber::clusterAngularInverseMass(*b.m_soft, n);
 	if (btRigidBody* rb = movableRigid(b)) return n.dot(rb->getInvInertiaTensorWorld() * n);
 	return 0;
 }
@@ -399,30 +399,38 @@ bool sideGone(const btSoftBody& self, const btSoftBody::Body& b)
 
 void solveContact(caliber::ClusterContact& c, btScalar dt)
 {
+	// The clusters' centres and velocities are measured from their nodes at each contact: clusters share
+	// nodes, so each push also moves the neighbours of the cluster pushed.
 	btSoftBody::Cluster& a = *c.cluster;
-	const btVector3 pa = a.m_framexform * c.localA;
-	const btVector3 ra = pa - a.m_com;
-	btVector3 pb, rb, normal, vb(0, 0, 0);
+	btVector3 comA, va;
+	caliber::clusterMotion(a, dt, comA, va);
+	btVector3 ra, rb, normal, vb(0, 0, 0);
+	btScalar gap;
 	btSoftBody::Body other;
 	if (c.other)
 	{
 		other = btSoftBody::Body(c.other);
-		pb = c.other->m_framexform * c.localB;
-		rb = pb - c.other->m_com;
+		btVector3 comB;
+		caliber::clusterMotion(*c.other, dt, comB, vb);
 		normal = c.normal;
-		vb = c.other->m_lv + c.other->m_av.cross(rb);
+		gap = c.distance + normal.dot((comA - c.localA) - (comB - c.localB));
+		ra = rb = btVector3(0, 0, 0);  // the centres are pushed
 	}
 	else
 	{
 		other = btSoftBody::Body(c.object);
 		const btTransform& t = c.object->getWorldTransform();
-		pb = t * c.localB;
+		const btVector3 pa = c.node ? c.node->m_x : a.m_framexform * c.localA;
+		const btVector3 pb = t * c.localB;
+		ra = pa - comA;
 		rb = pb - t.getOrigin();
 		normal = t.getBasis() * c.normal;
+		gap = normal.dot(pa - pb);
+		va = c.node ? (c.node->m_x - c.node->m_q) / dt : va + a.m_av.cross(ra);
 		if (other.m_rigid) vb = other.m_rigid->getVelocityInLocalPoint(rb);
 	}
-	const btScalar gap = normal.dot(pa - pb);
 	if (gap >= 0) return;
+	a.m_com = comA;  // the pushes below turn about the centre now
 	const btScalar wa = caliber::clusterInverseMass(a, ra, normal);
 	const btScalar wb = sideInverseMass(other, rb, normal);
 	const btScalar w = wa + wb;
@@ -431,7 +439,6 @@ void solveContact(caliber::ClusterContact& c, btScalar dt)
 	const btScalar lambda = correction / w;
 	// As for node contacts: velocities change only as far as the sides stop approaching (an inelastic
 	// contact); the rest of the push moves positions alone, so resolving a penetration never launches.
-	const btVector3 va = a.m_lv + a.m_av.cross(ra);
 	const btScalar approach = (vb - va).dot(normal);
 	const btScalar change = lambda * w / dt;
 	const btScalar share = change > 0 ? btClamped(approach / change, btScalar(0), btScalar(1)) : btScalar(1);
@@ -440,10 +447,18 @@ void solveContact(caliber::ClusterContact& c, btScalar dt)
 	if (!(c.friction > 0)) return;
 	// Coulomb friction: the sliding of the contact points this step is undone up to friction times
 	// the normal correction.
-	btVector3 slide = ((a.m_lv + a.m_av.cross(ra)) -
-	                   (c.other ? c.other->m_lv + c.other->m_av.cross(rb)
-	                            : (other.m_rigid ? other.m_rigid->getVelocityInLocalPoint(rb) : btVector3(0, 0, 0)))) *
-	                  dt;
+	caliber::clusterMotion(a, dt, comA, va);
+	if (c.other)
+	{
+		btVector3 comB;
+		caliber::clusterMotion(*c.other, dt, comB, vb);
+	}
+	else
+	{
+		va = c.node ? (c.node->m_x - c.node->m_q) / dt : va + a.m_av.cross(ra);
+		vb = other.m_rigid ? other.m_rigid->getVelocityInLocalPoint(rb) : btVector3(0, 0, 0);
+	}
+	btVector3 slide = (va - vb) * dt;
 	slide -= normal * normal.dot(slide);
 	const btScalar len = slide.length();
 	if (len <= SIMD_EPSILON) return;
@@ -475,18 +490,19 @@ void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
 	bool matching = false;
 	for (int i = 0; i < body.m_clusters.size(); ++i) matching = matching || body.m_clusters[i]->m_matching > 0;
 	if (state.contacts.size() == 0 && body.m_joints.size() == 0 && !matching) return;
-	// Frames, inertias and velocities now, after the node solvers moved the nodes.
-	for (int i = 0; i < body.m_clusters.size(); ++i) refreshCluster(*body.m_clusters[i], dt);
-	for (int i = 0; i < state.contacts.size(); ++i)
-		if (state.contacts[i].other && clusterOwner(state.contacts[i].other) != &body)
-			refreshCluster(*state.contacts[i].other, dt);
-	for (int i = 0; i < body.m_joints.size(); ++i)
-		if (btSoftBody::Cluster* c = body.m_joints[i]->m_bodies[1].m_soft)
-			if (clusterOwner(c) != &body) refreshCluster(*c, dt);
 	const int iterations = btMax(body.m_cfg.citerations, 1);
 	for (int i = 0; i < body.m_joints.size(); ++i) body.m_joints[i]->Prepare(dt, iterations);
 	for (int it = 0; it < iterations; ++it)
 	{
+		// Frames, inertias and velocities from the nodes before each solve: a cluster's move also moves
+		// the nodes it shares with its neighbours, whose frames would otherwise go stale.
+		for (int i = 0; i < body.m_clusters.size(); ++i) refreshCluster(*body.m_clusters[i], dt);
+		for (int i = 0; i < state.contacts.size(); ++i)
+			if (state.contacts[i].other && clusterOwner(state.contacts[i].other) != &body)
+				refreshCluster(*state.contacts[i].other, dt);
+		for (int i = 0; i < body.m_joints.size(); ++i)
+			if (btSoftBody::Cluster* c = body.m_joints[i]->m_bodies[1].m_soft)
+				if (clusterOwner(c) != &body) refreshCluster(*c, dt);
 		for (int i = 0; i < state.contacts.size(); ++i) solveContact(state.contacts[i], dt);
 		for (int i = 0; i < body.m_joints.size(); ++i) body.m_joints[i]->Solve(dt, 1);
 	}
@@ -494,20 +510,6 @@ void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
 	{
 		body.m_joints[i]->Terminate(dt);
 		if (body.m_joints[i]->m_delete) deleteJoint(body, i);
-	}
-	// Nodes held against static and kinematic objects end the stage on their surface (the clusters'
-	// Gauss-Seidel moves, sharing nodes, can leave a node behind): the node alone is put back, its start
-	// point with it, so that velocities do not change (as a split impulse).
-	for (int i = 0; i < state.contacts.size(); ++i)
-	{
-		const ClusterContact& c = state.contacts[i];
-		if (!c.node || !c.object->isStaticOrKinematicObject()) continue;
-		const btTransform& t = c.object->getWorldTransform();
-		const btVector3 normal = t.getBasis() * c.normal;
-		const btScalar gap = normal.dot(c.node->m_x - t * c.localB);
-		if (gap >= 0) continue;
-		c.node->m_x -= normal * gap;
-		c.node->m_q -= normal * gap;
 	}
 	// Shape matching: each node goes m_matching of the way to its place in its cluster's rigid rest shape.
 	if (matching)
@@ -523,4 +525,18 @@ void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
 				if (n.m_im > 0) n.m_x += (c.m_framexform * c.m_framerefs[j] - n.m_x) * k;
 			}
 		}
+	// Nodes held against static and kinematic objects end the stage on their surface (the clusters'
+	// Gauss-Seidel moves, sharing nodes, and shape matching can leave a node behind): the node alone is put back, its
+	// start point with it, so that velocities do not change (as a split impulse).
+	for (int i = 0; i < state.contacts.size(); ++i)
+	{
+		const ClusterContact& c = state.contacts[i];
+		if (!c.node || !c.object->isStaticOrKinematicObject()) continue;
+		const btTransform& t = c.object->getWorldTransform();
+		const btVector3 normal = t.getBasis() * c.normal;
+		const btScalar gap = normal.dot(c.node->m_x - t * c.localB);
+		if (gap >= 0) continue;
+		c.node->m_x -= normal * gap;
+		c.node->m_q -= normal * gap;
+	}
 }

@@ -67,30 +67,35 @@ TEST(SoftBodyClusters, KMeansClustersCoverEveryNodeAndCarryTheirMasses)
 	ASSERT_EQ(b->clusterCount(), 8);
 	std::vector<int> memberships(b->m_nodes.size(), 0);
 	for (int i = 0; i < b->clusterCount(); ++i)
+		for (int j = 0; j < b->m_clusters[i]->m_nodes.size(); ++j) ++memberships[b->m_clusters[i]->m_nodes[j]->index];
+	btScalar clusterMasses = 0;
+	for (int i = 0; i < b->clusterCount(); ++i)
 	{
 		const btSoftBody::Cluster& c = *b->m_clusters[i];
 		EXPECT_EQ(c.m_clusterIndex, i);
 		ASSERT_EQ(c.m_masses.size(), c.m_nodes.size());
 		btScalar mass = 0;
+		btVector3 com(0, 0, 0);
 		for (int j = 0; j < c.m_nodes.size(); ++j)
 		{
-			++memberships[c.m_nodes[j]->index];
-			EXPECT_FLOAT_EQ(c.m_masses[j], 1 / c.m_nodes[j]->m_im);  // each node brings its own mass
+			// A node shared by n clusters gives each 1/n of its mass.
+			const int n = memberships[c.m_nodes[j]->index];
+			EXPECT_FLOAT_EQ(c.m_masses[j] * n, 1 / c.m_nodes[j]->m_im);
 			mass += c.m_masses[j];
+			com += c.m_nodes[j]->m_x * c.m_masses[j];
 		}
 		EXPECT_NEAR(c.m_imass * mass, 1, 1e-5);
 		// The centre of mass of the cluster is the mass-weighted mean of its nodes.
-		btVector3 com(0, 0, 0);
-		for (int j = 0; j < c.m_nodes.size(); ++j) com += c.m_nodes[j]->m_x * c.m_masses[j];
 		EXPECT_LT((com / mass - b->clusterCom(i)).length(), 1e-5);
+		clusterMasses += mass;
 	}
-	btScalar distinct = 0;
-	for (int i = 0; i < b->m_nodes.size(); ++i)
-	{
-		EXPECT_GE(memberships[i], 1) << "node " << i << " is in no cluster";
-		distinct += 1 / b->m_nodes[i].m_im;
-	}
-	EXPECT_NEAR(distinct, b->getTotalMass(), 1e-5);
+	for (int i = 0; i < b->m_nodes.size(); ++i) EXPECT_GE(memberships[i], 1) << "node " << i << " is in no cluster";
+	// The clusters' masses add up to the body's: every node's mass is counted once.
+	EXPECT_NEAR(clusterMasses, b->getTotalMass(), 1e-5);
+	// Neighbours share their border nodes (k-means clusters take in the faces that cross their border).
+	int shared = 0;
+	for (int i = 0; i < b->m_nodes.size(); ++i) shared += memberships[i] > 1;
+	EXPECT_GT(shared, 0);
 	// k <= 0: one cluster per face of a surface without tetras.
 	EXPECT_EQ(b->generateClusters(0), b->m_faces.size());
 	EXPECT_EQ(b->generateClusters(-3), b->m_faces.size());
