@@ -404,3 +404,35 @@ TEST(SoftBodyClustersBadInput, JointsToRemovedBodiesAreDropped)
 #endif
 	w.world().addRigidBody(box);  // back, so that the test world removes it
 }
+
+namespace
+{
+struct LineCounter : btIDebugDraw
+{
+	int lines = 0;
+	void drawLine(const btVector3&, const btVector3&, const btVector3&) override { ++lines; }
+	void drawContactPoint(const btVector3&, const btVector3&, btScalar, int, const btVector3&) override {}
+	void reportErrorWarning(const char*) override {}
+	void draw3dText(const btVector3&, const char*) override {}
+	void setDebugMode(int) override {}
+	int getDebugMode() const override { return 0; }
+};
+}  // namespace
+
+TEST(SoftBodyClusters, ClustersAndJointsAreDrawnWhenAskedFor)
+{
+	SoftTestWorld w;
+	btSoftBody* b = w.addSoft(clusterBall(w, btVector3(0, 2, 0), 1, 32, 2), false);
+	int spokes = 0;
+	for (int i = 0; i < b->clusterCount(); ++i) spokes += b->m_clusters[i]->m_nodes.size();
+	LineCounter clusters, joints, tree;
+	btSoftBodyHelpers::Draw(b, &clusters, fDrawFlags::Clusters);
+	EXPECT_EQ(clusters.lines, spokes);  // one spoke per node of each cluster
+	btSoftBody::LJoint::Specs lj;
+	lj.position = btVector3(0, 3, 0);
+	b->appendLinearJoint(lj);
+	btSoftBodyHelpers::Draw(b, &joints, fDrawFlags::Joints);
+	EXPECT_EQ(joints.lines, 4);  // a cross at the joint and the line between its sides
+	btSoftBodyHelpers::DrawClusterTree(b, &tree);
+	EXPECT_EQ(tree.lines, 12 * b->clusterCount());  // a box per cluster
+}
