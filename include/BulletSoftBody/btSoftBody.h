@@ -276,7 +276,7 @@ public:
 		btVector3 m_weights;  ///< Barycentric weights of the contact point on the face.
 		btVector3 m_normal;   ///< Contact normal.
 		btScalar m_margin;    ///< Distance kept between the node and the face.
-		btScalar m_friction;  ///< Friction (not used yet).
+		btScalar m_friction;  ///< Coulomb friction (the larger kDF of the two bodies).
 		btScalar m_cfm[2];  ///< m_cfm[0]: the side of the face (+1 or -1 along its winding normal) the node is kept on.
 	};
 	/// A node held at a point of a rigid body; the body is pulled back (two-way).

@@ -12,15 +12,7 @@
 
 namespace
 {
-struct Box
-{
-	btVector3 lo, hi;
-	bool overlaps(const Box& o) const
-	{
-		return !(lo.x() > o.hi.x() || hi.x() < o.lo.x() || lo.y() > o.hi.y() || hi.y() < o.lo.y() ||
-		         lo.z() > o.hi.z() || hi.z() < o.lo.z());
-	}
-};
+using caliber::Box;
 
 Box clusterBox(const btSoftBody::Cluster& c, btScalar grow)
 {
@@ -151,7 +143,7 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 	const btScalar friction = btMax(a.m_cfg.kDF, b.m_cfg.kDF);
 	const btScalar reach = btMin(a.getCollisionShape()->getMargin(), b.getCollisionShape()->getMargin());
 	ClusterState& state = clusterState(a);
-	btAlignedObjectArray<Box> boxesB;
+	btAlignedObjectArray<Box>& boxesB = state.boxes;
 	boxesB.resize(b.m_clusters.size());
 	for (int j = 0; j < b.m_clusters.size(); ++j)
 		if (b.m_clusters[j]->m_nodes.size() > 0) boxesB[j] = clusterBox(*b.m_clusters[j], thickness + reach);

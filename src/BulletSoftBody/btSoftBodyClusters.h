@@ -33,11 +33,23 @@ struct ClusterContact
 	btScalar maxCorrection;           // largest correction per solve (self-collision), in m
 };
 
+/// An axis-aligned box (of a cluster's nodes, or a shape).
+struct Box
+{
+	btVector3 lo, hi;
+	bool overlaps(const Box& o) const
+	{
+		return !(lo.x() > o.hi.x() || hi.x() < o.lo.x() || lo.y() > o.hi.y() || hi.y() < o.lo.y() ||
+		         lo.z() > o.hi.z() || hi.z() < o.lo.z());
+	}
+};
+
 struct ClusterState
 {
 	btAlignedObjectArray<ClusterContact> contacts;  // this step's, cleared in predictMotion
 	btAlignedObjectArray<btVector3> points;         // scratch: a cluster's hull points
 	btAlignedObjectArray<btVector3> points2;        // scratch: the other cluster's
+	btAlignedObjectArray<Box> boxes;                // scratch: the other body's clusters' boxes
 };
 
 /// The body's cluster state (contacts of this step).

@@ -397,6 +397,13 @@ bool sideGone(const btSoftBody& self, const btSoftBody::Body& b)
 	return false;
 }
 
+// True when c is one of body's clusters (without the owners' registry and its lock).
+bool ownCluster(const btSoftBody& body, const btSoftBody::Cluster* c)
+{
+	const int i = c->m_clusterIndex;
+	return i >= 0 && i < body.m_clusters.size() && body.m_clusters[i] == c;
+}
+
 void solveContact(caliber::ClusterContact& c, btScalar dt)
 {
 	// The clusters' centres and velocities are measured from their nodes at each contact: clusters share
@@ -498,11 +505,11 @@ void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
 		// the nodes it shares with its neighbours, whose frames would otherwise go stale.
 		for (int i = 0; i < body.m_clusters.size(); ++i) refreshCluster(*body.m_clusters[i], dt);
 		for (int i = 0; i < state.contacts.size(); ++i)
-			if (state.contacts[i].other && clusterOwner(state.contacts[i].other) != &body)
+			if (state.contacts[i].other && !ownCluster(body, state.contacts[i].other))
 				refreshCluster(*state.contacts[i].other, dt);
 		for (int i = 0; i < body.m_joints.size(); ++i)
 			if (btSoftBody::Cluster* c = body.m_joints[i]->m_bodies[1].m_soft)
-				if (clusterOwner(c) != &body) refreshCluster(*c, dt);
+				if (!ownCluster(body, c)) refreshCluster(*c, dt);
 		for (int i = 0; i < state.contacts.size(); ++i) solveContact(state.contacts[i], dt);
 		for (int i = 0; i < body.m_joints.size(); ++i) body.m_joints[i]->Solve(dt, 1);
 	}

@@ -544,7 +544,7 @@ namespace
 {
 // Soft-soft contacts (VF_SS): a node of this body kept on its side of another body's face, at the
 // distance m_margin; the correction is shared by the node and the face's nodes by their inverse masses
-// and barycentric weights, so momentum is conserved. (Self-collision and friction are not done yet.)
+// and barycentric weights, so momentum is conserved; Coulomb friction with the larger kDF.
 void solveSoftContacts(btSoftBody& body)
 {
 	for (int i = 0; i < body.m_scontacts.size(); ++i)
@@ -579,6 +579,20 @@ void solveSoftContacts(btSoftBody& body)
 			f[k]->m_x -= move;
 			f[k]->m_q -= move * positionOnly;
 		}
+		if (!(c.m_friction > 0)) continue;
+		// Coulomb friction, as against rigid objects: the node's slide over the face this step is undone
+		// while it needs less than m_friction times the normal correction, cut by that much otherwise;
+		// shared by the node and the face's nodes as the normal correction is (momentum is conserved).
+		faceMove = (f[0]->m_x - f[0]->m_q) * c.m_weights[0] + (f[1]->m_x - f[1]->m_q) * c.m_weights[1] +
+		           (f[2]->m_x - f[2]->m_q) * c.m_weights[2];
+		btVector3 slide = (n.m_x - n.m_q) - faceMove;
+		slide -= normal * normal.dot(slide);
+		const btScalar slideLength = slide.length();
+		if (slideLength <= SIMD_EPSILON) continue;
+		const btScalar mu = btMin(slideLength / w, c.m_friction * lambda);
+		const btVector3 dir = slide / slideLength;
+		n.m_x -= dir * (mu * n.m_im);
+		for (int k = 0; k < 3; ++k) f[k]->m_x += dir * (mu * c.m_weights[k] * f[k]->m_im);
 	}
 }
 }  // namespace
