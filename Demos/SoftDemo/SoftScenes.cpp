@@ -182,15 +182,160 @@ Parts buildImpact(Scene& s)
 
 namespace
 {
+// A closed soft body of about res nodes and mass kg with clusters that collide with rigid bodies and
+// other soft bodies' clusters (kPR keeps its gas, the links are inextensible).
+btSoftBody* clusterBody(Scene& s, const btVector3& centre, const btVector3& radius, int res, btScalar mass,
+                        int clusters)
+{
+	btSoftBody* b = s.addSoft(btSoftBodyHelpers::CreateEllipsoid(s.info(), centre, radius, res));
+	b->setTotalMass(mass, true);
+	b->m_cfg.kPR = 200 * mass;
+	b->m_cfg.kDF = btScalar(0.5);
+	b->m_cfg.piterations = 4;
+	b->m_cfg.collisions = btSoftBody::fCollision::CL_RS | btSoftBody::fCollision::CL_SS;
+	b->generateClusters(clusters);
+	return b;
+}
+
+// Bullet's SoftDemo motor: turns towards goal by at most maxStep (rad/s) per solve.
+struct Motor : btSoftBody::AJoint::IControl
+{
+	btScalar goal = 0, maxStep = 1;
+	btScalar Speed(btSoftBody::AJoint*, btScalar current) override
+	{
+		return current + btMin(maxStep, btMax(-maxStep, goal - current));
+	}
+};
+Motor g_hingeMotor;  // outlives every scene (joints keep a pointer to their control)
+}  // namespace
+
+Parts buildClusterDeform(Scene& s)
+{
+	Parts p;
+	btSoftBody* b = clusterBody(s, btVector3(0, 4, 0), btVector3(1.5, 0.8, 1.2), 200, 2, 8);
+	b->m_cfg.kPR = 0;  // no gas: the clusters' shape matching alone brings the shape back
+	b->m_materials[0]->m_kLST = btScalar(0.4);
+	for (int i = 0; i < b->clusterCount(); ++i) b->m_clusters[i]->m_matching = btScalar(0.5);
+	p.softs.push_back(b);
+	return p;
+}
+
+Parts buildClusterCollide1(Scene& s)
+{
+	Parts p;
+	btSoftBody* a = clusterBody(s, btVector3(-2, 3, 0), btVector3(1, 1, 1), 128, 1, 8);
+	btSoftBody* b = clusterBody(s, btVector3(2, 3.3, 0), btVector3(1, 1, 1), 128, 1, 8);
+	a->setVelocity(btVector3(6, 2, 0));
+	b->setVelocity(btVector3(-6, 2, 0));
+	p.softs.push_back(a);
+	p.softs.push_back(b);
+	return p;
+}
+
+Parts buildClusterCollide2(Scene& s)
+{
+	Parts p;
+	for (int i = 0; i < 4; ++i)
+		p.softs.push_back(clusterBody(s, btVector3(btScalar(0.3) * (i % 2), btScalar(1.2 + 2.3 * i), 0),
+		                              btVector3(1, 1, 1), 96, 1, 6));
+	return p;
+}
+
+Parts buildClusterSocket(Scene& s)
+{
+	Parts p;
+	btSoftBody* b = clusterBody(s, btVector3(0, 6, 0), btVector3(0.8, 0.8, 0.8), 96, 1, 1);
+	btSoftBody::LJoint::Specs socket;
+	socket.position = btVector3(0, 6.8, 0);
+	b->appendLinearJoint(socket);  // to the world
+	b->setVelocity(btVector3(4, 0, 0));
+	p.softs.push_back(b);
+	return p;
+}
+
+Parts buildClusterHinge(Scene& s)
+{
+	Parts p;
+	btRigidBody* post = s.addRigid(0, btVector3(0, 2, 0), s.own(new btBoxShape(btVector3(0.2, 2, 0.2))));
+	btSoftBody* wheel = clusterBody(s, btVector3(0, 4, 1.2), btVector3(1.5, 1.5, 0.4), 160, 2, 1);
+	btSoftBody::LJoint::Specs axle;
+	axle.position = btVector3(0, 4, 1.2);
+	wheel->appendLinearJoint(axle, btSoftBody::Body(post));
+	g_hingeMotor.goal = 3;
+	g_hingeMotor.maxStep = btScalar(0.05);
+	btSoftBody::AJoint::Specs hinge;
+	hinge.axis = btVector3(0, 0, 1);
+	hinge.icontrol = &g_hingeMotor;
+	wheel->appendAngularJoint(hinge, btSoftBody::Body(post));
+	p.softs.push_back(wheel);
+	p.rigids.push_back(post);
+	return p;
+}
+
+Parts buildClusterCombine(Scene& s)
+{
+	Parts p;
+	// A chain from a world point: soft ball, soft ball, 1 kg box, joined by linear joints.
+	btSoftBody* a = clusterBody(s, btVector3(0, 8, 0), btVector3(0.6, 0.6, 0.6), 64, 1, 1);
+	btSoftBody* b = clusterBody(s, btVector3(1.2, 8, 0), btVector3(0.6, 0.6, 0.6), 64, 1, 1);
+	btRigidBody* box = s.addRigid(1, btVector3(2.4, 8, 0), s.own(new btBoxShape(btVector3(0.3, 0.3, 0.3))));
+	btSoftBody::LJoint::Specs j;
+	j.position = btVector3(-0.6, 8, 0);
+	a->appendLinearJoint(j);
+	j.position = btVector3(0.6, 8, 0);
+	a->appendLinearJoint(j, b);
+	j.position = btVector3(1.8, 8, 0);
+	b->appendLinearJoint(j, btSoftBody::Body(box));
+	p.softs.push_back(a);
+	p.softs.push_back(b);
+	p.rigids.push_back(box);
+	return p;
+}
+
+Parts buildClusterStackSoft(Scene& s)
+{
+	Parts p;
+	for (int i = 0; i < 4; ++i)
+		p.softs.push_back(
+		    clusterBody(s, btVector3(0, btScalar(0.5 + 1.1 * i), 0), btVector3(1.2, 0.5, 1.2), 128, 1, 6));
+	return p;
+}
+
+Parts buildClusterStackMixed(Scene& s)
+{
+	Parts p;
+	// A soft disc between two 1 kg boxes, on the ground (a box pressed between two soft bodies is solved by
+	// each in turn and sinks into the lower one: see docs/soft-bodies.md, "Clusters").
+	btCollisionShape* box = s.own(new btBoxShape(btVector3(0.8, 0.3, 0.8)));
+	p.rigids.push_back(s.addRigid(1, btVector3(0, 0.3, 0), box));
+	p.softs.push_back(clusterBody(s, btVector3(0, 1.15, 0), btVector3(1.2, 0.5, 1.2), 128, 1, 6));
+	p.rigids.push_back(s.addRigid(1, btVector3(0, 2.0, 0), box));
+	return p;
+}
+
+namespace
+{
 struct Builder
 {
 	const char* name;
 	Parts (*build)(Scene&);
 };
-const Builder kBuilders[] = {{"Cloth", buildCloth},           {"Pressure", buildPressure},
-                             {"Volume", buildVolume},         {"Ropes", buildRopes},
-                             {"RopeAttach", buildRopeAttach}, {"ClothAttach", buildClothAttach},
-                             {"Friction", buildFriction},     {"Impact", buildImpact}};
+const Builder kBuilders[] = {{"Cloth", buildCloth},
+                             {"Pressure", buildPressure},
+                             {"Volume", buildVolume},
+                             {"Ropes", buildRopes},
+                             {"RopeAttach", buildRopeAttach},
+                             {"ClothAttach", buildClothAttach},
+                             {"Friction", buildFriction},
+                             {"Impact", buildImpact},
+                             {"ClusterDeform", buildClusterDeform},
+                             {"ClusterCollide1", buildClusterCollide1},
+                             {"ClusterCollide2", buildClusterCollide2},
+                             {"ClusterSocket", buildClusterSocket},
+                             {"ClusterHinge", buildClusterHinge},
+                             {"ClusterCombine", buildClusterCombine},
+                             {"ClusterStackSoft", buildClusterStackSoft},
+                             {"ClusterStackMixed", buildClusterStackMixed}};
 }  // namespace
 
 std::vector<std::string> sceneNames()

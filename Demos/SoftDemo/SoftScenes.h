@@ -2,8 +2,10 @@
 #ifndef CALIBER_DEMOS_SOFT_SCENES_H
 #define CALIBER_DEMOS_SOFT_SCENES_H
 // SoftDemo's scenes (our own set-ups after Bullet's SoftDemo): Cloth, Pressure, Volume, Ropes,
-// RopeAttach, ClothAttach, Friction, Impact, each built into a soft-rigid world with a 100 m ground
-// (top face at y = 0). Used by SoftDemo, which runs and measures them, and by the demo browser.
+// RopeAttach, ClothAttach, Friction, Impact and the cluster scenes ClusterDeform, ClusterCollide1,
+// ClusterCollide2, ClusterSocket, ClusterHinge, ClusterCombine, ClusterStackSoft, ClusterStackMixed, each built into a
+// soft-rigid world with a 100 m ground (top face at y = 0). Used by SoftDemo, which runs and measures them, and by the
+// demo browser.
 
 #include <memory>
 #include <string>
@@ -68,6 +70,25 @@ Parts buildClothAttach(Scene& scene);
 Parts buildFriction(Scene& scene);
 /// A cloth stretched over four posts and a 1 kg box 3 m above it.
 Parts buildImpact(Scene& scene);
+
+/// A soft body (2 kg, 8 clusters with shape matching 0.5, soft links) dropped 3 m: it squashes and its
+/// clusters bring its shape back.
+Parts buildClusterDeform(Scene& scene);
+/// Two cluster balls thrown at each other (CL_SS).
+Parts buildClusterCollide1(Scene& scene);
+/// Four cluster balls dropped on one another (CL_SS).
+Parts buildClusterCollide2(Scene& scene);
+/// A cluster ball held at a world point by a linear joint (a socket), pushed sideways.
+Parts buildClusterSocket(Scene& scene);
+/// A soft wheel on a static post (rigids[0]): a linear joint for the axle, an angular joint with a
+/// motor (3 rad/s) about it.
+Parts buildClusterHinge(Scene& scene);
+/// A chain from a world point: two soft balls and a 1 kg box (rigids[0]) joined by linear joints.
+Parts buildClusterCombine(Scene& scene);
+/// Four soft discs stacked (CL_SS).
+Parts buildClusterStackSoft(Scene& scene);
+/// A soft disc between two 1 kg boxes (rigids), stacked on the ground.
+Parts buildClusterStackMixed(Scene& scene);
 
 /// The scenes' names, in SoftDemo's order.
 std::vector<std::string> sceneNames();

@@ -1,7 +1,9 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 //
 // SoftDemo: soft bodies in the soft-rigid world, headless, in scenes after Bullet's SoftDemo (our own
-// set-ups): Cloth, Pressure, Volume, Ropes, RopeAttach, ClothAttach, Friction, Impact. Each scene prints
+// set-ups): Cloth, Pressure, Volume, Ropes, RopeAttach, ClothAttach, Friction, Impact, and with clusters
+// ClusterDeform, ClusterCollide1, ClusterCollide2, ClusterSocket, ClusterHinge, ClusterCombine,
+// ClusterStackSoft, ClusterStackMixed. Each scene prints
 // what it shows, the figures that show it and a check of its own.
 // Usage: SoftDemo [scene[,scene...]|all] [frames] [--png PATH] (each scene has its own frame count by
 // default; --png pictures the last scene's last frame). Exit 1 when a check fails.
@@ -221,15 +223,235 @@ bool impact(int frames)
 	              "the cloth catches the box before it reaches the ground and carries it");
 }
 
+// How deep the deepest node of a lies inside b, taking b as convex (behind all its faces' planes).
+btScalar deepestInside(const btSoftBody* a, const btSoftBody* b)
+{
+	const btScalar sign = b->getVolume() < 0 ? btScalar(-1) : btScalar(1);
+	btScalar deepest = 0;
+	for (int i = 0; i < a->m_nodes.size(); ++i)
+	{
+		btScalar depth = BT_LARGE_FLOAT;
+		for (int k = 0; k < b->m_faces.size() && depth > 0; ++k)
+		{
+			const btSoftBody::Face& f = b->m_faces[k];
+			btVector3 n = (f.m_n[1]->m_x - f.m_n[0]->m_x).cross(f.m_n[2]->m_x - f.m_n[0]->m_x);
+			if (n.length2() <= SIMD_EPSILON) continue;
+			depth = btMin(depth, -sign * n.normalized().dot(a->m_nodes[i].m_x - f.m_n[0]->m_x));
+		}
+		deepest = btMax(deepest, depth);
+	}
+	return deepest;
+}
+
+// The deepest any node of one body of softs gets into another.
+btScalar worstOverlap(const std::vector<btSoftBody*>& softs)
+{
+	btScalar worst = 0;
+	for (size_t i = 0; i < softs.size(); ++i)
+		for (size_t j = 0; j < softs.size(); ++j)
+			if (i != j) worst = btMax(worst, deepestInside(softs[i], softs[j]));
+	return worst;
+}
+
+// Where joint j's two points are now, apart.
+btScalar jointGap(const btSoftBody::Joint* j)
+{
+	return (j->m_bodies[0].xform() * j->m_refs[0] - j->m_bodies[1].xform() * j->m_refs[1]).length();
+}
+
+bool clusterDeform(int frames)
+{
+	printf(
+	    "ClusterDeform: a soft body (2 kg, soft links, 8 clusters matching their rest shape by 0.5 a step)\n"
+	    "  falls 3 m, squashes on the ground and springs back.\n");
+	Scene s;
+	btSoftBody* b = soft_demo::buildClusterDeform(s).softs[0];
+	const btScalar v0 = b->getVolume();
+	btScalar lowest = BT_LARGE_FLOAT, squashed = v0;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		lowest = btMin(lowest, lowestNode(b));
+		squashed = btMin(squashed, b->getVolume());
+	}
+	const btScalar v = b->getVolume();
+	printf("  volume %.2f m^3 at rest, %.2f at the most squashed, %.2f at the end; lowest node %.4f m\n", double(v0),
+	       double(squashed), double(v), double(lowest));
+	return report(allFinite(b) && lowest > -0.01 && squashed < v0 && v > btScalar(0.9) * v0,
+	              "no node 1 cm below the ground, the body squashes and gets 90% of its volume back");
+}
+
+bool clusterCollide1(int frames)
+{
+	printf("ClusterCollide1: two cluster balls (1 kg, 8 clusters, CL_SS) thrown at each other at 6 m/s.\n");
+	Scene s;
+	const std::vector<btSoftBody*> b = soft_demo::buildClusterCollide1(s).softs;
+	btScalar overlap = 0;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		overlap = btMax(overlap, worstOverlap(b));
+	}
+	const btScalar apart = b[1]->evaluateCom().x() - b[0]->evaluateCom().x();
+	printf("  deepest node of one ball inside the other %.4f m; centres %.2f m apart along x at the end\n",
+	       double(overlap), double(apart));
+	return report(allFinite(b[0]) && allFinite(b[1]) && overlap < 0.05 && apart > 1.5,
+	              "the balls bounce off each other (no node 5 cm inside the other) and end apart");
+}
+
+bool clusterCollide2(int frames)
+{
+	printf("ClusterCollide2: four cluster balls (1 kg, 6 clusters, CL_SS) dropped on one another.\n");
+	Scene s;
+	const std::vector<btSoftBody*> b = soft_demo::buildClusterCollide2(s).softs;
+	btScalar overlap = 0, lowest = BT_LARGE_FLOAT;
+	bool finite = true;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		overlap = btMax(overlap, worstOverlap(b));
+		for (btSoftBody* x : b) lowest = btMin(lowest, lowestNode(x));
+	}
+	for (btSoftBody* x : b) finite = finite && allFinite(x);
+	printf("  deepest node of one ball inside another %.4f m; lowest node %.4f m\n", double(overlap), double(lowest));
+	return report(finite && overlap < 0.05 && lowest > -0.01,
+	              "no node 5 cm inside another ball, nor 1 cm below the ground");
+}
+
+bool clusterSocket(int frames)
+{
+	printf("ClusterSocket: a cluster ball held at a world point by a linear joint, pushed sideways at 4 m/s.\n");
+	Scene s;
+	btSoftBody* b = soft_demo::buildClusterSocket(s).softs[0];
+	btScalar gap = 0, swing = 0;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		gap = btMax(gap, jointGap(b->m_joints[0]));
+		swing = btMax(swing, b->evaluateCom().x());
+	}
+	printf("  the ball swung %.2f m out; the joint's worst gap %.4f m\n", double(swing), double(gap));
+	return report(allFinite(b) && gap < 0.02 && swing > 0.5, "the socket holds within 2 cm while the ball swings");
+}
+
+bool clusterHinge(int frames)
+{
+	printf("ClusterHinge: a soft wheel on a post: an axle (linear joint) and a motor (angular joint, 3 rad/s).\n");
+	Scene s;
+	const soft_demo::Parts parts = soft_demo::buildClusterHinge(s);
+	btSoftBody* w = parts.softs[0];
+	s.step(frames);
+	// The wheel's spin about its axle, from its nodes: L_z / I_zz about its centre of mass.
+	const btVector3 com = w->evaluateCom();
+	btScalar lz = 0, izz = 0;
+	for (int i = 0; i < w->m_nodes.size(); ++i)
+	{
+		const btSoftBody::Node& n = w->m_nodes[i];
+		const btVector3 r = n.m_x - com;
+		lz += r.cross(n.m_v).z() / n.m_im;
+		izz += (r.x() * r.x() + r.y() * r.y()) / n.m_im;
+	}
+	const btScalar spin = lz / izz;
+	printf("  spin %.3f rad/s (motor 3); axle gap %.4f m; axle at y = %.3f m (4)\n", double(spin),
+	       double(jointGap(w->m_joints[0])), double(com.y()));
+	return report(allFinite(w) && btFabs(spin - 3) < 0.15 && jointGap(w->m_joints[0]) < 0.02,
+	              "the motor spins the wheel within 5% of 3 rad/s and the axle holds within 2 cm");
+}
+
+bool clusterCombine(int frames)
+{
+	printf("ClusterCombine: two soft balls and a 1 kg box joined in a chain from a world point, swinging.\n");
+	Scene s;
+	const soft_demo::Parts parts = soft_demo::buildClusterCombine(s);
+	btScalar gap = 0;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		for (btSoftBody* b : parts.softs)
+			for (int j = 0; j < b->m_joints.size(); ++j) gap = btMax(gap, jointGap(b->m_joints[j]));
+	}
+	const btScalar y = parts.rigids[0]->getCenterOfMassPosition().y();
+	printf("  the joints' worst gap %.4f m; the box at y = %.2f m (hanging below the pin at 8 m)\n", double(gap),
+	       double(y));
+	return report(allFinite(parts.softs[0]) && allFinite(parts.softs[1]) && gap < 0.05 && y < 8,
+	              "the chain holds together within 5 cm and swings down");
+}
+
+bool clusterStack(const soft_demo::Parts& parts, Scene& s, int frames, btScalar height)
+{
+	btScalar overlap = 0;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		overlap = btMax(overlap, worstOverlap(parts.softs));
+	}
+	btScalar top = 0;
+	bool finite = true;
+	for (btSoftBody* b : parts.softs)
+	{
+		top = btMax(top, b->evaluateCom().y());
+		finite = finite && allFinite(b);
+	}
+	for (btRigidBody* r : parts.rigids) top = btMax(top, r->getCenterOfMassPosition().y());
+	printf("  the top of the stack at y = %.2f m (built at %.2f); deepest node of one disc inside another %.4f m\n",
+	       double(top), double(height), double(overlap));
+	return report(finite && top > btScalar(0.7) * height && overlap < 0.05,
+	              "the stack stands (its top keeps 70% of its height) with no node 5 cm inside another disc");
+}
+
+bool clusterStackSoft(int frames)
+{
+	printf("ClusterStackSoft: four soft discs (2.4 x 1 m, 6 clusters, CL_SS) stacked.\n");
+	Scene s;
+	const soft_demo::Parts parts = soft_demo::buildClusterStackSoft(s);
+	return clusterStack(parts, s, frames, btScalar(0.5 + 1.1 * 3));
+}
+
+bool clusterStackMixed(int frames)
+{
+	printf("ClusterStackMixed: a soft disc (1 kg, 6 clusters, CL_RS) between two 1 kg boxes, on the ground.\n");
+	Scene s;
+	const soft_demo::Parts parts = soft_demo::buildClusterStackMixed(s);
+	btSoftBody* disc = parts.softs[0];
+	btRigidBody* top = parts.rigids[1];
+	btScalar lowestTop = BT_LARGE_FLOAT;
+	for (int i = 0; i < frames; ++i)
+	{
+		s.step(1);
+		lowestTop = btMin(lowestTop, top->getCenterOfMassPosition().y());
+	}
+	const btVector3 p = top->getCenterOfMassPosition();
+	const btScalar drift = btVector3(p.x(), 0, p.z()).length();
+	printf(
+	    "  the top box at y = %.2f m (built at 2.00, lowest %.2f), %.2f m off the axis; the disc's centre at %.2f m\n",
+	    double(p.y()), double(lowestTop), double(drift), double(disc->evaluateCom().y()));
+	// The disc's top is domed: the box slides a little way off the axis, still on the disc (radius 1.2 m).
+	return report(allFinite(disc) && lowestTop > 1.5 && p.y() > disc->evaluateCom().y() + 0.3 && drift < 1,
+	              "the disc carries the top box (above 1.5 m, within 1 m of the axis)");
+}
+
 struct Entry
 {
 	const char* name;
 	bool (*run)(int);
 	int frames;
 };
-const Entry kScenes[] = {{"Cloth", cloth, 240},      {"Pressure", pressure, 240},     {"Volume", volume, 240},
-                         {"Ropes", ropes, 180},      {"RopeAttach", ropeAttach, 180}, {"ClothAttach", clothAttach, 180},
-                         {"Friction", friction, 90}, {"Impact", impact, 240}};
+const Entry kScenes[] = {{"Cloth", cloth, 240},
+                         {"Pressure", pressure, 240},
+                         {"Volume", volume, 240},
+                         {"Ropes", ropes, 180},
+                         {"RopeAttach", ropeAttach, 180},
+                         {"ClothAttach", clothAttach, 180},
+                         {"Friction", friction, 90},
+                         {"Impact", impact, 240},
+                         {"ClusterDeform", clusterDeform, 180},
+                         {"ClusterCollide1", clusterCollide1, 120},
+                         {"ClusterCollide2", clusterCollide2, 180},
+                         {"ClusterSocket", clusterSocket, 180},
+                         {"ClusterHinge", clusterHinge, 180},
+                         {"ClusterCombine", clusterCombine, 180},
+                         {"ClusterStackSoft", clusterStackSoft, 180},
+                         {"ClusterStackMixed", clusterStackMixed, 120}};
 }  // namespace
 
 int main(int argc, char** argv)
@@ -240,8 +462,7 @@ int main(int argc, char** argv)
 	commandLine.positionalUsage = "[scene[,scene...]|all] [frames]";
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
-	if (pictures.wanted())
-		g_pictures = &pictures;
+	if (pictures.wanted()) g_pictures = &pictures;
 	const std::vector<std::string>& positional = pictures.positional();
 	const std::string filter = positional.size() > 0 ? positional[0] : "all";
 	const int frames = positional.size() > 1 ? atoi(positional[1].c_str()) : 0;

@@ -136,12 +136,12 @@ public:
 		{
 			RVSmask = 0x000f,   ///< Rigid-versus-soft mask.
 			SDF_RS = 0x0001,    ///< Nodes against rigid shapes (the default; Caliber measures shapes directly).
-			CL_RS = 0x0002,     ///< Clusters against rigid bodies (not implemented yet).
+			CL_RS = 0x0002,     ///< Clusters against rigid bodies (the node contacts when the body has no clusters).
 			SDF_RD = 0x0004,    ///< Deformable-rigid (Bullet's later solver; not implemented).
 			SVSmask = 0x00f0,   ///< Soft-versus-soft mask.
 			VF_SS = 0x0010,     ///< Nodes against faces of other soft bodies (either body's flag is enough).
-			CL_SS = 0x0020,     ///< Clusters against clusters (not implemented yet).
-			CL_SELF = 0x0040,   ///< Cluster self-collision (not implemented yet).
+			CL_SS = 0x0020,     ///< Clusters against the clusters of other soft bodies.
+			CL_SELF = 0x0040,   ///< Clusters against the body's own clusters that share no node.
 			VF_DD = 0x0080,     ///< Deformable vertex-face (not implemented).
 			RVDFmask = 0x0f00,  ///< Deformable-rigid mask.
 			SDF_RDF = 0x0100,   ///< Deformable faces against rigid (not implemented).
@@ -203,7 +203,7 @@ public:
 	struct Material : Element
 	{
 		btScalar m_kLST;  ///< Linear stiffness, [0, 1]: 1 is inextensible (see docs/soft-bodies.md).
-		btScalar m_kAST;  ///< Angular stiffness, [0, 1] (used by clusters; not implemented yet).
+		btScalar m_kAST;  ///< Angular stiffness, [0, 1] (kept for Bullet's API; unused).
 		btScalar m_kVST;  ///< Volume stiffness, [0, 1] (tetra volumes).
 		int m_flags;      ///< fMaterial flags.
 	};
@@ -276,7 +276,7 @@ public:
 		btVector3 m_weights;  ///< Barycentric weights of the contact point on the face.
 		btVector3 m_normal;   ///< Contact normal.
 		btScalar m_margin;    ///< Distance kept between the node and the face.
-		btScalar m_friction;  ///< Friction (not used yet).
+		btScalar m_friction;  ///< Coulomb friction (the larger kDF of the two bodies).
 		btScalar m_cfm[2];  ///< m_cfm[0]: the side of the face (+1 or -1 along its winding normal) the node is kept on.
 	};
 	/// A node held at a point of a rigid body; the body is pulled back (two-way).
@@ -289,6 +289,233 @@ public:
 		btMatrix3x3 m_c0;      ///< Scratch.
 		btVector3 m_c1;        ///< Scratch: the point relative to the body's centre, in world axes.
 		btScalar m_c2;         ///< Scratch.
+	};
+	/// A cluster: a group of nodes treated as one rigid body by cluster collisions (CL_RS, CL_SS,
+	/// CL_SELF) and joints. Built by generateClusters; its frame follows its nodes (best-fit rotation about
+	/// their centre of mass, see docs/soft-bodies.md "Clusters").
+	struct Cluster
+	{
+		btAlignedObjectArray<btScalar> m_masses;  ///< The nodes' masses, each split among the clusters sharing it (a
+		                                          ///< fixed node: 0, the cluster is immovable).
+		btAlignedObjectArray<Node*> m_nodes;  ///< The nodes (neighbouring clusters share the nodes along their border).
+		btAlignedObjectArray<btVector3>
+		    m_framerefs;           ///< Rest positions of the nodes relative to the rest centre of mass.
+		btTransform m_framexform;  ///< Current frame: the centre of mass and the best-fit rotation.
+		btScalar m_idmass;         ///< Inverse mass a push sees (below m_imass when nodes are shared; see docs).
+		btScalar m_imass;          ///< Inverse mass (0 when a node is fixed).
+		btMatrix3x3 m_locii;       ///< Inverse inertia of the rest shape about its centre of mass.
+		btMatrix3x3 m_invwi;       ///< Current inverse inertia in world axes (zero when a node is fixed).
+		btVector3 m_com;           ///< Current centre of mass.
+		btVector3 m_vimpulses[2];  ///< Velocity changes waiting for applyClusters: linear, angular.
+		btVector3 m_dimpulses[2];  ///< Position changes (per second) waiting for applyClusters(true).
+		int m_nvimpulses;          ///< Number of velocity impulses waiting.
+		int m_ndimpulses;          ///< Number of position impulses waiting.
+		btVector3 m_lv;            ///< Linear velocity (of the centre of mass).
+		btVector3 m_av;            ///< Angular velocity.
+		btDbvtNode* m_leaf;        ///< Leaf in the cluster tree (Caliber keeps none: 0).
+		btScalar m_ndamping;       ///< Damping of the nodes' velocities towards the cluster's rigid motion, [0, 1].
+		btScalar m_ldamping;       ///< Damping of the linear velocity per step, [0, 1].
+		btScalar m_adamping;       ///< Damping of the angular velocity per step, [0, 1].
+		btScalar m_matching;       ///< Shape matching: fraction of the way to the rigid rest shape per step, [0, 1].
+		btScalar m_maxSelfCollisionImpulse;  ///< Largest self-collision correction per solve, in m (Caliber: a length).
+		btScalar m_selfCollisionImpulseFactor;  ///< Kept for Bullet's API (unused).
+		bool m_containsAnchor;                  ///< A node of the cluster is anchored to a rigid body.
+		bool m_collide;                         ///< The cluster takes part in cluster collisions.
+		int m_clusterIndex;                     ///< Index in m_clusters.
+		Cluster()
+		    : m_idmass(0),
+		      m_imass(0),
+		      m_nvimpulses(0),
+		      m_ndimpulses(0),
+		      m_leaf(0),
+		      m_ndamping(0),
+		      m_ldamping(0),
+		      m_adamping(0),
+		      m_matching(0),
+		      m_maxSelfCollisionImpulse(100),
+		      m_selfCollisionImpulseFactor(btScalar(0.01)),
+		      m_containsAnchor(false),
+		      m_collide(false),
+		      m_clusterIndex(0)
+		{
+			m_framexform.setIdentity();
+			m_locii.setIdentity();
+			m_invwi.setIdentity();
+			m_com.setValue(0, 0, 0);
+			m_lv.setValue(0, 0, 0);
+			m_av.setValue(0, 0, 0);
+			m_vimpulses[0] = m_vimpulses[1] = m_dimpulses[0] = m_dimpulses[1] = btVector3(0, 0, 0);
+		}
+	};
+	/// A velocity impulse and a position (drift) impulse, either or both.
+	struct Impulse
+	{
+		btVector3 m_velocity;  ///< Velocity impulse (N s).
+		btVector3 m_drift;     ///< Position impulse (N s, applied as a displacement over the step).
+		int m_asVelocity : 1;  ///< m_velocity is used.
+		int m_asDrift : 1;     ///< m_drift is used.
+		Impulse() : m_velocity(0, 0, 0), m_drift(0, 0, 0), m_asVelocity(0), m_asDrift(0) {}
+		Impulse operator-() const
+		{
+			Impulse i = *this;
+			i.m_velocity = -i.m_velocity;
+			i.m_drift = -i.m_drift;
+			return i;
+		}
+		Impulse operator*(btScalar x) const
+		{
+			Impulse i = *this;
+			i.m_velocity *= x;
+			i.m_drift *= x;
+			return i;
+		}
+	};
+	/// One side of a joint or cluster contact: a cluster, a rigid body, another collision object, or
+	/// nothing (the world: fixed).
+	struct Body
+	{
+		Cluster* m_soft;                             ///< The cluster, or 0.
+		btRigidBody* m_rigid;                        ///< The rigid body, or 0.
+		const btCollisionObject* m_collisionObject;  ///< The collision object, or 0.
+		Body() : m_soft(0), m_rigid(0), m_collisionObject(0) {}
+		Body(Cluster* p) : m_soft(p), m_rigid(0), m_collisionObject(0) {}
+		Body(const btCollisionObject* colObj) : m_soft(0), m_rigid(0), m_collisionObject(colObj)
+		{
+			m_rigid = const_cast<btRigidBody*>(btRigidBody::upcast(colObj));
+		}
+		/// Wakes the rigid body.
+		void activate() const;
+		/// Inverse inertia in world axes (zero for the world and static objects).
+		const btMatrix3x3& invWorldInertia() const;
+		/// Inverse mass (0 for the world and static objects).
+		btScalar invMass() const;
+		/// The frame (identity for the world).
+		const btTransform& xform() const;
+		/// Linear velocity.
+		btVector3 linearVelocity() const;
+		/// Angular velocity.
+		btVector3 angularVelocity() const;
+		/// Angular contribution to the velocity of the point at rpos from the centre of mass.
+		btVector3 angularVelocity(const btVector3& rpos) const;
+		/// Velocity of the point at rpos from the centre of mass.
+		btVector3 velocity(const btVector3& rpos) const;
+		/// Velocity impulse at rpos.
+		void applyVImpulse(const btVector3& impulse, const btVector3& rpos) const;
+		/// Position impulse at rpos.
+		void applyDImpulse(const btVector3& impulse, const btVector3& rpos) const;
+		/// Either or both, as impulse says.
+		void applyImpulse(const Impulse& impulse, const btVector3& rpos) const;
+		/// Angular velocity impulse.
+		void applyVAImpulse(const btVector3& impulse) const;
+		/// Angular position impulse.
+		void applyDAImpulse(const btVector3& impulse) const;
+		/// Either or both angular impulses.
+		void applyAImpulse(const Impulse& impulse) const;
+		/// Linear position impulse at the centre of mass.
+		void applyDCImpulse(const btVector3& impulse) const;
+	};
+	/// A constraint between two bodies (clusters, rigid bodies or the world), solved in the soft
+	/// body's position solve (see docs/soft-bodies.md "Joints").
+	struct Joint
+	{
+		struct eType
+		{
+			enum _
+			{
+				Linear = 0,  ///< LJoint.
+				Angular,     ///< AJoint.
+				Contact      ///< CJoint.
+			};
+		};
+		/// Settings common to every joint.
+		struct Specs
+		{
+			Specs() : erp(1), cfm(1), split(1) {}
+			btScalar erp;    ///< Fraction of the error closed per solve, [0, 1].
+			btScalar cfm;    ///< Kept for Bullet's API (Caliber's joints are position constraints).
+			btScalar split;  ///< Kept for Bullet's API.
+		};
+		Body m_bodies[2];          ///< The two sides.
+		btVector3 m_refs[2];       ///< The joint's points or axes in each side's frame.
+		btScalar m_cfm;            ///< From Specs.
+		btScalar m_erp;            ///< From Specs.
+		btScalar m_split;          ///< From Specs.
+		btVector3 m_drift;         ///< The error at the last solve (world axes).
+		btVector3 m_sdrift;        ///< Scratch.
+		btMatrix3x3 m_massmatrix;  ///< Scratch.
+		bool m_delete;             ///< Removed at the end of the step.
+		Joint() : m_cfm(1), m_erp(1), m_split(1), m_drift(0, 0, 0), m_sdrift(0, 0, 0), m_delete(false) {}
+		virtual ~Joint() {}
+		/// Before the solves of a step of dt.
+		virtual void Prepare(btScalar dt, int iterations);
+		/// One solve; sor scales the correction.
+		virtual void Solve(btScalar dt, btScalar sor) = 0;
+		/// After the solves.
+		virtual void Terminate(btScalar dt) = 0;
+		/// The kind of joint.
+		virtual eType::_ Type() const = 0;
+	};
+	/// A ball joint: a point of each side kept together.
+	struct LJoint : Joint
+	{
+		/// The joint's world position when appended.
+		struct Specs : Joint::Specs
+		{
+			btVector3 position;  ///< The joint point, in world coordinates.
+		};
+		btVector3 m_rpos[2];  ///< The point relative to each side's centre of mass, world axes (scratch).
+		void Prepare(btScalar dt, int iterations) override;
+		void Solve(btScalar dt, btScalar sor) override;
+		void Terminate(btScalar dt) override;
+		eType::_ Type() const override { return eType::Linear; }
+	};
+	/// A hinge axis: an axis of each side kept aligned; the turn about it follows IControl::Speed.
+	struct AJoint : Joint
+	{
+		/// Controls the relative angular speed about the axis (a motor).
+		struct IControl
+		{
+			virtual ~IControl() {}
+			/// Called before each step's solves.
+			virtual void Prepare(AJoint*) {}
+			/// The wanted relative angular speed (rad/s) given the current one (default: free).
+			virtual btScalar Speed(AJoint*, btScalar current) { return current; }
+			/// The free hinge.
+			static IControl* Default()
+			{
+				static IControl def;
+				return &def;
+			}
+		};
+		/// The joint's world axis when appended, and its control.
+		struct Specs : Joint::Specs
+		{
+			Specs() : icontrol(IControl::Default()) {}
+			btVector3 axis;      ///< The hinge axis, in world axes.
+			IControl* icontrol;  ///< The control (not owned; 0: free).
+		};
+		btVector3 m_axis[2];   ///< The axis in world axes as each side sees it (scratch).
+		IControl* m_icontrol;  ///< The control.
+		AJoint() : m_icontrol(0) {}
+		void Prepare(btScalar dt, int iterations) override;
+		void Solve(btScalar dt, btScalar sor) override;
+		void Terminate(btScalar dt) override;
+		eType::_ Type() const override { return eType::Angular; }
+	};
+	/// A contact between two sides (Bullet keeps cluster contacts as joints; Caliber keeps them apart
+	/// and solves a CJoint appended to m_joints as a one-sided point contact along m_normal).
+	struct CJoint : Joint
+	{
+		int m_life;           ///< Steps lived.
+		int m_maxlife;        ///< Steps to live (0: one).
+		btVector3 m_rpos[2];  ///< The contact point relative to each side's centre of mass.
+		btVector3 m_normal;   ///< From side 1 towards side 0.
+		btScalar m_friction;  ///< Kept for Bullet's API.
+		CJoint() : m_life(0), m_maxlife(0), m_normal(0, 1, 0), m_friction(0) {}
+		void Prepare(btScalar dt, int iterations) override;
+		void Solve(btScalar dt, btScalar sor) override;
+		void Terminate(btScalar dt) override;
+		eType::_ Type() const override { return eType::Contact; }
 	};
 	/// A text note attached to the body (drawn by btSoftBodyHelpers::DrawInfos).
 	struct Note : Element
@@ -356,6 +583,8 @@ public:
 	};
 
 	typedef btAlignedObjectArray<btScalar> tScalarArray;
+	typedef btAlignedObjectArray<Cluster*> tClusterArray;
+	typedef btAlignedObjectArray<Joint*> tJointArray;
 	typedef btAlignedObjectArray<btVector3> tVector3Array;
 	typedef btAlignedObjectArray<Note> tNoteArray;
 	typedef btAlignedObjectArray<Node> tNodeArray;
@@ -382,6 +611,9 @@ public:
 	tRContactArray m_rcontacts;           ///< Contacts with rigid objects of the current step.
 	tSContactArray m_scontacts;           ///< This body's nodes' contacts with other soft bodies' faces this step.
 	tMaterialArray m_materials;           ///< Materials (owned).
+	tClusterArray m_clusters;             ///< Clusters (owned; generateClusters).
+	tJointArray m_joints;                 ///< Joints (owned; appendLinearJoint, appendAngularJoint).
+	                                      ///< (self-collision skips them).
 	btScalar m_timeacc;                   ///< Time accumulator (unused: the world steps the body).
 	btVector3 m_bounds[2];                ///< Bounding box of the nodes' current and predicted positions.
 	bool m_bUpdateRtCst;                  ///< The constants derived from masses and rest shapes are stale.
@@ -391,6 +623,8 @@ public:
 	btTransform m_initialWorldTransform;  ///< The transform given to the last transform() call.
 	btVector3 m_windVelocity;             ///< Velocity of the air (for the aerodynamic forces).
 	btScalar m_restLengthScale;           ///< Scale of every link's rest length.
+	/// [i + j * clusterCount()]: clusters i and j share a node (self-collision skips such pairs).
+	btAlignedObjectArray<bool> m_clusterConnectivity;
 
 	/// A body of node_count nodes at x with masses m (either may be null: origin, mass 1).
 	btSoftBody(btSoftBodyWorldInfo* worldInfo, int node_count, const btVector3* x, const btScalar* m);
@@ -498,6 +732,61 @@ public:
 	int generateBendingConstraints(int distance, Material* mat = 0);
 	/// Shuffles the order of the links (deterministically).
 	void randomizeConstraints();
+	/// Groups the nodes into k clusters by k-means over their positions (at most maxiterations
+	/// rounds); clusters then take in the nodes of faces (or links) that cross their border, so that
+	/// neighbours share nodes. k <= 0: one cluster per tetra, or per face when there are no tetras.
+	/// k larger than the node count: one cluster per node, with a warning. Returns the cluster count.
+	int generateClusters(int k, int maxiterations = 8192);
+	/// Number of clusters.
+	int clusterCount() const { return m_clusters.size(); }
+	/// Centre of mass of a cluster's nodes now.
+	static btVector3 clusterCom(const Cluster* cluster);
+	/// Centre of mass of cluster index now (the origin for a bad index, with a warning).
+	btVector3 clusterCom(int cluster) const;
+	/// Velocity of the point at rpos from the cluster's centre of mass (from m_lv, m_av).
+	static btVector3 clusterVelocity(const Cluster* cluster, const btVector3& rpos);
+	/// A velocity impulse at rpos, waiting in m_vimpulses for applyClusters(false) (m_lv, m_av change now).
+	static void clusterVImpulse(Cluster* cluster, const btVector3& rpos, const btVector3& impulse);
+	/// A position impulse at rpos, waiting in m_dimpulses for applyClusters(true).
+	static void clusterDImpulse(Cluster* cluster, const btVector3& rpos, const btVector3& impulse);
+	/// Either or both, as impulse says.
+	static void clusterImpulse(Cluster* cluster, const btVector3& rpos, const Impulse& impulse);
+	/// An angular velocity impulse.
+	static void clusterVAImpulse(Cluster* cluster, const btVector3& impulse);
+	/// An angular position impulse.
+	static void clusterDAImpulse(Cluster* cluster, const btVector3& impulse);
+	/// Either or both angular impulses.
+	static void clusterAImpulse(Cluster* cluster, const Impulse& impulse);
+	/// A linear position impulse at the centre of mass.
+	static void clusterDCImpulse(Cluster* cluster, const btVector3& impulse);
+	/// Rest frames, masses and inertias of the clusters from the current shape.
+	void initializeClusters();
+	/// Current frames, inertias and velocities of the clusters; shape matching (m_matching).
+	void updateClusters();
+	/// Empties the clusters' waiting impulses.
+	void cleanupClusters();
+	/// Hands the clusters' waiting impulses to their nodes: velocities (drift false) or positions
+	/// (drift true, moved by the impulse's velocity over the step). Each cluster moves its nodes as a
+	/// rigid body would, so momentum is conserved.
+	void applyClusters(bool drift);
+	/// Damps the nodes' velocities towards their clusters' rigid motion (m_ndamping).
+	void dampClusters();
+	/// Removes cluster index (joints using it are removed too).
+	void releaseCluster(int index);
+	/// Removes every cluster (and the joints using them).
+	void releaseClusters();
+	/// A ball joint at specs.position between cluster body0 of this body and body1.
+	void appendLinearJoint(const LJoint::Specs& specs, Cluster* body0, Body body1);
+	/// A ball joint between this body's first cluster and body (the world when empty).
+	void appendLinearJoint(const LJoint::Specs& specs, Body body = Body());
+	/// A ball joint between the first clusters of this body and body.
+	void appendLinearJoint(const LJoint::Specs& specs, btSoftBody* body);
+	/// A hinge axis joint between cluster body0 of this body and body1.
+	void appendAngularJoint(const AJoint::Specs& specs, Cluster* body0, Body body1);
+	/// A hinge axis joint between this body's first cluster and body (the world when empty).
+	void appendAngularJoint(const AJoint::Specs& specs, Body body = Body());
+	/// A hinge axis joint between the first clusters of this body and body.
+	void appendAngularJoint(const AJoint::Specs& specs, btSoftBody* body);
 	/// Cuts the link between two nodes at position (0..1 along it), splitting the faces that use it.
 	/// Returns false when no such link exists.
 	bool cutLink(int node0, int node1, btScalar position);
@@ -514,7 +803,7 @@ public:
 	void solveConstraints();
 	/// Runs the link constraints alone iterations times (no time passes).
 	void staticSolve(int iterations);
-	/// Steps the bodies' common constraints (soft-soft joints: none yet).
+	/// Steps the bodies' common constraints (Caliber solves joints in each body's solveConstraints: nothing).
 	static void solveCommonConstraints(btSoftBody** bodies, int count, int iterations);
 	/// Third part, once every body of the world is solved: velocities from the step's moves, normals, bounds.
 	void integrateMotion();

@@ -13,19 +13,19 @@ struct fDrawFlags
 {
 	enum _
 	{
-		Nodes = 0x0001,                                           ///< Nodes as small crosses.
-		Links = 0x0002,                                           ///< Links.
-		Faces = 0x0004,                                           ///< Faces.
-		Tetras = 0x0008,                                          ///< Tetras.
-		Normals = 0x0010,                                         ///< Node normals.
-		Contacts = 0x0020,                                        ///< Rigid contacts.
-		Anchors = 0x0040,                                         ///< Anchors.
-		Notes = 0x0080,                                           ///< Notes.
-		Clusters = 0x0100,                                        ///< Clusters (none yet).
-		NodeTree = 0x0200,                                        ///< Node tree (none kept).
-		FaceTree = 0x0400,                                        ///< Face tree (none kept).
-		ClusterTree = 0x0800,                                     ///< Cluster tree (none kept).
-		Joints = 0x1000,                                          ///< Joints (none yet).
+		Nodes = 0x0001,        ///< Nodes as small crosses.
+		Links = 0x0002,        ///< Links.
+		Faces = 0x0004,        ///< Faces.
+		Tetras = 0x0008,       ///< Tetras.
+		Normals = 0x0010,      ///< Node normals.
+		Contacts = 0x0020,     ///< Rigid contacts.
+		Anchors = 0x0040,      ///< Anchors.
+		Notes = 0x0080,        ///< Notes.
+		Clusters = 0x0100,     ///< Clusters: spokes from each centre to its nodes.
+		NodeTree = 0x0200,     ///< Node tree (none kept).
+		FaceTree = 0x0400,     ///< Face tree (none kept).
+		ClusterTree = 0x0800,  ///< Cluster tree (none kept).
+		Joints = 0x1000,       ///< Joints: their points (or axes) and the gap between the sides.
 		Std = Links + Faces + Tetras + Anchors + Notes + Joints,  ///< The usual set.
 		StdTetra = Std - Faces + Tetras,                          ///< The usual set for volumes.
 		END
@@ -43,7 +43,7 @@ struct btSoftBodyHelpers
 	static void DrawNodeTree(btSoftBody* psb, btIDebugDraw* idraw, int mindepth = 0, int maxdepth = -1);
 	/// Draws the face tree (Caliber keeps none: the body's bounds).
 	static void DrawFaceTree(btSoftBody* psb, btIDebugDraw* idraw, int mindepth = 0, int maxdepth = -1);
-	/// Draws the cluster tree (no clusters yet: nothing).
+	/// Draws the cluster tree (Caliber keeps none: the clusters' boxes, at depth 0).
 	static void DrawClusterTree(btSoftBody* psb, btIDebugDraw* idraw, int mindepth = 0, int maxdepth = -1);
 	/// Draws the pose matching frame.
 	static void DrawFrame(btSoftBody* psb, btIDebugDraw* idraw);

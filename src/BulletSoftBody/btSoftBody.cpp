@@ -8,6 +8,7 @@
 
 #include "BulletSoftBody/btSoftBodySolvers.h"
 #include "btSoftBodyInternal.h"
+#include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyTethers.h"
 
@@ -114,6 +115,14 @@ void btSoftBody::initDefaults()
 
 btSoftBody::~btSoftBody()
 {
+	releaseClusters();
+	for (int i = 0; i < m_joints.size(); ++i)
+	{
+		m_joints[i]->~Joint();
+		btAlignedFree(m_joints[i]);
+	}
+	m_joints.resize(0);
+	caliber::releaseClusterState(*this);
 	caliber::releaseSoftBodyTethers(*this);
 	caliber::releaseSoftFaceContacts(*this);
 	delete m_collisionShape;
@@ -932,6 +941,9 @@ void btSoftBody::pointersToIndices()
 	for (int i = 0; i < m_notes.size(); ++i)
 		for (int j = 0; j < m_notes[i].m_rank; ++j)
 			m_notes[i].m_nodes[j] = indexAsPointer(int(m_notes[i].m_nodes[j] - base));
+	for (int i = 0; i < m_clusters.size(); ++i)
+		for (int j = 0; j < m_clusters[i]->m_nodes.size(); ++j)
+			m_clusters[i]->m_nodes[j] = indexAsPointer(int(m_clusters[i]->m_nodes[j] - base));
 }
 
 void btSoftBody::indicesToPointers(const int* map)
@@ -949,6 +961,9 @@ void btSoftBody::indicesToPointers(const int* map)
 	for (int i = 0; i < m_rcontacts.size(); ++i) m_rcontacts[i].m_node = toPointer(m_rcontacts[i].m_node);
 	for (int i = 0; i < m_notes.size(); ++i)
 		for (int j = 0; j < m_notes[i].m_rank; ++j) m_notes[i].m_nodes[j] = toPointer(m_notes[i].m_nodes[j]);
+	for (int i = 0; i < m_clusters.size(); ++i)
+		for (int j = 0; j < m_clusters[i]->m_nodes.size(); ++j)
+			m_clusters[i]->m_nodes[j] = toPointer(m_clusters[i]->m_nodes[j]);
 }
 
 btVector3 btSoftBody::evaluateCom() const

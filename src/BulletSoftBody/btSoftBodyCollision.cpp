@@ -20,6 +20,7 @@
 #include "LinearMath/btSideTable.h"
 #include "LinearMath/btTransformUtil.h"
 #include "btSoftBodyFaceContacts.h"
+#include "btSoftBodyClusters.h"
 #include "btSoftBodyInternal.h"
 
 namespace
@@ -450,11 +451,15 @@ void caliber::collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrap
 void btSoftBody::defaultCollisionHandler(const btCollisionObjectWrapper* pcoWrap)
 {
 	if (!pcoWrap) return;
-	// Node-rigid contacts serve both SDF_RS and CL_RS until clusters exist.
 	if (!(m_cfg.collisions & (fCollision::SDF_RS | fCollision::CL_RS))) return;
 	if (m_collisionDisabledObjects.findLinearSearch(pcoWrap->getCollisionObject()) != m_collisionDisabledObjects.size())
 		return;
-	caliber::collideSoftWithRigid(*this, *pcoWrap);
+	// CL_RS: the clusters' hulls against the object's convex parts; node contacts serve SDF_RS, and CL_RS
+	// when the body has no clusters or the object no convex part (meshes, planes).
+	bool clustered = false;
+	if ((m_cfg.collisions & fCollision::CL_RS) && m_clusters.size() > 0)
+		clustered = caliber::collideClustersWithRigid(*this, *pcoWrap);
+	if ((m_cfg.collisions & fCollision::SDF_RS) || !clustered) caliber::collideSoftWithRigid(*this, *pcoWrap);
 }
 
 namespace
@@ -530,8 +535,11 @@ void collideNodesWithFaces(btSoftBody& nodes, btSoftBody& faces, btScalar thickn
 
 void btSoftBody::defaultCollisionHandler(btSoftBody* psb)
 {
-	if (!psb || psb == this) return;  // self-collision is not implemented yet
-	if (!((m_cfg.collisions | psb->m_cfg.collisions) & fCollision::VF_SS)) return;
+	if (!psb || psb == this) return;  // self-collision (CL_SELF) is found by solveConstraints
+	const int flags = m_cfg.collisions | psb->m_cfg.collisions;
+	if ((flags & fCollision::CL_SS) && m_clusters.size() > 0 && psb->m_clusters.size() > 0)
+		caliber::collideClustersWithClusters(*this, *psb);
+	if (!(flags & fCollision::VF_SS)) return;
 	// Nodes stay half the smaller margin away from the other body's faces; contacts are looked for
 	// within the margins.
 	const btScalar marginA = getCollisionShape()->getMargin(), marginB = psb->getCollisionShape()->getMargin();

@@ -49,6 +49,32 @@ void btSoftBodyHelpers::Draw(btSoftBody* psb, btIDebugDraw* idraw, int drawflags
 					idraw->drawLine(t.m_n[a]->m_x, t.m_n[b]->m_x,
 					                btVector3(btScalar(0.3), btScalar(0.8), btScalar(0.3)));
 		}
+	if (drawflags & fDrawFlags::Clusters)
+		for (int i = 0; i < psb->m_clusters.size(); ++i)
+		{
+			// Each cluster as spokes from its centre to its nodes, in a colour of its own.
+			const btSoftBody::Cluster& c = *psb->m_clusters[i];
+			const btVector3 color(btScalar((i * 37) % 10) / 10, btScalar((i * 61) % 10) / 10,
+			                      btScalar((i * 83) % 10) / 10);
+			const btVector3 com = btSoftBody::clusterCom(&c);
+			for (int j = 0; j < c.m_nodes.size(); ++j) idraw->drawLine(com, c.m_nodes[j]->m_x, color);
+		}
+	if (drawflags & fDrawFlags::Joints)
+		for (int i = 0; i < psb->m_joints.size(); ++i)
+		{
+			// The joint's point (or axis) as each side carries it, and a line between the two.
+			const btSoftBody::Joint& j = *psb->m_joints[i];
+			const btVector3 color(1, btScalar(0.5), 0);
+			if (j.Type() == btSoftBody::Joint::eType::Angular)
+			{
+				const btVector3 o = j.m_bodies[0].xform().getOrigin();
+				idraw->drawLine(o, o + j.m_bodies[0].xform().getBasis() * j.m_refs[0], color);
+				continue;
+			}
+			const btVector3 a = j.m_bodies[0].xform() * j.m_refs[0], b = j.m_bodies[1].xform() * j.m_refs[1];
+			drawCross(idraw, a, btScalar(0.1), color);
+			idraw->drawLine(a, b, color);
+		}
 	if (drawflags & fDrawFlags::Contacts)
 		for (int i = 0; i < psb->m_rcontacts.size(); ++i)
 		{
@@ -107,10 +133,21 @@ void btSoftBodyHelpers::DrawFaceTree(btSoftBody* psb, btIDebugDraw* idraw, int m
 
 void btSoftBodyHelpers::DrawClusterTree(btSoftBody* psb, btIDebugDraw* idraw, int mindepth, int maxdepth)
 {
-	(void)psb;
-	(void)idraw;
-	(void)mindepth;
+	// Caliber keeps no cluster tree: the clusters' boxes are its leaves (depth 0).
 	(void)maxdepth;
+	if (!psb || !idraw || mindepth > 0) return;
+	for (int i = 0; i < psb->m_clusters.size(); ++i)
+	{
+		const btSoftBody::Cluster& c = *psb->m_clusters[i];
+		if (c.m_nodes.size() == 0) continue;
+		btVector3 lo = c.m_nodes[0]->m_x, hi = lo;
+		for (int j = 1; j < c.m_nodes.size(); ++j)
+		{
+			lo.setMin(c.m_nodes[j]->m_x);
+			hi.setMax(c.m_nodes[j]->m_x);
+		}
+		idraw->drawAabb(lo, hi, btVector3(0, 1, 1));
+	}
 }
 
 void btSoftBodyHelpers::DrawFrame(btSoftBody* psb, btIDebugDraw* idraw)

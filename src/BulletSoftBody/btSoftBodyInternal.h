@@ -44,6 +44,17 @@ void softBodyWarning(const char* message);
 /// True when index addresses one of count elements.
 inline bool validIndex(int index, int count) { return index >= 0 && index < count; }
 
+/// A rigid body that a soft body can move (dynamic, in or out of a world).
+bool isMovable(const btRigidBody* body);
+/// Inverse effective mass of a rigid body at offset r (from its centre of mass) along unit direction n
+/// (0 when it cannot move).
+btScalar rigidInverseMass(const btRigidBody* body, const btVector3& r, const btVector3& n);
+/// Moves a dynamic body by the position impulse p (kg m) at offset r over a step dt; its velocities change
+/// by velocityShare of the move (btSoftBodySolve.cpp).
+void moveRigid(btRigidBody* body, const btVector3& p, const btVector3& r, btScalar dt, btScalar velocityShare = 1);
+/// Turns a dynamic body by the angular position impulse l (kg m^2), as moveRigid.
+void turnRigid(btRigidBody* body, const btVector3& l, btScalar dt, btScalar velocityShare = 1);
+
 /// The soft-rigid contact search of one node set against one rigid object (btSoftBodyCollision.cpp).
 void collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrapper& rigid);
 }  // namespace caliber

@@ -4,15 +4,13 @@
 
 #include "BulletSoftBody/btSoftBody.h"
 #include "LinearMath/btPolarDecomposition.h"
+#include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyInternal.h"
 #include "btSoftBodyTethers.h"
 
-namespace
+namespace caliber
 {
-// The step at which a link's stiffness m_kLST is defined (see updateLinkConstants).
-const btScalar kReferenceStep = btScalar(1) / btScalar(60);
-
 // A rigid body that can be moved by the soft body (dynamic, in or out of a world).
 bool isMovable(const btRigidBody* body) { return body && body->getInvMass() > 0 && !body->isStaticOrKinematicObject(); }
 
@@ -28,7 +26,7 @@ btScalar rigidInverseMass(const btRigidBody* body, const btVector3& r, const btV
 // by the corresponding displacement and its velocity by that displacement over dt times velocityShare,
 // so that rigid and soft see the same correction (position based coupling). A share below 1 moves the
 // body out of a penetration without launching it.
-void moveRigid(btRigidBody* body, const btVector3& p, const btVector3& r, btScalar dt, btScalar velocityShare = 1)
+void moveRigid(btRigidBody* body, const btVector3& p, const btVector3& r, btScalar dt, btScalar velocityShare)
 {
 	const btVector3 dx = p * body->getInvMass();
 	const btVector3 dw = body->getInvInertiaTensorWorld() * r.cross(p);
@@ -48,6 +46,31 @@ void moveRigid(btRigidBody* body, const btVector3& p, const btVector3& r, btScal
 	body->setAngularVelocity(body->getAngularVelocity() + dw * (velocityShare / dt));
 	body->updateInertiaTensor();
 }
+
+void turnRigid(btRigidBody* body, const btVector3& l, btScalar dt, btScalar velocityShare)
+{
+	const btVector3 dw = body->getInvInertiaTensorWorld() * l;
+	const btScalar angle = dw.length();
+	if (angle <= SIMD_EPSILON) return;
+	btTransform t = body->getWorldTransform();
+	btQuaternion rot = btQuaternion(dw / angle, angle) * t.getRotation();
+	rot.normalize();
+	t.setRotation(rot);
+	body->setWorldTransform(t);
+	body->setInterpolationWorldTransform(t);
+	body->setAngularVelocity(body->getAngularVelocity() + dw * (velocityShare / dt));
+	body->updateInertiaTensor();
+}
+}  // namespace caliber
+
+using caliber::isMovable;
+using caliber::moveRigid;
+using caliber::rigidInverseMass;
+
+namespace
+{
+// The step at which a link's stiffness m_kLST is defined (see updateLinkConstants).
+const btScalar kReferenceStep = btScalar(1) / btScalar(60);
 
 // Air force on a surface element of area `area` and unit normal n moving at rel against the air.
 // Drag along -rel with coefficient kDG, lift across rel with kLF; projected area |n . rel|.
@@ -280,6 +303,7 @@ void btSoftBody::predictMotion(btScalar dt)
 	m_sst.updmrg = m_sst.radmrg * btScalar(0.25);
 	m_rcontacts.resize(0);
 	m_scontacts.resize(0);
+	if (m_clusters.size() > 0) caliber::clusterState(*this).contacts.resize(0);
 	if (m_faces.size() > 0)  // only faces take corner contacts (ropes skip the side table)
 	{
 		caliber::SoftFaceContacts& faceContacts = caliber::softFaceContacts(*this);
@@ -303,6 +327,8 @@ void btSoftBody::predictMotion(btScalar dt)
 		if (len > maxMove) move *= maxMove / len;
 		n.m_x += move;
 	}
+	// The clusters' frames at the predicted positions, for the collision pass.
+	for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], m_sst.sdt);
 	updateBounds();
 }
 
@@ -518,7 +544,7 @@ namespace
 {
 // Soft-soft contacts (VF_SS): a node of this body kept on its side of another body's face, at the
 // distance m_margin; the correction is shared by the node and the face's nodes by their inverse masses
-// and barycentric weights, so momentum is conserved. (Self-collision and friction are not done yet.)
+// and barycentric weights, so momentum is conserved; Coulomb friction with the larger kDF.
 void solveSoftContacts(btSoftBody& body)
 {
 	for (int i = 0; i < body.m_scontacts.size(); ++i)
@@ -553,6 +579,20 @@ void solveSoftContacts(btSoftBody& body)
 			f[k]->m_x -= move;
 			f[k]->m_q -= move * positionOnly;
 		}
+		if (!(c.m_friction > 0)) continue;
+		// Coulomb friction, as against rigid objects: the node's slide over the face this step is undone
+		// while it needs less than m_friction times the normal correction, cut by that much otherwise;
+		// shared by the node and the face's nodes as the normal correction is (momentum is conserved).
+		faceMove = (f[0]->m_x - f[0]->m_q) * c.m_weights[0] + (f[1]->m_x - f[1]->m_q) * c.m_weights[1] +
+		           (f[2]->m_x - f[2]->m_q) * c.m_weights[2];
+		btVector3 slide = (n.m_x - n.m_q) - faceMove;
+		slide -= normal * normal.dot(slide);
+		const btScalar slideLength = slide.length();
+		if (slideLength <= SIMD_EPSILON) continue;
+		const btScalar mu = btMin(slideLength / w, c.m_friction * lambda);
+		const btVector3 dir = slide / slideLength;
+		n.m_x -= dir * (mu * n.m_im);
+		for (int k = 0; k < 3; ++k) f[k]->m_x += dir * (mu * c.m_weights[k] * f[k]->m_im);
 	}
 }
 }  // namespace
@@ -638,6 +678,14 @@ void btSoftBody::solveConstraints()
 			n.m_x += (goal - n.m_x) * k;
 		}
 	}
+	// Clusters: self-collision (found now, as the soft-soft pairs of the collision pass), then the
+	// cluster contacts and joints.
+	if ((m_cfg.collisions & fCollision::CL_SELF) && m_clusters.size() > 1)
+	{
+		for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], dt);
+		caliber::collideClustersWithClusters(*this, *this);
+	}
+	if (m_clusters.size() > 0 || m_joints.size() > 0) caliber::solveClusterStage(*this, dt);
 	// Contacts have the last word: the links (and pose matching) of the last sweep must not leave nodes
 	// inside rigid objects, nor rigid points behind faces.
 	solveContacts(*this, dt, faceContacts);
@@ -691,6 +739,7 @@ void btSoftBody::integrateMotion()
 			caliber::softBodyWarning(
 			    "Caliber: btSoftBody: a node's state became non-finite; it is put back where it started the step\n");
 	}
+	if (m_clusters.size() > 0) dampClusters();
 	// The nodes moved: face boxes are rebuilt by the next collision pass, whoever runs it.
 	if (m_faces.size() > 0) caliber::softFaceContacts(*this).boxesValid = false;
 	updateNormals();

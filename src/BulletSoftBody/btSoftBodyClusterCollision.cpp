@@ -1,0 +1,188 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// Cluster contacts: the convex hull of each cluster's nodes against rigid convex shapes (CL_RS), against
+// the clusters of other soft bodies (CL_SS) and against the body's own clusters that share no node
+// (CL_SELF), by GJK/EPA (btGjkEpaSolver2). Solved by the cluster stage (btSoftBodyJoints.cpp).
+
+#include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
+#include "BulletCollision/CollisionShapes/btCompoundShape.h"
+#include "BulletCollision/CollisionShapes/btConvexPointCloudShape.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkEpa2.h"
+#include "btSoftBodyClusters.h"
+#include "btSoftBodyInternal.h"
+
+namespace
+{
+using caliber::Box;
+
+Box clusterBox(const btSoftBody::Cluster& c, btScalar grow)
+{
+	Box b{c.m_nodes[0]->m_x, c.m_nodes[0]->m_x};
+	for (int j = 1; j < c.m_nodes.size(); ++j)
+	{
+		b.lo.setMin(c.m_nodes[j]->m_x);
+		b.hi.setMax(c.m_nodes[j]->m_x);
+	}
+	const btVector3 g(grow, grow, grow);
+	b.lo -= g;
+	b.hi += g;
+	return b;
+}
+
+// The cluster's hull: its nodes relative to its centre (the shape is placed at the centre).
+void fillHull(const btSoftBody::Cluster& c, btAlignedObjectArray<btVector3>& points, btConvexPointCloudShape& hull,
+              btScalar margin)
+{
+	points.resize(c.m_nodes.size());
+	for (int j = 0; j < c.m_nodes.size(); ++j) points[j] = c.m_nodes[j]->m_x - c.m_com;
+	hull.setPoints(&points[0], points.size(), true);
+	hull.setMargin(margin);
+}
+
+btTransform at(const btVector3& origin)
+{
+	btTransform t;
+	t.setIdentity();
+	t.setOrigin(origin);
+	return t;
+}
+
+void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btCollisionObject* object,
+                       const btConvexShape* shape, const btTransform& t)
+{
+	const btScalar reach = body.getCollisionShape()->getMargin();
+	Box shapeBox;
+	shape->getAabb(t, shapeBox.lo, shapeBox.hi);
+	const bool fixed = object->isStaticOrKinematicObject();
+	const btScalar hardness = btClamped(fixed ? body.m_cfg.kSKHR_CL : body.m_cfg.kSRHR_CL, btScalar(0), btScalar(1));
+	const btScalar friction = body.m_cfg.kDF * object->getFriction();
+	btConvexPointCloudShape hull;
+	const btTransform inverse = t.inverse();
+	const btVector3 slack(reach / 8, reach / 8, reach / 8);  // the plane lies on the box's face, give or take rounding
+	for (int i = 0; i < body.m_clusters.size(); ++i)
+	{
+		btSoftBody::Cluster& c = *body.m_clusters[i];
+		if (!c.m_collide || c.m_nodes.size() == 0 || !shapeBox.overlaps(clusterBox(c, reach))) continue;
+		fillHull(c, state.points, hull, 0);
+		btGjkEpaSolver2::sResults res;
+		const btTransform hullAt = at(c.m_com);
+		// Signed distance between the surfaces (margins included); contacts are kept within reach, so that
+		// a cluster closing in during the step is held too.
+		if (!btGjkEpaSolver2::SignedDistance(&hull, hullAt, shape, t, c.m_com - t.getOrigin(), res) ||
+		    !(res.distance < reach))
+			continue;
+		caliber::ClusterContact contact;
+		contact.cluster = &c;
+		contact.other = 0;
+		contact.object = object;
+		contact.node = 0;
+		contact.distance = 0;
+		contact.localA = c.m_framexform.inverse() * res.witnesses[0];
+		contact.localB = inverse * res.witnesses[1];
+		contact.normal = inverse.getBasis() * res.normal;  // from the shape towards the cluster, in its frame
+		contact.hardness = hardness;
+		contact.friction = friction;
+		contact.maxCorrection = BT_LARGE_FLOAT;
+		state.contacts.push_back(contact);
+		// The deepest point alone lets a cluster rest on one point and tip its other nodes through the
+		// surface: every node within reach of the contact plane is held too (a contact manifold on the plane).
+		const btVector3& n = res.normal;
+		for (int j = 0; j < c.m_nodes.size(); ++j)
+		{
+			btSoftBody::Node* node = c.m_nodes[j];
+			const btScalar d = n.dot(node->m_x - res.witnesses[1]);
+			if (d >= reach || node->m_im <= 0) continue;
+			// Only nodes over the shape: beside a small shape the contact plane is not its surface.
+			const btVector3 onPlane = node->m_x - n * d;
+			if (!Box{onPlane - slack, onPlane + slack}.overlaps(shapeBox)) continue;
+			contact.localA = c.m_framexform.inverse() * node->m_x;
+			contact.localB = inverse * onPlane;
+			contact.node = node;
+			state.contacts.push_back(contact);
+		}
+	}
+}
+}  // namespace
+
+bool caliber::collideClustersWithRigid(btSoftBody& body, const btCollisionObjectWrapper& rigid)
+{
+	const btCollisionObject* object = rigid.getCollisionObject();
+	const btCollisionShape* shape = rigid.getCollisionShape();
+	if (!object || !shape) return true;
+	if (!object->hasContactResponse()) return true;
+	ClusterState& state = clusterState(body);
+	if (shape->isConvex())
+	{
+		collideWithConvex(body, state, object, static_cast<const btConvexShape*>(shape), rigid.getWorldTransform());
+		return true;
+	}
+	if (shape->isCompound())
+	{
+		const btCompoundShape* compound = static_cast<const btCompoundShape*>(shape);
+		bool any = false;
+		for (int i = 0; i < compound->getNumChildShapes(); ++i)
+		{
+			const btCollisionShape* child = compound->getChildShape(i);
+			if (!child->isConvex()) continue;
+			any = true;
+			collideWithConvex(body, state, object, static_cast<const btConvexShape*>(child),
+			                  rigid.getWorldTransform() * compound->getChildTransform(i));
+		}
+		return any;
+	}
+	return false;
+}
+
+void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
+{
+	const bool self = &a == &b;
+	// Hulls keep half the smaller margin between them (each is grown by a quarter), as node-face contacts do.
+	const btScalar thickness =
+	    btScalar(0.25) * btMin(a.getCollisionShape()->getMargin(), b.getCollisionShape()->getMargin());
+	const btScalar hardness =
+	    btClamped(btScalar(0.5) * (a.m_cfg.kSSHR_CL + b.m_cfg.kSSHR_CL), btScalar(0), btScalar(1));
+	const btScalar friction = btMax(a.m_cfg.kDF, b.m_cfg.kDF);
+	const btScalar reach = btMin(a.getCollisionShape()->getMargin(), b.getCollisionShape()->getMargin());
+	ClusterState& state = clusterState(a);
+	btAlignedObjectArray<Box>& boxesB = state.boxes;
+	boxesB.resize(b.m_clusters.size());
+	for (int j = 0; j < b.m_clusters.size(); ++j)
+		if (b.m_clusters[j]->m_nodes.size() > 0) boxesB[j] = clusterBox(*b.m_clusters[j], thickness + reach);
+	const int countA = a.m_clusters.size();
+	btConvexPointCloudShape hullA, hullB;
+	for (int i = 0; i < countA; ++i)
+	{
+		btSoftBody::Cluster& ca = *a.m_clusters[i];
+		if (!ca.m_collide || ca.m_nodes.size() == 0) continue;
+		const Box boxA = clusterBox(ca, thickness + reach);
+		bool filled = false;
+		for (int j = self ? i + 1 : 0; j < b.m_clusters.size(); ++j)
+		{
+			btSoftBody::Cluster& cb = *b.m_clusters[j];
+			if (!cb.m_collide || cb.m_nodes.size() == 0 || !boxA.overlaps(boxesB[j])) continue;
+			if (self && a.m_clusterConnectivity.size() == countA * countA && a.m_clusterConnectivity[i + j * countA])
+				continue;  // neighbours share nodes: they touch by construction
+			if (!filled) fillHull(ca, state.points, hullA, thickness);
+			filled = true;
+			fillHull(cb, state.points2, hullB, thickness);
+			btGjkEpaSolver2::sResults res;
+			if (!btGjkEpaSolver2::SignedDistance(&hullA, at(ca.m_com), &hullB, at(cb.m_com), ca.m_com - cb.m_com,
+			                                     res) ||
+			    !(res.distance < reach))
+				continue;
+			caliber::ClusterContact contact;
+			contact.cluster = &ca;
+			contact.other = &cb;
+			contact.object = 0;
+			contact.node = 0;
+			contact.localA = ca.m_com;
+			contact.localB = cb.m_com;
+			contact.distance = res.distance;
+			contact.normal = res.normal;  // from b's hull towards a's
+			contact.hardness = hardness;
+			contact.friction = friction;
+			contact.maxCorrection =
+			    self ? btMin(ca.m_maxSelfCollisionImpulse, cb.m_maxSelfCollisionImpulse) : BT_LARGE_FLOAT;
+			state.contacts.push_back(contact);
+		}
+	}
+}
