@@ -69,6 +69,34 @@ int firstMovingBody(const btSolverConstraint& row, int fixedBodyId)
 	return btMin(row.m_solverBodyIdA, row.m_solverBodyIdB);
 }
 
+// The rows of a batch's manifolds, in the order a sweep takes them. The manifolds of a batch share no
+// moving body, so any order gives the same numbers; the order chosen lets the processor overlap rows:
+// in blocks of a few manifolds, the first point of each, then the second of each, ... (consecutive
+// rows of one manifold would each wait for the previous one's body update). As in the serial solver,
+// which point of a manifold comes first changes from solve to solve, so that no point takes more than
+// its share of the impulse step after step.
+void appendBatchRows(const int* manifolds, int numManifolds, const btAlignedObjectArray<int>& manifoldFirstRow,
+                     unsigned int solveCount, btAlignedObjectArray<int>& rows)
+{
+	const int kInterleave = 8;
+	for (int blockStart = 0; blockStart < numManifolds; blockStart += kInterleave)
+	{
+		const int blockEnd = btMin(blockStart + kInterleave, numManifolds);
+		int maxCount = 0;
+		for (int b = blockStart; b < blockEnd; ++b)
+			maxCount = btMax(maxCount, manifoldFirstRow[manifolds[b] + 1] - manifoldFirstRow[manifolds[b]]);
+		for (int p = 0; p < maxCount; ++p)
+			for (int b = blockStart; b < blockEnd; ++b)
+			{
+				const int first = manifoldFirstRow[manifolds[b]];
+				const int count = manifoldFirstRow[manifolds[b] + 1] - first;
+				if (p >= count) continue;
+				const int rotated = p + int(solveCount % unsigned(count));
+				rows.push_back(first + (rotated < count ? rotated : rotated - count));
+			}
+	}
+}
+
 int lowestFreeColour(uint32_t taken)
 {
 	for (int c = 0; c < kColours; ++c)
@@ -379,21 +407,20 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		const int targetRows =
 		    c == kColours ? mt.colourRows[c] : btMax(btMax(1, s_minBatchSize), (mt.colourRows[c] + 15) / 16);
 		int batchBegin = batched.m_constraintIndices.size();
+		int batchRows = 0;
+		const int colourBegin = nextManifold;
+		int batchFirstManifold = colourBegin;
 		for (int k = 0; k < mt.colourCount[c]; ++k)
 		{
-			// As in the serial solver, the manifold's first point changes from solve to solve, so that no
-			// point takes more than its share of the impulse step after step.
 			const int m = mt.orderedManifolds[nextManifold++];
-			const int first = scratch.manifoldFirstRow[m];
-			const int count = scratch.manifoldFirstRow[m + 1] - first;
-			const int rotation = int(scratch.solveCount % unsigned(count));
-			for (int p = 0; p < count; ++p)
-				batched.m_constraintIndices.push_back(first + (p + rotation < count ? p + rotation : p + rotation - count));
-			if (batched.m_constraintIndices.size() - batchBegin >= targetRows || k + 1 == mt.colourCount[c])
-			{
-				batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
-				batchBegin = batched.m_constraintIndices.size();
-			}
+			batchRows += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
+			appendBatchRows(&mt.orderedManifolds[batchFirstManifold], nextManifold - batchFirstManifold,
+			                scratch.manifoldFirstRow, scratch.solveCount, batched.m_constraintIndices);
+			batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
+			batchBegin = batched.m_constraintIndices.size();
+			batchFirstManifold = nextManifold;
+			batchRows = 0;
 		}
 		batched.m_phaseOrder.push_back(batched.m_phases.size());
 		batched.m_phases.push_back(btBatchedConstraints::Range(phaseBegin, batched.m_batches.size()));
