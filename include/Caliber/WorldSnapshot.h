@@ -36,7 +36,7 @@ struct SnapshotDifference
 	size_t offset;
 };
 
-/// Appends nothing and replaces buffer's contents with the world's state. Returns false (with the
+/// Replaces buffer's contents with the world's state. Returns false (with the
 /// reason in error when given, and buffer emptied) for a world the snapshot cannot hold: see the
 /// documented limits (compound shapes, soft bodies, actions, broadphases other than btDbvtBroadphase, ...).
 bool saveWorldState(const btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>& buffer,

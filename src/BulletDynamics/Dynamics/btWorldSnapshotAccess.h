@@ -46,61 +46,62 @@ BindMember<Tag, Member> BindMember<Tag, Member>::instance;
 }  // namespace caliber
 
 // The members, as X(accessor, class, member type, member).
-#define CALIBER_SNAPSHOT_MEMBERS(X) \
-	/* the time accumulator and fixed step of stepSimulation; actions and predictive manifolds (checked) */ \
-	X(localTime, btDiscreteDynamicsWorld, btScalar, m_localTime) \
-	X(fixedTimeStep, btDiscreteDynamicsWorld, btScalar, m_fixedTimeStep) \
-	X(worldActions, btDiscreteDynamicsWorld, btAlignedObjectArray<btActionInterface*>, m_actions) \
-	X(predictiveManifolds, btDiscreteDynamicsWorld, btAlignedObjectArray<btPersistentManifold*>, m_predictiveManifolds) \
-	/* a collision object's step state */ \
-	X(worldTransform, btCollisionObject, btTransform, m_worldTransform) \
-	X(interpolationTransform, btCollisionObject, btTransform, m_interpolationWorldTransform) \
-	X(interpolationLinearVelocity, btCollisionObject, btVector3, m_interpolationLinearVelocity) \
-	X(interpolationAngularVelocity, btCollisionObject, btVector3, m_interpolationAngularVelocity) \
-	X(collisionFlags, btCollisionObject, int, m_collisionFlags) \
-	X(islandTag, btCollisionObject, int, m_islandTag1) \
-	X(companionId, btCollisionObject, int, m_companionId) \
-	X(activationState, btCollisionObject, int, m_activationState1) \
-	X(deactivationTime, btCollisionObject, btScalar, m_deactivationTime) \
-	X(hitFraction, btCollisionObject, btScalar, m_hitFraction) \
-	X(updateRevision, btCollisionObject, int, m_updateRevision) \
-	/* a rigid body's step state */ \
-	X(invInertiaTensorWorld, btRigidBody, btMatrix3x3, m_invInertiaTensorWorld) \
-	X(linearVelocity, btRigidBody, btVector3, m_linearVelocity) \
-	X(angularVelocity, btRigidBody, btVector3, m_angularVelocity) \
-	X(bodyGravity, btRigidBody, btVector3, m_gravity) \
-	X(bodyGravityAcceleration, btRigidBody, btVector3, m_gravity_acceleration) \
-	X(totalForce, btRigidBody, btVector3, m_totalForce) \
-	X(totalTorque, btRigidBody, btVector3, m_totalTorque) \
-	X(deltaLinearVelocity, btRigidBody, btVector3, m_deltaLinearVelocity) \
-	X(deltaAngularVelocity, btRigidBody, btVector3, m_deltaAngularVelocity) \
-	X(pushVelocity, btRigidBody, btVector3, m_pushVelocity) \
-	X(turnVelocity, btRigidBody, btVector3, m_turnVelocity) \
-	/* a contact manifold's points */ \
-	X(manifoldPoints, btPersistentManifold, ManifoldPointCache, m_pointCache) \
-	X(manifoldPointCount, btPersistentManifold, int, m_cachedPoints) \
-	X(manifoldBreakingThreshold, btPersistentManifold, btScalar, m_contactBreakingThreshold) \
-	X(manifoldProcessingThreshold, btPersistentManifold, btScalar, m_contactProcessingThreshold) \
-	/* the collision algorithms' state that carries from step to step (GJK warm start, lazy manifolds) */ \
-	X(convexManifold, btConvexConvexAlgorithm, btPersistentManifold*, m_manifoldPtr) \
-	X(convexOwnsManifold, btConvexConvexAlgorithm, bool, m_ownManifold) \
-	X(convexLastAxis, btConvexConvexAlgorithm, btVector3, m_lastSeparatingAxis) \
-	X(convexHaveLastAxis, btConvexConvexAlgorithm, bool, m_haveLastSeparatingAxis) \
+#define CALIBER_SNAPSHOT_MEMBERS(X)                                                                             \
+	/* the time accumulator and fixed step of stepSimulation; actions and predictive manifolds (checked) */     \
+	X(localTime, btDiscreteDynamicsWorld, btScalar, m_localTime)                                                \
+	X(fixedTimeStep, btDiscreteDynamicsWorld, btScalar, m_fixedTimeStep)                                        \
+	X(worldActions, btDiscreteDynamicsWorld, btAlignedObjectArray<btActionInterface*>, m_actions)               \
+	X(predictiveManifolds, btDiscreteDynamicsWorld, btAlignedObjectArray<btPersistentManifold*>,                \
+	  m_predictiveManifolds)                                                                                    \
+	/* a collision object's step state */                                                                       \
+	X(worldTransform, btCollisionObject, btTransform, m_worldTransform)                                         \
+	X(interpolationTransform, btCollisionObject, btTransform, m_interpolationWorldTransform)                    \
+	X(interpolationLinearVelocity, btCollisionObject, btVector3, m_interpolationLinearVelocity)                 \
+	X(interpolationAngularVelocity, btCollisionObject, btVector3, m_interpolationAngularVelocity)               \
+	X(collisionFlags, btCollisionObject, int, m_collisionFlags)                                                 \
+	X(islandTag, btCollisionObject, int, m_islandTag1)                                                          \
+	X(companionId, btCollisionObject, int, m_companionId)                                                       \
+	X(activationState, btCollisionObject, int, m_activationState1)                                              \
+	X(deactivationTime, btCollisionObject, btScalar, m_deactivationTime)                                        \
+	X(hitFraction, btCollisionObject, btScalar, m_hitFraction)                                                  \
+	X(updateRevision, btCollisionObject, int, m_updateRevision)                                                 \
+	/* a rigid body's step state */                                                                             \
+	X(invInertiaTensorWorld, btRigidBody, btMatrix3x3, m_invInertiaTensorWorld)                                 \
+	X(linearVelocity, btRigidBody, btVector3, m_linearVelocity)                                                 \
+	X(angularVelocity, btRigidBody, btVector3, m_angularVelocity)                                               \
+	X(bodyGravity, btRigidBody, btVector3, m_gravity)                                                           \
+	X(bodyGravityAcceleration, btRigidBody, btVector3, m_gravity_acceleration)                                  \
+	X(totalForce, btRigidBody, btVector3, m_totalForce)                                                         \
+	X(totalTorque, btRigidBody, btVector3, m_totalTorque)                                                       \
+	X(deltaLinearVelocity, btRigidBody, btVector3, m_deltaLinearVelocity)                                       \
+	X(deltaAngularVelocity, btRigidBody, btVector3, m_deltaAngularVelocity)                                     \
+	X(pushVelocity, btRigidBody, btVector3, m_pushVelocity)                                                     \
+	X(turnVelocity, btRigidBody, btVector3, m_turnVelocity)                                                     \
+	/* a contact manifold's points */                                                                           \
+	X(manifoldPoints, btPersistentManifold, ManifoldPointCache, m_pointCache)                                   \
+	X(manifoldPointCount, btPersistentManifold, int, m_cachedPoints)                                            \
+	X(manifoldBreakingThreshold, btPersistentManifold, btScalar, m_contactBreakingThreshold)                    \
+	X(manifoldProcessingThreshold, btPersistentManifold, btScalar, m_contactProcessingThreshold)                \
+	/* the collision algorithms' state that carries from step to step (GJK warm start, lazy manifolds) */       \
+	X(convexManifold, btConvexConvexAlgorithm, btPersistentManifold*, m_manifoldPtr)                            \
+	X(convexOwnsManifold, btConvexConvexAlgorithm, bool, m_ownManifold)                                         \
+	X(convexLastAxis, btConvexConvexAlgorithm, btVector3, m_lastSeparatingAxis)                                 \
+	X(convexHaveLastAxis, btConvexConvexAlgorithm, bool, m_haveLastSeparatingAxis)                              \
 	X(concaveCallback, btConvexConcaveCollisionAlgorithm, btConvexTriangleCallback, m_btConvexTriangleCallback) \
-	X(triangleAlgorithm, btConvexTriangleCallback, btCollisionAlgorithm*, m_triangleAlgorithm) \
-	/* joints: the time step of the last rows (read by the next getInfo1), the accumulated hinge angle */ \
-	X(jointAppliedImpulse, btTypedConstraint, btScalar, m_appliedImpulse) \
-	X(jointEnabled, btTypedConstraint, bool, m_isEnabled) \
-	X(hingeLastTimeStep, btHingeConstraint, btScalar, m_lastTimeStep) \
-	X(hingeAccumulatedAngle, btHingeAccumulatedAngleConstraint, btScalar, m_accumulatedAngle) \
+	X(triangleAlgorithm, btConvexTriangleCallback, btCollisionAlgorithm*, m_triangleAlgorithm)                  \
+	/* joints: the time step of the last rows (read by the next getInfo1), the accumulated hinge angle */       \
+	X(jointAppliedImpulse, btTypedConstraint, btScalar, m_appliedImpulse)                                       \
+	X(jointEnabled, btTypedConstraint, bool, m_isEnabled)                                                       \
+	X(hingeLastTimeStep, btHingeConstraint, btScalar, m_lastTimeStep)                                           \
+	X(hingeAccumulatedAngle, btHingeAccumulatedAngleConstraint, btScalar, m_accumulatedAngle)                   \
 	X(coneLastTimeStep, btConeTwistConstraint, btScalar, m_lastTimeStep)
 
 // Declares caliber::snapshot_access::accessor(Class&) -> MemberType& (bound in btWorldSnapshot.cpp).
-#define CALIBER_SNAPSHOT_DECLARE(Accessor, Class, MemberType, member)                                          \
-	struct Accessor##Tag                                                                                       \
-	{                                                                                                          \
-		typedef MemberType Class::*Type;                                                                       \
-	};                                                                                                         \
+#define CALIBER_SNAPSHOT_DECLARE(Accessor, Class, MemberType, member) \
+	struct Accessor##Tag                                              \
+	{                                                                 \
+		typedef MemberType Class::*Type;                              \
+	};                                                                \
 	inline MemberType& Accessor(Class& object) { return object.*MemberPointer<Accessor##Tag>::pointer; }
 
 // The one explicit instantiation per member: used once in the program, in btWorldSnapshot.cpp.

@@ -275,7 +275,8 @@ void rebuildTree(btDbvt& tree, const btAlignedObjectArray<SavedNode>& nodes, btD
 		btDbvtNode* node;
 		if (nodes[i].leaf)
 		{
-			node = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[nodes[i].object]->getBroadphaseHandle())->leaf;
+			node = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[nodes[i].object]->getBroadphaseHandle())
+			           ->leaf;
 		}
 		else
 		{
@@ -329,7 +330,8 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		const btVector3 aabbMax = in.vector("proxy m_aabbMax");
 		const int set = in.value<int>("proxy set");
 		// A leaf node belongs to its tree's node blocks: a proxy cannot change trees.
-		if (in.ok() && set != proxy->set) in.fail("object %d: proxy in tree %d, the snapshot's in tree %d", i, proxy->set, set);
+		if (in.ok() && set != proxy->set)
+			in.fail("object %d: proxy in tree %d, the snapshot's in tree %d", i, proxy->set, set);
 		proxySet[i] = set;
 		if (in.ok() && in.applying())
 		{
@@ -396,8 +398,8 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		dbvt->m_stageRoots[stage] = 0;
 		for (int k = 0; k < stageMembers[stage].size(); ++k)
 		{
-			btDbvtProxy* proxy =
-			    static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[stageMembers[stage][k]]->getBroadphaseHandle());
+			btDbvtProxy* proxy = static_cast<btDbvtProxy*>(
+			    world.getCollisionObjectArray()[stageMembers[stage][k]]->getBroadphaseHandle());
 			proxy->stage = stage;
 			proxy->links[0] = previous;
 			proxy->links[1] = 0;
@@ -445,8 +447,8 @@ bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, int kin
 		if (triangleKind != kNoAlgorithm && triangleKind != kConvexConvex && triangleKind != kSphereTriangle &&
 		    triangleKind != kEmpty)
 		{
-			setError(error, errorSize, "pair %d: its mesh algorithm uses a triangle algorithm the snapshot does not support",
-			         pairIndex);
+			setError(error, errorSize,
+			         "pair %d: its mesh algorithm uses a triangle algorithm the snapshot does not support", pairIndex);
 			return false;
 		}
 		out.field("triangle algorithm", triangleKind);
@@ -514,7 +516,8 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 	{
 		if (!owned[m])
 		{
-			setError(error, errorSize, "manifold %d: not owned by a pair's algorithm (user or predictive manifolds)", m);
+			setError(error, errorSize, "manifold %d: not owned by a pair's algorithm (user or predictive manifolds)",
+			         m);
 			return false;
 		}
 	}
@@ -532,7 +535,10 @@ struct SavedPair
 	int firstManifold, manifoldCount;  // into the flat manifold list
 };
 
-btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index) { return world.getCollisionObjectArray()[index]; }
+btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
+{
+	return world.getCollisionObjectArray()[index];
+}
 
 // Makes the triangle algorithm of a mesh pair as btConvexTriangleCallback::processTriangle makes it.
 btCollisionAlgorithm* makeTriangleAlgorithm(btDispatcher* dispatcher, btConvexTriangleCallback& callback,
@@ -734,7 +740,8 @@ bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size
 	}
 	if (owned != world.getDispatcher()->getNumManifolds())
 	{
-		setError(error, errorSize, "manifolds: the dispatcher holds manifolds no pair owns (user or predictive manifolds)");
+		setError(error, errorSize,
+		         "manifolds: the dispatcher holds manifolds no pair owns (user or predictive manifolds)");
 		return false;
 	}
 	return true;
@@ -790,7 +797,8 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		pair.triangleKind = kNoAlgorithm;
 		pair.haveAxis = false;
 		pair.axis.setValue(0, 0, 0);
-		if (in.ok() && (pair.kind < kNoAlgorithm || pair.kind > kEmpty)) in.fail("pair %d: unknown algorithm %d", i, pair.kind);
+		if (in.ok() && (pair.kind < kNoAlgorithm || pair.kind > kEmpty))
+			in.fail("pair %d: unknown algorithm %d", i, pair.kind);
 		if (pair.kind == kConvexConvex)
 		{
 			pair.ownsManifold = in.flag("owns manifold");
