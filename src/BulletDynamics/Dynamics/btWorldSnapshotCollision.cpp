@@ -106,20 +106,22 @@ void pairManifolds(btBroadphasePair& pair, btManifoldArray& manifolds)
 template <class IO>
 void dbvtCounters(IO& io, btDbvtBroadphase& dbvt)
 {
+	// Counters the broadphase adds to are kept well below INT_MAX (a corrupt one would overflow), and the
+	// percentages of leaves re-inserted per step so that their products with leaf counts stay ints.
+	const int counterLimit = 0x7fff0000;
 	io.field("m_prediction", dbvt.m_prediction);
-	io.field("m_stageCurrent", dbvt.m_stageCurrent);
-	// Percentages of the leaves re-inserted per step: bounded so that their products stay ints.
+	io.field("m_stageCurrent", dbvt.m_stageCurrent, 0, counterLimit);
 	io.field("m_fupdates", dbvt.m_fupdates, 0, 10000);
 	io.field("m_dupdates", dbvt.m_dupdates, 0, 10000);
 	io.field("m_cupdates", dbvt.m_cupdates, 0, 10000);
 	io.field("m_newpairs", dbvt.m_newpairs);
-	io.field("m_fixedleft", dbvt.m_fixedleft);
+	io.field("m_fixedleft", dbvt.m_fixedleft, 0, counterLimit);
 	io.field("m_updates_call", dbvt.m_updates_call);
 	io.field("m_updates_done", dbvt.m_updates_done);
 	io.field("m_updates_ratio", dbvt.m_updates_ratio);
-	io.field("m_pid", dbvt.m_pid);
-	io.field("m_cid", dbvt.m_cid);
-	io.field("m_gid", dbvt.m_gid);
+	io.field("m_pid", dbvt.m_pid, 0, counterLimit);
+	io.field("m_cid", dbvt.m_cid, 0, counterLimit);
+	io.field("m_gid", dbvt.m_gid, 0, counterLimit);
 	io.field("m_deferedcollide", dbvt.m_deferedcollide);
 	io.field("m_needcleanup", dbvt.m_needcleanup);
 }
