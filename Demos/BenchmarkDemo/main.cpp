@@ -11,6 +11,10 @@
 //   BenchmarkDemo                      every scene, 30 steps each (a quick run, as in CI)
 //   BenchmarkDemo all 600              every scene, 600 steps each (the reference length)
 //   BenchmarkDemo stack1000,boxes3000 600   the named scenes (substrings of the names)
+//   BenchmarkDemo all 120 1000         then, per scene, the rollback check: save the world
+//                                      (caliber::saveWorldState), step 1000 frames, restore, step them
+//                                      again, and restore into a second copy of the scene and step them
+//                                      there: every frame's hash must agree (docs/serialization.md)
 //
 // As in the reference runs, deactivation is off (gDisableDeactivation), steps are 1/60 s with one
 // substep, the solver runs 5 iterations (10 for pyramid_jolt) in single-threaded mode.
@@ -26,6 +30,7 @@
 #include <vector>
 
 #include "BenchmarkScenes.h"
+#include "Caliber/WorldSnapshot.h"
 #include "DemoPictures.h"
 #include "LinearMath/btThreads.h"
 
@@ -70,6 +75,65 @@ uint64_t stateHash(const std::vector<btRigidBody*>& bodies)
 	}
 	return hash;
 }
+
+// Steps frames frames, keeping each frame's hash.
+std::vector<uint64_t> hashedRun(benchmark_demo::Scene& scene, int frames)
+{
+	std::vector<uint64_t> hashes;
+	for (int frame = 0; frame < frames; ++frame)
+	{
+		scene.world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+		scene.afterStep();
+		hashes.push_back(stateHash(scene.dynamicBodies()));
+	}
+	return hashes;
+}
+
+// The first frame (1-based) whose hash differs, 0 when all agree.
+int firstMismatch(const std::vector<uint64_t>& a, const std::vector<uint64_t>& b)
+{
+	for (size_t i = 0; i < a.size(); ++i)
+		if (i >= b.size() || a[i] != b[i]) return int(i) + 1;
+	return 0;
+}
+
+// The rollback check: save, step, restore, step again (same world), restore into a second copy of the
+// scene and step there; each replay must repeat every frame's hash.
+bool rollbackCheck(benchmark_demo::Scene& scene, const std::string& name, int frames)
+{
+	btAlignedObjectArray<unsigned char> snapshot;
+	caliber::SnapshotError error;
+	auto start = std::chrono::steady_clock::now();
+	if (!caliber::saveWorldState(scene.world(), snapshot, &error))
+	{
+		printf("  rollback: cannot save: %s  <-- FAILED\n", error.message);
+		return false;
+	}
+	const double saveMs = millisecondsSince(start);
+	const std::vector<uint64_t> original = hashedRun(scene, frames);
+	start = std::chrono::steady_clock::now();
+	if (!caliber::restoreWorldState(scene.world(), &snapshot[0], size_t(snapshot.size()), &error))
+	{
+		printf("  rollback: cannot restore: %s  <-- FAILED\n", error.message);
+		return false;
+	}
+	const double restoreMs = millisecondsSince(start);
+	const int sameWorld = firstMismatch(original, hashedRun(scene, frames));
+	std::unique_ptr<benchmark_demo::Scene> copy = benchmark_demo::makeScene(name);
+	int otherWorld = -1;
+	if (caliber::restoreWorldState(copy->world(), &snapshot[0], size_t(snapshot.size()), &error))
+		otherWorld = firstMismatch(original, hashedRun(*copy, frames));
+	const bool exact = sameWorld == 0 && otherWorld == 0;
+	printf(
+	    "  rollback: snapshot %.1f kB, save %.2f ms, restore %.2f ms; %d frames replayed: same world %s, second world "
+	    "%s%s\n",
+	    snapshot.size() / 1024.0, saveMs, restoreMs, frames,
+	    sameWorld ? ("differs at frame " + std::to_string(sameWorld)).c_str() : "bit-identical",
+	    otherWorld < 0 ? error.message
+	                   : (otherWorld ? ("differs at frame " + std::to_string(otherWorld)).c_str() : "bit-identical"),
+	    exact ? "" : "  <-- FAILED");
+	return exact;
+}
 }  // namespace
 
 int main(int argc, char** argv)
@@ -111,17 +175,18 @@ int main(int argc, char** argv)
 	caliber::demo::DemoCommandLine commandLine;
 	commandLine.name = "BenchmarkDemo";
 	commandLine.defaultFrames = 30;
-	commandLine.maxPositional = 2;
-	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0] [--threads N]";
+	commandLine.maxPositional = 3;
+	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0] [rollback frames] [--threads N]";
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	const std::vector<std::string>& positional = pictures.positional();
 	const std::string filter = positional.size() > 0 ? positional[0] : "all";
 	const int frames =
 	    pictures.framesGiven() ? pictures.frames() : (positional.size() > 1 ? atoi(positional[1].c_str()) : 30);
-	if (frames <= 0)
+	const int rollbackFrames = positional.size() > 2 ? atoi(positional[2].c_str()) : 0;
+	if (frames <= 0 || rollbackFrames < 0)
 	{
-		fprintf(stderr, "usage: %s [scene[,scene...]|all] [frames > 0]\n", argv[0]);
+		fprintf(stderr, "usage: %s [scene[,scene...]|all] [frames > 0] [rollback frames]\n", argv[0]);
 		return 2;
 	}
 	gDisableDeactivation = true;
@@ -171,6 +236,7 @@ int main(int argc, char** argv)
 		    sorted.back());
 		printf("  sanity: %s; hash %016llx%s\n", sanity.c_str(), (unsigned long long)stateHash(scene->dynamicBodies()),
 		       sane ? "" : "  <-- FAILED");
+		if (rollbackFrames > 0) allSane = rollbackCheck(*scene, name, rollbackFrames) && allSane;
 	}
 	if (ran == 0)
 	{

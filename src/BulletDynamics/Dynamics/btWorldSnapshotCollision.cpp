@@ -1,0 +1,912 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The collision half of a world snapshot: the dbvt broadphase (both trees node for node, the stage
+// lists, the counters of its incremental optimisation), the pair cache's pairs in their order with the
+// state of each pair's collision algorithm, and the dispatcher's manifolds in their order with every
+// point. Everything here decides the order in which the next step meets pairs, contacts and rows, so
+// all of it is restored exactly: pairs are re-added in the saved order, algorithms are made again by the
+// dispatcher (as the near callback makes them), their lazily made manifolds and GJK warm starts are set
+// as saved, and the dispatcher's manifold array is put back into the saved order.
+
+#include <typeinfo>
+
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
+#include "BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btEmptyCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btSphereBoxCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btSphereSphereCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btSphereTriangleCollisionAlgorithm.h"
+#include "BulletCollision/CollisionShapes/btTriangleShape.h"
+#include "BulletDynamics/Dynamics/btWorldSnapshotAccess.h"
+#include "BulletDynamics/Dynamics/btWorldSnapshotInternal.h"
+
+namespace caliber
+{
+namespace snapshot
+{
+namespace
+{
+using namespace snapshot_access;
+
+const int kBroadphaseDbvt = 1;
+const int kPairCacheHashed = 1;
+
+// The collision algorithms whose whole state the snapshot holds (exact classes: a subclass may keep more).
+enum AlgorithmKind
+{
+	kNoAlgorithm = 0,
+	kConvexConvex = 1,
+	kConvexConcave = 2,
+	kBoxBox = 3,
+	kSphereSphere = 4,
+	kSphereBox = 5,
+	kConvexPlane = 6,
+	kSphereTriangle = 7,
+	kEmpty = 8,
+	kUnsupported = -1
+};
+
+int algorithmKind(const btCollisionAlgorithm* algorithm)
+{
+	if (!algorithm) return kNoAlgorithm;
+	const std::type_info& type = typeid(*algorithm);
+	if (type == typeid(btConvexConvexAlgorithm)) return kConvexConvex;
+	if (type == typeid(btConvexConcaveCollisionAlgorithm)) return kConvexConcave;
+	if (type == typeid(btBoxBoxCollisionAlgorithm)) return kBoxBox;
+	if (type == typeid(btSphereSphereCollisionAlgorithm)) return kSphereSphere;
+	if (type == typeid(btSphereBoxCollisionAlgorithm)) return kSphereBox;
+	if (type == typeid(btConvexPlaneCollisionAlgorithm)) return kConvexPlane;
+	if (type == typeid(btSphereTriangleCollisionAlgorithm)) return kSphereTriangle;
+	if (type == typeid(btEmptyAlgorithm)) return kEmpty;
+	return kUnsupported;
+}
+
+int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)
+{
+	if (!object) return -1;
+	const int index = object->getWorldArrayIndex();
+	if (index < 0 || index >= world.getNumCollisionObjects()) return -1;
+	return world.getCollisionObjectArray()[index] == object ? index : -1;
+}
+
+int proxyObjectIndex(const btCollisionWorld& world, const btBroadphaseProxy* proxy)
+{
+	return proxy ? objectIndex(world, static_cast<const btCollisionObject*>(proxy->m_clientObject)) : -1;
+}
+
+void setError(char* error, size_t errorSize, const char* format, ...)
+{
+	va_list args;
+	va_start(args, format);
+	vsnprintf(error, errorSize, format, args);
+	va_end(args);
+}
+
+btDbvtBroadphase* dbvtOf(btDiscreteDynamicsWorld& world)
+{
+	return dynamic_cast<btDbvtBroadphase*>(world.getBroadphase());
+}
+
+btHashedOverlappingPairCache* hashedCacheOf(btDiscreteDynamicsWorld& world)
+{
+	return world.getBroadphase() ? dynamic_cast<btHashedOverlappingPairCache*>(world.getPairCache()) : 0;
+}
+
+// The manifolds a pair's algorithm owns, in the algorithm's order.
+void pairManifolds(btBroadphasePair& pair, btManifoldArray& manifolds)
+{
+	manifolds.resize(0);
+	if (pair.m_algorithm) pair.m_algorithm->getAllContactManifolds(manifolds);
+}
+
+// ---- broadphase ---------------------------------------------------------------------------------
+
+template <class IO>
+void dbvtCounters(IO& io, btDbvtBroadphase& dbvt)
+{
+	// Counters the broadphase adds to are kept well below INT_MAX (a corrupt one would overflow), and the
+	// percentages of leaves re-inserted per step so that their products with leaf counts stay ints.
+	const int counterLimit = 0x7fff0000;
+	io.field("m_prediction", dbvt.m_prediction);
+	io.field("m_stageCurrent", dbvt.m_stageCurrent, 0, counterLimit);
+	io.field("m_fupdates", dbvt.m_fupdates, 0, 10000);
+	io.field("m_dupdates", dbvt.m_dupdates, 0, 10000);
+	io.field("m_cupdates", dbvt.m_cupdates, 0, 10000);
+	io.field("m_newpairs", dbvt.m_newpairs);
+	io.field("m_fixedleft", dbvt.m_fixedleft, 0, counterLimit);
+	io.field("m_updates_call", dbvt.m_updates_call);
+	io.field("m_updates_done", dbvt.m_updates_done);
+	io.field("m_updates_ratio", dbvt.m_updates_ratio);
+	io.field("m_pid", dbvt.m_pid, 0, counterLimit);
+	io.field("m_cid", dbvt.m_cid, 0, counterLimit);
+	io.field("m_gid", dbvt.m_gid, 0, counterLimit);
+	io.field("m_deferedcollide", dbvt.m_deferedcollide);
+	io.field("m_needcleanup", dbvt.m_needcleanup);
+}
+
+template <class IO>
+void proxyFields(IO& io, btDbvtProxy& proxy)
+{
+	io.field("proxy m_uniqueId", proxy.m_uniqueId);
+	io.field("proxy m_aabbMin", proxy.m_aabbMin);
+	io.field("proxy m_aabbMax", proxy.m_aabbMax);
+	io.field("proxy set", proxy.set);
+}
+
+bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
+{
+	btDbvtBroadphase* dbvt = dbvtOf(world);
+	if (!dbvt)
+	{
+		setError(error, errorSize, "broadphase: only btDbvtBroadphase is supported");
+		return false;
+	}
+	const int n = world.getNumCollisionObjects();
+	int proxies = 0;
+	out.context("broadphase", -1);
+	out.field("kind", kBroadphaseDbvt);
+	dbvtCounters(out, *dbvt);
+	for (int i = 0; i < n; ++i)
+	{
+		btDbvtProxy* proxy = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle());
+		out.context("object", i);
+		out.field("has proxy", bool(proxy != 0));
+		if (!proxy) continue;
+		++proxies;
+		proxyFields(out, *proxy);
+	}
+	if (proxies != dbvt->m_sets[0].m_leaves + dbvt->m_sets[1].m_leaves)
+	{
+		setError(error, errorSize, "broadphase: it holds proxies of objects outside the world");
+		return false;
+	}
+	out.context("broadphase", -1);
+	for (int stage = 0; stage <= btDbvtBroadphase::STAGECOUNT; ++stage)
+	{
+		int count = 0;
+		for (btDbvtProxy* p = dbvt->m_stageRoots[stage]; p; p = p->links[1]) ++count;
+		out.field("stage count", count);
+		for (btDbvtProxy* p = dbvt->m_stageRoots[stage]; p; p = p->links[1])
+			out.field("stage member", proxyObjectIndex(world, p));
+	}
+	btAlignedObjectArray<const btDbvtNode*> stack;
+	for (int set = 0; set < 2; ++set)
+	{
+		btDbvt& tree = dbvt->m_sets[set];
+		out.field("tree m_lkhd", tree.m_lkhd);
+		out.field("tree m_leaves", tree.m_leaves);
+		out.field("tree m_opath", tree.m_opath);
+		const int nodeCount = tree.m_leaves > 0 ? 2 * tree.m_leaves - 1 : 0;
+		out.field("tree nodes", nodeCount);
+		int written = 0;
+		stack.resize(0);
+		if (tree.m_root) stack.push_back(tree.m_root);
+		while (stack.size())  // preorder: a node, then its child 0's subtree, then child 1's
+		{
+			const btDbvtNode* node = stack[stack.size() - 1];
+			stack.pop_back();
+			++written;
+			const bool leaf = node->isleaf();
+			out.field("node leaf", leaf);
+			out.field("node mins", node->volume.Mins());
+			out.field("node maxs", node->volume.Maxs());
+			if (leaf)
+				out.field("node object", proxyObjectIndex(world, static_cast<const btBroadphaseProxy*>(node->data)));
+			else
+			{
+				stack.push_back(node->childs[1]);
+				stack.push_back(node->childs[0]);
+			}
+		}
+		if (written != nodeCount)
+		{
+			setError(error, errorSize, "broadphase: tree %d has %d nodes for %d leaves", set, written, tree.m_leaves);
+			return false;
+		}
+	}
+	return true;
+}
+
+struct SavedNode
+{
+	bool leaf;
+	btVector3 mins, maxs;
+	int object;
+};
+
+// Checks a preorder node list: a full binary tree whose leaves are distinct objects of this tree's set.
+bool checkTree(SnapshotReader& in, const btAlignedObjectArray<SavedNode>& nodes, int leaves, int set,
+               const btAlignedObjectArray<int>& proxySet, btAlignedObjectArray<char>& seen)
+{
+	int open = nodes.size() ? 1 : 0;
+	int leafCount = 0;
+	for (int i = 0; i < nodes.size(); ++i)
+	{
+		if (open <= 0)
+		{
+			in.fail("broadphase: tree %d is not a binary tree (node %d has no parent)", set, i);
+			return false;
+		}
+		--open;
+		if (!nodes[i].leaf)
+		{
+			open += 2;
+			continue;
+		}
+		++leafCount;
+		const int object = nodes[i].object;
+		if (object < 0 || object >= proxySet.size() || proxySet[object] != set || seen[object])
+		{
+			in.fail("broadphase: tree %d leaf %d names object %d, which is not a proxy of this tree", set, i, object);
+			return false;
+		}
+		seen[object] = 1;
+	}
+	if (open != 0 || leafCount != leaves)
+	{
+		in.fail("broadphase: tree %d is not a full binary tree of %d leaves", set, leaves);
+		return false;
+	}
+	return true;
+}
+
+// Replaces a tree's internal nodes by the saved ones; the leaves stay the proxies' own nodes.
+void rebuildTree(btDbvt& tree, const btAlignedObjectArray<SavedNode>& nodes, btDiscreteDynamicsWorld& world)
+{
+	// The old internal nodes go to the tree's free list (linked through parent, as the tree frees them);
+	// the new tree needs as many, since its leaves are the same.
+	btAlignedObjectArray<btDbvtNode*> stack;
+	if (tree.m_root) stack.push_back(tree.m_root);
+	while (stack.size())
+	{
+		btDbvtNode* node = stack[stack.size() - 1];
+		stack.pop_back();
+		if (node->isleaf()) continue;
+		stack.push_back(node->childs[0]);
+		stack.push_back(node->childs[1]);
+		node->childs[0] = node->childs[1] = 0;
+		node->parent = tree.m_free;
+		tree.m_free = node;
+	}
+	tree.m_root = 0;
+	stack.resize(0);
+	for (int i = 0; i < nodes.size(); ++i)
+	{
+		btDbvtNode* node;
+		if (nodes[i].leaf)
+		{
+			node = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[nodes[i].object]->getBroadphaseHandle())
+			           ->leaf;
+		}
+		else
+		{
+			node = tree.m_free;
+			tree.m_free = node->parent;
+			node->childs[0] = node->childs[1] = 0;
+		}
+		node->volume = btDbvtVolume::FromMM(nodes[i].mins, nodes[i].maxs);
+		if (!stack.size())
+		{
+			tree.m_root = node;
+			node->parent = 0;
+		}
+		else
+		{
+			btDbvtNode* parent = stack[stack.size() - 1];
+			const int slot = parent->childs[0] ? 1 : 0;
+			parent->childs[slot] = node;
+			node->parent = parent;
+			if (slot == 1) stack.pop_back();
+		}
+		if (!nodes[i].leaf) stack.push_back(node);
+	}
+}
+
+bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
+{
+	const int n = world.getNumCollisionObjects();
+	const int kind = in.value<int>("broadphase kind");
+	if (in.ok() && kind != kBroadphaseDbvt) in.fail("broadphase: unknown kind %d", kind);
+	btDbvtBroadphase* dbvt = dbvtOf(world);
+	if (in.ok() && !dbvt) in.fail("broadphase: the world's broadphase is not a btDbvtBroadphase");
+	if (!in.ok()) return false;
+	dbvtCounters(in, *dbvt);
+
+	btAlignedObjectArray<int> proxySet;  // per object: its tree, -1 without a proxy
+	proxySet.resize(n, -1);
+	for (int i = 0; i < n && in.ok(); ++i)
+	{
+		btDbvtProxy* proxy = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle());
+		const bool has = in.flag("has proxy");
+		if (in.ok() && has != (proxy != 0))
+		{
+			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
+			        has ? "has" : "has not");
+			break;
+		}
+		if (!has) continue;
+		const int uniqueId = in.value<int>("proxy m_uniqueId");
+		const btVector3 aabbMin = in.vector("proxy m_aabbMin");
+		const btVector3 aabbMax = in.vector("proxy m_aabbMax");
+		const int set = in.value<int>("proxy set");
+		// A leaf node belongs to its tree's node blocks: a proxy cannot change trees.
+		if (in.ok() && set != proxy->set)
+			in.fail("object %d: proxy in tree %d, the snapshot's in tree %d", i, proxy->set, set);
+		proxySet[i] = set;
+		if (in.ok() && in.applying())
+		{
+			proxy->m_uniqueId = uniqueId;
+			proxy->m_aabbMin = aabbMin;
+			proxy->m_aabbMax = aabbMax;
+			proxy->set = set;
+		}
+	}
+
+	btAlignedObjectArray<int> stageMembers[btDbvtBroadphase::STAGECOUNT + 1];
+	btAlignedObjectArray<char> seen;
+	seen.resize(n, 0);
+	for (int stage = 0; stage <= btDbvtBroadphase::STAGECOUNT && in.ok(); ++stage)
+	{
+		const int count = in.count("stage count", n);
+		for (int k = 0; k < count && in.ok(); ++k)
+		{
+			const int object = in.value<int>("stage member");
+			if (!in.ok()) break;
+			if (object < 0 || object >= n || proxySet[object] < 0 || seen[object])
+			{
+				in.fail("broadphase: stage %d names object %d, which has no proxy or is listed twice", stage, object);
+				break;
+			}
+			seen[object] = 1;
+			stageMembers[stage].push_back(object);
+		}
+	}
+	for (int i = 0; i < n && in.ok(); ++i)
+		if (proxySet[i] >= 0 && !seen[i]) in.fail("broadphase: object %d is in no stage list", i);
+
+	btAlignedObjectArray<SavedNode> nodes[2];
+	int lookahead[2], leaves[2];
+	unsigned path[2];
+	for (int set = 0; set < 2 && in.ok(); ++set)
+	{
+		lookahead[set] = in.value<int>("tree m_lkhd");
+		leaves[set] = in.count("tree m_leaves", n);
+		path[set] = in.value<unsigned>("tree m_opath");
+		const int nodeCount = in.count("tree nodes", 2 * n);
+		if (in.ok() && nodeCount != (leaves[set] > 0 ? 2 * leaves[set] - 1 : 0))
+			in.fail("broadphase: tree %d has %d nodes for %d leaves", set, nodeCount, leaves[set]);
+		if (in.ok() && leaves[set] != dbvt->m_sets[set].m_leaves)
+			in.fail("broadphase: tree %d has %d leaves, the world's %d", set, leaves[set], dbvt->m_sets[set].m_leaves);
+		for (int k = 0; k < nodeCount && in.ok(); ++k)
+		{
+			SavedNode node;
+			node.leaf = in.flag("node leaf");
+			node.mins = in.vector("node mins");
+			node.maxs = in.vector("node maxs");
+			node.object = node.leaf ? in.value<int>("node object") : -1;
+			nodes[set].push_back(node);
+		}
+		for (int i = 0; i < n; ++i) seen[i] = 0;
+		if (in.ok()) checkTree(in, nodes[set], leaves[set], set, proxySet, seen);
+	}
+	if (!in.ok() || !in.applying()) return in.ok();
+
+	// The proxies' stage lists, in the saved order.
+	for (int stage = 0; stage <= btDbvtBroadphase::STAGECOUNT; ++stage)
+	{
+		btDbvtProxy* previous = 0;
+		dbvt->m_stageRoots[stage] = 0;
+		for (int k = 0; k < stageMembers[stage].size(); ++k)
+		{
+			btDbvtProxy* proxy = static_cast<btDbvtProxy*>(
+			    world.getCollisionObjectArray()[stageMembers[stage][k]]->getBroadphaseHandle());
+			proxy->stage = stage;
+			proxy->links[0] = previous;
+			proxy->links[1] = 0;
+			if (previous)
+				previous->links[1] = proxy;
+			else
+				dbvt->m_stageRoots[stage] = proxy;
+			previous = proxy;
+		}
+	}
+	for (int set = 0; set < 2; ++set)
+	{
+		btDbvt& tree = dbvt->m_sets[set];
+		rebuildTree(tree, nodes[set], world);
+		tree.m_lkhd = lookahead[set];
+		tree.m_opath = path[set];
+	}
+	return true;
+}
+
+// ---- pairs and their algorithms -----------------------------------------------------------------
+
+template <class IO>
+void convexState(IO& io, btConvexConvexAlgorithm& algorithm)
+{
+	io.field("m_haveLastSeparatingAxis", convexHaveLastAxis(algorithm));
+	io.field("m_lastSeparatingAxis", convexLastAxis(algorithm));
+}
+
+bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, int kind, char* error, size_t errorSize,
+                   int pairIndex)
+{
+	out.field("algorithm", kind);
+	if (kind == kConvexConvex)
+	{
+		btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(algorithm);
+		out.field("owns manifold", bool(convexOwnsManifold(convex) && convexManifold(convex)));
+		convexState(out, convex);
+	}
+	else if (kind == kConvexConcave)
+	{
+		btCollisionAlgorithm* triangle =
+		    triangleAlgorithm(concaveCallback(*static_cast<btConvexConcaveCollisionAlgorithm*>(algorithm)));
+		const int triangleKind = algorithmKind(triangle);
+		if (triangleKind != kNoAlgorithm && triangleKind != kConvexConvex && triangleKind != kSphereTriangle &&
+		    triangleKind != kEmpty)
+		{
+			setError(error, errorSize,
+			         "pair %d: its mesh algorithm uses a triangle algorithm the snapshot does not support", pairIndex);
+			return false;
+		}
+		out.field("triangle algorithm", triangleKind);
+		if (triangleKind == kConvexConvex) convexState(out, *static_cast<btConvexConvexAlgorithm*>(triangle));
+	}
+	return true;
+}
+
+bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
+{
+	btHashedOverlappingPairCache* cache = hashedCacheOf(world);
+	if (!cache)
+	{
+		setError(error, errorSize, "pairs: only btHashedOverlappingPairCache is supported");
+		return false;
+	}
+	btDispatcher* dispatcher = world.getDispatcher();
+	const int manifoldCount = dispatcher->getNumManifolds();
+	btAlignedObjectArray<char> owned;
+	owned.resize(manifoldCount, 0);
+	btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+	btManifoldArray manifolds;
+	out.context("pairs", -1);
+	out.field("cache", kPairCacheHashed);
+	out.field("pair count", pairs.size());
+	for (int i = 0; i < pairs.size(); ++i)
+	{
+		btBroadphasePair& pair = pairs[i];
+		out.context("pair", i);
+		const int object0 = proxyObjectIndex(world, pair.m_pProxy0);
+		const int object1 = proxyObjectIndex(world, pair.m_pProxy1);
+		if (object0 < 0 || object1 < 0)
+		{
+			setError(error, errorSize, "pair %d: a proxy of an object outside the world", i);
+			return false;
+		}
+		out.field("object 0", object0);
+		out.field("object 1", object1);
+		const int kind = algorithmKind(pair.m_algorithm);
+		if (kind == kUnsupported)
+		{
+			setError(error, errorSize,
+			         "pair %d (objects %d, %d): a collision algorithm the snapshot does not support (compound shapes, "
+			         "soft bodies, user algorithms)",
+			         i, object0, object1);
+			return false;
+		}
+		if (!saveAlgorithm(out, pair.m_algorithm, kind, error, errorSize, i)) return false;
+		pairManifolds(pair, manifolds);
+		out.field("manifold count", manifolds.size());
+		for (int m = 0; m < manifolds.size(); ++m)
+		{
+			const int index = manifolds[m]->m_index1a;
+			if (index < 0 || index >= manifoldCount || dispatcher->getManifoldByIndexInternal(index) != manifolds[m] ||
+			    owned[index])
+			{
+				setError(error, errorSize, "pair %d: a manifold the dispatcher does not list", i);
+				return false;
+			}
+			owned[index] = 1;
+			out.field("manifold", index);
+		}
+	}
+	for (int m = 0; m < manifoldCount; ++m)
+	{
+		if (!owned[m])
+		{
+			setError(error, errorSize, "manifold %d: not owned by a pair's algorithm (user or predictive manifolds)",
+			         m);
+			return false;
+		}
+	}
+	return true;
+}
+
+struct SavedPair
+{
+	int object0, object1;
+	int kind;
+	bool ownsManifold;
+	int triangleKind;
+	bool haveAxis;
+	btVector3 axis;
+	int firstManifold, manifoldCount;  // into the flat manifold list
+};
+
+btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
+{
+	return world.getCollisionObjectArray()[index];
+}
+
+// Makes the triangle algorithm of a mesh pair as btConvexTriangleCallback::processTriangle makes it.
+btCollisionAlgorithm* makeTriangleAlgorithm(btDispatcher* dispatcher, btConvexTriangleCallback& callback,
+                                            const btCollisionObjectWrapper& convexWrap,
+                                            const btCollisionObjectWrapper& meshWrap, int wantedKind)
+{
+	btTriangleShape triangle(btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 0, 1));
+	btCollisionObjectWrapper triangleWrap(&meshWrap, &triangle, meshWrap.getCollisionObject(),
+	                                      meshWrap.getWorldTransform(), 0, 0);
+	const ebtDispatcherQueryType queries[2] = {BT_CONTACT_POINT_ALGORITHMS, BT_CLOSEST_POINT_ALGORITHMS};
+	for (int q = 0; q < 2; ++q)
+	{
+		btCollisionAlgorithm* algorithm =
+		    dispatcher->findAlgorithm(&convexWrap, &triangleWrap, callback.m_manifoldPtr, queries[q]);
+		if (algorithmKind(algorithm) == wantedKind) return algorithm;
+		if (algorithm)
+		{
+			algorithm->~btCollisionAlgorithm();
+			dispatcher->freeCollisionAlgorithm(algorithm);
+		}
+	}
+	return 0;
+}
+
+// Makes pair's algorithm again and sets the state the snapshot holds; false when the dispatcher makes
+// another kind or no manifold can be made.
+bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, const SavedPair& saved, SnapshotReader& in,
+                     int pairIndex)
+{
+	btDispatcher* dispatcher = world.getDispatcher();
+	btCollisionObject* object0 = objectAt(world, saved.object0);
+	btCollisionObject* object1 = objectAt(world, saved.object1);
+	// As the dispatcher's near callback wraps the pair.
+	btCollisionObjectWrapper wrap0(0, object0->getCollisionShape(), object0, object0->getWorldTransform(), -1, -1);
+	btCollisionObjectWrapper wrap1(0, object1->getCollisionShape(), object1, object1->getWorldTransform(), -1, -1);
+	pair.m_algorithm = dispatcher->findAlgorithm(&wrap0, &wrap1, 0, BT_CONTACT_POINT_ALGORITHMS);
+	int kind = algorithmKind(pair.m_algorithm);
+	if (kind >= kBoxBox && kind <= kSphereTriangle)
+	{
+		// These algorithms make their manifold in the constructor, and only when the dispatcher's
+		// needsCollision holds then: a pair made while both bodies slept has none. When the bodies'
+		// restored activation gives the other answer, the algorithm is made again under the activation
+		// that gives the saved one (needsCollision reads only whether either body is active), and the
+		// restored activation goes back.
+		btManifoldArray manifolds;
+		pair.m_algorithm->getAllContactManifolds(manifolds);
+		if (manifolds.size() != saved.manifoldCount)
+		{
+			pair.m_algorithm->~btCollisionAlgorithm();
+			dispatcher->freeCollisionAlgorithm(pair.m_algorithm);
+			const int state0 = activationState(*object0), state1 = activationState(*object1);
+			const int forced = saved.manifoldCount > 0 ? ACTIVE_TAG : ISLAND_SLEEPING;
+			activationState(*object0) = forced;
+			activationState(*object1) = forced;
+			pair.m_algorithm = dispatcher->findAlgorithm(&wrap0, &wrap1, 0, BT_CONTACT_POINT_ALGORITHMS);
+			activationState(*object0) = state0;
+			activationState(*object1) = state1;
+			kind = algorithmKind(pair.m_algorithm);
+		}
+	}
+	if (kind != saved.kind)
+	{
+		in.fail("pair %d (objects %d, %d): the dispatcher makes algorithm kind %d, the snapshot has %d", pairIndex,
+		        saved.object0, saved.object1, kind, saved.kind);
+		return false;
+	}
+	if (kind == kConvexConvex)
+	{
+		btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(pair.m_algorithm);
+		if (saved.ownsManifold && !convexManifold(convex))
+		{
+			// The manifold processCollision makes at the pair's first step.
+			convexManifold(convex) = dispatcher->getNewManifold(object0, object1);
+			if (!convexManifold(convex))
+			{
+				in.fail("pair %d: no manifold (the dispatcher's pool is full)", pairIndex);
+				return false;
+			}
+			convexOwnsManifold(convex) = true;
+		}
+		convexHaveLastAxis(convex) = saved.haveAxis;
+		convexLastAxis(convex) = saved.axis;
+	}
+	else if (kind == kConvexConcave)
+	{
+		btConvexConcaveCollisionAlgorithm& concave = *static_cast<btConvexConcaveCollisionAlgorithm*>(pair.m_algorithm);
+		btConvexTriangleCallback& callback = concaveCallback(concave);
+		callback.clearWrapperData();  // it kept our wrappers, which die here
+		if (saved.triangleKind != kNoAlgorithm)
+		{
+			const bool swapped = callback.m_manifoldPtr->getBody0() != object0;
+			btCollisionAlgorithm* triangle = makeTriangleAlgorithm(dispatcher, callback, swapped ? wrap1 : wrap0,
+			                                                       swapped ? wrap0 : wrap1, saved.triangleKind);
+			if (!triangle)
+			{
+				in.fail("pair %d: the dispatcher makes another triangle algorithm than the snapshot's", pairIndex);
+				return false;
+			}
+			triangleAlgorithm(callback) = triangle;
+			if (saved.triangleKind == kConvexConvex)
+			{
+				btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(triangle);
+				convexHaveLastAxis(convex) = saved.haveAxis;
+				convexLastAxis(convex) = saved.axis;
+			}
+		}
+	}
+	return true;
+}
+
+// ---- manifolds ----------------------------------------------------------------------------------
+
+template <class IO>
+void pointFields(IO& io, btManifoldPoint& p)
+{
+	io.field("m_localPointA", p.m_localPointA);
+	io.field("m_localPointB", p.m_localPointB);
+	io.field("m_positionWorldOnB", p.m_positionWorldOnB);
+	io.field("m_positionWorldOnA", p.m_positionWorldOnA);
+	io.field("m_normalWorldOnB", p.m_normalWorldOnB);
+	io.field("m_distance1", p.m_distance1);
+	io.field("m_combinedFriction", p.m_combinedFriction);
+	io.field("m_combinedRollingFriction", p.m_combinedRollingFriction);
+	io.field("m_combinedSpinningFriction", p.m_combinedSpinningFriction);
+	io.field("m_combinedRestitution", p.m_combinedRestitution);
+	io.field("m_partId0", p.m_partId0);
+	io.field("m_partId1", p.m_partId1);
+	io.field("m_index0", p.m_index0);
+	io.field("m_index1", p.m_index1);
+	io.field("m_contactPointFlags", p.m_contactPointFlags);
+	io.field("m_appliedImpulse", p.m_appliedImpulse);
+	io.field("m_prevRHS", p.m_prevRHS);
+	io.field("m_appliedImpulseLateral1", p.m_appliedImpulseLateral1);
+	io.field("m_appliedImpulseLateral2", p.m_appliedImpulseLateral2);
+	io.field("m_contactMotion1", p.m_contactMotion1);
+	io.field("m_contactMotion2", p.m_contactMotion2);
+	io.field("m_contactCFM", p.m_contactCFM);
+	io.field("m_combinedContactStiffness1", p.m_combinedContactStiffness1);
+	io.field("m_contactERP", p.m_contactERP);
+	io.field("m_combinedContactDamping1", p.m_combinedContactDamping1);
+	io.field("m_frictionCFM", p.m_frictionCFM);
+	io.field("m_lifeTime", p.m_lifeTime);
+	io.field("m_lateralFrictionDir1", p.m_lateralFrictionDir1);
+	io.field("m_lateralFrictionDir2", p.m_lateralFrictionDir2);
+}
+
+template <class IO>
+void manifoldFields(IO& io, btPersistentManifold& manifold)
+{
+	io.field("m_contactBreakingThreshold", manifoldBreakingThreshold(manifold));
+	io.field("m_contactProcessingThreshold", manifoldProcessingThreshold(manifold));
+	io.field("m_companionIdA", manifold.m_companionIdA);
+	io.field("m_companionIdB", manifold.m_companionIdB);
+}
+
+void saveManifolds(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
+{
+	btDispatcher* dispatcher = world.getDispatcher();
+	const int count = dispatcher->getNumManifolds();
+	out.context("manifolds", -1);
+	out.field("manifold count", count);
+	for (int m = 0; m < count; ++m)
+	{
+		btPersistentManifold& manifold = *dispatcher->getManifoldByIndexInternal(m);
+		out.context("manifold", m);
+		out.field("body 0", objectIndex(world, manifold.getBody0()));
+		out.field("body 1", objectIndex(world, manifold.getBody1()));
+		out.field("m_cachedPoints", manifoldPointCount(manifold));
+		manifoldFields(out, manifold);
+		for (int p = 0; p < manifoldPointCount(manifold); ++p)
+		{
+			out.context("manifold", m, p);
+			pointFields(out, manifoldPoints(manifold)[p]);
+		}
+	}
+}
+}  // namespace
+
+bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size_t errorSize)
+{
+	if (!dbvtOf(world))
+	{
+		setError(error, errorSize, "broadphase: only btDbvtBroadphase is supported");
+		return false;
+	}
+	if (!hashedCacheOf(world))
+	{
+		setError(error, errorSize, "pairs: only btHashedOverlappingPairCache is supported");
+		return false;
+	}
+	// Every manifold must die with the pairs that are removed, or the saved order could not be rebuilt.
+	btBroadphasePairArray& pairs = world.getPairCache()->getOverlappingPairArray();
+	btManifoldArray manifolds;
+	int owned = 0;
+	for (int i = 0; i < pairs.size(); ++i)
+	{
+		pairManifolds(pairs[i], manifolds);
+		owned += manifolds.size();
+	}
+	if (owned != world.getDispatcher()->getNumManifolds())
+	{
+		setError(error, errorSize,
+		         "manifolds: the dispatcher holds manifolds no pair owns (user or predictive manifolds)");
+		return false;
+	}
+	return true;
+}
+
+bool saveCollisionState(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
+{
+	if (!saveBroadphase(world, out, error, errorSize)) return false;
+	if (!savePairs(world, out, error, errorSize)) return false;
+	saveManifolds(world, out);
+	return true;
+}
+
+bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
+{
+	const int n = world.getNumCollisionObjects();
+	btOverlappingPairCache* cache = hashedCacheOf(world);
+	btDispatcher* dispatcher = world.getDispatcher();
+	if (!cache)
+	{
+		in.fail("pairs: the world's pair cache is not a btHashedOverlappingPairCache");
+		return false;
+	}
+	// In an applied restore the pairs go first: removing them frees their algorithms and manifolds, and
+	// the proxies' ids (which order pairs in the cache) may only change while no pair uses them.
+	if (in.applying())
+	{
+		btBroadphasePairArray& live = cache->getOverlappingPairArray();
+		while (live.size())
+		{
+			btBroadphasePair& last = live[live.size() - 1];
+			cache->removeOverlappingPair(last.m_pProxy0, last.m_pProxy1, dispatcher);
+		}
+	}
+	if (!readBroadphase(world, in)) return false;
+
+	const int cacheKind = in.value<int>("pair cache kind");
+	if (in.ok() && cacheKind != kPairCacheHashed) in.fail("pairs: unknown pair cache kind %d", cacheKind);
+	const int pairCount = in.count("pair count", int(btMin<long long>(0x7fffffff, (long long)n * (n - 1) / 2)));
+	btAlignedObjectArray<SavedPair> saved;
+	btAlignedObjectArray<int> manifoldIndex;  // flat, per pair in order
+	for (int i = 0; i < pairCount && in.ok(); ++i)
+	{
+		SavedPair pair;
+		pair.object0 = in.value<int>("object 0");
+		pair.object1 = in.value<int>("object 1");
+		if (in.ok() && (pair.object0 < 0 || pair.object0 >= n || pair.object1 < 0 || pair.object1 >= n ||
+		                pair.object0 == pair.object1 || !objectAt(world, pair.object0)->getBroadphaseHandle() ||
+		                !objectAt(world, pair.object1)->getBroadphaseHandle()))
+			in.fail("pair %d: objects %d and %d are not two objects with proxies", i, pair.object0, pair.object1);
+		pair.kind = in.value<int>("algorithm");
+		pair.ownsManifold = false;
+		pair.triangleKind = kNoAlgorithm;
+		pair.haveAxis = false;
+		pair.axis.setValue(0, 0, 0);
+		if (in.ok() && (pair.kind < kNoAlgorithm || pair.kind > kEmpty))
+			in.fail("pair %d: unknown algorithm %d", i, pair.kind);
+		if (pair.kind == kConvexConvex)
+		{
+			pair.ownsManifold = in.flag("owns manifold");
+			pair.haveAxis = in.flag("m_haveLastSeparatingAxis");
+			pair.axis = in.vector("m_lastSeparatingAxis");
+		}
+		else if (pair.kind == kConvexConcave)
+		{
+			pair.triangleKind = in.value<int>("triangle algorithm");
+			if (in.ok() && pair.triangleKind != kNoAlgorithm && pair.triangleKind != kConvexConvex &&
+			    pair.triangleKind != kSphereTriangle && pair.triangleKind != kEmpty)
+				in.fail("pair %d: unknown triangle algorithm %d", i, pair.triangleKind);
+			if (pair.triangleKind == kConvexConvex)
+			{
+				pair.haveAxis = in.flag("m_haveLastSeparatingAxis");
+				pair.axis = in.vector("m_lastSeparatingAxis");
+			}
+		}
+		pair.manifoldCount = in.count("manifold count", 64);
+		pair.firstManifold = manifoldIndex.size();
+		for (int m = 0; m < pair.manifoldCount && in.ok(); ++m) manifoldIndex.push_back(in.value<int>("manifold"));
+		saved.push_back(pair);
+	}
+	const int manifoldCount = in.count("manifold count", manifoldIndex.size());
+	if (in.ok() && manifoldCount != manifoldIndex.size())
+		in.fail("manifolds: %d listed by pairs, %d saved", manifoldIndex.size(), manifoldCount);
+	btAlignedObjectArray<char> used;
+	used.resize(manifoldCount, 0);
+	for (int k = 0; k < manifoldIndex.size() && in.ok(); ++k)
+	{
+		const int index = manifoldIndex[k];
+		if (index < 0 || index >= manifoldCount || used[index])
+			in.fail("manifolds: index %d is out of range or owned twice", index);
+		else
+			used[index] = 1;
+	}
+	if (!in.ok()) return false;
+
+	// The pairs, their algorithms, and the dispatcher's manifold array in the saved order.
+	btAlignedObjectArray<btPersistentManifold*> order;
+	order.resize(manifoldCount, 0);
+	if (in.applying())
+	{
+		btBroadphasePairArray& live = cache->getOverlappingPairArray();
+		btManifoldArray manifolds;
+		for (int i = 0; i < saved.size() && in.ok(); ++i)
+		{
+			btBroadphaseProxy* proxy0 = objectAt(world, saved[i].object0)->getBroadphaseHandle();
+			btBroadphaseProxy* proxy1 = objectAt(world, saved[i].object1)->getBroadphaseHandle();
+			btBroadphasePair* pair = cache->addOverlappingPair(proxy0, proxy1);
+			if (!pair || pair != &live[i] || pair->m_pProxy0 != proxy0)
+			{
+				in.fail("pair %d: the pair cache does not take it back in place (filter or ids changed)", i);
+				return false;
+			}
+			if (saved[i].kind == kNoAlgorithm) continue;
+			if (!remakeAlgorithm(world, *pair, saved[i], in, i)) return false;
+			pairManifolds(*pair, manifolds);
+			if (manifolds.size() != saved[i].manifoldCount)
+			{
+				in.fail("pair %d: its algorithm has %d manifolds, the snapshot %d", i, manifolds.size(),
+				        saved[i].manifoldCount);
+				return false;
+			}
+			for (int m = 0; m < manifolds.size(); ++m) order[manifoldIndex[saved[i].firstManifold + m]] = manifolds[m];
+		}
+		if (dispatcher->getNumManifolds() != manifoldCount)
+		{
+			in.fail("manifolds: the dispatcher has %d, the snapshot %d", dispatcher->getNumManifolds(), manifoldCount);
+			return false;
+		}
+		btPersistentManifold** array = dispatcher->getInternalManifoldPointer();
+		for (int m = 0; m < manifoldCount; ++m)
+		{
+			array[m] = order[m];
+			order[m]->m_index1a = m;
+		}
+	}
+
+	// The manifolds' contents (a dry run reads them into a scratch manifold).
+	btPersistentManifold scratch;
+	for (int m = 0; m < manifoldCount && in.ok(); ++m)
+	{
+		btPersistentManifold& manifold = in.applying() ? *order[m] : scratch;
+		const int body0 = in.value<int>("body 0");
+		const int body1 = in.value<int>("body 1");
+		if (in.ok() && (body0 < 0 || body0 >= n || body1 < 0 || body1 >= n))
+			in.fail("manifold %d: bodies %d, %d are not objects of the world", m, body0, body1);
+		if (in.ok() && in.applying() &&
+		    (manifold.getBody0() != objectAt(world, body0) || manifold.getBody1() != objectAt(world, body1)))
+			in.fail("manifold %d: made between other bodies than the snapshot's", m);
+		const int points = in.count("m_cachedPoints", MANIFOLD_CACHE_SIZE);
+		manifoldFields(in, manifold);
+		if (in.applying())
+		{
+			manifold.clearManifold();
+			manifoldPointCount(manifold) = points;
+		}
+		for (int p = 0; p < points && in.ok(); ++p)
+		{
+			btManifoldPoint& point = manifoldPoints(manifold)[p];
+			if (in.applying()) point = btManifoldPoint();  // no user data: it is not held
+			pointFields(in, point);
+		}
+	}
+	return in.ok();
+}
+}  // namespace snapshot
+}  // namespace caliber

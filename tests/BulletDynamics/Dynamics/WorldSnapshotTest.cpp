@@ -1,0 +1,691 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// caliber::saveWorldState / restoreWorldState / compareWorldState: stepping on from a restored snapshot is
+// bit-identical to never having stopped (the rollback case), in the same world and in a second world
+// built the same way (the netcode case), for small versions of the benchmark scenes (a pile of mixed
+// shapes, a stack, jointed chains with every kind of joint and a motor, convex hulls and spheres on a
+// BVH mesh, bodies falling asleep, fast CCD bodies); and bad buffers are refused with the world unchanged.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "BulletDynamics/Dynamics/DynamicsWorldTestUtil.h"
+#include "Caliber/WorldSnapshot.h"
+
+namespace
+{
+using caliber_test::TestWorld;
+using Bytes = btAlignedObjectArray<unsigned char>;
+
+// ---- the scenes ---------------------------------------------------------------------------------
+
+btTransform pose(const btVector3& origin, btScalar yaw = 0, btScalar pitch = 0)
+{
+	btQuaternion q;
+	q.setEulerZYX(0, yaw, pitch);
+	return btTransform(q, origin);
+}
+
+// Boxes, spheres, capsules and cylinders dropped in layers onto a box ground: box-box, sphere-box,
+// sphere-sphere and GJK (convex-convex) pairs, contacts appearing and breaking.
+void buildPile(TestWorld& t)
+{
+	t.addGround(btScalar(0.6), btScalar(0.1));
+	btCollisionShape* box = t.shape<btBoxShape>(btVector3(0.5, 0.5, 0.5));
+	btCollisionShape* sphere = t.shape<btSphereShape>(btScalar(0.5));
+	btCollisionShape* capsule = t.shape<btCapsuleShape>(btScalar(0.3), btScalar(0.8));
+	btCollisionShape* cylinder = t.shape<btCylinderShape>(btVector3(0.4, 0.5, 0.4));
+	btCollisionShape* shapes[4] = {box, sphere, capsule, cylinder};
+	int k = 0;
+	for (int layer = 0; layer < 3; ++layer)
+		for (int x = 0; x < 3; ++x)
+			for (int z = 0; z < 3; ++z, ++k)
+				t.addBody(shapes[k % 4], 1,
+				          pose(btVector3(x * 1.1 - 1.1 + 0.1 * layer, 0.6 + 1.3 * layer, z * 1.1 - 1.1),
+				               btScalar(0.3 * k), btScalar(0.2 * layer)));
+}
+
+// A tower of boxes resting on each other: long-lived manifolds whose warm starts carry the stack.
+void buildStack(TestWorld& t)
+{
+	t.addGround(btScalar(0.8), btScalar(0));
+	btCollisionShape* box = t.shape<btBoxShape>(btVector3(0.5, 0.25, 0.5));
+	for (int i = 0; i < 10; ++i) t.addBody(box, 1, pose(btVector3(0.01 * (i % 3), 0.25 + 0.5 * i, 0)));
+}
+
+// Chains hanging from static anchors, one per joint kind, swinging into each other and onto the ground:
+// hinge (with a motor and limits), accumulated-angle hinge, cone twist, ball, slider, 6-DoF, 6-DoF spring,
+// 6-DoF spring2, universal, fixed. Joint warm starts, limits, motors and the position correction.
+void buildJoints(TestWorld& t)
+{
+	t.addGround(btScalar(0.5), btScalar(0));
+	btCollisionShape* link = t.shape<btCapsuleShape>(btScalar(0.15), btScalar(0.5));
+	btCollisionShape* anchorShape = t.shape<btBoxShape>(btVector3(0.1, 0.1, 0.1));
+	for (int chain = 0; chain < 10; ++chain)
+	{
+		const btScalar x = btScalar(chain) * btScalar(0.7) - 3;
+		btRigidBody* previous = t.addBody(anchorShape, 0, pose(btVector3(x, 6, 0)));
+		for (int i = 0; i < 4; ++i)
+		{
+			// Links lean sideways so that the chains swing and hit their neighbours.
+			btRigidBody* body =
+			    t.addBody(link, 1, pose(btVector3(x + 0.3 * (i + 1), 5.6 - 0.6 * i, 0.1 * chain), 0, btScalar(1.2)));
+			const btVector3 pivotPrev(0, previous->getInvMass() == 0 ? btScalar(-0.1) : btScalar(-0.4), 0);
+			const btVector3 pivotThis(0, btScalar(0.4), 0);
+			btTransform frameA(btQuaternion::getIdentity(), pivotPrev), frameB(btQuaternion::getIdentity(), pivotThis);
+			switch (chain)
+			{
+				case 0:
+				{
+					btHingeConstraint* hinge = t.addJoint<btHingeConstraint>(
+					    true, *previous, *body, pivotPrev, pivotThis, btVector3(0, 0, 1), btVector3(0, 0, 1));
+					hinge->setLimit(-1, 1);
+					if (i == 0) hinge->enableAngularMotor(true, 2, 5);
+					break;
+				}
+				case 1:
+					t.addJoint<btHingeAccumulatedAngleConstraint>(true, *previous, *body, pivotPrev, pivotThis,
+					                                              btVector3(0, 0, 1), btVector3(0, 0, 1));
+					break;
+				case 2:
+				{
+					btConeTwistConstraint* cone =
+					    t.addJoint<btConeTwistConstraint>(true, *previous, *body, frameA, frameB);
+					cone->setLimit(btScalar(0.6), btScalar(0.6), btScalar(0.4));
+					break;
+				}
+				case 3:
+					t.addJoint<btPoint2PointConstraint>(true, *previous, *body, pivotPrev, pivotThis);
+					break;
+				case 4:
+				{
+					btSliderConstraint* slider =
+					    t.addJoint<btSliderConstraint>(true, *previous, *body, frameA, frameB, true);
+					slider->setLowerLinLimit(-0.2);
+					slider->setUpperLinLimit(0.2);
+					break;
+				}
+				case 5:
+				{
+					btGeneric6DofConstraint* dof =
+					    t.addJoint<btGeneric6DofConstraint>(true, *previous, *body, frameA, frameB, true);
+					dof->setAngularLowerLimit(btVector3(-0.5, -0.5, -0.5));
+					dof->setAngularUpperLimit(btVector3(0.5, 0.5, 0.5));
+					break;
+				}
+				case 6:
+				{
+					btGeneric6DofSpringConstraint* spring =
+					    t.addJoint<btGeneric6DofSpringConstraint>(true, *previous, *body, frameA, frameB, true);
+					spring->setLinearLowerLimit(btVector3(0, -0.1, 0));
+					spring->setLinearUpperLimit(btVector3(0, 0.1, 0));
+					spring->enableSpring(1, true);
+					spring->setStiffness(1, 50);
+					break;
+				}
+				case 7:
+				{
+					btGeneric6DofSpring2Constraint* spring2 =
+					    t.addJoint<btGeneric6DofSpring2Constraint>(true, *previous, *body, frameA, frameB);
+					spring2->setAngularLowerLimit(btVector3(-0.4, -0.4, -0.4));
+					spring2->setAngularUpperLimit(btVector3(0.4, 0.4, 0.4));
+					spring2->enableMotor(5, true);
+					spring2->setTargetVelocity(5, 1);
+					spring2->setMaxMotorForce(5, 3);
+					break;
+				}
+				case 8:
+					if (previous->getInvMass() == 0)
+						t.addJoint<btPoint2PointConstraint>(true, *previous, *body, pivotPrev, pivotThis);
+					else
+						t.addJoint<btUniversalConstraint>(true, *previous, *body,
+						                                  previous->getWorldTransform().getOrigin(), btVector3(0, 0, 1),
+						                                  btVector3(1, 0, 0));
+					break;
+				default:
+					t.addJoint<btFixedConstraint>(true, *previous, *body, frameA, frameB);
+					break;
+			}
+			previous = body;
+		}
+	}
+	// Half the joints report their applied impulse (which the trace then compares).
+	for (int j = 0; j < t.world()->getNumConstraints(); j += 2) t.world()->getConstraint(j)->enableFeedback(true);
+}
+
+// Convex hulls, boxes, spheres and capsules on a bumpy BVH triangle mesh: the mesh algorithm with its
+// triangle algorithm and the mesh contact collector.
+struct MeshOwner
+{
+	btTriangleMesh mesh;
+};
+std::vector<std::unique_ptr<MeshOwner>> g_meshes;
+
+void buildMesh(TestWorld& t)
+{
+	g_meshes.emplace_back(new MeshOwner());
+	btTriangleMesh& mesh = g_meshes.back()->mesh;
+	const int cells = 8;
+	auto height = [](int i, int j)
+	{ return btScalar(0.3) * btSin(btScalar(i) * btScalar(0.9)) * btCos(btScalar(j) * btScalar(0.7)); };
+	for (int i = 0; i < cells; ++i)
+		for (int j = 0; j < cells; ++j)
+		{
+			const btVector3 a(i - 4, height(i, j), j - 4), b(i + 1 - 4, height(i + 1, j), j - 4);
+			const btVector3 c(i - 4, height(i, j + 1), j + 1 - 4), d(i + 1 - 4, height(i + 1, j + 1), j + 1 - 4);
+			mesh.addTriangle(a, b, c);
+			mesh.addTriangle(b, d, c);
+		}
+	btBvhTriangleMeshShape* ground = t.shape<btBvhTriangleMeshShape>(&mesh, true);
+	t.addBody(ground, 0, btVector3(0, 0, 0));
+	btConvexHullShape* hull = t.shape<btConvexHullShape>();
+	for (int k = 0; k < 12; ++k)
+	{
+		const btScalar angle = btScalar(k) * SIMD_2_PI / 12;
+		hull->addPoint(btVector3(btCos(angle) * btScalar(0.5), (k % 2) ? btScalar(0.4) : btScalar(-0.4),
+		                         btSin(angle) * btScalar(0.5)));
+	}
+	btCollisionShape* shapes[4] = {hull, t.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3)),
+	                               t.shape<btSphereShape>(btScalar(0.35)),
+	                               t.shape<btCapsuleShape>(btScalar(0.2), btScalar(0.5))};
+	for (int k = 0; k < 16; ++k)
+		t.addBody(shapes[k % 4], 1,
+		          pose(btVector3((k % 4) * 1.5 - 2.2, 1 + 0.8 * (k / 4), (k / 4) * 1.4 - 2.0), btScalar(0.4 * k),
+		               btScalar(0.3)));
+}
+
+// Three boxes on the ground, a capsule hinged to the top one: every part of a snapshot, small.
+void buildSmall(TestWorld& t)
+{
+	t.addGround(btScalar(0.8), btScalar(0));
+	btCollisionShape* box = t.shape<btBoxShape>(btVector3(0.5, 0.25, 0.5));
+	btRigidBody* top = 0;
+	for (int i = 0; i < 3; ++i) top = t.addBody(box, 1, pose(btVector3(0.02 * i, 0.25 + 0.5 * i, 0)));
+	btRigidBody* arm =
+	    t.addBody(t.shape<btCapsuleShape>(btScalar(0.1), btScalar(0.6)), 1, pose(btVector3(0.5, 1.6, 0)));
+	t.addJoint<btHingeConstraint>(true, *top, *arm, btVector3(0.5, 0.25, 0), btVector3(0, -0.4, 0), btVector3(0, 0, 1),
+	                              btVector3(0, 0, 1));
+}
+
+// Boxes that settle on the ground and fall asleep (islands go to sleep, deactivation times count), and
+// one that keeps a sleeping island company until it is woken by a late falling box.
+void buildSleepers(TestWorld& t)
+{
+	t.addGround(btScalar(1), btScalar(0));
+	btCollisionShape* box = t.shape<btBoxShape>(btVector3(0.5, 0.5, 0.5));
+	for (int i = 0; i < 6; ++i) t.addBody(box, 1, pose(btVector3(i * 2 - 5, 0.5 + 0.01 * i, 0)));
+	t.addBody(box, 1, pose(btVector3(-5, 0.5 + 1.02, 0)));
+	t.addBody(box, 1, pose(btVector3(3, 30, 0), btScalar(0.5)));  // falls onto a sleeping box after ~2.4 s
+}
+
+// Small fast spheres and a thin fast box with CCD shot at thin walls (swept, clamped at impact).
+void buildCcd(TestWorld& t)
+{
+	t.addGround(btScalar(0.5), btScalar(0.3));
+	btCollisionShape* wall = t.shape<btBoxShape>(btVector3(0.05, 2, 4));
+	t.addBody(wall, 0, btVector3(5, 2, 0));
+	t.addBody(wall, 0, btVector3(-5, 2, 0));
+	btCollisionShape* pellet = t.shape<btSphereShape>(btScalar(0.1));
+	btCollisionShape* plate = t.shape<btBoxShape>(btVector3(0.3, 0.02, 0.3));
+	for (int i = 0; i < 6; ++i)
+	{
+		btRigidBody* body =
+		    t.addBody(i % 2 ? plate : pellet, btScalar(0.2), pose(btVector3(0, 1 + 0.4 * i, -2 + 0.8 * i)));
+		body->setLinearVelocity(btVector3(i % 2 ? -90 : 120, 1, 0));
+		body->setCcdMotionThreshold(btScalar(0.05));
+		body->setCcdSweptSphereRadius(btScalar(0.08));
+		body->setRestitution(btScalar(0.5));
+	}
+}
+
+// ---- the state trace ----------------------------------------------------------------------------
+
+void append(std::vector<unsigned char>& trace, const void* data, size_t size)
+{
+	const unsigned char* bytes = static_cast<const unsigned char*>(data);
+	trace.insert(trace.end(), bytes, bytes + size);
+}
+
+void appendVector(std::vector<unsigned char>& trace, const btVector3& v)
+{
+	append(trace, v.m_floats, 3 * sizeof(btScalar));
+}
+
+// Every body's pose, velocities and activation, and every manifold's points with their impulses.
+void recordState(btDiscreteDynamicsWorld& world, std::vector<unsigned char>& trace)
+{
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+	{
+		const btCollisionObject* object = world.getCollisionObjectArray()[i];
+		const btTransform& t = object->getWorldTransform();
+		for (int r = 0; r < 3; ++r) appendVector(trace, t.getBasis()[r]);
+		appendVector(trace, t.getOrigin());
+		const int state = object->getActivationState();
+		append(trace, &state, sizeof(state));
+		if (const btRigidBody* body = btRigidBody::upcast(object))
+		{
+			appendVector(trace, body->getLinearVelocity());
+			appendVector(trace, body->getAngularVelocity());
+		}
+	}
+	btDispatcher* dispatcher = world.getDispatcher();
+	for (int m = 0; m < dispatcher->getNumManifolds(); ++m)
+	{
+		const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+		const int points = manifold->getNumContacts();
+		append(trace, &points, sizeof(points));
+		for (int p = 0; p < points; ++p)
+		{
+			const btManifoldPoint& point = manifold->getContactPoint(p);
+			appendVector(trace, point.m_positionWorldOnB);
+			append(trace, &point.m_distance1, sizeof(btScalar));
+			append(trace, &point.m_appliedImpulse, sizeof(btScalar));
+			append(trace, &point.m_appliedImpulseLateral1, sizeof(btScalar));
+		}
+	}
+	for (int j = 0; j < world.getNumConstraints(); ++j)
+	{
+		const btTypedConstraint* joint = world.getConstraint(j);
+		const btScalar impulse = joint->needsFeedback() ? joint->getAppliedImpulse() : btScalar(0);
+		append(trace, &impulse, sizeof(impulse));
+	}
+}
+
+// Steps n fixed steps, recording the state after each; one trace per step.
+std::vector<std::vector<unsigned char>> runRecorded(TestWorld& t, int steps, btScalar h = btScalar(1. / 60.))
+{
+	std::vector<std::vector<unsigned char>> traces(steps);
+	for (int s = 0; s < steps; ++s)
+	{
+		t.run(1, h);
+		recordState(*t.world(), traces[s]);
+	}
+	return traces;
+}
+
+// The first step whose trace differs, -1 when all agree.
+int firstDifference(const std::vector<std::vector<unsigned char>>& a, const std::vector<std::vector<unsigned char>>& b)
+{
+	if (a.size() != b.size()) return 0;
+	for (size_t s = 0; s < a.size(); ++s)
+		if (a[s] != b[s]) return int(s);
+	return -1;
+}
+
+std::string describe(const caliber::SnapshotDifference& d)
+{
+	return std::string(d.section) + " " + std::to_string(d.index) + ": " + d.field;
+}
+
+using Builder = std::function<void(TestWorld&)>;
+
+// Runs warmup steps, saves, runs steps more (trace A), restores, checks the world equals the snapshot,
+// runs steps again (trace B, which must equal A bit for bit); then restores into a second, freshly
+// built world and runs steps (trace C, also equal to A).
+void expectRollbackIsExact(const Builder& build, int warmup, int steps, btScalar h = btScalar(1. / 60.))
+{
+	TestWorld t;
+	build(t);
+	t.run(warmup, h);
+	Bytes snapshot;
+	caliber::SnapshotError error;
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), snapshot, &error)) << error.message;
+	ASSERT_GT(snapshot.size(), 0);
+	const auto original = runRecorded(t, steps, h);
+
+	caliber::SnapshotDifference difference;
+	EXPECT_FALSE(caliber::compareWorldState(*t.world(), &snapshot[0], snapshot.size(), &difference))
+	    << "the world moved on, so it must differ from the snapshot";
+
+	ASSERT_TRUE(caliber::restoreWorldState(*t.world(), &snapshot[0], snapshot.size(), &error)) << error.message;
+	EXPECT_TRUE(caliber::compareWorldState(*t.world(), &snapshot[0], snapshot.size(), &difference))
+	    << "after restore: " << describe(difference);
+	const auto replay = runRecorded(t, steps, h);
+	EXPECT_EQ(firstDifference(original, replay), -1) << "same world, replay differs from this step on";
+
+	TestWorld other;
+	build(other);
+	ASSERT_TRUE(caliber::restoreWorldState(*other.world(), &snapshot[0], snapshot.size(), &error)) << error.message;
+	EXPECT_TRUE(caliber::compareWorldState(*other.world(), &snapshot[0], snapshot.size(), &difference))
+	    << "second world after restore: " << describe(difference);
+	const auto remote = runRecorded(other, steps, h);
+	EXPECT_EQ(firstDifference(original, remote), -1) << "second world differs from this step on";
+}
+
+// ---- bit-identical continuation -----------------------------------------------------------------
+// Each run compares every step's record, so a run of n steps checks the state after 1, 10, ... n steps.
+
+TEST(WorldSnapshot, PileContinuesBitIdenticallyFor150Steps) { expectRollbackIsExact(buildPile, 30, 150); }
+
+TEST(WorldSnapshot, StackContinuesBitIdenticallyFor1000Steps) { expectRollbackIsExact(buildStack, 20, 1000); }
+
+TEST(WorldSnapshot, JointChainsContinueBitIdenticallyFor120Steps) { expectRollbackIsExact(buildJoints, 25, 120); }
+
+TEST(WorldSnapshot, JointChainsAt120HertzContinueBitIdentically)
+{
+	// Another step than the 1/60 s a freshly built hinge or cone twist assumes for its last rows.
+	expectRollbackIsExact(buildJoints, 25, 30, btScalar(1. / 120.));
+}
+
+TEST(WorldSnapshot, HullsOnAMeshContinueBitIdenticallyFor150Steps) { expectRollbackIsExact(buildMesh, 45, 150); }
+
+TEST(WorldSnapshot, SleepingBodiesContinueBitIdenticallyFor1000Steps)
+{
+	expectRollbackIsExact(buildSleepers, 60, 1000);  // saved while settling; sleep and the late wake-up follow
+	expectRollbackIsExact(buildSleepers, 150, 10);   // saved with bodies asleep
+}
+
+TEST(WorldSnapshot, CcdBodiesContinueBitIdenticallyFor200Steps) { expectRollbackIsExact(buildCcd, 2, 200); }
+
+TEST(WorldSnapshot, SnapshotsOfTheSameStateAreEqualBytes)
+{
+	// Two worlds built and stepped alike save the same bytes: a snapshot holds no addresses.
+	TestWorld a, b;
+	buildPile(a);
+	buildPile(b);
+	a.run(30);
+	b.run(30);
+	Bytes sa, sb;
+	ASSERT_TRUE(caliber::saveWorldState(*a.world(), sa));
+	ASSERT_TRUE(caliber::saveWorldState(*b.world(), sb));
+	ASSERT_EQ(sa.size(), sb.size());
+	EXPECT_EQ(0, memcmp(&sa[0], &sb[0], size_t(sa.size())));
+}
+
+TEST(WorldSnapshot, RepeatedRollbackGivesTheSameFutureEachTime)
+{
+	// The netcode loop: restore the same snapshot many times, step a few frames each time.
+	TestWorld t;
+	buildJoints(t);
+	t.run(10);
+	Bytes snapshot;
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), snapshot));
+	const auto first = runRecorded(t, 5);
+	for (int round = 0; round < 4; ++round)
+	{
+		ASSERT_TRUE(caliber::restoreWorldState(*t.world(), &snapshot[0], snapshot.size()));
+		EXPECT_EQ(firstDifference(first, runRecorded(t, 5)), -1) << "round " << round;
+	}
+}
+
+// ---- validation mode ----------------------------------------------------------------------------
+
+TEST(WorldSnapshot, CompareNamesTheFirstDifferingField)
+{
+	TestWorld t;
+	buildStack(t);
+	t.run(5);
+	Bytes snapshot;
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), snapshot));
+	caliber::SnapshotDifference difference;
+	EXPECT_TRUE(caliber::compareWorldState(*t.world(), &snapshot[0], snapshot.size(), &difference));
+
+	// Object 4 (the fourth box; the ground is object 0) gets a force.
+	t.bodies()[4]->applyCentralForce(btVector3(0, 0, btScalar(0.25)));
+	ASSERT_FALSE(caliber::compareWorldState(*t.world(), &snapshot[0], snapshot.size(), &difference));
+	EXPECT_STREQ(difference.section, "object");
+	EXPECT_EQ(difference.index, 4);
+	EXPECT_STREQ(difference.field, "m_totalForce");
+}
+
+TEST(WorldSnapshot, CompareNamesAManifoldPointField)
+{
+	TestWorld t;
+	buildStack(t);
+	t.run(5);
+	Bytes snapshot;
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), snapshot));
+	btPersistentManifold* manifold = t.world()->getDispatcher()->getManifoldByIndexInternal(2);
+	ASSERT_GT(manifold->getNumContacts(), 1);
+	manifold->getContactPoint(1).m_appliedImpulse += btScalar(1);
+	caliber::SnapshotDifference difference;
+	ASSERT_FALSE(caliber::compareWorldState(*t.world(), &snapshot[0], snapshot.size(), &difference));
+	EXPECT_STREQ(difference.section, "manifold");
+	EXPECT_EQ(difference.index, 2);
+	EXPECT_STREQ(difference.field, "[1] m_appliedImpulse");
+}
+
+// ---- bad input ----------------------------------------------------------------------------------
+
+// The world's state as bytes, to show that a refused restore changed nothing.
+Bytes stateOf(btDiscreteDynamicsWorld& world)
+{
+	Bytes bytes;
+	EXPECT_TRUE(caliber::saveWorldState(world, bytes));
+	return bytes;
+}
+
+void expectUnchanged(btDiscreteDynamicsWorld& world, const Bytes& before)
+{
+	caliber::SnapshotDifference difference;
+	EXPECT_TRUE(caliber::compareWorldState(world, &before[0], before.size(), &difference)) << describe(difference);
+}
+
+TEST(WorldSnapshotBadInput, TruncatedBuffersAreRefusedAndChangeNothing)
+{
+	TestWorld t;
+	buildStack(t);
+	t.run(20);
+	Bytes snapshot = stateOf(*t.world());
+	t.run(7);
+	const Bytes before = stateOf(*t.world());
+	const int size = snapshot.size();
+	const int cuts[] = {1, 7, 8, 12, 20, 24, 40, size / 7, size / 3, size / 2, size - 100, size - 9, size - 1};
+	for (int cut : cuts)
+	{
+		caliber::SnapshotError error;
+		error.message[0] = 0;
+		EXPECT_FALSE(caliber::restoreWorldState(*t.world(), &snapshot[0], size_t(cut), &error)) << cut;
+		EXPECT_NE(std::string(error.message), "") << cut;
+	}
+	expectUnchanged(*t.world(), before);
+	t.run(3);  // and it keeps simulating
+}
+
+TEST(WorldSnapshotBadInput, WrongMagicVersionPrecisionOrByteOrderAreRefused)
+{
+	TestWorld t;
+	buildStack(t);
+	t.run(5);
+	const Bytes good = stateOf(*t.world());
+	t.run(5);
+	const Bytes before = stateOf(*t.world());
+	struct Patch
+	{
+		int offset;
+		const char* expected;
+	} patches[] = {{0, "magic"}, {8, "version"}, {12, "byte order"}, {16, "precision"}, {20, "bytes"}};
+	for (const Patch& patch : patches)
+	{
+		Bytes bad = good;
+		bad[patch.offset] ^= 0x40;
+		caliber::SnapshotError error;
+		EXPECT_FALSE(caliber::restoreWorldState(*t.world(), &bad[0], bad.size(), &error));
+		EXPECT_NE(std::string(error.message).find(patch.expected), std::string::npos) << error.message;
+	}
+	Bytes longer = good;
+	longer.push_back(0);
+	caliber::SnapshotError error;
+	EXPECT_FALSE(caliber::restoreWorldState(*t.world(), &longer[0], longer.size(), &error));
+	expectUnchanged(*t.world(), before);
+}
+
+TEST(WorldSnapshotBadInput, SnapshotOfAnotherWorldIsRefused)
+{
+	TestWorld source;
+	buildStack(source);
+	source.run(5);
+	const Bytes snapshot = stateOf(*source.world());
+
+	// One body more.
+	TestWorld more;
+	buildStack(more);
+	more.addBody(more.shape<btSphereShape>(btScalar(0.5)), 1, btVector3(5, 1, 5));
+	more.run(3);
+	Bytes before = stateOf(*more.world());
+	caliber::SnapshotError error;
+	EXPECT_FALSE(caliber::restoreWorldState(*more.world(), &snapshot[0], snapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("collision objects"), std::string::npos) << error.message;
+	expectUnchanged(*more.world(), before);
+	more.run(3);
+
+	// Same count, another shape.
+	TestWorld shapes;
+	shapes.addGround(btScalar(0.8), btScalar(0));
+	btCollisionShape* sphere = shapes.shape<btSphereShape>(btScalar(0.25));
+	for (int i = 0; i < 10; ++i) shapes.addBody(sphere, 1, btVector3(0, btScalar(0.25) + btScalar(0.5) * i, 0));
+	before = stateOf(*shapes.world());
+	EXPECT_FALSE(caliber::restoreWorldState(*shapes.world(), &snapshot[0], snapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("shape type"), std::string::npos) << error.message;
+	expectUnchanged(*shapes.world(), before);
+
+	// Same bodies, one joint more.
+	TestWorld jointed;
+	buildStack(jointed);
+	jointed.addJoint<btPoint2PointConstraint>(false, *jointed.bodies()[1], *jointed.bodies()[2], btVector3(0, 0.25, 0),
+	                                          btVector3(0, -0.25, 0));
+	before = stateOf(*jointed.world());
+	EXPECT_FALSE(caliber::restoreWorldState(*jointed.world(), &snapshot[0], snapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("joints"), std::string::npos) << error.message;
+	expectUnchanged(*jointed.world(), before);
+}
+
+TEST(WorldSnapshotBadInput, NoDataIsRefused)
+{
+	TestWorld t;
+	buildStack(t);
+	caliber::SnapshotError error;
+	EXPECT_FALSE(caliber::restoreWorldState(*t.world(), 0, 0, &error));
+	EXPECT_NE(std::string(error.message), "");
+	const unsigned char byte = 0;
+	EXPECT_FALSE(caliber::restoreWorldState(*t.world(), &byte, 0, &error));
+	EXPECT_FALSE(caliber::restoreWorldState(*t.world(), 0, 0));  // no error struct: still refused
+	caliber::SnapshotDifference difference;
+	EXPECT_FALSE(caliber::compareWorldState(*t.world(), 0, 0, &difference, &error));
+}
+
+#if CALIBER_ASSERTS_ENABLED
+TEST(WorldSnapshotDeathTest, NullDataWithASizeAsserts)
+{
+	TestWorld t;
+	buildStack(t);
+	EXPECT_DEATH(caliber::restoreWorldState(*t.world(), 0, 16), "assertion failed");
+}
+#else
+TEST(WorldSnapshotBadInput, NullDataWithASizeIsRefused)
+{
+	TestWorld t;
+	buildStack(t);
+	caliber::SnapshotError error;
+	EXPECT_FALSE(caliber::restoreWorldState(*t.world(), 0, 16, &error));
+	EXPECT_NE(std::string(error.message), "");
+}
+#endif
+
+TEST(WorldSnapshotBadInput, CorruptedBytesNeverCrashAndFailedRestoresChangeNothing)
+{
+	// Every byte position of a small world's snapshot flipped in turn: each restore either succeeds (a
+	// value changed, e.g. a velocity) or is refused with the world unchanged; the world steps on either way.
+	TestWorld t;
+	buildSmall(t);
+	t.run(8);
+	const Bytes good = stateOf(*t.world());
+	int refused = 0;
+	for (int k = 0; k < good.size(); k += 3)
+	{
+		Bytes bad = good;
+		bad[k] ^= 0x5a;
+		const Bytes before = stateOf(*t.world());
+		caliber::SnapshotError error;
+		if (!caliber::restoreWorldState(*t.world(), &bad[0], bad.size(), &error))
+		{
+			++refused;
+			expectUnchanged(*t.world(), before);
+		}
+		ASSERT_TRUE(caliber::restoreWorldState(*t.world(), &good[0], good.size(), &error)) << error.message;
+	}
+	EXPECT_GT(refused, 0);
+	t.run(2);
+}
+
+TEST(WorldSnapshotBadInput, UnsupportedWorldsAreRefusedOnSave)
+{
+	// A compound shape's algorithm keeps child algorithms the snapshot does not hold.
+	TestWorld t;
+	t.addGround();
+	btCompoundShape* compound = t.shape<btCompoundShape>();
+	compound->addChildShape(btTransform::getIdentity(), t.shape<btBoxShape>(btVector3(0.5, 0.5, 0.5)));
+	t.addBody(compound, 1, btVector3(0, 0.4, 0));
+	t.run(3);
+	Bytes buffer;
+	buffer.push_back(7);
+	caliber::SnapshotError error;
+	EXPECT_FALSE(caliber::saveWorldState(*t.world(), buffer, &error));
+	EXPECT_NE(std::string(error.message).find("does not support"), std::string::npos) << error.message;
+	EXPECT_EQ(buffer.size(), 0);
+}
+
+struct TickContext
+{
+	Bytes snapshot;
+	int tick = 0;
+	int restoreAt = 0;
+	bool restored = false;
+};
+
+void restoringTick(btDynamicsWorld* world, btScalar)
+{
+	TickContext& c = *static_cast<TickContext*>(world->getWorldUserInfo());
+	if (++c.tick == c.restoreAt)
+		c.restored = caliber::restoreWorldState(*static_cast<btDiscreteDynamicsWorld*>(world), &c.snapshot[0],
+		                                        c.snapshot.size());
+}
+
+TEST(WorldSnapshotBadInput, RestoreFromThePostTickCallbackEndsTheStepAtTheSnapshot)
+{
+	// Allowed from the internal tick callbacks (documented): restored in the post-tick callback of the
+	// tenth step, the world ends that step in the saved state, and its next step is the one that followed
+	// the snapshot.
+	TickContext context;
+	TestWorld t;
+	buildPile(t);
+	t.run(10);
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), context.snapshot));
+	const auto expected = runRecorded(t, 2);
+	context.restoreAt = 10;
+	t.world()->setInternalTickCallback(restoringTick, &context, false);
+	t.run(10);
+	ASSERT_TRUE(context.restored);
+	caliber::SnapshotDifference difference;
+	EXPECT_TRUE(caliber::compareWorldState(*t.world(), &context.snapshot[0], context.snapshot.size(), &difference))
+	    << describe(difference);
+	t.world()->setInternalTickCallback(0);
+	EXPECT_EQ(firstDifference(expected, runRecorded(t, 2)), -1);
+}
+
+TEST(WorldSnapshotBadInput, RestoreFromThePreTickCallbackKeepsSimulating)
+{
+	// From the pre-tick callback the substep goes on from the restored state (without the gravity force
+	// stepSimulation applied before the substeps, which the snapshot, taken between steps, does not hold).
+	TickContext context;
+	TestWorld t;
+	buildJoints(t);
+	t.run(5);
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), context.snapshot));
+	context.restoreAt = 4;
+	t.world()->setInternalTickCallback(restoringTick, &context, true);
+	t.run(8);
+	EXPECT_TRUE(context.restored);
+	// The chains still hang from their anchors (6 m up, 4 links of 0.6 m) and the world moved on.
+	for (btRigidBody* body : t.bodies())
+	{
+		if (body->getInvMass() == 0) continue;
+		const btVector3& origin = body->getWorldTransform().getOrigin();
+		EXPECT_TRUE(origin.getY() > btScalar(2) && origin.getY() < btScalar(6.5)) << origin.getY();
+	}
+	EXPECT_FALSE(caliber::compareWorldState(*t.world(), &context.snapshot[0], context.snapshot.size()));
+}
+}  // namespace
