@@ -472,8 +472,10 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	const btVector3 face = (v[1] - v[0]).cross(v[2] - v[0]);
 	const btVector3 localNormal = gjkNormal * triangleTransform.getBasis();
 	const btScalar along = face.dot(localNormal);
-	if (!(along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * localNormal.length2()) ||
-	    along == 0)
+	const btScalar normalLength2 = localNormal.length2();
+	// A zero or non-finite normal (GJK gave none) is no face's.
+	if (!(normalLength2 > 0) || !btIsFinite(normalLength2) ||
+	    !(along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2))
 		return kTriangleNeedsGjk;
 	WorldTriangle world;
 	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;

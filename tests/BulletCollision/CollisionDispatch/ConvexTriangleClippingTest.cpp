@@ -260,15 +260,20 @@ TEST(ConvexTriangleClipping, HullOfMorePointsThanAChunkFindsItsFaceWhereverItsPo
 	const btTransform lying(btQuaternion::getIdentity(), btVector3(0, apothem + prism.getMargin() + btScalar(0.01), 0));
 	EXPECT_EQ(caliber::triangleFaceContact(prism, lying, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleFaceContact);
-	// The bottom face: 2 sin(pi / 50) wide, 2 long, 1 cm above the floor.
+	// The bottom face and, the prism being fine, the vertices next to it (1.6 cm higher, within the band of
+	// 2 % of its 2 m extent): 4 of them spanning the largest area, the deepest among them, each at its own
+	// vertex's height above the floor (1 cm plus its rise above the bottom face) at the ends (z = +-1).
 	ASSERT_EQ(out.points.size(), 4u);
-	const btScalar halfWidth = radius * btSin(SIMD_PI / btScalar(sides));
+	btScalar closest = BT_LARGE_FLOAT;
 	for (const Point& p : out.points)
 	{
-		EXPECT_NEAR(p.distance, btScalar(0.01), kTolerance);
-		EXPECT_NEAR(btFabs(p.onTriangle.x()), halfWidth, kTolerance);
+		const btScalar x = p.onTriangle.x();
+		const btScalar rise = apothem - btSqrt(radius * radius - x * x);
+		EXPECT_NEAR(p.distance, btScalar(0.01) + rise, btScalar(1e-4)) << "vertex at x = " << x;
 		EXPECT_NEAR(btFabs(p.onTriangle.z()), 1, kTolerance);
+		closest = btMin(closest, p.distance);
 	}
+	EXPECT_NEAR(closest, btScalar(0.01), kTolerance);
 	// Standing on an end cap (50 corners, more than a face keeps): at most 4 points, all 1 cm above.
 	out.points.clear();
 	const btTransform standing(btQuaternion(btVector3(1, 0, 0), SIMD_HALF_PI),
