@@ -274,11 +274,11 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 		m_haveLastSeparatingAxis = true;
 	}
 
-	// A hull or polyhedron against a mesh triangle: its face clipped against the triangle once GJK's
-	// normal says it lies on the triangle's face (a hull on an edge or a vertex, like a barrel on the ring
-	// around its middle, keeps GJK's point and pays for no face search). Also at rest on a full manifold:
-	// GJK's single point (any point of the face) would replace one of the face's corners in the manifold,
-	// and a narrow face rocks on the changing set.
+	// A hull or polyhedron against a mesh triangle: its face (or edge) clipped against the triangle once
+	// GJK's normal is the triangle's face normal, i.e. the hull lies over the triangle's face (against a
+	// triangle's edge or vertex GJK's point is the contact, and no face is searched). Also at rest on a
+	// full manifold: GJK's single point (any point of the face) would replace one of the face's corners in
+	// the manifold, and a narrow face rocks on the changing set.
 	if (clipping == caliber::kClipAfterGjk && gjkPoint.found() && gjkPoint.m_distance <= reach)
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContactAlongGjkNormal(

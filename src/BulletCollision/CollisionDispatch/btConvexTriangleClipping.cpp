@@ -136,8 +136,7 @@ void dotsOf(const btVector3* points, int count, const btVector3& direction, btSc
 			__m128 v2 = points[i + 2].get128();
 			__m128 v3 = points[i + 3].get128();
 			_MM_TRANSPOSE4_PS(v0, v1, v2, v3);  // v0 = x lanes, v1 = y lanes, v2 = z lanes
-			const __m128 dots =
-			    _mm_add_ps(_mm_add_ps(_mm_mul_ps(v0, dx), _mm_mul_ps(v1, dy)), _mm_mul_ps(v2, dz));
+			const __m128 dots = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v0, dx), _mm_mul_ps(v1, dy)), _mm_mul_ps(v2, dz));
 			_mm_storeu_ps(depths + i, dots);
 			laneMax = _mm_max_ps(laneMax, dots);
 			laneMin = _mm_min_ps(laneMin, dots);
@@ -223,8 +222,7 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 
 // A btConvexHullShape's face over the triangle from its points (see bandFace), moved out by the margin
 // (the hull's surface is its points' hull grown by it).
-void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal,
-                    Polygon& face)
+void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal, Polygon& face)
 {
 	face.count = 0;
 	const btVector3* points = hull.getUnscaledPoints();
@@ -438,7 +436,7 @@ TriangleClipping triangleClippingOf(const btCollisionShape& convex)
 		case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE:
 			// Their face comes from the polyhedron, which initializePolyhedralFeatures builds.
 			return static_cast<const btPolyhedralConvexShape&>(convex).getConvexPolyhedron() ? kClipAfterGjk
-			                                                                                   : kNoClipping;
+			                                                                                 : kNoClipping;
 		default:
 			return kNoClipping;
 	}
@@ -501,8 +499,8 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 		const btVector3 local = normal * convexTransform.getBasis();
 		const btVector3 half = box.getHalfExtentsWithMargin();
 		const btScalar centre = normal.dot(convexTransform.getOrigin() - corners[0]);
-		const btScalar clearance = btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() -
-		                           btFabs(local.z()) * half.z();
+		const btScalar clearance =
+		    btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() - btFabs(local.z()) * half.z();
 		// The exact tests below decide the cases near the limits (rounding differs a little from them here).
 		const btScalar slack = btScalar(1.0001);
 		if (clearance > 0)

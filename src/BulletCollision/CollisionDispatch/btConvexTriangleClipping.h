@@ -43,7 +43,7 @@ inline bool clipsAgainstMeshTriangles(const btCollisionShape& convex)
 struct WorldTriangle
 {
 	btVector3 corners[3];
-	btVector3 windingNormal;   // (c1 - c0) x (c2 - c0), twice the area long
+	btVector3 windingNormal;  // (c1 - c0) x (c2 - c0), twice the area long
 	btScalar normalLength2;
 };
 
@@ -61,8 +61,8 @@ enum TriangleFaceOutcome
 
 /// The contact of a box or convex hull with a triangle, found along the triangle's normal (turned towards
 /// the convex's centre) without GJK: the convex's face most opposed to the normal (a box's face; a
-/// polyhedron's face within about 2.5 degrees of it; a hull's vertices near its supporting plane; the
-/// last two moved out by the margin) is clipped against the triangle's prism,
+/// polyhedron's face, also tilted; a hull's vertices near its supporting plane, two of them for an edge;
+/// the last two moved out by the margin) is clipped against the triangle's prism,
 /// and its points within reach of the plane are reported to out with the triangle's normal (at most 4,
 /// spanning the largest area). The outcome says whether GJK must still look at the pair.
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,

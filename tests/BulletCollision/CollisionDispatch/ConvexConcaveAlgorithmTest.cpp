@@ -206,8 +206,7 @@ TEST(ConvexConcaveAlgorithm, HullNearATiltedTriangleIsFoundUpToTheReachOnEverySi
 		{
 			const btManifoldPoint& point = manifold->getContactPoint(i);
 			EXPECT_NEAR(point.getDistance(), reach * btScalar(0.95), tolerance) << "placement " << p;
-			EXPECT_TRUE(
-			    vectorsNear(point.m_normalWorldOnB, meshTransform.getBasis() * placement.direction, tolerance))
+			EXPECT_TRUE(vectorsNear(point.m_normalWorldOnB, meshTransform.getBasis() * placement.direction, tolerance))
 			    << "placement " << p;
 		}
 		manifold->clearManifold();

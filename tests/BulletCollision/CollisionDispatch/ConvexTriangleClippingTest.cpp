@@ -121,9 +121,10 @@ namespace
 void addCubeCorners(btConvexHullShape& hull)
 {
 	for (int corner = 0; corner < 8; ++corner)
-		hull.addPoint(btVector3((corner & 1) ? btScalar(0.5) : btScalar(-0.5), (corner & 2) ? btScalar(0.5) : btScalar(-0.5),
-		                        (corner & 4) ? btScalar(0.5) : btScalar(-0.5)),
-		              corner == 7);
+		hull.addPoint(
+		    btVector3((corner & 1) ? btScalar(0.5) : btScalar(-0.5), (corner & 2) ? btScalar(0.5) : btScalar(-0.5),
+		              (corner & 4) ? btScalar(0.5) : btScalar(-0.5)),
+		    corner == 7);
 }
 }  // namespace
 
@@ -156,8 +157,9 @@ TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTh
 	// Then tilted 30 degrees about x: one vertex is lowest (the other end of the edge is 0.5 m higher), no
 	// face or edge there: GJK's point.
 	out.points.clear();
-	const btTransform onVertex(btQuaternion(btVector3(1, 0, 0), SIMD_PI / 6) * btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4),
-	                           btVector3(0, btScalar(0.9), 0));
+	const btTransform onVertex(
+	    btQuaternion(btVector3(1, 0, 0), SIMD_PI / 6) * btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4),
+	    btVector3(0, btScalar(0.9), 0));
 	EXPECT_EQ(caliber::triangleFaceContact(hull, onVertex, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
@@ -219,7 +221,8 @@ TEST(ConvexTriangleClipping, AfterGjkOnlyAFaceNormalIsClippedAndOtherNormalsAreL
 	btConvexHullShape hull;
 	addCubeCorners(hull);
 	const btTriangleShape triangle = bigFloorTriangle();
-	const btTransform flat(btQuaternion::getIdentity(), btVector3(0, btScalar(0.5) + hull.getMargin() + btScalar(0.02), 0));
+	const btTransform flat(btQuaternion::getIdentity(),
+	                       btVector3(0, btScalar(0.5) + hull.getMargin() + btScalar(0.02), 0));
 	Recorder out;
 	// The face normal, of any length and either sign (the triangle is two-sided): the face.
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,

@@ -176,8 +176,8 @@ btScalar mechanicalEnergy(const btRigidBody& body, btScalar gravity)
 {
 	const btVector3 w = body.getAngularVelocity();
 	const btVector3 spinMomentum = body.getInvInertiaTensorWorld().inverse() * w;
-	return btScalar(0.5) * body.getLinearVelocity().length2() / body.getInvMass() + btScalar(0.5) * w.dot(spinMomentum) +
-	       gravity * body.getCenterOfMassPosition().y() / body.getInvMass();
+	return btScalar(0.5) * body.getLinearVelocity().length2() / body.getInvMass() +
+	       btScalar(0.5) * w.dot(spinMomentum) + gravity * body.getCenterOfMassPosition().y() / body.getInvMass();
 }
 
 ImpactOutcome launchBoxAtFloor(FloorKind kind, btScalar angleFromVertical, btScalar tilt, bool hull = false)
@@ -191,9 +191,8 @@ ImpactOutcome launchBoxAtFloor(FloorKind kind, btScalar angleFromVertical, btSca
 	                            : static_cast<btConvexShape*>(w.shape<btBoxShape>(halfExtents));
 	// A hull's surface is its points' hull grown by the margin: depths are measured on that surface.
 	const btScalar growth = hull ? shape->getMargin() : btScalar(0);
-	btRigidBody* box =
-	    w.addBody(shape, 1,
-	              btTransform(btQuaternion(btVector3(0, 0, 1), tilt), btVector3(-3 * btTan(angleFromVertical), 3, 0)));
+	btRigidBody* box = w.addBody(
+	    shape, 1, btTransform(btQuaternion(btVector3(0, 0, 1), tilt), btVector3(-3 * btTan(angleFromVertical), 3, 0)));
 	box->setFriction(1);
 	box->setLinearVelocity(btVector3(btSin(angleFromVertical), -btCos(angleFromVertical), 0) * btScalar(120));
 	const btScalar gravity = -w.world()->getGravity().y();
@@ -427,9 +426,10 @@ void expectPrismLiesStill(FloorKind kind, bool polyhedron)
 	if (polyhedron) prism->initializePolyhedralFeatures();
 	const btScalar restingHeight = radius * btCos(SIMD_PI / btScalar(sides)) + prism->getMargin();
 	const btScalar turn = btScalar(0.3);
-	btRigidBody* body = w.addBody(prism, 1,
-	                              btTransform(btQuaternion(btVector3(0, 1, 0), turn),
-	                                          btVector3(btScalar(0.3), restingHeight + btScalar(0.001), btScalar(0.2))));
+	btRigidBody* body =
+	    w.addBody(prism, 1,
+	              btTransform(btQuaternion(btVector3(0, 1, 0), turn),
+	                          btVector3(btScalar(0.3), restingHeight + btScalar(0.001), btScalar(0.2))));
 	body->setActivationState(DISABLE_DEACTIVATION);
 	w.run(1, kStep);
 	const ManifoldSpan first = manifoldSpan(w, body, floor.body);
@@ -503,7 +503,10 @@ void expectCapsuleRestsOnBothEnds(FloorKind kind)
 }
 }  // namespace
 
-TEST(MeshContactScenario, CapsuleLyingOnATwoTriangleMeshRestsOnBothEnds) { expectCapsuleRestsOnBothEnds(kTwoTriangles); }
+TEST(MeshContactScenario, CapsuleLyingOnATwoTriangleMeshRestsOnBothEnds)
+{
+	expectCapsuleRestsOnBothEnds(kTwoTriangles);
+}
 
 TEST(MeshContactScenario, CapsuleLyingOnAGridMeshRestsOnBothEnds) { expectCapsuleRestsOnBothEnds(kGrid); }
 
