@@ -168,6 +168,77 @@ protected:
 	/// Number of subtree headers.
 	mutable int m_subtreeHeaderCount;
 
+	// Bullet's protected helpers, for subclasses that build and walk trees of their own leaves (Caliber's
+	// buildInternal uses its own binned builder; these follow Bullet's meaning). A node index names a slot
+	// of the contiguous tree (m_quantizedContiguousNodes or m_contiguousNodes, whichever m_useQuantization
+	// selects); a leaf index names a slot of the leaf array (m_quantizedLeafNodes or m_leafNodes). Indices
+	// out of range assert; without asserts the setters do nothing and the getters return (0, 0, 0).
+
+	/// Sets internal node nodeIndex's minimum corner (quantized rounding down for quantized trees).
+	void setInternalNodeAabbMin(int nodeIndex, const btVector3& aabbMin);
+	/// Sets internal node nodeIndex's maximum corner (quantized rounding up for quantized trees).
+	void setInternalNodeAabbMax(int nodeIndex, const btVector3& aabbMax);
+	/// Minimum corner of leaf nodeIndex (of the leaf array; unquantized for quantized trees).
+	btVector3 getAabbMin(int nodeIndex) const;
+	/// Maximum corner of leaf nodeIndex (of the leaf array; unquantized for quantized trees).
+	btVector3 getAabbMax(int nodeIndex) const;
+	/// Stores escapeIndex (the number of nodes in the subtree rooted there) in internal node nodeIndex.
+	void setInternalNodeEscapeIndex(int nodeIndex, int escapeIndex);
+	/// Grows internal node nodeIndex's box to contain [newAabbMin, newAabbMax].
+	void mergeInternalNodeAabb(int nodeIndex, const btVector3& newAabbMin, const btVector3& newAabbMax);
+	/// Exchanges leaves firstIndex and secondIndex of the leaf array.
+	void swapLeafNodes(int firstIndex, int secondIndex);
+	/// Copies leaf leafNodeIndex (box and payload) into tree node internalNode.
+	void assignInternalNodeFromLeafNode(int internalNode, int leafNodeIndex);
+
+	/// Builds the subtree of leaves [startIndex, endIndex) depth-first at node m_curNodeIndex, which
+	/// advances by its 2 n - 1 nodes (the leaves are reordered; the tree array grows when too short).
+	/// Quantized trees get the headers of their cache-sized subtrees below nodes too big to be one
+	/// (the caller adds the root's when there are none, as in Bullet). An empty or out-of-range range
+	/// asserts; without asserts nothing is built.
+	void buildTree(int startIndex, int endIndex);
+	/// The axis (0, 1 or 2) along which the centres of leaves [startIndex, endIndex) vary most.
+	int calcSplittingAxis(int startIndex, int endIndex);
+	/// Puts the leaves of [startIndex, endIndex) whose centre lies above the mean centre along splitAxis
+	/// first and returns the index of the first of the others: the split. A split leaving either side
+	/// with fewer than a third of the leaves gives the middle instead (a balanced tree, as in Bullet).
+	int sortAndCalcSplittingIndex(int startIndex, int endIndex, int splitAxis);
+
+	/// Calls nodeCallback for every leaf of the unquantized tree whose box overlaps [aabbMin, aabbMax].
+	void walkStacklessTree(btNodeOverlapCallback * nodeCallback, const btVector3& aabbMin, const btVector3& aabbMax)
+	    const;
+	/// As walkStacklessTreeAgainstRay for quantized trees.
+	void walkStacklessQuantizedTreeAgainstRay(btNodeOverlapCallback * nodeCallback, const btVector3& raySource,
+	                                          const btVector3& rayTarget, const btVector3& aabbMin,
+	                                          const btVector3& aabbMax, int startNodeIndex, int endNodeIndex) const;
+	/// Calls nodeCallback for every leaf among nodes [startNodeIndex, endNodeIndex) of the quantized tree
+	/// (a whole subtree's range) whose box overlaps the quantized query box.
+	void walkStacklessQuantizedTree(btNodeOverlapCallback * nodeCallback, unsigned short int* quantizedQueryAabbMin,
+	                                unsigned short int* quantizedQueryAabbMax, int startNodeIndex, int endNodeIndex)
+	    const;
+	/// Calls nodeCallback for every leaf among nodes [startNodeIndex, endNodeIndex) of the unquantized tree
+	/// whose box the box [aabbMin, aabbMax] (zero for a ray) swept from raySource to rayTarget touches.
+	void walkStacklessTreeAgainstRay(btNodeOverlapCallback * nodeCallback, const btVector3& raySource,
+	                                 const btVector3& rayTarget, const btVector3& aabbMin, const btVector3& aabbMax,
+	                                 int startNodeIndex, int endNodeIndex) const;
+	/// walkStacklessQuantizedTree over the subtrees (m_SubtreeHeaders) whose box overlaps the query.
+	void walkStacklessQuantizedTreeCacheFriendly(btNodeOverlapCallback * nodeCallback,
+	                                             unsigned short int* quantizedQueryAabbMin,
+	                                             unsigned short int* quantizedQueryAabbMax) const;
+	/// The same leaves as walkStacklessQuantizedTree, below currentNode, found by recursion.
+	void walkRecursiveQuantizedTreeAgainstQueryAabb(
+	    const btQuantizedBvhNode* currentNode, btNodeOverlapCallback* nodeCallback,
+	    unsigned short int* quantizedQueryAabbMin, unsigned short int* quantizedQueryAabbMax) const;
+	/// For every pair of overlapping leaves, one below treeNodeA and one below treeNodeB (nodes of quantized
+	/// trees sharing this BVH's quantization), calls nodeCallback with the leaf below treeNodeA (Bullet
+	/// 2.89 declares this walk without defining it).
+	void walkRecursiveQuantizedTreeAgainstQuantizedTree(
+	    const btQuantizedBvhNode* treeNodeA, const btQuantizedBvhNode* treeNodeB, btNodeOverlapCallback* nodeCallback)
+	    const;
+	/// Appends a header for each of the two children (quantized nodes) whose subtree fits in
+	/// MAX_SUBTREE_SIZE_IN_BYTES, and updates m_subtreeHeaderCount.
+	void updateSubtreeHeaders(int leftChildNodexIndex, int rightChildNodexIndex);
+
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 

@@ -15,6 +15,13 @@ namespace caliber
 void reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
                                    const btVector3& raySource, const btVector3& rayTarget, const btVector3& aabbMin,
                                    const btVector3& aabbMax, const btScalar* maxFraction);
+
+// As reportBoxCastOverlappingNodes over the nodes [startNode, endNode) only (a whole subtree's range, or
+// the whole tree); the range is clamped to the tree.
+void reportBoxCastOverlappingNodesInRange(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
+                                          const btVector3& raySource, const btVector3& rayTarget,
+                                          const btVector3& aabbMin, const btVector3& aabbMax,
+                                          const btScalar* maxFraction, int startNode, int endNode);
 }  // namespace caliber
 
 #endif  // CALIBER_QUANTIZED_BVH_CAST_H

@@ -3,6 +3,7 @@
 
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhWalk.h"
 
 #include "LinearMath/btAabbUtil2.h"
 
@@ -368,7 +369,6 @@ void btQuantizedBvh::reportAabbOverlappingNodex(btNodeOverlapCallback* nodeCallb
 	const bool finite = caliber::isFinite(aabbMin) && caliber::isFinite(aabbMax);
 	btAssert(finite && "reportAabbOverlappingNodex: non-finite box");
 	if (!nodeCallback || !finite || m_curNodeIndex == 0) return;
-	const int numNodes = m_curNodeIndex;
 	if (m_useQuantization)
 	{
 		// A box outside the quantization box would clamp onto its boundary and falsely touch nodes there.
@@ -376,37 +376,10 @@ void btQuantizedBvh::reportAabbOverlappingNodex(btNodeOverlapCallback* nodeCallb
 		unsigned short qMin[3], qMax[3];
 		quantizeWithClamp(qMin, aabbMin, 0);
 		quantizeWithClamp(qMax, aabbMax, 1);
-		const btQuantizedBvhNode* nodes = &m_quantizedContiguousNodes[0];
-		int i = 0;
-		while (i < numNodes)
-		{
-			const btQuantizedBvhNode& node = nodes[i];
-			const bool overlap = testQuantizedAabbAgainstQuantizedAabb(qMin, qMax, node.m_quantizedAabbMin,
-			                                                           node.m_quantizedAabbMax) != 0;
-			if (node.isLeafNode())
-			{
-				if (overlap) nodeCallback->processNode(node.getPartId(), node.getTriangleIndex());
-				++i;
-			}
-			else
-				i += overlap ? 1 : node.getEscapeIndex();
-		}
+		caliber::walkQuantizedNodes(&m_quantizedContiguousNodes[0], 0, m_curNodeIndex, qMin, qMax, nodeCallback);
 		return;
 	}
-	const btOptimizedBvhNode* nodes = &m_contiguousNodes[0];
-	int i = 0;
-	while (i < numNodes)
-	{
-		const btOptimizedBvhNode& node = nodes[i];
-		const bool overlap = TestAabbAgainstAabb2(aabbMin, aabbMax, node.m_aabbMinOrg, node.m_aabbMaxOrg);
-		if (node.m_escapeIndex < 0)
-		{
-			if (overlap) nodeCallback->processNode(node.m_subPart, node.m_triangleIndex);
-			++i;
-		}
-		else
-			i += overlap ? 1 : node.m_escapeIndex;
-	}
+	caliber::walkNodes(&m_contiguousNodes[0], m_curNodeIndex, aabbMin, aabbMax, nodeCallback);
 }
 
 void btQuantizedBvh::reportRayOverlappingNodex(btNodeOverlapCallback* nodeCallback, const btVector3& raySource,
@@ -428,12 +401,22 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
                                             const btVector3& aabbMin, const btVector3& aabbMax,
                                             const btScalar* maxFraction)
 {
+	reportBoxCastOverlappingNodesInRange(bvh, nodeCallback, raySource, rayTarget, aabbMin, aabbMax, maxFraction, 0,
+	                                     caliber::bvhNodeCount(bvh));
+}
+
+void caliber::reportBoxCastOverlappingNodesInRange(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
+                                                   const btVector3& raySource, const btVector3& rayTarget,
+                                                   const btVector3& aabbMin, const btVector3& aabbMax,
+                                                   const btScalar* maxFraction, int startNode, int endNode)
+{
 	btAssert(nodeCallback != 0);
 	const bool finite = caliber::isFinite(raySource) && caliber::isFinite(rayTarget) && caliber::isFinite(aabbMin) &&
 	                    caliber::isFinite(aabbMax);
 	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
 	if (!nodeCallback || !finite || caliber::bvhNodeCount(bvh) == 0) return;
-	const int numNodes = caliber::bvhNodeCount(bvh);
+	const int numNodes = btMin(endNode, caliber::bvhNodeCount(bvh));
+	if (startNode < 0) startNode = 0;
 
 	Sweep sweep;
 	sweep.maxFraction = maxFraction;
@@ -484,7 +467,7 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
 		const btVector3 bvhMin = caliber::bvhAabbMin(bvh);
 		// Bullet declares only a non-const accessor of the quantized nodes; they are only read here.
 		const btQuantizedBvhNode* nodes = &const_cast<btQuantizedBvh&>(bvh).getQuantizedNodeArray()[0];
-		int i = 0;
+		int i = startNode;
 		while (i < numNodes)
 		{
 			const btQuantizedBvhNode& node = nodes[i];
@@ -511,7 +494,7 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
 		return;
 	}
 	const btOptimizedBvhNode* nodes = &caliber::bvhNodeArray(bvh)[0];
-	int i = 0;
+	int i = startNode;
 	while (i < numNodes)
 	{
 		const btOptimizedBvhNode& node = nodes[i];

@@ -241,10 +241,10 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	const btConcaveShape* concave = static_cast<const btConcaveShape*>(triBodyWrap->getCollisionShape());
 	m_btConvexTriangleCallback.m_triangleCount = 0;
 	// The triangles report into a collector, which drops internal-edge points and passes on the rest (for
-	// face-clipped boxes, the best 4 of all the triangles' points). Objects with a custom material
+	// face-clipped boxes and hulls, the best 4 of all the triangles' points). Objects with a custom material
 	// callback see every triangle's raw points instead, as in Bullet (their owners fix internal edges
 	// themselves, e.g. with btAdjustInternalEdgeContacts).
-	const bool clips = caliber::clipsAgainstMeshTriangles(convexBodyWrap->getCollisionShape()->getShapeType());
+	const bool clips = caliber::clipsAgainstMeshTriangles(*convexBodyWrap->getCollisionShape());
 	const bool collect = !((convexBodyWrap->getCollisionObject()->getCollisionFlags() |
 	                        triBodyWrap->getCollisionObject()->getCollisionFlags()) &
 	                       btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
@@ -252,8 +252,8 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	m_btConvexTriangleCallback.setTimeStepAndCounters(concave->getMargin(), dispatchInfo, convexBodyWrap, triBodyWrap,
 	                                                  collect ? &collector : resultOut);
 	manifold->setBodies(convexBodyWrap->getCollisionObject(), triBodyWrap->getCollisionObject());
-	// Boxes get their whole contact patch each frame (face clipping): last frame's points that have moved
-	// away would crowd the manifold.
+	// Boxes and hulls get their whole contact patch each frame (face clipping): last frame's points that
+	// have moved away would crowd the manifold.
 	if (clips) caliber::dropStalePoints(manifold, body0Wrap, body1Wrap);
 	concave->processAllTriangles(&m_btConvexTriangleCallback, m_btConvexTriangleCallback.getAabbMin(),
 	                             m_btConvexTriangleCallback.getAabbMax());

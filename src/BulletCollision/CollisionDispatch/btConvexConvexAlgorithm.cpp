@@ -219,7 +219,10 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	// or under the box) and left the edges and vertices. The mesh collector chooses among all triangles'
 	// points.
 	bool facePointsReported = false;
-	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && caliber::clipsAgainstMeshTriangles(shapeA->getShapeType()))
+	const bool againstTriangle = shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE;
+	const caliber::TriangleClipping clipping =
+	    againstTriangle ? caliber::triangleClippingOf(*shapeA) : caliber::kNoClipping;
+	if (clipping == caliber::kClipBeforeGjk)
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
 		    *shapeA, body0Wrap->getWorldTransform(), *static_cast<const btTriangleShape*>(shapeB),
@@ -269,6 +272,24 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		m_lastSeparatingAxis = gjk.getCachedSeparatingAxis();
 		m_haveLastSeparatingAxis = true;
+	}
+
+	// A hull or polyhedron against a mesh triangle: its face (or edge) clipped against the triangle once
+	// GJK's normal is the triangle's face normal, i.e. the hull lies over the triangle's face (against a
+	// triangle's edge or vertex GJK's point is the contact, and no face is searched). Also at rest on a
+	// full manifold: GJK's single point (any point of the face) would replace one of the face's corners in
+	// the manifold, and a narrow face rocks on the changing set.
+	if (clipping == caliber::kClipAfterGjk && gjkPoint.found() && gjkPoint.m_distance <= reach)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContactAlongGjkNormal(
+		    *shapeA, input.m_transformA, *static_cast<const btTriangleShape*>(shapeB), input.m_transformB, reach,
+		    gjkPoint.m_normalOnSurfaceB, *resultOut);
+		if (outcome == caliber::kTriangleFaceContact || outcome == caliber::kTriangleOutOfReach)
+		{
+			if (m_ownManifold) resultOut->refreshContactPoints();
+			return;
+		}
+		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
 	}
 
 	const btConvexPolyhedron* polyA = polyhedronOf(shapeA);

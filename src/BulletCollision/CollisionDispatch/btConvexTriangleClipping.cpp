@@ -3,13 +3,17 @@
 
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "BulletCollision/CollisionShapes/btConvexPolyhedron.h"
+#include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
 
 namespace caliber
 {
 namespace
 {
-// A face of the convex after clipping has at most its own corners plus one per triangle side.
-const int kMaxFaceCorners = 16;
+// A face of the convex after clipping has at most its own corners plus one per triangle side. A hull's
+// face with more corners (a fine cylinder's cap) keeps its first 32 in its own order: a smaller polygon
+// inside the face, still exact points of it.
+const int kMaxFaceCorners = 32;
 const int kMaxClipped = kMaxFaceCorners + 3;
 
 // Deeper than this below a triangle's plane the face normal is not trusted as the way out (a triangle's
@@ -23,7 +27,12 @@ const btScalar kDepthSlack = btScalar(0.01);
 // at an edge too. A tenth of the default breaking threshold (0.02).
 const btScalar kFaceLevelTolerance = btScalar(0.002);
 
-// Hull vertices this close to the supporting plane, as a fraction of the hull's depth along the normal,
+// GJK's normal for a convex resting on a face is the face normal to within its tolerance; a normal leaning
+// further (about 2.5 degrees) comes from an edge or a vertex, where one GJK point is the right answer. A
+// polyhedron's face is taken as the face over a triangle within the same angle.
+const btScalar kFaceNormalCosine = btScalar(0.999);
+
+// Hull vertices this close to the supporting plane, as a fraction of the hull's extent along the normal,
 // form its face there: it catches a face tilted by about a degree (a hull settling on a face) whose
 // vertices are not quite level. Each point keeps its own distance, so a vertex taken in that is a little
 // higher only gives a point a little farther away.
@@ -72,46 +81,10 @@ btScalar pseudoAngle(btScalar x, btScalar y)
 	return diamond > 2 ? diamond - 4 : diamond;
 }
 
-// The hull's vertices near its supporting plane opposite the normal, ordered around their centre so that
-// they form a polygon, moved out by the margin (the hull's surface is its points' hull grown by it).
-// Returns false, building nothing, when the hull's lowest point along the normal is higher than `above`.
-bool hullFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal, btScalar above,
-              Polygon& face)
+// Orders the face's corners by angle around their centre in the plane across the normal (insertion sort:
+// a face is small), so that they form a polygon.
+void orderAroundCentre(const btVector3& normal, Polygon& face)
 {
-	face.count = 0;
-	const btVector3* points = hull.getUnscaledPoints();
-	const int numPoints = hull.getNumPoints();
-	if (!points || numPoints == 0) return true;
-	const btVector3& scaling = hull.getLocalScaling();
-	const btVector3 direction = (-normal * transform.getBasis()) * scaling;
-	// The hull's own support search (vectorised over its distinct points) finds its extremes along the
-	// normal; depths are measured along `direction` from the centre, positive away from the triangle.
-	const btVector3 down = -normal * transform.getBasis();
-	const btScalar highest = hull.localGetSupportingVertexWithoutMargin(down).dot(down);
-	// The lowest point is at centre - highest along the normal.
-	if (transform.getOrigin().dot(normal) - highest - hull.getMargin() > above) return false;
-	const btScalar lowest = hull.localGetSupportingVertexWithoutMargin(-down).dot(down);
-	const btScalar threshold = highest - kHullFaceBand * (highest - lowest);
-	// A hull on an edge or a vertex (a barrel on its side) has no face there: GJK's point is the contact.
-	int inBand = 0;
-	for (int i = 0; i < numPoints && inBand < 3; ++i) inBand += points[i].dot(direction) >= threshold;
-	if (inBand < 3) return true;
-	const btVector3 outwards = -normal * hull.getMargin();
-	const btVector3* sources[kMaxFaceCorners];
-	for (int i = 0; i < numPoints && face.count < kMaxFaceCorners; ++i)
-	{
-		if (points[i].dot(direction) < threshold) continue;
-		// Hulls often list a point twice (a closed ring, as copies); one copy is enough.
-		const btVector3& point = points[i];
-		bool duplicate = false;
-		for (int j = 0; j < face.count && !duplicate; ++j)
-			duplicate = sources[j]->x() == point.x() && sources[j]->y() == point.y() && sources[j]->z() == point.z();
-		if (duplicate) continue;
-		sources[face.count] = &point;
-		face.corners[face.count++] = transform(point * scaling) + outwards;
-	}
-	if (face.count < 3) return true;
-	// Order by angle around the centre in the plane across the normal (insertion sort: a face is small).
 	btVector3 centre(0, 0, 0);
 	for (int i = 0; i < face.count; ++i) centre += face.corners[i];
 	centre /= btScalar(face.count);
@@ -136,7 +109,177 @@ bool hullFace(const btConvexHullShape& hull, const btTransform& transform, const
 		angles[j + 1] = angle;
 		face.corners[j + 1] = corner;
 	}
-	return true;
+}
+
+// Depths are found in chunks of this many points, on the stack.
+const int kDepthChunk = 64;
+
+// depths[i] = points[i] . direction for count <= kDepthChunk points, and their extremes (deepest and
+// shallowest are updated); four at a time in SSE builds (as the hull's own support search does), which
+// makes the band below cost about what two support searches do.
+void dotsOf(const btVector3* points, int count, const btVector3& direction, btScalar* depths, btScalar& deepest,
+            btScalar& shallowest)
+{
+	int i = 0;
+#ifdef BT_USE_SSE
+	if (count >= 4)
+	{
+		const __m128 dx = _mm_set1_ps(direction.x());
+		const __m128 dy = _mm_set1_ps(direction.y());
+		const __m128 dz = _mm_set1_ps(direction.z());
+		__m128 laneMax = _mm_set1_ps(deepest);
+		__m128 laneMin = _mm_set1_ps(shallowest);
+		for (; i + 4 <= count; i += 4)
+		{
+			__m128 v0 = points[i + 0].get128();
+			__m128 v1 = points[i + 1].get128();
+			__m128 v2 = points[i + 2].get128();
+			__m128 v3 = points[i + 3].get128();
+			_MM_TRANSPOSE4_PS(v0, v1, v2, v3);  // v0 = x lanes, v1 = y lanes, v2 = z lanes
+			const __m128 dots = _mm_add_ps(_mm_add_ps(_mm_mul_ps(v0, dx), _mm_mul_ps(v1, dy)), _mm_mul_ps(v2, dz));
+			_mm_storeu_ps(depths + i, dots);
+			laneMax = _mm_max_ps(laneMax, dots);
+			laneMin = _mm_min_ps(laneMin, dots);
+		}
+		alignas(16) float highs[4], lows[4];
+		_mm_store_ps(highs, laneMax);
+		_mm_store_ps(lows, laneMin);
+		for (int lane = 0; lane < 4; ++lane)
+		{
+			deepest = btMax(deepest, highs[lane]);
+			shallowest = btMin(shallowest, lows[lane]);
+		}
+	}
+#endif
+	for (; i < count; ++i)
+	{
+		depths[i] = direction.dot(points[i]);
+		deepest = btMax(deepest, depths[i]);
+		shallowest = btMin(shallowest, depths[i]);
+	}
+}
+
+// The points (times scaling) within kHullFaceBand of the convex's extent along the local direction `down`
+// (towards the triangle) below the deepest, one copy of each, in world space moved out by `outwards`:
+// the convex's face there, ordered around its centre; 2 points for an edge (a box or barrel landing on
+// an edge, clipped as a segment); none for a vertex, where GJK's point is the contact.
+void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
+              const btTransform& transform, const btVector3& normal, const btVector3& outwards, Polygon& face)
+{
+	face.count = 0;
+	if (numPoints < 2) return;
+	const btVector3 direction = down * scaling;  // unscaled points dotted with it give scaled depths
+	btScalar depths[kDepthChunk];
+	btScalar deepest = -BT_LARGE_FLOAT, shallowest = BT_LARGE_FLOAT;
+	for (int start = 0; start < numPoints; start += kDepthChunk)
+	{
+		dotsOf(points + start, btMin(kDepthChunk, numPoints - start), direction, depths, deepest, shallowest);
+	}
+	const btScalar threshold = deepest - kHullFaceBand * (deepest - shallowest);
+	// Non-finite points (bad input, warned about where they were set) give no face: GJK decides.
+	if (!btIsFinite(threshold)) return;
+	const btVector3* sources[kMaxFaceCorners];
+	// A hull of one chunk still has its depths; larger ones are dotted again, chunk by chunk.
+	for (int start = 0; start < numPoints && face.count < kMaxFaceCorners; start += kDepthChunk)
+	{
+		const int count = btMin(kDepthChunk, numPoints - start);
+		btScalar unusedHigh = deepest, unusedLow = shallowest;
+		if (numPoints > kDepthChunk) dotsOf(points + start, count, direction, depths, unusedHigh, unusedLow);
+		// Most points are far from the band: in SSE builds four depths are tested at once.
+		int inBand[kDepthChunk];
+		int numInBand = 0;
+		int i = 0;
+#ifdef BT_USE_SSE
+		const __m128 limit = _mm_set1_ps(threshold);
+		for (; i + 4 <= count; i += 4)
+		{
+			const int mask = _mm_movemask_ps(_mm_cmpge_ps(_mm_loadu_ps(depths + i), limit));
+			if (mask == 0) continue;
+			for (int lane = 0; lane < 4; ++lane)
+				if (mask & (1 << lane)) inBand[numInBand++] = i + lane;
+		}
+#endif
+		for (; i < count; ++i)
+			if (depths[i] >= threshold) inBand[numInBand++] = i;
+		for (int k = 0; k < numInBand && face.count < kMaxFaceCorners; ++k)
+		{
+			// Hulls often list a point twice (a closed ring, as copies); one copy is enough.
+			const btVector3& point = points[start + inBand[k]];
+			bool duplicate = false;
+			for (int j = 0; j < face.count && !duplicate; ++j)
+				duplicate =
+				    sources[j]->x() == point.x() && sources[j]->y() == point.y() && sources[j]->z() == point.z();
+			if (duplicate) continue;
+			sources[face.count] = &point;
+			face.corners[face.count++] = transform(point * scaling) + outwards;
+		}
+	}
+	if (face.count < 2)
+		face.count = 0;
+	else if (face.count > 3)  // any order of 2 or 3 points is a polygon already
+		orderAroundCentre(normal, face);
+}
+
+// A btConvexHullShape's face over the triangle from its points (see bandFace), moved out by the margin
+// (the hull's surface is its points' hull grown by it).
+void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal, Polygon& face)
+{
+	face.count = 0;
+	const btVector3* points = hull.getUnscaledPoints();
+	if (!points) return;
+	bandFace(points, hull.getNumPoints(), hull.getLocalScaling(), -normal * transform.getBasis(), transform, normal,
+	         -normal * hull.getMargin(), face);
+}
+
+// A polyhedron's face over the triangle: its face most opposed to the normal, also when tilted (as a box's:
+// a hull landing on an edge at speed gets speculative points on the face coming down), corners in the
+// polyhedron's own order, moved out by the margin (hulls' polyhedra are their margin-free cores). A
+// polyhedron without faces gives its vertices in the band (see bandFace).
+void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const btTransform& transform,
+                    const btVector3& normal, Polygon& face)
+{
+	face.count = 0;
+	const btVector3 local = normal * transform.getBasis();
+	int best = -1;
+	btScalar bestDot = 0;
+	for (int f = 0; f < polyhedron.m_faces.size(); ++f)
+	{
+		const btScalar* plane = polyhedron.m_faces[f].m_plane;
+		const btScalar along = plane[0] * local.x() + plane[1] * local.y() + plane[2] * local.z();
+		if (along < bestDot)
+		{
+			bestDot = along;
+			best = f;
+		}
+	}
+	const int numVertices = polyhedron.m_vertices.size();
+	const btVector3 outwards = -normal * margin;
+	if (best < 0 || polyhedron.m_faces[best].m_indices.size() < 3)
+	{
+		if (numVertices > 0)
+			bandFace(&polyhedron.m_vertices[0], numVertices, btVector3(1, 1, 1), -local, transform, normal, outwards,
+			         face);
+		return;
+	}
+	const btAlignedObjectArray<int>& indices = polyhedron.m_faces[best].m_indices;
+	for (int i = 0; i < indices.size() && face.count < kMaxFaceCorners; ++i)
+	{
+		const int index = indices[i];
+		if (index < 0 || index >= numVertices) continue;
+		face.corners[face.count++] = transform(polyhedron.m_vertices[index]) + outwards;
+	}
+	if (face.count < 3) face.count = 0;
+}
+
+// A hull's face over the triangle: from its polyhedron when it has one, else from its points.
+void convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, Polygon& face)
+{
+	face.count = 0;
+	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape&>(convex).getConvexPolyhedron();
+	if (polyhedron)
+		polyhedronFace(*polyhedron, convex.getMargin(), transform, normal, face);
+	else if (convex.getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE)
+		hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, face);
 }
 
 // Sutherland-Hodgman: keeps the part of the closed polygon in on the side (x - origin) . side <= 0.
@@ -171,6 +314,22 @@ bool clipBySide(const Polygon& in, Polygon& out, const btVector3& origin, const 
 	}
 	out.count = written;
 	return true;
+}
+
+// Keeps the part of the segment (a 2-corner polygon) on the side (x - origin) . side <= 0; count 0 when
+// none of it is.
+void clipSegmentBySide(Polygon& segment, const btVector3& origin, const btVector3& side)
+{
+	const btScalar d0 = (segment.corners[0] - origin).dot(side);
+	const btScalar d1 = (segment.corners[1] - origin).dot(side);
+	if (d0 > 0 && d1 > 0)
+	{
+		segment.count = 0;
+		return;
+	}
+	if (d0 <= 0 && d1 <= 0) return;
+	const btVector3 cut = segment.corners[0] + (segment.corners[1] - segment.corners[0]) * (d0 / (d0 - d1));
+	segment.corners[d0 > 0 ? 0 : 1] = cut;
 }
 }  // namespace
 
@@ -264,12 +423,69 @@ bool worldTriangleOf(const btTriangleShape& triangle, const btTransform& transfo
 	return world.normalLength2 > SIMD_EPSILON * edge1.length2() * edge2.length2() && btIsFinite(world.normalLength2);
 }
 
+TriangleClipping triangleClippingOf(const btCollisionShape& convex)
+{
+	switch (convex.getShapeType())
+	{
+		case BOX_SHAPE_PROXYTYPE:
+			return kClipBeforeGjk;
+		case CONVEX_HULL_SHAPE_PROXYTYPE:
+			return kClipAfterGjk;
+		case TETRAHEDRAL_SHAPE_PROXYTYPE:
+		case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE:
+		case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE:
+			// Their face comes from the polyhedron, which initializePolyhedralFeatures builds.
+			return static_cast<const btPolyhedralConvexShape&>(convex).getConvexPolyhedron() ? kClipAfterGjk
+			                                                                                 : kNoClipping;
+		default:
+			return kNoClipping;
+	}
+}
+
+namespace
+{
+TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
+                                  const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
+                                  btDiscreteCollisionDetectorInterface::Result& out);
+}  // namespace
+
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
                                         btScalar reach, btDiscreteCollisionDetectorInterface::Result& out)
 {
 	WorldTriangle world;
 	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
+	return faceContactOn(world, convex, convexTransform, triangle, reach, out);
+}
+
+TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
+                                                      const btTriangleShape& triangle,
+                                                      const btTransform& triangleTransform, btScalar reach,
+                                                      const btVector3& gjkNormal,
+                                                      btDiscreteCollisionDetectorInterface::Result& out)
+{
+	// The face test in the triangle's frame first: most normals GJK finds against a mesh (edges, vertices)
+	// are not a face's, and the corners need not be moved to world space for them.
+	const btVector3* v = triangle.m_vertices1;
+	const btVector3 face = (v[1] - v[0]).cross(v[2] - v[0]);
+	const btVector3 localNormal = gjkNormal * triangleTransform.getBasis();
+	const btScalar along = face.dot(localNormal);
+	const btScalar normalLength2 = localNormal.length2();
+	// A zero or non-finite normal (GJK gave none) is no face's.
+	if (!(normalLength2 > 0) || !btIsFinite(normalLength2) ||
+	    !(along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2))
+		return kTriangleNeedsGjk;
+	WorldTriangle world;
+	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
+	return faceContactOn(world, convex, convexTransform, triangle, reach, out);
+}
+
+namespace
+{
+TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
+                                  const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
+                                  btDiscreteCollisionDetectorInterface::Result& out)
+{
 	const btVector3* corners = world.corners;
 	const btVector3 edge1 = corners[1] - corners[0];
 	btVector3 normal = world.windingNormal;
@@ -283,8 +499,8 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 		const btVector3 local = normal * convexTransform.getBasis();
 		const btVector3 half = box.getHalfExtentsWithMargin();
 		const btScalar centre = normal.dot(convexTransform.getOrigin() - corners[0]);
-		const btScalar clearance = btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() -
-		                           btFabs(local.z()) * half.z();
+		const btScalar clearance =
+		    btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() - btFabs(local.z()) * half.z();
 		// The exact tests below decide the cases near the limits (rounding differs a little from them here).
 		const btScalar slack = btScalar(1.0001);
 		if (clearance > 0)
@@ -342,9 +558,7 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	}
 	else
 	{
-		if (!hullFace(static_cast<const btConvexHullShape&>(convex), convexTransform, normal, planeOffset + reach,
-		              face))
-			return kTriangleOutOfReach;
+		convexFace(convex, convexTransform, normal, face);
 	}
 	if (face.count == 0) return kTriangleNeedsGjk;
 
@@ -355,7 +569,7 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	if (lowest > reach) return kTriangleOutOfReach;
 	// Deep in, the face normal may not be the way out (a triangle's edge poking into a side): GJK and the
 	// depth solver decide, as for every other shape.
-	if (lowest < -kFaceDepthLimit || face.count < 3) return kTriangleNeedsGjk;
+	if (lowest < -kFaceDepthLimit || face.count < 2) return kTriangleNeedsGjk;
 
 	// The triangle's prism: a side plane through each edge, containing the normal, facing out. Faces
 	// inside the prism (the convex over a large triangle) need no cut.
@@ -367,7 +581,11 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 		// Outwards whichever face the convex is in front of (no test of the third corner: the sliver
 		// test above leaves no triangle whose winding rounding could turn).
 		const btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(windingNormal);
-		if (clipBySide(*in, *clipped, from, side)) btSwap(in, clipped);
+		// An edge of a hull is a segment (a closed 2-corner polygon would come back with a point twice).
+		if (in->count == 2)
+			clipSegmentBySide(*in, from, side);
+		else if (clipBySide(*in, *clipped, from, side))
+			btSwap(in, clipped);
 	}
 	btVector3 points[kMaxClipped];
 	btScalar distances[kMaxClipped];
@@ -400,4 +618,5 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	// Otherwise the lowest point is beyond an edge, where the nearest feature may be that edge (GJK's).
 	return closest <= lowest + kFaceLevelTolerance ? kTriangleFaceContact : kTriangleFacePointsAndGjk;
 }
+}  // namespace
 }  // namespace caliber

@@ -19,17 +19,31 @@ namespace caliber
 int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int count, const btVector3& normal,
                          int chosen[4]);
 
-/// True for the convex shapes the mesh algorithms clip against triangles: boxes. triangleFaceContact
-/// takes convex hulls too, but a hull's face costs a scan of its points per triangle, and clipping hulls
-/// cost about 4 % of the barrel benchmark (convex_mesh) for barrels that mostly lie on an edge; hulls get
-/// GJK's point per triangle and the collector's internal-edge filter.
-inline bool clipsAgainstMeshTriangles(int shapeType) { return shapeType == BOX_SHAPE_PROXYTYPE; }
+/// How the mesh algorithms find a convex's face over a triangle (see triangleFaceContact).
+enum TriangleClipping
+{
+	kNoClipping,     // GJK's point per triangle (spheres, cones, ...; capsules have their own closed form)
+	kClipBeforeGjk,  // boxes: the lowest point and the face in closed form, before GJK, which most triangles skip
+	kClipAfterGjk    // hulls and polyhedra: clipped when GJK's normal is the triangle's face normal
+};
+
+/// The clipping the mesh algorithms give a convex shape: boxes before GJK; btConvexHullShape (its face from
+/// its points) and every other polyhedral shape with a btConvexPolyhedron (initializePolyhedralFeatures;
+/// its face from the polyhedron's faces) after GJK.
+TriangleClipping triangleClippingOf(const btCollisionShape& convex);
+
+/// True when the mesh algorithms clip the convex's face against triangles (its points then wait in the
+/// mesh collector, which keeps the best 4).
+inline bool clipsAgainstMeshTriangles(const btCollisionShape& convex)
+{
+	return triangleClippingOf(convex) != kNoClipping;
+}
 
 /// A mesh triangle in world space: its corners and the unnormalised normal of their winding.
 struct WorldTriangle
 {
 	btVector3 corners[3];
-	btVector3 windingNormal;   // (c1 - c0) x (c2 - c0), twice the area long
+	btVector3 windingNormal;  // (c1 - c0) x (c2 - c0), twice the area long
 	btScalar normalLength2;
 };
 
@@ -46,13 +60,24 @@ enum TriangleFaceOutcome
 };
 
 /// The contact of a box or convex hull with a triangle, found along the triangle's normal (turned towards
-/// the convex's centre) without GJK: the convex's face most opposed to the normal (a box's face; a hull's
-/// vertices near its supporting plane, moved out by its margin) is clipped against the triangle's prism,
+/// the convex's centre) without GJK: the convex's face most opposed to the normal (a box's face; a
+/// polyhedron's face, also tilted; a hull's vertices near its supporting plane, two of them for an edge;
+/// the last two moved out by the margin) is clipped against the triangle's prism,
 /// and its points within reach of the plane are reported to out with the triangle's normal (at most 4,
 /// spanning the largest area). The outcome says whether GJK must still look at the pair.
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
                                         btScalar reach, btDiscreteCollisionDetectorInterface::Result& out);
+
+/// triangleFaceContact for a hull after GJK: only when gjkNormal (GJK's, from the triangle towards the
+/// convex, any length) is the triangle's face normal on either side to within about 2.5 degrees (GJK's
+/// tolerance for a convex resting on a face; a normal leaning further comes from an edge or a vertex of
+/// the triangle, where GJK's point is the contact); kTriangleNeedsGjk, reporting nothing, otherwise.
+TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
+                                                      const btTriangleShape& triangle,
+                                                      const btTransform& triangleTransform, btScalar reach,
+                                                      const btVector3& gjkNormal,
+                                                      btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace caliber
 
 #endif  // CALIBER_CONVEX_TRIANGLE_CLIPPING_H

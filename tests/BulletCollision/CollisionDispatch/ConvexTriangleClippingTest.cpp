@@ -10,6 +10,8 @@
 #include "BulletCollision/CollisionDispatch/btConvexTriangleClipping.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "BulletCollision/CollisionShapes/btConvexPointCloudShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
 
 #include "TriangleContactRecorder.h"
 
@@ -113,13 +115,23 @@ TEST(ConvexTriangleClipping, BoxNearBesideTheTriangleOrDeepInItIsLeftToGjkAndFar
 	EXPECT_TRUE(out.points.empty());
 }
 
-TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginAndHullOnAnEdgeIsLeftToGjk)
+namespace
+{
+// A convex hull of a unit cube's 8 corners.
+void addCubeCorners(btConvexHullShape& hull)
+{
+	for (int corner = 0; corner < 8; ++corner)
+		hull.addPoint(
+		    btVector3((corner & 1) ? btScalar(0.5) : btScalar(-0.5), (corner & 2) ? btScalar(0.5) : btScalar(-0.5),
+		              (corner & 4) ? btScalar(0.5) : btScalar(-0.5)),
+		    corner == 7);
+}
+}  // namespace
+
+TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTheEdgeAndOnAVertexIsLeftToGjk)
 {
 	btConvexHullShape hull;
-	for (int corner = 0; corner < 8; ++corner)
-		hull.addPoint(btVector3((corner & 1) ? btScalar(0.5) : btScalar(-0.5), (corner & 2) ? btScalar(0.5) : btScalar(-0.5),
-		                        (corner & 4) ? btScalar(0.5) : btScalar(-0.5)),
-		              corner == 7);
+	addCubeCorners(hull);
 	const btScalar margin = hull.getMargin();
 	const btTriangleShape triangle = bigFloorTriangle();
 	Recorder out;
@@ -128,12 +140,168 @@ TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginAndHullOnA
 	          caliber::kTriangleFaceContact);
 	ASSERT_EQ(out.points.size(), 4u);
 	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.02), kTolerance);
-	// Turned 45 degrees about z: it stands on an edge (2 vertices), which is not a face.
+	// Turned 45 degrees about z: it stands on an edge along z (2 vertices at x = 0), both ends reported
+	// at the edge's height less the margin: 0.75 - sqrt(2)/2 - margin.
 	out.points.clear();
 	const btTransform onEdge(btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4), btVector3(0, btScalar(0.75), 0));
 	EXPECT_EQ(caliber::triangleFaceContact(hull, onEdge, triangle, btTransform::getIdentity(), kReach, out),
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 2u);
+	const btScalar edgeDistance = btScalar(0.75) - btSqrt(btScalar(0.5)) - margin;
+	for (const Point& p : out.points)
+	{
+		EXPECT_NEAR(p.distance, edgeDistance, kTolerance);
+		EXPECT_NEAR(p.onTriangle.x(), 0, kTolerance);
+		EXPECT_NEAR(btFabs(p.onTriangle.z()), btScalar(0.5), kTolerance);
+	}
+	// Then tilted 30 degrees about x: one vertex is lowest (the other end of the edge is 0.5 m higher), no
+	// face or edge there: GJK's point.
+	out.points.clear();
+	const btTransform onVertex(
+	    btQuaternion(btVector3(1, 0, 0), SIMD_PI / 6) * btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4),
+	    btVector3(0, btScalar(0.9), 0));
+	EXPECT_EQ(caliber::triangleFaceContact(hull, onVertex, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
+}
+
+TEST(ConvexTriangleClipping, HullEdgeCrossingATriangleEdgeIsCutAtItsSidePlane)
+{
+	btConvexHullShape hull;
+	addCubeCorners(hull);
+	btTriangleShape half(btVector3(-20, 0, -10), btVector3(0, 0, 10), btVector3(0, 0, -10));
+	half.setMargin(0);
+	Recorder out;
+	// Standing on an edge along x (turned 45 degrees about x), centred on x = 0: half the edge over the
+	// triangle with corners (-20,-10), (0,10), (0,-10), whose side x = 0 cuts it at its middle.
+	const btTransform onEdge(btQuaternion(btVector3(1, 0, 0), SIMD_PI / 4), btVector3(0, btScalar(0.75), 0));
+	caliber::triangleFaceContact(hull, onEdge, half, btTransform::getIdentity(), kReach, out);
+	ASSERT_EQ(out.points.size(), 2u);
+	btScalar minX = BT_LARGE_FLOAT, maxX = -BT_LARGE_FLOAT;
+	for (const Point& p : out.points)
+	{
+		minX = btMin(minX, p.onTriangle.x());
+		maxX = btMax(maxX, p.onTriangle.x());
+		EXPECT_NEAR(p.onTriangle.z(), 0, kTolerance);
+	}
+	EXPECT_NEAR(minX, btScalar(-0.5), kTolerance);
+	EXPECT_NEAR(maxX, 0, kTolerance);
+}
+
+TEST(ConvexTriangleClipping, HullWithAPolyhedronGetsItsMostOpposedFaceAlsoWhenTilted)
+{
+	btConvexHullShape hull;
+	addCubeCorners(hull);
+	ASSERT_TRUE(hull.initializePolyhedralFeatures());
+	const btScalar margin = hull.getMargin();
+	const btTriangleShape triangle = bigFloorTriangle();
+	Recorder out;
+	// Tilted 0.2 rad about z, lowest edge 0.01 above the floor (margin included): of the bottom face's
+	// corners, two are at 0.01 and two sin(0.2) = 0.2 m higher, beyond reach (0.1).
+	const btScalar angle = btScalar(0.2);
+	const btScalar lowestEdge = btScalar(0.5) * (btCos(angle) + btSin(angle));
+	const btTransform tilted(btQuaternion(btVector3(0, 0, 1), angle),
+	                         btVector3(0, lowestEdge + margin + btScalar(0.01), 0));
+	EXPECT_EQ(caliber::triangleFaceContact(hull, tilted, triangle, btTransform::getIdentity(), kReach, out),
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 2u);
+	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.01), kTolerance);
+	// With a longer reach the face's far edge, sin(0.2) higher, is reported too.
+	out.points.clear();
+	EXPECT_EQ(caliber::triangleFaceContact(hull, tilted, triangle, btTransform::getIdentity(), btScalar(0.5), out),
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 4u);
+	int high = 0;
+	for (const Point& p : out.points) high += btFabs(p.distance - (btScalar(0.01) + btSin(angle))) < btScalar(1e-4);
+	EXPECT_EQ(high, 2);
+}
+
+TEST(ConvexTriangleClipping, AfterGjkOnlyAFaceNormalIsClippedAndOtherNormalsAreLeftToGjk)
+{
+	btConvexHullShape hull;
+	addCubeCorners(hull);
+	const btTriangleShape triangle = bigFloorTriangle();
+	const btTransform flat(btQuaternion::getIdentity(),
+	                       btVector3(0, btScalar(0.5) + hull.getMargin() + btScalar(0.02), 0));
+	Recorder out;
+	// The face normal, of any length and either sign (the triangle is two-sided): the face.
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
+	                                                     btVector3(0, 3, 0), out),
+	          caliber::kTriangleFaceContact);
+	EXPECT_EQ(out.points.size(), 4u);
+	out.points.clear();
+	// 10 degrees off (an edge's or a vertex's normal), zero, or not finite: nothing, GJK's point.
+	const btVector3 leaning(btSin(btScalar(0.17)), btCos(btScalar(0.17)), 0);
+	const btVector3 notFinite(0, btScalar(SIMD_INFINITY), 0);
+	for (const btVector3& normal : {leaning, btVector3(0, 0, 0), notFinite})
+		EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
+		                                                     normal, out),
+		          caliber::kTriangleNeedsGjk);
+	EXPECT_TRUE(out.points.empty());
+}
+
+TEST(ConvexTriangleClipping, HullOfMorePointsThanAChunkFindsItsFaceWhereverItsPointsAre)
+{
+	// A 50-sided prism (100 points) along z, its points listed so that the bottom face's four corners come
+	// last (beyond the first 64 depths the band test keeps on the stack).
+	btConvexHullShape prism;
+	const int sides = 50;
+	const btScalar radius = 1;
+	for (int k = 1; k <= sides; ++k)
+	{
+		// Side faces between angles (k - 1/2) and (k + 1/2) steps from -y; k = sides (and 0) faces -y.
+		const btScalar angle = -SIMD_HALF_PI + (btScalar(k % sides) + btScalar(0.5)) * SIMD_2_PI / btScalar(sides);
+		for (int end = 0; end < 2; ++end)
+			prism.addPoint(btVector3(radius * btCos(angle), radius * btSin(angle), end ? btScalar(1) : btScalar(-1)),
+			               false);
+	}
+	prism.recalcLocalAabb();
+	ASSERT_EQ(prism.getNumPoints(), 100);
+	const btScalar apothem = radius * btCos(SIMD_PI / btScalar(sides));
+	const btTriangleShape triangle = bigFloorTriangle();
+	Recorder out;
+	const btTransform lying(btQuaternion::getIdentity(), btVector3(0, apothem + prism.getMargin() + btScalar(0.01), 0));
+	EXPECT_EQ(caliber::triangleFaceContact(prism, lying, triangle, btTransform::getIdentity(), kReach, out),
+	          caliber::kTriangleFaceContact);
+	// The bottom face and, the prism being fine, the vertices next to it (1.6 cm higher, within the band of
+	// 2 % of its 2 m extent): 4 of them spanning the largest area, the deepest among them, each at its own
+	// vertex's height above the floor (1 cm plus its rise above the bottom face) at the ends (z = +-1).
+	ASSERT_EQ(out.points.size(), 4u);
+	btScalar closest = BT_LARGE_FLOAT;
+	for (const Point& p : out.points)
+	{
+		const btScalar x = p.onTriangle.x();
+		const btScalar rise = apothem - btSqrt(radius * radius - x * x);
+		EXPECT_NEAR(p.distance, btScalar(0.01) + rise, btScalar(1e-4)) << "vertex at x = " << x;
+		EXPECT_NEAR(btFabs(p.onTriangle.z()), 1, kTolerance);
+		closest = btMin(closest, p.distance);
+	}
+	EXPECT_NEAR(closest, btScalar(0.01), kTolerance);
+	// Standing on an end cap (50 corners, more than a face keeps): at most 4 points, all 1 cm above.
+	out.points.clear();
+	const btTransform standing(btQuaternion(btVector3(1, 0, 0), SIMD_HALF_PI),
+	                           btVector3(0, 1 + prism.getMargin() + btScalar(0.01), 0));
+	EXPECT_EQ(caliber::triangleFaceContact(prism, standing, triangle, btTransform::getIdentity(), kReach, out),
+	          caliber::kTriangleFaceContact);
+	EXPECT_EQ(out.points.size(), 4u);
+	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.01), kTolerance);
+}
+
+TEST(ConvexTriangleClipping, OnlyBoxesHullsAndShapesWithAPolyhedronAreClipped)
+{
+	btBoxShape box(btVector3(1, 1, 1));
+	EXPECT_EQ(caliber::triangleClippingOf(box), caliber::kClipBeforeGjk);
+	btConvexHullShape hull;
+	addCubeCorners(hull);
+	EXPECT_EQ(caliber::triangleClippingOf(hull), caliber::kClipAfterGjk);
+	// A point cloud has no face without its polyhedron: GJK's point, as for spheres.
+	btVector3 cloudPoints[4] = {btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 1, 0), btVector3(0, 0, 1)};
+	btConvexPointCloudShape cloud(cloudPoints, 4, btVector3(1, 1, 1));
+	EXPECT_EQ(caliber::triangleClippingOf(cloud), caliber::kNoClipping);
+	ASSERT_TRUE(cloud.initializePolyhedralFeatures());
+	EXPECT_EQ(caliber::triangleClippingOf(cloud), caliber::kClipAfterGjk);
+	btSphereShape sphere(1);
+	EXPECT_EQ(caliber::triangleClippingOf(sphere), caliber::kNoClipping);
 }
 
 TEST(ConvexTriangleClipping, DegenerateTriangleOrEmptyHullIsLeftToGjkWithoutPoints)
