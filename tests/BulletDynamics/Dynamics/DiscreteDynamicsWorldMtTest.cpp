@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <thread>
 #include <vector>
 
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
@@ -268,6 +269,33 @@ TEST(DiscreteDynamicsWorldMt, TheMtSolverColoursOnlyLargeSolvesAndIsThePlainSolv
 	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1 << 30;
 	EXPECT_EQ(singleThreadedHash(WorldSetup::Mt), singleThreadedHash());
 	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = threshold;
+}
+
+TEST(DiscreteDynamicsWorldMt, TwoWorldsSteppedAtOnceFromTwoThreadsKeepTheirBits)
+{
+	// Two programs' worlds (or two worlds of one program) may be stepped at the same time on different
+	// threads, sharing the one scheduler: one of them gets the scheduler's threads for each loop, the
+	// other runs that loop on its own thread. Neither may see the other's chunk logs, batches or scratch.
+	const std::uint64_t referenceMt = singleThreadedHash(WorldSetup::Mt);
+	const std::uint64_t reference = singleThreadedHash();
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	btITaskScheduler* scheduler = pool ? pool.get() : btGetSequentialTaskScheduler();
+	btSetTaskScheduler(scheduler);
+	scheduler->setNumThreads(2);
+	std::uint64_t hashes[2] = {0, 0};
+	{
+		Scene mt(WorldSetup::Mt), plain(WorldSetup::Plain);
+		std::thread other([&] {
+			plain.step(kSteps);
+			hashes[1] = plain.hash();
+		});
+		mt.step(kSteps);
+		hashes[0] = mt.hash();
+		other.join();
+	}
+	btSetTaskScheduler(0);
+	EXPECT_EQ(hashes[0], referenceMt);
+	EXPECT_EQ(hashes[1], reference);
 }
 
 TEST(DiscreteDynamicsWorldMt, SwitchingSchedulersBetweenStepsKeepsTheBits)
