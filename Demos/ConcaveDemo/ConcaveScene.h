@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace concave_demo
@@ -40,11 +41,8 @@ public:
 	const std::vector<btRigidBody*>& bodies() const { return m_bodies; }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_demoWorld;  // the demos' usual world
+	btDiscreteDynamicsWorld& m_world{m_demoWorld.world()};
 	// The terrain's data (the shapes keep pointers into it).
 	btAlignedObjectArray<float> m_heights;
 	btAlignedObjectArray<btScalar> m_vertices;

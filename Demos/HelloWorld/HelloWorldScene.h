@@ -8,6 +8,7 @@
 
 #include <memory>
 
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace hello_world
@@ -26,11 +27,8 @@ public:
 	btDefaultMotionState& ballMotionState() { return m_ballMotionState; }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_demoWorld;  // the demos' usual world
+	btDiscreteDynamicsWorld& m_world{m_demoWorld.world()};
 	btBoxShape m_groundShape{btVector3(50, 50, 50)};
 	btDefaultMotionState m_groundMotionState{btTransform(btQuaternion::getIdentity(), btVector3(0, -50, 0))};
 	std::unique_ptr<btRigidBody> m_ground;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace vehicle_demo
@@ -39,11 +40,8 @@ public:
 	void drive(btScalar throttle, btScalar steering, bool brake);
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher{&m_configuration};
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world{&m_dispatcher, &m_broadphase, &m_solver, &m_configuration};
+	caliber::demo::DemoWorld m_demoWorld;  // the demos' usual world
+	btDiscreteDynamicsWorld& m_world{m_demoWorld.world()};
 	std::vector<float> m_heights;
 	btHeightfieldTerrainShape m_terrainShape;
 	btRigidBody m_ground;
