@@ -31,6 +31,7 @@
 
 #include "BenchmarkScenes.h"
 #include "Caliber/WorldSnapshot.h"
+#include "LinearMath/btQuickprof.h"
 #include "DemoPictures.h"
 #include "LinearMath/btThreads.h"
 
@@ -142,9 +143,18 @@ int main(int argc, char** argv)
 	// N threads (docs/threading.md); its state hashes are the same at every N. Taken out before the
 	// picture options are read.
 	int threads = 0;
+	bool profile = false;
 	std::vector<char*> arguments;
 	for (int i = 0; i < argc; ++i)
 	{
+		// --profile: after each scene, the time the calling thread spent in each stage of the step
+		// (btQuickprof's tree, as Bullet's demos print it); stages run on other threads show as the
+		// time the caller waited for them.
+		if (std::string(argv[i]) == "--profile")
+		{
+			profile = true;
+			continue;
+		}
 		if (std::string(argv[i]) == "--threads")
 		{
 			threads = i + 1 < argc ? atoi(argv[i + 1]) : 0;
@@ -176,7 +186,7 @@ int main(int argc, char** argv)
 	commandLine.name = "BenchmarkDemo";
 	commandLine.defaultFrames = 30;
 	commandLine.maxPositional = 3;
-	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0] [rollback frames] [--threads N]";
+	commandLine.positionalUsage = "[scene[,scene...]|all] [frames > 0] [rollback frames] [--threads N] [--profile]";
 	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
 	if (!pictures.ok()) return pictures.exitCode();
 	const std::vector<std::string>& positional = pictures.positional();
@@ -213,12 +223,14 @@ int main(int argc, char** argv)
 		const double buildMs = millisecondsSince(buildStart);
 		std::vector<double> stepMs;
 		stepMs.reserve(size_t(frames));
+		if (profile) CProfileManager::Reset();
 		for (int frame = 0; frame < frames; ++frame)
 		{
 			const auto start = std::chrono::steady_clock::now();
 			scene->world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
 			scene->afterStep();
 			stepMs.push_back(millisecondsSince(start));
+			if (profile) CProfileManager::Increment_Frame_Counter();
 		}
 		double total = 0;
 		for (double ms : stepMs) total += ms;
@@ -236,6 +248,7 @@ int main(int argc, char** argv)
 		    sorted.back());
 		printf("  sanity: %s; hash %016llx%s\n", sanity.c_str(), (unsigned long long)stateHash(scene->dynamicBodies()),
 		       sane ? "" : "  <-- FAILED");
+		if (profile) CProfileManager::dumpAll();
 		if (rollbackFrames > 0) allSane = rollbackCheck(*scene, name, rollbackFrames) && allSane;
 	}
 	if (ran == 0)

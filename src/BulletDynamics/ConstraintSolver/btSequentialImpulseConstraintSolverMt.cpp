@@ -18,6 +18,7 @@
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
+#include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
 #include "LinearMath/btSideTable.h"
 
 bool btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = false;
@@ -54,6 +55,12 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> manifoldBodies;                  // two per manifold
 	btAlignedObjectArray<int> plannedCount;                    // per manifold
 	btAlignedObjectArray<caliber::ContactPointRows> planned;  // MANIFOLD_CACHE_SIZE per manifold
+	// Per batch: its first manifold in orderedManifolds (and one past the last batch), and the body its
+	// padding lanes and static contacts use (its own copy of the fixed entry, or a zero body).
+	btAlignedObjectArray<int> batchManifoldBegin;
+	btAlignedObjectArray<int> batchPaddingBody;
+	bool wide;  // the batches are solved by the wide sweep
+	caliber::WideContactRows wideRows;
 };
 
 MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
@@ -168,6 +175,26 @@ inline void prefetchRows(const btSolverConstraint* first, int count)
 #endif
 }
 
+// Batches per task of the parallel wide-row fill.
+const int kBatchesPerWideFillTask = 4;
+
+// The wide rows of the batches (each batch's own groups and blocks: any order, any thread).
+struct FillWideRows : public btIParallelForBody
+{
+	MtSolverScratch* mt;
+	const btAlignedObjectArray<int>* manifoldFirstRow;
+	unsigned int solveCount;
+	const btSolverBody* bodies;
+	const btConstraintArray* contacts;
+	const btConstraintArray* friction;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		mt->wideRows.fill(iBegin, iEnd, mt->orderedManifolds, mt->batchManifoldBegin, *manifoldFirstRow,
+		                  mt->batchPaddingBody, solveCount, bodies, *contacts, *friction);
+	}
+};
+
 // One sweep over a batch of contact rows: normals, then their friction, then their rolling rows.
 struct BatchSweep : public btIParallelForBody
 {
@@ -176,7 +203,7 @@ struct BatchSweep : public btIParallelForBody
 	btConstraintArray* contacts;
 	btConstraintArray* friction;
 	btConstraintArray* rolling;
-	const MtSolverScratch* scratch;
+	MtSolverScratch* scratch;
 	int firstBatch;
 	int frictionRowsPerContact;
 	bool reverse;
@@ -185,7 +212,15 @@ struct BatchSweep : public btIParallelForBody
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
-		for (int b = iBegin; b < iEnd; ++b) batchResidual[b] = sweepBatch(batched->m_batches[firstBatch + b]);
+		for (int b = iBegin; b < iEnd; ++b)
+			batchResidual[b] = scratch->wide ? sweepWideBatch(firstBatch + b) : sweepBatch(batched->m_batches[firstBatch + b]);
+	}
+
+	btScalar sweepWideBatch(int batch) const
+	{
+		caliber::WideContactRows& wide = scratch->wideRows;
+		if (pass == 0) return wide.sweepNormal(batch, reverse, bodies, *contacts);
+		return sweepRolling(batched->m_batches[batch], wide.sweepFriction(batch, reverse, bodies, *friction));
 	}
 
 	btScalar sweepBatch(const btBatchedConstraints::Range& batch) const
@@ -219,7 +254,15 @@ struct BatchSweep : public btIParallelForBody
 			for (int f = 0; f < frictionRowsPerContact; ++f)
 				residual += caliber::solveFrictionRow(bodies, *contacts, *friction, j * frictionRowsPerContact + f);
 		}
+		return sweepRolling(batch, residual);
+	}
+
+	// The rolling rows of a batch's contacts, after their friction rows.
+	btScalar sweepRolling(const btBatchedConstraints::Range& batch, btScalar residual) const
+	{
 		if (rolling->size() == 0) return residual;
+		const int count = batch.end - batch.begin;
+		const int* rows = &batched->m_constraintIndices[0];
 		for (int k = 0; k < count; ++k)
 		{
 			const int j = rows[batch.begin + k];
@@ -400,6 +443,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	// Batches: whole manifolds, at least s_minBatchSize rows, and about a sixteenth of the colour, so that
 	// every thread finds work; the last colour (the manifolds no colour was left for) is one batch.
 	int nextManifold = 0;
+	mt.batchManifoldBegin.resize(0);
 	for (int c = 0; c <= kColours; ++c)
 	{
 		if (mt.colourCount[c] == 0) continue;
@@ -417,6 +461,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
 			appendBatchRows(&mt.orderedManifolds[batchFirstManifold], nextManifold - batchFirstManifold,
 			                scratch.manifoldFirstRow, scratch.solveCount, batched.m_constraintIndices);
+			mt.batchManifoldBegin.push_back(batchFirstManifold);
 			batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
 			batchBegin = batched.m_constraintIndices.size();
 			batchFirstManifold = nextManifold;
@@ -426,14 +471,26 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		batched.m_phases.push_back(btBatchedConstraints::Range(phaseBegin, batched.m_batches.size()));
 		batched.m_phaseGrainSize.push_back(1);
 	}
+	mt.batchManifoldBegin.push_back(nextManifold);
 
 	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
-	// rolling rows.
+	// rolling rows; the wide sweep's padding lanes use it too (a zero body when there is no fixed entry).
+	mt.wide = caliber::wideContactRowsEnabled();
+	mt.batchPaddingBody.resize(batched.m_batches.size());
+	if (mt.wide && m_fixedBodyId < 0)
+	{
+		const int firstPadding = m_tmpSolverBodyPool.size();
+		btSolverBody zeroBody;
+		initSolverBody(&zeroBody, 0, infoGlobal.m_timeStep);
+		m_tmpSolverBodyPool.resize(firstPadding + batched.m_batches.size(), zeroBody);
+		for (int b = 0; b < batched.m_batches.size(); ++b) mt.batchPaddingBody[b] = firstPadding + b;
+	}
 	if (m_fixedBodyId >= 0)
 	{
 		const int firstCopy = m_tmpSolverBodyPool.size();
 		const btSolverBody fixedBody = m_tmpSolverBodyPool[m_fixedBodyId];
 		m_tmpSolverBodyPool.resize(firstCopy + batched.m_batches.size(), fixedBody);
+		for (int b = 0; b < batched.m_batches.size(); ++b) mt.batchPaddingBody[b] = firstCopy + b;
 		const int frictionRows = caliber::frictionRowsPerContact(infoGlobal);
 		for (int b = 0; b < batched.m_batches.size(); ++b)
 		{
@@ -475,6 +532,20 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	{
 		const int j = m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex;
 		mt.rollingRows[mt.rollingStart[j] + mt.colourCursor[j]++] = r;
+	}
+
+	if (mt.wide)
+	{
+		mt.wideRows.plan(mt.orderedManifolds, mt.batchManifoldBegin, scratch.manifoldFirstRow,
+		                 caliber::frictionRowsPerContact(infoGlobal));
+		FillWideRows fill;
+		fill.mt = &mt;
+		fill.manifoldFirstRow = &scratch.manifoldFirstRow;
+		fill.solveCount = scratch.solveCount;
+		fill.bodies = &m_tmpSolverBodyPool[0];
+		fill.contacts = &m_tmpSolverContactConstraintPool;
+		fill.friction = &m_tmpSolverContactFrictionConstraintPool;
+		btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, fill);
 	}
 	return result;
 }
