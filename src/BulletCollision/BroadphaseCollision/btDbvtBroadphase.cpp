@@ -17,6 +17,8 @@
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "LinearMath/btAabbUtil2.h"
 #include "LinearMath/btAlignedAllocator.h"
+#include "LinearMath/btSideTable.h"
+#include "LinearMath/btThreads.h"
 
 btScalar gDbvtMargin = btScalar(0.05);
 
@@ -42,6 +44,68 @@ struct PairSearchPolicy
 		if (other == proxy) return;
 		if (isPending(other) && other->m_uniqueId < proxy->m_uniqueId) return;
 		cache->addOverlappingPair(proxy, other);
+	}
+};
+
+// The pair search on the task scheduler's threads: each chunk of pending proxies queries the trees (which
+// nothing changes meanwhile) and lists what it finds, proxy by proxy in tree order; the calling thread
+// then adds the lists in chunk order. The cache sees the same additions in the same order as in the
+// serial search, so it ends the same, whatever the thread count.
+const int kProxiesPerSearchTask = 32;
+// Fewer pending proxies than this are searched serially (a loop on the threads costs about a microsecond).
+const int kMinProxiesForParallelSearch = 128;
+
+// A chunk's list and query stack, padded so that two chunks' array headers (written at every push by
+// different threads) never share a cache line.
+struct ChunkLists
+{
+	btAlignedObjectArray<btDbvtProxy*> found;  // proxy, other, proxy, other, ...
+	btNodeStack stack;
+	char padding[128];
+};
+
+struct PairSearchScratch
+{
+	btAlignedObjectArray<btDbvtProxy*> pending;
+	btAlignedObjectArray<ChunkLists> chunks;
+};
+
+struct PairListPolicy
+{
+	btDbvtProxy* proxy;
+	btAlignedObjectArray<btDbvtProxy*>* found;
+
+	void Process(const btDbvtNode* leaf)
+	{
+		btDbvtProxy* other = proxyOfLeaf(leaf);
+		if (other == proxy) return;
+		if (isPending(other) && other->m_uniqueId < proxy->m_uniqueId) return;  // as PairSearchPolicy
+		found->push_back(proxy);
+		found->push_back(other);
+	}
+};
+
+struct ListPairs : public btIParallelForBody
+{
+	const btDbvt* dynamicSet;
+	const btDbvt* fixedSet;
+	PairSearchScratch* scratch;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const int chunk = iBegin / kProxiesPerSearchTask;
+		btAlignedObjectArray<btDbvtProxy*>& found = scratch->chunks[chunk].found;
+		btNodeStack& stack = scratch->chunks[chunk].stack;
+		found.resize(0);
+		PairListPolicy policy;
+		policy.found = &found;
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			policy.proxy = scratch->pending[i];
+			const btDbvtVolume& box = policy.proxy->leaf->volume;
+			dynamicSet->collideTVNoStackAlloc(dynamicSet->m_root, box, stack, policy);
+			fixedSet->collideTVNoStackAlloc(fixedSet->m_root, box, stack, policy);
+		}
 	}
 };
 
@@ -157,6 +221,7 @@ btDbvtBroadphase::~btDbvtBroadphase()
 		btAlignedFree(m_freeProxies);
 		m_freeProxies = next;
 	}
+	caliber::sideTable<PairSearchScratch>().release(this);
 	if (m_releasepaircache)
 	{
 		m_paircache->~btOverlappingPairCache();
@@ -317,9 +382,29 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 	if (m_needcleanup)
 	{
 		const int pairsBefore = m_paircache->getNumOverlappingPairs();
+		PairSearchScratch& search = caliber::sideTable<PairSearchScratch>().acquire(this);
+		search.pending.resize(0);
 		for (int stage = DYNAMIC_SET; stage < STAGECOUNT; ++stage)
+			for (btDbvtProxy* proxy = m_stageRoots[stage]; proxy; proxy = proxy->links[1]) search.pending.push_back(proxy);
+		btITaskScheduler* scheduler = btGetTaskScheduler();
+		if (search.pending.size() < kMinProxiesForParallelSearch || !scheduler || scheduler->getNumThreads() < 2)
 		{
-			for (btDbvtProxy* proxy = m_stageRoots[stage]; proxy; proxy = proxy->links[1]) searchPairs(proxy);
+			for (int i = 0; i < search.pending.size(); ++i) searchPairs(search.pending[i]);
+		}
+		else
+		{
+			const int chunks = (search.pending.size() + kProxiesPerSearchTask - 1) / kProxiesPerSearchTask;
+			if (search.chunks.size() < chunks) search.chunks.resize(chunks);
+			ListPairs list;
+			list.dynamicSet = &m_sets[DYNAMIC_SET];
+			list.fixedSet = &m_sets[FIXED_SET];
+			list.scratch = &search;
+			btParallelFor(0, search.pending.size(), kProxiesPerSearchTask, list);
+			for (int c = 0; c < chunks; ++c)
+			{
+				const btAlignedObjectArray<btDbvtProxy*>& found = search.chunks[c].found;
+				for (int k = 0; k < found.size(); k += 2) m_paircache->addOverlappingPair(found[k], found[k + 1]);
+			}
 		}
 		m_newpairs = m_paircache->getNumOverlappingPairs() - pairsBefore;
 		if (pairsBefore > 0)
