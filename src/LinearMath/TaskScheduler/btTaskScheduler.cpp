@@ -5,6 +5,7 @@
 // variable. Which thread runs a chunk varies from run to run; what a chunk is does not
 // (btParallelChunks.h), and sums are added in chunk order.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <system_error>
@@ -26,9 +27,14 @@
 #if defined(BT_THREADSAFE) && BT_THREADSAFE
 namespace
 {
-// About 50-100 microseconds of pauses before an idle worker sleeps: longer than the gap between two
-// loops of one step, far shorter than the gap between steps of a 60 Hz game.
+// About 50-100 microseconds of pauses: longer than the gap between two loops of one step.
 const int kSpinsBeforeSleep = 2000;
+// Then, when every thread of the pool can have a core of its own, a worker keeps polling (yielding the
+// core to anyone who wants it) for up to 2 ms before it sleeps: a step's serial stretches (the tree
+// updates, island building, the solver's set-up) often last longer than the pauses, and a worker woken
+// from sleep comes too late for the next loop, which the posting thread then runs alone. The Mt world
+// hints at the end of its step (sleepWorkerThreadsHint), and the workers go to sleep at once.
+const std::chrono::microseconds kAwakeAfterLoop(2000);
 
 class ThreadPoolScheduler : public btITaskScheduler
 {
@@ -36,7 +42,8 @@ public:
 	ThreadPoolScheduler() : btITaskScheduler("ThreadPool")
 	{
 		const unsigned hardware = std::thread::hardware_concurrency();
-		setNumThreads(hardware == 0 ? 1 : int(hardware));
+		m_hardwareThreads = hardware == 0 ? 1 : int(hardware);
+		setNumThreads(m_hardwareThreads);
 	}
 
 	~ThreadPoolScheduler() override
@@ -178,6 +185,16 @@ private:
 			if (m_sleepHint.load(std::memory_order_relaxed)) break;
 			CALIBER_CPU_PAUSE();
 		}
+		if (getNumThreads() <= m_hardwareThreads)
+		{
+			const auto deadline = std::chrono::steady_clock::now() + kAwakeAfterLoop;
+			while (!m_sleepHint.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() < deadline)
+			{
+				const unsigned long long posted = m_posted.load(std::memory_order_acquire);
+				if (posted != seen || m_quit.load(std::memory_order_acquire)) return posted;
+				std::this_thread::yield();
+			}
+		}
 		std::unique_lock<std::mutex> lock(m_sleepMutex);
 		m_wake.wait(lock, [&] {
 			return m_posted.load(std::memory_order_acquire) != seen || m_quit.load(std::memory_order_acquire);
@@ -204,6 +221,7 @@ private:
 
 	std::vector<std::thread> m_workers;
 	std::atomic<int> m_numThreads{1};
+	int m_hardwareThreads = 1;
 	// The job, written by the posting thread before it publishes m_posted.
 	caliber::ChunkPlan m_plan = caliber::ChunkPlan::of(0, 0, 1);
 	const btIParallelForBody* m_forBody = 0;
