@@ -59,6 +59,11 @@ struct MtSolverScratch
 	// padding lanes and static contacts use (its own copy of the fixed entry, or a zero body).
 	btAlignedObjectArray<int> batchManifoldBegin;
 	btAlignedObjectArray<int> batchPaddingBody;
+	// The warm starts by body: each moving body's contributions (row << 2 | friction pool << 1 | side B),
+	// in the order the serial setup applies them.
+	btAlignedObjectArray<int> warmStartFirst;  // per solver body, and one past the last
+	btAlignedObjectArray<int> warmStarts;
+	btAlignedObjectArray<int> warmStartCursor;
 	bool wide;  // the batches are solved by the wide sweep
 	caliber::WideContactRows wideRows;
 };
@@ -161,6 +166,73 @@ struct FillPointRows : public btIParallelForBody
 		for (int i = iBegin; i < iEnd; ++i) caliber::fillContactPointRows(pools, points[i], *info);
 	}
 };
+
+// Bodies per task of the warm starts.
+const int kBodiesPerWarmStartTask = 128;
+
+// Each body's warm-start impulses, in the order the serial setup applies them (point by point: the
+// normal row, then the friction rows). A body's velocity changes are sums, and their terms come in the
+// same order, so the bits are the serial loop's; bodies are independent, so they go to the threads.
+struct ApplyWarmStarts : public btIParallelForBody
+{
+	const MtSolverScratch* mt;
+	caliber::ContactRowPools pools;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int b = iBegin; b < iEnd; ++b)
+		{
+			btSolverBody& body = (*pools.bodies)[b];
+			for (int k = mt->warmStartFirst[b]; k < mt->warmStartFirst[b + 1]; ++k)
+			{
+				const int code = mt->warmStarts[k];
+				const btSolverConstraint& row = (code & 2) ? (*pools.friction)[code >> 2] : (*pools.contacts)[code >> 2];
+				if (code & 1)
+					body.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, row.m_appliedImpulse);
+				else
+					body.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, row.m_appliedImpulse);
+			}
+		}
+	}
+};
+
+// The warm starts of the planned points (mt.points). The fixed entry takes none: its impulses would
+// add zeros to zeros (it has no mass and no inertia to turn).
+void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& pools, int frictionRowsPerContact,
+                           int fixedBodyId)
+{
+	const int numBodies = pools.bodies->size();
+	const int rowsPerPoint = 1 + frictionRowsPerContact;
+	mt.warmStartFirst.resize(0);
+	mt.warmStartFirst.resize(numBodies + 1, 0);
+	for (int i = 0; i < mt.points.size(); ++i)
+	{
+		const caliber::ContactPointRows& point = mt.points[i];
+		if (point.solverBodyIdA != fixedBodyId) mt.warmStartFirst[point.solverBodyIdA + 1] += rowsPerPoint;
+		if (point.solverBodyIdB != fixedBodyId) mt.warmStartFirst[point.solverBodyIdB + 1] += rowsPerPoint;
+	}
+	for (int b = 0; b < numBodies; ++b) mt.warmStartFirst[b + 1] += mt.warmStartFirst[b];
+	mt.warmStarts.resizeNoInitialize(mt.warmStartFirst[numBodies]);
+	mt.warmStartCursor.resizeNoInitialize(numBodies);
+	for (int b = 0; b < numBodies; ++b) mt.warmStartCursor[b] = mt.warmStartFirst[b];
+	for (int i = 0; i < mt.points.size(); ++i)
+	{
+		const caliber::ContactPointRows& point = mt.points[i];
+		for (int side = 0; side < 2; ++side)
+		{
+			const int body = side ? point.solverBodyIdB : point.solverBodyIdA;
+			if (body == fixedBodyId) continue;
+			int& cursor = mt.warmStartCursor[body];
+			mt.warmStarts[cursor++] = point.contactRow << 2 | side;
+			for (int f = 0; f < frictionRowsPerContact; ++f)
+				mt.warmStarts[cursor++] = (point.firstFrictionRow + f) << 2 | 2 | side;
+		}
+	}
+	ApplyWarmStarts apply;
+	apply.mt = &mt;
+	apply.pools = pools;
+	btParallelFor(0, numBodies, kBodiesPerWarmStartTask, apply);
+}
 
 // Asks for count consecutive rows from first.
 inline void prefetchRows(const btSolverConstraint* first, int count)
@@ -358,7 +430,13 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	fill.points = &mt.points[0];
 	fill.info = &infoGlobal;
 	btParallelFor(0, mt.points.size(), kPointsPerTask, fill);
-	for (int i = 0; i < mt.points.size(); ++i) caliber::applyContactPointWarmStarts(fill.pools, mt.points[i], infoGlobal);
+	if (!(infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)) return;
+	// By body on the threads, or point by point on one thread (the same bits either way).
+	btITaskScheduler* scheduler = btGetTaskScheduler();
+	if (scheduler && scheduler->getNumThreads() > 1)
+		applyWarmStartsByBody(mt, fill.pools, frictionRowsPerContact, m_fixedBodyId);
+	else
+		for (int i = 0; i < mt.points.size(); ++i) caliber::applyContactPointWarmStarts(fill.pools, mt.points[i], infoGlobal);
 }
 
 btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
