@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // The wide sweep of coloured contact batches (see btWideContactRows.h for the layout and why the bits
-// are those of the row-by-row sweep).
+// are those of the row-by-row sweep). The sweeps themselves are in btWideContactSweep.h, compiled once
+// for four lanes (SSE2, or plain arrays in double precision and without SIMD) and once for eight (AVX2,
+// in functions compiled for it and called only when the processor has it).
 #include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
 
 #include <string.h>
@@ -9,16 +11,93 @@
 
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 
+#if defined(BT_USE_SSE) && (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+#define CALIBER_WIDE_EIGHT_LANES 1
+#include <immintrin.h>
+#else
+#define CALIBER_WIDE_EIGHT_LANES 0
+#endif
+
 namespace
 {
 std::atomic<bool> g_wideEnabled{true};
+std::atomic<int> g_wideLanes{0};  // 0: automatic
 
-using caliber::kWideLanes;
-using caliber::WideGroup;
-using caliber::WideRowBlock;
+// The source of a padding lane: a row of zeros.
+const btSolverConstraint& zeroRow()
+{
+	static const btSolverConstraint row = [] {
+		btSolverConstraint r;
+		memset(static_cast<void*>(&r), 0, sizeof(r));
+		return r;
+	}();
+	return row;
+}
 
-// ---- Lanes: kWideLanes scalars and the operations the kernel needs, each the same IEEE operation per
-// lane as the scalar kernel's. SSE2 registers in single precision, plain arrays otherwise.
+// One vector field of four rows into lanes [base, base + 4) of its structure-of-arrays place.
+SIMD_FORCE_INLINE void copyField4(const btSolverConstraint* const* rows, size_t offset, btScalar* x, btScalar* y,
+                                  btScalar* z)
+{
+#if defined(BT_USE_SSE)
+	__m128 r0 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[0]) + offset));
+	__m128 r1 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[1]) + offset));
+	__m128 r2 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[2]) + offset));
+	__m128 r3 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[3]) + offset));
+	_MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+	_mm_store_ps(x, r0);
+	_mm_store_ps(y, r1);
+	_mm_store_ps(z, r2);
+#else
+	for (int k = 0; k < 4; ++k)
+	{
+		const btScalar* v = reinterpret_cast<const btScalar*>(reinterpret_cast<const char*>(rows[k]) + offset);
+		x[k] = v[0];
+		y[k] = v[1];
+		z[k] = v[2];
+	}
+#endif
+}
+
+template <int W>
+SIMD_FORCE_INLINE void copyField(const btSolverConstraint* const* rows, size_t offset, btScalar (&to)[3][W])
+{
+	for (int base = 0; base < W; base += 4) copyField4(rows + base, offset, &to[0][base], &to[1][base], &to[2][base]);
+}
+
+// W rows (padding lanes point at zeroRow) into a block.
+template <int W>
+void copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const* rows, const int* rowIndex)
+{
+	copyField<W>(rows, offsetof(btSolverConstraint, m_contactNormal1), block.normal1);
+	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos1CrossNormal), block.relpos1CrossNormal);
+	copyField<W>(rows, offsetof(btSolverConstraint, m_contactNormal2), block.normal2);
+	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos2CrossNormal), block.relpos2CrossNormal);
+	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentA), block.angularA);
+	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentB), block.angularB);
+	for (int k = 0; k < W; ++k)
+	{
+		const btSolverConstraint& row = *rows[k];
+		block.rhs[k] = row.m_rhs;
+		block.cfm[k] = row.m_cfm;
+		block.jacDiagABInv[k] = row.m_jacDiagABInv;
+		block.lower[k] = row.m_lowerLimit;
+		block.upper[k] = row.m_upperLimit;
+		block.friction[k] = row.m_friction;
+		block.applied[k] = row.m_appliedImpulse;
+		block.row[k] = rowIndex[k];
+	}
+}
+}  // namespace
+
+// ---- Four lanes ---------------------------------------------------------------------------------
+namespace
+{
+namespace lanes4
+{
+const int kLanes = 4;
+
+// kLanes scalars and the operations the kernel needs, each the same IEEE operation per lane as the
+// scalar kernel's. SSE2 registers in single precision, plain arrays otherwise.
 #if defined(BT_USE_SSE)
 struct Lanes
 {
@@ -52,89 +131,10 @@ SIMD_FORCE_INLINE Lanes select(Mask m, Lanes ifSet, Lanes ifClear)
 }
 SIMD_FORCE_INLINE btScalar horizontalSum(Lanes a)
 {
-	btScalar lanes[kWideLanes];
+	btScalar lanes[kLanes];
 	_mm_storeu_ps(lanes, a.v);
 	return (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]);
 }
-#else
-struct Lanes
-{
-	btScalar v[kWideLanes];
-};
-struct Mask
-{
-	bool v[kWideLanes];
-};
-SIMD_FORCE_INLINE Lanes load(const btScalar* p)
-{
-	Lanes r;
-	for (int k = 0; k < kWideLanes; ++k) r.v[k] = p[k];
-	return r;
-}
-SIMD_FORCE_INLINE void store(btScalar* p, const Lanes& a)
-{
-	for (int k = 0; k < kWideLanes; ++k) p[k] = a.v[k];
-}
-SIMD_FORCE_INLINE Lanes zero()
-{
-	Lanes r;
-	for (int k = 0; k < kWideLanes; ++k) r.v[k] = btScalar(0);
-	return r;
-}
-#define CALIBER_LANEWISE(name, expression)                            \
-	SIMD_FORCE_INLINE Lanes name(const Lanes& a, const Lanes& b)      \
-	{                                                                 \
-		Lanes r;                                                      \
-		for (int k = 0; k < kWideLanes; ++k) r.v[k] = (expression);   \
-		return r;                                                     \
-	}
-CALIBER_LANEWISE(operator+, a.v[k] + b.v[k])
-CALIBER_LANEWISE(operator-, a.v[k] - b.v[k])
-CALIBER_LANEWISE(operator*, a.v[k] * b.v[k])
-CALIBER_LANEWISE(minBranchless, caliber::btMinBranchless(a.v[k], b.v[k]))
-CALIBER_LANEWISE(maxBranchless, caliber::btMaxBranchless(a.v[k], b.v[k]))
-#undef CALIBER_LANEWISE
-SIMD_FORCE_INLINE Lanes negate(const Lanes& a)
-{
-	Lanes r;
-	for (int k = 0; k < kWideLanes; ++k) r.v[k] = -a.v[k];
-	return r;
-}
-SIMD_FORCE_INLINE Mask frictionSkipped(const Lanes& normal, const Lanes& applied)
-{
-	Mask m;
-	for (int k = 0; k < kWideLanes; ++k) m.v[k] = !(normal.v[k] > btScalar(0)) && applied.v[k] == btScalar(0);
-	return m;
-}
-SIMD_FORCE_INLINE bool allSet(const Mask& m)
-{
-	for (int k = 0; k < kWideLanes; ++k)
-		if (!m.v[k]) return false;
-	return true;
-}
-SIMD_FORCE_INLINE Lanes select(const Mask& m, const Lanes& ifSet, const Lanes& ifClear)
-{
-	Lanes r;
-	for (int k = 0; k < kWideLanes; ++k) r.v[k] = m.v[k] ? ifSet.v[k] : ifClear.v[k];
-	return r;
-}
-SIMD_FORCE_INLINE btScalar horizontalSum(const Lanes& a) { return (a.v[0] + a.v[1]) + (a.v[2] + a.v[3]); }
-#endif
-
-// The velocity changes of a group's bodies, one lane per manifold. The fourth scalar of each btVector3
-// waits in memory (kept in registers, it would push the row data out of them) and is stored back as it was.
-struct BodyLanes
-{
-	Lanes linear[3];
-	Lanes angular[3];
-};
-struct BodyFourths
-{
-	btScalar linear[kWideLanes];
-	btScalar angular[kWideLanes];
-};
-
-#if defined(BT_USE_SSE)
 SIMD_FORCE_INLINE void gatherVectors(const btSolverBody* bodies, const int* index, size_t offset, Lanes* xyz, btScalar* w)
 {
 	const char* base = reinterpret_cast<const char*>(bodies);
@@ -160,9 +160,71 @@ SIMD_FORCE_INLINE void scatterVectors(btSolverBody* bodies, const int* index, si
 	_mm_store_ps(reinterpret_cast<float*>(base + size_t(index[3]) * sizeof(btSolverBody) + offset), r3);
 }
 #else
+struct Lanes
+{
+	btScalar v[kLanes];
+};
+struct Mask
+{
+	bool v[kLanes];
+};
+SIMD_FORCE_INLINE Lanes load(const btScalar* p)
+{
+	Lanes r;
+	for (int k = 0; k < kLanes; ++k) r.v[k] = p[k];
+	return r;
+}
+SIMD_FORCE_INLINE void store(btScalar* p, const Lanes& a)
+{
+	for (int k = 0; k < kLanes; ++k) p[k] = a.v[k];
+}
+SIMD_FORCE_INLINE Lanes zero()
+{
+	Lanes r;
+	for (int k = 0; k < kLanes; ++k) r.v[k] = btScalar(0);
+	return r;
+}
+#define CALIBER_LANEWISE(name, expression)                            \
+	SIMD_FORCE_INLINE Lanes name(const Lanes& a, const Lanes& b)      \
+	{                                                                 \
+		Lanes r;                                                      \
+		for (int k = 0; k < kLanes; ++k) r.v[k] = (expression);   \
+		return r;                                                     \
+	}
+CALIBER_LANEWISE(operator+, a.v[k] + b.v[k])
+CALIBER_LANEWISE(operator-, a.v[k] - b.v[k])
+CALIBER_LANEWISE(operator*, a.v[k] * b.v[k])
+CALIBER_LANEWISE(minBranchless, caliber::btMinBranchless(a.v[k], b.v[k]))
+CALIBER_LANEWISE(maxBranchless, caliber::btMaxBranchless(a.v[k], b.v[k]))
+#undef CALIBER_LANEWISE
+SIMD_FORCE_INLINE Lanes negate(const Lanes& a)
+{
+	Lanes r;
+	for (int k = 0; k < kLanes; ++k) r.v[k] = -a.v[k];
+	return r;
+}
+SIMD_FORCE_INLINE Mask frictionSkipped(const Lanes& normal, const Lanes& applied)
+{
+	Mask m;
+	for (int k = 0; k < kLanes; ++k) m.v[k] = !(normal.v[k] > btScalar(0)) && applied.v[k] == btScalar(0);
+	return m;
+}
+SIMD_FORCE_INLINE bool allSet(const Mask& m)
+{
+	for (int k = 0; k < kLanes; ++k)
+		if (!m.v[k]) return false;
+	return true;
+}
+SIMD_FORCE_INLINE Lanes select(const Mask& m, const Lanes& ifSet, const Lanes& ifClear)
+{
+	Lanes r;
+	for (int k = 0; k < kLanes; ++k) r.v[k] = m.v[k] ? ifSet.v[k] : ifClear.v[k];
+	return r;
+}
+SIMD_FORCE_INLINE btScalar horizontalSum(const Lanes& a) { return (a.v[0] + a.v[1]) + (a.v[2] + a.v[3]); }
 SIMD_FORCE_INLINE void gatherVectors(const btSolverBody* bodies, const int* index, size_t offset, Lanes* xyz, btScalar* w)
 {
-	for (int k = 0; k < kWideLanes; ++k)
+	for (int k = 0; k < kLanes; ++k)
 	{
 		const btScalar* v =
 		    reinterpret_cast<const btScalar*>(reinterpret_cast<const char*>(&bodies[index[k]]) + offset);
@@ -173,7 +235,7 @@ SIMD_FORCE_INLINE void gatherVectors(const btSolverBody* bodies, const int* inde
 SIMD_FORCE_INLINE void scatterVectors(btSolverBody* bodies, const int* index, size_t offset, const Lanes* xyz,
                                       const btScalar* w)
 {
-	for (int k = 0; k < kWideLanes; ++k)
+	for (int k = 0; k < kLanes; ++k)
 	{
 		btScalar* v = reinterpret_cast<btScalar*>(reinterpret_cast<char*>(&bodies[index[k]]) + offset);
 		for (int c = 0; c < 3; ++c) v[c] = xyz[c].v[k];
@@ -182,137 +244,135 @@ SIMD_FORCE_INLINE void scatterVectors(btSolverBody* bodies, const int* index, si
 }
 #endif
 
-// Lanes that share a body (the fixed entry, or padding on it) store the same values, so the order of
-// the stores does not matter.
-SIMD_FORCE_INLINE void gatherBodies(const btSolverBody* bodies, const int* index, BodyLanes& lanes, BodyFourths& w)
+#include "BulletDynamics/ConstraintSolver/btWideContactSweep.h"
+}  // namespace lanes4
+}  // namespace
+
+// ---- Eight lanes --------------------------------------------------------------------------------
+#if CALIBER_WIDE_EIGHT_LANES
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace
 {
-	gatherVectors(bodies, index, offsetof(btSolverBody, m_deltaLinearVelocity), lanes.linear, w.linear);
-	gatherVectors(bodies, index, offsetof(btSolverBody, m_deltaAngularVelocity), lanes.angular, w.angular);
+namespace lanes8
+{
+const int kLanes = 8;
+
+// As lanes4 with AVX registers. Only AVX2 is enabled, not FMA: a fused multiply-add would round once
+// where the scalar kernel rounds twice, and the bits would differ.
+struct Lanes
+{
+	__m256 v;
+};
+struct Mask
+{
+	__m256 v;
+};
+// The blocks are 16-byte aligned: unaligned loads.
+SIMD_FORCE_INLINE Lanes load(const btScalar* p) { return Lanes{_mm256_loadu_ps(p)}; }
+SIMD_FORCE_INLINE void store(btScalar* p, Lanes a) { _mm256_storeu_ps(p, a.v); }
+SIMD_FORCE_INLINE Lanes zero() { return Lanes{_mm256_setzero_ps()}; }
+SIMD_FORCE_INLINE Lanes operator+(Lanes a, Lanes b) { return Lanes{_mm256_add_ps(a.v, b.v)}; }
+SIMD_FORCE_INLINE Lanes operator-(Lanes a, Lanes b) { return Lanes{_mm256_sub_ps(a.v, b.v)}; }
+SIMD_FORCE_INLINE Lanes operator*(Lanes a, Lanes b) { return Lanes{_mm256_mul_ps(a.v, b.v)}; }
+SIMD_FORCE_INLINE Lanes negate(Lanes a) { return Lanes{_mm256_xor_ps(a.v, _mm256_set1_ps(-0.0f))}; }
+SIMD_FORCE_INLINE Lanes minBranchless(Lanes a, Lanes b) { return Lanes{_mm256_min_ps(b.v, a.v)}; }
+SIMD_FORCE_INLINE Lanes maxBranchless(Lanes a, Lanes b) { return Lanes{_mm256_max_ps(b.v, a.v)}; }
+SIMD_FORCE_INLINE Mask frictionSkipped(Lanes normal, Lanes applied)
+{
+	const __m256 noNormal = _mm256_cmp_ps(_mm256_setzero_ps(), normal.v, _CMP_NLT_UQ);  // !(0 < normal)
+	return Mask{_mm256_and_ps(noNormal, _mm256_cmp_ps(applied.v, _mm256_setzero_ps(), _CMP_EQ_OQ))};
 }
-SIMD_FORCE_INLINE void scatterBodies(btSolverBody* bodies, const int* index, const BodyLanes& lanes,
-                                     const BodyFourths& w)
+SIMD_FORCE_INLINE bool allSet(Mask m) { return _mm256_movemask_ps(m.v) == 0xff; }
+SIMD_FORCE_INLINE Lanes select(Mask m, Lanes ifSet, Lanes ifClear)
 {
-	scatterVectors(bodies, index, offsetof(btSolverBody, m_deltaLinearVelocity), lanes.linear, w.linear);
-	scatterVectors(bodies, index, offsetof(btSolverBody, m_deltaAngularVelocity), lanes.angular, w.angular);
+	return Lanes{_mm256_or_ps(_mm256_and_ps(m.v, ifSet.v), _mm256_andnot_ps(m.v, ifClear.v))};
+}
+SIMD_FORCE_INLINE btScalar horizontalSum(Lanes a)
+{
+	btScalar lanes[kLanes];
+	_mm256_storeu_ps(lanes, a.v);
+	return ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
 }
 
-// rowDeltaVelocity of btSolverRowKernels.h, lane by lane, with its association.
-SIMD_FORCE_INLINE Lanes deltaVelocity(const WideRowBlock& block, const BodyLanes& a, const BodyLanes& b)
+// Four 4x4 transposes at once: body k in the low half of row k, body k + 4 in its high half.
+SIMD_FORCE_INLINE void transposeHalves(__m256& r0, __m256& r1, __m256& r2, __m256& r3)
 {
-	Lanes sum[3];
-	for (int c = 0; c < 3; ++c)
-		sum[c] = ((load(block.normal1[c]) * a.linear[c] + load(block.relpos1CrossNormal[c]) * a.angular[c]) +
-		          load(block.normal2[c]) * b.linear[c]) +
-		         load(block.relpos2CrossNormal[c]) * b.angular[c];
-	return (sum[0] + sum[1]) + sum[2];
+	const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+	const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+	r0 = _mm256_shuffle_ps(t0, t2, 0x44);
+	r1 = _mm256_shuffle_ps(t0, t2, 0xee);
+	r2 = _mm256_shuffle_ps(t1, t3, 0x44);
+	r3 = _mm256_shuffle_ps(t1, t3, 0xee);
 }
-
-// btSolverBody::applyImpulse on both bodies of every lane.
-SIMD_FORCE_INLINE void applyImpulses(const WideRowBlock& block, const WideGroup& group, Lanes deltaImpulse,
-                                     BodyLanes& a, BodyLanes& b)
+SIMD_FORCE_INLINE const float* vectorAt(const btSolverBody* bodies, int index, size_t offset)
 {
-	for (int c = 0; c < 3; ++c)
+	return reinterpret_cast<const float*>(reinterpret_cast<const char*>(bodies) + size_t(index) * sizeof(btSolverBody) +
+	                                      offset);
+}
+SIMD_FORCE_INLINE float* vectorAt(btSolverBody* bodies, int index, size_t offset)
+{
+	return reinterpret_cast<float*>(reinterpret_cast<char*>(bodies) + size_t(index) * sizeof(btSolverBody) + offset);
+}
+SIMD_FORCE_INLINE void gatherVectors(const btSolverBody* bodies, const int* index, size_t offset, Lanes* xyz, btScalar* w)
+{
+	__m256 r[4];
+	for (int k = 0; k < 4; ++k)
+		r[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(vectorAt(bodies, index[k], offset))),
+		                            _mm_load_ps(vectorAt(bodies, index[k + 4], offset)), 1);
+	transposeHalves(r[0], r[1], r[2], r[3]);
+	xyz[0].v = r[0];
+	xyz[1].v = r[1];
+	xyz[2].v = r[2];
+	_mm256_storeu_ps(w, r[3]);
+}
+SIMD_FORCE_INLINE void scatterVectors(btSolverBody* bodies, const int* index, size_t offset, const Lanes* xyz,
+                                      const btScalar* w)
+{
+	__m256 r0 = xyz[0].v, r1 = xyz[1].v, r2 = xyz[2].v, r3 = _mm256_loadu_ps(w);
+	transposeHalves(r0, r1, r2, r3);
+	const __m256 r[4] = {r0, r1, r2, r3};
+	for (int k = 0; k < 4; ++k)
 	{
-		a.linear[c] = a.linear[c] + (load(block.normal1[c]) * load(group.invMassA[c])) * deltaImpulse;
-		a.angular[c] = a.angular[c] + load(block.angularA[c]) * (deltaImpulse * load(group.angularFactorA[c]));
-		b.linear[c] = b.linear[c] + (load(block.normal2[c]) * load(group.invMassB[c])) * deltaImpulse;
-		b.angular[c] = b.angular[c] + load(block.angularB[c]) * (deltaImpulse * load(group.angularFactorB[c]));
+		_mm_store_ps(vectorAt(bodies, index[k], offset), _mm256_castps256_ps128(r[k]));
+		_mm_store_ps(vectorAt(bodies, index[k + 4], offset), _mm256_extractf128_ps(r[k], 1));
 	}
 }
 
-// resolveRow of btSolverRowKernels.h, lane by lane; returns the squared impulse changes.
-SIMD_FORCE_INLINE Lanes resolveBlock(WideRowBlock& block, const WideGroup& group, Lanes lower, Lanes upper,
-                                     BodyLanes& a, BodyLanes& b)
-{
-	const Lanes applied = load(block.applied);
-	Lanes deltaImpulse =
-	    (load(block.rhs) - applied * load(block.cfm)) - deltaVelocity(block, a, b) * load(block.jacDiagABInv);
-	const Lanes clamped = maxBranchless(lower, minBranchless(upper, applied + deltaImpulse));
-	deltaImpulse = clamped - applied;
-	store(block.applied, clamped);
-	applyImpulses(block, group, deltaImpulse, a, b);
-	return deltaImpulse * deltaImpulse;
-}
+#include "BulletDynamics/ConstraintSolver/btWideContactSweep.h"
+}  // namespace lanes8
+}  // namespace
+#pragma GCC pop_options
+#endif
 
-SIMD_FORCE_INLINE void storeImpulses(const WideRowBlock& block, btConstraintArray& rows)
+// ---- The layout ---------------------------------------------------------------------------------
+namespace
 {
-	for (int k = 0; k < kWideLanes; ++k)
-		if (block.row[k] >= 0) rows[block.row[k]].m_appliedImpulse = block.applied[k];
-}
-
-// The source of a padding lane: a row of zeros.
-const btSolverConstraint& zeroRow()
+bool eightLanesAvailable()
 {
-	static const btSolverConstraint row = [] {
-		btSolverConstraint r;
-		memset(static_cast<void*>(&r), 0, sizeof(r));
-		return r;
-	}();
-	return row;
-}
-
-// One vector field of kWideLanes rows into its structure-of-arrays place.
-SIMD_FORCE_INLINE void copyField(const btSolverConstraint* const* rows, size_t offset, btScalar (&to)[3][kWideLanes])
-{
-#if defined(BT_USE_SSE)
-	__m128 r0 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[0]) + offset));
-	__m128 r1 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[1]) + offset));
-	__m128 r2 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[2]) + offset));
-	__m128 r3 = _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[3]) + offset));
-	_MM_TRANSPOSE4_PS(r0, r1, r2, r3);
-	_mm_store_ps(to[0], r0);
-	_mm_store_ps(to[1], r1);
-	_mm_store_ps(to[2], r2);
+#if CALIBER_WIDE_EIGHT_LANES
+	static const bool available = __builtin_cpu_supports("avx2") != 0;
+	return available;
 #else
-	for (int k = 0; k < kWideLanes; ++k)
-	{
-		const btScalar* v = reinterpret_cast<const btScalar*>(reinterpret_cast<const char*>(rows[k]) + offset);
-		for (int c = 0; c < 3; ++c) to[c][k] = v[c];
-	}
+	return false;
 #endif
 }
 
-// kWideLanes rows (padding lanes point at zeroRow) into a block.
-void copyRows(WideRowBlock& block, const btSolverConstraint* const* rows, const int* rowIndex)
-{
-	copyField(rows, offsetof(btSolverConstraint, m_contactNormal1), block.normal1);
-	copyField(rows, offsetof(btSolverConstraint, m_relpos1CrossNormal), block.relpos1CrossNormal);
-	copyField(rows, offsetof(btSolverConstraint, m_contactNormal2), block.normal2);
-	copyField(rows, offsetof(btSolverConstraint, m_relpos2CrossNormal), block.relpos2CrossNormal);
-	copyField(rows, offsetof(btSolverConstraint, m_angularComponentA), block.angularA);
-	copyField(rows, offsetof(btSolverConstraint, m_angularComponentB), block.angularB);
-	for (int k = 0; k < kWideLanes; ++k)
-	{
-		const btSolverConstraint& row = *rows[k];
-		block.rhs[k] = row.m_rhs;
-		block.cfm[k] = row.m_cfm;
-		block.jacDiagABInv[k] = row.m_jacDiagABInv;
-		block.lower[k] = row.m_lowerLimit;
-		block.upper[k] = row.m_upperLimit;
-		block.friction[k] = row.m_friction;
-		block.applied[k] = row.m_appliedImpulse;
-		block.row[k] = rowIndex[k];
-	}
-}
-}  // namespace
 
-void caliber::setWideContactRowsEnabled(bool enabled) { g_wideEnabled.store(enabled, std::memory_order_relaxed); }
-bool caliber::wideContactRowsEnabled() { return g_wideEnabled.load(std::memory_order_relaxed); }
-
-void caliber::WideContactRows::plan(const btAlignedObjectArray<int>& orderedManifolds,
-                                    const btAlignedObjectArray<int>& batchManifoldBegin,
-                                    const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows)
+template <int W>
+void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batchFirstGroup,
+                const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
+                const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows)
 {
-	frictionRowsPerContact = frictionRows;
 	const int numBatches = batchManifoldBegin.size() - 1;
 	batchFirstGroup.resizeNoInitialize(numBatches + 1);
 	int numGroups = 0, numBlocks = 0;
 	for (int b = 0; b < numBatches; ++b)
 	{
 		batchFirstGroup[b] = numGroups;
-		for (int first = batchManifoldBegin[b]; first < batchManifoldBegin[b + 1]; first += kWideLanes)
+		for (int first = batchManifoldBegin[b]; first < batchManifoldBegin[b + 1]; first += W)
 		{
-			const int last = btMin(first + kWideLanes, batchManifoldBegin[b + 1]);
+			const int last = btMin(first + W, batchManifoldBegin[b + 1]);
 			int most = 0;
 			for (int i = first; i < last; ++i)
 			{
@@ -324,42 +384,43 @@ void caliber::WideContactRows::plan(const btAlignedObjectArray<int>& orderedMani
 		}
 	}
 	batchFirstGroup[numBatches] = numGroups;
-	groups.resizeNoInitialize(numGroups);
-	normalBlocks.resizeNoInitialize(numBlocks);
-	frictionBlocks.resizeNoInitialize(numBlocks * frictionRows);
+	layout.groups.resizeNoInitialize(numGroups);
+	layout.normalBlocks.resizeNoInitialize(numBlocks);
+	layout.frictionBlocks.resizeNoInitialize(numBlocks * frictionRows);
 	// The groups' first blocks, in order (fill then runs batch by batch on any thread).
 	int nextBlock = 0, g = 0;
 	for (int b = 0; b < numBatches; ++b)
-		for (int first = batchManifoldBegin[b]; first < batchManifoldBegin[b + 1]; first += kWideLanes, ++g)
+		for (int first = batchManifoldBegin[b]; first < batchManifoldBegin[b + 1]; first += W, ++g)
 		{
-			const int last = btMin(first + kWideLanes, batchManifoldBegin[b + 1]);
+			const int last = btMin(first + W, batchManifoldBegin[b + 1]);
 			int most = 0;
 			for (int i = first; i < last; ++i)
 			{
 				const int m = orderedManifolds[i];
 				most = btMax(most, manifoldFirstRow[m + 1] - manifoldFirstRow[m]);
 			}
-			groups[g].firstBlock = nextBlock;
-			groups[g].numBlocks = most;
+			layout.groups[g].firstBlock = nextBlock;
+			layout.groups[g].numBlocks = most;
 			nextBlock += most;
 		}
 }
 
-void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
-                                    const btAlignedObjectArray<int>& batchManifoldBegin,
-                                    const btAlignedObjectArray<int>& manifoldFirstRow,
-                                    const btAlignedObjectArray<int>& batchPaddingBody, unsigned int solveCount,
-                                    const btSolverBody* bodies, const btConstraintArray& contacts,
-                                    const btConstraintArray& friction)
+template <int W>
+void fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
+                int frictionRowsPerContact, int batchBegin, int batchEnd,
+                const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
+                const btAlignedObjectArray<int>& manifoldFirstRow, const btAlignedObjectArray<int>& batchPaddingBody,
+                unsigned int solveCount, const btSolverBody* bodies, const btConstraintArray& contacts,
+                const btConstraintArray& friction)
 {
 	for (int b = batchBegin; b < batchEnd; ++b)
 	{
 		int first = batchManifoldBegin[b];
-		for (int g = batchFirstGroup[b]; g < batchFirstGroup[b + 1]; ++g, first += kWideLanes)
+		for (int g = batchFirstGroup[b]; g < batchFirstGroup[b + 1]; ++g, first += W)
 		{
-			WideGroup& group = groups[g];
-			const int lanes = btMin(kWideLanes, batchManifoldBegin[b + 1] - first);
-			for (int k = 0; k < kWideLanes; ++k)
+			caliber::WideGroupT<W>& group = layout.groups[g];
+			const int lanes = btMin(W, batchManifoldBegin[b + 1] - first);
+			for (int k = 0; k < W; ++k)
 			{
 				int bodyA = batchPaddingBody[b], bodyB = batchPaddingBody[b];
 				if (k < lanes)
@@ -380,9 +441,9 @@ void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
 			}
 			for (int s = 0; s < group.numBlocks; ++s)
 			{
-				int normalRow[kWideLanes];
-				const btSolverConstraint* normalSource[kWideLanes];
-				for (int k = 0; k < kWideLanes; ++k)
+				int normalRow[W];
+				const btSolverConstraint* normalSource[W];
+				for (int k = 0; k < W; ++k)
 				{
 					normalRow[k] = -1;
 					if (k < lanes)
@@ -398,17 +459,17 @@ void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
 					}
 					normalSource[k] = normalRow[k] >= 0 ? &contacts[normalRow[k]] : &zeroRow();
 				}
-				copyRows(normalBlocks[group.firstBlock + s], normalSource, normalRow);
+				copyRows<W>(layout.normalBlocks[group.firstBlock + s], normalSource, normalRow);
 				for (int f = 0; f < frictionRowsPerContact; ++f)
 				{
-					int frictionRow[kWideLanes];
-					const btSolverConstraint* frictionSource[kWideLanes];
-					for (int k = 0; k < kWideLanes; ++k)
+					int frictionRow[W];
+					const btSolverConstraint* frictionSource[W];
+					for (int k = 0; k < W; ++k)
 					{
 						frictionRow[k] = normalRow[k] >= 0 ? normalRow[k] * frictionRowsPerContact + f : -1;
 						frictionSource[k] = frictionRow[k] >= 0 ? &friction[frictionRow[k]] : &zeroRow();
 					}
-					copyRows(frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f], frictionSource,
+					copyRows<W>(layout.frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f], frictionSource,
 					         frictionRow);
 				}
 			}
@@ -416,73 +477,64 @@ void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
 	}
 }
 
+}  // namespace
+
+void caliber::setWideContactRowsEnabled(bool enabled) { g_wideEnabled.store(enabled, std::memory_order_relaxed); }
+bool caliber::wideContactRowsEnabled() { return g_wideEnabled.load(std::memory_order_relaxed); }
+void caliber::setWideContactLanes(int lanes) { g_wideLanes.store(lanes, std::memory_order_relaxed); }
+bool caliber::wideContactEightLanesAvailable() { return eightLanesAvailable(); }
+int caliber::wideContactLanes()
+{
+	const int asked = g_wideLanes.load(std::memory_order_relaxed);
+	if (asked == 4) return 4;
+	return eightLanesAvailable() ? 8 : 4;
+}
+
+void caliber::WideContactRows::plan(const btAlignedObjectArray<int>& orderedManifolds,
+                                    const btAlignedObjectArray<int>& batchManifoldBegin,
+                                    const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows)
+{
+	frictionRowsPerContact = frictionRows;
+	lanes = wideContactLanes();
+	if (lanes == 8)
+		planLayout(eight, batchFirstGroup, orderedManifolds, batchManifoldBegin, manifoldFirstRow, frictionRows);
+	else
+		planLayout(four, batchFirstGroup, orderedManifolds, batchManifoldBegin, manifoldFirstRow, frictionRows);
+}
+
+void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
+                                    const btAlignedObjectArray<int>& batchManifoldBegin,
+                                    const btAlignedObjectArray<int>& manifoldFirstRow,
+                                    const btAlignedObjectArray<int>& batchPaddingBody, unsigned int solveCount,
+                                    const btSolverBody* bodies, const btConstraintArray& contacts,
+                                    const btConstraintArray& friction)
+{
+	if (lanes == 8)
+		fillLayout(eight, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
+		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
+	else
+		fillLayout(four, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
+		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
+}
+
 btScalar caliber::WideContactRows::sweepNormal(int batch, bool reverse, btSolverBody* bodies,
                                                btConstraintArray& contacts)
 {
-	Lanes residual = zero();
-	const int firstGroup = batchFirstGroup[batch], endGroup = batchFirstGroup[batch + 1];
-	for (int i = firstGroup; i < endGroup; ++i)
-	{
-		const WideGroup& group = groups[reverse ? firstGroup + endGroup - 1 - i : i];
-		BodyLanes a, b;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsA;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsB;
-		gatherBodies(bodies, group.bodyA, a, fourthsA);
-		gatherBodies(bodies, group.bodyB, b, fourthsB);
-		for (int s = 0; s < group.numBlocks; ++s)
-		{
-			WideRowBlock& block = normalBlocks[group.firstBlock + (reverse ? group.numBlocks - 1 - s : s)];
-			residual = residual + resolveBlock(block, group, load(block.lower), load(block.upper), a, b);
-			storeImpulses(block, contacts);
-		}
-		scatterBodies(bodies, group.bodyA, a, fourthsA);
-		scatterBodies(bodies, group.bodyB, b, fourthsB);
-	}
-	return horizontalSum(residual);
+#if CALIBER_WIDE_EIGHT_LANES
+	if (lanes == 8)
+		return lanes8::sweepNormal(eight, batchFirstGroup[batch], batchFirstGroup[batch + 1], reverse, bodies, contacts);
+#endif
+	return lanes4::sweepNormal(four, batchFirstGroup[batch], batchFirstGroup[batch + 1], reverse, bodies, contacts);
 }
 
 btScalar caliber::WideContactRows::sweepFriction(int batch, bool reverse, btSolverBody* bodies,
                                                  btConstraintArray& friction)
 {
-	Lanes residual = zero();
-	const int firstGroup = batchFirstGroup[batch], endGroup = batchFirstGroup[batch + 1];
-	for (int i = firstGroup; i < endGroup; ++i)
-	{
-		const WideGroup& group = groups[reverse ? firstGroup + endGroup - 1 - i : i];
-		BodyLanes a, b;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsA;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsB;
-		gatherBodies(bodies, group.bodyA, a, fourthsA);
-		gatherBodies(bodies, group.bodyB, b, fourthsB);
-		for (int s = 0; s < group.numBlocks; ++s)
-		{
-			const int normalIndex = group.firstBlock + (reverse ? group.numBlocks - 1 - s : s);
-			const Lanes normalImpulse = load(normalBlocks[normalIndex].applied);
-			for (int f = 0; f < frictionRowsPerContact; ++f)
-			{
-				WideRowBlock& block = frictionBlocks[normalIndex * frictionRowsPerContact + f];
-				// solveFrictionRow: a row without normal impulse and without an impulse of its own is skipped.
-				const Mask skipped = frictionSkipped(normalImpulse, load(block.applied));
-				if (allSet(skipped)) continue;
-				const Lanes bound = load(block.friction) * maxBranchless(zero(), normalImpulse);
-				// resolveBlock with the skipped lanes' impulse change forced to zero: their bodies then gain
-				// products with zero, which leave a sum unchanged (a velocity change, which starts at +0 and
-				// only ever has numbers added to it, is never -0), and their impulse is put back.
-				const Lanes applied = load(block.applied);
-				Lanes deltaImpulse =
-				    (load(block.rhs) - applied * load(block.cfm)) - deltaVelocity(block, a, b) * load(block.jacDiagABInv);
-				const Lanes clamped = select(
-				    skipped, applied, maxBranchless(negate(bound), minBranchless(bound, applied + deltaImpulse)));
-				deltaImpulse = clamped - applied;
-				store(block.applied, clamped);
-				applyImpulses(block, group, deltaImpulse, a, b);
-				const Lanes squared = deltaImpulse * deltaImpulse;
-				residual = residual + squared;
-				storeImpulses(block, friction);
-			}
-		}
-		scatterBodies(bodies, group.bodyA, a, fourthsA);
-		scatterBodies(bodies, group.bodyB, b, fourthsB);
-	}
-	return horizontalSum(residual);
+#if CALIBER_WIDE_EIGHT_LANES
+	if (lanes == 8)
+		return lanes8::sweepFriction(eight, batchFirstGroup[batch], batchFirstGroup[batch + 1], reverse,
+		                             frictionRowsPerContact, bodies, friction);
+#endif
+	return lanes4::sweepFriction(four, batchFirstGroup[batch], batchFirstGroup[batch + 1], reverse,
+	                             frictionRowsPerContact, bodies, friction);
 }

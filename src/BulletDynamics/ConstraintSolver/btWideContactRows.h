@@ -3,13 +3,13 @@
 #define CALIBER_WIDE_CONTACT_ROWS_H
 
 // The wide solver: the contact rows of a coloured batch solved several manifolds at a time, one
-// manifold per SIMD lane. The manifolds of a batch share no moving body, so the lanes never touch the
-// same body (the fixed entry they may share takes impulses of zero), and each lane performs exactly the
-// operations the scalar row kernel (btSolverRowKernels.h) performs, in the same order: the bodies end
-// with the same bits as when the rows are solved one by one.
+// manifold per SIMD lane (four with SSE2, eight with AVX2). The manifolds of a batch share no moving
+// body, so the lanes never touch the same body (the fixed entry they may share takes impulses of zero),
+// and each lane performs exactly the operations the scalar row kernel (btSolverRowKernels.h) performs,
+// in the same order: the bodies end with the same bits as when the rows are solved one by one.
 //
-// Layout: a group holds up to kWideLanes manifolds of one batch, with the constants of their bodies.
-// Its k-th block of normal rows holds the k-th point (in the solve's rotated order) of each manifold,
+// Layout: a group holds up to W (the lane count) manifolds of one batch, with the constants of their
+// bodies. Its k-th block of normal rows holds the k-th point (in the solve's rotated order) of each manifold,
 // structure of arrays; a lane whose manifold has fewer points is padding (all zero, row index -1) and
 // changes nothing. Friction rows follow the same blocks, frictionRowsPerContact blocks per normal block.
 // A group's bodies are loaded once per pass, kept in registers while its blocks are solved, and stored
@@ -21,54 +21,64 @@
 
 namespace caliber
 {
-/// Manifolds solved side by side: one SSE register of floats.
-const int kWideLanes = 4;
-
-/// kWideLanes rows, one per lane, structure of arrays (components x, y, z, then the lanes).
+/// Manifolds solved side by side in the row blocks of a layout: four (one SSE register of floats) or
+/// eight (one AVX register).
+template <int W>
 ATTRIBUTE_ALIGNED16(struct)
-WideRowBlock
+WideRowBlockT
 {
-	btScalar normal1[3][kWideLanes];
-	btScalar relpos1CrossNormal[3][kWideLanes];
-	btScalar normal2[3][kWideLanes];
-	btScalar relpos2CrossNormal[3][kWideLanes];
-	btScalar angularA[3][kWideLanes];
-	btScalar angularB[3][kWideLanes];
-	btScalar rhs[kWideLanes];
-	btScalar cfm[kWideLanes];
-	btScalar jacDiagABInv[kWideLanes];
-	btScalar lower[kWideLanes];     // normal rows
-	btScalar upper[kWideLanes];     // normal rows
-	btScalar friction[kWideLanes];  // friction rows
-	btScalar applied[kWideLanes];
-	int row[kWideLanes];  // the row in its pool, -1 for padding
+	btScalar normal1[3][W];
+	btScalar relpos1CrossNormal[3][W];
+	btScalar normal2[3][W];
+	btScalar relpos2CrossNormal[3][W];
+	btScalar angularA[3][W];
+	btScalar angularB[3][W];
+	btScalar rhs[W];
+	btScalar cfm[W];
+	btScalar jacDiagABInv[W];
+	btScalar lower[W];     // normal rows
+	btScalar upper[W];     // normal rows
+	btScalar friction[W];  // friction rows
+	btScalar applied[W];
+	int row[W];  // the row in its pool, -1 for padding
 };
 
-/// Up to kWideLanes manifolds of one batch and the constants of their bodies.
+/// Up to W manifolds of one batch and the constants of their bodies.
+template <int W>
 ATTRIBUTE_ALIGNED16(struct)
-WideGroup
+WideGroupT
 {
-	btScalar invMassA[3][kWideLanes];
-	btScalar angularFactorA[3][kWideLanes];
-	btScalar invMassB[3][kWideLanes];
-	btScalar angularFactorB[3][kWideLanes];
-	int bodyA[kWideLanes];
-	int bodyB[kWideLanes];
+	btScalar invMassA[3][W];
+	btScalar angularFactorA[3][W];
+	btScalar invMassB[3][W];
+	btScalar angularFactorB[3][W];
+	int bodyA[W];
+	int bodyB[W];
 	int firstBlock;  // its first normal block
 	int numBlocks;   // the most points of its manifolds
+};
+
+/// The groups and blocks of one lane count.
+template <int W>
+struct WideLayout
+{
+	btAlignedObjectArray<WideGroupT<W> > groups;
+	btAlignedObjectArray<WideRowBlockT<W> > normalBlocks;
+	btAlignedObjectArray<WideRowBlockT<W> > frictionBlocks;  // frictionRowsPerContact per normal block
 };
 
 /// The wide rows of a solve, batch by batch.
 struct WideContactRows
 {
-	btAlignedObjectArray<WideGroup> groups;
-	btAlignedObjectArray<WideRowBlock> normalBlocks;
-	btAlignedObjectArray<WideRowBlock> frictionBlocks;  // frictionRowsPerContact per normal block
-	btAlignedObjectArray<int> batchFirstGroup;          // per batch, and one past the last
-	int frictionRowsPerContact;
+	int lanes = 4;  // of this solve's layout
+	WideLayout<4> four;
+	WideLayout<8> eight;
+	btAlignedObjectArray<int> batchFirstGroup;  // per batch, and one past the last
+	int frictionRowsPerContact = 1;
 
-	/// Sizes the arrays for the batches' manifolds: batchManifoldBegin[b] .. batchManifoldBegin[b + 1]
-	/// index manifolds, whose rows are manifoldFirstRow[m] .. manifoldFirstRow[m + 1].
+	/// Chooses the lanes (wideContactLanes) and sizes the arrays for the batches' manifolds:
+	/// batchManifoldBegin[b] .. batchManifoldBegin[b + 1] index orderedManifolds, whose rows are
+	/// manifoldFirstRow[m] .. manifoldFirstRow[m + 1].
 	void plan(const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
 	          const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows);
 
@@ -91,6 +101,14 @@ struct WideContactRows
 void setWideContactRowsEnabled(bool enabled);
 bool wideContactRowsEnabled();
 
+/// The lanes of the wide sweep: 8 where the processor has AVX2 (single precision SSE builds compiled by
+/// GCC or Clang), else 4. setWideContactLanes(4) or (8) asks for a count (8 falls back to 4 where it is
+/// not available), 0 (or any other count) goes back to the automatic choice; for tests and measurements. Read when a solve
+/// is set up.
+void setWideContactLanes(int lanes);
+int wideContactLanes();
+/// Whether eight lanes are available on this processor and in this build.
+bool wideContactEightLanesAvailable();
 }  // namespace caliber
 
 #endif  // CALIBER_WIDE_CONTACT_ROWS_H

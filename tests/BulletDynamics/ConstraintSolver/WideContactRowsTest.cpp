@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -122,18 +123,21 @@ struct ColourEverySolve
 {
 	int savedThreshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
 	bool savedWide = caliber::wideContactRowsEnabled();
+	int savedLanes = caliber::wideContactLanes() == 4 && caliber::wideContactEightLanesAvailable() ? 4 : 0;
 	ColourEverySolve() { btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1; }
 	~ColourEverySolve()
 	{
 		btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = savedThreshold;
 		caliber::setWideContactRowsEnabled(savedWide);
+		caliber::setWideContactLanes(savedLanes);
 	}
 };
 
 // Steps a world with the wide sweep and one without, side by side, and compares their bits.
-void expectWideSweepGivesRowByRowBits(Scene scene, int solverMode, int threads, int steps)
+void expectWideSweepGivesRowByRowBits(Scene scene, int solverMode, int threads, int steps, int lanes)
 {
 	ColourEverySolve colourAll;
+	caliber::setWideContactLanes(lanes);
 	std::unique_ptr<btITaskScheduler> owned(btCreateDefaultTaskScheduler());
 	btITaskScheduler* scheduler = owned ? owned.get() : btGetSequentialTaskScheduler();
 	btSetTaskScheduler(scheduler);
@@ -153,30 +157,63 @@ void expectWideSweepGivesRowByRowBits(Scene scene, int solverMode, int threads, 
 	// Something happened (the comparison is not of two worlds at rest where they started).
 	EXPECT_NE(0, std::memcmp(a.data(), start.data(), a.size() * sizeof(btScalar)));
 	EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(btScalar)))
-	    << "scene " << int(scene) << ", solver mode " << solverMode << ", " << threads << " threads";
+	    << "scene " << int(scene) << ", solver mode " << solverMode << ", " << threads << " threads, " << lanes
+	    << " lanes";
 }
 }  // namespace
 
-TEST(WideContactRows, BoxPileGivesTheRowByRowBits)
+// Four lanes everywhere; eight where the processor has AVX2 (elsewhere the eight-lane runs take four
+// lanes again, and say so).
+class WideContactRowsLanes : public ::testing::TestWithParam<int>
 {
-	for (int threads : {1, 2}) expectWideSweepGivesRowByRowBits(Scene::BoxPile, SOLVER_USE_WARMSTARTING | SOLVER_SIMD, threads, 60);
+protected:
+	void SetUp() override
+	{
+		if (GetParam() == 8 && !caliber::wideContactEightLanesAvailable())
+			std::printf("note: eight lanes are not available here; the sweep takes four\n");
+	}
+};
+
+TEST_P(WideContactRowsLanes, BoxPileGivesTheRowByRowBits)
+{
+	for (int threads : {1, 2})
+		expectWideSweepGivesRowByRowBits(Scene::BoxPile, SOLVER_USE_WARMSTARTING | SOLVER_SIMD, threads, 60, GetParam());
 }
 
-TEST(WideContactRows, TwoFrictionDirectionsGiveTheRowByRowBits)
+TEST_P(WideContactRowsLanes, TwoFrictionDirectionsGiveTheRowByRowBits)
 {
-	expectWideSweepGivesRowByRowBits(Scene::BoxPile,
-	                                 SOLVER_USE_WARMSTARTING | SOLVER_SIMD | SOLVER_USE_2_FRICTION_DIRECTIONS, 2, 60);
+	expectWideSweepGivesRowByRowBits(Scene::BoxPile, SOLVER_USE_WARMSTARTING | SOLVER_SIMD | SOLVER_USE_2_FRICTION_DIRECTIONS,
+	                                 2, 60, GetParam());
 }
 
-TEST(WideContactRows, RollingSpheresGiveTheRowByRowBits)
+TEST_P(WideContactRowsLanes, RollingSpheresGiveTheRowByRowBits)
 {
-	expectWideSweepGivesRowByRowBits(Scene::SpheresRolling, SOLVER_USE_WARMSTARTING | SOLVER_SIMD, 2, 60);
+	expectWideSweepGivesRowByRowBits(Scene::SpheresRolling, SOLVER_USE_WARMSTARTING | SOLVER_SIMD, 2, 60, GetParam());
 }
 
-TEST(WideContactRows, ClusterWithoutStaticBodyGivesTheRowByRowBits)
+TEST_P(WideContactRowsLanes, ClusterWithoutStaticBodyGivesTheRowByRowBits)
 {
 	// No fixed solver entry: the padding lanes use zero bodies of their own.
-	expectWideSweepGivesRowByRowBits(Scene::FloatingCluster, SOLVER_USE_WARMSTARTING | SOLVER_SIMD, 2, 60);
+	expectWideSweepGivesRowByRowBits(Scene::FloatingCluster, SOLVER_USE_WARMSTARTING | SOLVER_SIMD, 2, 60, GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(FourAndEight, WideContactRowsLanes, ::testing::Values(4, 8));
+
+TEST(WideContactRows, EightLanesAreChosenWhereAvailableAndFourCanBeAskedFor)
+{
+	ColourEverySolve restore;
+	caliber::setWideContactLanes(0);
+	EXPECT_EQ(caliber::wideContactLanes(), caliber::wideContactEightLanesAvailable() ? 8 : 4);
+	caliber::setWideContactLanes(4);
+	EXPECT_EQ(caliber::wideContactLanes(), 4);
+	caliber::setWideContactLanes(8);
+	EXPECT_EQ(caliber::wideContactLanes(), caliber::wideContactEightLanesAvailable() ? 8 : 4);
+	// Any other count means the automatic choice.
+	for (int nonsense : {-1, 5, 16})
+	{
+		caliber::setWideContactLanes(nonsense);
+		EXPECT_EQ(caliber::wideContactLanes(), caliber::wideContactEightLanesAvailable() ? 8 : 4) << nonsense;
+	}
 }
 
 TEST(WideContactRows, TurningItOffAndOnBetweenStepsIsSafe)
