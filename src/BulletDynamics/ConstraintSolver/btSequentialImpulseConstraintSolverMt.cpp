@@ -54,6 +54,9 @@ struct MtSolverScratch
 	// Per manifold of the solve: its solver bodies (-1: no rows), and its planned points.
 	btAlignedObjectArray<int> manifoldBodies;                  // two per manifold
 	btAlignedObjectArray<int> plannedCount;                    // per manifold
+	btAlignedObjectArray<int> plannedRolling;                  // per manifold: rolling rows of its points
+	btAlignedObjectArray<int> pointStart;                      // per manifold: its first point in points
+	btAlignedObjectArray<int> manifoldRollingStart;            // per manifold: its first rolling row
 	btAlignedObjectArray<caliber::ContactPointRows> planned;  // MANIFOLD_CACHE_SIZE per manifold
 	// Per batch: its first manifold in orderedManifolds (and one past the last batch), and the body its
 	// padding lanes and static contacts use (its own copy of the fixed entry, or a zero body).
@@ -139,7 +142,8 @@ struct PlanManifolds : public btIParallelForBody
 		for (int i = iBegin; i < iEnd; ++i)
 		{
 			int& count = mt->plannedCount[i];
-			count = 0;
+			int& rolling = mt->plannedRolling[i];
+			count = rolling = 0;
 			const int idA = mt->manifoldBodies[2 * i], idB = mt->manifoldBodies[2 * i + 1];
 			if (idA < 0) continue;
 			btPersistentManifold* manifold = manifolds[i];
@@ -149,7 +153,38 @@ struct PlanManifolds : public btIParallelForBody
 			for (int j = 0; j < numContacts; ++j)
 			{
 				caliber::ContactPointRows& point = mt->planned[i * MANIFOLD_CACHE_SIZE + count];
-				if (caliber::planContactPoint(*manifold, j, colObj0, colObj1, idA, idB, *bodies, *info, point)) ++count;
+				if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, idA, idB, *bodies, *info, point)) continue;
+				rolling += caliber::rollingRowsOf(*point.cp);
+				++count;
+			}
+		}
+	}
+};
+
+// Each manifold's planned points into their places in the solve's point list, with their rows' indices
+// (computed from the per-manifold starts, as the serial setup counts them point by point).
+struct PlacePoints : public btIParallelForBody
+{
+	MtSolverScratch* mt;
+	int contactBase;
+	int frictionBase;
+	int frictionRowsPerContact;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			const int count = mt->plannedCount[i];
+			int rolling = mt->manifoldRollingStart[i];
+			for (int k = 0; k < count; ++k)
+			{
+				const int index = mt->pointStart[i] + k;
+				caliber::ContactPointRows& point = mt->points[index];
+				point = mt->planned[i * MANIFOLD_CACHE_SIZE + k];
+				point.contactRow = contactBase + index;
+				point.firstFrictionRow = frictionBase + index * frictionRowsPerContact;
+				point.firstRollingRow = rolling;
+				rolling += caliber::rollingRowsOf(*point.cp);
 			}
 		}
 	}
@@ -375,6 +410,9 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	mt.manifoldBodies.resizeNoInitialize(2 * numManifolds);
 	mt.plannedCount.resizeNoInitialize(numManifolds);
 	mt.planned.resizeNoInitialize(numManifolds * MANIFOLD_CACHE_SIZE);
+	mt.plannedRolling.resizeNoInitialize(numManifolds);
+	mt.pointStart.resizeNoInitialize(numManifolds);
+	mt.manifoldRollingStart.resizeNoInitialize(numManifolds);
 	for (int i = 0; i < numManifolds; ++i)
 	{
 		btPersistentManifold* manifold = manifoldPtr[i];
@@ -396,31 +434,33 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	plan.info = &infoGlobal;
 	btParallelFor(0, numManifolds, kManifoldsPerTask, plan);
 
-	mt.points.resize(0);
+	// Where each manifold's points and rows go: counted in manifold order here, written on the threads.
 	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
-	int nextContact = m_tmpSolverContactConstraintPool.size();
-	int nextFriction = m_tmpSolverContactFrictionConstraintPool.size();
+	const int contactBase = m_tmpSolverContactConstraintPool.size();
+	const int frictionBase = m_tmpSolverContactFrictionConstraintPool.size();
+	int numPoints = 0;
 	int nextRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
 	for (int i = 0; i < numManifolds; ++i)
 	{
+		mt.pointStart[i] = numPoints;
+		mt.manifoldRollingStart[i] = nextRolling;
 		const int count = mt.plannedCount[i];
 		if (count == 0) continue;
-		scratch.manifoldFirstRow.push_back(nextContact);
-		for (int k = 0; k < count; ++k)
-		{
-			caliber::ContactPointRows point = mt.planned[i * MANIFOLD_CACHE_SIZE + k];
-			point.contactRow = nextContact++;
-			point.firstFrictionRow = nextFriction;
-			point.firstRollingRow = nextRolling;
-			nextFriction += frictionRowsPerContact;
-			nextRolling += caliber::rollingRowsOf(*point.cp);
-			mt.points.push_back(point);
-		}
+		scratch.manifoldFirstRow.push_back(contactBase + numPoints);
+		numPoints += count;
+		nextRolling += mt.plannedRolling[i];
 	}
-	m_tmpSolverContactConstraintPool.resizeNoInitialize(nextContact);
-	m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(nextFriction);
+	mt.points.resizeNoInitialize(numPoints);
+	m_tmpSolverContactConstraintPool.resizeNoInitialize(contactBase + numPoints);
+	m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(frictionBase + numPoints * frictionRowsPerContact);
 	m_tmpSolverContactRollingFrictionConstraintPool.resizeNoInitialize(nextRolling);
-	if (mt.points.size() == 0) return;
+	if (numPoints == 0) return;
+	PlacePoints place;
+	place.mt = &mt;
+	place.contactBase = contactBase;
+	place.frictionBase = frictionBase;
+	place.frictionRowsPerContact = frictionRowsPerContact;
+	btParallelFor(0, numManifolds, kManifoldsPerTask, place);
 
 	FillPointRows fill;
 	fill.pools.bodies = &m_tmpSolverBodyPool;

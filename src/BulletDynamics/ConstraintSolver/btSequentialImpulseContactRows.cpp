@@ -9,6 +9,7 @@
 #include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btThreads.h"
 
 namespace
 {
@@ -666,12 +667,22 @@ void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const Co
 		applyWarmStart((*pools.friction)[point.firstFrictionRow + f], bodyA, bodyB);
 }
 
-void caliber::findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodies,
-                                       const btConstraintArray& contacts, const btContactSolverInfo& infoGlobal)
+namespace
 {
-	// A heavy body on a light one needs the shock-propagation sweeps (see propagateShock).
-	const btScalar kShockMassRatio = 4;
-	for (int r = 0; r < contacts.size(); ++r)
+// A heavy body on a light one needs the shock-propagation sweeps (see propagateShock).
+const btScalar kShockMassRatio = 4;
+
+// Contact rows per task of findBouncesAndMassRatios, and the fewest worth a loop on the threads.
+const int kRowsPerBounceTask = 256;
+const int kMinRowsForParallelBounces = 1024;
+
+// The bounces of rows [begin, end) in order, and whether one of them holds bodies of very different masses.
+bool findBounces(int begin, int end, const btAlignedObjectArray<btSolverBody>& bodies,
+                 const btConstraintArray& contacts, const btContactSolverInfo& infoGlobal,
+                 btAlignedObjectArray<caliber::SolverBounceRow>& bounces)
+{
+	bool massRatio = false;
+	for (int r = begin; r < end; ++r)
 	{
 		const btSolverConstraint& row = contacts[r];
 		const btSolverBody& bodyA = bodies[row.m_solverBodyIdA];
@@ -679,20 +690,66 @@ void caliber::findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectAr
 		const RowBody a = {&bodyA, bodyA.m_originalBody};
 		const RowBody b = {&bodyB, bodyB.m_originalBody};
 		const btManifoldPoint& cp = *static_cast<const btManifoldPoint*>(row.m_originalContactPoint);
-		SolverBounceRow bounce;
+		caliber::SolverBounceRow bounce;
 		if (rowBounce(row, a, b, cp, infoGlobal, bounce))
 		{
 			bounce.row = r;
-			scratch.bounceRows.push_back(bounce);
+			bounces.push_back(bounce);
 		}
 		const btRigidBody* rigidA = bodyA.m_originalBody;
 		const btRigidBody* rigidB = bodyB.m_originalBody;
-		if (!scratch.shockPropagationNeeded && rigidA && rigidB && !rigidA->isStaticOrKinematicObject() &&
+		if (!massRatio && rigidA && rigidB && !rigidA->isStaticOrKinematicObject() &&
 		    !rigidB->isStaticOrKinematicObject() && rigidA->getInvMass() > btScalar(0) &&
 		    rigidB->getInvMass() > btScalar(0))
 		{
 			const btScalar ratio = rigidA->getInvMass() / rigidB->getInvMass();
-			if (ratio > kShockMassRatio || ratio * kShockMassRatio < btScalar(1)) scratch.shockPropagationNeeded = true;
+			if (ratio > kShockMassRatio || ratio * kShockMassRatio < btScalar(1)) massRatio = true;
 		}
+	}
+	return massRatio;
+}
+
+struct FindBounces : public btIParallelForBody
+{
+	caliber::SolverScratch* scratch;
+	const btAlignedObjectArray<btSolverBody>* bodies;
+	const btConstraintArray* contacts;
+	const btContactSolverInfo* info;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		caliber::SolverScratch::BounceChunk& chunk = scratch->bounceChunks[iBegin / kRowsPerBounceTask];
+		chunk.bounces.resize(0);
+		chunk.massRatio = findBounces(iBegin, iEnd, *bodies, *contacts, *info, chunk.bounces);
+	}
+};
+}  // namespace
+
+void caliber::findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectArray<btSolverBody>& bodies,
+                                       const btConstraintArray& contacts, const btContactSolverInfo& infoGlobal)
+{
+	// Each row is judged on its own; on the threads, chunks of rows list their bounces, which are then
+	// appended in chunk order: the same list as one pass in row order.
+	btITaskScheduler* scheduler = btGetTaskScheduler();
+	const int numRows = contacts.size();
+	if (numRows < kMinRowsForParallelBounces || !scheduler || scheduler->getNumThreads() < 2)
+	{
+		if (findBounces(0, numRows, bodies, contacts, infoGlobal, scratch.bounceRows))
+			scratch.shockPropagationNeeded = true;
+		return;
+	}
+	const int chunks = (numRows + kRowsPerBounceTask - 1) / kRowsPerBounceTask;
+	if (scratch.bounceChunks.size() < chunks) scratch.bounceChunks.resize(chunks);
+	FindBounces find;
+	find.scratch = &scratch;
+	find.bodies = &bodies;
+	find.contacts = &contacts;
+	find.info = &infoGlobal;
+	btParallelFor(0, numRows, kRowsPerBounceTask, find);
+	for (int c = 0; c < chunks; ++c)
+	{
+		const SolverScratch::BounceChunk& chunk = scratch.bounceChunks[c];
+		for (int k = 0; k < chunk.bounces.size(); ++k) scratch.bounceRows.push_back(chunk.bounces[k]);
+		if (chunk.massRatio) scratch.shockPropagationNeeded = true;
 	}
 }

@@ -53,6 +53,14 @@ struct SolverScratch
 	btAlignedObjectArray<int> pushRows;
 	/// Contact rows whose restitution applies if they are met this step (in setup order).
 	btAlignedObjectArray<SolverBounceRow> bounceRows;
+	/// findBouncesAndMassRatios on the task scheduler's threads: what each chunk of rows found.
+	struct BounceChunk
+	{
+		btAlignedObjectArray<SolverBounceRow> bounces;
+		bool massRatio;
+		char padding[128];  // two chunks' array headers, written by two threads, on different cache lines
+	};
+	btAlignedObjectArray<BounceChunk> bounceChunks;
 	/// Shock propagation (see propagateShock): whether a contact of this solve holds bodies of very
 	/// different masses; the contact graph, each body's level above the ground, the rows bottom up.
 	bool shockPropagationNeeded = false;
