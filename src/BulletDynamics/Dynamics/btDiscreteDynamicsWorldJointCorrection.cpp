@@ -12,6 +12,7 @@
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btQuickprof.h"
+#include "LinearMath/btThreads.h"
 
 namespace
 {
@@ -160,6 +161,205 @@ bool closeAnchors(btRigidBody& a, btRigidBody& b, const btVector3& anchorInA, co
 		         b.getInvInertiaTensorWorld() * (armB.cross(-impulse) * b.getAngularFactor()) * b.getAngularFactor());
 	return true;
 }
+// One Gauss-Seidel correction of a joint the trees left out: its anchors closed directly, or its
+// equality rows (and the one-sided limits among them) solved as a block at the current positions.
+// Lists the two bodies when it moved them.
+bool correctLeftOverJoint(btTypedConstraint* constraint, int numIterations, btConstraintArray& rowScratch,
+                          btAlignedObjectArray<btRigidBody*>& correctedBodies)
+{
+	const int S = caliber::SolverJointBlock::MAX_ROWS;
+	btRigidBody& a = constraint->getRigidBodyA();
+	btRigidBody& b = constraint->getRigidBodyB();
+	if (!movable(a) && !movable(b)) return false;
+	btVector3 anchorInA, anchorInB;
+	if (caliber::jointAnchors(*constraint, anchorInA, anchorInB))
+	{
+		if (!closeAnchors(a, b, anchorInA, anchorInB)) return false;
+		correctedBodies.push_back(&a);
+		correctedBodies.push_back(&b);
+		return true;
+	}
+	btTypedConstraint::btConstraintInfo1 info1;
+	info1.m_numConstraintRows = 0;
+	info1.nub = 0;
+	constraint->getInfo1(&info1);
+	if (info1.m_numConstraintRows <= 0) return false;
+
+	rowScratch.resizeNoInitialize(info1.m_numConstraintRows);
+	btSolverConstraint* rows = &rowScratch[0];
+	for (int j = 0; j < info1.m_numConstraintRows; ++j)
+	{
+		btSolverConstraint& row = rows[j];
+		row.m_contactNormal1.setZero();
+		row.m_relpos1CrossNormal.setZero();
+		row.m_contactNormal2.setZero();
+		row.m_relpos2CrossNormal.setZero();
+		row.m_rhs = 0;
+		row.m_cfm = 0;
+		row.m_lowerLimit = -SIMD_INFINITY;
+		row.m_upperLimit = SIMD_INFINITY;
+	}
+	// fps = erp = 1: each row's "velocity" target is then its position error itself.
+	btTypedConstraint::btConstraintInfo2 info2;
+	info2.fps = btScalar(1);
+	info2.erp = btScalar(1);
+	info2.m_J1linearAxis = rows->m_contactNormal1.m_floats;
+	info2.m_J1angularAxis = rows->m_relpos1CrossNormal.m_floats;
+	info2.m_J2linearAxis = rows->m_contactNormal2.m_floats;
+	info2.m_J2angularAxis = rows->m_relpos2CrossNormal.m_floats;
+	info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
+	info2.m_constraintError = &rows->m_rhs;
+	info2.cfm = &rows->m_cfm;
+	info2.m_lowerLimit = &rows->m_lowerLimit;
+	info2.m_upperLimit = &rows->m_upperLimit;
+	info2.m_numIterations = numIterations;
+	info2.m_damping = btScalar(1);
+	{
+		caliber::JointPositionPassScope positionPass;
+		constraint->getInfo2(&info2);
+	}
+
+	// The equality rows (leading, unbounded), solved exactly as a block, and the one-sided limit rows
+	// ([0, inf) bounds), which must not be pushed through by the block's correction. Motor rows
+	// (bounded both ways) are velocity goals and take no part.
+	int n = 0;
+	while (n < info1.m_numConstraintRows && n < S && isEquality(rows[n])) ++n;
+	int m = n;
+	for (int j = n; j < info1.m_numConstraintRows && m < kMaxRows; ++j)
+		if (isOneSided(rows[j])) rows[m++] = rows[j];
+	if (n == 0) return false;
+	bool finite = true;
+	for (int j = 0; j < m; ++j)
+	{
+		rows[j].m_angularComponentA =
+		    movable(a) ? a.getInvInertiaTensorWorld() * (rows[j].m_relpos1CrossNormal * a.getAngularFactor())
+		               : btVector3(0, 0, 0);
+		rows[j].m_angularComponentB =
+		    movable(b) ? b.getInvInertiaTensorWorld() * (rows[j].m_relpos2CrossNormal * b.getAngularFactor())
+		               : btVector3(0, 0, 0);
+		finite = finite && rows[j].m_rhs == rows[j].m_rhs && btFabs(rows[j].m_rhs) < SIMD_INFINITY;
+	}
+	if (!finite) return false;
+	const btSolverBody massA = massOf(a), massB = massOf(b);
+	btScalar invK[S * S];
+	if (!caliber::buildBlockInverse(rows, n, massA, massB, invK)) return false;
+	btScalar lambda[kMaxRows] = {0};
+	solvePositionRows(rows, n, m, massA, massB, invK, lambda);
+	btVector3 linearA(0, 0, 0), turnA(0, 0, 0), linearB(0, 0, 0), turnB(0, 0, 0);
+	for (int i = 0; i < m; ++i)
+	{
+		linearA += rows[i].m_contactNormal1 * lambda[i];
+		turnA += rows[i].m_angularComponentA * (lambda[i] * a.getAngularFactor());
+		linearB += rows[i].m_contactNormal2 * lambda[i];
+		turnB += rows[i].m_angularComponentB * (lambda[i] * b.getAngularFactor());
+	}
+	if (movable(a)) displace(a, linearA, turnA);
+	if (movable(b)) displace(b, linearB, turnB);
+	correctedBodies.push_back(&a);
+	correctedBodies.push_back(&b);
+	return true;
+}
+
+// Joints per task of the left-over sweep on the threads, and the fewest worth a loop.
+const int kIslandsPerCorrectionTask = 8;
+const int kMinJointsForParallelCorrection = 64;
+
+// The left-over joints grouped by island (joints of different islands move different bodies): each
+// island's joints keep their order, so every body sees the corrections of the serial sweep in the same
+// order, and islands go to the threads, each chunk of islands with its own row scratch and list of
+// moved bodies (caliber::JointCorrectionChunk).
+struct CorrectIslands : public btIParallelForBody
+{
+	const btAlignedObjectArray<btTypedConstraint*>* joints;  // grouped by island
+	const btAlignedObjectArray<int>* islandStart;            // per island, and one past the last
+	btAlignedObjectArray<caliber::JointCorrectionChunk>* chunks;
+	int numIterations;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		caliber::JointCorrectionChunk& chunk = (*chunks)[iBegin / kIslandsPerCorrectionTask];
+		chunk.corrected.resize(0);
+		chunk.moved = false;
+		for (int island = iBegin; island < iEnd; ++island)
+			for (int k = (*islandStart)[island]; k < (*islandStart)[island + 1]; ++k)
+				if (correctLeftOverJoint((*joints)[k], numIterations, chunk.rows, chunk.corrected)) chunk.moved = true;
+	}
+};
+
+// The island a left-over joint's moving bodies belong to, or -1 when it cannot be told (a body outside
+// the islands, or two moving bodies in different islands: a body that does not merge islands).
+int islandOfJoint(const btTypedConstraint& joint, int numObjects)
+{
+	const btRigidBody& a = joint.getRigidBodyA();
+	const btRigidBody& b = joint.getRigidBodyB();
+	const bool moveA = movable(a), moveB = movable(b);
+	const int tag = moveA ? a.getIslandTag() : (moveB ? b.getIslandTag() : -1);
+	if (tag < 0 || tag >= numObjects) return -1;
+	if (moveA && moveB && b.getIslandTag() != tag) return -1;
+	return tag;
+}
+
+// Sweeps the left-over joints once, on the threads when they are many and fall into islands; true when a
+// body moved.
+bool sweepLeftOverJoints(btDiscreteDynamicsWorld& world, const btAlignedObjectArray<btTypedConstraint*>& leftOver,
+                         caliber::WorldStepContext& context, btAlignedObjectArray<btRigidBody*>& correctedBodies)
+{
+	const int numIterations = world.getSolverInfo().m_numIterations;
+	btITaskScheduler* scheduler = btGetTaskScheduler();
+	bool parallel = leftOver.size() >= kMinJointsForParallelCorrection && scheduler && scheduler->getNumThreads() > 1;
+	const int numObjects = world.getNumCollisionObjects();
+	btAlignedObjectArray<int>& islandOf = context.jointCorrectionIslandOf;
+	if (parallel)
+	{
+		islandOf.resizeNoInitialize(leftOver.size());
+		for (int c = 0; c < leftOver.size() && parallel; ++c)
+		{
+			islandOf[c] = islandOfJoint(*leftOver[c], numObjects);
+			parallel = islandOf[c] >= 0;
+		}
+	}
+	if (!parallel)
+	{
+		bool moved = false;
+		for (int c = 0; c < leftOver.size(); ++c)
+			if (correctLeftOverJoint(leftOver[c], numIterations, context.jointCorrectionRows, correctedBodies)) moved = true;
+		return moved;
+	}
+	// A stable counting sort by island tag; then the used islands' starts.
+	btAlignedObjectArray<int>& count = context.jointCorrectionIslandCount;
+	btAlignedObjectArray<int>& islandStart = context.jointCorrectionIslandStart;
+	btAlignedObjectArray<btTypedConstraint*>& grouped = context.jointCorrectionGrouped;
+	btAlignedObjectArray<caliber::JointCorrectionChunk>& chunks = context.jointCorrectionChunks;
+	count.resize(0);
+	count.resize(numObjects + 1, 0);
+	for (int c = 0; c < leftOver.size(); ++c) ++count[islandOf[c] + 1];
+	islandStart.resize(0);
+	for (int t = 0; t < numObjects; ++t)
+	{
+		if (count[t + 1] > 0) islandStart.push_back(count[t]);
+		count[t + 1] += count[t];
+	}
+	islandStart.push_back(leftOver.size());
+	grouped.resizeNoInitialize(leftOver.size());
+	for (int c = 0; c < leftOver.size(); ++c) grouped[count[islandOf[c]]++] = leftOver[c];
+	const int numIslands = islandStart.size() - 1;
+	const int numChunks = (numIslands + kIslandsPerCorrectionTask - 1) / kIslandsPerCorrectionTask;
+	if (chunks.size() < numChunks) chunks.resize(numChunks);
+	CorrectIslands correct;
+	correct.joints = &grouped;
+	correct.islandStart = &islandStart;
+	correct.chunks = &chunks;
+	correct.numIterations = numIterations;
+	btParallelFor(0, numIslands, kIslandsPerCorrectionTask, correct);
+	bool moved = false;
+	for (int k = 0; k < numChunks; ++k)
+	{
+		const caliber::JointCorrectionChunk& chunk = chunks[k];
+		for (int i = 0; i < chunk.corrected.size(); ++i) correctedBodies.push_back(chunk.corrected[i]);
+		moved = moved || chunk.moved;
+	}
+	return moved;
+}
 }  // namespace
 
 void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
@@ -169,7 +369,6 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 	const int sweeps = context.jointPositionIterations;
 	if (sweeps <= 0 || constraints.size() == 0) return;
 	BT_PROFILE("correctJointPositions");
-	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	btAlignedObjectArray<btRigidBody*>& correctedBodies = context.jointCorrectedBodies;
 	btAlignedObjectArray<btTypedConstraint*>& joints = context.jointCorrectionJoints;
 	btAlignedObjectArray<btTypedConstraint*>& leftOver = context.jointCorrectionLeftOver;
@@ -203,103 +402,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 			btVector3 unusedA, unusedB;
 			if (!caliber::jointAnchors(*joints[c], unusedA, unusedB)) leftOver.push_back(joints[c]);
 		}
-		for (int c = 0; c < leftOver.size(); ++c)
-		{
-			btTypedConstraint* constraint = leftOver[c];
-			btRigidBody& a = constraint->getRigidBodyA();
-			btRigidBody& b = constraint->getRigidBodyB();
-			if (!movable(a) && !movable(b)) continue;
-			btVector3 anchorInA, anchorInB;
-			if (caliber::jointAnchors(*constraint, anchorInA, anchorInB))
-			{
-				if (closeAnchors(a, b, anchorInA, anchorInB))
-				{
-					anyMoved = true;
-					correctedBodies.push_back(&a);
-					correctedBodies.push_back(&b);
-				}
-				continue;
-			}
-			btTypedConstraint::btConstraintInfo1 info1;
-			info1.m_numConstraintRows = 0;
-			info1.nub = 0;
-			constraint->getInfo1(&info1);
-			if (info1.m_numConstraintRows <= 0) continue;
-
-			context.jointCorrectionRows.resizeNoInitialize(info1.m_numConstraintRows);
-			btSolverConstraint* rows = &context.jointCorrectionRows[0];
-			for (int j = 0; j < info1.m_numConstraintRows; ++j)
-			{
-				btSolverConstraint& row = rows[j];
-				row.m_contactNormal1.setZero();
-				row.m_relpos1CrossNormal.setZero();
-				row.m_contactNormal2.setZero();
-				row.m_relpos2CrossNormal.setZero();
-				row.m_rhs = 0;
-				row.m_cfm = 0;
-				row.m_lowerLimit = -SIMD_INFINITY;
-				row.m_upperLimit = SIMD_INFINITY;
-			}
-			// fps = erp = 1: each row's "velocity" target is then its position error itself.
-			btTypedConstraint::btConstraintInfo2 info2;
-			info2.fps = btScalar(1);
-			info2.erp = btScalar(1);
-			info2.m_J1linearAxis = rows->m_contactNormal1.m_floats;
-			info2.m_J1angularAxis = rows->m_relpos1CrossNormal.m_floats;
-			info2.m_J2linearAxis = rows->m_contactNormal2.m_floats;
-			info2.m_J2angularAxis = rows->m_relpos2CrossNormal.m_floats;
-			info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
-			info2.m_constraintError = &rows->m_rhs;
-			info2.cfm = &rows->m_cfm;
-			info2.m_lowerLimit = &rows->m_lowerLimit;
-			info2.m_upperLimit = &rows->m_upperLimit;
-			info2.m_numIterations = world.getSolverInfo().m_numIterations;
-			info2.m_damping = btScalar(1);
-			{
-				caliber::JointPositionPassScope positionPass;
-				constraint->getInfo2(&info2);
-			}
-
-			// The equality rows (leading, unbounded), solved exactly as a block, and the one-sided limit rows
-			// ([0, inf) bounds), which must not be pushed through by the block's correction. Motor rows
-			// (bounded both ways) are velocity goals and take no part.
-			int n = 0;
-			while (n < info1.m_numConstraintRows && n < S && isEquality(rows[n])) ++n;
-			int m = n;
-			for (int j = n; j < info1.m_numConstraintRows && m < kMaxRows; ++j)
-				if (isOneSided(rows[j])) rows[m++] = rows[j];
-			if (n == 0) continue;
-			bool finite = true;
-			for (int j = 0; j < m; ++j)
-			{
-				rows[j].m_angularComponentA =
-				    movable(a) ? a.getInvInertiaTensorWorld() * (rows[j].m_relpos1CrossNormal * a.getAngularFactor())
-				               : btVector3(0, 0, 0);
-				rows[j].m_angularComponentB =
-				    movable(b) ? b.getInvInertiaTensorWorld() * (rows[j].m_relpos2CrossNormal * b.getAngularFactor())
-				               : btVector3(0, 0, 0);
-				finite = finite && rows[j].m_rhs == rows[j].m_rhs && btFabs(rows[j].m_rhs) < SIMD_INFINITY;
-			}
-			if (!finite) continue;
-			const btSolverBody massA = massOf(a), massB = massOf(b);
-			btScalar invK[S * S];
-			if (!caliber::buildBlockInverse(rows, n, massA, massB, invK)) continue;
-			btScalar lambda[kMaxRows] = {0};
-			solvePositionRows(rows, n, m, massA, massB, invK, lambda);
-			btVector3 linearA(0, 0, 0), turnA(0, 0, 0), linearB(0, 0, 0), turnB(0, 0, 0);
-			for (int i = 0; i < m; ++i)
-			{
-				linearA += rows[i].m_contactNormal1 * lambda[i];
-				turnA += rows[i].m_angularComponentA * (lambda[i] * a.getAngularFactor());
-				linearB += rows[i].m_contactNormal2 * lambda[i];
-				turnB += rows[i].m_angularComponentB * (lambda[i] * b.getAngularFactor());
-			}
-			if (movable(a)) displace(a, linearA, turnA);
-			if (movable(b)) displace(b, linearB, turnB);
-			anyMoved = true;
-			correctedBodies.push_back(&a);
-			correctedBodies.push_back(&b);
-		}
+		if (sweepLeftOverJoints(world, leftOver, context, correctedBodies)) anyMoved = true;
 	}
 	if (!anyMoved) return;
 	// The moved poses are the step's result: interpolation starts from them and inertia follows them.

@@ -21,6 +21,16 @@ class btTypedConstraint;
 namespace caliber
 {
 /// One world's Caliber-only step state, reused from step to step.
+/// What one task of the joint position correction's parallel sweep found (see
+/// btDiscreteDynamicsWorldJointCorrection.cpp): its row scratch and the bodies it moved.
+struct JointCorrectionChunk
+{
+	btConstraintArray rows;
+	btAlignedObjectArray<btRigidBody*> corrected;
+	bool moved = false;
+	char padding[128];  // chunks written by different threads stay on different cache lines
+};
+
 struct WorldStepContext
 {
 	/// Set once the "non-finite body" warning has been given (it is given once per world).
@@ -34,6 +44,13 @@ struct WorldStepContext
 	btAlignedObjectArray<btRigidBody*> jointCorrectedBodies;
 	btAlignedObjectArray<btTypedConstraint*> jointCorrectionJoints;
 	btAlignedObjectArray<btTypedConstraint*> jointCorrectionLeftOver;
+	/// The parallel sweep of the left-over joints: each joint's island, the islands' starts, the joints
+	/// grouped by island, and one chunk per task.
+	btAlignedObjectArray<int> jointCorrectionIslandOf;
+	btAlignedObjectArray<int> jointCorrectionIslandCount;
+	btAlignedObjectArray<int> jointCorrectionIslandStart;
+	btAlignedObjectArray<btTypedConstraint*> jointCorrectionGrouped;
+	btAlignedObjectArray<JointCorrectionChunk> jointCorrectionChunks;
 	/// The exact tree solve of the position correction.
 	JointAnchorTree jointAnchorTree;
 	/// Solver batches solved so far (the solve index of caliber::SolveIndexScope: each batch's solve is
