@@ -35,6 +35,26 @@ SIMD_FORCE_INLINE void scatterBodies(btSolverBody* bodies, const int* index, con
 	scatterVectors(bodies, index, offsetof(btSolverBody, m_deltaAngularVelocity), lanes.angular, w.angular);
 }
 
+// A group's two bodies per lane, loaded for a pass over its blocks and stored back after it.
+struct GroupBodies
+{
+	BodyLanes a;
+	BodyLanes b;
+	ATTRIBUTE_ALIGNED16(BodyFourths fourthsA);
+	ATTRIBUTE_ALIGNED16(BodyFourths fourthsB);
+
+	GroupBodies(const btSolverBody* bodies, const Group& group)
+	{
+		gatherBodies(bodies, group.bodyA, a, fourthsA);
+		gatherBodies(bodies, group.bodyB, b, fourthsB);
+	}
+	void storeTo(btSolverBody* bodies, const Group& group) const
+	{
+		scatterBodies(bodies, group.bodyA, a, fourthsA);
+		scatterBodies(bodies, group.bodyB, b, fourthsB);
+	}
+};
+
 // rowDeltaVelocity of btSolverRowKernels.h, lane by lane, with its association.
 SIMD_FORCE_INLINE Lanes deltaVelocity(const Block& block, const BodyLanes& a, const BodyLanes& b)
 {
@@ -86,19 +106,16 @@ btScalar sweepNormal(caliber::WideLayout<kLanes>& layout, int firstGroup, int en
 	for (int i = firstGroup; i < endGroup; ++i)
 	{
 		const Group& group = layout.groups[reverse ? firstGroup + endGroup - 1 - i : i];
-		BodyLanes a, b;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsA;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsB;
-		gatherBodies(bodies, group.bodyA, a, fourthsA);
-		gatherBodies(bodies, group.bodyB, b, fourthsB);
+		GroupBodies lanes(bodies, group);
+		BodyLanes& a = lanes.a;
+		BodyLanes& b = lanes.b;
 		for (int s = 0; s < group.numBlocks; ++s)
 		{
 			Block& block = layout.normalBlocks[group.firstBlock + (reverse ? group.numBlocks - 1 - s : s)];
 			residual = residual + resolveBlock(block, group, load(block.lower), load(block.upper), a, b);
 			storeImpulses(block, contacts);
 		}
-		scatterBodies(bodies, group.bodyA, a, fourthsA);
-		scatterBodies(bodies, group.bodyB, b, fourthsB);
+		lanes.storeTo(bodies, group);
 	}
 	return horizontalSum(residual);
 }
@@ -110,11 +127,9 @@ btScalar sweepFriction(caliber::WideLayout<kLanes>& layout, int firstGroup, int 
 	for (int i = firstGroup; i < endGroup; ++i)
 	{
 		const Group& group = layout.groups[reverse ? firstGroup + endGroup - 1 - i : i];
-		BodyLanes a, b;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsA;
-		ATTRIBUTE_ALIGNED16(BodyFourths) fourthsB;
-		gatherBodies(bodies, group.bodyA, a, fourthsA);
-		gatherBodies(bodies, group.bodyB, b, fourthsB);
+		GroupBodies lanes(bodies, group);
+		BodyLanes& a = lanes.a;
+		BodyLanes& b = lanes.b;
 		for (int s = 0; s < group.numBlocks; ++s)
 		{
 			const int normalIndex = group.firstBlock + (reverse ? group.numBlocks - 1 - s : s);
@@ -142,8 +157,7 @@ btScalar sweepFriction(caliber::WideLayout<kLanes>& layout, int firstGroup, int 
 				storeImpulses(block, friction);
 			}
 		}
-		scatterBodies(bodies, group.bodyA, a, fourthsA);
-		scatterBodies(bodies, group.bodyB, b, fourthsB);
+		lanes.storeTo(bodies, group);
 	}
 	return horizontalSum(residual);
 }
