@@ -302,6 +302,16 @@ struct FillWideRows : public btIParallelForBody
 	}
 };
 
+// The wide blocks' impulses into their rows (each batch its own rows: any order, any thread).
+struct StoreWideImpulses : public btIParallelForBody
+{
+	caliber::WideContactRows* wide;
+	btConstraintArray* contacts;
+	btConstraintArray* friction;
+
+	void forLoop(int iBegin, int iEnd) const override { wide->storeImpulses(iBegin, iEnd, *contacts, *friction); }
+};
+
 // One sweep over a batch of contact rows: normals, then their friction, then their rolling rows.
 struct BatchSweep : public btIParallelForBody
 {
@@ -326,8 +336,11 @@ struct BatchSweep : public btIParallelForBody
 	btScalar sweepWideBatch(int batch) const
 	{
 		caliber::WideContactRows& wide = scratch->wideRows;
-		if (pass == 0) return wide.sweepNormal(batch, reverse, bodies, *contacts);
-		return sweepRolling(batched->m_batches[batch], wide.sweepFriction(batch, reverse, bodies, *friction));
+		// The rolling rows read their contact rows' impulses during the sweeps; otherwise the impulses go to
+		// the rows once, after the last sweep (storing them block by block costs a cache line per row).
+		const bool rollingRows = rolling->size() > 0;
+		if (pass == 0) return wide.sweepNormal(batch, reverse, bodies, rollingRows ? contacts : 0);
+		return sweepRolling(batched->m_batches[batch], wide.sweepFriction(batch, reverse, bodies, 0));
 	}
 
 	btScalar sweepBatch(const btBatchedConstraints::Range& batch) const
@@ -721,6 +734,16 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 			btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);
 			for (int b = 0; b < numBatches; ++b) residual += mt.batchResidual[b];
 		}
+	}
+	// After the last sweep of the contacts (the iterations stop at m_numIterations for contacts, or earlier
+	// when the residual is small enough), the wide blocks' impulses go to their rows.
+	if (mt.wide && (iteration + 1 >= infoGlobal.m_numIterations || residual <= infoGlobal.m_leastSquaresResidualThreshold))
+	{
+		StoreWideImpulses store;
+		store.wide = &mt.wideRows;
+		store.contacts = &m_tmpSolverContactConstraintPool;
+		store.friction = &m_tmpSolverContactFrictionConstraintPool;
+		btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, store);
 	}
 	return residual;
 }

@@ -518,7 +518,7 @@ void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
 }
 
 btScalar caliber::WideContactRows::sweepNormal(int batch, bool reverse, btSolverBody* bodies,
-                                               btConstraintArray& contacts)
+                                               btConstraintArray* contacts)
 {
 #if CALIBER_WIDE_EIGHT_LANES
 	if (lanes == 8)
@@ -528,7 +528,7 @@ btScalar caliber::WideContactRows::sweepNormal(int batch, bool reverse, btSolver
 }
 
 btScalar caliber::WideContactRows::sweepFriction(int batch, bool reverse, btSolverBody* bodies,
-                                                 btConstraintArray& friction)
+                                                 btConstraintArray* friction)
 {
 #if CALIBER_WIDE_EIGHT_LANES
 	if (lanes == 8)
@@ -537,4 +537,19 @@ btScalar caliber::WideContactRows::sweepFriction(int batch, bool reverse, btSolv
 #endif
 	return lanes4::sweepFriction(four, batchFirstGroup[batch], batchFirstGroup[batch + 1], reverse,
 	                             frictionRowsPerContact, bodies, friction);
+}
+
+void caliber::WideContactRows::storeImpulses(int batchBegin, int batchEnd, btConstraintArray& contacts,
+                                             btConstraintArray& friction)
+{
+#if CALIBER_WIDE_EIGHT_LANES
+	if (lanes == 8)
+	{
+		lanes8::storeAllImpulses(eight, batchFirstGroup[batchBegin], batchFirstGroup[batchEnd], frictionRowsPerContact,
+		                         contacts, friction);
+		return;
+	}
+#endif
+	lanes4::storeAllImpulses(four, batchFirstGroup[batchBegin], batchFirstGroup[batchEnd], frictionRowsPerContact,
+	                         contacts, friction);
 }

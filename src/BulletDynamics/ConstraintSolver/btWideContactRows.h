@@ -89,11 +89,15 @@ struct WideContactRows
 	          const btAlignedObjectArray<int>& batchPaddingBody, unsigned int solveCount, const btSolverBody* bodies,
 	          const btConstraintArray& contacts, const btConstraintArray& friction);
 
-	/// One sweep of batch's normal rows; their impulses are also stored in their rows. Returns the sum of
-	/// the squared impulse changes.
-	btScalar sweepNormal(int batch, bool reverse, btSolverBody* bodies, btConstraintArray& contacts);
-	/// One sweep of batch's friction rows, bounded by the normal impulses of the blocks.
-	btScalar sweepFriction(int batch, bool reverse, btSolverBody* bodies, btConstraintArray& friction);
+	/// One sweep of batch's normal rows; with contacts, their impulses are also stored in their rows (the
+	/// rolling rows read them during the sweeps). Returns the sum of the squared impulse changes.
+	btScalar sweepNormal(int batch, bool reverse, btSolverBody* bodies, btConstraintArray* contacts);
+	/// One sweep of batch's friction rows, bounded by the normal impulses of the blocks; with friction,
+	/// their impulses are also stored in their rows.
+	btScalar sweepFriction(int batch, bool reverse, btSolverBody* bodies, btConstraintArray* friction);
+	/// Every impulse of batches [batchBegin, batchEnd) into its row (after the last sweep: the passes after
+	/// the sweeps and the write-back read the rows).
+	void storeImpulses(int batchBegin, int batchEnd, btConstraintArray& contacts, btConstraintArray& friction);
 };
 
 /// False turns the wide sweep off (the coloured batches are then solved row by row, with the same bits);

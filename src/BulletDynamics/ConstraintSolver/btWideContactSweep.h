@@ -100,7 +100,7 @@ SIMD_FORCE_INLINE void storeImpulses(const Block& block, btConstraintArray& rows
 }
 
 btScalar sweepNormal(caliber::WideLayout<kLanes>& layout, int firstGroup, int endGroup, bool reverse,
-                     btSolverBody* bodies, btConstraintArray& contacts)
+                     btSolverBody* bodies, btConstraintArray* contacts)
 {
 	Lanes residual = zero();
 	for (int i = firstGroup; i < endGroup; ++i)
@@ -113,7 +113,7 @@ btScalar sweepNormal(caliber::WideLayout<kLanes>& layout, int firstGroup, int en
 		{
 			Block& block = layout.normalBlocks[group.firstBlock + (reverse ? group.numBlocks - 1 - s : s)];
 			residual = residual + resolveBlock(block, group, load(block.lower), load(block.upper), a, b);
-			storeImpulses(block, contacts);
+			if (contacts) storeImpulses(block, *contacts);
 		}
 		lanes.storeTo(bodies, group);
 	}
@@ -121,7 +121,7 @@ btScalar sweepNormal(caliber::WideLayout<kLanes>& layout, int firstGroup, int en
 }
 
 btScalar sweepFriction(caliber::WideLayout<kLanes>& layout, int firstGroup, int endGroup, bool reverse,
-                       int frictionRowsPerContact, btSolverBody* bodies, btConstraintArray& friction)
+                       int frictionRowsPerContact, btSolverBody* bodies, btConstraintArray* friction)
 {
 	Lanes residual = zero();
 	for (int i = firstGroup; i < endGroup; ++i)
@@ -154,10 +154,26 @@ btScalar sweepFriction(caliber::WideLayout<kLanes>& layout, int firstGroup, int 
 				applyImpulses(block, group, deltaImpulse, a, b);
 				const Lanes squared = deltaImpulse * deltaImpulse;
 				residual = residual + squared;
-				storeImpulses(block, friction);
+				if (friction) storeImpulses(block, *friction);
 			}
 		}
 		lanes.storeTo(bodies, group);
 	}
 	return horizontalSum(residual);
+}
+
+// Every block's impulses of groups [firstGroup, endGroup) into their rows.
+void storeAllImpulses(caliber::WideLayout<kLanes>& layout, int firstGroup, int endGroup, int frictionRowsPerContact,
+                      btConstraintArray& contacts, btConstraintArray& friction)
+{
+	for (int i = firstGroup; i < endGroup; ++i)
+	{
+		const Group& group = layout.groups[i];
+		for (int s = 0; s < group.numBlocks; ++s)
+		{
+			storeImpulses(layout.normalBlocks[group.firstBlock + s], contacts);
+			for (int f = 0; f < frictionRowsPerContact; ++f)
+				storeImpulses(layout.frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f], friction);
+		}
+	}
 }
