@@ -13,6 +13,8 @@
 
 #include <stdint.h>
 
+#include <atomic>
+
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
@@ -294,11 +296,13 @@ struct FillWideRows : public btIParallelForBody
 	const btSolverBody* bodies;
 	const btConstraintArray* contacts;
 	const btConstraintArray* friction;
+	std::atomic<bool>* fits;  // cleared when a row cannot be held by the blocks
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
-		mt->wideRows.fill(iBegin, iEnd, mt->orderedManifolds, mt->batchManifoldBegin, *manifoldFirstRow,
-		                  mt->batchPaddingBody, solveCount, bodies, *contacts, *friction);
+		if (!mt->wideRows.fill(iBegin, iEnd, mt->orderedManifolds, mt->batchManifoldBegin, *manifoldFirstRow,
+		                       mt->batchPaddingBody, solveCount, bodies, *contacts, *friction))
+			fits->store(false, std::memory_order_relaxed);
 	}
 };
 
@@ -676,7 +680,11 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		fill.bodies = &m_tmpSolverBodyPool[0];
 		fill.contacts = &m_tmpSolverContactConstraintPool;
 		fill.friction = &m_tmpSolverContactFrictionConstraintPool;
+		std::atomic<bool> fits(true);
+		fill.fits = &fits;
 		btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, fill);
+		// Rows the blocks cannot hold: row by row (the same bits).
+		mt.wide = fits.load();
 	}
 	return result;
 }

@@ -64,13 +64,35 @@ SIMD_FORCE_INLINE void copyField(const btSolverConstraint* const* rows, size_t o
 	for (int base = 0; base < W; base += 4) copyField4(rows + base, offset, &to[0][base], &to[1][base], &to[2][base]);
 }
 
-// W rows (padding lanes point at zeroRow) into a block.
-template <int W>
-void copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const* rows, const int* rowIndex)
+// Whether a row's second linear direction is its first one negated, bit for bit (as every contact and
+// friction row Caliber makes has it): the blocks keep only the first.
+SIMD_FORCE_INLINE bool secondNormalIsNegated(const btSolverConstraint& row)
 {
+#if defined(BT_USE_SSE)
+	const __m128 negated = _mm_xor_ps(_mm_load_ps(row.m_contactNormal1.m_floats), _mm_set1_ps(-0.0f));
+	const __m128i same =
+	    _mm_cmpeq_epi32(_mm_castps_si128(negated), _mm_castps_si128(_mm_load_ps(row.m_contactNormal2.m_floats)));
+	return (_mm_movemask_ps(_mm_castsi128_ps(same)) & 7) == 7;  // x, y and z; w is not a direction
+#else
+	for (int c = 0; c < 3; ++c)
+	{
+		const btScalar negated = -row.m_contactNormal1[c];
+		if (memcmp(&negated, &row.m_contactNormal2[c], sizeof(btScalar)) != 0) return false;
+	}
+	return true;
+#endif
+}
+
+// W rows (padding lanes point at zeroRow) into a block; false when a row's second linear direction is
+// not its first one negated (the block cannot hold it).
+template <int W>
+bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const* rows, const int* rowIndex)
+{
+	bool negated = true;
+	for (int k = 0; k < W; ++k)
+		if (rowIndex[k] >= 0 && !secondNormalIsNegated(*rows[k])) negated = false;
 	copyField<W>(rows, offsetof(btSolverConstraint, m_contactNormal1), block.normal1);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos1CrossNormal), block.relpos1CrossNormal);
-	copyField<W>(rows, offsetof(btSolverConstraint, m_contactNormal2), block.normal2);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos2CrossNormal), block.relpos2CrossNormal);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentA), block.angularA);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentB), block.angularB);
@@ -86,6 +108,7 @@ void copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const*
 		block.applied[k] = row.m_appliedImpulse;
 		block.row[k] = rowIndex[k];
 	}
+	return negated;
 }
 }  // namespace
 
@@ -406,13 +429,14 @@ void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batch
 }
 
 template <int W>
-void fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
+bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
                 int frictionRowsPerContact, int batchBegin, int batchEnd,
                 const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
                 const btAlignedObjectArray<int>& manifoldFirstRow, const btAlignedObjectArray<int>& batchPaddingBody,
                 unsigned int solveCount, const btSolverBody* bodies, const btConstraintArray& contacts,
                 const btConstraintArray& friction)
 {
+	bool fits = true;
 	for (int b = batchBegin; b < batchEnd; ++b)
 	{
 		int first = batchManifoldBegin[b];
@@ -459,7 +483,7 @@ void fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 					}
 					normalSource[k] = normalRow[k] >= 0 ? &contacts[normalRow[k]] : &zeroRow();
 				}
-				copyRows<W>(layout.normalBlocks[group.firstBlock + s], normalSource, normalRow);
+				if (!copyRows<W>(layout.normalBlocks[group.firstBlock + s], normalSource, normalRow)) fits = false;
 				for (int f = 0; f < frictionRowsPerContact; ++f)
 				{
 					int frictionRow[W];
@@ -469,12 +493,14 @@ void fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 						frictionRow[k] = normalRow[k] >= 0 ? normalRow[k] * frictionRowsPerContact + f : -1;
 						frictionSource[k] = frictionRow[k] >= 0 ? &friction[frictionRow[k]] : &zeroRow();
 					}
-					copyRows<W>(layout.frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f], frictionSource,
-					         frictionRow);
+					if (!copyRows<W>(layout.frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f],
+					                 frictionSource, frictionRow))
+						fits = false;
 				}
 			}
 		}
 	}
+	return fits;
 }
 
 }  // namespace
@@ -502,7 +528,7 @@ void caliber::WideContactRows::plan(const btAlignedObjectArray<int>& orderedMani
 		planLayout(four, batchFirstGroup, orderedManifolds, batchManifoldBegin, manifoldFirstRow, frictionRows);
 }
 
-void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
+bool caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
                                     const btAlignedObjectArray<int>& batchManifoldBegin,
                                     const btAlignedObjectArray<int>& manifoldFirstRow,
                                     const btAlignedObjectArray<int>& batchPaddingBody, unsigned int solveCount,
@@ -510,10 +536,9 @@ void caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
                                     const btConstraintArray& friction)
 {
 	if (lanes == 8)
-		fillLayout(eight, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
+		return fillLayout(eight, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
 		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
-	else
-		fillLayout(four, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
+	return fillLayout(four, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
 		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
 }
 

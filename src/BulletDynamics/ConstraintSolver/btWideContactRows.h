@@ -29,7 +29,6 @@ WideRowBlockT
 {
 	btScalar normal1[3][W];
 	btScalar relpos1CrossNormal[3][W];
-	btScalar normal2[3][W];
 	btScalar relpos2CrossNormal[3][W];
 	btScalar angularA[3][W];
 	btScalar angularB[3][W];
@@ -83,8 +82,11 @@ struct WideContactRows
 	          const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows);
 
 	/// Fills the groups and blocks of batches [batchBegin, batchEnd) (any order, any thread): points
-	/// rotated by solveCount as in the scalar sweep, padding lanes on the batch's padding body.
-	void fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
+	/// rotated by solveCount as in the scalar sweep, padding lanes on the batch's padding body. False when
+	/// a row's second linear direction is not its first one negated (the blocks keep only the first; every
+	/// row Caliber's set-up makes has it, a subclass's convertContacts may not): the solve must then be
+	/// swept row by row.
+	bool fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
 	          const btAlignedObjectArray<int>& batchManifoldBegin, const btAlignedObjectArray<int>& manifoldFirstRow,
 	          const btAlignedObjectArray<int>& batchPaddingBody, unsigned int solveCount, const btSolverBody* bodies,
 	          const btConstraintArray& contacts, const btConstraintArray& friction);

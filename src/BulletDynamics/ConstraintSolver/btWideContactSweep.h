@@ -61,7 +61,7 @@ SIMD_FORCE_INLINE Lanes deltaVelocity(const Block& block, const BodyLanes& a, co
 	Lanes sum[3];
 	for (int c = 0; c < 3; ++c)
 		sum[c] = ((load(block.normal1[c]) * a.linear[c] + load(block.relpos1CrossNormal[c]) * a.angular[c]) +
-		          load(block.normal2[c]) * b.linear[c]) +
+		          negate(load(block.normal1[c])) * b.linear[c]) +
 		         load(block.relpos2CrossNormal[c]) * b.angular[c];
 	return (sum[0] + sum[1]) + sum[2];
 }
@@ -74,7 +74,7 @@ SIMD_FORCE_INLINE void applyImpulses(const Block& block, const Group& group, Lan
 	{
 		a.linear[c] = a.linear[c] + (load(block.normal1[c]) * load(group.invMassA[c])) * deltaImpulse;
 		a.angular[c] = a.angular[c] + load(block.angularA[c]) * (deltaImpulse * load(group.angularFactorA[c]));
-		b.linear[c] = b.linear[c] + (load(block.normal2[c]) * load(group.invMassB[c])) * deltaImpulse;
+		b.linear[c] = b.linear[c] + (negate(load(block.normal1[c])) * load(group.invMassB[c])) * deltaImpulse;
 		b.angular[c] = b.angular[c] + load(block.angularB[c]) * (deltaImpulse * load(group.angularFactorB[c]));
 	}
 }
