@@ -28,15 +28,15 @@ struct MemberBinding
 }  // namespace caliber
 
 // The tag lives in namespace caliber, where MemberBinding defines its friend.
-#define CALIBER_MEMBER_ACCESS(Tag, Class, MemberType, member)                     \
-	namespace caliber                                                             \
-	{                                                                             \
-	struct Tag                                                                    \
-	{                                                                             \
-		using Type = MemberPointer<Class, MemberType>;                            \
-		friend constexpr Type memberOf(Tag);                                      \
-	};                                                                            \
-	template struct MemberBinding<Tag, &Class::member>;                           \
+#define CALIBER_MEMBER_ACCESS(Tag, Class, MemberType, member) \
+	namespace caliber                                         \
+	{                                                         \
+	struct Tag                                                \
+	{                                                         \
+		using Type = MemberPointer<Class, MemberType>;        \
+		friend constexpr Type memberOf(Tag);                  \
+	};                                                        \
+	template struct MemberBinding<Tag, &Class::member>;       \
 	}
 
 #endif  // CALIBER_MEMBER_ACCESS_H

@@ -200,7 +200,8 @@ void btOptimizedBvh::refit(btStridingMeshInterface* meshInterface, const btVecto
 	}
 	setQuantizationValues(boxMin, boxMax);
 	for (int i = 0; i < m_curNodeIndex; ++i)
-		if (m_quantizedContiguousNodes[i].isLeafNode()) setLeafBox(*this, i, valid[i] != 0, boxes[2 * i], boxes[2 * i + 1]);
+		if (m_quantizedContiguousNodes[i].isLeafNode())
+			setLeafBox(*this, i, valid[i] != 0, boxes[2 * i], boxes[2 * i + 1]);
 	caliber::refitQuantizedBvhInternalNodes(*this);
 	caliber::updateQuantizedBvhSubtreeHeaders(*this);
 }

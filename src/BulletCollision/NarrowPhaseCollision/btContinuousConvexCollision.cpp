@@ -59,8 +59,8 @@ void closestPoints(const btConvexShape* convexA, const btConvexShape* convexB, c
 	// localGetSupportingVertex would give its sharp corner instead).
 	const btVector3 normal = transB.getBasis() * plane->getPlaneNormal();
 	const btVector3 planePoint = transB(plane->getPlaneNormal() * plane->getPlaneConstant());
-	const btVector3 deepestOnA =
-	    transA(convexA->localGetSupportingVertexWithoutMargin(-normal * transA.getBasis())) - normal * convexA->getMargin();
+	const btVector3 deepestOnA = transA(convexA->localGetSupportingVertexWithoutMargin(-normal * transA.getBasis())) -
+	                             normal * convexA->getMargin();
 	const btScalar distance = normal.dot(deepestOnA - planePoint);
 	pointCollector.addContactPoint(normal, deepestOnA - normal * distance, distance);
 }

@@ -47,7 +47,10 @@ const btVector3 (&angularRowAxis(const btGeneric6DofConstraint& joint))[3]
 {
 	return joint.*memberOf(SixDofAngularRowAxis{});
 }
-const btVector3& linearRowPoint(const btGeneric6DofConstraint& joint) { return joint.*memberOf(SixDofLinearRowPoint{}); }
+const btVector3& linearRowPoint(const btGeneric6DofConstraint& joint)
+{
+	return joint.*memberOf(SixDofLinearRowPoint{});
+}
 const btVector3& centerOfMassA(const btGeneric6DofConstraint& joint) { return joint.*memberOf(SixDofCenterOfMassA{}); }
 const btVector3& centerOfMassB(const btGeneric6DofConstraint& joint) { return joint.*memberOf(SixDofCenterOfMassB{}); }
 }  // namespace
@@ -62,20 +65,22 @@ bool sixDofFramesFinite(btGeneric6DofConstraint& joint)
 
 bool sixDofIsLocked(const btGeneric6DofConstraint& joint, int coordinate)
 {
-	if (coordinate < 3) return linearLimits(joint).m_lowerLimit[coordinate] == linearLimits(joint).m_upperLimit[coordinate];
+	if (coordinate < 3)
+		return linearLimits(joint).m_lowerLimit[coordinate] == linearLimits(joint).m_upperLimit[coordinate];
 	return angularLimits(joint)[coordinate - 3].m_loLimit == angularLimits(joint)[coordinate - 3].m_hiLimit;
 }
 
 bool sixDofIsLimited(const btGeneric6DofConstraint& joint, int coordinate)
 {
-	if (coordinate < 3) return linearLimits(joint).m_lowerLimit[coordinate] < linearLimits(joint).m_upperLimit[coordinate];
+	if (coordinate < 3)
+		return linearLimits(joint).m_lowerLimit[coordinate] < linearLimits(joint).m_upperLimit[coordinate];
 	return angularLimits(joint)[coordinate - 3].m_loLimit < angularLimits(joint)[coordinate - 3].m_hiLimit;
 }
 
 bool sixDofHasMotorRow(const btGeneric6DofConstraint& joint, int coordinate)
 {
-	const bool enabled =
-	    coordinate < 3 ? linearLimits(joint).m_enableMotor[coordinate] : angularLimits(joint)[coordinate - 3].m_enableMotor;
+	const bool enabled = coordinate < 3 ? linearLimits(joint).m_enableMotor[coordinate]
+	                                    : angularLimits(joint)[coordinate - 3].m_enableMotor;
 	return enabled && !sixDofIsLocked(joint, coordinate);
 }
 
@@ -93,7 +98,7 @@ btScalar sixDofCoordinate(const btGeneric6DofConstraint& joint, int coordinate)
 }
 
 btScalar sixDofCoordinateVelocity(const btGeneric6DofConstraint& joint, int coordinate, const btVector3& linVelA,
-                                   const btVector3& linVelB, const btVector3& angVelA, const btVector3& angVelB)
+                                  const btVector3& linVelB, const btVector3& angVelA, const btVector3& angVelB)
 {
 	if (coordinate >= 3) return angularRowAxis(joint)[coordinate - 3].dot(angVelB - angVelA);
 	const btVector3 velocityB = linVelB + angVelB.cross(linearRowPoint(joint) - centerOfMassB(joint));
@@ -328,7 +333,8 @@ int writeSixDofLimitMotorRows(btGeneric6DofConstraint& joint, btTypedConstraint:
 	btScalar k[36];
 	for (int e = 0; e < block.count; ++e)
 	{
-		const RowJacobian weighted = applyInverseMass(joint.getRigidBodyA(), joint.getRigidBodyB(), blockRow(block.jacobian[e]));
+		const RowJacobian weighted =
+		    applyInverseMass(joint.getRigidBodyA(), joint.getRigidBodyB(), blockRow(block.jacobian[e]));
 		for (int f = 0; f < block.count; ++f) k[e * 6 + f] = weighted.dot(blockRow(block.jacobian[f]));
 	}
 	// A singular block (both bodies immovable, or a degenerate frame) leaves the other rows unprojected.
@@ -387,7 +393,8 @@ int writeSixDofLimitMotorRows(btGeneric6DofConstraint& joint, btTypedConstraint:
 		btScalar position = sixDofCoordinate(joint, c);
 		if (c >= 3 && a.lower < a.upper) position = btAdjustAngleToLimits(position, a.lower, a.upper);
 		writeSixDofCoordinateRow(joint, info, row, c,
-		                   a.targetVelocity * (joint.*memberOf(JointMotorFactor{}))(position, a.lower, a.upper, a.targetVelocity, fps));
+		                         a.targetVelocity * (joint.*memberOf(JointMotorFactor{}))(position, a.lower, a.upper,
+		                                                                                  a.targetVelocity, fps));
 		caliber::JointRow jointRow(*info, row);
 		const btScalar maxImpulse = btFabs(a.maxMotorForce) * h;
 		jointRow.lower() = -maxImpulse;

@@ -36,8 +36,8 @@ void sixDofCoordinateJacobian(const btGeneric6DofConstraint& joint, int coordina
 /// Writes into row a row that drives coordinate i's rate to targetRate, projected so that its impulses
 /// leave the locked rows' velocities alone (the rows writeSixDofLimitMotorRows wrote earlier in the same
 /// getInfo2; see the .cpp); its impulse is the coordinate's generalised force times the step.
-void writeSixDofCoordinateRow(const btGeneric6DofConstraint& joint, btTypedConstraint::btConstraintInfo2* info,
-                              int row, int coordinate, btScalar targetRate);
+void writeSixDofCoordinateRow(const btGeneric6DofConstraint& joint, btTypedConstraint::btConstraintInfo2* info, int row,
+                              int coordinate, btScalar targetRate);
 /// The rate change of coordinate i per unit impulse of its row, with the locked coordinates held (as
 /// writeSixDofLimitMotorRows found them earlier in the same getInfo2): the inverse of the coordinate's
 /// effective mass (0 if nothing can move it).
