@@ -6,11 +6,7 @@
 // example room's four pillars. Used by BspDemo, which checks where they come to rest, and by the
 // demo browser.
 
-#include <memory>
-#include <vector>
-
-#include "DemoWorld.h"
-#include "btBulletDynamicsCommon.h"
+#include "LevelScene.h"
 
 namespace bsp_demo
 {
@@ -18,21 +14,10 @@ namespace bsp_demo
 const btScalar kScale = btScalar(1) / 32;
 
 /// The world around a level shape (which must outlive the scene), with the bodies added, ready to step.
-class Scene
+class Scene : public caliber::demo::LevelScene
 {
 public:
 	explicit Scene(btCollisionShape* level);
-	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
-	const std::vector<std::unique_ptr<btRigidBody>>& bodies() const { return m_bodies; }
-
-private:
-	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
-	std::unique_ptr<btRigidBody> m_level;
-	btSphereShape m_sphere{btScalar(0.25)};
-	btBoxShape m_box{btVector3(btScalar(0.25), btScalar(0.25), btScalar(0.25))};
-	btCylinderShapeZ m_cylinder{btVector3(btScalar(0.2), btScalar(0.2), btScalar(0.3))};
-	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
 };
 }  // namespace bsp_demo
 

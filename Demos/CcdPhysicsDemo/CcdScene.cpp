@@ -9,19 +9,17 @@ const btScalar kRadius = btScalar(0.05);
 }
 
 Scene::Scene(Mode mode)
-    : m_dispatcher(&m_configuration),
-      m_world(&m_dispatcher, &m_broadphase, &m_solver, &m_configuration),
-      m_wallShape(btVector3(btScalar(0.005), 10, 10)),
+    : m_wallShape(btVector3(btScalar(0.005), 10, 10)),
       m_ballShape(kRadius)
 {
-	m_world.setGravity(btVector3(0, -10, 0));
-	m_world.getDispatchInfo().m_useContinuous = mode != kDiscreteOnly;
+	world().setGravity(btVector3(0, -10, 0));
+	world().getDispatchInfo().m_useContinuous = mode != kDiscreteOnly;
 
 	// The wall: the slab 0 <= x <= 0.01, 20 m wide and tall.
 	btRigidBody::btRigidBodyConstructionInfo wallInfo(0, 0, &m_wallShape);
 	wallInfo.m_startWorldTransform.setOrigin(btVector3(btScalar(0.005), 0, 0));
 	m_wall.reset(new btRigidBody(wallInfo));
-	m_world.addRigidBody(m_wall.get());
+	world().addRigidBody(m_wall.get());
 
 	btVector3 inertia;
 	m_ballShape.calculateLocalInertia(btScalar(0.1), inertia);
@@ -39,14 +37,14 @@ Scene::Scene(Mode mode)
 			ball->setCcdMotionThreshold(kRadius);
 			ball->setCcdSweptSphereRadius(kRadius);
 		}
-		m_world.addRigidBody(ball);
+		world().addRigidBody(ball);
 	}
 }
 
 Scene::~Scene()
 {
-	for (auto& ball : m_balls) m_world.removeRigidBody(ball.get());
-	m_world.removeRigidBody(m_wall.get());
+	for (auto& ball : m_balls) world().removeRigidBody(ball.get());
+	world().removeRigidBody(m_wall.get());
 }
 
 int Scene::spheresThrough() const

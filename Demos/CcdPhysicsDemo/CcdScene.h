@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace ccd_demo
@@ -26,16 +27,12 @@ class Scene
 public:
 	explicit Scene(Mode mode);
 	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 	/// How many spheres are beyond the wall (x > 0).
 	int spheresThrough() const;
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher;
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world;
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	btBoxShape m_wallShape;
 	std::unique_ptr<btRigidBody> m_wall;
 	btSphereShape m_ballShape;

@@ -12,39 +12,14 @@
 // course is 1340); the checks of the parts it did not finish are skipped. --png shows the end of the
 // course: the wall's lane and the platform (docs/demos.md).
 
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 
 #include "CharacterScene.h"
 #include "DemoPictures.h"
+#include "DemoScript.h"
 
-namespace
-{
 using namespace character_demo;
-int failures = 0;
-
-void check(bool ok, const char* what)
-{
-	printf("  check: %s: %s\n", what, ok ? "ok" : "FAILED");
-	if (!ok) ++failures;
-}
-
-// The course, and --frames' budget of steps: once it is used up nothing steps any more.
-struct Course
-{
-	character_demo::Scene scene;
-	caliber::demo::StepBudget budget{INT_MAX, false};
-	void run(int steps)
-	{
-		for (int i = 0; i < steps && !budget.spent(); ++i)
-		{
-			scene.world().stepSimulation(kStep, 1, kStep);
-			budget.count();
-		}
-	}
-};
-}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -56,16 +31,12 @@ int main(int argc, char** argv)
 	// The course is 60 m wide; the picture shows its last two lanes, the wall and the moving platform.
 	pictures.setFocus(btVector3(45, 0, -2), btVector3(63, 3, 6));
 
-	Course course;
-	course.budget = pictures.stepBudget();
-	btRigidBody* platform = course.scene.platform();
-	btPairCachingGhostObject& ghost = course.scene.ghost();
-	btKinematicCharacterController& character = course.scene.character();
-
-	// A part that --frames cut short is not judged.
-	auto judge = [&](bool ok, const char* what) {
-		if (course.budget.reached(what)) check(ok, what);
-	};
+	character_demo::Scene scene;
+	// --frames: once the budget is spent nothing steps any more, and a part it cut short is not judged.
+	caliber::demo::DemoScript script(scene.world(), kStep, pictures.stepBudget());
+	btRigidBody* platform = scene.platform();
+	btPairCachingGhostObject& ghost = scene.ghost();
+	btKinematicCharacterController& character = scene.character();
 	auto feet = [&]() { return ghost.getWorldTransform().getOrigin() - btVector3(0, kHalfHeight, 0); };
 	auto report = [&](const char* part) {
 		const btVector3 f = feet();
@@ -75,34 +46,34 @@ int main(int argc, char** argv)
 	auto startLane = [&](btScalar x, btScalar y = 0) {
 		character.setWalkDirection(btVector3(0, 0, 0));
 		character.warp(btVector3(x, y + kHalfHeight + btScalar(0.001), 0));
-		course.run(20);
+		script.run(20);
 	};
 	const btVector3 walk(0, 0, btScalar(0.05));  // 3 m/s
 
 	printf("CharacterDemo: capsule r 0.3 m, height 1.6 m, step height 0.35 m, max slope 45 degrees\n");
 	startLane(0);
 	character.setWalkDirection(walk);
-	course.run(100);
+	script.run(100);
 	report("flat");
-	judge(fabs(feet().z() - 5) < 0.01 && fabs(feet().y()) < 0.01, "walked 5 m on flat ground");
+	script.judge(fabs(feet().z() - 5) < 0.01 && fabs(feet().y()) < 0.01, "walked 5 m on flat ground");
 
 	startLane(10);
 	character.setWalkDirection(walk);
-	course.run(200);
+	script.run(200);
 	report("stairs");
-	judge(fabs(feet().y() - 1.2) < 0.01, "climbed four 0.3 m steps to 1.2 m");
+	script.judge(fabs(feet().y() - 1.2) < 0.01, "climbed four 0.3 m steps to 1.2 m");
 
 	startLane(20);
 	character.setWalkDirection(walk);
-	course.run(200);
+	script.run(200);
 	report("slope 30");
-	judge(feet().y() > 3, "walked up the 30 degree slope");
+	script.judge(feet().y() > 3, "walked up the 30 degree slope");
 
 	startLane(30);
 	character.setWalkDirection(walk);
-	course.run(200);
+	script.run(200);
 	report("slope 50");
-	judge(feet().y() < 0.35, "did not walk up the 50 degree slope");
+	script.judge(feet().y() < 0.35, "did not walk up the 50 degree slope");
 
 	startLane(40);
 	const btScalar y0 = feet().y();
@@ -111,21 +82,21 @@ int main(int argc, char** argv)
 	bool groundInAir = false;
 	for (int i = 0; i < 60; ++i)
 	{
-		course.run(1);
+		script.run(1);
 		apex = btMax(apex, feet().y());
 		if (feet().y() > y0 + btScalar(0.01) && character.onGround()) groundInAir = true;
 	}
 	report("jump");
 	const btScalar expected = character.getJumpSpeed() * character.getJumpSpeed() / (2 * -character.getGravity().y());
 	printf("  apex %.3f m (v^2 / (2 g) = %.3f m)\n", double(apex - y0), double(expected));
-	judge(fabs(apex - y0 - expected) < 0.01, "jump apex");
-	judge(!groundInAir && character.onGround(), "no ground reported in the air, ground after landing");
+	script.judge(fabs(apex - y0 - expected) < 0.01, "jump apex");
+	script.judge(!groundInAir && character.onGround(), "no ground reported in the air, ground after landing");
 
 	startLane(50);
 	character.setVelocityForTimeInterval(btVector3(0, 0, 20), 1);
-	course.run(60);
+	script.run(60);
 	report("wall");
-	judge(feet().z() < 5 - 0.05 - kRadius + 0.01, "the 10 cm wall was not passed at 20 m/s");
+	script.judge(feet().z() < 5 - 0.05 - kRadius + 0.01, "the 10 cm wall was not passed at 20 m/s");
 
 	startLane(60, btScalar(1.1));
 	const btVector3 offset = feet() - platform->getWorldTransform().getOrigin();
@@ -134,16 +105,15 @@ int main(int argc, char** argv)
 		btTransform pose = platform->getWorldTransform();
 		pose.setOrigin(pose.getOrigin() + btVector3(0, btScalar(0.3), 1) * kStep);
 		platform->getMotionState()->setWorldTransform(pose);
-		course.run(1);
+		script.run(1);
 	}
 	report("platform");
 	const btVector3 drift = feet() - platform->getWorldTransform().getOrigin() - offset;
 	printf("  platform moved to (%.2f, %.2f, %.2f); the character moved with it within %.4f m\n",
 	       platform->getWorldTransform().getOrigin().x(), platform->getWorldTransform().getOrigin().y(),
 	       platform->getWorldTransform().getOrigin().z(), double(drift.length()));
-	judge(drift.length() < 0.01, "rode the moving platform");
+	script.judge(drift.length() < 0.01, "rode the moving platform");
 
-	pictures.capture(course.scene.world());
-	printf("CharacterDemo: %s\n", failures ? "FAILED" : "all checks passed");
-	return pictures.finish(failures ? 1 : 0);
+	pictures.capture(scene.world());
+	return pictures.finish(script.verdict("CharacterDemo"));
 }

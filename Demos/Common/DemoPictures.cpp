@@ -63,6 +63,13 @@ bool parseDraw(const std::string& list, int& mode)
 	return true;
 }
 SceneRecording* gRecording = nullptr;
+
+DemoCommandLine namedCommandLine(const char* name)
+{
+	DemoCommandLine commandLine;
+	commandLine.name = name;
+	return commandLine;
+}
 }  // namespace
 
 void setSceneRecording(SceneRecording* recording) { gRecording = recording; }
@@ -72,6 +79,11 @@ bool StepBudget::reached(const char* what) const
 	if (!spent() || !m_shortened) return true;
 	std::printf("  check: %s: not reached (--frames %d)\n", what, m_frames);
 	return false;
+}
+
+DemoPictures::DemoPictures(int argc, char** argv, const char* name)
+    : DemoPictures(argc, argv, namedCommandLine(name))
+{
 }
 
 DemoPictures::DemoPictures(int argc, char** argv, const DemoCommandLine& commandLine)

@@ -92,6 +92,8 @@ class DemoPictures
 {
 public:
 	DemoPictures(int argc, char** argv, const DemoCommandLine& commandLine);
+	/// A demo whose command line is the default one but for its name (no frames, no positional arguments).
+	DemoPictures(int argc, char** argv, const char* name);
 
 	/// False when the command line was wrong, --help was asked for, or pictures were asked for in a
 	/// build without libpng: the message is printed and the demo should return exitCode() at once.

@@ -11,9 +11,9 @@ btTransform at(const btVector3& origin, const btQuaternion& q = btQuaternion::ge
 }
 }  // namespace
 
-Scene::Scene() : m_dispatcher(&m_configuration), m_world(&m_dispatcher, &m_broadphase, &m_solver, &m_configuration)
+Scene::Scene()
 {
-	m_world.setGravity(btVector3(0, -10, 0));
+	world().setGravity(btVector3(0, -10, 0));
 	// Ball joint: a 1 m pendulum released at 60 degrees from a pivot at (0, 5, 0).
 	const btScalar theta = SIMD_PI / 3;
 	bob = body(new btSphereShape(btScalar(0.1)), 1,
@@ -91,8 +91,8 @@ Scene::Scene() : m_dispatcher(&m_configuration), m_world(&m_dispatcher, &m_broad
 
 Scene::~Scene()
 {
-	for (auto& joint : m_joints) m_world.removeConstraint(joint.get());
-	for (auto& body : m_bodies) m_world.removeRigidBody(body.get());
+	for (auto& joint : m_joints) world().removeConstraint(joint.get());
+	for (auto& body : m_bodies) world().removeRigidBody(body.get());
 }
 
 btRigidBody* Scene::body(btCollisionShape* shape, btScalar mass, const btTransform& pose)
@@ -104,13 +104,13 @@ btRigidBody* Scene::body(btCollisionShape* shape, btScalar mass, const btTransfo
 	info.m_startWorldTransform = pose;
 	m_bodies.emplace_back(new btRigidBody(info));
 	m_bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-	m_world.addRigidBody(m_bodies.back().get());
+	world().addRigidBody(m_bodies.back().get());
 	return m_bodies.back().get();
 }
 
 void Scene::step(int frame)
 {
 	door->applyTorque(btVector3(0, (frame / 60) % 2 ? -40 : 40, 0));
-	m_world.stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
+	world().stepSimulation(btScalar(1. / 60.), 1, btScalar(1. / 60.));
 }
 }  // namespace constraint_demo

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "DemoWorld.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace constraint_demo
@@ -19,7 +20,7 @@ class Scene
 public:
 	Scene();
 	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 	/// Step frame (1-based) of the run: the door's torque (flipping every second), then one 1/60 s step.
 	void step(int frame);
 
@@ -53,15 +54,11 @@ private:
 	Joint* joint(Joint* j)
 	{
 		m_joints.emplace_back(j);
-		m_world.addConstraint(j, true);
+		world().addConstraint(j, true);
 		return j;
 	}
 
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher;
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world;
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
 	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
 	std::vector<std::unique_ptr<btTypedConstraint>> m_joints;

@@ -42,9 +42,7 @@ btScalar lowestPoint(const btRigidBody& body)
 
 int main(int argc, char** argv)
 {
-	caliber::demo::DemoCommandLine commandLine;
-	commandLine.name = "ConvexDecompositionDemo";
-	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	caliber::demo::DemoPictures pictures(argc, argv, "ConvexDecompositionDemo");
 	if (!pictures.ok()) return pictures.exitCode();
 	Decomposed torus, cup, bracket;
 	bool ok = decompose("torus", caliber::makeTorusMesh(btScalar(0.4), btScalar(0.12), 24, 12), torus);

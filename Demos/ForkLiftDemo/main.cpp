@@ -16,20 +16,13 @@
 #include <stdio.h>
 
 #include "DemoPictures.h"
+#include "DemoScript.h"
 #include "ForkLiftScene.h"
 #include "WorldScene.h"
 
 namespace
 {
 const btScalar kStep = btScalar(1. / 60.);
-int failures = 0;
-
-void check(bool ok, const char* what)
-{
-	printf("  check: %s: %s\n", what, ok ? "ok" : "FAILED");
-	if (!ok) ++failures;
-}
-
 }  // namespace
 
 int main(int argc, char** argv)
@@ -52,25 +45,13 @@ int main(int argc, char** argv)
 		caliber::demo::addVehicleWheels(drawing, vehicle, fork_lift_demo::kWheelWidth);
 	});
 
-	btScalar t = 0;
 	// --frames: once the budget is spent no phase steps any more, and the unfinished phases' checks are skipped.
-	caliber::demo::StepBudget budget = pictures.stepBudget();
-	auto run = [&](int count) {
-		for (int i = 0; i < count && !budget.spent(); ++i)
-		{
-			world.stepSimulation(kStep, 1, kStep);
-			budget.count();
-			t += kStep;
-		}
-	};
-	auto judge = [&](bool ok, const char* what) {
-		if (budget.reached(what)) check(ok, what);
-	};
+	caliber::demo::DemoScript script(world, kStep, pictures.stepBudget());
 	auto report = [&](const char* phase)
 	{
 		const btVector3 c = chassis->getCenterOfMassPosition(), l = load->getCenterOfMassPosition();
 		printf("%-8s t %5.2f s  fork lift z %6.2f  speed %5.1f km/h  fork height %5.2f m  load (%5.2f, %5.2f, %5.2f)\n",
-		       phase, t, c.z(), vehicle.getCurrentSpeedKmHour(), slider.getLinearPos(), l.x(), l.y(), l.z());
+		       phase, script.time(), c.z(), vehicle.getCurrentSpeedKmHour(), slider.getLinearPos(), l.x(), l.y(), l.z());
 	};
 	// Drives the rear wheels towards speed (m/s, negative: reverse) with a bounded force.
 	auto drive = [&](btScalar speed) {
@@ -87,39 +68,39 @@ int main(int argc, char** argv)
 	};
 
 	printf("ForkLiftDemo: an 800 kg fork lift fetches a 100 kg load from rails 10 m ahead\n");
-	run(120);
+	script.run(120);
 	report("ready");
 
 	// To the load, fork low, slowing near it, until the fork is centred under it.
 	const btScalar forkAhead = fork->getCenterOfMassPosition().z() - chassis->getCenterOfMassPosition().z();
-	for (int i = 0; i < 1200 && !budget.spent(); ++i)
+	for (int i = 0; i < 1200 && !script.spent(); ++i)
 	{
 		const btScalar left = load->getCenterOfMassPosition().z() - fork->getCenterOfMassPosition().z();
 		if (left < btScalar(0.02)) break;
 		drive(btMin(btScalar(1.5), btMax(btScalar(0.2), left)));
-		run(1);
+		script.run(1);
 		if (i % 60 == 0) report("approach");
 	}
 	stop();
-	run(60);
+	script.run(60);
 	report("under");
 	const btVector3 forkAtLoad = fork->getCenterOfMassPosition();
-	judge(fabs(forkAtLoad.z() - load->getCenterOfMassPosition().z()) < 0.15 && fabs(forkAtLoad.x()) < 0.1,
+	script.judge(fabs(forkAtLoad.z() - load->getCenterOfMassPosition().z()) < 0.15 && fabs(forkAtLoad.x()) < 0.1,
 	      "the fork is under the load");
 	printf("  fork %.2f m ahead of the chassis' centre\n", double(forkAhead));
 
 	// Lift.
 	slider.setTargetLinMotorVelocity(btScalar(0.4));
-	for (int i = 0; i < 300 && slider.getLinearPos() < btScalar(1.0) && !budget.spent(); ++i)
+	for (int i = 0; i < 300 && slider.getLinearPos() < btScalar(1.0) && !script.spent(); ++i)
 	{
-		run(1);
+		script.run(1);
 		if (i % 60 == 0) report("lift");
 	}
 	slider.setTargetLinMotorVelocity(0);
-	run(60);
+	script.run(60);
 	report("lifted");
 	const btScalar loadBottom = load->getCenterOfMassPosition().y() - btScalar(0.4);
-	judge(loadBottom > btScalar(0.3) + btScalar(0.6), "the load is lifted well above the rails");
+	script.judge(loadBottom > btScalar(0.3) + btScalar(0.6), "the load is lifted well above the rails");
 
 	// Carry it 5 m backwards.
 	const btScalar startZ = chassis->getCenterOfMassPosition().z();
@@ -134,32 +115,31 @@ int main(int argc, char** argv)
 	};
 	bool stayedOnFork = onFork();
 	btScalar slide = 0;
-	for (int i = 0; i < 900 && chassis->getCenterOfMassPosition().z() > startZ - 5 && !budget.spent(); ++i)
+	for (int i = 0; i < 900 && chassis->getCenterOfMassPosition().z() > startZ - 5 && !script.spent(); ++i)
 	{
 		drive(btScalar(-1.0));
-		run(1);
+		script.run(1);
 		stayedOnFork = stayedOnFork && onFork();
 		const btVector3 offset = load->getCenterOfMassPosition() - fork->getCenterOfMassPosition();
 		slide = btMax(slide, btSqrt(offset.x() * offset.x() + offset.z() * offset.z()));
 		if (i % 60 == 0) report("carry");
 	}
 	stop();
-	run(90);
+	script.run(90);
 	report("carried");
-	judge(chassis->getCenterOfMassPosition().z() < startZ - btScalar(4.9), "reversed 5 m");
+	script.judge(chassis->getCenterOfMassPosition().z() < startZ - btScalar(4.9), "reversed 5 m");
 	printf("  the load's centre was at most %.2f m from the fork's centre\n", double(slide));
-	judge(stayedOnFork, "the load stayed on the fork");
+	script.judge(stayedOnFork, "the load stayed on the fork");
 
 	// Set it down on the ground.
 	slider.setTargetLinMotorVelocity(btScalar(-0.4));
-	run(300);
+	script.run(300);
 	report("lowered");
-	run(120);
+	script.run(120);
 	report("rest");
-	judge(slider.getLinearPos() < btScalar(0.02) && onFork() && load->getLinearVelocity().length() < btScalar(0.01),
+	script.judge(slider.getLinearPos() < btScalar(0.02) && onFork() && load->getLinearVelocity().length() < btScalar(0.01),
 	      "lowered, the load rests on the fork");
 
 	pictures.capture(world);
-	printf("ForkLiftDemo: %s\n", failures ? "FAILED" : "all checks passed");
-	return pictures.finish(failures ? 1 : 0);
+	return pictures.finish(script.verdict("ForkLiftDemo"));
 }

@@ -107,9 +107,7 @@ bool runAllCasts(const btConvexShape& box, const btConvexShape& sphere, const Mo
 
 int caliber::demo::gjkConvexCastDemo(int argc, char** argv)
 {
-	caliber::demo::DemoCommandLine commandLine;
-	commandLine.name = "GjkConvexCastDemo";
-	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	caliber::demo::DemoPictures pictures(argc, argv, "GjkConvexCastDemo");
 	if (!pictures.ok()) return pictures.exitCode();
 
 	// A: a unit box (half extents 1, its margin is inside them) moving from x = -4 to x = 0.

@@ -204,9 +204,7 @@ bool demoConvexHulls()
 
 int caliber::demo::linearMathDemo(int argc, char** argv)
 {
-	caliber::demo::DemoCommandLine commandLine;
-	commandLine.name = "LinearMathDemo";
-	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	caliber::demo::DemoPictures pictures(argc, argv, "LinearMathDemo");
 	if (!pictures.ok()) return pictures.exitCode();
 	caliber::demo::Scene picture;
 	if (pictures.wanted()) gPicture = &picture;

@@ -60,27 +60,15 @@ std::string piecesText()
 }
 
 Scene::Scene(btCollisionShape* level, const std::vector<std::unique_ptr<btConvexHullShape>>& hulls)
+    : LevelScene(level, btVector3(0, btScalar(-9.81), 0))
 {
-	world().setGravity(btVector3(0, btScalar(-9.81), 0));
-	m_level.reset(new btRigidBody(0, 0, level));
-	world().addRigidBody(m_level.get());
 	for (int k = 0; k < 6 && !hulls.empty(); ++k)
 	{
 		btConvexHullShape* hull = hulls[k % hulls.size()].get();
 		if (!hull) continue;
-		btVector3 inertia;
-		hull->calculateLocalInertia(1, inertia);
-		m_bodies.emplace_back(new btRigidBody(1, 0, hull, inertia));
 		const btScalar x = btScalar(-2.5 + k), z = btScalar(k % 2 ? 1 : -1);
-		m_bodies.back()->setWorldTransform(btTransform(btQuaternion(btVector3(1, 1, 0).normalized(), btScalar(0.3 * k)),
-		                                               btVector3(x, 4 + btScalar(0.5) * k, z)));
-		world().addRigidBody(m_bodies.back().get());
+		addBody(hull, btTransform(btQuaternion(btVector3(1, 1, 0).normalized(), btScalar(0.3 * k)),
+		                          btVector3(x, 4 + btScalar(0.5) * k, z)));
 	}
-}
-
-Scene::~Scene()
-{
-	for (const auto& body : m_bodies) world().removeRigidBody(body.get());
-	world().removeRigidBody(m_level.get());
 }
 }  // namespace obj_demo

@@ -6,12 +6,9 @@
 // quads and a ramp) and pieces (a crate, a hexagonal prism) are OBJ text. Used by ObjDemo, which checks
 // that the pieces come to rest in the bowl, and by the demo browser.
 
-#include <memory>
 #include <string>
-#include <vector>
 
-#include "DemoWorld.h"
-#include "btBulletDynamicsCommon.h"
+#include "LevelScene.h"
 
 namespace obj_demo
 {
@@ -20,18 +17,10 @@ std::string levelText();
 std::string piecesText();
 
 /// The world around a level shape and the pieces' hulls (both must outlive the scene), ready to step.
-class Scene
+class Scene : public caliber::demo::LevelScene
 {
 public:
 	Scene(btCollisionShape* level, const std::vector<std::unique_ptr<btConvexHullShape>>& hulls);
-	~Scene();
-	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
-	const std::vector<std::unique_ptr<btRigidBody>>& bodies() const { return m_bodies; }
-
-private:
-	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
-	std::unique_ptr<btRigidBody> m_level;
-	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
 };
 }  // namespace obj_demo
 

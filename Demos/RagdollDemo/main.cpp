@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "DemoPictures.h"
+#include "DemoWorld.h"
 #include "Ragdoll.h"
 
 namespace
@@ -16,19 +17,19 @@ namespace
 class World : public ragdoll::Owner
 {
 public:
-	World() : m_dispatcher(&m_configuration), m_world(&m_dispatcher, &m_broadphase, &m_solver, &m_configuration)
+	World()
 	{
-		m_world.setGravity(btVector3(0, -10, 0));
+		world().setGravity(btVector3(0, -10, 0));
 		btCollisionShape* ground = keepShape(new btBoxShape(btVector3(50, 1, 50)));
 		btRigidBody::btRigidBodyConstructionInfo info(0, 0, ground);
 		info.m_startWorldTransform.setOrigin(btVector3(0, -1, 0));
 		m_bodies.emplace_back(new btRigidBody(info));
-		m_world.addRigidBody(m_bodies.back().get());
+		world().addRigidBody(m_bodies.back().get());
 	}
 	~World()
 	{
-		for (auto& joint : m_joints) m_world.removeConstraint(joint.get());
-		for (auto& body : m_bodies) m_world.removeRigidBody(body.get());
+		for (auto& joint : m_joints) world().removeConstraint(joint.get());
+		for (auto& body : m_bodies) world().removeRigidBody(body.get());
 	}
 	btCollisionShape* keepShape(btCollisionShape* shape) override
 	{
@@ -42,22 +43,18 @@ public:
 		btRigidBody::btRigidBodyConstructionInfo info(mass, 0, shape, inertia);
 		info.m_startWorldTransform = pose;
 		m_bodies.emplace_back(new btRigidBody(info));
-		m_world.addRigidBody(m_bodies.back().get());
+		world().addRigidBody(m_bodies.back().get());
 		return m_bodies.back().get();
 	}
 	void addJoint(btTypedConstraint* joint) override
 	{
 		m_joints.emplace_back(joint);
-		m_world.addConstraint(joint, true);
+		world().addConstraint(joint, true);
 	}
-	btDiscreteDynamicsWorld& world() { return m_world; }
+	btDiscreteDynamicsWorld& world() { return m_physics.world(); }
 
 private:
-	btDefaultCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher;
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btDiscreteDynamicsWorld m_world;
+	caliber::demo::DemoWorld m_physics;  // the world, first in and last out
 	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
 	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
 	std::vector<std::unique_ptr<btTypedConstraint>> m_joints;

@@ -122,9 +122,7 @@ bool runSimplex(const char* title, const SimplexStep* steps, int count, btVector
 
 int caliber::demo::simplexDemo(int argc, char** argv)
 {
-	caliber::demo::DemoCommandLine commandLine;
-	commandLine.name = "SimplexDemo";
-	caliber::demo::DemoPictures pictures(argc, argv, commandLine);
+	caliber::demo::DemoPictures pictures(argc, argv, "SimplexDemo");
 	if (!pictures.ok()) return pictures.exitCode();
 
 	// Base triangle in the plane z = 1: A(2, 1), B(-2, 1), C(0, -3). The origin projects to (0, 0, 1),

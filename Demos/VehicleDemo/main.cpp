@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "DemoPictures.h"
+#include "DemoScript.h"
 #include "VehicleScene.h"
 #include "WorldScene.h"
 
@@ -24,13 +25,6 @@ namespace
 {
 using namespace vehicle_demo;
 const btScalar kStep = btScalar(1. / 60.);
-
-int failures = 0;
-void check(bool ok, const char* what)
-{
-	printf("  check: %s: %s\n", what, ok ? "ok" : "FAILED");
-	if (!ok) ++failures;
-}
 
 int wheelsOnGround(const btRaycastVehicle& car)
 {
@@ -95,51 +89,39 @@ int main(int argc, char** argv)
 		drawing.focusOn(p - btVector3(3, 1, 4), p + btVector3(3, 2, 4));
 	});
 
-	btScalar t = 0;
 	// --frames: once the budget is spent no phase steps any more, and the unfinished phases' checks are skipped.
-	caliber::demo::StepBudget budget = pictures.stepBudget();
-	auto run = [&](int count) {
-		for (int i = 0; i < count && !budget.spent(); ++i)
-		{
-			world.stepSimulation(kStep, 1, kStep);
-			budget.count();
-			t += kStep;
-		}
-	};
-	auto judge = [&](bool ok, const char* what) {
-		if (budget.reached(what)) check(ok, what);
-	};
+	caliber::demo::DemoScript script(world, kStep, pictures.stepBudget());
 	bool upright = true;
 	auto watch = [&]() { upright = upright && chassis.getWorldTransform().getBasis().getColumn(1).y() > btScalar(0.9); };
 
 	printf("VehicleDemo: an 800 kg car on a height field (bumps, a 1 m ramp), k = %.0f per kg, mu = %.1f\n",
 	       double(kStiffness), double(kFriction));
-	run(180);
-	printState("settled", t, car);
+	script.run(180);
+	printState("settled", script.time(), car);
 	const btScalar sag = kGravity / (kStiffness * 4);
 	bool sagOk = wheelsOnGround(car) == 4;
 	for (int i = 0; i < 4; ++i)
 		sagOk = sagOk && fabs(kRestLength - car.getWheelInfo(i).m_raycastInfo.m_suspensionLength - sag) < 1e-3;
 	printf("  expected static sag g / (k n) = %.4f m\n", double(sag));
-	judge(sagOk, "static sag on all four wheels");
+	script.judge(sagOk, "static sag on all four wheels");
 
 	// Drive: rear-wheel drive over the bumps and the ramp, until past the plateau.
 	car.applyEngineForce(1200, 2);
 	car.applyEngineForce(1200, 3);
 	btScalar highest = 0;
 	bool allWheelsOnPlateau = false;
-	for (int i = 0; i < 1200 && chassis.getCenterOfMassPosition().z() < 25 && !budget.spent(); ++i)
+	for (int i = 0; i < 1200 && chassis.getCenterOfMassPosition().z() < 25 && !script.spent(); ++i)
 	{
-		run(1);
+		script.run(1);
 		watch();
 		const btVector3 p = chassis.getCenterOfMassPosition();
 		highest = btMax(highest, p.y());
 		if (p.z() > 2 && p.z() < 6 && wheelsOnGround(car) == 4) allWheelsOnPlateau = true;
-		if (i % 60 == 0) printState("drive", t, car);
+		if (i % 60 == 0) printState("drive", script.time(), car);
 	}
-	printState("drive", t, car);
-	judge(highest > btScalar(1.8), "the car climbed the ramp onto the 1 m plateau");
-	judge(allWheelsOnPlateau, "all four wheels on the ground on the plateau");
+	printState("drive", script.time(), car);
+	script.judge(highest > btScalar(1.8), "the car climbed the ramp onto the 1 m plateau");
+	script.judge(allWheelsOnPlateau, "all four wheels on the ground on the plateau");
 
 	// Brake hard: every tyre slides at its grip.
 	car.applyEngineForce(0, 2);
@@ -147,18 +129,18 @@ int main(int argc, char** argv)
 	const btScalar v0 = chassis.getLinearVelocity().length();
 	const btScalar z0 = chassis.getCenterOfMassPosition().z();
 	for (int i = 0; i < 4; ++i) car.setBrake(200, i);
-	for (int i = 0; i < 600 && btFabs(chassis.getLinearVelocity().z()) > btScalar(0.01) && !budget.spent(); ++i)
+	for (int i = 0; i < 600 && btFabs(chassis.getLinearVelocity().z()) > btScalar(0.01) && !script.spent(); ++i)
 	{
-		run(1);
+		script.run(1);
 		watch();
-		if (i % 30 == 0) printState("brake", t, car);
+		if (i % 30 == 0) printState("brake", script.time(), car);
 	}
 	const btScalar distance = chassis.getCenterOfMassPosition().z() - z0;
 	const btScalar expected = v0 * v0 / (2 * kFriction * kGravity);
-	printState("stopped", t, car);
+	printState("stopped", script.time(), car);
 	printf("  braking from %.2f m/s: %.2f m (v^2 / (2 mu g) = %.2f m)\n", double(v0), double(distance),
 	       double(expected));
-	judge(fabs(distance - expected) < 0.1 * expected, "braking distance");
+	script.judge(fabs(distance - expected) < 0.1 * expected, "braking distance");
 
 	// A circle at walking pace, front wheels at Ackermann's angles for the bicycle angle 0.3 rad.
 	for (int i = 0; i < 4; ++i) car.setBrake(0, i);
@@ -167,23 +149,22 @@ int main(int argc, char** argv)
 	car.setSteeringValue(btAtan(wheelbase / (radius - kHalfTrack)), 0);
 	car.setSteeringValue(btAtan(wheelbase / (radius + kHalfTrack)), 1);
 	std::vector<btVector3> path;
-	for (int i = 0; i < 1500 && !budget.spent(); ++i)
+	for (int i = 0; i < 1500 && !script.spent(); ++i)
 	{
 		const btScalar speed = car.getCurrentSpeedKmHour() / btScalar(3.6);
 		const btScalar throttle = btMax(btScalar(-1500), btMin(btScalar(1500), 800 * (4 - speed)));
 		car.applyEngineForce(throttle, 2);
 		car.applyEngineForce(throttle, 3);
-		run(1);
+		script.run(1);
 		watch();
 		if (i >= 300) path.push_back(chassis.getWorldTransform()(btVector3(0, 0, -kHalfWheelbase)));
-		if (i % 150 == 0) printState("circle", t, car);
+		if (i % 150 == 0) printState("circle", script.time(), car);
 	}
 	const double measured = path.size() >= 3 ? fittedRadius(path) : 0;  // a shortened run may not reach the circle
 	printf("  circle of the rear axle: radius %.2f m (wheelbase / tan(steer) = %.2f m)\n", measured, double(radius));
-	judge(fabs(measured - radius) < 0.05 * radius, "cornering radius");
-	check(upright, "the chassis stayed upright");
+	script.judge(fabs(measured - radius) < 0.05 * radius, "cornering radius");
+	script.check(upright, "the chassis stayed upright");
 
 	pictures.capture(world);
-	printf("VehicleDemo: %s\n", failures ? "FAILED" : "all checks passed");
-	return pictures.finish(failures ? 1 : 0);
+	return pictures.finish(script.verdict("VehicleDemo"));
 }

@@ -154,35 +154,10 @@ public:
 		copyFromArray(otherArray);
 	}
 
-	/// Takes over otherArray's storage (Caliber extension); otherArray is left empty.
-	btAlignedObjectArray(btAlignedObjectArray&& otherArray) noexcept
-	    : m_size(otherArray.m_size),
-	      m_capacity(otherArray.m_capacity),
-	      m_data(otherArray.m_data),
-	      m_ownsMemory(otherArray.m_ownsMemory)
-	{
-		otherArray.init();
-	}
-
 	/// Deep copy assignment; same as copyFromArray.
 	btAlignedObjectArray& operator=(const btAlignedObjectArray& otherArray)
 	{
 		copyFromArray(otherArray);
-		return *this;
-	}
-
-	/// Move assignment (Caliber extension): frees this array's contents, takes otherArray's.
-	btAlignedObjectArray& operator=(btAlignedObjectArray&& otherArray) noexcept
-	{
-		if (this != &otherArray)
-		{
-			clear();
-			m_size = otherArray.m_size;
-			m_capacity = otherArray.m_capacity;
-			m_data = otherArray.m_data;
-			m_ownsMemory = otherArray.m_ownsMemory;
-			otherArray.init();
-		}
 		return *this;
 	}
 

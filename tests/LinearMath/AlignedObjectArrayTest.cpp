@@ -242,9 +242,10 @@ TEST(AlignedObjectArray, ConstructorAndDestructorCountsBalance)
 			EXPECT_EQ(Tracked::live(), 75);
 			assigned.copyFromArray(copy);
 			EXPECT_EQ(Tracked::live(), 75);
+			// As in Bullet 2.89, which declares no move constructor: std::move copies, the source keeps its elements.
 			btAlignedObjectArray<Tracked> moved(std::move(copy));
-			EXPECT_EQ(Tracked::live(), 75);
-			EXPECT_EQ(copy.size(), 0);
+			EXPECT_EQ(Tracked::live(), 100);
+			EXPECT_EQ(copy.size(), 25);
 		}
 		EXPECT_EQ(Tracked::live(), 25);
 		array.clear();

@@ -165,16 +165,7 @@ private:
 	btDbvtBroadphase(const btDbvtBroadphase&);
 	btDbvtBroadphase& operator=(const btDbvtBroadphase&);
 
-	/// Puts the proxy at the head of stage list `stage`.
-	void linkProxy(btDbvtProxy* proxy, int stage);
-	/// Takes the proxy out of its stage list.
-	void unlinkProxy(btDbvtProxy* proxy);
-	/// Moves the proxy's tree box to `box` and queues its pair search.
-	void moveLeaf(btDbvtProxy* proxy, btDbvtVolume& box);
-	/// Adds the pairs of one pending proxy with every proxy whose box overlaps its box.
-	void searchPairs(btDbvtProxy* proxy);
-
-	/// Scratch stack of the pair search queries.
+	/// Scratch stack of the pair search queries (Caliber's; passed to the pair search in the .cpp).
 	btNodeStack m_queryStack;
 };
 

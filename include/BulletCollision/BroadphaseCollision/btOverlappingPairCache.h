@@ -168,16 +168,6 @@ protected:
 	btOverlapFilterCallback* m_overlapFilterCallback;
 	/// Told about every pair added or removed, or 0.
 	btOverlappingPairCallback* m_ghostPairCallback;
-
-private:
-	// Caliber's own bookkeeping, hidden from derived classes.
-	int findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1) const;
-	int findSlotOfPair(int pairIndex) const;
-	void removePairAt(int index);
-	void rebuildTable(int minSlots);
-
-	// m_pairKeys[i] = (proxy0 id << 32) | proxy1 id of pair i, so that probing never touches proxies.
-	btAlignedObjectArray<unsigned long long> m_pairKeys;
 };
 
 /// A pair cache kept sorted by (proxy0 id, proxy1 id): iteration order is always deterministic, lookup
@@ -255,13 +245,6 @@ protected:
 	btOverlapFilterCallback* m_overlapFilterCallback;
 	/// Told about every pair added or removed, or 0.
 	btOverlappingPairCallback* m_ghostPairCallback;
-
-private:
-	// Caliber's own bookkeeping, hidden from derived classes: the first stored key >= key (binary
-	// search), the index of a stored pair or -1, and the key of each pair (as in the hashed cache), increasing.
-	int lowerBound(unsigned long long key) const;
-	int findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1) const;
-	btAlignedObjectArray<unsigned long long> m_pairKeys;
 };
 
 /// A cache that stores nothing: for broadphases used only for queries (rayTest, aabbTest).

@@ -129,13 +129,6 @@ public:
 	/// The revision, increased by every addition or removal of a child.
 	int getUpdateRevision() const { return m_updateRevision; }
 
-private:
-	void removeChildWithoutAabbUpdate(int childShapeIndex);
-	void childAabb(int index, btVector3& aabbMin, btVector3& aabbMax) const;
-	/// Returned by the transform getters for an out-of-range index.
-	mutable btTransform m_invalidChildTransform;
-
-public:
 	/// Bytes of the data struct serialize() writes.
 	int calculateSerializeBufferSize() const override;
 	/// Writes the shape's data struct into dataBuffer and returns the struct's name.

@@ -12,10 +12,6 @@ class btStridingMeshInterface;
 ATTRIBUTE_ALIGNED16(class)
 btOptimizedBvh : public btQuantizedBvh
 {
-	void quantizedLeafFromBox(btQuantizedBvhNode & node, const btVector3& aabbMin, const btVector3& aabbMax) const;
-	void setLeafBox(int nodeIndex, bool valid, const btVector3& aabbMin, const btVector3& aabbMax);
-	bool leafBoxesFitQuantization(const btVector3& aabbMin, const btVector3& aabbMax) const;
-
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 

@@ -4,6 +4,16 @@
 
 #include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
 
+namespace caliber
+{
+/// A triangle's corner index clamped into 0..2 (asserts when it was outside).
+inline int triangleCornerIndex(int index)
+{
+	btAssert(index >= 0 && index < 3);
+	return index < 0 ? 0 : (index > 2 ? 2 : index);
+}
+}  // namespace caliber
+
 /// A single triangle (used by the concave mesh shapes for each triangle they report). Local scaling
 /// does not apply: the vertices are used as stored. A degenerate triangle (zero area) is allowed, as
 /// meshes often hold them: its normal is (0, 0, 0) and isInside is false; nothing asserts.
@@ -24,11 +34,14 @@ public:
 	/// 3.
 	int getNumVertices() const override { return 3; }
 	/// Corner index (0..2; others assert and are clamped into range).
-	btVector3& getVertexPtr(int index) { return m_vertices1[clampIndex(index)]; }
+	btVector3& getVertexPtr(int index) { return m_vertices1[caliber::triangleCornerIndex(index)]; }
 	/// Corner index (0..2; others assert and are clamped into range).
-	const btVector3& getVertexPtr(int index) const { return m_vertices1[clampIndex(index)]; }
+	const btVector3& getVertexPtr(int index) const { return m_vertices1[caliber::triangleCornerIndex(index)]; }
 	/// Corner index (0..2; others assert and are clamped into range).
-	void getVertex(int index, btVector3& vert) const override { vert = m_vertices1[clampIndex(index)]; }
+	void getVertex(int index, btVector3& vert) const override
+	{
+		vert = m_vertices1[caliber::triangleCornerIndex(index)];
+	}
 	/// 3.
 	int getNumEdges() const override { return 3; }
 	/// Edge i from corner i to corner (i + 1) mod 3.
@@ -66,13 +79,6 @@ public:
 	int getNumPreferredPenetrationDirections() const override { return 2; }
 	/// Index 0: the normal; any other index: minus the normal.
 	void getPreferredPenetrationDirection(int index, btVector3& penetrationVector) const override;
-
-private:
-	static int clampIndex(int index)
-	{
-		btAssert(index >= 0 && index < 3);
-		return index < 0 ? 0 : (index > 2 ? 2 : index);
-	}
 };
 
 #endif  // BT_TRIANGLE_SHAPE_H

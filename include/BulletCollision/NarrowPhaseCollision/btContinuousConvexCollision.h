@@ -27,8 +27,6 @@ class btContinuousConvexCollision : public btConvexCast
 	const btConvexShape* m_convexA;
 	const btConvexShape* m_convexB1;
 	const btStaticPlaneShape* m_planeShape;
-	/// The last normal found during a cast: GJK starts from it at the next step.
-	btVector3 m_separatingAxisHint;
 
 	/// Signed distance (margins included) of the shapes placed by transA and transB, into pointCollector.
 	void computeClosestPoints(const btTransform& transA, const btTransform& transB, btPointCollector& pointCollector);

@@ -57,8 +57,8 @@ btPersistentManifold : public btTypedObject
 	btScalar m_contactBreakingThreshold;
 	btScalar m_contactProcessingThreshold;
 
-	// Index of the point to overwrite when the cache is full (see docs in the .cpp).
-	int chooseReplacedPoint(const btManifoldPoint& newPoint) const;
+	// Index of the point to overwrite when the cache is full (Bullet's name; see the .cpp).
+	int sortCachedPoints(const btManifoldPoint& pt);
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -194,50 +194,15 @@ protected:
 	void buildAngularJacobian(btJacobianEntry & jacAngular, const btVector3& jointAxisW);
 
 private:
-	// Caliber's own row machinery; the spring and universal joints build their rows and frames with it.
-	friend class btGeneric6DofSpringConstraint;
-	friend class btUniversalConstraint;
-
-	/// The row directions of the last calculation. Linear coordinate i's rate is measured along
-	/// m_linearRowAxis[i] at m_linearRowPoint; angular coordinate i's rate is
-	/// (angular velocity of B - that of A) . m_angularRowAxis[i] (not unit length away from y = 0).
+	// The row directions of the last calculation (the rows in src/ read them). Linear coordinate i's
+	// rate is measured along m_linearRowAxis[i] at m_linearRowPoint; angular coordinate i's rate is
+	// (angular velocity of B - that of A) . m_angularRowAxis[i] (not unit length away from y = 0).
 	btVector3 m_linearRowAxis[3];
 	btVector3 m_angularRowAxis[3];
 	btVector3 m_linearRowPoint;
 	/// The bodies' centres of mass of the last calculation (the rows' lever arms start there).
 	btVector3 m_centerOfMassA;
 	btVector3 m_centerOfMassB;
-
-	/// Warns and disables the joint when a frame is not finite; true when both are.
-	bool checkFrames();
-
-	/// How coordinate i (0..5) is constrained: lower == upper, lower < upper, or lower > upper.
-	bool isCoordinateLocked(int coordinate) const;
-	bool isCoordinateLimited(int coordinate) const;
-	/// True when coordinate i has a motor row (motor on and the coordinate not locked).
-	bool hasMotorRow(int coordinate) const;
-	/// The number of lock, limit and motor rows (without any a subclass adds).
-	int countLimitMotorRows() const;
-	/// Writes the lock, limit and motor rows from row 0 on (transforms already calculated); returns
-	/// their number.
-	int writeLimitMotorRows(btConstraintInfo2 * info, const btVector3& linVelA, const btVector3& linVelB,
-	                        const btVector3& angVelA, const btVector3& angVelB);
-	/// Coordinate i's measured value (angles in radians).
-	btScalar getCoordinate(int coordinate) const;
-	/// Coordinate i's rate for the given body velocities.
-	btScalar getCoordinateVelocity(int coordinate, const btVector3& linVelA, const btVector3& linVelB,
-	                               const btVector3& angVelA, const btVector3& angVelB) const;
-	/// The Jacobian whose product with the bodies' velocities (vA, wA, vB, wB) is coordinate i's rate.
-	void getCoordinateJacobian(int coordinate, btVector3& linearA, btVector3& angularA, btVector3& linearB,
-	                           btVector3& angularB) const;
-	/// Writes into row a row that drives coordinate i's rate to targetRate, projected so that its impulses
-	/// leave the locked rows' velocities alone (the rows writeLimitMotorRows wrote earlier in the same
-	/// getInfo2; see the .cpp); its impulse is the coordinate's generalised force times the step.
-	void writeCoordinateRow(btConstraintInfo2 * info, int row, int coordinate, btScalar targetRate) const;
-	/// The rate change of coordinate i per unit impulse of its row, with the locked coordinates held (as
-	/// writeLimitMotorRows found them earlier in the same getInfo2): the inverse of the coordinate's
-	/// effective mass (0 if nothing can move it).
-	btScalar getCoordinateInverseMass(int coordinate) const;
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -246,8 +246,6 @@ private:
 	/// Euler rotation axes); m_calculatedAxis holds them normalised.
 	btVector3 m_angularJacobian[3];
 
-	/// True for 0..5; anything else asserts, and in release builds is reported and ignored.
-	bool checkIndex(int index, const char* function) const;
 	/// Updates every coordinate's current position and limit state from the calculated transforms.
 	void testLimits();
 	/// Writes the rows getInfo1 counted; returns how many.

@@ -30,11 +30,6 @@ protected:
 
 	/// Sets the defaults: springs off, equilibrium 0, no stiffness or damping.
 	void init();
-	/// True when coordinate index gets a spring row this step.
-	bool hasSpringRow(int index) const;
-	/// Writes the spring rows from row on; returns how many.
-	int writeSpringRows(btConstraintInfo2 * info, int row, const btVector3& linVelA, const btVector3& linVelB,
-	                    const btVector3& angVelA, const btVector3& angVelB);
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -61,11 +61,6 @@ protected:
 	btScalar m_stopERP;
 
 private:
-	/// Builds both frames from pivots and axes given in each body's frame (see the constructors).
-	void initFromPivotsAndAxes(const btVector3& pivotInA, const btVector3& pivotInB, const btVector3& axisInA,
-	                           const btVector3& axisInB);
-	/// Reports a zero-length or non-finite axis and makes the joint inert.
-	void rejectAxis();
 	/// The settings every constructor starts from.
 	void initDefaults(bool useReferenceFrameA);
 

@@ -103,9 +103,6 @@ protected:
 	btScalar m_maxAngMotorForce;
 
 	void initParams();
-	/// Checks both frames; reports and disables the joint when one is non-finite or degenerate
-	/// (assertOnFailure: the caller has just handed the frame in, a programming error).
-	bool checkFrames(bool assertOnFailure);
 	/// The member and flag that setParam / getParam address for (num, axis); false if there is none.
 	static bool paramSlot(int num, int axis, btScalar btSliderConstraint::*& member, int& flag);
 

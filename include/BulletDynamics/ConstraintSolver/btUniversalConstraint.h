@@ -20,10 +20,6 @@ protected:
 	btVector3 m_axis1;
 	btVector3 m_axis2;
 
-	/// Builds both frames at the world point anchor from the world axes; false (reported, joint disabled)
-	/// when the axes cannot make a frame.
-	bool setFramesFromAxes(const btVector3& anchor, const btVector3& axis1, const btVector3& axis2);
-
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 

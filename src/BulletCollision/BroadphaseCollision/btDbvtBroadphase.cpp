@@ -47,6 +47,55 @@ struct PairSearchPolicy
 	}
 };
 
+// Puts the proxy at the head of stage list `stage`.
+void linkProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, int stage)
+{
+	btDbvtProxy*& root = broadphase.m_stageRoots[stage];
+	proxy->stage = stage;
+	proxy->links[0] = 0;
+	proxy->links[1] = root;
+	if (root) root->links[0] = proxy;
+	root = proxy;
+}
+
+// Takes the proxy out of its stage list.
+void unlinkProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
+{
+	if (proxy->links[0])
+		proxy->links[0]->links[1] = proxy->links[1];
+	else
+		broadphase.m_stageRoots[proxy->stage] = proxy->links[1];
+	if (proxy->links[1]) proxy->links[1]->links[0] = proxy->links[0];
+	proxy->links[0] = proxy->links[1] = 0;
+}
+
+// Moves the proxy's tree box to `box` and queues its pair search.
+void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
+{
+	broadphase.m_sets[proxy->set].update(proxy->leaf, box);
+	if (proxy->set == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
+	if (!isPending(proxy))
+	{
+		unlinkProxy(broadphase, proxy);
+		linkProxy(broadphase, proxy, proxy->set);
+	}
+	broadphase.m_needcleanup = true;
+}
+
+// Adds the pairs of one pending proxy with every proxy whose box overlaps its box (stack: the queries'
+// scratch).
+void searchPairs(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btNodeStack& stack)
+{
+	PairSearchPolicy policy;
+	policy.proxy = proxy;
+	policy.cache = broadphase.m_paircache;
+	const btDbvtVolume& box = proxy->leaf->volume;
+	btDbvt& dynamicSet = broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET];
+	btDbvt& fixedSet = broadphase.m_sets[btDbvtBroadphase::FIXED_SET];
+	dynamicSet.collideTVNoStackAlloc(dynamicSet.m_root, box, stack, policy);
+	fixedSet.collideTVNoStackAlloc(fixedSet.m_root, box, stack, policy);
+}
+
 // The pair search on the task scheduler's threads: each chunk of pending proxies queries the trees (which
 // nothing changes meanwhile) and lists what it finds, proxy by proxy in tree order; the calling thread
 // then adds the lists in chunk order. The cache sees the same additions in the same order as in the
@@ -229,37 +278,6 @@ btDbvtBroadphase::~btDbvtBroadphase()
 	}
 }
 
-void btDbvtBroadphase::linkProxy(btDbvtProxy* proxy, int stage)
-{
-	proxy->stage = stage;
-	proxy->links[0] = 0;
-	proxy->links[1] = m_stageRoots[stage];
-	if (m_stageRoots[stage]) m_stageRoots[stage]->links[0] = proxy;
-	m_stageRoots[stage] = proxy;
-}
-
-void btDbvtBroadphase::unlinkProxy(btDbvtProxy* proxy)
-{
-	if (proxy->links[0])
-		proxy->links[0]->links[1] = proxy->links[1];
-	else
-		m_stageRoots[proxy->stage] = proxy->links[1];
-	if (proxy->links[1]) proxy->links[1]->links[0] = proxy->links[0];
-	proxy->links[0] = proxy->links[1] = 0;
-}
-
-void btDbvtBroadphase::moveLeaf(btDbvtProxy* proxy, btDbvtVolume& box)
-{
-	m_sets[proxy->set].update(proxy->leaf, box);
-	if (proxy->set == FIXED_SET) ++m_fixedleft;
-	if (!isPending(proxy))
-	{
-		unlinkProxy(proxy);
-		linkProxy(proxy, proxy->set);
-	}
-	m_needcleanup = true;
-}
-
 btBroadphaseProxy* btDbvtBroadphase::createProxy(const btVector3& aabbMin, const btVector3& aabbMax, int shapeType,
                                                  void* userPtr, int collisionFilterGroup, int collisionFilterMask,
                                                  btDispatcher* dispatcher)
@@ -292,7 +310,7 @@ btBroadphaseProxy* btDbvtBroadphase::createProxy(const btVector3& aabbMin, const
 	else
 		++m_fixedleft;
 	proxy->leaf = m_sets[proxy->set].insert(box, proxy);
-	linkProxy(proxy, proxy->set);
+	linkProxy(*this, proxy, proxy->set);
 	m_needcleanup = true;
 	return proxy;
 }
@@ -304,7 +322,7 @@ void btDbvtBroadphase::destroyProxy(btBroadphaseProxy* absproxy, btDispatcher* d
 	btAssert(proxy->leaf && "btDbvtBroadphase::destroyProxy: proxy already destroyed");
 	if (!proxy->leaf) return;
 	m_sets[proxy->set].remove(proxy->leaf);
-	unlinkProxy(proxy);
+	unlinkProxy(*this, proxy);
 	m_paircache->removeOverlappingPairsContainingProxy(proxy, dispatcher);
 	proxy->leaf = 0;
 	proxy->links[0] = 0;
@@ -333,7 +351,7 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	++m_updates_done;
 	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
 	box.SignedExpand(displacement * m_prediction);
-	moveLeaf(proxy, box);
+	moveLeaf(*this, proxy, box);
 }
 
 void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,
@@ -351,7 +369,7 @@ void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btV
 	proxy->m_aabbMin = aabbMin;
 	proxy->m_aabbMax = aabbMax;
 	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
-	moveLeaf(proxy, box);
+	moveLeaf(*this, proxy, box);
 }
 
 void btDbvtBroadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btVector3& aabbMax) const
@@ -367,16 +385,6 @@ void btDbvtBroadphase::getAabb(btBroadphaseProxy* proxy, btVector3& aabbMin, btV
 	aabbMax = proxy->m_aabbMax;
 }
 
-void btDbvtBroadphase::searchPairs(btDbvtProxy* proxy)
-{
-	PairSearchPolicy policy;
-	policy.proxy = proxy;
-	policy.cache = m_paircache;
-	const btDbvtVolume& box = proxy->leaf->volume;
-	m_sets[DYNAMIC_SET].collideTVNoStackAlloc(m_sets[DYNAMIC_SET].m_root, box, m_queryStack, policy);
-	m_sets[FIXED_SET].collideTVNoStackAlloc(m_sets[FIXED_SET].m_root, box, m_queryStack, policy);
-}
-
 void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 {
 	if (m_needcleanup)
@@ -389,7 +397,7 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 		btITaskScheduler* scheduler = btGetTaskScheduler();
 		if (search.pending.size() < kMinProxiesForParallelSearch || !scheduler || scheduler->getNumThreads() < 2)
 		{
-			for (int i = 0; i < search.pending.size(); ++i) searchPairs(search.pending[i]);
+			for (int i = 0; i < search.pending.size(); ++i) searchPairs(*this, search.pending[i], m_queryStack);
 		}
 		else
 		{
@@ -418,8 +426,8 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 		{
 			while (btDbvtProxy* proxy = m_stageRoots[stage])
 			{
-				unlinkProxy(proxy);
-				linkProxy(proxy, STAGECOUNT);
+				unlinkProxy(*this, proxy);
+				linkProxy(*this, proxy, STAGECOUNT);
 			}
 		}
 		m_needcleanup = false;

@@ -1,8 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // btHashedOverlappingPairCache: pairs contiguous in one array, indexed by an open-addressing table.
 //
-// The table holds pair indices; m_pairKeys mirrors the pair array with each pair's 64-bit id key, so a
-// probe compares keys in one contiguous array and never dereferences proxies. Linear probing with
+// The table holds pair indices, hashed by the pair's two proxy addresses, so that neither a probe nor
+// the home slot of a stored pair ever dereferences a proxy (the pair itself holds both). Linear probing with
 // backward-shift deletion keeps every chain gap-free without tombstones, so a long-running scene that
 // adds and removes pairs forever never needs a cleanup rehash. The load factor stays at or below 1/2.
 
@@ -12,6 +12,8 @@
 #include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+
+#include <stdint.h>
 
 namespace
 {
@@ -24,6 +26,87 @@ SIMD_FORCE_INLINE int homeSlot(unsigned long long key, int mask)
 	unsigned long long h = key * 0x9E3779B97F4A7C15ULL;
 	h ^= h >> 32;
 	return static_cast<int>(h & static_cast<unsigned long long>(mask));
+}
+
+// The home slot of the ordered pair (proxy0, proxy1), from the two addresses (the table's layout only
+// decides how fast a pair is found, never which pairs exist or their order).
+SIMD_FORCE_INLINE int homeSlot(const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1, int mask)
+{
+	const unsigned long long a = static_cast<unsigned long long>(reinterpret_cast<uintptr_t>(proxy0));
+	const unsigned long long b = static_cast<unsigned long long>(reinterpret_cast<uintptr_t>(proxy1));
+	return homeSlot(a * 0xC2B2AE3D27D4EB4FULL + b, mask);
+}
+
+SIMD_FORCE_INLINE int homeSlot(const btBroadphasePair& pair, int mask)
+{
+	return homeSlot(pair.m_pProxy0, pair.m_pProxy1, mask);
+}
+
+// Fills table (at least minSlots slots, a power of two) with the indices of pairs.
+void rebuildTable(btAlignedObjectArray<int>& table, const btBroadphasePairArray& pairs, int minSlots)
+{
+	int slots = kInitialTableSlots;
+	while (slots < minSlots) slots <<= 1;
+	table.resizeNoInitialize(slots);
+	for (int i = 0; i < slots; ++i) table[i] = BT_NULL_PAIR;
+	const int mask = slots - 1;
+	for (int index = 0; index < pairs.size(); ++index)
+	{
+		int slot = homeSlot(pairs[index], mask);
+		while (table[slot] != BT_NULL_PAIR) slot = (slot + 1) & mask;
+		table[slot] = index;
+	}
+}
+
+// The index of the ordered pair (proxy0, proxy1), or -1.
+int findPairIndex(const btAlignedObjectArray<int>& table, const btBroadphasePairArray& pairs,
+                  const btBroadphaseProxy* proxy0, const btBroadphaseProxy* proxy1)
+{
+	const int mask = table.size() - 1;
+	for (int slot = homeSlot(proxy0, proxy1, mask);; slot = (slot + 1) & mask)
+	{
+		const int index = table[slot];
+		if (index == BT_NULL_PAIR) return -1;
+		if (pairs[index].m_pProxy0 == proxy0 && pairs[index].m_pProxy1 == proxy1) return index;
+	}
+}
+
+// The slot that holds pair index pairIndex.
+int findSlotOfPair(const btAlignedObjectArray<int>& table, const btBroadphasePairArray& pairs, int pairIndex)
+{
+	const int mask = table.size() - 1;
+	int slot = homeSlot(pairs[pairIndex], mask);
+	while (table[slot] != pairIndex) slot = (slot + 1) & mask;
+	return slot;
+}
+
+// Removes pair index from the table and the array; the last pair takes its index.
+void removePairAt(btAlignedObjectArray<int>& table, btBroadphasePairArray& pairs, int index)
+{
+	const int mask = table.size() - 1;
+	// Backward-shift deletion: pull later entries of the probe run into the hole when their home slot
+	// allows it, so that lookups never stop early at a gap.
+	int hole = findSlotOfPair(table, pairs, index);
+	for (int slot = (hole + 1) & mask; table[slot] != BT_NULL_PAIR; slot = (slot + 1) & mask)
+	{
+		const int home = homeSlot(pairs[table[slot]], mask);
+		// The entry may move to the hole when its home is not cyclically inside (hole, slot].
+		const bool homeInside = (hole <= slot) ? (home > hole && home <= slot) : (home > hole || home <= slot);
+		if (!homeInside)
+		{
+			table[hole] = table[slot];
+			hole = slot;
+		}
+	}
+	table[hole] = BT_NULL_PAIR;
+
+	const int last = pairs.size() - 1;
+	if (index != last)
+	{
+		table[findSlotOfPair(table, pairs, last)] = index;
+		pairs[index] = pairs[last];
+	}
+	pairs.pop_back();
 }
 
 // Ascending (proxy0 id, proxy1 id), the order sortOverlappingPairs promises.
@@ -48,7 +131,7 @@ const btPersistentManifold* firstManifoldOf(btCollisionAlgorithm* algorithm, btM
 
 btHashedOverlappingPairCache::btHashedOverlappingPairCache() : m_overlapFilterCallback(0), m_ghostPairCallback(0)
 {
-	rebuildTable(kInitialTableSlots);
+	rebuildTable(m_hashTable, m_overlappingPairArray, kInitialTableSlots);
 }
 
 btHashedOverlappingPairCache::~btHashedOverlappingPairCache() {}
@@ -58,92 +141,21 @@ bool btHashedOverlappingPairCache::needsBroadphaseCollision(btBroadphaseProxy* p
 	return caliber::needsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
 }
 
-void btHashedOverlappingPairCache::rebuildTable(int minSlots)
-{
-	int slots = kInitialTableSlots;
-	while (slots < minSlots) slots <<= 1;
-	m_hashTable.resizeNoInitialize(slots);
-	for (int i = 0; i < slots; ++i) m_hashTable[i] = BT_NULL_PAIR;
-	const int mask = slots - 1;
-	for (int index = 0; index < m_pairKeys.size(); ++index)
-	{
-		int slot = homeSlot(m_pairKeys[index], mask);
-		while (m_hashTable[slot] != BT_NULL_PAIR) slot = (slot + 1) & mask;
-		m_hashTable[slot] = index;
-	}
-}
-
-int btHashedOverlappingPairCache::findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0,
-                                                const btBroadphaseProxy* proxy1) const
-{
-	const int mask = m_hashTable.size() - 1;
-	for (int slot = homeSlot(key, mask);; slot = (slot + 1) & mask)
-	{
-		const int index = m_hashTable[slot];
-		if (index == BT_NULL_PAIR) return -1;
-		// Comparing the proxies as well keeps two broadphases that reuse ids from aliasing each other.
-		if (m_pairKeys[index] == key && m_overlappingPairArray[index].m_pProxy0 == proxy0 &&
-		    m_overlappingPairArray[index].m_pProxy1 == proxy1)
-		{
-			return index;
-		}
-	}
-}
-
-int btHashedOverlappingPairCache::findSlotOfPair(int pairIndex) const
-{
-	const int mask = m_hashTable.size() - 1;
-	int slot = homeSlot(m_pairKeys[pairIndex], mask);
-	while (m_hashTable[slot] != pairIndex) slot = (slot + 1) & mask;
-	return slot;
-}
-
-void btHashedOverlappingPairCache::removePairAt(int index)
-{
-	const int mask = m_hashTable.size() - 1;
-	// Backward-shift deletion: pull later entries of the probe run into the hole when their home slot
-	// allows it, so that lookups never stop early at a gap.
-	int hole = findSlotOfPair(index);
-	for (int slot = (hole + 1) & mask; m_hashTable[slot] != BT_NULL_PAIR; slot = (slot + 1) & mask)
-	{
-		const int home = homeSlot(m_pairKeys[m_hashTable[slot]], mask);
-		// The entry may move to the hole when its home is not cyclically inside (hole, slot].
-		const bool homeInside = (hole <= slot) ? (home > hole && home <= slot) : (home > hole || home <= slot);
-		if (!homeInside)
-		{
-			m_hashTable[hole] = m_hashTable[slot];
-			hole = slot;
-		}
-	}
-	m_hashTable[hole] = BT_NULL_PAIR;
-
-	const int last = m_overlappingPairArray.size() - 1;
-	if (index != last)
-	{
-		m_hashTable[findSlotOfPair(last)] = index;
-		m_overlappingPairArray[index] = m_overlappingPairArray[last];
-		m_pairKeys[index] = m_pairKeys[last];
-	}
-	m_overlappingPairArray.pop_back();
-	m_pairKeys.pop_back();
-}
-
 btBroadphasePair* btHashedOverlappingPairCache::addOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
 {
 	btAssert(proxy0 && proxy1 && proxy0 != proxy1 && "addOverlappingPair: null or identical proxies");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	if (!needsBroadphaseCollision(proxy0, proxy1)) return 0;
 	caliber::orderPair(proxy0, proxy1);
-	const unsigned long long key = caliber::pairKey(proxy0, proxy1);
-	const int existing = findPairIndex(key, proxy0, proxy1);
+	const int existing = findPairIndex(m_hashTable, m_overlappingPairArray, proxy0, proxy1);
 	if (existing >= 0) return &m_overlappingPairArray[existing];
 
-	if ((m_overlappingPairArray.size() + 1) * 2 > m_hashTable.size()) rebuildTable(m_hashTable.size() * 2);
+	if ((m_overlappingPairArray.size() + 1) * 2 > m_hashTable.size())
+		rebuildTable(m_hashTable, m_overlappingPairArray, m_hashTable.size() * 2);
 	const int index = m_overlappingPairArray.size();
 	m_overlappingPairArray.push_back(btBroadphasePair(*proxy0, *proxy1));
-	m_pairKeys.push_back(key);
 	const int mask = m_hashTable.size() - 1;
-	int slot = homeSlot(key, mask);
+	int slot = homeSlot(proxy0, proxy1, mask);
 	while (m_hashTable[slot] != BT_NULL_PAIR) slot = (slot + 1) & mask;
 	m_hashTable[slot] = index;
 
@@ -157,12 +169,11 @@ void* btHashedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* pro
 	btAssert(proxy0 && proxy1 && "removeOverlappingPair: null proxy");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	caliber::orderPair(proxy0, proxy1);
-	const unsigned long long key = caliber::pairKey(proxy0, proxy1);
-	int index = findPairIndex(key, proxy0, proxy1);
+	const int index = findPairIndex(m_hashTable, m_overlappingPairArray, proxy0, proxy1);
 	if (index < 0) return 0;
 	caliber::releasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
 	void* userInfo = m_overlappingPairArray[index].m_internalInfo1;
-	removePairAt(index);
+	removePairAt(m_hashTable, m_overlappingPairArray, index);
 	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
 	return userInfo;
 }
@@ -204,7 +215,7 @@ btBroadphasePair* btHashedOverlappingPairCache::findPair(btBroadphaseProxy* prox
 {
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	caliber::orderPair(proxy0, proxy1);
-	const int index = findPairIndex(caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
+	const int index = findPairIndex(m_hashTable, m_overlappingPairArray, proxy0, proxy1);
 	return index >= 0 ? &m_overlappingPairArray[index] : 0;
 }
 
@@ -272,7 +283,5 @@ void btHashedOverlappingPairCache::sortOverlappingPairs(btDispatcher* dispatcher
 	(void)dispatcher;
 	// Sorting in place keeps each pair's algorithm and user info; only the index table changes.
 	m_overlappingPairArray.quickSort(PairIdLess());
-	for (int i = 0; i < m_overlappingPairArray.size(); ++i)
-		m_pairKeys[i] = caliber::pairKey(m_overlappingPairArray[i].m_pProxy0, m_overlappingPairArray[i].m_pProxy1);
-	rebuildTable(m_hashTable.size());
+	rebuildTable(m_hashTable, m_overlappingPairArray, m_hashTable.size());
 }

@@ -17,14 +17,22 @@ bool btSortedOverlappingPairCache::needsBroadphaseCollision(btBroadphaseProxy* p
 	return caliber::needsBroadphaseCollision(m_overlapFilterCallback, proxy0, proxy1);
 }
 
-int btSortedOverlappingPairCache::lowerBound(unsigned long long key) const
+namespace
+{
+SIMD_FORCE_INLINE unsigned long long keyOf(const btBroadphasePair& pair)
+{
+	return caliber::pairKey(pair.m_pProxy0, pair.m_pProxy1);
+}
+
+// The first pair whose key is >= key (binary search).
+int lowerBound(const btBroadphasePairArray& pairs, unsigned long long key)
 {
 	int lo = 0;
-	int hi = m_pairKeys.size();
+	int hi = pairs.size();
 	while (lo < hi)
 	{
 		const int mid = (lo + hi) >> 1;
-		if (m_pairKeys[mid] < key)
+		if (keyOf(pairs[mid]) < key)
 			lo = mid + 1;
 		else
 			hi = mid;
@@ -32,16 +40,18 @@ int btSortedOverlappingPairCache::lowerBound(unsigned long long key) const
 	return lo;
 }
 
-int btSortedOverlappingPairCache::findPairIndex(unsigned long long key, const btBroadphaseProxy* proxy0,
-                                                const btBroadphaseProxy* proxy1) const
+// The index of the ordered pair (proxy0, proxy1) of the given key, or -1.
+int findPairIndex(const btBroadphasePairArray& pairs, unsigned long long key, const btBroadphaseProxy* proxy0,
+                  const btBroadphaseProxy* proxy1)
 {
 	// Equal keys (proxies of two broadphases sharing ids) sit side by side; the proxies tell them apart.
-	for (int i = lowerBound(key); i < m_pairKeys.size() && m_pairKeys[i] == key; ++i)
+	for (int i = lowerBound(pairs, key); i < pairs.size() && keyOf(pairs[i]) == key; ++i)
 	{
-		if (m_overlappingPairArray[i].m_pProxy0 == proxy0 && m_overlappingPairArray[i].m_pProxy1 == proxy1) return i;
+		if (pairs[i].m_pProxy0 == proxy0 && pairs[i].m_pProxy1 == proxy1) return i;
 	}
 	return -1;
 }
+}  // namespace
 
 btBroadphasePair* btSortedOverlappingPairCache::addOverlappingPair(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1)
 {
@@ -50,20 +60,14 @@ btBroadphasePair* btSortedOverlappingPairCache::addOverlappingPair(btBroadphaseP
 	if (!needsBroadphaseCollision(proxy0, proxy1)) return 0;
 	caliber::orderPair(proxy0, proxy1);
 	const unsigned long long key = caliber::pairKey(proxy0, proxy1);
-	const int existing = findPairIndex(key, proxy0, proxy1);
+	const int existing = findPairIndex(m_overlappingPairArray, key, proxy0, proxy1);
 	if (existing >= 0) return &m_overlappingPairArray[existing];
 
-	const int index = lowerBound(key);
+	const int index = lowerBound(m_overlappingPairArray, key);
 	const int count = m_overlappingPairArray.size();
 	m_overlappingPairArray.push_back(btBroadphasePair());
-	m_pairKeys.push_back(0);
-	for (int i = count; i > index; --i)
-	{
-		m_overlappingPairArray[i] = m_overlappingPairArray[i - 1];
-		m_pairKeys[i] = m_pairKeys[i - 1];
-	}
+	for (int i = count; i > index; --i) m_overlappingPairArray[i] = m_overlappingPairArray[i - 1];
 	m_overlappingPairArray[index] = btBroadphasePair(*proxy0, *proxy1);
-	m_pairKeys[index] = key;
 
 	if (m_ghostPairCallback) m_ghostPairCallback->addOverlappingPair(proxy0, proxy1);
 	return &m_overlappingPairArray[index];
@@ -75,18 +79,13 @@ void* btSortedOverlappingPairCache::removeOverlappingPair(btBroadphaseProxy* pro
 	btAssert(proxy0 && proxy1 && "removeOverlappingPair: null proxy");
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	caliber::orderPair(proxy0, proxy1);
-	const int index = findPairIndex(caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
+	const int index = findPairIndex(m_overlappingPairArray, caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
 	if (index < 0) return 0;
 	caliber::releasePairAlgorithm(m_overlappingPairArray[index], dispatcher);
 	void* userInfo = m_overlappingPairArray[index].m_internalInfo1;
 	const int count = m_overlappingPairArray.size();
-	for (int i = index + 1; i < count; ++i)
-	{
-		m_overlappingPairArray[i - 1] = m_overlappingPairArray[i];
-		m_pairKeys[i - 1] = m_pairKeys[i];
-	}
+	for (int i = index + 1; i < count; ++i) m_overlappingPairArray[i - 1] = m_overlappingPairArray[i];
 	m_overlappingPairArray.pop_back();
-	m_pairKeys.pop_back();
 	if (m_ghostPairCallback) m_ghostPairCallback->removeOverlappingPair(proxy0, proxy1, dispatcher);
 	return userInfo;
 }
@@ -106,11 +105,7 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 			caliber::releasePairAlgorithm(m_overlappingPairArray[i], dispatcher);
 			continue;
 		}
-		if (kept != i)
-		{
-			btSwap(m_overlappingPairArray[kept], m_overlappingPairArray[i]);
-			btSwap(m_pairKeys[kept], m_pairKeys[i]);
-		}
+		if (kept != i) btSwap(m_overlappingPairArray[kept], m_overlappingPairArray[i]);
 		++kept;
 	}
 	// Swapping (not copying) keeps the kept pairs in order and gathers the removed ones after them.
@@ -121,7 +116,6 @@ void btSortedOverlappingPairCache::removeOverlappingPairsContainingProxy(btBroad
 			                                           m_overlappingPairArray[i].m_pProxy1, dispatcher);
 	}
 	m_overlappingPairArray.resize(kept);
-	m_pairKeys.resize(kept);
 }
 
 void btSortedOverlappingPairCache::cleanOverlappingPair(btBroadphasePair& pair, btDispatcher* dispatcher)
@@ -143,7 +137,7 @@ btBroadphasePair* btSortedOverlappingPairCache::findPair(btBroadphaseProxy* prox
 {
 	if (!proxy0 || !proxy1 || proxy0 == proxy1) return 0;
 	caliber::orderPair(proxy0, proxy1);
-	const int index = findPairIndex(caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
+	const int index = findPairIndex(m_overlappingPairArray, caliber::pairKey(proxy0, proxy1), proxy0, proxy1);
 	return index >= 0 ? &m_overlappingPairArray[index] : 0;
 }
 

@@ -25,9 +25,12 @@ bool buildConvexPolyhedron(const btVector3* points, int count, btConvexPolyhedro
 	poly.m_vertices.resize(hull.vertices.size());
 	for (int i = 0; i < hull.vertices.size(); ++i) poly.m_vertices[i] = hull.vertices[i];
 
+	// The faces are built in place: growing an array of faces would copy every face built so far (their
+	// index arrays with them).
+	poly.m_faces.resize(hull.faces.size());
 	for (int f = 0; f < hull.faces.size(); ++f)
 	{
-		btFace face;
+		btFace& face = poly.m_faces[f];
 		const btConvexHullComputer::Edge* first = &hull.edges[hull.faces[f]];
 		const btConvexHullComputer::Edge* edge = first;
 		do
@@ -53,7 +56,6 @@ bool buildConvexPolyhedron(const btVector3* points, int count, btConvexPolyhedro
 		face.m_plane[1] = normal.y();
 		face.m_plane[2] = normal.z();
 		face.m_plane[3] = -normal.dot(centre);
-		poly.m_faces.push_back(face);
 	}
 	poly.initialize();
 	return true;

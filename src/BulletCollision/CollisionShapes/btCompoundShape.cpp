@@ -21,6 +21,34 @@ bool isValidScaling(const btVector3& s)
 {
 	return caliber::isFinite(s) && s.x() != btScalar(0) && s.y() != btScalar(0) && s.z() != btScalar(0);
 }
+
+void childAabb(const btCompoundShapeChild& child, btVector3& aabbMin, btVector3& aabbMax)
+{
+	child.m_childShape->getAabb(child.m_transform, aabbMin, aabbMax);
+}
+
+// Removes child index (the last child takes its place) without touching the compound's box.
+void removeChild(btAlignedObjectArray<btCompoundShapeChild>& children, btDbvt* tree, int& updateRevision, int index)
+{
+	++updateRevision;
+	if (tree && children[index].m_node) tree->remove(children[index].m_node);
+	const int last = children.size() - 1;
+	if (index != last)
+	{
+		children.swap(index, last);
+		if (children[index].m_node) setLeafIndex(children[index].m_node, index);
+	}
+	children.pop_back();
+}
+
+// What the transform getters return for an out-of-range index: the identity, reset on every such call
+// (the caller may write to it), one per thread.
+btTransform& invalidChildTransform()
+{
+	static thread_local btTransform transform;
+	transform.setIdentity();
+	return transform;
+}
 }  // namespace
 
 btCompoundShape::btCompoundShape(bool enableDynamicAabbTree, const int initialChildCapacity)
@@ -32,7 +60,6 @@ btCompoundShape::btCompoundShape(bool enableDynamicAabbTree, const int initialCh
       m_localScaling(1, 1, 1)
 {
 	m_shapeType = COMPOUND_SHAPE_PROXYTYPE;
-	m_invalidChildTransform.setIdentity();
 	if (enableDynamicAabbTree)
 	{
 		void* memory = btAlignedAlloc(sizeof(btDbvt), 16);
@@ -48,12 +75,6 @@ btCompoundShape::~btCompoundShape()
 		m_dynamicAabbTree->~btDbvt();
 		btAlignedFree(m_dynamicAabbTree);
 	}
-}
-
-void btCompoundShape::childAabb(int index, btVector3& aabbMin, btVector3& aabbMax) const
-{
-	const btCompoundShapeChild& child = m_children[index];
-	child.m_childShape->getAabb(child.m_transform, aabbMin, aabbMax);
 }
 
 void btCompoundShape::addChildShape(const btTransform& localTransform, btCollisionShape* shape)
@@ -92,26 +113,12 @@ void btCompoundShape::addChildShape(const btTransform& localTransform, btCollisi
 	m_children.push_back(child);
 }
 
-void btCompoundShape::removeChildWithoutAabbUpdate(int childShapeIndex)
-{
-	++m_updateRevision;
-	if (m_dynamicAabbTree && m_children[childShapeIndex].m_node)
-		m_dynamicAabbTree->remove(m_children[childShapeIndex].m_node);
-	const int last = m_children.size() - 1;
-	if (childShapeIndex != last)
-	{
-		m_children.swap(childShapeIndex, last);
-		if (m_children[childShapeIndex].m_node) setLeafIndex(m_children[childShapeIndex].m_node, childShapeIndex);
-	}
-	m_children.pop_back();
-}
-
 void btCompoundShape::removeChildShapeByIndex(int childShapeIndex)
 {
 	const bool valid = childShapeIndex >= 0 && childShapeIndex < m_children.size();
 	btAssert(valid && "btCompoundShape::removeChildShapeByIndex: index out of range");
 	if (!valid) return;
-	removeChildWithoutAabbUpdate(childShapeIndex);
+	removeChild(m_children, m_dynamicAabbTree, m_updateRevision, childShapeIndex);
 	// Unlike Bullet, the local AABB shrinks at once: a stale box would only be conservative, but queries
 	// against the compound would then visit space no child occupies.
 	recalculateLocalAabb();
@@ -122,7 +129,7 @@ void btCompoundShape::removeChildShape(btCollisionShape* shape)
 	// From the back, so that the child moved into a hole has already been checked.
 	for (int i = m_children.size() - 1; i >= 0; --i)
 	{
-		if (m_children[i].m_childShape == shape) removeChildWithoutAabbUpdate(i);
+		if (m_children[i].m_childShape == shape) removeChild(m_children, m_dynamicAabbTree, m_updateRevision, i);
 	}
 	recalculateLocalAabb();
 }
@@ -146,8 +153,7 @@ btTransform& btCompoundShape::getChildTransform(int index)
 	const bool valid = index >= 0 && index < m_children.size();
 	btAssert(valid && "btCompoundShape::getChildTransform: index out of range");
 	if (valid) return m_children[index].m_transform;
-	m_invalidChildTransform.setIdentity();
-	return m_invalidChildTransform;
+	return invalidChildTransform();
 }
 
 const btTransform& btCompoundShape::getChildTransform(int index) const
@@ -155,8 +161,7 @@ const btTransform& btCompoundShape::getChildTransform(int index) const
 	const bool valid = index >= 0 && index < m_children.size();
 	btAssert(valid && "btCompoundShape::getChildTransform: index out of range");
 	if (valid) return m_children[index].m_transform;
-	m_invalidChildTransform.setIdentity();
-	return m_invalidChildTransform;
+	return invalidChildTransform();
 }
 
 void btCompoundShape::updateChildTransform(int childIndex, const btTransform& newChildTransform,
@@ -172,7 +177,7 @@ void btCompoundShape::updateChildTransform(int childIndex, const btTransform& ne
 	if (m_dynamicAabbTree && m_children[childIndex].m_node)
 	{
 		btVector3 aabbMin, aabbMax;
-		childAabb(childIndex, aabbMin, aabbMax);
+		childAabb(m_children[childIndex], aabbMin, aabbMax);
 		btDbvtVolume bounds = btDbvtVolume::FromMM(aabbMin, aabbMax);
 		m_dynamicAabbTree->update(m_children[childIndex].m_node, bounds);
 	}
@@ -187,11 +192,11 @@ void btCompoundShape::recalculateLocalAabb()
 		m_localAabbMax.setValue(0, 0, 0);
 		return;
 	}
-	childAabb(0, m_localAabbMin, m_localAabbMax);
+	childAabb(m_children[0], m_localAabbMin, m_localAabbMax);
 	for (int i = 1; i < m_children.size(); ++i)
 	{
 		btVector3 aabbMin, aabbMax;
-		childAabb(i, aabbMin, aabbMax);
+		childAabb(m_children[i], aabbMin, aabbMax);
 		m_localAabbMin.setMin(aabbMin);
 		m_localAabbMax.setMax(aabbMax);
 	}
@@ -245,7 +250,7 @@ void btCompoundShape::createAabbTreeFromChildren()
 	for (int i = 0; i < m_children.size(); ++i)
 	{
 		btVector3 aabbMin, aabbMax;
-		childAabb(i, aabbMin, aabbMax);
+		childAabb(m_children[i], aabbMin, aabbMax);
 		m_children[i].m_node = m_dynamicAabbTree->insert(btDbvtVolume::FromMM(aabbMin, aabbMax), 0);
 		setLeafIndex(m_children[i].m_node, i);
 	}

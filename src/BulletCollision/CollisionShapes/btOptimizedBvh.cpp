@@ -32,21 +32,24 @@ btOptimizedBvh::btOptimizedBvh() {}
 
 btOptimizedBvh::~btOptimizedBvh() {}
 
-void btOptimizedBvh::quantizedLeafFromBox(btQuantizedBvhNode& node, const btVector3& aabbMin,
-                                          const btVector3& aabbMax) const
+namespace
 {
-	quantizeWithClamp(node.m_quantizedAabbMin, aabbMin, 0);
-	quantizeWithClamp(node.m_quantizedAabbMax, aabbMax, 1);
+void quantizedLeafFromBox(const btQuantizedBvh& bvh, btQuantizedBvhNode& node, const btVector3& aabbMin,
+                          const btVector3& aabbMax)
+{
+	bvh.quantizeWithClamp(node.m_quantizedAabbMin, aabbMin, 0);
+	bvh.quantizeWithClamp(node.m_quantizedAabbMax, aabbMax, 1);
 }
 
-void btOptimizedBvh::setLeafBox(int nodeIndex, bool valid, const btVector3& aabbMin, const btVector3& aabbMax)
+void setLeafBox(btQuantizedBvh& bvh, int nodeIndex, bool valid, const btVector3& aabbMin, const btVector3& aabbMax)
 {
 	// An unreadable triangle gets an empty box (min above max): no query reaches it through its parents.
-	if (m_useQuantization)
+	const caliber::QuantizedBvhParts tree = caliber::QuantizedBvhAccess::parts(bvh);
+	if (tree.useQuantization)
 	{
-		btQuantizedBvhNode& node = m_quantizedContiguousNodes[nodeIndex];
+		btQuantizedBvhNode& node = tree.quantizedContiguousNodes[nodeIndex];
 		if (valid)
-			quantizedLeafFromBox(node, aabbMin, aabbMax);
+			quantizedLeafFromBox(bvh, node, aabbMin, aabbMax);
 		else
 			for (int a = 0; a < 3; ++a)
 			{
@@ -56,7 +59,7 @@ void btOptimizedBvh::setLeafBox(int nodeIndex, bool valid, const btVector3& aabb
 	}
 	else
 	{
-		btOptimizedBvhNode& node = m_contiguousNodes[nodeIndex];
+		btOptimizedBvhNode& node = tree.contiguousNodes[nodeIndex];
 		if (valid)
 		{
 			node.m_aabbMinOrg = aabbMin;
@@ -70,11 +73,14 @@ void btOptimizedBvh::setLeafBox(int nodeIndex, bool valid, const btVector3& aabb
 	}
 }
 
-bool btOptimizedBvh::leafBoxesFitQuantization(const btVector3& aabbMin, const btVector3& aabbMax) const
+bool leafBoxesFitQuantization(const btQuantizedBvh& bvh, const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	return aabbMin.x() >= m_bvhAabbMin.x() && aabbMin.y() >= m_bvhAabbMin.y() && aabbMin.z() >= m_bvhAabbMin.z() &&
-	       aabbMax.x() <= m_bvhAabbMax.x() && aabbMax.y() <= m_bvhAabbMax.y() && aabbMax.z() <= m_bvhAabbMax.z();
+	const btVector3& boxMin = caliber::bvhAabbMin(bvh);
+	const btVector3& boxMax = caliber::bvhAabbMax(bvh);
+	return aabbMin.x() >= boxMin.x() && aabbMin.y() >= boxMin.y() && aabbMin.z() >= boxMin.z() &&
+	       aabbMax.x() <= boxMax.x() && aabbMax.y() <= boxMax.y() && aabbMax.z() <= boxMax.z();
 }
+}  // namespace
 
 void btOptimizedBvh::build(btStridingMeshInterface* triangles, bool useQuantizedAabbCompression,
                            const btVector3& bvhAabbMin, const btVector3& bvhAabbMax)
@@ -141,7 +147,7 @@ void btOptimizedBvh::build(btStridingMeshInterface* triangles, bool useQuantized
 		{
 			const btOptimizedBvhNode& leaf = m_leafNodes[i];
 			btQuantizedBvhNode& q = m_quantizedLeafNodes[i];
-			quantizedLeafFromBox(q, leaf.m_aabbMinOrg, leaf.m_aabbMaxOrg);
+			quantizedLeafFromBox(*this, q, leaf.m_aabbMinOrg, leaf.m_aabbMaxOrg);
 			q.m_escapeIndexOrTriangleIndex = (leaf.m_subPart << kTriangleIndexBits) | leaf.m_triangleIndex;
 		}
 		m_leafNodes.resize(0);
@@ -165,7 +171,7 @@ void btOptimizedBvh::refit(btStridingMeshInterface* meshInterface, const btVecto
 			if (node.m_escapeIndex >= 0) continue;
 			btVector3 boxMin, boxMax;
 			const bool valid = readLeafBox(part, *meshInterface, node.m_subPart, node.m_triangleIndex, boxMin, boxMax);
-			setLeafBox(i, valid, boxMin, boxMax);
+			setLeafBox(*this, i, valid, boxMin, boxMax);
 		}
 		caliber::refitQuantizedBvhInternalNodes(*this);
 		return;
@@ -194,7 +200,8 @@ void btOptimizedBvh::refit(btStridingMeshInterface* meshInterface, const btVecto
 	}
 	setQuantizationValues(boxMin, boxMax);
 	for (int i = 0; i < m_curNodeIndex; ++i)
-		if (m_quantizedContiguousNodes[i].isLeafNode()) setLeafBox(i, valid[i] != 0, boxes[2 * i], boxes[2 * i + 1]);
+		if (m_quantizedContiguousNodes[i].isLeafNode())
+			setLeafBox(*this, i, valid[i] != 0, boxes[2 * i], boxes[2 * i + 1]);
 	caliber::refitQuantizedBvhInternalNodes(*this);
 	caliber::updateQuantizedBvhSubtreeHeaders(*this);
 }
@@ -233,8 +240,8 @@ void btOptimizedBvh::refitPartial(btStridingMeshInterface* meshInterface, const 
 				btVector3 boxMin, boxMax;
 				const bool valid =
 				    readLeafBox(part, *meshInterface, node.getPartId(), node.getTriangleIndex(), boxMin, boxMax);
-				if (valid && !leafBoxesFitQuantization(boxMin, boxMax)) leftQuantizationBox = true;
-				setLeafBox(i, valid, boxMin, boxMax);
+				if (valid && !leafBoxesFitQuantization(*this, boxMin, boxMax)) leftQuantizationBox = true;
+				setLeafBox(*this, i, valid, boxMin, boxMax);
 			}
 			++i;
 		}
@@ -256,7 +263,7 @@ void btOptimizedBvh::refitPartial(btStridingMeshInterface* meshInterface, const 
 				btVector3 boxMin, boxMax;
 				const bool valid =
 				    readLeafBox(part, *meshInterface, node.m_subPart, node.m_triangleIndex, boxMin, boxMax);
-				setLeafBox(i, valid, boxMin, boxMax);
+				setLeafBox(*this, i, valid, boxMin, boxMax);
 			}
 			++i;
 		}
@@ -309,7 +316,7 @@ void btOptimizedBvh::updateBvhNodes(btStridingMeshInterface* meshInterface, int 
 		}
 		btVector3 boxMin, boxMax;
 		const bool valid = readLeafBox(part, *meshInterface, partId, triangleIndex, boxMin, boxMax);
-		setLeafBox(i, valid, boxMin, boxMax);
+		setLeafBox(*this, i, valid, boxMin, boxMax);
 	}
 	caliber::updateQuantizedBvhSubtreeHeaders(*this);
 }

@@ -21,7 +21,7 @@ btTriangleShape::btTriangleShape(const btVector3& p0, const btVector3& p1, const
 
 void btTriangleShape::getEdge(int i, btVector3& pa, btVector3& pb) const
 {
-	const int a = clampIndex(i);
+	const int a = caliber::triangleCornerIndex(i);
 	pa = m_vertices1[a];
 	pb = m_vertices1[(a + 1) % 3];
 }

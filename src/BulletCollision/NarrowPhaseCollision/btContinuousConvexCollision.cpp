@@ -22,8 +22,7 @@ btContinuousConvexCollision::btContinuousConvexCollision(const btConvexShape* sh
       m_penetrationDepthSolver(penetrationDepthSolver),
       m_convexA(shapeA),
       m_convexB1(shapeB),
-      m_planeShape(nullptr),
-      m_separatingAxisHint(btScalar(0), btScalar(0), btScalar(0))
+      m_planeShape(nullptr)
 {
 }
 
@@ -32,18 +31,23 @@ btContinuousConvexCollision::btContinuousConvexCollision(const btConvexShape* sh
       m_penetrationDepthSolver(nullptr),
       m_convexA(shapeA),
       m_convexB1(nullptr),
-      m_planeShape(plane),
-      m_separatingAxisHint(btScalar(0), btScalar(0), btScalar(0))
+      m_planeShape(plane)
 {
 }
 
-void btContinuousConvexCollision::computeClosestPoints(const btTransform& transA, const btTransform& transB,
-                                                       btPointCollector& pointCollector)
+namespace
 {
-	if (m_convexB1)
+// The signed distance (margins included) of convexA placed by transA and B (convexB, or else plane)
+// placed by transB, into pointCollector. GJK starts from separatingAxisHint unless it is zero.
+void closestPoints(const btConvexShape* convexA, const btConvexShape* convexB, const btStaticPlaneShape* plane,
+                   btSimplexSolverInterface* simplexSolver, btConvexPenetrationDepthSolver* penetrationDepthSolver,
+                   const btTransform& transA, const btTransform& transB, const btVector3& separatingAxisHint,
+                   btPointCollector& pointCollector)
+{
+	if (convexB)
 	{
-		btGjkPairDetector detector(m_convexA, m_convexB1, m_simplexSolver, m_penetrationDepthSolver);
-		if (!m_separatingAxisHint.fuzzyZero()) detector.setCachedSeperatingAxis(m_separatingAxisHint);
+		btGjkPairDetector detector(convexA, convexB, simplexSolver, penetrationDepthSolver);
+		if (!separatingAxisHint.fuzzyZero()) detector.setCachedSeperatingAxis(separatingAxisHint);
 		btDiscreteCollisionDetectorInterface::ClosestPointInput input;
 		input.m_transformA = transA;
 		input.m_transformB = transB;
@@ -53,12 +57,20 @@ void btContinuousConvexCollision::computeClosestPoints(const btTransform& transA
 	// Convex against plane: A's deepest point against the world normal gives the signed distance. The
 	// core's support plus the margin is the rounded surface GJK sees, so both paths agree (a box's
 	// localGetSupportingVertex would give its sharp corner instead).
-	const btVector3 normal = transB.getBasis() * m_planeShape->getPlaneNormal();
-	const btVector3 planePoint = transB(m_planeShape->getPlaneNormal() * m_planeShape->getPlaneConstant());
-	const btVector3 deepestOnA = transA(m_convexA->localGetSupportingVertexWithoutMargin(-normal * transA.getBasis())) -
-	                             normal * m_convexA->getMargin();
+	const btVector3 normal = transB.getBasis() * plane->getPlaneNormal();
+	const btVector3 planePoint = transB(plane->getPlaneNormal() * plane->getPlaneConstant());
+	const btVector3 deepestOnA = transA(convexA->localGetSupportingVertexWithoutMargin(-normal * transA.getBasis())) -
+	                             normal * convexA->getMargin();
 	const btScalar distance = normal.dot(deepestOnA - planePoint);
 	pointCollector.addContactPoint(normal, deepestOnA - normal * distance, distance);
+}
+}  // namespace
+
+void btContinuousConvexCollision::computeClosestPoints(const btTransform& transA, const btTransform& transB,
+                                                       btPointCollector& pointCollector)
+{
+	closestPoints(m_convexA, m_convexB1, m_planeShape, m_simplexSolver, m_penetrationDepthSolver, transA, transB,
+	              btVector3(0, 0, 0), pointCollector);
 }
 
 namespace
@@ -101,12 +113,14 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 	btTransform transA = fromA, transB = fromB;
 	btScalar lambda = btScalar(0);
 	btVector3 lastNormal = caliber::fallbackNormal(relativeLinVel);
-	m_separatingAxisHint = lastNormal;
+	// Each GJK call starts from the last normal found.
+	btVector3 separatingAxisHint = lastNormal;
 	btVector3 lastPoint = fromB.getOrigin();
 	for (int iteration = 0;; ++iteration)
 	{
 		btPointCollector collector;
-		computeClosestPoints(transA, transB, collector);
+		closestPoints(m_convexA, m_convexB1, m_planeShape, m_simplexSolver, m_penetrationDepthSolver, transA, transB,
+		              separatingAxisHint, collector);
 		if (!collector.m_hasResult || !btIsFinite(collector.m_distance) ||
 		    !caliber::isFinite(collector.m_normalOnBInWorld))
 		{
@@ -117,7 +131,7 @@ bool btContinuousConvexCollision::calcTimeOfImpact(const btTransform& fromA, con
 		}
 		const btVector3 normal = collector.m_normalOnBInWorld;
 		lastNormal = normal;
-		m_separatingAxisHint = normal;
+		separatingAxisHint = normal;
 		lastPoint = collector.m_pointInWorld;
 		const btScalar gap = collector.m_distance + allowedPenetration;
 		if (gap <= caliber::kCastDistanceTolerance)

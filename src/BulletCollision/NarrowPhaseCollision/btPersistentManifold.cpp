@@ -136,7 +136,7 @@ int btPersistentManifold::getCacheEntry(const btManifoldPoint& newPoint) const
 // point is deeper still, in which case any point may go). Among the remaining candidates, the one whose
 // replacement by the new point leaves the largest area measure wins, so the kept points span the contact
 // patch as widely as possible; ties go to the lowest index.
-int btPersistentManifold::chooseReplacedPoint(const btManifoldPoint& newPoint) const
+int btPersistentManifold::sortCachedPoints(const btManifoldPoint& newPoint)
 {
 	int deepest = -1;
 	btScalar deepestDistance = newPoint.m_distance1;
@@ -179,7 +179,7 @@ int btPersistentManifold::addManifoldPoint(const btManifoldPoint& newPoint, bool
 	int insertIndex = m_cachedPoints;
 	if (insertIndex == MANIFOLD_CACHE_SIZE)
 	{
-		insertIndex = chooseReplacedPoint(newPoint);
+		insertIndex = sortCachedPoints(newPoint);
 		clearUserCache(m_pointCache[insertIndex]);
 	}
 	else

@@ -1,7 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofConstraint.h"
 
-#include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofRows.h"
 #include "BulletDynamics/ConstraintSolver/btJointRowUtil.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "LinearMath/btWarningHook.h"
@@ -136,7 +136,7 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbA, btRigidBody& 
       m_flags(0),
       m_useSolveConstraintObsolete(false)
 {
-	if (checkFrames()) calculateTransforms();
+	if (caliber::sixDofFramesFinite(*this)) calculateTransforms();
 }
 
 btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbB, const btTransform& frameInB,
@@ -153,15 +153,7 @@ btGeneric6DofConstraint::btGeneric6DofConstraint(btRigidBody& rbB, const btTrans
       m_flags(0),
       m_useSolveConstraintObsolete(false)
 {
-	if (checkFrames()) calculateTransforms();
-}
-
-bool btGeneric6DofConstraint::checkFrames()
-{
-	if (caliber::isFinite(m_frameInA) && caliber::isFinite(m_frameInB)) return true;
-	btReportWarning("Caliber: btGeneric6DofConstraint: a joint frame is not finite; the joint is disabled\n", 0);
-	setEnabled(false);
-	return false;
+	if (caliber::sixDofFramesFinite(*this)) calculateTransforms();
 }
 
 void btGeneric6DofConstraint::calculateTransforms()
@@ -296,7 +288,7 @@ void btGeneric6DofConstraint::setFrames(const btTransform& frameA, const btTrans
 {
 	m_frameInA = frameA;
 	m_frameInB = frameB;
-	if (checkFrames()) calculateTransforms();
+	if (caliber::sixDofFramesFinite(*this)) calculateTransforms();
 }
 
 bool btGeneric6DofConstraint::testAngularLimitMotor(int axis_index)
@@ -349,352 +341,13 @@ bool btGeneric6DofConstraint::isLimited(int limitIndex) const
 	return m_angularLimits[limitIndex - 3].isLimited();
 }
 
-bool btGeneric6DofConstraint::isCoordinateLocked(int coordinate) const
-{
-	if (coordinate < 3) return m_linearLimits.m_lowerLimit[coordinate] == m_linearLimits.m_upperLimit[coordinate];
-	return m_angularLimits[coordinate - 3].m_loLimit == m_angularLimits[coordinate - 3].m_hiLimit;
-}
-
-bool btGeneric6DofConstraint::isCoordinateLimited(int coordinate) const
-{
-	if (coordinate < 3) return m_linearLimits.m_lowerLimit[coordinate] < m_linearLimits.m_upperLimit[coordinate];
-	return m_angularLimits[coordinate - 3].m_loLimit < m_angularLimits[coordinate - 3].m_hiLimit;
-}
-
-bool btGeneric6DofConstraint::hasMotorRow(int coordinate) const
-{
-	const bool enabled =
-	    coordinate < 3 ? m_linearLimits.m_enableMotor[coordinate] : m_angularLimits[coordinate - 3].m_enableMotor;
-	return enabled && !isCoordinateLocked(coordinate);
-}
-
-int btGeneric6DofConstraint::countLimitMotorRows() const
-{
-	int rows = 0;
-	for (int c = 0; c < 6; ++c)
-		rows += (isCoordinateLocked(c) || isCoordinateLimited(c) ? 1 : 0) + (hasMotorRow(c) ? 1 : 0);
-	return rows;
-}
-
-btScalar btGeneric6DofConstraint::getCoordinate(int coordinate) const
-{
-	return coordinate < 3 ? m_calculatedLinearDiff[coordinate] : m_calculatedAxisAngleDiff[coordinate - 3];
-}
-
-btScalar btGeneric6DofConstraint::getCoordinateVelocity(int coordinate, const btVector3& linVelA,
-                                                        const btVector3& linVelB, const btVector3& angVelA,
-                                                        const btVector3& angVelB) const
-{
-	if (coordinate >= 3) return m_angularRowAxis[coordinate - 3].dot(angVelB - angVelA);
-	const btVector3 velocityB = linVelB + angVelB.cross(m_linearRowPoint - m_centerOfMassB);
-	const btVector3 velocityA = linVelA + angVelA.cross(m_linearRowPoint - m_centerOfMassA);
-	return m_linearRowAxis[coordinate].dot(velocityB - velocityA);
-}
-
-void btGeneric6DofConstraint::getCoordinateJacobian(int coordinate, btVector3& linearA, btVector3& angularA,
-                                                    btVector3& linearB, btVector3& angularB) const
-{
-	if (coordinate >= 3)
-	{
-		const btVector3& axis = m_angularRowAxis[coordinate - 3];
-		linearA.setZero();
-		linearB.setZero();
-		angularA = -axis;
-		angularB = axis;
-		return;
-	}
-	const btVector3& axis = m_linearRowAxis[coordinate];
-	linearA = -axis;
-	linearB = axis;
-	angularA = -(m_linearRowPoint - m_centerOfMassA).cross(axis);
-	angularB = (m_linearRowPoint - m_centerOfMassB).cross(axis);
-}
-
-namespace
-{
-// One row's Jacobian as the solver reads it: J v = linA . vA + angA . wA + linB . vB + angB . wB.
-struct RowJacobian
-{
-	btVector3 part[4];  // linear A, angular A, linear B, angular B
-
-	btScalar dot(const RowJacobian& other) const
-	{
-		return part[0].dot(other.part[0]) + part[1].dot(other.part[1]) + part[2].dot(other.part[2]) +
-		       part[3].dot(other.part[3]);
-	}
-	void addScaled(const RowJacobian& other, btScalar scale)
-	{
-		for (int i = 0; i < 4; ++i) part[i] += other.part[i] * scale;
-	}
-};
-
-// M^-1 J^T with the solver's masses: linear and angular factors, nothing for static and kinematic bodies.
-RowJacobian applyInverseMass(const btRigidBody& a, const btRigidBody& b, const RowJacobian& j)
-{
-	RowJacobian r;
-	const btRigidBody* bodies[2] = {&a, &b};
-	for (int k = 0; k < 2; ++k)
-	{
-		const btRigidBody& body = *bodies[k];
-		if (body.isStaticOrKinematicObject())
-		{
-			r.part[2 * k].setZero();
-			r.part[2 * k + 1].setZero();
-			continue;
-		}
-		r.part[2 * k] = j.part[2 * k] * body.getLinearFactor() * body.getInvMass();
-		r.part[2 * k + 1] =
-		    (body.getInvInertiaTensorWorld() * (j.part[2 * k + 1] * body.getAngularFactor())) * body.getAngularFactor();
-	}
-	return r;
-}
-
-RowJacobian blockRow(const btVector3 (&parts)[4])
-{
-	RowJacobian r;
-	for (int i = 0; i < 4; ++i) r.part[i] = parts[i];
-	return r;
-}
-
-// Inverts the n x n matrix k (stride 6); pivots are judged against its largest diagonal entry.
-bool invertSmall(const btScalar* k, int n, btScalar* inverse)
-{
-	if (n == 0) return true;
-	btScalar largest = 0;
-	for (int i = 0; i < n; ++i) largest = btMax(largest, btFabs(k[i * 6 + i]));
-	if (!(largest > btScalar(0))) return false;
-	return caliber::invertDense(k, n, 6, largest * btScalar(1e-6), inverse);
-}
-
-void writeJacobian(btTypedConstraint::btConstraintInfo2& info, int row, const RowJacobian& j)
-{
-	btScalar* targets[4] = {info.m_J1linearAxis, info.m_J1angularAxis, info.m_J2linearAxis, info.m_J2angularAxis};
-	for (int k = 0; k < 4; ++k)
-	{
-		if (!targets[k]) continue;  // a solver may imply J2linear = -J1linear
-		btScalar* p = targets[k] + row * info.rowskip;
-		p[0] = j.part[k].x();
-		p[1] = j.part[k].y();
-		p[2] = j.part[k].z();
-	}
-}
-}  // namespace
-
-// Projection. The solver solves the hard locked rows J_e as one exact block. A limit, motor or spring row
-// J_c solved after them would on its own see only each body's inertia about its own centre (a hinge's
-// limit would act on the swinging body as if it were not pinned), and the solver would need many sweeps
-// to share its impulse with the block. Removing from J_c its part along the block,
-//   J_c' = J_c - a J_e,  a = (J_c M^-1 J_e^T) (J_e M^-1 J_e^T)^-1,
-// makes the row's impulses M^-1-orthogonal to the block: they leave the locked rows' velocities alone,
-// and J_c' M^-1 J_c'^T is the coordinate's true effective inverse mass with the locked coordinates held.
-// While the block holds, J_e v = t_e, so J_c' v = J_c v - a t_e: the target moves by the same amount.
-// The impulse along J_c' is still the coordinate's generalised force (the J_e part is the reaction the
-// block would have supplied), so motor and spring forces keep their meaning.
-
-namespace
-{
-// The hard locked rows of the joint whose rows are being written, which the rows after them are projected
-// against: filled by writeLimitMotorRows, read by the rows written after it in the same getInfo2 (the
-// spring joint's too), on the same thread. Scratch of one call, so it lives with the thread rather than
-// in every joint.
-struct LockedBlock
-{
-	const btGeneric6DofConstraint* joint;
-	btVector3 jacobian[6][4];  // linear A, angular A, linear B, angular B
-	btScalar target[6];
-	btScalar inverse[36];  // of their J M^-1 J^T, row-major, stride 6
-	int count;
-};
-thread_local LockedBlock t_lockedBlock = {};
-
-// joint's block, or an empty one if the block on this thread belongs to another joint.
-const LockedBlock& lockedBlockOf(const btGeneric6DofConstraint* joint)
-{
-	static const LockedBlock kNone = {};
-	return t_lockedBlock.joint == joint ? t_lockedBlock : kNone;
-}
-}  // namespace
-
-btScalar btGeneric6DofConstraint::getCoordinateInverseMass(int coordinate) const
-{
-	RowJacobian j;
-	getCoordinateJacobian(coordinate, j.part[0], j.part[1], j.part[2], j.part[3]);
-	const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, j);
-	btScalar k = j.dot(weighted);
-	const LockedBlock& block = lockedBlockOf(this);
-	const int n = block.count;
-	btScalar coupling[6];
-	for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(block.jacobian[e]));
-	for (int e = 0; e < n; ++e)
-		for (int f = 0; f < n; ++f) k -= coupling[e] * block.inverse[e * 6 + f] * coupling[f];
-	return btMax(k, btScalar(0));
-}
-
-void btGeneric6DofConstraint::writeCoordinateRow(btConstraintInfo2* info, int row, int coordinate,
-                                                 btScalar targetRate) const
-{
-	RowJacobian j;
-	getCoordinateJacobian(coordinate, j.part[0], j.part[1], j.part[2], j.part[3]);
-	const LockedBlock& block = lockedBlockOf(this);
-	const int n = block.count;
-	if (n > 0)
-	{
-		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, j);
-		btScalar coupling[6];
-		for (int e = 0; e < n; ++e) coupling[e] = weighted.dot(blockRow(block.jacobian[e]));
-		for (int f = 0; f < n; ++f)
-		{
-			btScalar a = 0;
-			for (int e = 0; e < n; ++e) a += coupling[e] * block.inverse[e * 6 + f];
-			j.addScaled(blockRow(block.jacobian[f]), -a);
-			targetRate -= a * block.target[f];
-		}
-	}
-	writeJacobian(*info, row, j);
-	info->m_constraintError[row * info->rowskip] = targetRate;
-}
-
-int btGeneric6DofConstraint::writeLimitMotorRows(btConstraintInfo2* info, const btVector3& linVelA,
-                                                 const btVector3& linVelB, const btVector3& angVelA,
-                                                 const btVector3& angVelB)
-{
-	const btScalar fps = info->fps;
-	const btScalar h = btScalar(1) / fps;
-	struct Axis
-	{
-		btScalar lower, upper, stopErp, stopCfm, normalCfm, targetVelocity, maxMotorForce, bounce;
-		bool hasStopCfm, hasNormalCfm;
-	};
-	Axis axes[6];
-	for (int c = 0; c < 6; ++c)
-	{
-		Axis& a = axes[c];
-		if (c < 3)
-		{
-			const btTranslationalLimitMotor& m = m_linearLimits;
-			a = Axis{m.m_lowerLimit[c],     m.m_upperLimit[c],    m.m_stopERP[c], m.m_stopCFM[c], m.m_normalCFM[c],
-			         m.m_targetVelocity[c], m.m_maxMotorForce[c], btScalar(0),    false,          false};
-		}
-		else
-		{
-			const btRotationalLimitMotor& m = m_angularLimits[c - 3];
-			a = Axis{m.m_loLimit,        m.m_hiLimit,       m.m_stopERP, m.m_stopCFM, m.m_normalCFM,
-			         m.m_targetVelocity, m.m_maxMotorForce, m.m_bounce,  false,       false};
-		}
-		const int shift = c * BT_6DOF_FLAGS_AXIS_SHIFT;
-		if (!(m_flags & (BT_6DOF_FLAGS_ERP_STOP << shift))) a.stopErp = info->erp;
-		a.hasStopCfm = (m_flags & (BT_6DOF_FLAGS_CFM_STOP << shift)) != 0;
-		a.hasNormalCfm = (m_flags & (BT_6DOF_FLAGS_CFM_NORM << shift)) != 0;
-	}
-
-	// Hard locked coordinates first: the solver solves the leading rows without bounds or softness as one
-	// exact block. They are kept to project the rows after them against.
-	int row = 0;
-	LockedBlock& block = t_lockedBlock;
-	block.joint = this;
-	block.count = 0;
-	bool softLocked[6] = {false, false, false, false, false, false};
-	btScalar lockedTarget[6];
-	for (int c = 0; c < 6; ++c)
-	{
-		if (!isCoordinateLocked(c)) continue;
-		const Axis& a = axes[c];
-		btScalar error = a.lower - getCoordinate(c);
-		if (c >= 3) error = btNormalizeAngle(error);
-		lockedTarget[c] = fps * a.stopErp * error;
-		if (a.hasStopCfm && a.stopCfm != btScalar(0))
-		{
-			softLocked[c] = true;
-			continue;
-		}
-		btVector3(&jacobian)[4] = block.jacobian[block.count];
-		getCoordinateJacobian(c, jacobian[0], jacobian[1], jacobian[2], jacobian[3]);
-		block.target[block.count] = lockedTarget[c];
-		writeJacobian(*info, row, blockRow(jacobian));
-		info->m_constraintError[row * info->rowskip] = lockedTarget[c];
-		++block.count;
-		++row;
-	}
-	btScalar k[36];
-	for (int e = 0; e < block.count; ++e)
-	{
-		const RowJacobian weighted = applyInverseMass(m_rbA, m_rbB, blockRow(block.jacobian[e]));
-		for (int f = 0; f < block.count; ++f) k[e * 6 + f] = weighted.dot(blockRow(block.jacobian[f]));
-	}
-	// A singular block (both bodies immovable, or a degenerate frame) leaves the other rows unprojected.
-	if (!invertSmall(k, block.count, block.inverse)) block.count = 0;
-
-	for (int c = 0; c < 6; ++c)
-	{
-		if (!softLocked[c]) continue;
-		writeCoordinateRow(info, row, c, lockedTarget[c]);
-		info->cfm[row * info->rowskip] = axes[c].stopCfm;
-		++row;
-	}
-
-	// Limits: one row per limited coordinate, against the nearer limit. Away from it the row lets the
-	// coordinate approach by at most the remaining gap this step (so it never passes the limit); past it,
-	// the row pushes back with the error reduction.
-	for (int c = 0; c < 6; ++c)
-	{
-		if (!isCoordinateLimited(c)) continue;
-		const Axis& a = axes[c];
-		btScalar position = getCoordinate(c);
-		if (c >= 3) position = btAdjustAngleToLimits(position, a.lower, a.upper);
-		const btScalar velocity = getCoordinateVelocity(c, linVelA, linVelB, angVelA, angVelB);
-		btScalar target;
-		const bool lowerSide = position - a.lower <= a.upper - position;
-		if (lowerSide)
-		{
-			const btScalar gap = position - a.lower;
-			target = -gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
-			if (a.bounce > btScalar(0) && velocity < btScalar(0) && gap + velocity * h <= btScalar(0))
-				target = btMax(target, -a.bounce * velocity);
-		}
-		else
-		{
-			const btScalar gap = a.upper - position;
-			target = gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
-			if (a.bounce > btScalar(0) && velocity > btScalar(0) && gap - velocity * h <= btScalar(0))
-				target = btMin(target, -a.bounce * velocity);
-		}
-		writeCoordinateRow(info, row, c, target);
-		caliber::JointRow jointRow(*info, row);
-		if (lowerSide)
-			jointRow.lower() = btScalar(0);
-		else
-			jointRow.upper() = btScalar(0);
-		if (a.hasStopCfm) jointRow.cfm() = a.stopCfm;
-		++row;
-	}
-
-	// Motors: drive the coordinate's rate to the target with at most the motor's force, slowing down as
-	// a limit comes within one step.
-	for (int c = 0; c < 6; ++c)
-	{
-		if (!hasMotorRow(c)) continue;
-		const Axis& a = axes[c];
-		btScalar position = getCoordinate(c);
-		if (c >= 3 && a.lower < a.upper) position = btAdjustAngleToLimits(position, a.lower, a.upper);
-		writeCoordinateRow(info, row, c,
-		                   a.targetVelocity * getMotorFactor(position, a.lower, a.upper, a.targetVelocity, fps));
-		caliber::JointRow jointRow(*info, row);
-		const btScalar maxImpulse = btFabs(a.maxMotorForce) * h;
-		jointRow.lower() = -maxImpulse;
-		jointRow.upper() = maxImpulse;
-		if (a.hasNormalCfm) jointRow.cfm() = a.normalCfm;
-		++row;
-	}
-	return row;
-}
-
 void btGeneric6DofConstraint::getInfo1(btConstraintInfo1* info) { getInfo1NonVirtual(info); }
 
 void btGeneric6DofConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
 {
-	info->m_numConstraintRows = countLimitMotorRows();
+	info->m_numConstraintRows = caliber::sixDofLimitMotorRowCount(*this);
 	int locked = 0;
-	for (int c = 0; c < 6; ++c) locked += isCoordinateLocked(c) ? 1 : 0;
+	for (int c = 0; c < 6; ++c) locked += caliber::sixDofIsLocked(*this, c) ? 1 : 0;
 	info->nub = locked;
 }
 
@@ -712,8 +365,8 @@ void btGeneric6DofConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const 
 {
 	calculateTransforms(transA, transB);
 	if (info->fps > btScalar(0)) m_timeStep = btScalar(1) / info->fps;
-	const int rows = writeLimitMotorRows(info, linVelA, linVelB, angVelA, angVelB);
-	btAssert(rows == countLimitMotorRows());
+	const int rows = caliber::writeSixDofLimitMotorRows(*this, info, linVelA, linVelB, angVelA, angVelB);
+	btAssert(rows == caliber::sixDofLimitMotorRowCount(*this));
 	(void)rows;
 }
 

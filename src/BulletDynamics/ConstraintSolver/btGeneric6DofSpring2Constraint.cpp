@@ -157,6 +157,15 @@ struct CoordinateSettings
 	// limits for it.
 	btScalar motorVelocity, motorFactor;
 };
+
+// True for 0..5; anything else asserts, and in release builds is reported and ignored.
+bool checkIndex(int index, const char* function)
+{
+	const bool valid = index >= 0 && index < 6;
+	if (!valid) warn(function, "coordinate index outside 0..5; call ignored");
+	btAssert(valid && "btGeneric6DofSpring2Constraint: coordinate index must be 0..5");
+	return valid;
+}
 }  // namespace
 
 // ---- limit motors -------------------------------------------------------------------------------
@@ -620,16 +629,7 @@ btScalar btGeneric6DofSpring2Constraint::getAngle(int axis_index) const
 
 btScalar btGeneric6DofSpring2Constraint::getRelativePivotPosition(int axis_index) const
 {
-	return angleIndexInRange(axis_index, "getRelativePivotPosition") ? m_calculatedLinearDiff[axis_index]
-	                                                                  : btScalar(0);
-}
-
-bool btGeneric6DofSpring2Constraint::checkIndex(int index, const char* function) const
-{
-	const bool valid = index >= 0 && index < 6;
-	if (!valid) warn(function, "coordinate index outside 0..5; call ignored");
-	btAssert(valid && "btGeneric6DofSpring2Constraint: coordinate index must be 0..5");
-	return valid;
+	return angleIndexInRange(axis_index, "getRelativePivotPosition") ? m_calculatedLinearDiff[axis_index] : btScalar(0);
 }
 
 void btGeneric6DofSpring2Constraint::setFrames(const btTransform& frameA, const btTransform& frameB)

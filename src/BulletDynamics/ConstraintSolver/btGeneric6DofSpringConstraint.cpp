@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofSpringConstraint.h"
 
+#include "BulletDynamics/ConstraintSolver/btGeneric6DofRows.h"
 #include "BulletDynamics/ConstraintSolver/btJointRowUtil.h"
 #include "LinearMath/btWarningHook.h"
 
@@ -108,14 +109,14 @@ void btGeneric6DofSpringConstraint::setDamping(int index, btScalar damping)
 void btGeneric6DofSpringConstraint::setEquilibriumPoint()
 {
 	calculateTransforms();
-	for (int i = 0; i < 6; ++i) m_equilibriumPoint[i] = getCoordinate(i);
+	for (int i = 0; i < 6; ++i) m_equilibriumPoint[i] = caliber::sixDofCoordinate(*this, i);
 }
 
 void btGeneric6DofSpringConstraint::setEquilibriumPoint(int index)
 {
 	if (!springIndexInRange(index)) return;
 	calculateTransforms();
-	m_equilibriumPoint[index] = getCoordinate(index);
+	m_equilibriumPoint[index] = caliber::sixDofCoordinate(*this, index);
 }
 
 void btGeneric6DofSpringConstraint::setEquilibriumPoint(int index, btScalar val)
@@ -129,16 +130,58 @@ void btGeneric6DofSpringConstraint::setAxis(const btVector3& axis1, const btVect
 	btGeneric6DofConstraint::setAxis(axis1, axis2);
 }
 
-bool btGeneric6DofSpringConstraint::hasSpringRow(int index) const
+namespace
 {
-	return m_springEnabled[index] && !isCoordinateLocked(index) &&
-	       (m_springStiffness[index] > btScalar(0) || m_springDamping[index] > btScalar(0));
+// The spring settings of one joint, as its protected arrays hold them.
+struct SpringSettings
+{
+	const bool* enabled;
+	const btScalar* equilibrium;
+	const btScalar* stiffness;
+	const btScalar* damping;
+};
+
+// True when coordinate index gets a spring row this step.
+bool hasSpringRow(const btGeneric6DofConstraint& joint, const SpringSettings& springs, int index)
+{
+	return springs.enabled[index] && !caliber::sixDofIsLocked(joint, index) &&
+	       (springs.stiffness[index] > btScalar(0) || springs.damping[index] > btScalar(0));
 }
+
+// Writes the spring rows from row on; returns how many.
+int writeSpringRows(const btGeneric6DofConstraint& joint, const SpringSettings& springs,
+                    btTypedConstraint::btConstraintInfo2* info, int row, const btVector3& linVelA,
+                    const btVector3& linVelB, const btVector3& angVelA, const btVector3& angVelB)
+{
+	const btScalar h = btScalar(1) / info->fps;
+	const int first = row;
+	for (int i = 0; i < 6; ++i)
+	{
+		if (!hasSpringRow(joint, springs, i)) continue;
+		const btScalar k = springs.stiffness[i], d = springs.damping[i];
+		btScalar stretch = caliber::sixDofCoordinate(joint, i) - springs.equilibrium[i];
+		if (i >= 3) stretch = btNormalizeAngle(stretch);
+		const btScalar rate = caliber::sixDofCoordinateVelocity(joint, i, linVelA, linVelB, angVelA, angVelB);
+		const btScalar inverseMass = caliber::sixDofCoordinateInverseMass(joint, i);
+		const btScalar omegaH2 = h * h * k * inverseMass;
+		const btScalar theta = omegaH2 <= btScalar(2) ? btScalar(0) : btScalar(0.5) * (1 - btScalar(2) / omegaH2);
+		const btScalar implicitRate = theta * h * k + d;  // force per unit of the step's new rate
+		const btScalar impulse = -h * (k * stretch + implicitRate * rate) / (1 + h * implicitRate * inverseMass);
+		caliber::writeSixDofCoordinateRow(joint, info, row, i, btScalar(0));
+		caliber::JointRow jointRow(*info, row);
+		jointRow.lower() = impulse;
+		jointRow.upper() = impulse;
+		++row;
+	}
+	return row - first;
+}
+}  // namespace
 
 void btGeneric6DofSpringConstraint::getInfo1(btConstraintInfo1* info)
 {
 	getInfo1NonVirtual(info);
-	for (int i = 0; i < 6; ++i) info->m_numConstraintRows += hasSpringRow(i) ? 1 : 0;
+	const SpringSettings springs = {m_springEnabled, m_equilibriumPoint, m_springStiffness, m_springDamping};
+	for (int i = 0; i < 6; ++i) info->m_numConstraintRows += hasSpringRow(*this, springs, i) ? 1 : 0;
 }
 
 void btGeneric6DofSpringConstraint::getInfo2(btConstraintInfo2* info)
@@ -146,33 +189,7 @@ void btGeneric6DofSpringConstraint::getInfo2(btConstraintInfo2* info)
 	const btVector3 linVelA = m_rbA.getLinearVelocity(), linVelB = m_rbB.getLinearVelocity();
 	const btVector3 angVelA = m_rbA.getAngularVelocity(), angVelB = m_rbB.getAngularVelocity();
 	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
-	const int row = writeLimitMotorRows(info, linVelA, linVelB, angVelA, angVelB);
-	writeSpringRows(info, row, linVelA, linVelB, angVelA, angVelB);
-}
-
-int btGeneric6DofSpringConstraint::writeSpringRows(btConstraintInfo2* info, int row, const btVector3& linVelA,
-                                                   const btVector3& linVelB, const btVector3& angVelA,
-                                                   const btVector3& angVelB)
-{
-	const btScalar h = btScalar(1) / info->fps;
-	const int first = row;
-	for (int i = 0; i < 6; ++i)
-	{
-		if (!hasSpringRow(i)) continue;
-		const btScalar k = m_springStiffness[i], d = m_springDamping[i];
-		btScalar stretch = getCoordinate(i) - m_equilibriumPoint[i];
-		if (i >= 3) stretch = btNormalizeAngle(stretch);
-		const btScalar rate = getCoordinateVelocity(i, linVelA, linVelB, angVelA, angVelB);
-		const btScalar inverseMass = getCoordinateInverseMass(i);
-		const btScalar omegaH2 = h * h * k * inverseMass;
-		const btScalar theta = omegaH2 <= btScalar(2) ? btScalar(0) : btScalar(0.5) * (1 - btScalar(2) / omegaH2);
-		const btScalar implicitRate = theta * h * k + d;  // force per unit of the step's new rate
-		const btScalar impulse = -h * (k * stretch + implicitRate * rate) / (1 + h * implicitRate * inverseMass);
-		writeCoordinateRow(info, row, i, btScalar(0));
-		caliber::JointRow jointRow(*info, row);
-		jointRow.lower() = impulse;
-		jointRow.upper() = impulse;
-		++row;
-	}
-	return row - first;
+	const int row = caliber::writeSixDofLimitMotorRows(*this, info, linVelA, linVelB, angVelA, angVelB);
+	const SpringSettings springs = {m_springEnabled, m_equilibriumPoint, m_springStiffness, m_springDamping};
+	writeSpringRows(*this, springs, info, row, linVelA, linVelB, angVelA, angVelB);
 }

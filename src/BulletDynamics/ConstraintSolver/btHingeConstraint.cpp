@@ -20,6 +20,34 @@ btMatrix3x3 basisWithZ(const btVector3& z, const btVector3& x)
 	const btVector3 y = z.cross(x);
 	return btMatrix3x3(x.x(), y.x(), z.x(), x.y(), y.y(), z.y(), x.z(), y.z(), z.z());
 }
+
+// Reports a zero-length or non-finite axis and makes the joint inert.
+void rejectAxis(btHingeConstraint& joint)
+{
+	btAssert(!"btHingeConstraint: zero-length or non-finite hinge axis");
+	btReportWarning("Caliber: btHingeConstraint: zero-length or non-finite hinge axis; the joint is disabled\n", 0);
+	joint.setFrames(btTransform::getIdentity(), btTransform::getIdentity());
+	joint.setEnabled(false);
+}
+
+// Builds both frames from pivots and axes given in each body's frame (see the constructors).
+void setFramesFromPivotsAndAxes(btHingeConstraint& joint, const btVector3& pivotInA, const btVector3& pivotInB,
+                                const btVector3& axisInA, const btVector3& axisInB)
+{
+	if (!usableAxis(axisInA) || !usableAxis(axisInB))
+	{
+		rejectAxis(joint);
+		return;
+	}
+	const btVector3 zA = axisInA.normalized();
+	const btVector3 zB = axisInB.normalized();
+	btVector3 xA, unused;
+	btPlaneSpace1(zA, xA, unused);
+	// B's X axis is A's carried along by the shortest turn from A's axis to B's, so the hinge angle of the
+	// joint as built is zero.
+	const btVector3 xB = quatRotate(shortestArcQuat(zA, zB), xA);
+	joint.setFrames(btTransform(basisWithZ(zA, xA), pivotInA), btTransform(basisWithZ(zB, xB), pivotInB));
+}
 }  // namespace
 
 btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const btVector3& pivotInA,
@@ -28,7 +56,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA, rbB)
 {
 	initDefaults(useReferenceFrameA);
-	initFromPivotsAndAxes(pivotInA, pivotInB, axisInA, axisInB);
+	setFramesFromPivotsAndAxes(*this, pivotInA, pivotInB, axisInA, axisInB);
 }
 
 btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btVector3& pivotInA, const btVector3& axisInA,
@@ -38,7 +66,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btVector3& pivotInA
 	initDefaults(useReferenceFrameA);
 	// The world (the fixed body, at the identity) holds the pivot and axis where they are now.
 	const btTransform& a = rbA.getCenterOfMassTransform();
-	initFromPivotsAndAxes(pivotInA, a(pivotInA), axisInA, a.getBasis() * axisInA);
+	setFramesFromPivotsAndAxes(*this, pivotInA, a(pivotInA), axisInA, a.getBasis() * axisInA);
 }
 
 btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const btTransform& rbAFrame,
@@ -46,7 +74,8 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA, rbB), m_rbAFrame(rbAFrame), m_rbBFrame(rbBFrame)
 {
 	initDefaults(useReferenceFrameA);
-	if (!usableAxis(rbAFrame.getBasis().getColumn(2)) || !usableAxis(rbBFrame.getBasis().getColumn(2))) rejectAxis();
+	if (!usableAxis(rbAFrame.getBasis().getColumn(2)) || !usableAxis(rbBFrame.getBasis().getColumn(2)))
+		rejectAxis(*this);
 }
 
 btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btTransform& rbAFrame, bool useReferenceFrameA)
@@ -55,7 +84,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btTransform& rbAFra
       m_rbBFrame(rbA.getCenterOfMassTransform() * rbAFrame)
 {
 	initDefaults(useReferenceFrameA);
-	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis();
+	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis(*this);
 }
 
 void btHingeConstraint::initDefaults(bool useReferenceFrameA)
@@ -69,36 +98,6 @@ void btHingeConstraint::initDefaults(bool useReferenceFrameA)
 	setUseReferenceFrameA(useReferenceFrameA);
 }
 
-void btHingeConstraint::rejectAxis()
-{
-	btAssert(!"btHingeConstraint: zero-length or non-finite hinge axis");
-	btReportWarning("Caliber: btHingeConstraint: zero-length or non-finite hinge axis; the joint is disabled\n", 0);
-	m_rbAFrame.setIdentity();
-	m_rbBFrame.setIdentity();
-	setEnabled(false);
-}
-
-void btHingeConstraint::initFromPivotsAndAxes(const btVector3& pivotInA, const btVector3& pivotInB,
-                                              const btVector3& axisInA, const btVector3& axisInB)
-{
-	if (!usableAxis(axisInA) || !usableAxis(axisInB))
-	{
-		rejectAxis();
-		return;
-	}
-	const btVector3 zA = axisInA.normalized();
-	const btVector3 zB = axisInB.normalized();
-	btVector3 xA, unused;
-	btPlaneSpace1(zA, xA, unused);
-	// B's X axis is A's carried along by the shortest turn from A's axis to B's, so the hinge angle of the
-	// joint as built is zero.
-	const btVector3 xB = quatRotate(shortestArcQuat(zA, zB), xA);
-	m_rbAFrame.setOrigin(pivotInA);
-	m_rbAFrame.setBasis(basisWithZ(zA, xA));
-	m_rbBFrame.setOrigin(pivotInB);
-	m_rbBFrame.setBasis(basisWithZ(zB, xB));
-}
-
 void btHingeConstraint::setFrames(const btTransform& frameA, const btTransform& frameB)
 {
 	m_rbAFrame = frameA;
@@ -109,7 +108,7 @@ void btHingeConstraint::setAxis(btVector3& axisInA)
 {
 	if (!usableAxis(axisInA))
 	{
-		rejectAxis();
+		rejectAxis(*this);
 		return;
 	}
 	const btVector3 zA = axisInA.normalized();

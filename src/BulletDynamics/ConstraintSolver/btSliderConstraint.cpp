@@ -37,6 +37,19 @@ bool isUsableFrame(const btTransform& frame)
 	return btFabs(basis.determinant()) > btScalar(0.01) * lengths;
 }
 
+// Checks both frames; reports and disables the joint when one is non-finite or degenerate
+// (assertOnFailure: the caller has just handed the frame in, a programming error).
+bool framesUsable(btSliderConstraint& joint, bool assertOnFailure)
+{
+	if (isUsableFrame(joint.getFrameOffsetA()) && isUsableFrame(joint.getFrameOffsetB())) return true;
+	btAssert(!assertOnFailure && "btSliderConstraint: a frame is not finite or its axes are degenerate");
+	(void)assertOnFailure;
+	btReportWarning("Caliber: btSliderConstraint: a frame is not finite or its axes are degenerate; it is disabled\n",
+	                0);
+	joint.setEnabled(false);
+	return false;
+}
+
 btVector3 column(const btTransform& frame, int i) { return frame.getBasis().getColumn(i).normalized(); }
 
 // The row's ERP: the softness scales the world's ERP until setParam makes it the ERP itself.
@@ -274,7 +287,7 @@ void btSliderConstraint::initParams()
 	m_realPivotBInW.setZero();
 	m_linPos = m_angPos = m_linDepth = m_angDepth = btScalar(0);
 
-	if (checkFrames(true))
+	if (framesUsable(*this, true))
 	{
 		calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
 		testLinLimits();
@@ -305,22 +318,11 @@ btSliderConstraint::btSliderConstraint(btRigidBody& rbB, const btTransform& fram
 	initParams();
 }
 
-bool btSliderConstraint::checkFrames(bool assertOnFailure)
-{
-	if (isUsableFrame(m_frameInA) && isUsableFrame(m_frameInB)) return true;
-	btAssert(!assertOnFailure && "btSliderConstraint: a frame is not finite or its axes are degenerate");
-	(void)assertOnFailure;
-	btReportWarning("Caliber: btSliderConstraint: a frame is not finite or its axes are degenerate; it is disabled\n",
-	                0);
-	setEnabled(false);
-	return false;
-}
-
 void btSliderConstraint::setFrames(const btTransform& frameA, const btTransform& frameB)
 {
 	m_frameInA = frameA;
 	m_frameInB = frameB;
-	if (!checkFrames(true)) return;
+	if (!framesUsable(*this, true)) return;
 	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
 	testLinLimits();
 	testAngLimits();
@@ -391,7 +393,7 @@ void btSliderConstraint::getInfo1NonVirtual(btConstraintInfo1* info)
 	info->m_numConstraintRows = 0;
 	info->nub = 0;
 	// The frames are public (getFrameOffsetA returns a reference), so they are checked every step.
-	if (!checkFrames(false)) return;
+	if (!framesUsable(*this, false)) return;
 	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
 	testLinLimits();
 	testAngLimits();
