@@ -391,7 +391,16 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 				right = i;
 			}
 		}
-		if (left >= 0) chosen[numChosen++] = left;
+		// In order around the patch (first, left, farthest, right), not diagonal pairs first: the solver
+		// takes a manifold's points in this order, and on a narrow face that rocks by solver noise, solving
+		// the two ends of one diagonal and then of the other biased the single velocity-following friction
+		// row into a one-way creep (a resting 12-sided prism crept 1 mm/s); in order around it the rocking
+		// stays symmetric and the body still.
+		if (left >= 0)
+		{
+			chosen[numChosen++] = left;
+			btSwap(chosen[numChosen - 1], chosen[numChosen - 2]);
+		}
 		if (right >= 0) chosen[numChosen++] = right;
 	}
 	// The deepest point carries the contact when the others are clearly shallower (a tilted face landing

@@ -15,7 +15,8 @@ namespace caliber
 /// Picks at most 4 of count points for a manifold: the one farthest from their centre, the farthest from
 /// it, then the farthest on either side of the line through both (seen along normal), which spans the
 /// largest area the points offer; the deepest (smallest distance) replaces the last when it is clearly
-/// deeper than those. Writes their indices to chosen (a fixed order) and returns how many.
+/// deeper than those. Writes their indices to chosen in order around the patch (first, left, farthest,
+/// right: the solver's order, see the .cpp) and returns how many.
 int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int count, const btVector3& normal,
                          int chosen[4]);
 
