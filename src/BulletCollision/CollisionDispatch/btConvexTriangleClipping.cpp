@@ -159,6 +159,101 @@ void dotsOf(const btVector3* points, int count, const btVector3& direction, btSc
 	}
 }
 
+// A hull lying on an edge or a vertex (the band holds 1 or 2 points) has, next to it, the face it tips onto
+// (a box landing on an edge at speed turns onto its face within a step or two). Like a polyhedron's face
+// most opposed to the normal, that face gives the speculative points that stop the face coming down. The
+// supporting plane is turned about the lowest edge (for a vertex, first about the vertex to its edge
+// closest to level) until it meets another point: the points it meets form the face. `direction` is
+// the local direction down times the scaling (as in bandFace); sources holds the band's count points
+// and gets the face's (at most kMaxFaceCorners). False, changing nothing, when the hull has no such
+// face (all its points on a line, or standing straight up from the edge).
+bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& direction,
+                      const btVector3** sources, int& count)
+{
+	if (count < 1 || numPoints < 3) return false;
+	// In the scaled frame: up is the unit direction away from the triangle.
+	btVector3 up = -direction / scaling;
+	const btScalar upLength = up.length();
+	if (!(upLength > 0)) return false;
+	up /= upLength;
+	const btVector3 a = *sources[0] * scaling;
+	btScalar extent2 = 0;
+	for (int i = 0; i < numPoints; ++i) extent2 = btMax(extent2, (points[i] * scaling - a).length2());
+	if (!(extent2 > 0) || !btIsFinite(extent2)) return false;
+	// Offsets across the edge shorter than this are on it (or on the vertex).
+	const btScalar onLine2 = btScalar(1e-6) * extent2;
+	btVector3 b;
+	if (count == 2)
+	{
+		b = *sources[1] * scaling;
+	}
+	else
+	{
+		// The edge from the vertex closest to level: the least height over horizontal distance.
+		int best = -1;
+		btScalar bestHeight = 0, bestRun = 1;
+		for (int i = 0; i < numPoints; ++i)
+		{
+			const btVector3 r = points[i] * scaling - a;
+			const btScalar height = r.dot(up);
+			const btScalar run2 = (r - up * height).length2();
+			if (!(run2 > onLine2)) continue;
+			const btScalar run = btSqrt(run2);
+			if (best < 0 || height * bestRun < bestHeight * run)
+			{
+				best = i;
+				bestHeight = height;
+				bestRun = run;
+			}
+		}
+		if (best < 0) return false;
+		b = points[best] * scaling;
+		sources[1] = &points[best];
+	}
+	btVector3 along = b - a;
+	if (!(along.length2() > onLine2)) return false;
+	along.normalize();
+	// The plane across the edge: level (upright, the part of up across the edge) and sideways.
+	btVector3 upright = up - along * along.dot(up);
+	if (!(upright.length2() > btScalar(1e-6))) return false;  // an edge standing straight up
+	upright.normalize();
+	const btVector3 sideways = along.cross(upright);
+	// On each side of the edge, the least slope (height over distance across) is the face's.
+	btScalar slope[2] = {BT_LARGE_FLOAT, BT_LARGE_FLOAT};
+	for (int i = 0; i < numPoints; ++i)
+	{
+		const btVector3 r = points[i] * scaling - a;
+		const btScalar across = r.dot(sideways);
+		if (!(across * across > onLine2)) continue;
+		const btScalar s = r.dot(upright) / btFabs(across);
+		const int side = across > 0 ? 0 : 1;
+		slope[side] = btMin(slope[side], s);
+	}
+	const int side = slope[0] <= slope[1] ? 0 : 1;
+	if (!(slope[side] < BT_LARGE_FLOAT)) return false;
+	// The face's plane: height = slope * distance across; its points are those within the band of it
+	// (measured along the plane's normal, as fraction of the hull's size).
+	const btScalar sign = side == 0 ? btScalar(1) : btScalar(-1);
+	const btScalar scale = btSqrt(btScalar(1) + slope[side] * slope[side]);
+	const btScalar tolerance = kHullFaceBand * btSqrt(extent2) * btScalar(0.5);
+	const btVector3* face[kMaxFaceCorners];
+	int numFace = 0;
+	for (int i = 0; i < numPoints && numFace < kMaxFaceCorners; ++i)
+	{
+		const btVector3 r = points[i] * scaling - a;
+		const btScalar off = (r.dot(upright) - slope[side] * sign * r.dot(sideways)) / scale;
+		if (!(off <= tolerance)) continue;
+		bool duplicate = false;
+		for (int j = 0; j < numFace && !duplicate; ++j)
+			duplicate = face[j]->x() == points[i].x() && face[j]->y() == points[i].y() && face[j]->z() == points[i].z();
+		if (!duplicate) face[numFace++] = &points[i];
+	}
+	if (numFace < 3) return false;
+	for (int i = 0; i < numFace; ++i) sources[i] = face[i];
+	count = numFace;
+	return true;
+}
+
 // The points (times scaling) within kHullFaceBand of the convex's extent along the local direction `down`
 // (towards the triangle) below the deepest, one copy of each, in world space moved out by `outwards`:
 // the convex's face there, ordered around its centre; 2 points for an edge (a box or barrel landing on
@@ -213,6 +308,10 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 			sources[face.count] = &point;
 			face.corners[face.count++] = transform(point * scaling) + outwards;
 		}
+	}
+	if (face.count <= 2 && wrapToTiltedFace(points, numPoints, scaling, direction, sources, face.count))
+	{
+		for (int i = 0; i < face.count; ++i) face.corners[i] = transform(*sources[i] * scaling) + outwards;
 	}
 	if (face.count < 2)
 		face.count = 0;
@@ -455,7 +554,7 @@ namespace
 {
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
-                                  btDiscreteCollisionDetectorInterface::Result& out);
+                                  btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut = false);
 }  // namespace
 
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
@@ -481,19 +580,26 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	const btScalar along = face.dot(localNormal);
 	const btScalar normalLength2 = localNormal.length2();
 	// A zero or non-finite normal (GJK gave none) is no face's.
-	if (!(normalLength2 > 0) || !btIsFinite(normalLength2) ||
-	    !(along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2))
-		return kTriangleNeedsGjk;
+	if (!(normalLength2 > 0) || !btIsFinite(normalLength2)) return kTriangleNeedsGjk;
 	WorldTriangle world;
 	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
-	return faceContactOn(world, convex, convexTransform, triangle, reach, out);
+	if (along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2)
+		return faceContactOn(world, convex, convexTransform, triangle, reach, out, true);
+	// GJK's nearest feature is the triangle's edge or vertex, but part of the convex's face may still lie
+	// over the triangle within reach: a hull tipping onto a face that overhangs the triangle it landed on
+	// (its face's points over the neighbours are what stop it there), or a face resting across a ridge or a
+	// vertex. Those points are reported along the face normal, as a box's are; GJK's point is added too
+	// (the collector drops it when the edge is internal).
+	const TriangleFaceOutcome outcome = faceContactOn(world, convex, convexTransform, triangle, reach, out);
+	return outcome == kTriangleNeedsGjk || outcome == kTriangleOutOfReach ? kTriangleNeedsGjk
+	                                                                      : kTriangleFacePointsAndGjk;
 }
 
 namespace
 {
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
-                                  btDiscreteCollisionDetectorInterface::Result& out)
+                                  btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut)
 {
 	const btVector3* corners = world.corners;
 	const btVector3 edge1 = corners[1] - corners[0];
@@ -578,7 +684,10 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 	if (lowest > reach) return kTriangleOutOfReach;
 	// Deep in, the face normal may not be the way out (a triangle's edge poking into a side): GJK and the
 	// depth solver decide, as for every other shape.
-	if (lowest < -kFaceDepthLimit || face.count < 2) return kTriangleNeedsGjk;
+	// Unless GJK and the depth solver found the face normal to be the way out: then the whole face holds
+	// the convex as it is pushed out (a hull spun onto its face by a fast landing, found deep a step later,
+	// rocked about GJK's single point and sank further).
+	if ((lowest < -kFaceDepthLimit && !normalIsTheWayOut) || face.count < 2) return kTriangleNeedsGjk;
 
 	// The triangle's prism: a side plane through each edge, containing the normal, facing out. Faces
 	// inside the prism (the convex over a large triangle) need no cut.

@@ -128,7 +128,7 @@ void addCubeCorners(btConvexHullShape& hull)
 }
 }  // namespace
 
-TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTheEdgeAndOnAVertexIsLeftToGjk)
+TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTheEdgeAndOnAVertexTheVertex)
 {
 	btConvexHullShape hull;
 	addCubeCorners(hull);
@@ -154,15 +154,28 @@ TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTh
 		EXPECT_NEAR(p.onTriangle.x(), 0, kTolerance);
 		EXPECT_NEAR(btFabs(p.onTriangle.z()), btScalar(0.5), kTolerance);
 	}
-	// Then tilted 30 degrees about x: one vertex is lowest (the other end of the edge is 0.5 m higher), no
-	// face or edge there: GJK's point.
+	// Then tilted 30 degrees about x: one vertex is lowest (the other end of the edge is 0.5 m higher). The
+	// face it would tip onto is found (from the vertex to its edge closest to level, then to the face next to
+	// it closest to level); within reach only its lowest corner, the vertex, is reported, at the vertex's
+	// height less the margin.
 	out.points.clear();
 	const btTransform onVertex(
 	    btQuaternion(btVector3(1, 0, 0), SIMD_PI / 6) * btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4),
 	    btVector3(0, btScalar(0.9), 0));
+	btScalar lowestVertex = BT_LARGE_FLOAT;
+	for (int i = 0; i < hull.getNumPoints(); ++i)
+		lowestVertex = btMin(lowestVertex, onVertex(hull.getUnscaledPoints()[i]).y());
 	EXPECT_EQ(caliber::triangleFaceContact(hull, onVertex, triangle, btTransform::getIdentity(), kReach, out),
-	          caliber::kTriangleNeedsGjk);
-	EXPECT_TRUE(out.points.empty());
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 1u);
+	EXPECT_NEAR(out.points[0].distance, lowestVertex - margin, kTolerance);
+	// With a reach of 2 m the face's other corners come too (speculative points for a hull tipping onto
+	// it), each at its own height: a face of the cube, 4 corners, none lower than the vertex.
+	out.points.clear();
+	EXPECT_EQ(caliber::triangleFaceContact(hull, onVertex, triangle, btTransform::getIdentity(), 2, out),
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 4u);
+	for (const Point& p : out.points) EXPECT_GE(p.distance, lowestVertex - margin - kTolerance);
 }
 
 TEST(ConvexTriangleClipping, HullEdgeCrossingATriangleEdgeIsCutAtItsSidePlane)
@@ -216,7 +229,7 @@ TEST(ConvexTriangleClipping, HullWithAPolyhedronGetsItsMostOpposedFaceAlsoWhenTi
 	EXPECT_EQ(high, 2);
 }
 
-TEST(ConvexTriangleClipping, AfterGjkOnlyAFaceNormalIsClippedAndOtherNormalsAreLeftToGjk)
+TEST(ConvexTriangleClipping, AfterGjkAFaceNormalIsClippedAnEdgeNormalAddsTheFaceOverTheTriangleAndNoNormalIsLeftToGjk)
 {
 	btConvexHullShape hull;
 	addCubeCorners(hull);
@@ -230,10 +243,24 @@ TEST(ConvexTriangleClipping, AfterGjkOnlyAFaceNormalIsClippedAndOtherNormalsAreL
 	          caliber::kTriangleFaceContact);
 	EXPECT_EQ(out.points.size(), 4u);
 	out.points.clear();
-	// 10 degrees off (an edge's or a vertex's normal), zero, or not finite: nothing, GJK's point.
+	// 10 degrees off (an edge's or a vertex's normal): the face's points over the triangle are still
+	// reported along the face normal, and GJK's point is wanted too (its edge may be the nearest feature).
 	const btVector3 leaning(btSin(btScalar(0.17)), btCos(btScalar(0.17)), 0);
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
+	                                                     leaning, out),
+	          caliber::kTriangleFacePointsAndGjk);
+	EXPECT_EQ(out.points.size(), 4u);
+	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.02), kTolerance);
+	out.points.clear();
+	// Beside the triangle (no point of the face over it): nothing, GJK's point.
+	const btTransform beside(btQuaternion::getIdentity(),
+	                         btVector3(btScalar(-10.55), btScalar(0.5) + hull.getMargin() + btScalar(0.02), 0));
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, beside, triangle, btTransform::getIdentity(), kReach,
+	                                                     leaning, out),
+	          caliber::kTriangleNeedsGjk);
+	// Zero, or not finite (GJK gave no normal): nothing, GJK's point.
 	const btVector3 notFinite(0, btScalar(SIMD_INFINITY), 0);
-	for (const btVector3& normal : {leaning, btVector3(0, 0, 0), notFinite})
+	for (const btVector3& normal : {btVector3(0, 0, 0), notFinite})
 		EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
 		                                                     normal, out),
 		          caliber::kTriangleNeedsGjk);
