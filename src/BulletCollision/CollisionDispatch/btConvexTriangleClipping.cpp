@@ -32,6 +32,10 @@ const btScalar kFaceLevelTolerance = btScalar(0.002);
 // polyhedron's face is taken as the face over a triangle within the same angle.
 const btScalar kFaceNormalCosine = btScalar(0.999);
 
+// A point closer than this fraction of a triangle's longest edge to one of its edges is on it (the mesh
+// collector's tolerance for a point on an edge).
+const btScalar kOnTriangleEdge = btScalar(1e-3);
+
 // Hull vertices this close to the supporting plane, as a fraction of the hull's extent along the normal,
 // form its face there: it catches a face tilted by about a degree (a hull settling on a face) whose
 // vertices are not quite level. Each point keeps its own distance, so a vertex taken in that is a little
@@ -159,14 +163,17 @@ void dotsOf(const btVector3* points, int count, const btVector3& direction, btSc
 	}
 }
 
-// A hull lying on an edge or a vertex (the band holds 1 or 2 points) has, next to it, the face it tips onto
-// (a box landing on an edge at speed turns onto its face within a step or two). Like a polyhedron's face
-// most opposed to the normal, that face gives the speculative points that stop the face coming down. The
-// supporting plane is turned about the lowest edge (for a vertex, first about the vertex to its edge
-// closest to level) until it meets another point: the points it meets form the face. `direction` is
-// the local direction down times the scaling (as in bandFace); sources holds the band's count points
-// and gets the face's (at most kMaxFaceCorners). False, changing nothing, when the hull has no such
-// face (all its points on a line, or standing straight up from the edge).
+// A hull lying on an edge or a vertex (the band holds 1 or 2 points) with its centre of mass off to one
+// side tips onto the face next to it on that side (a box landing on an edge at speed turns onto its face
+// within a step or two). Like a polyhedron's face most opposed to the normal, that face gives the
+// speculative points that stop the face coming down. The supporting plane is turned about the lowest
+// edge (for a vertex, first about the vertex to its edge closest to level on the centre's side) towards
+// the centre of mass (the shape's origin) until it meets another point: the points it meets form the
+// face. A hull balanced over its edge or vertex gets none: it tips no way yet, and speculative points on
+// a face it is not turning onto only took impulses from the solver's iterations at a hard landing and
+// turned it (a prism landing on its edge at 120 m/s went 9 cm deep instead of 3 mm). `direction` is the
+// local direction down times the scaling (as in bandFace); sources holds the band's count points and gets
+// the face's (at most kMaxFaceCorners). False, changing nothing, when there is no such face.
 bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& direction,
                       const btVector3** sources, int& count)
 {
@@ -180,8 +187,10 @@ bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& s
 	btScalar extent2 = 0;
 	for (int i = 0; i < numPoints; ++i) extent2 = btMax(extent2, (points[i] * scaling - a).length2());
 	if (!(extent2 > 0) || !btIsFinite(extent2)) return false;
-	// Offsets across the edge shorter than this are on it (or on the vertex).
+	// Offsets across the edge shorter than this are on it (or on the vertex); a centre of mass this close
+	// over the edge or vertex is balanced on it.
 	const btScalar onLine2 = btScalar(1e-6) * extent2;
+	const btScalar balanced2 = kHullFaceBand * kHullFaceBand * extent2;
 	btVector3 b;
 	if (count == 2)
 	{
@@ -189,15 +198,19 @@ bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& s
 	}
 	else
 	{
-		// The edge from the vertex closest to level: the least height over horizontal distance.
+		// The edge from the vertex closest to level (the least height over horizontal distance) among those
+		// leaving it towards the centre of mass.
+		const btVector3 toCentre = -a - up * (-a).dot(up);
+		if (!(toCentre.length2() > balanced2)) return false;
 		int best = -1;
 		btScalar bestHeight = 0, bestRun = 1;
 		for (int i = 0; i < numPoints; ++i)
 		{
 			const btVector3 r = points[i] * scaling - a;
 			const btScalar height = r.dot(up);
-			const btScalar run2 = (r - up * height).length2();
-			if (!(run2 > onLine2)) continue;
+			const btVector3 level = r - up * height;
+			const btScalar run2 = level.length2();
+			if (!(run2 > onLine2) || !(level.dot(toCentre) > 0)) continue;
 			const btScalar run = btSqrt(run2);
 			if (best < 0 || height * bestRun < bestHeight * run)
 			{
@@ -218,30 +231,30 @@ bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& s
 	if (!(upright.length2() > btScalar(1e-6))) return false;  // an edge standing straight up
 	upright.normalize();
 	const btVector3 sideways = along.cross(upright);
-	// On each side of the edge, the least slope (height over distance across) is the face's.
-	btScalar slope[2] = {BT_LARGE_FLOAT, BT_LARGE_FLOAT};
+	// The side the centre of mass is on; none when it is over the edge.
+	const btScalar centreAcross = (-a).dot(sideways);
+	if (!(centreAcross * centreAcross > balanced2)) return false;
+	const btScalar sign = centreAcross > 0 ? btScalar(1) : btScalar(-1);
+	// The least slope (height over distance across) on that side is the face's.
+	btScalar slope = BT_LARGE_FLOAT;
 	for (int i = 0; i < numPoints; ++i)
 	{
 		const btVector3 r = points[i] * scaling - a;
-		const btScalar across = r.dot(sideways);
-		if (!(across * across > onLine2)) continue;
-		const btScalar s = r.dot(upright) / btFabs(across);
-		const int side = across > 0 ? 0 : 1;
-		slope[side] = btMin(slope[side], s);
+		const btScalar across = r.dot(sideways) * sign;
+		if (!(across > 0) || !(across * across > onLine2)) continue;
+		slope = btMin(slope, r.dot(upright) / across);
 	}
-	const int side = slope[0] <= slope[1] ? 0 : 1;
-	if (!(slope[side] < BT_LARGE_FLOAT)) return false;
+	if (!(slope < BT_LARGE_FLOAT)) return false;
 	// The face's plane: height = slope * distance across; its points are those within the band of it
-	// (measured along the plane's normal, as fraction of the hull's size).
-	const btScalar sign = side == 0 ? btScalar(1) : btScalar(-1);
-	const btScalar scale = btSqrt(btScalar(1) + slope[side] * slope[side]);
+	// (measured along the plane's normal, as a fraction of the hull's size).
+	const btScalar scale = btSqrt(btScalar(1) + slope * slope);
 	const btScalar tolerance = kHullFaceBand * btSqrt(extent2) * btScalar(0.5);
 	const btVector3* face[kMaxFaceCorners];
 	int numFace = 0;
 	for (int i = 0; i < numPoints && numFace < kMaxFaceCorners; ++i)
 	{
 		const btVector3 r = points[i] * scaling - a;
-		const btScalar off = (r.dot(upright) - slope[side] * sign * r.dot(sideways)) / scale;
+		const btScalar off = (r.dot(upright) - slope * sign * r.dot(sideways)) / scale;
 		if (!(off <= tolerance)) continue;
 		bool duplicate = false;
 		for (int j = 0; j < numFace && !duplicate; ++j)
@@ -330,10 +343,10 @@ void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform,
 	         -normal * hull.getMargin(), face);
 }
 
-// A polyhedron's face over the triangle: its face most opposed to the normal, also when tilted (as a box's:
-// a hull landing on an edge at speed gets speculative points on the face coming down), corners in the
-// polyhedron's own order, moved out by the margin (hulls' polyhedra are their margin-free cores). A
-// polyhedron without faces gives its vertices in the band (see bandFace).
+// A polyhedron's face over the triangle: its face most opposed to the normal when that lies on the
+// triangle (within GJK's face tolerance), corners in the polyhedron's own order, moved out by the margin
+// (hulls' polyhedra are their margin-free cores). Otherwise, and for a polyhedron without faces, its
+// vertices in the band, or the face it tips onto (see bandFace).
 void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const btTransform& transform,
                     const btVector3& normal, Polygon& face)
 {
@@ -353,7 +366,11 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 	}
 	const int numVertices = polyhedron.m_vertices.size();
 	const btVector3 outwards = -normal * margin;
-	if (best < 0 || polyhedron.m_faces[best].m_indices.size() < 3)
+	// A face tilted beyond GJK's face tolerance is not lying on the triangle: the polyhedron lies on an
+	// edge or a vertex, and its face is found from its vertices as a hull's is (the face on its centre of
+	// mass's side, which it tips onto; none when balanced: two faces equally tilted either side of an edge
+	// are no guide).
+	if (best < 0 || polyhedron.m_faces[best].m_indices.size() < 3 || -bestDot < kFaceNormalCosine)
 	{
 		if (numVertices > 0)
 			bandFace(&polyhedron.m_vertices[0], numVertices, btVector3(1, 1, 1), -local, transform, normal, outwards,
@@ -555,6 +572,9 @@ namespace
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
                                   btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut = false);
+int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& convex, const btTransform& convexTransform,
+                            const btTriangleShape& triangle, const btVector3& gjkNormal, btScalar touching,
+                            btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace
 
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
@@ -569,7 +589,7 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
-                                                      const btVector3& gjkNormal,
+                                                      const btVector3& gjkNormal, btScalar touching,
                                                       btDiscreteCollisionDetectorInterface::Result& out)
 {
 	// The face test in the triangle's frame first: most normals GJK finds against a mesh (edges, vertices)
@@ -585,6 +605,10 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
 	if (along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2)
 		return faceContactOn(world, convex, convexTransform, triangle, reach, out, true);
+	// The convex's face lies on the triangle's edge or vertex (a ridge, a peak): the triangle's part under
+	// the face, along the face's normal, is the whole contact.
+	if (triangleUnderConvexFace(world, convex, convexTransform, triangle, gjkNormal, touching, out) > 0)
+		return kTriangleFaceContact;
 	// GJK's nearest feature is the triangle's edge or vertex, but part of the convex's face may still lie
 	// over the triangle within reach: a hull tipping onto a face that overhangs the triangle it landed on
 	// (its face's points over the neighbours are what stop it there), or a face resting across a ridge or a
@@ -597,6 +621,108 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 
 namespace
 {
+// The convex's face touching a triangle's edge or vertex (GJK's normal is the face's, not the triangle's):
+// the triangle clipped against the face's side planes, its points within `touching` of the face's plane
+// reported with the face's normal (at most 4, spanning the largest area). A face resting across a ridge
+// or on a vertex is held at the ends of the ridge's segment under it, not at GJK's single point (on which
+// it rocked and crept), and its normal is the face's, not a triangle's tilted one. Returns how many.
+int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& convex, const btTransform& convexTransform,
+                            const btTriangleShape& triangle, const btVector3& gjkNormal, btScalar touching,
+                            btDiscreteCollisionDetectorInterface::Result& out)
+{
+	btVector3 normal = gjkNormal;  // from the triangle towards the convex
+	const btScalar length2 = normal.length2();
+	if (!(length2 > 0) || !btIsFinite(length2)) return 0;
+	normal /= btSqrt(length2);
+	Polygon face;
+	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
+		boxFace(static_cast<const btBoxShape&>(convex), convexTransform, normal * convexTransform.getBasis(), face);
+	else
+		convexFace(convex, convexTransform, normal, face);
+	if (face.count < 3) return 0;
+	// The face's own normal (Newell's, robust for any polygon in order), facing the triangle; only a face
+	// across GJK's normal is the contact (a tilted face found by wrapping is not).
+	btVector3 outwards(0, 0, 0);
+	for (int i = 0; i < face.count; ++i)
+	{
+		const btVector3& a = face.corners[i];
+		const btVector3& b = face.corners[i + 1 == face.count ? 0 : i + 1];
+		outwards += btVector3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+		                      (a.x() - b.x()) * (a.y() + b.y()));
+	}
+	const btScalar outwardsLength = outwards.length();
+	if (!(outwardsLength > 0)) return 0;
+	outwards /= outwardsLength;
+	if (outwards.dot(normal) > 0) outwards = -outwards;
+	if (-outwards.dot(normal) < kFaceNormalCosine) return 0;
+	btVector3 centre(0, 0, 0);
+	for (int i = 0; i < face.count; ++i) centre += face.corners[i];
+	centre /= btScalar(face.count);
+
+	Polygon clippedA, clippedB;
+	clippedA.count = 3;
+	for (int k = 0; k < 3; ++k) clippedA.corners[k] = world.corners[k];
+	Polygon* in = &clippedA;
+	Polygon* clipped = &clippedB;
+	for (int i = 0; i < face.count && in->count > 0; ++i)
+	{
+		const btVector3& from = face.corners[i];
+		btVector3 side = (face.corners[i + 1 == face.count ? 0 : i + 1] - from).cross(outwards);
+		if ((centre - from).dot(side) > 0) side = -side;  // facing out of the face
+		if (clipBySide(*in, *clipped, from, side)) btSwap(in, clipped);
+	}
+	// Separation from the face's plane along its normal; the triangle's surface is grown by its margin.
+	const btScalar margin = triangle.getMargin();
+	const btVector3 contactNormal = -outwards;
+	btScalar separations[kMaxClipped];
+	btScalar closest = BT_LARGE_FLOAT;
+	for (int i = 0; i < in->count; ++i)
+	{
+		separations[i] = (in->corners[i] - face.corners[0]).dot(outwards) - margin;
+		closest = btMin(closest, separations[i]);
+	}
+	// The triangle's points at the level of its closest: the ridge's segment, or the vertex, under the
+	// face (a sloping triangle's points farther down are not touching and would crowd out the segment's
+	// ends when 4 are chosen).
+	const btScalar level = btMin(touching, closest + kFaceLevelTolerance);
+	// Only points on the triangle's edges or vertices: a point inside it lies under a corner of the face,
+	// a vertex-face contact whose normal is the triangle's (reported along it by the face path), not the
+	// face's (a hull lying on a flat mesh got points leaning with its side face there, and rested on them).
+	const btVector3 edges[3] = {world.corners[1] - world.corners[0], world.corners[2] - world.corners[1],
+	                            world.corners[0] - world.corners[2]};
+	const btScalar longest2 = btMax(btMax(edges[0].length2(), edges[1].length2()), edges[2].length2());
+	const btScalar onEdge2 = kOnTriangleEdge * kOnTriangleEdge * longest2;
+	btVector3 points[kMaxClipped];
+	btScalar distances[kMaxClipped];
+	int count = 0;
+	for (int i = 0; i < in->count; ++i)
+	{
+		const btScalar distance = separations[i];
+		if (!(distance <= level) || distance < -kFaceDepthLimit) continue;
+		bool onBoundary = false;
+		for (int k = 0; k < 3 && !onBoundary; ++k)
+		{
+			const btVector3 offset = in->corners[i] - world.corners[k];
+			const btScalar length2 = edges[k].length2();
+			const btScalar t = btMax(btScalar(0), btMin(btScalar(1), offset.dot(edges[k]) / length2));
+			onBoundary = (offset - edges[k] * t).length2() <= onEdge2;
+		}
+		if (!onBoundary) continue;
+		points[count] = in->corners[i] + contactNormal * margin;
+		distances[count] = distance;
+		++count;
+	}
+	int chosen[kMaxClipped];
+	int numChosen = count;
+	if (count > 4)
+		numChosen = chooseManifoldPoints(points, distances, count, contactNormal, chosen);
+	else
+		for (int i = 0; i < count; ++i) chosen[i] = i;
+	for (int i = 0; i < numChosen; ++i)
+		out.addContactPoint(contactNormal, points[chosen[i]], distances[chosen[i]]);
+	return numChosen;
+}
+
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
                                   btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut)

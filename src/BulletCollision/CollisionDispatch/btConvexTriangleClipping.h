@@ -70,14 +70,20 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
                                         btScalar reach, btDiscreteCollisionDetectorInterface::Result& out);
 
-/// triangleFaceContact for a hull after GJK: only when gjkNormal (GJK's, from the triangle towards the
-/// convex, any length) is the triangle's face normal on either side to within about 2.5 degrees (GJK's
-/// tolerance for a convex resting on a face; a normal leaning further comes from an edge or a vertex of
-/// the triangle, where GJK's point is the contact); kTriangleNeedsGjk, reporting nothing, otherwise.
+/// triangleFaceContact for a hull after GJK, by gjkNormal (GJK's, from the triangle towards the convex, any
+/// length). When it is the triangle's face normal on either side to within about 2.5 degrees (GJK's
+/// tolerance for a convex resting on a face): triangleFaceContact. When it is instead the normal of one
+/// of the convex's faces (the face lies on the triangle's edge or vertex): the triangle clipped against
+/// that face, its points within `touching` (the breaking threshold: resting contacts, not speculative
+/// ones) reported with the face's normal, kTriangleFaceContact (GJK's point is one of them). Otherwise
+/// (an edge or vertex of the convex, or nothing touching yet): the convex's face points over the
+/// triangle along its face normal (a face overhanging the triangle it landed on) and
+/// kTriangleFacePointsAndGjk, or kTriangleNeedsGjk when there are none. A zero or non-finite normal:
+/// kTriangleNeedsGjk, reporting nothing.
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
-                                                      const btVector3& gjkNormal,
+                                                      const btVector3& gjkNormal, btScalar touching,
                                                       btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace caliber
 

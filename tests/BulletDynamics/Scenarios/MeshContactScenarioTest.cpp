@@ -467,20 +467,22 @@ btConvexHullShape* hullPrism(TestWorld& w, bool polyhedron)
 	return prism;
 }
 
-// The prism launched straight down at 120 m/s from 3 m, turned 30 degrees about z (one end's rim lands
-// first) and 15 degrees about x (on the edge between two side faces): it tips onto its side within a
-// step or two. Returns how deep its surface (its points' hull grown by the margin) got during the two
-// seconds after launch, and its motion 10 s after launch.
+// The prism launched straight down at 120 m/s from 3 m, turned 15 degrees about its axis: it lands on
+// the edge between two side faces, all along its length, and tips onto one of them. Returns how deep its
+// surface (its points' hull grown by the margin) got during the two seconds after launch, and its motion
+// 10 s after launch.
 ImpactOutcome launchPrismAtFloor(FloorKind kind, bool polyhedron)
 {
 	TestWorld w;
 	Floor floor;
 	addFloor(w, floor, kind, 1);
 	btConvexHullShape* prism = hullPrism(w, polyhedron);
-	const btQuaternion turn =
-	    btQuaternion(btVector3(0, 0, 1), SIMD_PI / 6) * btQuaternion(btVector3(1, 0, 0), SIMD_PI / 12);
+	const btQuaternion turn(btVector3(1, 0, 0), SIMD_PI / 12);
 	btRigidBody* body = w.addBody(prism, 1, btTransform(turn, btVector3(0, 3, 0)));
 	body->setFriction(1);
+	// Kept awake: tipping slowly from its edge onto a face it can fall below the sleeping thresholds (0.8 m/s
+	// and 1 rad/s by default) and stop half-way, which is sleeping, not the contact.
+	body->setActivationState(DISABLE_DEACTIVATION);
 	body->setLinearVelocity(btVector3(0, -120, 0));
 	const btScalar gravity = -w.world()->getGravity().y();
 	ImpactOutcome outcome;
@@ -507,15 +509,7 @@ void expectPrismStopsAtTheSurface(FloorKind kind, bool polyhedron)
 {
 	SCOPED_TRACE(floorName(kind));
 	const ImpactOutcome outcome = launchPrismAtFloor(kind, polyhedron);
-	// Landing on one end's rim spins the prism up to about 40 rad/s: it turns 0.67 rad in the next step, and
-	// the rim's vertices that come round to the bottom within it are not among the manifold's 4 points (a
-	// speculative contact holds the points it has, linear in the motion). A point half a length (0.75 m)
-	// from the centre sags 0.75 (1 - cos 0.67) = 0.16 m off its straight path over such a turn; deeper than
-	// 15 cm means the face it tips onto was not held either (it sank 21 cm when a hull found deep was left
-	// to GJK's single point).
-	EXPECT_LT(outcome.deepest, btScalar(0.15)) << "deepest point " << outcome.deepest << " m below the surface";
-	EXPECT_LE(outcome.highestEnergy, outcome.launchEnergy * btScalar(1.001))
-	    << "energy " << outcome.highestEnergy << " J, launched with " << outcome.launchEnergy << " J";
+	expectNeverSinks(outcome);
 	// At rest on a side face (as for the box): slower than gravity's pull over a step, at its resting height.
 	EXPECT_LT(outcome.finalSpeed, btScalar(10) * kStep) << "final speed " << outcome.finalSpeed;
 	EXPECT_LT(outcome.finalSpin, btScalar(0.5)) << "final angular speed " << outcome.finalSpin;
@@ -538,9 +532,22 @@ TEST(MeshContactScenario, TurnedHullPrismHittingAHeightFieldAt120MetresPerSecond
 	expectPrismStopsAtTheSurface(kHeightField, false);
 }
 
+// With its polyhedron the prism's face was the most opposed one, also when tilted: of the two faces either
+// side of the edge it lands on, one took speculative impulses from the solver's iterations at the landing,
+// and the prism tipped onto it hard, 4 to 9 cm deep. Balanced on the edge it gets no tilted face.
 TEST(MeshContactScenario, TurnedHullPrismWithPolyhedronHittingATwoTriangleMeshAt120MetresPerSecondStopsAtTheSurface)
 {
 	expectPrismStopsAtTheSurface(kTwoTriangles, true);
+}
+
+TEST(MeshContactScenario, TurnedHullPrismWithPolyhedronHittingAGridMeshAt120MetresPerSecondStopsAtTheSurface)
+{
+	expectPrismStopsAtTheSurface(kGrid, true);
+}
+
+TEST(MeshContactScenario, TurnedHullPrismWithPolyhedronHittingAHeightFieldAt120MetresPerSecondStopsAtTheSurface)
+{
+	expectPrismStopsAtTheSurface(kHeightField, true);
 }
 
 namespace
@@ -600,6 +607,81 @@ TEST(MeshContactScenario, HullPrismLyingOnAHeightFieldLiesStill)
 }
 
 TEST(MeshContactScenario, HullPrismWithPolyhedronLyingOnAGridMeshLiesStill) { expectPrismLiesStill(kGrid, true); }
+
+namespace
+{
+// A hull of a 1 x 0.5 x 1 box (with or without its polyhedron) laid flat across two parallel ridges of a
+// mesh: ridges along z at x = +-0.3 and height 0, the mesh falling away 10 degrees on both sides of each
+// (a valley between them, slopes outside). The hull's face touches only the ridges' edges, never a
+// triangle's face. Turned about the vertical so that the face's sides cross the ridges at an angle.
+void expectHullAcrossRidgesLiesStill(bool polyhedron, btScalar turn)
+{
+	TestWorld w;
+	btTriangleMesh ridges;
+	const btScalar half = 5, ridge = btScalar(0.3), slope = btTan(btScalar(0.17));
+	const btScalar xs[5] = {-half, -ridge, 0, ridge, half};
+	const btScalar ys[5] = {-(half - ridge) * slope, 0, -ridge * slope, 0, -(half - ridge) * slope};
+	for (int i = 0; i < 4; ++i)
+	{
+		const btVector3 a(xs[i], ys[i], -half), b(xs[i + 1], ys[i + 1], -half), c(xs[i + 1], ys[i + 1], half),
+		    d(xs[i], ys[i], half);
+		ridges.addTriangle(a, d, c);
+		ridges.addTriangle(a, c, b);
+	}
+	btRigidBody* floor = w.addBody(w.shape<btBvhTriangleMeshShape>(&ridges, true), 0, btVector3(0, 0, 0));
+	floor->setFriction(btScalar(0.5));
+	btConvexHullShape* hull = hullBox(w, btVector3(btScalar(0.5), btScalar(0.25), btScalar(0.5)));
+	if (polyhedron) hull->initializePolyhedralFeatures();
+	const btScalar restingHeight = btScalar(0.25) + hull->getMargin();
+	btRigidBody* body = w.addBody(hull, 1,
+	                              btTransform(btQuaternion(btVector3(0, 1, 0), turn),
+	                                          btVector3(0, restingHeight + btScalar(0.001), 0)));
+	body->setFriction(btScalar(0.5));
+	body->setActivationState(DISABLE_DEACTIVATION);
+	w.run(1, kStep);
+	// Held where the face crosses the ridges, along the face's normal (straight up): the ends of the two
+	// ridges' segments under the face. Along a sloping triangle's normal (10 degrees off) the two ridges
+	// push the hull sideways against each other.
+	int upright = 0;
+	btDispatcher* dispatcher = w.world()->getDispatcher();
+	for (int m = 0; m < dispatcher->getNumManifolds(); ++m)
+	{
+		const btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(m);
+		for (int p = 0; p < manifold->getNumContacts(); ++p)
+			upright += manifold->getContactPoint(p).m_normalWorldOnB.y() > btScalar(0.9999);
+	}
+	EXPECT_EQ(upright, 4) << "points with the face's normal after one step";
+	w.run(179, kStep);
+	const btVector3 settled = body->getCenterOfMassPosition();
+	btScalar drift = 0, tilt = 0, lowest = BT_LARGE_FLOAT;
+	for (int step = 0; step < 120; ++step)
+	{
+		w.run(1, kStep);
+		drift = btMax(drift, (body->getCenterOfMassPosition() - settled).length());
+		const btVector3 up = body->getWorldTransform().getBasis().getColumn(1);
+		tilt = btMax(tilt, btAcos(btMin(btScalar(1), up.y())));
+		lowest = btMin(lowest, body->getCenterOfMassPosition().y());
+	}
+	// Lying on the ridges: level (a tilt of 1 mrad lifts one side 1 mm), at its resting height (the
+	// solver's resting penetration is well under a millimetre; rocking about GJK's single point per
+	// triangle let it sink 3 mm), and still: within 0.2 mm over two seconds (resting jitter is micrometres;
+	// on GJK's points it crept 2.6 mm and turned 20 mrad).
+	EXPECT_LT(tilt, btScalar(0.001)) << "tilt " << tilt << " rad";
+	EXPECT_NEAR(lowest, restingHeight, btScalar(0.001)) << "lowest centre height " << lowest;
+	EXPECT_LT(drift, btScalar(0.0002)) << "drift " << drift << " m";
+}
+}  // namespace
+
+TEST(MeshContactScenario, HullAcrossTwoRidgesIsHeldAtTheRidgesAlongItsFaceNormalAndLiesStill)
+{
+	expectHullAcrossRidgesLiesStill(false, btScalar(0.4));
+	expectHullAcrossRidgesLiesStill(false, btScalar(0.8));
+}
+
+TEST(MeshContactScenario, HullWithPolyhedronAcrossTwoRidgesIsHeldAtTheRidgesAlongItsFaceNormalAndLiesStill)
+{
+	expectHullAcrossRidgesLiesStill(true, btScalar(0.4));
+}
 
 namespace
 {
