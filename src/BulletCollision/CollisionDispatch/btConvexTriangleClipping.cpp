@@ -42,6 +42,10 @@ const btScalar kOnTriangleEdge = btScalar(1e-3);
 // higher only gives a point a little farther away.
 const btScalar kHullFaceBand = btScalar(0.02);
 
+// A hull lying on an edge or vertex gets the face it tips onto when the reach is more than this fraction of
+// its extent along the normal (twice the band).
+const btScalar kWrapReach = 2 * kHullFaceBand;
+
 struct Polygon
 {
 	btVector3 corners[kMaxClipped];
@@ -272,7 +276,8 @@ bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& s
 // the convex's face there, ordered around its centre; 2 points for an edge (a box or barrel landing on
 // an edge, clipped as a segment); none for a vertex, where GJK's point is the contact.
 void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
-              const btTransform& transform, const btVector3& normal, const btVector3& outwards, Polygon& face)
+              const btTransform& transform, const btVector3& normal, const btVector3& outwards, btScalar reach,
+              Polygon& face)
 {
 	face.count = 0;
 	if (numPoints < 2) return;
@@ -322,7 +327,11 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 			face.corners[face.count++] = transform(point * scaling) + outwards;
 		}
 	}
-	if (face.count <= 2 && wrapToTiltedFace(points, numPoints, scaling, direction, sources, face.count))
+	// The face it tips onto only when the reach covers more than a sliver of it (a fast landing or tipping):
+	// at rest its points within reach lie next to the edge, which holds the hull already, and the search
+	// would be paid for nothing (on every triangle near a hull lying on a curved mesh).
+	if (face.count <= 2 && reach > kWrapReach * (deepest - shallowest) &&
+	    wrapToTiltedFace(points, numPoints, scaling, direction, sources, face.count))
 	{
 		for (int i = 0; i < face.count; ++i) face.corners[i] = transform(*sources[i] * scaling) + outwards;
 	}
@@ -334,13 +343,14 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 
 // A btConvexHullShape's face over the triangle from its points (see bandFace), moved out by the margin
 // (the hull's surface is its points' hull grown by it).
-void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal, Polygon& face)
+void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal,
+                    btScalar reach, Polygon& face)
 {
 	face.count = 0;
 	const btVector3* points = hull.getUnscaledPoints();
 	if (!points) return;
 	bandFace(points, hull.getNumPoints(), hull.getLocalScaling(), -normal * transform.getBasis(), transform, normal,
-	         -normal * hull.getMargin(), face);
+	         -normal * hull.getMargin(), reach, face);
 }
 
 // A polyhedron's face over the triangle: its face most opposed to the normal when that lies on the
@@ -348,7 +358,7 @@ void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform,
 // (hulls' polyhedra are their margin-free cores). Otherwise, and for a polyhedron without faces, its
 // vertices in the band, or the face it tips onto (see bandFace).
 void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const btTransform& transform,
-                    const btVector3& normal, Polygon& face)
+                    const btVector3& normal, btScalar reach, Polygon& face)
 {
 	face.count = 0;
 	const btVector3 local = normal * transform.getBasis();
@@ -374,7 +384,7 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 	{
 		if (numVertices > 0)
 			bandFace(&polyhedron.m_vertices[0], numVertices, btVector3(1, 1, 1), -local, transform, normal, outwards,
-			         face);
+			         reach, face);
 		return;
 	}
 	const btAlignedObjectArray<int>& indices = polyhedron.m_faces[best].m_indices;
@@ -388,14 +398,15 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 }
 
 // A hull's face over the triangle: from its polyhedron when it has one, else from its points.
-void convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, Polygon& face)
+void convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, btScalar reach,
+                Polygon& face)
 {
 	face.count = 0;
 	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape&>(convex).getConvexPolyhedron();
 	if (polyhedron)
-		polyhedronFace(*polyhedron, convex.getMargin(), transform, normal, face);
+		polyhedronFace(*polyhedron, convex.getMargin(), transform, normal, reach, face);
 	else if (convex.getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE)
-		hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, face);
+		hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, reach, face);
 }
 
 // Sutherland-Hodgman: keeps the part of the closed polygon in on the side (x - origin) . side <= 0.
@@ -589,7 +600,8 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
-                                                      const btVector3& gjkNormal, btScalar touching,
+                                                      const btVector3& gjkNormal, btScalar gjkDistance,
+                                                      btScalar touching,
                                                       btDiscreteCollisionDetectorInterface::Result& out)
 {
 	// The face test in the triangle's frame first: most normals GJK finds against a mesh (edges, vertices)
@@ -607,8 +619,13 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 		return faceContactOn(world, convex, convexTransform, triangle, reach, out, true);
 	// The convex's face lies on the triangle's edge or vertex (a ridge, a peak): the triangle's part under
 	// the face, along the face's normal, is the whole contact.
-	if (triangleUnderConvexFace(world, convex, convexTransform, triangle, gjkNormal, touching, out) > 0)
+	if (gjkDistance <= touching &&
+	    triangleUnderConvexFace(world, convex, convexTransform, triangle, gjkNormal, touching, out) > 0)
 		return kTriangleFaceContact;
+	// Only a convex closing in (a fast landing, a tip onto a face) can bring a face down onto the triangle
+	// within the step; at rest (reach about the breaking threshold) GJK's point is the contact, and the
+	// face search is spared for every triangle around a hull lying on a curved mesh.
+	if (!(reach > 2 * touching)) return kTriangleNeedsGjk;
 	// GJK's nearest feature is the triangle's edge or vertex, but part of the convex's face may still lie
 	// over the triangle within reach: a hull tipping onto a face that overhangs the triangle it landed on
 	// (its face's points over the neighbours are what stop it there), or a face resting across a ridge or a
@@ -638,7 +655,7 @@ int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& con
 	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
 		boxFace(static_cast<const btBoxShape&>(convex), convexTransform, normal * convexTransform.getBasis(), face);
 	else
-		convexFace(convex, convexTransform, normal, face);
+		convexFace(convex, convexTransform, normal, 0, face);  // a face across the normal, never a tilted one
 	if (face.count < 3) return 0;
 	// The face's own normal (Newell's, robust for any polygon in order), facing the triangle; only a face
 	// across GJK's normal is the contact (a tilted face found by wrapping is not).
@@ -799,7 +816,7 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 	}
 	else
 	{
-		convexFace(convex, convexTransform, normal, face);
+		convexFace(convex, convexTransform, normal, reach, face);
 	}
 	if (face.count == 0) return kTriangleNeedsGjk;
 

@@ -75,15 +75,16 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 /// tolerance for a convex resting on a face): triangleFaceContact. When it is instead the normal of one
 /// of the convex's faces (the face lies on the triangle's edge or vertex): the triangle clipped against
 /// that face, its points within `touching` (the breaking threshold: resting contacts, not speculative
-/// ones) reported with the face's normal, kTriangleFaceContact (GJK's point is one of them). Otherwise
-/// (an edge or vertex of the convex, or nothing touching yet): the convex's face points over the
-/// triangle along its face normal (a face overhanging the triangle it landed on) and
-/// kTriangleFacePointsAndGjk, or kTriangleNeedsGjk when there are none. A zero or non-finite normal:
-/// kTriangleNeedsGjk, reporting nothing.
+/// ones; asked only when gjkDistance is within it) reported with the face's normal, kTriangleFaceContact
+/// (GJK's point is one of them). Otherwise, when the pair closes in (reach beyond twice `touching`): the
+/// convex's face points over the triangle along its face normal (a face overhanging the triangle it landed
+/// on) and kTriangleFacePointsAndGjk, or kTriangleNeedsGjk when there are none; at rest kTriangleNeedsGjk.
+/// A zero or non-finite normal: kTriangleNeedsGjk, reporting nothing.
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
-                                                      const btVector3& gjkNormal, btScalar touching,
+                                                      const btVector3& gjkNormal, btScalar gjkDistance,
+                                                      btScalar touching,
                                                       btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace caliber
 

@@ -263,7 +263,7 @@ TEST(ConvexTriangleClipping, AfterGjkAFaceNormalIsClippedAnEdgeNormalAddsTheFace
 	Recorder out;
 	// The face normal, of any length and either sign (the triangle is two-sided): the face.
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
-	                                                     btVector3(0, 3, 0), kTouching, out),
+	                                                     btVector3(0, 3, 0), kTouching, kTouching, out),
 	          caliber::kTriangleFaceContact);
 	EXPECT_EQ(out.points.size(), 4u);
 	out.points.clear();
@@ -271,22 +271,27 @@ TEST(ConvexTriangleClipping, AfterGjkAFaceNormalIsClippedAnEdgeNormalAddsTheFace
 	// reported along the face normal, and GJK's point is wanted too (its edge may be the nearest feature).
 	const btVector3 leaning(btSin(btScalar(0.17)), btCos(btScalar(0.17)), 0);
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
-	                                                     leaning, kTouching, out),
+	                                                     leaning, kTouching, kTouching, out),
 	          caliber::kTriangleFacePointsAndGjk);
 	EXPECT_EQ(out.points.size(), 4u);
 	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.02), kTolerance);
 	out.points.clear();
+	// At rest (a reach no more than twice the breaking threshold): GJK's point alone.
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(),
+	                                                     2 * kTouching, leaning, kTouching, kTouching, out),
+	          caliber::kTriangleNeedsGjk);
+	EXPECT_TRUE(out.points.empty());
 	// Beside the triangle (no point of the face over it): nothing, GJK's point.
 	const btTransform beside(btQuaternion::getIdentity(),
 	                         btVector3(btScalar(-10.55), btScalar(0.5) + hull.getMargin() + btScalar(0.02), 0));
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, beside, triangle, btTransform::getIdentity(), kReach,
-	                                                     leaning, kTouching, out),
+	                                                     leaning, kTouching, kTouching, out),
 	          caliber::kTriangleNeedsGjk);
 	// Zero, or not finite (GJK gave no normal): nothing, GJK's point.
 	const btVector3 notFinite(0, btScalar(SIMD_INFINITY), 0);
 	for (const btVector3& normal : {btVector3(0, 0, 0), notFinite})
 		EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
-		                                                     normal, kTouching, out),
+		                                                     normal, kTouching, kTouching, out),
 		          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
 }
@@ -305,7 +310,7 @@ TEST(ConvexTriangleClipping, AfterGjkAFaceLyingOnATriangleEdgeGetsTheEdgeUnderIt
 	const btTransform over(btQuaternion::getIdentity(), btVector3(0, btScalar(0.5) + hull.getMargin() + gap, 0));
 	Recorder out;
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, over, slope, btTransform::getIdentity(), kReach,
-	                                                     btVector3(0, 1, 0), kTouching, out),
+	                                                     btVector3(0, 1, 0), gap, kTouching, out),
 	          caliber::kTriangleFaceContact);
 	// The ridge's segment under the face: both ends (z = +-0.5), at the gap, with the face's normal. The
 	// slope's points farther out under the face are lower, not touching, and not reported.
@@ -326,7 +331,7 @@ TEST(ConvexTriangleClipping, AfterGjkAFaceLyingOnATriangleEdgeGetsTheEdgeUnderIt
 	out.points.clear();
 	const btTransform above(btQuaternion::getIdentity(), btVector3(0, btScalar(0.55) + hull.getMargin(), 0));
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, above, slope, btTransform::getIdentity(), kReach,
-	                                                     btVector3(0, 1, 0), kTouching, out),
+	                                                     btVector3(0, 1, 0), btScalar(0.05), kTouching, out),
 	          caliber::kTriangleFacePointsAndGjk);
 	for (const Point& p : out.points) EXPECT_LT(p.normal.y(), btScalar(0.99));
 }

@@ -1,7 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // Contact fidelity of convex shapes on triangle meshes and height fields: a box resting on a mesh
-// gets a whole face manifold at once (a hull too), a box hitting a mesh at 120 m/s (straight, at an angle,
-// turned) stops at the surface instead of sinking into it, and bodies sliding across a mesh of many
+// gets a whole face manifold at once (a hull too), a box or hull hitting a mesh at 120 m/s (straight, at an
+// angle, turned onto an edge) stops at the surface instead of sinking into it, a resting hull prism does
+// not creep, a hull lying across ridges is held at the ridges, and bodies sliding across a mesh of many
 // small triangles do not catch on the edges between them.
 
 #include <gtest/gtest.h>
