@@ -42,9 +42,10 @@ const btScalar kOnTriangleEdge = btScalar(1e-3);
 // higher only gives a point a little farther away.
 const btScalar kHullFaceBand = btScalar(0.02);
 
-// A hull lying on an edge or vertex gets the face it tips onto when the reach is more than this fraction of
-// its extent along the normal (twice the band).
-const btScalar kWrapReach = 2 * kHullFaceBand;
+// A hull lying on an edge gets the face it tips onto when the reach is more than this fraction of its extent
+// along the normal: the face's far side can come down within the step (a landing, a fast tip); less, and
+// its points within reach lie next to the edge, which holds the hull already.
+const btScalar kWrapReach = btScalar(0.25);
 
 struct Polygon
 {
@@ -167,67 +168,32 @@ void dotsOf(const btVector3* points, int count, const btVector3& direction, btSc
 	}
 }
 
-// A hull lying on an edge or a vertex (the band holds 1 or 2 points) with its centre of mass off to one
-// side tips onto the face next to it on that side (a box landing on an edge at speed turns onto its face
-// within a step or two). Like a polyhedron's face most opposed to the normal, that face gives the
-// speculative points that stop the face coming down. The supporting plane is turned about the lowest
-// edge (for a vertex, first about the vertex to its edge closest to level on the centre's side) towards
-// the centre of mass (the shape's origin) until it meets another point: the points it meets form the
-// face. A hull balanced over its edge or vertex gets none: it tips no way yet, and speculative points on
-// a face it is not turning onto only took impulses from the solver's iterations at a hard landing and
-// turned it (a prism landing on its edge at 120 m/s went 9 cm deep instead of 3 mm). `direction` is the
-// local direction down times the scaling (as in bandFace); sources holds the band's count points and gets
-// the face's (at most kMaxFaceCorners). False, changing nothing, when there is no such face.
+// A hull lying on an edge (the band holds 2 points) with its centre of mass off to one side tips onto the
+// face next to it on that side (a box landing on an edge at speed turns onto its face within a step or
+// two). Like a polyhedron's face most opposed to the normal, that face gives the speculative points that
+// stop the face coming down. The supporting plane is turned about the edge towards the centre of mass (the
+// shape's origin) until it meets other points: the points it meets form the face. A hull balanced over
+// its edge gets none: it tips no way yet, and speculative points on a face it is not turning onto only
+// took impulses from the solver's iterations at a hard landing and turned it (a prism landing on its edge
+// at 120 m/s went 9 cm deep instead of 3 mm). A hull on a vertex gets none either (it tips onto an edge
+// first; the search would cost a square root per point). `direction` is the local direction down times
+// the scaling (as in bandFace), `extent` the hull's extent along it; sources holds the edge's 2 points and
+// gets the face's (at most kMaxFaceCorners). False, changing nothing, when there is no such face.
 bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& direction,
-                      const btVector3** sources, int& count)
+                      btScalar extent, const btVector3** sources, int& count)
 {
-	if (count < 1 || numPoints < 3) return false;
+	if (count != 2 || numPoints < 3 || !(extent > 0)) return false;
 	// In the scaled frame: up is the unit direction away from the triangle.
 	btVector3 up = -direction / scaling;
 	const btScalar upLength = up.length();
 	if (!(upLength > 0)) return false;
 	up /= upLength;
 	const btVector3 a = *sources[0] * scaling;
-	btScalar extent2 = 0;
-	for (int i = 0; i < numPoints; ++i) extent2 = btMax(extent2, (points[i] * scaling - a).length2());
-	if (!(extent2 > 0) || !btIsFinite(extent2)) return false;
-	// Offsets across the edge shorter than this are on it (or on the vertex); a centre of mass this close
-	// over the edge or vertex is balanced on it.
-	const btScalar onLine2 = btScalar(1e-6) * extent2;
-	const btScalar balanced2 = kHullFaceBand * kHullFaceBand * extent2;
-	btVector3 b;
-	if (count == 2)
-	{
-		b = *sources[1] * scaling;
-	}
-	else
-	{
-		// The edge from the vertex closest to level (the least height over horizontal distance) among those
-		// leaving it towards the centre of mass.
-		const btVector3 toCentre = -a - up * (-a).dot(up);
-		if (!(toCentre.length2() > balanced2)) return false;
-		int best = -1;
-		btScalar bestHeight = 0, bestRun = 1;
-		for (int i = 0; i < numPoints; ++i)
-		{
-			const btVector3 r = points[i] * scaling - a;
-			const btScalar height = r.dot(up);
-			const btVector3 level = r - up * height;
-			const btScalar run2 = level.length2();
-			if (!(run2 > onLine2) || !(level.dot(toCentre) > 0)) continue;
-			const btScalar run = btSqrt(run2);
-			if (best < 0 || height * bestRun < bestHeight * run)
-			{
-				best = i;
-				bestHeight = height;
-				bestRun = run;
-			}
-		}
-		if (best < 0) return false;
-		b = points[best] * scaling;
-		sources[1] = &points[best];
-	}
-	btVector3 along = b - a;
+	btVector3 along = *sources[1] * scaling - a;
+	// Offsets across the edge shorter than this are on it; a centre of mass this close over the edge is
+	// balanced on it.
+	const btScalar onLine2 = btScalar(1e-6) * extent * extent;
+	const btScalar balanced2 = kHullFaceBand * kHullFaceBand * extent * extent;
 	if (!(along.length2() > onLine2)) return false;
 	along.normalize();
 	// The plane across the edge: level (upright, the part of up across the edge) and sideways.
@@ -238,28 +204,25 @@ bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& s
 	// The side the centre of mass is on; none when it is over the edge.
 	const btScalar centreAcross = (-a).dot(sideways);
 	if (!(centreAcross * centreAcross > balanced2)) return false;
-	const btScalar sign = centreAcross > 0 ? btScalar(1) : btScalar(-1);
-	// The least slope (height over distance across) on that side is the face's.
+	const btVector3 towards = centreAcross > 0 ? sideways : -sideways;
+	// The least slope (height over distance across) on that side is the face's; the points within the band
+	// of that plane (measured along its normal) form the face.
 	btScalar slope = BT_LARGE_FLOAT;
 	for (int i = 0; i < numPoints; ++i)
 	{
 		const btVector3 r = points[i] * scaling - a;
-		const btScalar across = r.dot(sideways) * sign;
+		const btScalar across = r.dot(towards);
 		if (!(across > 0) || !(across * across > onLine2)) continue;
 		slope = btMin(slope, r.dot(upright) / across);
 	}
 	if (!(slope < BT_LARGE_FLOAT)) return false;
-	// The face's plane: height = slope * distance across; its points are those within the band of it
-	// (measured along the plane's normal, as a fraction of the hull's size).
-	const btScalar scale = btSqrt(btScalar(1) + slope * slope);
-	const btScalar tolerance = kHullFaceBand * btSqrt(extent2) * btScalar(0.5);
+	const btVector3 planeNormal = (upright - towards * slope) / btSqrt(btScalar(1) + slope * slope);
+	const btScalar tolerance = kHullFaceBand * btScalar(0.5) * extent;
 	const btVector3* face[kMaxFaceCorners];
 	int numFace = 0;
 	for (int i = 0; i < numPoints && numFace < kMaxFaceCorners; ++i)
 	{
-		const btVector3 r = points[i] * scaling - a;
-		const btScalar off = (r.dot(upright) - slope * sign * r.dot(sideways)) / scale;
-		if (!(off <= tolerance)) continue;
+		if (!((points[i] * scaling - a).dot(planeNormal) <= tolerance)) continue;
 		bool duplicate = false;
 		for (int j = 0; j < numFace && !duplicate; ++j)
 			duplicate = face[j]->x() == points[i].x() && face[j]->y() == points[i].y() && face[j]->z() == points[i].z();
@@ -327,11 +290,11 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 			face.corners[face.count++] = transform(point * scaling) + outwards;
 		}
 	}
-	// The face it tips onto only when the reach covers more than a sliver of it (a fast landing or tipping):
-	// at rest its points within reach lie next to the edge, which holds the hull already, and the search
-	// would be paid for nothing (on every triangle near a hull lying on a curved mesh).
-	if (face.count <= 2 && reach > kWrapReach * (deepest - shallowest) &&
-	    wrapToTiltedFace(points, numPoints, scaling, direction, sources, face.count))
+	// The face it tips onto only when the reach covers much of it (a fast landing or tipping): otherwise its
+	// points within reach lie next to the edge, which holds the hull already, and the search would be paid
+	// for nothing (on every triangle near a hull rolling on a curved mesh).
+	if (face.count == 2 && reach > kWrapReach * (deepest - shallowest) &&
+	    wrapToTiltedFace(points, numPoints, scaling, direction, deepest - shallowest, sources, face.count))
 	{
 		for (int i = 0; i < face.count; ++i) face.corners[i] = transform(*sources[i] * scaling) + outwards;
 	}

@@ -326,11 +326,11 @@ TEST(ConvexTriangleClipping, AfterGjkAFaceLyingOnATriangleEdgeGetsTheEdgeUnderIt
 	}
 	EXPECT_NEAR(minZ, btScalar(-0.5), kTolerance);
 	EXPECT_NEAR(maxZ, btScalar(0.5), kTolerance);
-	// Beyond the breaking threshold (a face coming down, not lying on the edge): the face points over the
-	// triangle along its normal instead, and GJK's point.
+	// Beyond the breaking threshold and closing in fast (a face coming down within a reach of 1 m, not lying
+	// on the edge): the face points over the triangle along its normal instead, and GJK's point.
 	out.points.clear();
 	const btTransform above(btQuaternion::getIdentity(), btVector3(0, btScalar(0.55) + hull.getMargin(), 0));
-	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, above, slope, btTransform::getIdentity(), kReach,
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, above, slope, btTransform::getIdentity(), 1,
 	                                                     btVector3(0, 1, 0), btScalar(0.05), kTouching, out),
 	          caliber::kTriangleFacePointsAndGjk);
 	for (const Point& p : out.points) EXPECT_LT(p.normal.y(), btScalar(0.99));
