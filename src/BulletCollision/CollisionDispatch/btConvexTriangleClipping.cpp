@@ -176,15 +176,16 @@ void dotsOf(const btVector3* points, int count, const btVector3& direction, btSc
 // its edge gets none: it tips no way yet, and speculative points on a face it is not turning onto only
 // took impulses from the solver's iterations at a hard landing and turned it (a prism landing on its edge
 // at 120 m/s went 9 cm deep instead of 3 mm). A hull on a vertex gets none either (it tips onto an edge
-// first; the search would cost a square root per point). `direction` is the local direction down times
-// the scaling (as in bandFace), `extent` the hull's extent along it; sources holds the edge's 2 points and
-// gets the face's (at most kMaxFaceCorners). False, changing nothing, when there is no such face.
-bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& direction,
+// first; the search would cost a square root per point). `down` is the unit local direction towards the
+// triangle (the scaled points are measured along it), `extent` the hull's extent along it; sources holds
+// the edge's 2 points and gets the face's (at most kMaxFaceCorners). False, changing nothing, when there
+// is no such face.
+bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
                       btScalar extent, const btVector3** sources, int& count)
 {
 	if (count != 2 || numPoints < 3 || !(extent > 0)) return false;
 	// In the scaled frame: up is the unit direction away from the triangle.
-	btVector3 up = -direction / scaling;
+	btVector3 up = -down;
 	const btScalar upLength = up.length();
 	if (!(upLength > 0)) return false;
 	up /= upLength;
@@ -294,7 +295,7 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 	// points within reach lie next to the edge, which holds the hull already, and the search would be paid
 	// for nothing (on every triangle near a hull rolling on a curved mesh).
 	if (face.count == 2 && reach > kWrapReach * (deepest - shallowest) &&
-	    wrapToTiltedFace(points, numPoints, scaling, direction, deepest - shallowest, sources, face.count))
+	    wrapToTiltedFace(points, numPoints, scaling, down, deepest - shallowest, sources, face.count))
 	{
 		for (int i = 0; i < face.count; ++i) face.corners[i] = transform(*sources[i] * scaling) + outwards;
 	}
@@ -698,8 +699,7 @@ int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& con
 		numChosen = chooseManifoldPoints(points, distances, count, contactNormal, chosen);
 	else
 		for (int i = 0; i < count; ++i) chosen[i] = i;
-	for (int i = 0; i < numChosen; ++i)
-		out.addContactPoint(contactNormal, points[chosen[i]], distances[chosen[i]]);
+	for (int i = 0; i < numChosen; ++i) out.addContactPoint(contactNormal, points[chosen[i]], distances[chosen[i]]);
 	return numChosen;
 }
 

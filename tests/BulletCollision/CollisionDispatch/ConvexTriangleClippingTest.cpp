@@ -179,7 +179,8 @@ TEST(ConvexTriangleClipping, HullOnAnEdgeWithItsCentreToOneSideGetsTheFaceItTips
 	// height, the face's other corners sin(30 degrees) = 0.5 m higher.
 	const btScalar turn = SIMD_PI / 6;
 	const btScalar lowestEdge = btScalar(0.5) * (btCos(turn) + btSin(turn));
-	const btTransform onEdge(btQuaternion(btVector3(0, 0, 1), turn), btVector3(0, lowestEdge + margin + btScalar(0.01), 0));
+	const btTransform onEdge(btQuaternion(btVector3(0, 0, 1), turn),
+	                         btVector3(0, lowestEdge + margin + btScalar(0.01), 0));
 	Recorder out;
 	// Within a reach of 0.1 m, the edge's ends only.
 	EXPECT_EQ(caliber::triangleFaceContact(hull, onEdge, triangle, btTransform::getIdentity(), kReach, out),

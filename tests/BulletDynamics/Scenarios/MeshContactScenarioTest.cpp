@@ -595,17 +595,11 @@ void expectPrismLiesStill(FloorKind kind, bool polyhedron)
 }
 }  // namespace
 
-TEST(MeshContactScenario, HullPrismLyingOnATwoTriangleMeshLiesStill)
-{
-	expectPrismLiesStill(kTwoTriangles, false);
-}
+TEST(MeshContactScenario, HullPrismLyingOnATwoTriangleMeshLiesStill) { expectPrismLiesStill(kTwoTriangles, false); }
 
 TEST(MeshContactScenario, HullPrismLyingOnAFineGridMeshLiesStill) { expectPrismLiesStill(kFineGrid, false); }
 
-TEST(MeshContactScenario, HullPrismLyingOnAHeightFieldLiesStill)
-{
-	expectPrismLiesStill(kHeightField, false);
-}
+TEST(MeshContactScenario, HullPrismLyingOnAHeightFieldLiesStill) { expectPrismLiesStill(kHeightField, false); }
 
 TEST(MeshContactScenario, HullPrismWithPolyhedronLyingOnAGridMeshLiesStill) { expectPrismLiesStill(kGrid, true); }
 
@@ -634,9 +628,8 @@ void expectHullAcrossRidgesLiesStill(bool polyhedron, btScalar turn)
 	btConvexHullShape* hull = hullBox(w, btVector3(btScalar(0.5), btScalar(0.25), btScalar(0.5)));
 	if (polyhedron) hull->initializePolyhedralFeatures();
 	const btScalar restingHeight = btScalar(0.25) + hull->getMargin();
-	btRigidBody* body = w.addBody(hull, 1,
-	                              btTransform(btQuaternion(btVector3(0, 1, 0), turn),
-	                                          btVector3(0, restingHeight + btScalar(0.001), 0)));
+	btRigidBody* body = w.addBody(
+	    hull, 1, btTransform(btQuaternion(btVector3(0, 1, 0), turn), btVector3(0, restingHeight + btScalar(0.001), 0)));
 	body->setFriction(btScalar(0.5));
 	body->setActivationState(DISABLE_DEACTIVATION);
 	w.run(1, kStep);
