@@ -283,7 +283,7 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContactAlongGjkNormal(
 		    *shapeA, input.m_transformA, *static_cast<const btTriangleShape*>(shapeB), input.m_transformB, reach,
-		    gjkPoint.m_normalOnSurfaceB, *resultOut);
+		    gjkPoint.m_normalOnSurfaceB, gjkPoint.m_distance, m_manifoldPtr->getContactBreakingThreshold(), *resultOut);
 		if (outcome == caliber::kTriangleFaceContact || outcome == caliber::kTriangleOutOfReach)
 		{
 			if (m_ownManifold) resultOut->refreshContactPoints();

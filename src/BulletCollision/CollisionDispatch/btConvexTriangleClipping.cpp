@@ -32,11 +32,20 @@ const btScalar kFaceLevelTolerance = btScalar(0.002);
 // polyhedron's face is taken as the face over a triangle within the same angle.
 const btScalar kFaceNormalCosine = btScalar(0.999);
 
+// A point closer than this fraction of a triangle's longest edge to one of its edges is on it (the mesh
+// collector's tolerance for a point on an edge).
+const btScalar kOnTriangleEdge = btScalar(1e-3);
+
 // Hull vertices this close to the supporting plane, as a fraction of the hull's extent along the normal,
 // form its face there: it catches a face tilted by about a degree (a hull settling on a face) whose
 // vertices are not quite level. Each point keeps its own distance, so a vertex taken in that is a little
 // higher only gives a point a little farther away.
 const btScalar kHullFaceBand = btScalar(0.02);
+
+// A hull lying on an edge gets the face it tips onto when the reach is more than this fraction of its extent
+// along the normal: the face's far side can come down within the step (a landing, a fast tip); less, and
+// its points within reach lie next to the edge, which holds the hull already.
+const btScalar kWrapReach = btScalar(0.25);
 
 struct Polygon
 {
@@ -159,12 +168,80 @@ void dotsOf(const btVector3* points, int count, const btVector3& direction, btSc
 	}
 }
 
+// A hull lying on an edge (the band holds 2 points) with its centre of mass off to one side tips onto the
+// face next to it on that side (a box landing on an edge at speed turns onto its face within a step or
+// two). Like a polyhedron's face most opposed to the normal, that face gives the speculative points that
+// stop the face coming down. The supporting plane is turned about the edge towards the centre of mass (the
+// shape's origin) until it meets other points: the points it meets form the face. A hull balanced over
+// its edge gets none: it tips no way yet, and speculative points on a face it is not turning onto only
+// took impulses from the solver's iterations at a hard landing and turned it (a prism landing on its edge
+// at 120 m/s went 9 cm deep instead of 3 mm). A hull on a vertex gets none either (it tips onto an edge
+// first; the search would cost a square root per point). `down` is the unit local direction towards the
+// triangle (the scaled points are measured along it), `extent` the hull's extent along it; sources holds
+// the edge's 2 points and gets the face's (at most kMaxFaceCorners). False, changing nothing, when there
+// is no such face.
+bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
+                      btScalar extent, const btVector3** sources, int& count)
+{
+	if (count != 2 || numPoints < 3 || !(extent > 0)) return false;
+	// In the scaled frame: up is the unit direction away from the triangle.
+	btVector3 up = -down;
+	const btScalar upLength = up.length();
+	if (!(upLength > 0)) return false;
+	up /= upLength;
+	const btVector3 a = *sources[0] * scaling;
+	btVector3 along = *sources[1] * scaling - a;
+	// Offsets across the edge shorter than this are on it; a centre of mass this close over the edge is
+	// balanced on it.
+	const btScalar onLine2 = btScalar(1e-6) * extent * extent;
+	const btScalar balanced2 = kHullFaceBand * kHullFaceBand * extent * extent;
+	if (!(along.length2() > onLine2)) return false;
+	along.normalize();
+	// The plane across the edge: level (upright, the part of up across the edge) and sideways.
+	btVector3 upright = up - along * along.dot(up);
+	if (!(upright.length2() > btScalar(1e-6))) return false;  // an edge standing straight up
+	upright.normalize();
+	const btVector3 sideways = along.cross(upright);
+	// The side the centre of mass is on; none when it is over the edge.
+	const btScalar centreAcross = (-a).dot(sideways);
+	if (!(centreAcross * centreAcross > balanced2)) return false;
+	const btVector3 towards = centreAcross > 0 ? sideways : -sideways;
+	// The least slope (height over distance across) on that side is the face's; the points within the band
+	// of that plane (measured along its normal) form the face.
+	btScalar slope = BT_LARGE_FLOAT;
+	for (int i = 0; i < numPoints; ++i)
+	{
+		const btVector3 r = points[i] * scaling - a;
+		const btScalar across = r.dot(towards);
+		if (!(across > 0) || !(across * across > onLine2)) continue;
+		slope = btMin(slope, r.dot(upright) / across);
+	}
+	if (!(slope < BT_LARGE_FLOAT)) return false;
+	const btVector3 planeNormal = (upright - towards * slope) / btSqrt(btScalar(1) + slope * slope);
+	const btScalar tolerance = kHullFaceBand * btScalar(0.5) * extent;
+	const btVector3* face[kMaxFaceCorners];
+	int numFace = 0;
+	for (int i = 0; i < numPoints && numFace < kMaxFaceCorners; ++i)
+	{
+		if (!((points[i] * scaling - a).dot(planeNormal) <= tolerance)) continue;
+		bool duplicate = false;
+		for (int j = 0; j < numFace && !duplicate; ++j)
+			duplicate = face[j]->x() == points[i].x() && face[j]->y() == points[i].y() && face[j]->z() == points[i].z();
+		if (!duplicate) face[numFace++] = &points[i];
+	}
+	if (numFace < 3) return false;
+	for (int i = 0; i < numFace; ++i) sources[i] = face[i];
+	count = numFace;
+	return true;
+}
+
 // The points (times scaling) within kHullFaceBand of the convex's extent along the local direction `down`
 // (towards the triangle) below the deepest, one copy of each, in world space moved out by `outwards`:
 // the convex's face there, ordered around its centre; 2 points for an edge (a box or barrel landing on
 // an edge, clipped as a segment); none for a vertex, where GJK's point is the contact.
 void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
-              const btTransform& transform, const btVector3& normal, const btVector3& outwards, Polygon& face)
+              const btTransform& transform, const btVector3& normal, const btVector3& outwards, btScalar reach,
+              Polygon& face)
 {
 	face.count = 0;
 	if (numPoints < 2) return;
@@ -214,6 +291,14 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 			face.corners[face.count++] = transform(point * scaling) + outwards;
 		}
 	}
+	// The face it tips onto only when the reach covers much of it (a fast landing or tipping): otherwise its
+	// points within reach lie next to the edge, which holds the hull already, and the search would be paid
+	// for nothing (on every triangle near a hull rolling on a curved mesh).
+	if (face.count == 2 && reach > kWrapReach * (deepest - shallowest) &&
+	    wrapToTiltedFace(points, numPoints, scaling, down, deepest - shallowest, sources, face.count))
+	{
+		for (int i = 0; i < face.count; ++i) face.corners[i] = transform(*sources[i] * scaling) + outwards;
+	}
 	if (face.count < 2)
 		face.count = 0;
 	else if (face.count > 3)  // any order of 2 or 3 points is a polygon already
@@ -222,21 +307,22 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 
 // A btConvexHullShape's face over the triangle from its points (see bandFace), moved out by the margin
 // (the hull's surface is its points' hull grown by it).
-void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal, Polygon& face)
+void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal,
+                    btScalar reach, Polygon& face)
 {
 	face.count = 0;
 	const btVector3* points = hull.getUnscaledPoints();
 	if (!points) return;
 	bandFace(points, hull.getNumPoints(), hull.getLocalScaling(), -normal * transform.getBasis(), transform, normal,
-	         -normal * hull.getMargin(), face);
+	         -normal * hull.getMargin(), reach, face);
 }
 
-// A polyhedron's face over the triangle: its face most opposed to the normal, also when tilted (as a box's:
-// a hull landing on an edge at speed gets speculative points on the face coming down), corners in the
-// polyhedron's own order, moved out by the margin (hulls' polyhedra are their margin-free cores). A
-// polyhedron without faces gives its vertices in the band (see bandFace).
+// A polyhedron's face over the triangle: its face most opposed to the normal when that lies on the
+// triangle (within GJK's face tolerance), corners in the polyhedron's own order, moved out by the margin
+// (hulls' polyhedra are their margin-free cores). Otherwise, and for a polyhedron without faces, its
+// vertices in the band, or the face it tips onto (see bandFace).
 void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const btTransform& transform,
-                    const btVector3& normal, Polygon& face)
+                    const btVector3& normal, btScalar reach, Polygon& face)
 {
 	face.count = 0;
 	const btVector3 local = normal * transform.getBasis();
@@ -254,11 +340,15 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 	}
 	const int numVertices = polyhedron.m_vertices.size();
 	const btVector3 outwards = -normal * margin;
-	if (best < 0 || polyhedron.m_faces[best].m_indices.size() < 3)
+	// A face tilted beyond GJK's face tolerance is not lying on the triangle: the polyhedron lies on an
+	// edge or a vertex, and its face is found from its vertices as a hull's is (the face on its centre of
+	// mass's side, which it tips onto; none when balanced: two faces equally tilted either side of an edge
+	// are no guide).
+	if (best < 0 || polyhedron.m_faces[best].m_indices.size() < 3 || -bestDot < kFaceNormalCosine)
 	{
 		if (numVertices > 0)
 			bandFace(&polyhedron.m_vertices[0], numVertices, btVector3(1, 1, 1), -local, transform, normal, outwards,
-			         face);
+			         reach, face);
 		return;
 	}
 	const btAlignedObjectArray<int>& indices = polyhedron.m_faces[best].m_indices;
@@ -272,14 +362,15 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 }
 
 // A hull's face over the triangle: from its polyhedron when it has one, else from its points.
-void convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, Polygon& face)
+void convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, btScalar reach,
+                Polygon& face)
 {
 	face.count = 0;
 	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape&>(convex).getConvexPolyhedron();
 	if (polyhedron)
-		polyhedronFace(*polyhedron, convex.getMargin(), transform, normal, face);
+		polyhedronFace(*polyhedron, convex.getMargin(), transform, normal, reach, face);
 	else if (convex.getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE)
-		hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, face);
+		hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, reach, face);
 }
 
 // Sutherland-Hodgman: keeps the part of the closed polygon in on the side (x - origin) . side <= 0.
@@ -391,7 +482,16 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 				right = i;
 			}
 		}
-		if (left >= 0) chosen[numChosen++] = left;
+		// In order around the patch (first, left, farthest, right), not diagonal pairs first: the solver
+		// takes a manifold's points in this order, and on a narrow face that rocks by solver noise, solving
+		// the two ends of one diagonal and then of the other biased the single velocity-following friction
+		// row into a one-way creep (a resting 12-sided prism crept 1 mm/s); in order around it the rocking
+		// stays symmetric and the body still.
+		if (left >= 0)
+		{
+			chosen[numChosen++] = left;
+			btSwap(chosen[numChosen - 1], chosen[numChosen - 2]);
+		}
 		if (right >= 0) chosen[numChosen++] = right;
 	}
 	// The deepest point carries the contact when the others are clearly shallower (a tilted face landing
@@ -446,7 +546,10 @@ namespace
 {
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
-                                  btDiscreteCollisionDetectorInterface::Result& out);
+                                  btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut = false);
+int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& convex, const btTransform& convexTransform,
+                            const btTriangleShape& triangle, const btVector3& gjkNormal, btScalar touching,
+                            btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace
 
 TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTransform& convexTransform,
@@ -461,7 +564,8 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
-                                                      const btVector3& gjkNormal,
+                                                      const btVector3& gjkNormal, btScalar gjkDistance,
+                                                      btScalar touching,
                                                       btDiscreteCollisionDetectorInterface::Result& out)
 {
 	// The face test in the triangle's frame first: most normals GJK finds against a mesh (edges, vertices)
@@ -472,19 +576,136 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	const btScalar along = face.dot(localNormal);
 	const btScalar normalLength2 = localNormal.length2();
 	// A zero or non-finite normal (GJK gave none) is no face's.
-	if (!(normalLength2 > 0) || !btIsFinite(normalLength2) ||
-	    !(along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2))
-		return kTriangleNeedsGjk;
+	if (!(normalLength2 > 0) || !btIsFinite(normalLength2)) return kTriangleNeedsGjk;
 	WorldTriangle world;
 	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
-	return faceContactOn(world, convex, convexTransform, triangle, reach, out);
+	if (along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2)
+		return faceContactOn(world, convex, convexTransform, triangle, reach, out, true);
+	// The convex's face lies on the triangle's edge or vertex (a ridge, a peak): the triangle's part under
+	// the face, along the face's normal, is the whole contact.
+	if (gjkDistance <= touching &&
+	    triangleUnderConvexFace(world, convex, convexTransform, triangle, gjkNormal, touching, out) > 0)
+		return kTriangleFaceContact;
+	// Only a convex closing in (a fast landing, a tip onto a face) can bring a face down onto the triangle
+	// within the step; at rest (reach about the breaking threshold) GJK's point is the contact, and the
+	// face search is spared for every triangle around a hull lying on a curved mesh.
+	if (!(reach > 2 * touching)) return kTriangleNeedsGjk;
+	// GJK's nearest feature is the triangle's edge or vertex, but part of the convex's face may still lie
+	// over the triangle within reach: a hull tipping onto a face that overhangs the triangle it landed on
+	// (its face's points over the neighbours are what stop it there), or a face resting across a ridge or a
+	// vertex. Those points are reported along the face normal, as a box's are; GJK's point is added too
+	// (the collector drops it when the edge is internal).
+	const TriangleFaceOutcome outcome = faceContactOn(world, convex, convexTransform, triangle, reach, out);
+	return outcome == kTriangleNeedsGjk || outcome == kTriangleOutOfReach ? kTriangleNeedsGjk
+	                                                                      : kTriangleFacePointsAndGjk;
 }
 
 namespace
 {
+// The convex's face touching a triangle's edge or vertex (GJK's normal is the face's, not the triangle's):
+// the triangle clipped against the face's side planes, its points within `touching` of the face's plane
+// reported with the face's normal (at most 4, spanning the largest area). A face resting across a ridge
+// or on a vertex is held at the ends of the ridge's segment under it, not at GJK's single point (on which
+// it rocked and crept), and its normal is the face's, not a triangle's tilted one. Returns how many.
+int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& convex, const btTransform& convexTransform,
+                            const btTriangleShape& triangle, const btVector3& gjkNormal, btScalar touching,
+                            btDiscreteCollisionDetectorInterface::Result& out)
+{
+	btVector3 normal = gjkNormal;  // from the triangle towards the convex
+	const btScalar length2 = normal.length2();
+	if (!(length2 > 0) || !btIsFinite(length2)) return 0;
+	normal /= btSqrt(length2);
+	Polygon face;
+	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
+		boxFace(static_cast<const btBoxShape&>(convex), convexTransform, normal * convexTransform.getBasis(), face);
+	else
+		convexFace(convex, convexTransform, normal, 0, face);  // a face across the normal, never a tilted one
+	if (face.count < 3) return 0;
+	// The face's own normal (Newell's, robust for any polygon in order), facing the triangle; only a face
+	// across GJK's normal is the contact (a tilted face found by wrapping is not).
+	btVector3 outwards(0, 0, 0);
+	for (int i = 0; i < face.count; ++i)
+	{
+		const btVector3& a = face.corners[i];
+		const btVector3& b = face.corners[i + 1 == face.count ? 0 : i + 1];
+		outwards += btVector3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+		                      (a.x() - b.x()) * (a.y() + b.y()));
+	}
+	const btScalar outwardsLength = outwards.length();
+	if (!(outwardsLength > 0)) return 0;
+	outwards /= outwardsLength;
+	if (outwards.dot(normal) > 0) outwards = -outwards;
+	if (-outwards.dot(normal) < kFaceNormalCosine) return 0;
+	btVector3 centre(0, 0, 0);
+	for (int i = 0; i < face.count; ++i) centre += face.corners[i];
+	centre /= btScalar(face.count);
+
+	Polygon clippedA, clippedB;
+	clippedA.count = 3;
+	for (int k = 0; k < 3; ++k) clippedA.corners[k] = world.corners[k];
+	Polygon* in = &clippedA;
+	Polygon* clipped = &clippedB;
+	for (int i = 0; i < face.count && in->count > 0; ++i)
+	{
+		const btVector3& from = face.corners[i];
+		btVector3 side = (face.corners[i + 1 == face.count ? 0 : i + 1] - from).cross(outwards);
+		if ((centre - from).dot(side) > 0) side = -side;  // facing out of the face
+		if (clipBySide(*in, *clipped, from, side)) btSwap(in, clipped);
+	}
+	// Separation from the face's plane along its normal; the triangle's surface is grown by its margin.
+	const btScalar margin = triangle.getMargin();
+	const btVector3 contactNormal = -outwards;
+	btScalar separations[kMaxClipped];
+	btScalar closest = BT_LARGE_FLOAT;
+	for (int i = 0; i < in->count; ++i)
+	{
+		separations[i] = (in->corners[i] - face.corners[0]).dot(outwards) - margin;
+		closest = btMin(closest, separations[i]);
+	}
+	// The triangle's points at the level of its closest: the ridge's segment, or the vertex, under the
+	// face (a sloping triangle's points farther down are not touching and would crowd out the segment's
+	// ends when 4 are chosen).
+	const btScalar level = btMin(touching, closest + kFaceLevelTolerance);
+	// Only points on the triangle's edges or vertices: a point inside it lies under a corner of the face,
+	// a vertex-face contact whose normal is the triangle's (reported along it by the face path), not the
+	// face's (a hull lying on a flat mesh got points leaning with its side face there, and rested on them).
+	const btVector3 edges[3] = {world.corners[1] - world.corners[0], world.corners[2] - world.corners[1],
+	                            world.corners[0] - world.corners[2]};
+	const btScalar longest2 = btMax(btMax(edges[0].length2(), edges[1].length2()), edges[2].length2());
+	const btScalar onEdge2 = kOnTriangleEdge * kOnTriangleEdge * longest2;
+	btVector3 points[kMaxClipped];
+	btScalar distances[kMaxClipped];
+	int count = 0;
+	for (int i = 0; i < in->count; ++i)
+	{
+		const btScalar distance = separations[i];
+		if (!(distance <= level) || distance < -kFaceDepthLimit) continue;
+		bool onBoundary = false;
+		for (int k = 0; k < 3 && !onBoundary; ++k)
+		{
+			const btVector3 offset = in->corners[i] - world.corners[k];
+			const btScalar length2 = edges[k].length2();
+			const btScalar t = btMax(btScalar(0), btMin(btScalar(1), offset.dot(edges[k]) / length2));
+			onBoundary = (offset - edges[k] * t).length2() <= onEdge2;
+		}
+		if (!onBoundary) continue;
+		points[count] = in->corners[i] + contactNormal * margin;
+		distances[count] = distance;
+		++count;
+	}
+	int chosen[kMaxClipped];
+	int numChosen = count;
+	if (count > 4)
+		numChosen = chooseManifoldPoints(points, distances, count, contactNormal, chosen);
+	else
+		for (int i = 0; i < count; ++i) chosen[i] = i;
+	for (int i = 0; i < numChosen; ++i) out.addContactPoint(contactNormal, points[chosen[i]], distances[chosen[i]]);
+	return numChosen;
+}
+
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
-                                  btDiscreteCollisionDetectorInterface::Result& out)
+                                  btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut)
 {
 	const btVector3* corners = world.corners;
 	const btVector3 edge1 = corners[1] - corners[0];
@@ -558,7 +779,7 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 	}
 	else
 	{
-		convexFace(convex, convexTransform, normal, face);
+		convexFace(convex, convexTransform, normal, reach, face);
 	}
 	if (face.count == 0) return kTriangleNeedsGjk;
 
@@ -569,7 +790,10 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 	if (lowest > reach) return kTriangleOutOfReach;
 	// Deep in, the face normal may not be the way out (a triangle's edge poking into a side): GJK and the
 	// depth solver decide, as for every other shape.
-	if (lowest < -kFaceDepthLimit || face.count < 2) return kTriangleNeedsGjk;
+	// Unless GJK and the depth solver found the face normal to be the way out: then the whole face holds
+	// the convex as it is pushed out (a hull spun onto its face by a fast landing, found deep a step later,
+	// rocked about GJK's single point and sank further).
+	if ((lowest < -kFaceDepthLimit && !normalIsTheWayOut) || face.count < 2) return kTriangleNeedsGjk;
 
 	// The triangle's prism: a side plane through each edge, containing the normal, facing out. Faces
 	// inside the prism (the convex over a large triangle) need no cut.

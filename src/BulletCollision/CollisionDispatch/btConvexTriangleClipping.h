@@ -15,7 +15,8 @@ namespace caliber
 /// Picks at most 4 of count points for a manifold: the one farthest from their centre, the farthest from
 /// it, then the farthest on either side of the line through both (seen along normal), which spans the
 /// largest area the points offer; the deepest (smallest distance) replaces the last when it is clearly
-/// deeper than those. Writes their indices to chosen (a fixed order) and returns how many.
+/// deeper than those. Writes their indices to chosen in order around the patch (first, left, farthest,
+/// right: the solver's order, see the .cpp) and returns how many.
 int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int count, const btVector3& normal,
                          int chosen[4]);
 
@@ -69,14 +70,21 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
                                         btScalar reach, btDiscreteCollisionDetectorInterface::Result& out);
 
-/// triangleFaceContact for a hull after GJK: only when gjkNormal (GJK's, from the triangle towards the
-/// convex, any length) is the triangle's face normal on either side to within about 2.5 degrees (GJK's
-/// tolerance for a convex resting on a face; a normal leaning further comes from an edge or a vertex of
-/// the triangle, where GJK's point is the contact); kTriangleNeedsGjk, reporting nothing, otherwise.
+/// triangleFaceContact for a hull after GJK, by gjkNormal (GJK's, from the triangle towards the convex, any
+/// length). When it is the triangle's face normal on either side to within about 2.5 degrees (GJK's
+/// tolerance for a convex resting on a face): triangleFaceContact. When it is instead the normal of one
+/// of the convex's faces (the face lies on the triangle's edge or vertex): the triangle clipped against
+/// that face, its points within `touching` (the breaking threshold: resting contacts, not speculative
+/// ones; asked only when gjkDistance is within it) reported with the face's normal, kTriangleFaceContact
+/// (GJK's point is one of them). Otherwise, when the pair closes in (reach beyond twice `touching`): the
+/// convex's face points over the triangle along its face normal (a face overhanging the triangle it landed
+/// on) and kTriangleFacePointsAndGjk, or kTriangleNeedsGjk when there are none; at rest kTriangleNeedsGjk.
+/// A zero or non-finite normal: kTriangleNeedsGjk, reporting nothing.
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
-                                                      const btVector3& gjkNormal,
+                                                      const btVector3& gjkNormal, btScalar gjkDistance,
+                                                      btScalar touching,
                                                       btDiscreteCollisionDetectorInterface::Result& out);
 }  // namespace caliber
 

@@ -29,6 +29,8 @@ btTriangleShape bigFloorTriangle()
 }
 
 const btScalar kReach = btScalar(0.1);
+// Resting contacts (the default breaking threshold): how close a face lying on a triangle's edge is reported.
+const btScalar kTouching = btScalar(0.02);
 // Float rounding of positions of order 1 (a few ulps, with margin).
 const btScalar kTolerance = btScalar(1e-5);
 }  // namespace
@@ -154,8 +156,9 @@ TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTh
 		EXPECT_NEAR(p.onTriangle.x(), 0, kTolerance);
 		EXPECT_NEAR(btFabs(p.onTriangle.z()), btScalar(0.5), kTolerance);
 	}
-	// Then tilted 30 degrees about x: one vertex is lowest (the other end of the edge is 0.5 m higher), no
-	// face or edge there: GJK's point.
+	// Then tilted 30 degrees about x: one vertex is lowest (the other end of the edge is 0.5 m higher), and
+	// the centre lies almost in the upright plane of its edge closest to level: no face or edge to tip onto
+	// yet, GJK's point.
 	out.points.clear();
 	const btTransform onVertex(
 	    btQuaternion(btVector3(1, 0, 0), SIMD_PI / 6) * btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4),
@@ -163,6 +166,41 @@ TEST(ConvexTriangleClipping, HullOnAFaceGetsItsFaceMovedOutByTheMarginOnAnEdgeTh
 	EXPECT_EQ(caliber::triangleFaceContact(hull, onVertex, triangle, btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
+}
+
+TEST(ConvexTriangleClipping, HullOnAnEdgeWithItsCentreToOneSideGetsTheFaceItTipsOnto)
+{
+	btConvexHullShape hull;
+	addCubeCorners(hull);
+	const btScalar margin = hull.getMargin();
+	const btTriangleShape triangle = bigFloorTriangle();
+	// Turned 30 degrees about z: the lowest edge is along z, the centre off to one side of it, over the
+	// bottom face, which is tilted 30 degrees and which it tips onto. The edge's ends lie at the lowest
+	// height, the face's other corners sin(30 degrees) = 0.5 m higher.
+	const btScalar turn = SIMD_PI / 6;
+	const btScalar lowestEdge = btScalar(0.5) * (btCos(turn) + btSin(turn));
+	const btTransform onEdge(btQuaternion(btVector3(0, 0, 1), turn),
+	                         btVector3(0, lowestEdge + margin + btScalar(0.01), 0));
+	Recorder out;
+	// Within a reach of 0.1 m, the edge's ends only.
+	EXPECT_EQ(caliber::triangleFaceContact(hull, onEdge, triangle, btTransform::getIdentity(), kReach, out),
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 2u);
+	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.01), kTolerance);
+	// Within 1 m (a fast landing's speculative reach), the face's 4 corners, 2 of them 0.5 m higher.
+	out.points.clear();
+	EXPECT_EQ(caliber::triangleFaceContact(hull, onEdge, triangle, btTransform::getIdentity(), 1, out),
+	          caliber::kTriangleFaceContact);
+	ASSERT_EQ(out.points.size(), 4u);
+	int high = 0;
+	for (const Point& p : out.points) high += btFabs(p.distance - btScalar(0.51)) < btScalar(1e-4);
+	EXPECT_EQ(high, 2);
+	// Balanced on an edge (turned 45 degrees: the centre straight over it), no face: it tips no way yet.
+	out.points.clear();
+	const btTransform balanced(btQuaternion(btVector3(0, 0, 1), SIMD_PI / 4), btVector3(0, btScalar(0.75), 0));
+	EXPECT_EQ(caliber::triangleFaceContact(hull, balanced, triangle, btTransform::getIdentity(), 1, out),
+	          caliber::kTriangleFaceContact);
+	EXPECT_EQ(out.points.size(), 2u);
 }
 
 TEST(ConvexTriangleClipping, HullEdgeCrossingATriangleEdgeIsCutAtItsSidePlane)
@@ -216,7 +254,7 @@ TEST(ConvexTriangleClipping, HullWithAPolyhedronGetsItsMostOpposedFaceAlsoWhenTi
 	EXPECT_EQ(high, 2);
 }
 
-TEST(ConvexTriangleClipping, AfterGjkOnlyAFaceNormalIsClippedAndOtherNormalsAreLeftToGjk)
+TEST(ConvexTriangleClipping, AfterGjkAFaceNormalIsClippedAnEdgeNormalAddsTheFaceOverTheTriangleAndNoNormalIsLeftToGjk)
 {
 	btConvexHullShape hull;
 	addCubeCorners(hull);
@@ -226,18 +264,77 @@ TEST(ConvexTriangleClipping, AfterGjkOnlyAFaceNormalIsClippedAndOtherNormalsAreL
 	Recorder out;
 	// The face normal, of any length and either sign (the triangle is two-sided): the face.
 	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
-	                                                     btVector3(0, 3, 0), out),
+	                                                     btVector3(0, 3, 0), kTouching, kTouching, out),
 	          caliber::kTriangleFaceContact);
 	EXPECT_EQ(out.points.size(), 4u);
 	out.points.clear();
-	// 10 degrees off (an edge's or a vertex's normal), zero, or not finite: nothing, GJK's point.
+	// 10 degrees off (an edge's or a vertex's normal): the face's points over the triangle are still
+	// reported along the face normal, and GJK's point is wanted too (its edge may be the nearest feature).
 	const btVector3 leaning(btSin(btScalar(0.17)), btCos(btScalar(0.17)), 0);
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
+	                                                     leaning, kTouching, kTouching, out),
+	          caliber::kTriangleFacePointsAndGjk);
+	EXPECT_EQ(out.points.size(), 4u);
+	for (const Point& p : out.points) EXPECT_NEAR(p.distance, btScalar(0.02), kTolerance);
+	out.points.clear();
+	// At rest (a reach no more than twice the breaking threshold): GJK's point alone.
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(),
+	                                                     2 * kTouching, leaning, kTouching, kTouching, out),
+	          caliber::kTriangleNeedsGjk);
+	EXPECT_TRUE(out.points.empty());
+	// Beside the triangle (no point of the face over it): nothing, GJK's point.
+	const btTransform beside(btQuaternion::getIdentity(),
+	                         btVector3(btScalar(-10.55), btScalar(0.5) + hull.getMargin() + btScalar(0.02), 0));
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, beside, triangle, btTransform::getIdentity(), kReach,
+	                                                     leaning, kTouching, kTouching, out),
+	          caliber::kTriangleNeedsGjk);
+	// Zero, or not finite (GJK gave no normal): nothing, GJK's point.
 	const btVector3 notFinite(0, btScalar(SIMD_INFINITY), 0);
-	for (const btVector3& normal : {leaning, btVector3(0, 0, 0), notFinite})
+	for (const btVector3& normal : {btVector3(0, 0, 0), notFinite})
 		EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, flat, triangle, btTransform::getIdentity(), kReach,
-		                                                     normal, out),
+		                                                     normal, kTouching, kTouching, out),
 		          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
+}
+
+TEST(ConvexTriangleClipping, AfterGjkAFaceLyingOnATriangleEdgeGetsTheEdgeUnderItAlongTheFaceNormal)
+{
+	btConvexHullShape hull;
+	addCubeCorners(hull);
+	// A triangle sloping down 10 degrees from its edge along z at x = 0 (a ridge), 10 m long.
+	const btScalar drop = 10 * btTan(btScalar(0.17));
+	btTriangleShape slope(btVector3(0, 0, -10), btVector3(0, 0, 10), btVector3(10, -drop, 0));
+	slope.setMargin(0);
+	// The cube lying level, centred over the ridge, 5 mm above it (its surface is the corners grown by
+	// the margin): GJK's normal is the cube's face normal, straight up.
+	const btScalar gap = btScalar(0.005);
+	const btTransform over(btQuaternion::getIdentity(), btVector3(0, btScalar(0.5) + hull.getMargin() + gap, 0));
+	Recorder out;
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, over, slope, btTransform::getIdentity(), kReach,
+	                                                     btVector3(0, 1, 0), gap, kTouching, out),
+	          caliber::kTriangleFaceContact);
+	// The ridge's segment under the face: both ends (z = +-0.5), at the gap, with the face's normal. The
+	// slope's points farther out under the face are lower, not touching, and not reported.
+	ASSERT_EQ(out.points.size(), 2u);
+	btScalar minZ = BT_LARGE_FLOAT, maxZ = -BT_LARGE_FLOAT;
+	for (const Point& p : out.points)
+	{
+		EXPECT_NEAR(p.distance, gap, kTolerance);
+		EXPECT_NEAR(p.onTriangle.x(), 0, kTolerance);
+		EXPECT_NEAR(p.normal.y(), 1, kTolerance);
+		minZ = btMin(minZ, p.onTriangle.z());
+		maxZ = btMax(maxZ, p.onTriangle.z());
+	}
+	EXPECT_NEAR(minZ, btScalar(-0.5), kTolerance);
+	EXPECT_NEAR(maxZ, btScalar(0.5), kTolerance);
+	// Beyond the breaking threshold and closing in fast (a face coming down within a reach of 1 m, not lying
+	// on the edge): the face points over the triangle along its normal instead, and GJK's point.
+	out.points.clear();
+	const btTransform above(btQuaternion::getIdentity(), btVector3(0, btScalar(0.55) + hull.getMargin(), 0));
+	EXPECT_EQ(caliber::triangleFaceContactAlongGjkNormal(hull, above, slope, btTransform::getIdentity(), 1,
+	                                                     btVector3(0, 1, 0), btScalar(0.05), kTouching, out),
+	          caliber::kTriangleFacePointsAndGjk);
+	for (const Point& p : out.points) EXPECT_LT(p.normal.y(), btScalar(0.99));
 }
 
 TEST(ConvexTriangleClipping, HullOfMorePointsThanAChunkFindsItsFaceWhereverItsPointsAre)
