@@ -32,9 +32,38 @@ namespace
 using namespace snapshot_access;
 
 const char kMagic[8] = {'C', 'A', 'L', 'S', 'N', 'A', 'P', 0};
-const unsigned kVersion = 1;
+const unsigned kVersion = 2;  // 2: compound algorithms, own manifold counts
 const unsigned kByteOrderMark = 0x01020304u;
 const int kSolverSequentialImpulse = 1;
+const int kActionRaycastVehicle = 1;
+
+// The actions whose whole state the snapshot holds (exact classes: a subclass may keep more).
+btRaycastVehicle* vehicleOf(btActionInterface* action)
+{
+	return action && typeid(*action) == typeid(btRaycastVehicle) ? static_cast<btRaycastVehicle*>(action) : 0;
+}
+
+// A wheel's state that one substep leaves for the next (its settings and the driver's inputs, steering,
+// engine force and brake, are the user's).
+template <class IO>
+void wheelFields(IO& io, btWheelInfo& wheel)
+{
+	btWheelInfo::RaycastInfo& ray = wheel.m_raycastInfo;
+	io.field("m_contactNormalWS", ray.m_contactNormalWS);
+	io.field("m_contactPointWS", ray.m_contactPointWS);
+	io.field("m_suspensionLength", ray.m_suspensionLength);
+	io.field("m_hardPointWS", ray.m_hardPointWS);
+	io.field("m_wheelDirectionWS", ray.m_wheelDirectionWS);
+	io.field("m_wheelAxleWS", ray.m_wheelAxleWS);
+	io.field("m_isInContact", ray.m_isInContact);
+	io.field("m_worldTransform", wheel.m_worldTransform);
+	io.field("m_rotation", wheel.m_rotation);
+	io.field("m_deltaRotation", wheel.m_deltaRotation);
+	io.field("m_clippedInvContactDotSuspension", wheel.m_clippedInvContactDotSuspension);
+	io.field("m_suspensionRelativeVelocity", wheel.m_suspensionRelativeVelocity);
+	io.field("m_wheelsSuspensionForce", wheel.m_wheelsSuspensionForce);
+	io.field("m_skidInfo", wheel.m_skidInfo);
+}
 
 template <class IO>
 void objectFields(IO& io, btCollisionObject& object)
@@ -120,13 +149,43 @@ void setError(char* error, size_t errorSize, const char* format, ...)
 	va_end(args);
 }
 
+int objectIndexOf(const btDiscreteDynamicsWorld& world, const void* object)
+{
+	const btCollisionObject* o = static_cast<const btCollisionObject*>(object);
+	for (int i = 0; o && i < world.getNumCollisionObjects(); ++i)
+		if (world.getCollisionObjectArray()[i] == o) return i;
+	return -1;
+}
+
 // What the snapshot cannot hold; checked before saving and before restoring.
 bool worldSupported(btDiscreteDynamicsWorld& world, char* error, size_t errorSize)
 {
-	if (worldActions(world).size())
+	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
+	for (int a = 0; a < actions.size(); ++a)
 	{
-		setError(error, errorSize, "world: it has actions (vehicles, character controllers), whose state is not held");
-		return false;
+		btRaycastVehicle* vehicle = vehicleOf(actions[a]);
+		if (!vehicle)
+		{
+			setError(error, errorSize,
+			         "action %d: only btRaycastVehicle is supported (character controllers and user actions keep "
+			         "state the snapshot does not hold)",
+			         a);
+			return false;
+		}
+		if (bodyIndex(world, *vehicle->getRigidBody()) < 0)
+		{
+			setError(error, errorSize, "action %d: the vehicle's chassis is not a body of the world", a);
+			return false;
+		}
+		for (int w = 0; w < vehicle->getNumWheels(); ++w)
+		{
+			const void* ground = vehicle->getWheelInfo(w).m_raycastInfo.m_groundObject;
+			if (ground && objectIndexOf(world, ground) < 0)
+			{
+				setError(error, errorSize, "action %d: wheel %d stands on an object outside the world", a, w);
+				return false;
+			}
+		}
 	}
 	if (predictiveManifolds(world).size())
 	{
@@ -207,6 +266,38 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 			out.field("warm-start impulse", (*impulses)[r]);
 		}
 	}
+	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
+	out.context("actions", -1);
+	out.field("action count", actions.size());
+	for (int a = 0; a < actions.size(); ++a)
+	{
+		btRaycastVehicle& vehicle = *vehicleOf(actions[a]);
+		out.context("action", a);
+		out.field("kind", kActionRaycastVehicle);
+		out.field("chassis", bodyIndex(world, *vehicle.getRigidBody()));
+		out.field("wheel count", vehicle.getNumWheels());
+		out.field("m_currentVehicleSpeedKmHour", vehicleSpeed(vehicle));
+		btAlignedObjectArray<btVector3>* vectors[2] = {&vehicleForwardWS(vehicle), &vehicleAxle(vehicle)};
+		for (btAlignedObjectArray<btVector3>* list : vectors)
+		{
+			out.field("direction count", list->size());
+			for (int w = 0; w < list->size(); ++w) out.field("direction", (*list)[w]);
+		}
+		btAlignedObjectArray<btScalar>* scalars[2] = {&vehicleForwardImpulse(vehicle), &vehicleSideImpulse(vehicle)};
+		for (btAlignedObjectArray<btScalar>* list : scalars)
+		{
+			out.field("impulse count", list->size());
+			for (int w = 0; w < list->size(); ++w) out.field("impulse", (*list)[w]);
+		}
+		for (int w = 0; w < vehicle.getNumWheels(); ++w)
+		{
+			out.context("action", a, w);
+			btWheelInfo& wheel = vehicle.getWheelInfo(w);
+			out.field("ground object", objectIndexOf(world, wheel.m_raycastInfo.m_groundObject));
+			wheelFields(io, wheel);
+		}
+	}
+
 	out.context("solver", -1);
 	out.field("kind", kSolverSequentialImpulse);
 	out.field("m_btSeed2", static_cast<unsigned long long>(solver.getRandSeed()));
@@ -296,6 +387,55 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 				entry.resize(rows);
 				for (int r = 0; r < rows; ++r) entry[r] = impulses[r];
 			}
+		}
+	}
+	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
+	const int actionCount = in.value<int>("action count");
+	if (in.ok() && actionCount != actions.size())
+		in.fail("world: %d actions, the snapshot has %d", actions.size(), actionCount);
+	for (int a = 0; a < actions.size() && in.ok(); ++a)
+	{
+		const int kind = in.value<int>("kind");
+		btRaycastVehicle* vehicle = vehicleOf(actions[a]);
+		if (in.ok() && (kind != kActionRaycastVehicle || !vehicle))
+		{
+			in.fail("action %d: kind %d, not the world's raycast vehicle", a, kind);
+			break;
+		}
+		const int chassis = in.value<int>("chassis");
+		const int wheels = in.value<int>("wheel count");
+		if (in.ok() && (chassis != bodyIndex(world, *vehicle->getRigidBody()) || wheels != vehicle->getNumWheels()))
+		{
+			in.fail("action %d: a vehicle on object %d with %d wheels, the snapshot's on %d with %d", a,
+			        bodyIndex(world, *vehicle->getRigidBody()), vehicle->getNumWheels(), chassis, wheels);
+			break;
+		}
+		in.field("m_currentVehicleSpeedKmHour", vehicleSpeed(*vehicle));
+		btAlignedObjectArray<btVector3>* vectors[2] = {&vehicleForwardWS(*vehicle), &vehicleAxle(*vehicle)};
+		for (btAlignedObjectArray<btVector3>* list : vectors)
+		{
+			const int count = in.count("direction count", wheels);
+			btAlignedObjectArray<btVector3> values;
+			for (int w = 0; w < count && in.ok(); ++w) values.push_back(in.vector("direction"));
+			if (in.ok() && apply) *list = values;
+		}
+		btAlignedObjectArray<btScalar>* scalars[2] = {&vehicleForwardImpulse(*vehicle), &vehicleSideImpulse(*vehicle)};
+		for (btAlignedObjectArray<btScalar>* list : scalars)
+		{
+			const int count = in.count("impulse count", wheels);
+			btAlignedObjectArray<btScalar> values;
+			for (int w = 0; w < count && in.ok(); ++w) values.push_back(in.scalar("impulse"));
+			if (in.ok() && apply) *list = values;
+		}
+		for (int w = 0; w < wheels && in.ok(); ++w)
+		{
+			btWheelInfo& wheel = vehicle->getWheelInfo(w);
+			const int ground = in.value<int>("ground object");
+			if (in.ok() && (ground < -1 || ground >= n))
+				in.fail("action %d: wheel %d stands on object %d, not an object of the world", a, w, ground);
+			wheelFields(in, wheel);
+			if (in.ok() && apply)
+				wheel.m_raycastInfo.m_groundObject = ground < 0 ? 0 : world.getCollisionObjectArray()[ground];
 		}
 	}
 	const int solverKind = in.value<int>("solver kind");

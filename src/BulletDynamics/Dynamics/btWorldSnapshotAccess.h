@@ -14,6 +14,7 @@
 
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btCompoundCompoundCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btConvexConcaveCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
@@ -21,6 +22,7 @@
 #include "BulletDynamics/ConstraintSolver/btHingeConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Vehicle/btRaycastVehicle.h"
 
 namespace caliber
 {
@@ -89,12 +91,24 @@ BindMember<Tag, Member> BindMember<Tag, Member>::instance;
 	X(convexHaveLastAxis, btConvexConvexAlgorithm, bool, m_haveLastSeparatingAxis)                              \
 	X(concaveCallback, btConvexConcaveCollisionAlgorithm, btConvexTriangleCallback, m_btConvexTriangleCallback) \
 	X(triangleAlgorithm, btConvexTriangleCallback, btCollisionAlgorithm*, m_triangleAlgorithm)                  \
+	/* compound algorithms: a child algorithm per child, or per pair of children with the frame counter */     \
+	X(compoundChildren, btCompoundCollisionAlgorithm, CompoundChildAlgorithms, m_childCollisionAlgorithms)      \
+	X(compoundSwapped, btCompoundCollisionAlgorithm, bool, m_isSwapped)                                         \
+	X(compoundSharedManifold, btCompoundCollisionAlgorithm, btPersistentManifold*, m_sharedManifold)            \
+	X(compoundPairs, btCompoundCompoundCollisionAlgorithm, CompoundChildPairs, m_childPairAlgorithms)           \
+	X(compoundFrame, btCompoundCompoundCollisionAlgorithm, int, m_frame)                                        \
 	/* joints: the time step of the last rows (read by the next getInfo1), the accumulated hinge angle */       \
 	X(jointAppliedImpulse, btTypedConstraint, btScalar, m_appliedImpulse)                                       \
 	X(jointEnabled, btTypedConstraint, bool, m_isEnabled)                                                       \
 	X(hingeLastTimeStep, btHingeConstraint, btScalar, m_lastTimeStep)                                           \
 	X(hingeAccumulatedAngle, btHingeAccumulatedAngleConstraint, btScalar, m_accumulatedAngle)                   \
-	X(coneLastTimeStep, btConeTwistConstraint, btScalar, m_lastTimeStep)
+	X(coneLastTimeStep, btConeTwistConstraint, btScalar, m_lastTimeStep)                                        \
+	/* the raycast vehicle: speed and the tyre friction's directions and impulses of the last substep */       \
+	X(vehicleSpeed, btRaycastVehicle, btScalar, m_currentVehicleSpeedKmHour)                                    \
+	X(vehicleForwardWS, btRaycastVehicle, btAlignedObjectArray<btVector3>, m_forwardWS)                         \
+	X(vehicleAxle, btRaycastVehicle, btAlignedObjectArray<btVector3>, m_axle)                                   \
+	X(vehicleForwardImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_forwardImpulse)                \
+	X(vehicleSideImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_sideImpulse)
 
 // Declares caliber::snapshot_access::accessor(Class&) -> MemberType& (bound in btWorldSnapshot.cpp).
 #define CALIBER_SNAPSHOT_DECLARE(Accessor, Class, MemberType, member) \
@@ -109,6 +123,9 @@ BindMember<Tag, Member> BindMember<Tag, Member>::instance;
 	template struct BindMember<Accessor##Tag, &Class::member>;
 
 typedef btManifoldPoint ManifoldPointCache[MANIFOLD_CACHE_SIZE];
+typedef btAlignedObjectArray<btCollisionAlgorithm*> CompoundChildAlgorithms;
+typedef btHashMap<btCompoundCompoundCollisionAlgorithm::ChildPairKey, btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm>
+    CompoundChildPairs;
 
 namespace caliber
 {

@@ -18,6 +18,7 @@
 #include "BulletCollision/CollisionDispatch/btSphereBoxCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btSphereSphereCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btSphereTriangleCollisionAlgorithm.h"
+#include "BulletCollision/CollisionShapes/btCompoundShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleShape.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotAccess.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotInternal.h"
@@ -45,8 +46,16 @@ enum AlgorithmKind
 	kConvexPlane = 6,
 	kSphereTriangle = 7,
 	kEmpty = 8,
+	kCompound = 9,
+	kCompoundCompound = 10,
 	kUnsupported = -1
 };
+
+// Compounds inside compounds nest algorithms; deeper nesting than this is refused (and a corrupt
+// snapshot cannot recurse without bound).
+const int kMaxAlgorithmDepth = 8;
+// Children of one compound, and child pairs of one compound-compound algorithm, at most.
+const int kMaxChildren = 1 << 16;
 
 int algorithmKind(const btCollisionAlgorithm* algorithm)
 {
@@ -60,6 +69,8 @@ int algorithmKind(const btCollisionAlgorithm* algorithm)
 	if (type == typeid(btConvexPlaneCollisionAlgorithm)) return kConvexPlane;
 	if (type == typeid(btSphereTriangleCollisionAlgorithm)) return kSphereTriangle;
 	if (type == typeid(btEmptyAlgorithm)) return kEmpty;
+	if (type == typeid(btCompoundCollisionAlgorithm)) return kCompound;
+	if (type == typeid(btCompoundCompoundCollisionAlgorithm)) return kCompoundCompound;
 	return kUnsupported;
 }
 
@@ -431,9 +442,20 @@ void convexState(IO& io, btConvexConvexAlgorithm& algorithm)
 	io.field("m_lastSeparatingAxis", convexLastAxis(algorithm));
 }
 
-bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, int kind, char* error, size_t errorSize,
-                   int pairIndex)
+// Writes an algorithm's kind and state; compound algorithms write their child algorithms after it
+// (a child slot without an algorithm is kind 0), depth first.
+bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, char* error, size_t errorSize, int pairIndex,
+                   int depth)
 {
+	const int kind = algorithmKind(algorithm);
+	if (kind == kUnsupported || depth > kMaxAlgorithmDepth)
+	{
+		setError(error, errorSize,
+		         "pair %d: a collision algorithm the snapshot does not support (soft bodies, user algorithms, "
+		         "compounds nested deeper than %d)",
+		         pairIndex, kMaxAlgorithmDepth);
+		return false;
+	}
 	out.field("algorithm", kind);
 	if (kind == kConvexConvex)
 	{
@@ -455,6 +477,36 @@ bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, int kin
 		}
 		out.field("triangle algorithm", triangleKind);
 		if (triangleKind == kConvexConvex) convexState(out, *static_cast<btConvexConvexAlgorithm*>(triangle));
+	}
+	else if (kind >= kBoxBox && kind <= kSphereTriangle)
+	{
+		// Made in the constructor only when the bodies were active then (see remakeAlgorithm).
+		btManifoldArray manifolds;
+		algorithm->getAllContactManifolds(manifolds);
+		out.field("own manifolds", manifolds.size());
+	}
+	else if (kind == kCompound)
+	{
+		CompoundChildAlgorithms& children = compoundChildren(*static_cast<btCompoundCollisionAlgorithm*>(algorithm));
+		out.field("child count", children.size());
+		for (int c = 0; c < children.size(); ++c)
+			if (!saveAlgorithm(out, children[c], error, errorSize, pairIndex, depth + 1)) return false;
+	}
+	else if (kind == kCompoundCompound)
+	{
+		btCompoundCompoundCollisionAlgorithm& both = *static_cast<btCompoundCompoundCollisionAlgorithm*>(algorithm);
+		CompoundChildPairs& pairs = compoundPairs(both);
+		out.field("m_frame", compoundFrame(both));
+		out.field("child pair count", pairs.size());
+		for (int c = 0; c < pairs.size(); ++c)
+		{
+			const btCompoundCompoundCollisionAlgorithm::ChildPairKey key = pairs.getKeyAtIndex(c);
+			const btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm* entry = pairs.getAtIndex(c);
+			out.field("child 0", key.m_index0);
+			out.field("child 1", key.m_index1);
+			out.field("m_lastFrame", entry->m_lastFrame);
+			if (!saveAlgorithm(out, entry->m_algorithm, error, errorSize, pairIndex, depth + 1)) return false;
+		}
 	}
 	return true;
 }
@@ -489,16 +541,7 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 		}
 		out.field("object 0", object0);
 		out.field("object 1", object1);
-		const int kind = algorithmKind(pair.m_algorithm);
-		if (kind == kUnsupported)
-		{
-			setError(error, errorSize,
-			         "pair %d (objects %d, %d): a collision algorithm the snapshot does not support (compound shapes, "
-			         "soft bodies, user algorithms)",
-			         i, object0, object1);
-			return false;
-		}
-		if (!saveAlgorithm(out, pair.m_algorithm, kind, error, errorSize, i)) return false;
+		if (!saveAlgorithm(out, pair.m_algorithm, error, errorSize, i, 0)) return false;
 		pairManifolds(pair, manifolds);
 		out.field("manifold count", manifolds.size());
 		for (int m = 0; m < manifolds.size(); ++m)
@@ -526,16 +569,120 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 	return true;
 }
 
-struct SavedPair
+// An algorithm as saved: its kind and state, and for compounds where its children are.
+struct SavedAlgorithm
 {
-	int object0, object1;
 	int kind;
 	bool ownsManifold;
 	int triangleKind;
 	bool haveAxis;
 	btVector3 axis;
+	int ownManifolds;
+	int frame;
+	int firstChild, childCount;  // into the flat child list
+};
+
+// A child slot of a compound algorithm (compound-compound: a child pair with its last frame).
+struct SavedChild
+{
+	int index0, index1, lastFrame;
+	int algorithm;  // into the algorithm list; -1 for an empty slot
+};
+
+struct SavedPair
+{
+	int object0, object1;
+	int algorithm;                     // into the algorithm list; -1 for none
 	int firstManifold, manifoldCount;  // into the flat manifold list
 };
+
+struct SavedAlgorithms
+{
+	btAlignedObjectArray<SavedAlgorithm> algorithms;
+	btAlignedObjectArray<SavedChild> children;
+};
+
+// Reads one algorithm (and, depth first, its children); the index of its record, -1 for kind 0 or on
+// failure.
+int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int depth)
+{
+	SavedAlgorithm a;
+	a.kind = in.value<int>("algorithm");
+	a.ownsManifold = false;
+	a.triangleKind = kNoAlgorithm;
+	a.haveAxis = false;
+	a.axis.setValue(0, 0, 0);
+	a.ownManifolds = 0;
+	a.frame = 0;
+	a.firstChild = a.childCount = 0;
+	if (!in.ok()) return -1;
+	if (a.kind < kNoAlgorithm || a.kind > kCompoundCompound || depth > kMaxAlgorithmDepth)
+	{
+		in.fail("pair %d: unknown algorithm %d (or nested deeper than %d)", pairIndex, a.kind, kMaxAlgorithmDepth);
+		return -1;
+	}
+	if (a.kind == kNoAlgorithm) return -1;
+	btAlignedObjectArray<SavedChild> block;  // this algorithm's children, appended once complete
+	if (a.kind == kConvexConvex)
+	{
+		a.ownsManifold = in.flag("owns manifold");
+		a.haveAxis = in.flag("m_haveLastSeparatingAxis");
+		a.axis = in.vector("m_lastSeparatingAxis");
+	}
+	else if (a.kind == kConvexConcave)
+	{
+		a.triangleKind = in.value<int>("triangle algorithm");
+		if (in.ok() && a.triangleKind != kNoAlgorithm && a.triangleKind != kConvexConvex &&
+		    a.triangleKind != kSphereTriangle && a.triangleKind != kEmpty)
+			in.fail("pair %d: unknown triangle algorithm %d", pairIndex, a.triangleKind);
+		if (a.triangleKind == kConvexConvex)
+		{
+			a.haveAxis = in.flag("m_haveLastSeparatingAxis");
+			a.axis = in.vector("m_lastSeparatingAxis");
+		}
+	}
+	else if (a.kind >= kBoxBox && a.kind <= kSphereTriangle)
+		a.ownManifolds = in.count("own manifolds", 1);
+	else if (a.kind == kCompound)
+	{
+		const int count = in.count("child count", kMaxChildren);
+		for (int c = 0; c < count && in.ok(); ++c)
+		{
+			SavedChild child;
+			child.index0 = c;
+			child.index1 = -1;
+			child.lastFrame = 0;
+			child.algorithm = readAlgorithm(in, saved, pairIndex, depth + 1);
+			block.push_back(child);
+		}
+	}
+	else if (a.kind == kCompoundCompound)
+	{
+		a.frame = in.value<int>("m_frame");
+		const int count = in.count("child pair count", kMaxChildren);
+		for (int c = 0; c < count && in.ok(); ++c)
+		{
+			SavedChild child;
+			child.index0 = in.value<int>("child 0");
+			child.index1 = in.value<int>("child 1");
+			child.lastFrame = in.value<int>("m_lastFrame");
+			if (in.ok() && (child.index0 < 0 || child.index1 < 0))
+				in.fail("pair %d: child pair %d names children %d, %d", pairIndex, c, child.index0, child.index1);
+			for (int k = 0; k < c && in.ok(); ++k)
+				if (block[k].index0 == child.index0 && block[k].index1 == child.index1)
+					in.fail("pair %d: child pair %d, %d listed twice", pairIndex, child.index0, child.index1);
+			child.algorithm = readAlgorithm(in, saved, pairIndex, depth + 1);
+			if (in.ok() && child.algorithm < 0) in.fail("pair %d: a child pair without an algorithm", pairIndex);
+			block.push_back(child);
+		}
+	}
+	if (!in.ok()) return -1;
+	a.firstChild = saved.children.size();
+	a.childCount = block.size();
+	for (int c = 0; c < block.size(); ++c) saved.children.push_back(block[c]);
+	saved.algorithms.push_back(a);
+	return saved.algorithms.size() - 1;
+}
 
 btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
 {
@@ -565,20 +712,29 @@ btCollisionAlgorithm* makeTriangleAlgorithm(btDispatcher* dispatcher, btConvexTr
 	return 0;
 }
 
-// Makes pair's algorithm again and sets the state the snapshot holds; false when the dispatcher makes
-// another kind or no manifold can be made.
-bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, const SavedPair& saved, SnapshotReader& in,
-                     int pairIndex)
+void freeAlgorithm(btDispatcher* dispatcher, btCollisionAlgorithm*& algorithm)
 {
-	btDispatcher* dispatcher = world.getDispatcher();
-	btCollisionObject* object0 = objectAt(world, saved.object0);
-	btCollisionObject* object1 = objectAt(world, saved.object1);
-	// As the dispatcher's near callback wraps the pair.
-	btCollisionObjectWrapper wrap0(0, object0->getCollisionShape(), object0, object0->getWorldTransform(), -1, -1);
-	btCollisionObjectWrapper wrap1(0, object1->getCollisionShape(), object1, object1->getWorldTransform(), -1, -1);
-	pair.m_algorithm = dispatcher->findAlgorithm(&wrap0, &wrap1, 0, BT_CONTACT_POINT_ALGORITHMS);
-	int kind = algorithmKind(pair.m_algorithm);
-	if (kind >= kBoxBox && kind <= kSphereTriangle)
+	if (!algorithm) return;
+	algorithm->~btCollisionAlgorithm();
+	dispatcher->freeCollisionAlgorithm(algorithm);
+	algorithm = 0;
+}
+
+// Makes the algorithm for wrap0 and wrap1 again, as the near callback (top level, shared null) or a
+// compound algorithm (children, with its shared manifold) makes it, and gives it the saved state, its
+// children included. False (with the reason) when the dispatcher makes another kind, a saved child does
+// not exist in the shapes, or no manifold can be made; whatever was made is then in result, for the
+// caller to free with the rest.
+bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& wrap0,
+                     const btCollisionObjectWrapper& wrap1, btPersistentManifold* shared, const SavedAlgorithms& saved,
+                     int savedIndex, SnapshotReader& in, int pairIndex, btCollisionAlgorithm*& result)
+{
+	const SavedAlgorithm& s = saved.algorithms[savedIndex];
+	btCollisionObject* object0 = const_cast<btCollisionObject*>(wrap0.getCollisionObject());
+	btCollisionObject* object1 = const_cast<btCollisionObject*>(wrap1.getCollisionObject());
+	result = dispatcher->findAlgorithm(&wrap0, &wrap1, shared, BT_CONTACT_POINT_ALGORITHMS);
+	int kind = algorithmKind(result);
+	if (kind >= kBoxBox && kind <= kSphereTriangle && !shared)
 	{
 		// These algorithms make their manifold in the constructor, and only when the dispatcher's
 		// needsCollision holds then: a pair made while both bodies slept has none. When the bodies'
@@ -586,31 +742,29 @@ bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, con
 		// that gives the saved one (needsCollision reads only whether either body is active), and the
 		// restored activation goes back.
 		btManifoldArray manifolds;
-		pair.m_algorithm->getAllContactManifolds(manifolds);
-		if (manifolds.size() != saved.manifoldCount)
+		result->getAllContactManifolds(manifolds);
+		if (manifolds.size() != s.ownManifolds)
 		{
-			pair.m_algorithm->~btCollisionAlgorithm();
-			dispatcher->freeCollisionAlgorithm(pair.m_algorithm);
+			freeAlgorithm(dispatcher, result);
 			const int state0 = activationState(*object0), state1 = activationState(*object1);
-			const int forced = saved.manifoldCount > 0 ? ACTIVE_TAG : ISLAND_SLEEPING;
+			const int forced = s.ownManifolds > 0 ? ACTIVE_TAG : ISLAND_SLEEPING;
 			activationState(*object0) = forced;
 			activationState(*object1) = forced;
-			pair.m_algorithm = dispatcher->findAlgorithm(&wrap0, &wrap1, 0, BT_CONTACT_POINT_ALGORITHMS);
+			result = dispatcher->findAlgorithm(&wrap0, &wrap1, shared, BT_CONTACT_POINT_ALGORITHMS);
 			activationState(*object0) = state0;
 			activationState(*object1) = state1;
-			kind = algorithmKind(pair.m_algorithm);
+			kind = algorithmKind(result);
 		}
 	}
-	if (kind != saved.kind)
+	if (kind != s.kind)
 	{
-		in.fail("pair %d (objects %d, %d): the dispatcher makes algorithm kind %d, the snapshot has %d", pairIndex,
-		        saved.object0, saved.object1, kind, saved.kind);
+		in.fail("pair %d: the dispatcher makes algorithm kind %d, the snapshot has %d", pairIndex, kind, s.kind);
 		return false;
 	}
 	if (kind == kConvexConvex)
 	{
-		btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(pair.m_algorithm);
-		if (saved.ownsManifold && !convexManifold(convex))
+		btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(result);
+		if (s.ownsManifold && !convexManifold(convex))
 		{
 			// The manifold processCollision makes at the pair's first step.
 			convexManifold(convex) = dispatcher->getNewManifold(object0, object1);
@@ -621,31 +775,94 @@ bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, con
 			}
 			convexOwnsManifold(convex) = true;
 		}
-		convexHaveLastAxis(convex) = saved.haveAxis;
-		convexLastAxis(convex) = saved.axis;
+		convexHaveLastAxis(convex) = s.haveAxis;
+		convexLastAxis(convex) = s.axis;
 	}
 	else if (kind == kConvexConcave)
 	{
-		btConvexConcaveCollisionAlgorithm& concave = *static_cast<btConvexConcaveCollisionAlgorithm*>(pair.m_algorithm);
+		btConvexConcaveCollisionAlgorithm& concave = *static_cast<btConvexConcaveCollisionAlgorithm*>(result);
 		btConvexTriangleCallback& callback = concaveCallback(concave);
 		callback.clearWrapperData();  // it kept our wrappers, which die here
-		if (saved.triangleKind != kNoAlgorithm)
+		if (s.triangleKind != kNoAlgorithm)
 		{
 			const bool swapped = callback.m_manifoldPtr->getBody0() != object0;
 			btCollisionAlgorithm* triangle = makeTriangleAlgorithm(dispatcher, callback, swapped ? wrap1 : wrap0,
-			                                                       swapped ? wrap0 : wrap1, saved.triangleKind);
+			                                                       swapped ? wrap0 : wrap1, s.triangleKind);
 			if (!triangle)
 			{
 				in.fail("pair %d: the dispatcher makes another triangle algorithm than the snapshot's", pairIndex);
 				return false;
 			}
 			triangleAlgorithm(callback) = triangle;
-			if (saved.triangleKind == kConvexConvex)
+			if (s.triangleKind == kConvexConvex)
 			{
 				btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(triangle);
-				convexHaveLastAxis(convex) = saved.haveAxis;
-				convexLastAxis(convex) = saved.axis;
+				convexHaveLastAxis(convex) = s.haveAxis;
+				convexLastAxis(convex) = s.axis;
 			}
+		}
+	}
+	else if (kind == kCompound)
+	{
+		// As btCompoundCollisionAlgorithm::processCollision wraps a child: the compound's wrapper as parent,
+		// the child's shape and world transform, the child index as index.
+		btCompoundCollisionAlgorithm& compound = *static_cast<btCompoundCollisionAlgorithm*>(result);
+		CompoundChildAlgorithms& slots = compoundChildren(compound);
+		const bool swapped = compoundSwapped(compound);
+		const btCollisionObjectWrapper& compoundWrap = swapped ? wrap1 : wrap0;
+		const btCollisionObjectWrapper& otherWrap = swapped ? wrap0 : wrap1;
+		const btCompoundShape* shape = static_cast<const btCompoundShape*>(compoundWrap.getCollisionShape());
+		if (slots.size() != s.childCount || shape->getNumChildShapes() != s.childCount)
+		{
+			in.fail("pair %d: a compound of %d children, the snapshot's has %d", pairIndex, shape->getNumChildShapes(),
+			        s.childCount);
+			return false;
+		}
+		for (int c = 0; c < s.childCount; ++c)
+		{
+			const SavedChild& child = saved.children[s.firstChild + c];
+			if (child.algorithm < 0) continue;
+			const btTransform childWorld = compoundWrap.getWorldTransform() * shape->getChildTransform(c);
+			btCollisionObjectWrapper childWrap(&compoundWrap, shape->getChildShape(c), compoundWrap.getCollisionObject(),
+			                                   childWorld, -1, c);
+			if (!remakeAlgorithm(dispatcher, swapped ? otherWrap : childWrap, swapped ? childWrap : otherWrap,
+			                     compoundSharedManifold(compound), saved, child.algorithm, in, pairIndex, slots[c]))
+				return false;
+		}
+	}
+	else if (kind == kCompoundCompound)
+	{
+		// As btCompoundCompoundCollisionAlgorithm::processCollision wraps a pair of children; the pairs go
+		// back into its map in the saved order (which is the order their manifolds are listed in).
+		btCompoundCompoundCollisionAlgorithm& both = *static_cast<btCompoundCompoundCollisionAlgorithm*>(result);
+		CompoundChildPairs& pairs = compoundPairs(both);
+		const btCompoundShape* shape0 = static_cast<const btCompoundShape*>(wrap0.getCollisionShape());
+		const btCompoundShape* shape1 = static_cast<const btCompoundShape*>(wrap1.getCollisionShape());
+		compoundFrame(both) = s.frame;
+		for (int c = 0; c < s.childCount; ++c)
+		{
+			const SavedChild& child = saved.children[s.firstChild + c];
+			if (child.index0 >= shape0->getNumChildShapes() || child.index1 >= shape1->getNumChildShapes())
+			{
+				in.fail("pair %d: child pair %d, %d is not a pair of the compounds' children", pairIndex, child.index0,
+				        child.index1);
+				return false;
+			}
+			btCollisionObjectWrapper child0(&wrap0, shape0->getChildShape(child.index0), wrap0.getCollisionObject(),
+			                                wrap0.getWorldTransform() * shape0->getChildTransform(child.index0), -1,
+			                                child.index0);
+			btCollisionObjectWrapper child1(&wrap1, shape1->getChildShape(child.index1), wrap1.getCollisionObject(),
+			                                wrap1.getWorldTransform() * shape1->getChildTransform(child.index1), -1,
+			                                child.index1);
+			btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm entry;
+			entry.m_algorithm = 0;
+			entry.m_lastFrame = child.lastFrame;
+			const bool made = remakeAlgorithm(dispatcher, child0, child1, compoundSharedManifold(both), saved,
+			                                  child.algorithm, in, pairIndex, entry.m_algorithm);
+			// Inserted even when it failed, so that the compound algorithm frees it with the others.
+			if (entry.m_algorithm)
+				pairs.insert(btCompoundCompoundCollisionAlgorithm::ChildPairKey(child.index0, child.index1), entry);
+			if (!made) return false;
 		}
 	}
 	return true;
@@ -784,6 +1001,7 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	if (in.ok() && cacheKind != kPairCacheHashed) in.fail("pairs: unknown pair cache kind %d", cacheKind);
 	const int pairCount = in.count("pair count", int(btMin<long long>(0x7fffffff, (long long)n * (n - 1) / 2)));
 	btAlignedObjectArray<SavedPair> saved;
+	SavedAlgorithms algorithms;
 	btAlignedObjectArray<int> manifoldIndex;  // flat, per pair in order
 	for (int i = 0; i < pairCount && in.ok(); ++i)
 	{
@@ -794,31 +1012,7 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		                pair.object0 == pair.object1 || !objectAt(world, pair.object0)->getBroadphaseHandle() ||
 		                !objectAt(world, pair.object1)->getBroadphaseHandle()))
 			in.fail("pair %d: objects %d and %d are not two objects with proxies", i, pair.object0, pair.object1);
-		pair.kind = in.value<int>("algorithm");
-		pair.ownsManifold = false;
-		pair.triangleKind = kNoAlgorithm;
-		pair.haveAxis = false;
-		pair.axis.setValue(0, 0, 0);
-		if (in.ok() && (pair.kind < kNoAlgorithm || pair.kind > kEmpty))
-			in.fail("pair %d: unknown algorithm %d", i, pair.kind);
-		if (pair.kind == kConvexConvex)
-		{
-			pair.ownsManifold = in.flag("owns manifold");
-			pair.haveAxis = in.flag("m_haveLastSeparatingAxis");
-			pair.axis = in.vector("m_lastSeparatingAxis");
-		}
-		else if (pair.kind == kConvexConcave)
-		{
-			pair.triangleKind = in.value<int>("triangle algorithm");
-			if (in.ok() && pair.triangleKind != kNoAlgorithm && pair.triangleKind != kConvexConvex &&
-			    pair.triangleKind != kSphereTriangle && pair.triangleKind != kEmpty)
-				in.fail("pair %d: unknown triangle algorithm %d", i, pair.triangleKind);
-			if (pair.triangleKind == kConvexConvex)
-			{
-				pair.haveAxis = in.flag("m_haveLastSeparatingAxis");
-				pair.axis = in.vector("m_lastSeparatingAxis");
-			}
-		}
+		pair.algorithm = in.ok() ? readAlgorithm(in, algorithms, i, 0) : -1;
 		pair.manifoldCount = in.count("manifold count", 64);
 		pair.firstManifold = manifoldIndex.size();
 		for (int m = 0; m < pair.manifoldCount && in.ok(); ++m) manifoldIndex.push_back(in.value<int>("manifold"));
@@ -856,8 +1050,16 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 				in.fail("pair %d: the pair cache does not take it back in place (filter or ids changed)", i);
 				return false;
 			}
-			if (saved[i].kind == kNoAlgorithm) continue;
-			if (!remakeAlgorithm(world, *pair, saved[i], in, i)) return false;
+			if (saved[i].algorithm < 0) continue;
+			btCollisionObject* object0 = objectAt(world, saved[i].object0);
+			btCollisionObject* object1 = objectAt(world, saved[i].object1);
+			// As the dispatcher's near callback wraps the pair.
+			btCollisionObjectWrapper wrap0(0, object0->getCollisionShape(), object0, object0->getWorldTransform(), -1,
+			                               -1);
+			btCollisionObjectWrapper wrap1(0, object1->getCollisionShape(), object1, object1->getWorldTransform(), -1,
+			                               -1);
+			if (!remakeAlgorithm(dispatcher, wrap0, wrap1, 0, algorithms, saved[i].algorithm, in, i, pair->m_algorithm))
+				return false;
 			pairManifolds(*pair, manifolds);
 			if (manifolds.size() != saved[i].manifoldCount)
 			{
