@@ -481,6 +481,7 @@ bool bodyFinite(const BodyData& d)
 	       Checker::finite(d.m_angularVelocity) && Checker::finite(d.m_gravity_acceleration) &&
 	       Checker::finite(d.m_invInertiaLocal) && Checker::finite(d.m_linearFactor) &&
 	       Checker::finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
+	       nonNegative(d.m_invInertiaLocal) &&
 	       isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
 }
 

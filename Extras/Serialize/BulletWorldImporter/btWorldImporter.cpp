@@ -814,7 +814,21 @@ btRigidBody* btWorldImporter::createRigidBody(bool isDynamic, btScalar mass, con
 		btReportWarning("Caliber: btWorldImporter: a body with mass has a static-only shape (mesh, plane); it is made static\n");
 		mass = 0;
 	}
+	if (!btIsFinite(mass) || mass < 0)
+	{
+		// An inverse mass so small that the mass overflows (btRigidBody asserts on it).
+		btReportWarning("Caliber: btWorldImporter: a body's mass is not a finite number; it is made static\n");
+		mass = 0;
+	}
 	if (mass != 0 && shape) shape->calculateLocalInertia(mass, localInertia);
+	for (int axis = 0; axis < 3; ++axis)
+		if (!btIsFinite(localInertia[axis]) || localInertia[axis] < 0)
+		{
+			// Huge shapes overflow their inertia; the file's inverse inertia is applied afterwards anyway.
+			btReportWarning("Caliber: btWorldImporter: a body's shape gives no finite inertia; zero is used\n");
+			localInertia.setValue(0, 0, 0);
+			break;
+		}
 	btRigidBody::btRigidBodyConstructionInfo info(mass, 0, shape, localInertia);
 	info.m_startWorldTransform = startTransform;
 	btRigidBody* body = new btRigidBody(info);
