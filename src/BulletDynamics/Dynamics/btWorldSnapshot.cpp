@@ -9,7 +9,9 @@
 
 #include <typeinfo>
 
+#include "BulletCollision/CollisionDispatch/btGhostObject.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotAccess.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotInternal.h"
@@ -23,6 +25,20 @@ namespace snapshot_access
 // The one explicit instantiation per member (a program may hold only one). It lives in this file, the
 // one every snapshot call links, so the static library never drops it.
 CALIBER_SNAPSHOT_MEMBERS(CALIBER_SNAPSHOT_BIND)
+
+// btConstraintSolverPoolMt keeps its solvers in a private array of a private type. The pointer to that
+// member is taken in an explicit instantiation (exempt from access checking) and handed out by a friend
+// function whose return type is deduced, so the private type is never named.
+struct PoolSolversTag
+{
+};
+auto poolSolversMember(PoolSolversTag);
+template <auto Member, class Tag>
+struct DeduceMember
+{
+	friend auto poolSolversMember(Tag) { return Member; }
+};
+template struct DeduceMember<&btConstraintSolverPoolMt::m_solvers, PoolSolversTag>;
 }  // namespace snapshot_access
 
 namespace snapshot
@@ -35,12 +51,47 @@ const char kMagic[8] = {'C', 'A', 'L', 'S', 'N', 'A', 'P', 0};
 const unsigned kVersion = 2;  // 2: compound algorithms, own manifold counts
 const unsigned kByteOrderMark = 0x01020304u;
 const int kSolverSequentialImpulse = 1;
+const int kSolverPool = 2;
 const int kActionRaycastVehicle = 1;
+const int kActionCharacterController = 2;
 
 // The actions whose whole state the snapshot holds (exact classes: a subclass may keep more).
 btRaycastVehicle* vehicleOf(btActionInterface* action)
 {
 	return action && typeid(*action) == typeid(btRaycastVehicle) ? static_cast<btRaycastVehicle*>(action) : 0;
+}
+
+btKinematicCharacterController* characterOf(btActionInterface* action)
+{
+	return action && typeid(*action) == typeid(btKinematicCharacterController)
+	           ? static_cast<btKinematicCharacterController*>(action)
+	           : 0;
+}
+
+// The character's motion between steps: walk or velocity input in progress, jump and fall state,
+// positions and orientations of the step being made, the contact it touched.
+template <class IO>
+void characterFields(IO& io, btKinematicCharacterController& c)
+{
+	io.field("m_verticalVelocity", characterVerticalVelocity(c));
+	io.field("m_verticalOffset", characterVerticalOffset(c));
+	io.field("m_jumpSpeed", characterJumpSpeed(c));
+	io.field("m_walkDirection", characterWalkDirection(c));
+	io.field("m_normalizedDirection", characterNormalizedDirection(c));
+	io.field("m_AngVel", characterAngularVelocity(c));
+	io.field("m_jumpPosition", characterJumpPosition(c));
+	io.field("m_currentPosition", characterCurrentPosition(c));
+	io.field("m_currentStepOffset", characterCurrentStepOffset(c));
+	io.field("m_targetPosition", characterTargetPosition(c));
+	io.field("m_currentOrientation", characterCurrentOrientation(c));
+	io.field("m_targetOrientation", characterTargetOrientation(c));
+	io.field("m_touchingContact", characterTouchingContact(c));
+	io.field("m_touchingNormal", characterTouchingNormal(c));
+	io.field("m_wasOnGround", characterWasOnGround(c));
+	io.field("m_wasJumping", characterWasJumping(c));
+	io.field("m_useWalkDirection", characterUseWalkDirection(c));
+	io.field("m_velocityTimeInterval", characterVelocityTimeInterval(c));
+	io.field("m_jumpAxis", characterJumpAxis(c));
 }
 
 // A wheel's state that one substep leaves for the next (its settings and the driver's inputs, steering,
@@ -136,9 +187,45 @@ int bodyIndex(const btDiscreteDynamicsWorld& world, const btRigidBody& body)
 	return world.getCollisionObjectArray()[index] == &body ? index : -1;
 }
 
-btSequentialImpulseConstraintSolver* solverOf(btDiscreteDynamicsWorld& world)
+// The solvers whose order state the snapshot holds: the world's sequential-impulse solver (kind 1), or
+// each solver of its btConstraintSolverPoolMt followed by the Mt world's large-batch solver if it has one
+// (kind 2). The joint warm starts live in the first one's store (a pool's solvers and the large-batch
+// solver share it). False when a solver is of another kind.
+bool solversOf(btDiscreteDynamicsWorld& world, btAlignedObjectArray<btSequentialImpulseConstraintSolver*>& solvers,
+               int& kind)
 {
-	return dynamic_cast<btSequentialImpulseConstraintSolver*>(world.getConstraintSolver());
+	solvers.resize(0);
+	kind = 0;
+	btConstraintSolver* solver = world.getConstraintSolver();
+	if (btSequentialImpulseConstraintSolver* single = dynamic_cast<btSequentialImpulseConstraintSolver*>(solver))
+	{
+		kind = kSolverSequentialImpulse;
+		solvers.push_back(single);
+		return true;
+	}
+	btConstraintSolverPoolMt* pool = dynamic_cast<btConstraintSolverPoolMt*>(solver);
+	if (!pool) return false;
+	auto& threadSolvers = pool->*poolSolversMember(PoolSolversTag());
+	for (int i = 0; i < threadSolvers.size(); ++i)
+	{
+		btSequentialImpulseConstraintSolver* member =
+		    dynamic_cast<btSequentialImpulseConstraintSolver*>(threadSolvers[i].solver);
+		if (!member) return false;
+		solvers.push_back(member);
+	}
+	if (btConstraintSolver* large = caliber::stepContextOf(world).largeBatchSolver)
+	{
+		btSequentialImpulseConstraintSolver* member = dynamic_cast<btSequentialImpulseConstraintSolver*>(large);
+		if (!member) return false;
+		solvers.push_back(member);
+	}
+	kind = kSolverPool;
+	return solvers.size() > 0;
+}
+
+JointWarmStartStore& warmStartStoreOf(btSequentialImpulseConstraintSolver& first)
+{
+	return solverScratchOf(first).jointWarmStarts();
 }
 
 void setError(char* error, size_t errorSize, const char* format, ...)
@@ -163,12 +250,21 @@ bool worldSupported(btDiscreteDynamicsWorld& world, char* error, size_t errorSiz
 	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
 	for (int a = 0; a < actions.size(); ++a)
 	{
+		if (btKinematicCharacterController* character = characterOf(actions[a]))
+		{
+			if (objectIndexOf(world, characterGhost(*character)) < 0)
+			{
+				setError(error, errorSize, "action %d: the character's ghost object is not in the world", a);
+				return false;
+			}
+			continue;
+		}
 		btRaycastVehicle* vehicle = vehicleOf(actions[a]);
 		if (!vehicle)
 		{
 			setError(error, errorSize,
-			         "action %d: only btRaycastVehicle is supported (character controllers and user actions keep "
-			         "state the snapshot does not hold)",
+			         "action %d: only btRaycastVehicle and btKinematicCharacterController are supported (user "
+			         "actions and subclasses keep state the snapshot does not hold)",
 			         a);
 			return false;
 		}
@@ -192,18 +288,26 @@ bool worldSupported(btDiscreteDynamicsWorld& world, char* error, size_t errorSiz
 		setError(error, errorSize, "world: it has predictive manifolds, which are not held");
 		return false;
 	}
-	if (!solverOf(world))
+	btAlignedObjectArray<btSequentialImpulseConstraintSolver*> solvers;
+	int solverKind;
+	if (!solversOf(world, solvers, solverKind))
 	{
-		setError(error, errorSize, "solver: only btSequentialImpulseConstraintSolver (and subclasses) is supported");
+		setError(error, errorSize,
+		         "solver: only btSequentialImpulseConstraintSolver (and subclasses), alone or in a "
+		         "btConstraintSolverPoolMt, is supported");
 		return false;
 	}
 	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
 	{
 		const btCollisionObject* object = world.getCollisionObjectArray()[i];
 		const int type = object->getInternalType();
-		if (type != btCollisionObject::CO_COLLISION_OBJECT && type != btCollisionObject::CO_RIGID_BODY)
+		// Ghosts of Bullet's two classes (a subclass may keep more state).
+		const bool ghost = type == btCollisionObject::CO_GHOST_OBJECT &&
+		                   (typeid(*object) == typeid(btGhostObject) || typeid(*object) == typeid(btPairCachingGhostObject));
+		if (type != btCollisionObject::CO_COLLISION_OBJECT && type != btCollisionObject::CO_RIGID_BODY && !ghost)
 		{
-			setError(error, errorSize, "object %d: internal type %d (soft bodies, ghosts) is not supported", i, type);
+			setError(error, errorSize,
+			         "object %d: internal type %d (soft bodies, ghost subclasses) is not supported", i, type);
 			return false;
 		}
 	}
@@ -245,8 +349,10 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 		return false;
 	}
 
-	btSequentialImpulseConstraintSolver& solver = *solverOf(world);
-	JointWarmStartStore& warmStarts = solverScratchOf(solver).warmStarts;
+	btAlignedObjectArray<btSequentialImpulseConstraintSolver*> solvers;
+	int solverKind;
+	solversOf(world, solvers, solverKind);
+	JointWarmStartStore& warmStarts = warmStartStoreOf(*solvers[0]);
 	const int joints = world.getNumConstraints();
 	out.context("joints", -1);
 	out.field("joint count", joints);
@@ -271,8 +377,15 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 	out.field("action count", actions.size());
 	for (int a = 0; a < actions.size(); ++a)
 	{
-		btRaycastVehicle& vehicle = *vehicleOf(actions[a]);
 		out.context("action", a);
+		if (btKinematicCharacterController* character = characterOf(actions[a]))
+		{
+			out.field("kind", kActionCharacterController);
+			out.field("ghost", objectIndexOf(world, characterGhost(*character)));
+			characterFields(io, *character);
+			continue;
+		}
+		btRaycastVehicle& vehicle = *vehicleOf(actions[a]);
 		out.field("kind", kActionRaycastVehicle);
 		out.field("chassis", bodyIndex(world, *vehicle.getRigidBody()));
 		out.field("wheel count", vehicle.getNumWheels());
@@ -299,9 +412,13 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 	}
 
 	out.context("solver", -1);
-	out.field("kind", kSolverSequentialImpulse);
-	out.field("m_btSeed2", static_cast<unsigned long long>(solver.getRandSeed()));
-	out.field("solve count", solverScratchOf(solver).solveCount);
+	out.field("kind", solverKind);
+	out.field("solver count", solvers.size());
+	for (int i = 0; i < solvers.size(); ++i)
+	{
+		out.field("m_btSeed2", static_cast<unsigned long long>(solvers[i]->getRandSeed()));
+		out.field("solve count", solverScratchOf(*solvers[i]).solveCount);
+	}
 	// The world numbers its solver batches (SolveIndexScope): the next step's row order depends on it.
 	out.field("world solve count", caliber::stepContextOf(world).solveCounter);
 
@@ -350,7 +467,9 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 	}
 	if (in.ok()) readCollisionState(world, in);
 
-	btSequentialImpulseConstraintSolver* solver = solverOf(world);
+	btAlignedObjectArray<btSequentialImpulseConstraintSolver*> solvers;
+	int liveSolverKind = 0;
+	if (!solversOf(world, solvers, liveSolverKind)) in.fail("solver: the world's solver is not supported");
 	const int joints = world.getNumConstraints();
 	const int savedJoints = in.value<int>("joint count");
 	if (in.ok() && savedJoints != joints) in.fail("world: %d joints, the snapshot has %d", joints, savedJoints);
@@ -374,9 +493,9 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 			in.fail("joint %d: %d warm-start rows", j, rows);
 		btAlignedObjectArray<btScalar> impulses;
 		for (int r = 0; r < rows && in.ok(); ++r) impulses.push_back(in.scalar("warm-start impulse"));
-		if (in.ok() && apply && solver)
+		if (in.ok() && apply)
 		{
-			JointWarmStartStore& store = solverScratchOf(*solver).warmStarts;
+			JointWarmStartStore& store = warmStartStoreOf(*solvers[0]);
 			if (rows < 0)
 			{
 				store.forget(&joint);
@@ -396,6 +515,18 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 	for (int a = 0; a < actions.size() && in.ok(); ++a)
 	{
 		const int kind = in.value<int>("kind");
+		if (btKinematicCharacterController* character = characterOf(actions[a]))
+		{
+			const int ghost = in.value<int>("ghost");
+			if (in.ok() && (kind != kActionCharacterController || ghost != objectIndexOf(world, characterGhost(*character))))
+			{
+				in.fail("action %d: kind %d on object %d, not the world's character controller on object %d", a, kind,
+				        ghost, objectIndexOf(world, characterGhost(*character)));
+				break;
+			}
+			characterFields(in, *character);
+			continue;
+		}
 		btRaycastVehicle* vehicle = vehicleOf(actions[a]);
 		if (in.ok() && (kind != kActionRaycastVehicle || !vehicle))
 		{
@@ -439,15 +570,27 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 		}
 	}
 	const int solverKind = in.value<int>("solver kind");
-	if (in.ok() && solverKind != kSolverSequentialImpulse) in.fail("solver: unknown kind %d", solverKind);
-	const unsigned long long seed = in.value<unsigned long long>("m_btSeed2");
-	const unsigned solveCount = in.value<unsigned>("solve count");
+	const int solverCount = in.value<int>("solver count");
+	if (in.ok() && (solverKind != liveSolverKind || solverCount != solvers.size()))
+		in.fail("solver: kind %d with %d solvers, the snapshot's kind %d with %d (a pool of another size, or "
+		        "a large-batch solver more or less)",
+		        liveSolverKind, solvers.size(), solverKind, solverCount);
+	btAlignedObjectArray<unsigned long long> seeds;
+	btAlignedObjectArray<unsigned> solveCounts;
+	for (int i = 0; i < solverCount && in.ok(); ++i)
+	{
+		seeds.push_back(in.value<unsigned long long>("m_btSeed2"));
+		solveCounts.push_back(in.value<unsigned>("solve count"));
+	}
 	const unsigned worldSolveCount = in.value<unsigned>("world solve count");
 	if (in.ok() && in.remaining() != 0) in.fail("trailing bytes after the snapshot");
-	if (in.ok() && apply && solver)
+	if (in.ok() && apply)
 	{
-		solver->setRandSeed(static_cast<unsigned long>(seed));
-		solverScratchOf(*solver).solveCount = solveCount;
+		for (int i = 0; i < solvers.size(); ++i)
+		{
+			solvers[i]->setRandSeed(static_cast<unsigned long>(seeds[i]));
+			solverScratchOf(*solvers[i]).solveCount = solveCounts[i];
+		}
 		caliber::stepContextOf(world).solveCounter = worldSolveCount;
 	}
 	if (!in.ok()) setError(error, errorSize, "%s", in.error());

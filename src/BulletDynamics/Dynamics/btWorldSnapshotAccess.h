@@ -18,6 +18,7 @@
 #include "BulletCollision/CollisionDispatch/btConvexConcaveCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/Character/btKinematicCharacterController.h"
 #include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btHingeConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
@@ -108,7 +109,28 @@ BindMember<Tag, Member> BindMember<Tag, Member>::instance;
 	X(vehicleForwardWS, btRaycastVehicle, btAlignedObjectArray<btVector3>, m_forwardWS)                         \
 	X(vehicleAxle, btRaycastVehicle, btAlignedObjectArray<btVector3>, m_axle)                                   \
 	X(vehicleForwardImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_forwardImpulse)                \
-	X(vehicleSideImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_sideImpulse)
+	X(vehicleSideImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_sideImpulse)                      \
+	/* the kinematic character controller: its motion state between steps (settings are the user's) */          \
+	X(characterGhost, btKinematicCharacterController, btPairCachingGhostObject*, m_ghostObject)                 \
+	X(characterVerticalVelocity, btKinematicCharacterController, btScalar, m_verticalVelocity)                  \
+	X(characterVerticalOffset, btKinematicCharacterController, btScalar, m_verticalOffset)                      \
+	X(characterJumpSpeed, btKinematicCharacterController, btScalar, m_jumpSpeed)                                \
+	X(characterWalkDirection, btKinematicCharacterController, btVector3, m_walkDirection)                       \
+	X(characterNormalizedDirection, btKinematicCharacterController, btVector3, m_normalizedDirection)           \
+	X(characterAngularVelocity, btKinematicCharacterController, btVector3, m_AngVel)                            \
+	X(characterJumpPosition, btKinematicCharacterController, btVector3, m_jumpPosition)                         \
+	X(characterCurrentPosition, btKinematicCharacterController, btVector3, m_currentPosition)                   \
+	X(characterCurrentStepOffset, btKinematicCharacterController, btScalar, m_currentStepOffset)                \
+	X(characterTargetPosition, btKinematicCharacterController, btVector3, m_targetPosition)                     \
+	X(characterCurrentOrientation, btKinematicCharacterController, btQuaternion, m_currentOrientation)          \
+	X(characterTargetOrientation, btKinematicCharacterController, btQuaternion, m_targetOrientation)            \
+	X(characterTouchingContact, btKinematicCharacterController, bool, m_touchingContact)                        \
+	X(characterTouchingNormal, btKinematicCharacterController, btVector3, m_touchingNormal)                     \
+	X(characterWasOnGround, btKinematicCharacterController, bool, m_wasOnGround)                                \
+	X(characterWasJumping, btKinematicCharacterController, bool, m_wasJumping)                                  \
+	X(characterUseWalkDirection, btKinematicCharacterController, bool, m_useWalkDirection)                      \
+	X(characterVelocityTimeInterval, btKinematicCharacterController, btScalar, m_velocityTimeInterval)          \
+	X(characterJumpAxis, btKinematicCharacterController, btVector3, m_jumpAxis)
 
 // Declares caliber::snapshot_access::accessor(Class&) -> MemberType& (bound in btWorldSnapshot.cpp).
 #define CALIBER_SNAPSHOT_DECLARE(Accessor, Class, MemberType, member) \

@@ -15,6 +15,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btEmptyCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btGhostObject.h"
 #include "BulletCollision/CollisionDispatch/btSphereBoxCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btSphereSphereCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btSphereTriangleCollisionAlgorithm.h"
@@ -82,6 +83,11 @@ int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)
 	return world.getCollisionObjectArray()[index] == object ? index : -1;
 }
 
+btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
+{
+	return world.getCollisionObjectArray()[index];
+}
+
 int proxyObjectIndex(const btCollisionWorld& world, const btBroadphaseProxy* proxy)
 {
 	return proxy ? objectIndex(world, static_cast<const btCollisionObject*>(proxy->m_clientObject)) : -1;
@@ -103,6 +109,20 @@ btDbvtBroadphase* dbvtOf(btDiscreteDynamicsWorld& world)
 btHashedOverlappingPairCache* hashedCacheOf(btDiscreteDynamicsWorld& world)
 {
 	return world.getBroadphase() ? dynamic_cast<btHashedOverlappingPairCache*>(world.getPairCache()) : 0;
+}
+
+// The ghost objects of the world, in the world's order (each keeps its overlapping objects, and a
+// pair-caching ghost its own pairs with their algorithms).
+void ghostsOf(btDiscreteDynamicsWorld& world, btAlignedObjectArray<int>& ghosts)
+{
+	ghosts.resize(0);
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+		if (btGhostObject::upcast(world.getCollisionObjectArray()[i])) ghosts.push_back(i);
+}
+
+btPairCachingGhostObject* cachingGhostOf(btCollisionObject* object)
+{
+	return dynamic_cast<btPairCachingGhostObject*>(object);
 }
 
 // The manifolds a pair's algorithm owns, in the algorithm's order.
@@ -511,6 +531,46 @@ bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, char* e
 	return true;
 }
 
+// Writes a pair list (the world's, or a pair-caching ghost's) with each pair's algorithm and the indices
+// of the manifolds it owns in the dispatcher's array, marking them in owned.
+bool savePairList(btDiscreteDynamicsWorld& world, btBroadphasePairArray& pairs, SnapshotWriter& out,
+                  btAlignedObjectArray<char>& owned, char* error, size_t errorSize, const char* section)
+{
+	btDispatcher* dispatcher = world.getDispatcher();
+	btManifoldArray manifolds;
+	out.field("pair count", pairs.size());
+	for (int i = 0; i < pairs.size(); ++i)
+	{
+		btBroadphasePair& pair = pairs[i];
+		out.context(section, i);
+		const int object0 = proxyObjectIndex(world, pair.m_pProxy0);
+		const int object1 = proxyObjectIndex(world, pair.m_pProxy1);
+		if (object0 < 0 || object1 < 0)
+		{
+			setError(error, errorSize, "%s %d: a proxy of an object outside the world", section, i);
+			return false;
+		}
+		out.field("object 0", object0);
+		out.field("object 1", object1);
+		if (!saveAlgorithm(out, pair.m_algorithm, error, errorSize, i, 0)) return false;
+		pairManifolds(pair, manifolds);
+		out.field("manifold count", manifolds.size());
+		for (int m = 0; m < manifolds.size(); ++m)
+		{
+			const int index = manifolds[m]->m_index1a;
+			if (index < 0 || index >= owned.size() || dispatcher->getManifoldByIndexInternal(index) != manifolds[m] ||
+			    owned[index])
+			{
+				setError(error, errorSize, "%s %d: a manifold the dispatcher does not list", section, i);
+				return false;
+			}
+			owned[index] = 1;
+			out.field("manifold", index);
+		}
+	}
+	return true;
+}
+
 bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
 {
 	btHashedOverlappingPairCache* cache = hashedCacheOf(world);
@@ -523,39 +583,39 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 	const int manifoldCount = dispatcher->getNumManifolds();
 	btAlignedObjectArray<char> owned;
 	owned.resize(manifoldCount, 0);
-	btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
-	btManifoldArray manifolds;
 	out.context("pairs", -1);
 	out.field("cache", kPairCacheHashed);
-	out.field("pair count", pairs.size());
-	for (int i = 0; i < pairs.size(); ++i)
+	if (!savePairList(world, cache->getOverlappingPairArray(), out, owned, error, errorSize, "pair")) return false;
+
+	// Ghosts: the overlapping objects in their order, and a pair-caching ghost's own pairs.
+	btAlignedObjectArray<int> ghosts;
+	ghostsOf(world, ghosts);
+	out.context("ghosts", -1);
+	out.field("ghost count", ghosts.size());
+	for (int g = 0; g < ghosts.size(); ++g)
 	{
-		btBroadphasePair& pair = pairs[i];
-		out.context("pair", i);
-		const int object0 = proxyObjectIndex(world, pair.m_pProxy0);
-		const int object1 = proxyObjectIndex(world, pair.m_pProxy1);
-		if (object0 < 0 || object1 < 0)
+		btCollisionObject* object = objectAt(world, ghosts[g]);
+		btGhostObject* ghost = btGhostObject::upcast(object);
+		btPairCachingGhostObject* caching = cachingGhostOf(object);
+		out.context("ghost", ghosts[g]);
+		out.field("object", ghosts[g]);
+		out.field("pair caching", bool(caching != 0));
+		btAlignedObjectArray<btCollisionObject*>& overlapping = ghost->getOverlappingPairs();
+		out.field("overlapping count", overlapping.size());
+		for (int k = 0; k < overlapping.size(); ++k)
 		{
-			setError(error, errorSize, "pair %d: a proxy of an object outside the world", i);
-			return false;
-		}
-		out.field("object 0", object0);
-		out.field("object 1", object1);
-		if (!saveAlgorithm(out, pair.m_algorithm, error, errorSize, i, 0)) return false;
-		pairManifolds(pair, manifolds);
-		out.field("manifold count", manifolds.size());
-		for (int m = 0; m < manifolds.size(); ++m)
-		{
-			const int index = manifolds[m]->m_index1a;
-			if (index < 0 || index >= manifoldCount || dispatcher->getManifoldByIndexInternal(index) != manifolds[m] ||
-			    owned[index])
+			const int index = objectIndex(world, overlapping[k]);
+			if (index < 0)
 			{
-				setError(error, errorSize, "pair %d: a manifold the dispatcher does not list", i);
+				setError(error, errorSize, "ghost %d: it overlaps an object outside the world", ghosts[g]);
 				return false;
 			}
-			owned[index] = 1;
-			out.field("manifold", index);
+			out.field("overlapping", index);
 		}
+		if (caching &&
+		    !savePairList(world, caching->getOverlappingPairCache()->getOverlappingPairArray(), out, owned, error,
+		                  errorSize, "ghost pair"))
+			return false;
 	}
 	for (int m = 0; m < manifoldCount; ++m)
 	{
@@ -682,11 +742,6 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 	for (int c = 0; c < block.size(); ++c) saved.children.push_back(block[c]);
 	saved.algorithms.push_back(a);
 	return saved.algorithms.size() - 1;
-}
-
-btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
-{
-	return world.getCollisionObjectArray()[index];
 }
 
 // Makes the triangle algorithm of a mesh pair as btConvexTriangleCallback::processTriangle makes it.
@@ -957,6 +1012,18 @@ bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size
 		pairManifolds(pairs[i], manifolds);
 		owned += manifolds.size();
 	}
+	btAlignedObjectArray<int> ghosts;
+	ghostsOf(world, ghosts);
+	for (int g = 0; g < ghosts.size(); ++g)
+		if (btPairCachingGhostObject* caching = cachingGhostOf(objectAt(world, ghosts[g])))
+		{
+			btBroadphasePairArray& ghostPairs = caching->getOverlappingPairCache()->getOverlappingPairArray();
+			for (int i = 0; i < ghostPairs.size(); ++i)
+			{
+				pairManifolds(ghostPairs[i], manifolds);
+				owned += manifolds.size();
+			}
+		}
 	if (owned != world.getDispatcher()->getNumManifolds())
 	{
 		setError(error, errorSize,
@@ -999,11 +1066,12 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 
 	const int cacheKind = in.value<int>("pair cache kind");
 	if (in.ok() && cacheKind != kPairCacheHashed) in.fail("pairs: unknown pair cache kind %d", cacheKind);
-	const int pairCount = in.count("pair count", int(btMin<long long>(0x7fffffff, (long long)n * (n - 1) / 2)));
-	btAlignedObjectArray<SavedPair> saved;
+	const int pairLimit = int(btMin<long long>(0x7fffffff, (long long)n * (n - 1) / 2));
+	const int pairCount = in.count("pair count", pairLimit);
+	btAlignedObjectArray<SavedPair> saved;  // the world's pairs, then each pair-caching ghost's
 	SavedAlgorithms algorithms;
 	btAlignedObjectArray<int> manifoldIndex;  // flat, per pair in order
-	for (int i = 0; i < pairCount && in.ok(); ++i)
+	auto readPair = [&](int i)
 	{
 		SavedPair pair;
 		pair.object0 = in.value<int>("object 0");
@@ -1017,6 +1085,47 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		pair.firstManifold = manifoldIndex.size();
 		for (int m = 0; m < pair.manifoldCount && in.ok(); ++m) manifoldIndex.push_back(in.value<int>("manifold"));
 		saved.push_back(pair);
+	};
+	for (int i = 0; i < pairCount && in.ok(); ++i) readPair(i);
+
+	// Ghosts, in the world's order: their overlapping objects, and a pair-caching ghost's own pairs.
+	struct SavedGhost
+	{
+		int object;
+		int firstOverlap, overlapCount;
+		int firstPair, pairCount;
+	};
+	btAlignedObjectArray<SavedGhost> savedGhosts;
+	btAlignedObjectArray<int> overlaps;
+	btAlignedObjectArray<int> liveGhosts;
+	ghostsOf(world, liveGhosts);
+	const int ghostCount = in.value<int>("ghost count");
+	if (in.ok() && ghostCount != liveGhosts.size())
+		in.fail("ghosts: the world has %d ghost objects, the snapshot %d", liveGhosts.size(), ghostCount);
+	for (int g = 0; g < liveGhosts.size() && in.ok(); ++g)
+	{
+		SavedGhost ghost;
+		ghost.object = in.value<int>("object");
+		const bool caching = in.flag("pair caching");
+		if (in.ok() && (ghost.object != liveGhosts[g] || caching != (cachingGhostOf(objectAt(world, liveGhosts[g])) != 0)))
+		{
+			in.fail("ghost %d: object %d, %spair caching, is not the world's ghost %d", g, ghost.object,
+			        caching ? "" : "not ", liveGhosts[g]);
+			break;
+		}
+		ghost.overlapCount = in.count("overlapping count", n);
+		ghost.firstOverlap = overlaps.size();
+		for (int k = 0; k < ghost.overlapCount && in.ok(); ++k)
+		{
+			const int other = in.value<int>("overlapping");
+			if (in.ok() && (other < 0 || other >= n || other == ghost.object))
+				in.fail("ghost %d: overlapping object %d is not another object of the world", ghost.object, other);
+			overlaps.push_back(other);
+		}
+		ghost.firstPair = saved.size();
+		ghost.pairCount = caching ? in.count("pair count", pairLimit) : 0;
+		for (int i = 0; i < ghost.pairCount && in.ok(); ++i) readPair(i);
+		savedGhosts.push_back(ghost);
 	}
 	const int manifoldCount = in.count("manifold count", manifoldIndex.size());
 	if (in.ok() && manifoldCount != manifoldIndex.size())
@@ -1038,19 +1147,20 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	order.resize(manifoldCount, 0);
 	if (in.applying())
 	{
-		btBroadphasePairArray& live = cache->getOverlappingPairArray();
 		btManifoldArray manifolds;
-		for (int i = 0; i < saved.size() && in.ok(); ++i)
+		// Adds saved pair i back into cache at slot and remakes its algorithm.
+		auto restorePair = [&](int i, btOverlappingPairCache* target, int slot)
 		{
+			btBroadphasePairArray& live = target->getOverlappingPairArray();
 			btBroadphaseProxy* proxy0 = objectAt(world, saved[i].object0)->getBroadphaseHandle();
 			btBroadphaseProxy* proxy1 = objectAt(world, saved[i].object1)->getBroadphaseHandle();
-			btBroadphasePair* pair = cache->addOverlappingPair(proxy0, proxy1);
-			if (!pair || pair != &live[i] || pair->m_pProxy0 != proxy0)
+			btBroadphasePair* pair = target->addOverlappingPair(proxy0, proxy1);
+			if (!pair || pair != &live[slot] || pair->m_pProxy0 != proxy0)
 			{
 				in.fail("pair %d: the pair cache does not take it back in place (filter or ids changed)", i);
 				return false;
 			}
-			if (saved[i].algorithm < 0) continue;
+			if (saved[i].algorithm < 0) return true;
 			btCollisionObject* object0 = objectAt(world, saved[i].object0);
 			btCollisionObject* object1 = objectAt(world, saved[i].object1);
 			// As the dispatcher's near callback wraps the pair.
@@ -1068,6 +1178,30 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 				return false;
 			}
 			for (int m = 0; m < manifolds.size(); ++m) order[manifoldIndex[saved[i].firstManifold + m]] = manifolds[m];
+			return true;
+		};
+		// The world's pairs (the ghost pair callback, if any, tells the ghosts as they come back) ...
+		for (int i = 0; i < pairCount; ++i)
+			if (!restorePair(i, cache, i)) return false;
+		// ... then each ghost's list and own pairs as saved (those the callback made go first).
+		for (int g = 0; g < savedGhosts.size(); ++g)
+		{
+			const SavedGhost& ghost = savedGhosts[g];
+			btCollisionObject* object = objectAt(world, ghost.object);
+			btAlignedObjectArray<btCollisionObject*>& list = btGhostObject::upcast(object)->getOverlappingPairs();
+			list.resize(0);
+			for (int k = 0; k < ghost.overlapCount; ++k) list.push_back(objectAt(world, overlaps[ghost.firstOverlap + k]));
+			btPairCachingGhostObject* caching = cachingGhostOf(object);
+			if (!caching) continue;
+			btHashedOverlappingPairCache* own = caching->getOverlappingPairCache();
+			btBroadphasePairArray& ownPairs = own->getOverlappingPairArray();
+			while (ownPairs.size())
+			{
+				btBroadphasePair& last = ownPairs[ownPairs.size() - 1];
+				own->removeOverlappingPair(last.m_pProxy0, last.m_pProxy1, dispatcher);
+			}
+			for (int k = 0; k < ghost.pairCount; ++k)
+				if (!restorePair(ghost.firstPair + k, own, k)) return false;
 		}
 		if (dispatcher->getNumManifolds() != manifoldCount)
 		{

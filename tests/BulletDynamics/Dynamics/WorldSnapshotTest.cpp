@@ -9,10 +9,13 @@
 
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "BulletDynamics/Dynamics/DynamicsWorldTestUtil.h"
+#include "BulletCollision/CollisionDispatch/btGhostObject.h"
+#include "BulletDynamics/Character/btKinematicCharacterController.h"
 #include "Caliber/WorldSnapshot.h"
 
 namespace
@@ -332,6 +335,95 @@ void buildVehicle(TestWorld& t)
 	for (int w = 0; w < 2; ++w) owner.vehicle->setSteeringValue(btScalar(0.12), w);
 }
 
+// Boxes and spheres falling through two sensor volumes onto the ground: a plain btGhostObject (its
+// list of overlapping objects) and a btPairCachingGhostObject whose own pairs are dispatched after every
+// step, as a character controller does (their algorithms and manifolds are in the dispatcher's array).
+struct GhostOwner
+{
+	btDynamicsWorld* world;
+	std::unique_ptr<btGhostPairCallback> callback;
+	std::unique_ptr<btGhostObject> sensor;
+	std::unique_ptr<btPairCachingGhostObject> cachingSensor;
+};
+std::vector<std::unique_ptr<GhostOwner>> g_ghosts;
+
+void dispatchGhostPairs(btDynamicsWorld* world, btScalar)
+{
+	for (const auto& owner : g_ghosts)
+		if (owner->world == world)
+			world->getDispatcher()->dispatchAllCollisionPairs(owner->cachingSensor->getOverlappingPairCache(),
+			                                                  world->getDispatchInfo(), world->getDispatcher());
+}
+
+void buildGhosts(TestWorld& t)
+{
+	t.addGround(btScalar(0.8), btScalar(0));
+	g_ghosts.emplace_back(new GhostOwner());
+	GhostOwner& owner = *g_ghosts.back();
+	owner.world = t.world();
+	owner.callback.reset(new btGhostPairCallback());
+	t.world()->getPairCache()->setInternalGhostPairCallback(owner.callback.get());
+	owner.sensor.reset(new btGhostObject());
+	owner.sensor->setCollisionShape(t.shape<btSphereShape>(btScalar(1.2)));
+	owner.sensor->setWorldTransform(pose(btVector3(-1, 1.5, 0)));
+	owner.sensor->setCollisionFlags(btCollisionObject::CF_NO_CONTACT_RESPONSE);
+	t.world()->addCollisionObject(owner.sensor.get(), btBroadphaseProxy::SensorTrigger,
+	                              btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::SensorTrigger);
+	owner.cachingSensor.reset(new btPairCachingGhostObject());
+	owner.cachingSensor->setCollisionShape(t.shape<btBoxShape>(btVector3(1.5, 0.8, 1.5)));
+	owner.cachingSensor->setWorldTransform(pose(btVector3(1, 0.9, 0), btScalar(0.3)));
+	owner.cachingSensor->setCollisionFlags(btCollisionObject::CF_NO_CONTACT_RESPONSE);
+	t.world()->addCollisionObject(owner.cachingSensor.get(), btBroadphaseProxy::SensorTrigger,
+	                              btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::SensorTrigger);
+	t.world()->setInternalTickCallback(dispatchGhostPairs, 0, false);
+	btCollisionShape* box = t.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3));
+	btCollisionShape* ball = t.shape<btSphereShape>(btScalar(0.3));
+	for (int k = 0; k < 8; ++k)
+		t.addBody(k % 2 ? ball : box, 1, pose(btVector3(0.55 * k - 2, 3 + 0.4 * k, 0.1 * (k % 3)), btScalar(0.3 * k)));
+}
+
+// A kinematic character walking up three steps and across a few loose boxes it pushes: its ghost's
+// pairs, the controller's step, fall and contact state carry from step to step.
+struct CharacterOwner
+{
+	btDynamicsWorld* world;
+	std::unique_ptr<btGhostPairCallback> callback;
+	std::unique_ptr<btCapsuleShape> capsule;
+	std::unique_ptr<btPairCachingGhostObject> ghost;
+	std::unique_ptr<btKinematicCharacterController> controller;
+};
+std::vector<std::unique_ptr<CharacterOwner>> g_characters;
+
+void buildCharacter(TestWorld& t)
+{
+	t.addGround(btScalar(0.8), btScalar(0));
+	for (int i = 0; i < 3; ++i)
+	{
+		const btScalar top = btScalar(0.25) * (i + 1);
+		btBoxShape* step = t.shape<btBoxShape>(btVector3(1.5, top / 2, 0.5));
+		t.addBody(step, 0, pose(btVector3(0, top / 2, 2.5 + i)));
+	}
+	btCollisionShape* crate = t.shape<btBoxShape>(btVector3(0.25, 0.25, 0.25));
+	for (int i = 0; i < 3; ++i) t.addBody(crate, btScalar(0.3), pose(btVector3(0.6 * i - 0.6, 1.1, 5.6)));
+	g_characters.emplace_back(new CharacterOwner());
+	CharacterOwner& owner = *g_characters.back();
+	owner.world = t.world();
+	owner.callback.reset(new btGhostPairCallback());
+	t.world()->getPairCache()->setInternalGhostPairCallback(owner.callback.get());
+	owner.capsule.reset(new btCapsuleShape(btScalar(0.3), btScalar(0.8)));
+	owner.ghost.reset(new btPairCachingGhostObject());
+	owner.ghost->setCollisionShape(owner.capsule.get());
+	owner.ghost->setCollisionFlags(btCollisionObject::CF_CHARACTER_OBJECT);
+	owner.ghost->setWorldTransform(pose(btVector3(0.5, 0.75, 0)));
+	t.world()->addCollisionObject(owner.ghost.get(), btBroadphaseProxy::CharacterFilter,
+	                              btBroadphaseProxy::StaticFilter | btBroadphaseProxy::DefaultFilter);
+	owner.controller.reset(
+	    new btKinematicCharacterController(owner.ghost.get(), owner.capsule.get(), btScalar(0.35), btVector3(0, 1, 0)));
+	owner.controller->setGravity(btVector3(0, -10, 0));
+	t.world()->addAction(owner.controller.get());
+	owner.controller->setWalkDirection(btVector3(0.002, 0, 0.06));
+}
+
 // ---- the state trace ----------------------------------------------------------------------------
 
 void append(std::vector<unsigned char>& trace, const void* data, size_t size)
@@ -383,6 +475,30 @@ void recordState(btDiscreteDynamicsWorld& world, std::vector<unsigned char>& tra
 		const btScalar impulse = joint->needsFeedback() ? joint->getAppliedImpulse() : btScalar(0);
 		append(trace, &impulse, sizeof(impulse));
 	}
+	for (const auto& owner : g_ghosts)
+	{
+		if (owner->world != &world) continue;
+		for (btGhostObject* ghost : {owner->sensor.get(), static_cast<btGhostObject*>(owner->cachingSensor.get())})
+		{
+			const int count = ghost->getNumOverlappingObjects();
+			append(trace, &count, sizeof(count));
+			for (int k = 0; k < count; ++k)
+			{
+				const int index = ghost->getOverlappingObject(k)->getWorldArrayIndex();
+				append(trace, &index, sizeof(index));
+			}
+		}
+		const int pairs = owner->cachingSensor->getOverlappingPairCache()->getNumOverlappingPairs();
+		append(trace, &pairs, sizeof(pairs));
+	}
+	for (const auto& owner : g_characters)
+	{
+		if (owner->world != &world) continue;
+		appendVector(trace, owner->ghost->getWorldTransform().getOrigin());
+		const bool onGround = owner->controller->onGround();
+		append(trace, &onGround, sizeof(onGround));
+		appendVector(trace, owner->controller->getLinearVelocity());
+	}
 	for (const auto& owner : g_vehicles)
 	{
 		if (owner->world != &world) continue;
@@ -424,13 +540,21 @@ std::string describe(const caliber::SnapshotDifference& d)
 }
 
 using Builder = std::function<void(TestWorld&)>;
+using WorldFactory = std::function<std::unique_ptr<TestWorld>()>;
+
+std::unique_ptr<TestWorld> plainWorld() { return std::unique_ptr<TestWorld>(new TestWorld()); }
+// Bullet's multithreaded world with a pool of two solvers and a large-batch solver (run on the calling
+// thread unless a scheduler is set: the pool's per-solver state and shared warm starts are what count).
+std::unique_ptr<TestWorld> mtWorld() { return std::unique_ptr<TestWorld>(new TestWorld(TestWorld::Multithreaded(), 2)); }
 
 // Runs warmup steps, saves, runs steps more (trace A), restores, checks the world equals the snapshot,
 // runs steps again (trace B, which must equal A bit for bit); then restores into a second, freshly
 // built world and runs steps (trace C, also equal to A).
-void expectRollbackIsExact(const Builder& build, int warmup, int steps, btScalar h = btScalar(1. / 60.))
+void expectRollbackIsExact(const Builder& build, int warmup, int steps, btScalar h = btScalar(1. / 60.),
+                           const WorldFactory& make = plainWorld)
 {
-	TestWorld t;
+	std::unique_ptr<TestWorld> first = make();
+	TestWorld& t = *first;
 	build(t);
 	t.run(warmup, h);
 	Bytes snapshot;
@@ -449,7 +573,8 @@ void expectRollbackIsExact(const Builder& build, int warmup, int steps, btScalar
 	const auto replay = runRecorded(t, steps, h);
 	EXPECT_EQ(firstDifference(original, replay), -1) << "same world, replay differs from this step on";
 
-	TestWorld other;
+	std::unique_ptr<TestWorld> second = make();
+	TestWorld& other = *second;
 	build(other);
 	ASSERT_TRUE(caliber::restoreWorldState(*other.world(), &snapshot[0], snapshot.size(), &error)) << error.message;
 	EXPECT_TRUE(caliber::compareWorldState(*other.world(), &snapshot[0], snapshot.size(), &difference))
@@ -482,6 +607,47 @@ TEST(WorldSnapshot, SleepingBodiesContinueBitIdenticallyFor1000Steps)
 }
 
 TEST(WorldSnapshot, CcdBodiesContinueBitIdenticallyFor200Steps) { expectRollbackIsExact(buildCcd, 2, 200); }
+
+TEST(WorldSnapshot, MtWorldWithJointsContinuesBitIdenticallyFor120Steps)
+{
+	// The pool's solvers' order state and the warm starts they share (joints: the shared store).
+	expectRollbackIsExact(buildJoints, 25, 120, btScalar(1. / 60.), mtWorld);
+}
+
+TEST(WorldSnapshot, MtWorldPileContinuesBitIdenticallyFor150Steps)
+{
+	expectRollbackIsExact(buildPile, 30, 150, btScalar(1. / 60.), mtWorld);
+}
+
+TEST(WorldSnapshot, MtWorldStackContinuesBitIdenticallyFor1000Steps)
+{
+	expectRollbackIsExact(buildStack, 20, 1000, btScalar(1. / 60.), mtWorld);
+}
+
+TEST(WorldSnapshot, GhostsContinueBitIdenticallyFor150Steps)
+{
+	// Saved at step 45: the pair-caching ghost has pairs with algorithms and manifolds.
+	expectRollbackIsExact(buildGhosts, 45, 150);
+}
+
+TEST(WorldSnapshot, GhostsSavedAfterObjectsLeftThemContinueBitIdentically)
+{
+	// Saved at step 125: objects have left both ghosts, so their lists are no longer in pair order.
+	expectRollbackIsExact(buildGhosts, 125, 60);
+}
+
+TEST(WorldSnapshot, GhostsSavedBeforeAnythingOverlapsContinueBitIdentically)
+{
+	expectRollbackIsExact(buildGhosts, 1, 60);
+}
+
+TEST(WorldSnapshot, CharacterContinuesBitIdenticallyFor200Steps) { expectRollbackIsExact(buildCharacter, 20, 200); }
+
+TEST(WorldSnapshot, CharacterSavedWhileFallingContinuesBitIdentically)
+{
+	// Saved in its first fall onto the ground (vertical velocity and offset in progress).
+	expectRollbackIsExact(buildCharacter, 2, 60);
+}
 
 TEST(WorldSnapshot, VehicleContinuesBitIdenticallyFor200Steps) { expectRollbackIsExact(buildVehicle, 30, 200); }
 
@@ -785,6 +951,91 @@ TEST(WorldSnapshotBadInput, VehicleSnapshotIntoAWorldWithoutItOrWithOtherWheelsI
 	EXPECT_FALSE(caliber::restoreWorldState(*fiveWheels.world(), &snapshot[0], snapshot.size(), &error));
 	EXPECT_NE(std::string(error.message).find("wheels"), std::string::npos) << error.message;
 	expectUnchanged(*fiveWheels.world(), before);
+}
+
+TEST(WorldSnapshotBadInput, SnapshotOfAnotherSolverSetUpIsRefused)
+{
+	// A plain world's snapshot into an Mt world built alike, and the other way round: the solvers' order
+	// state does not match (kind, pool size), so the restore is refused with the world unchanged.
+	std::unique_ptr<TestWorld> plain = plainWorld(), mt = mtWorld();
+	buildSmall(*plain);
+	buildSmall(*mt);
+	plain->run(5);
+	mt->run(5);
+	Bytes plainSnapshot, mtSnapshot;
+	caliber::SnapshotError error;
+	ASSERT_TRUE(caliber::saveWorldState(*plain->world(), plainSnapshot, &error)) << error.message;
+	ASSERT_TRUE(caliber::saveWorldState(*mt->world(), mtSnapshot, &error)) << error.message;
+	Bytes before = stateOf(*mt->world());
+	EXPECT_FALSE(caliber::restoreWorldState(*mt->world(), &plainSnapshot[0], plainSnapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("solver"), std::string::npos) << error.message;
+	expectUnchanged(*mt->world(), before);
+	before = stateOf(*plain->world());
+	EXPECT_FALSE(caliber::restoreWorldState(*plain->world(), &mtSnapshot[0], mtSnapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("solver"), std::string::npos) << error.message;
+	expectUnchanged(*plain->world(), before);
+
+	// A pool of another size.
+	TestWorld three(TestWorld::Multithreaded(), 3);
+	buildSmall(three);
+	three.run(5);
+	before = stateOf(*three.world());
+	EXPECT_FALSE(caliber::restoreWorldState(*three.world(), &mtSnapshot[0], mtSnapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("pool"), std::string::npos) << error.message;
+	expectUnchanged(*three.world(), before);
+}
+
+TEST(WorldSnapshotBadInput, GhostSnapshotIntoAWorldWithOtherGhostsIsRefused)
+{
+	TestWorld t;
+	buildGhosts(t);
+	t.run(30);
+	Bytes snapshot;
+	caliber::SnapshotError error;
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), snapshot, &error)) << error.message;
+
+	// The same objects, but the pair-caching ghost is a plain ghost here.
+	TestWorld other;
+	buildGhosts(other);
+	GhostOwner& owner = *g_ghosts.back();
+	other.world()->removeCollisionObject(owner.cachingSensor.get());
+	std::unique_ptr<btGhostObject> plain(new btGhostObject());
+	plain->setCollisionShape(owner.cachingSensor->getCollisionShape());
+	plain->setWorldTransform(owner.cachingSensor->getWorldTransform());
+	other.world()->addCollisionObject(plain.get(), btBroadphaseProxy::SensorTrigger,
+	                                  btBroadphaseProxy::AllFilter & ~btBroadphaseProxy::SensorTrigger);
+	// The replacement comes last in the world's order: the objects' types no longer match index for index.
+	other.run(30);
+	const Bytes before = stateOf(*other.world());
+	EXPECT_FALSE(caliber::restoreWorldState(*other.world(), &snapshot[0], snapshot.size(), &error));
+	expectUnchanged(*other.world(), before);
+	other.world()->removeCollisionObject(plain.get());
+}
+// (The ghost tests' worlds remove their pairs, and with them the ghosts' pairs, when they are destroyed;
+// the ghosts themselves live in g_ghosts until the program ends.)
+
+TEST(WorldSnapshotBadInput, CharacterSnapshotIntoAWorldWithoutItsControllerIsRefused)
+{
+	TestWorld t;
+	buildCharacter(t);
+	t.run(10);
+	Bytes snapshot;
+	caliber::SnapshotError error;
+	ASSERT_TRUE(caliber::saveWorldState(*t.world(), snapshot, &error)) << error.message;
+	// The same world with its controller removed: one action fewer.
+	TestWorld other;
+	buildCharacter(other);
+	other.world()->removeAction(g_characters.back()->controller.get());
+	other.run(10);
+	const Bytes before = stateOf(*other.world());
+	EXPECT_FALSE(caliber::restoreWorldState(*other.world(), &snapshot[0], snapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("actions"), std::string::npos) << error.message;
+	expectUnchanged(*other.world(), before);
+	// A character whose ghost left the world cannot be saved.
+	t.world()->removeCollisionObject(g_characters[g_characters.size() - 2]->ghost.get());
+	EXPECT_FALSE(caliber::saveWorldState(*t.world(), snapshot, &error));
+	EXPECT_NE(std::string(error.message).find("ghost"), std::string::npos) << error.message;
+	t.world()->removeAction(g_characters[g_characters.size() - 2]->controller.get());
 }
 
 TEST(WorldSnapshotBadInput, CompoundWithOtherChildrenIsRefusedAndChangesNothing)
