@@ -124,7 +124,18 @@ public:
 
 	const std::vector<btRigidBody*>& bodies() const { return m_bodies; }
 
+	/// Keeps object (anything a scene needs besides shapes, bodies and joints: vehicles, ghosts, their
+	/// callbacks) until after the world is gone.
+	template <class T>
+	T* keep(T* object)
+	{
+		m_kept.emplace_back(object);
+		return object;
+	}
+
 private:
+	// First, so destroyed last: kept objects may be referred to by the world until it is gone.
+	std::vector<std::shared_ptr<void>> m_kept;
 	std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
 	std::unique_ptr<btCollisionDispatcher> m_dispatcher;
 	std::unique_ptr<btDbvtBroadphase> m_broadphase;

@@ -297,13 +297,33 @@ void buildCompoundPair(TestWorld& t)
 
 // A raycast vehicle driving and steering over a box ground into a few loose boxes: the wheels' rays,
 // suspension, spin and tyre friction carry from step to step, and the chassis has contacts of its own.
-struct VehicleOwner
+// Scenes' extra objects are kept by their TestWorld and listed here while they live, for the trace.
+template <class Owner>
+struct Registered
+{
+	static std::vector<Owner*>& all()
+	{
+		static std::vector<Owner*> owners;
+		return owners;
+	}
+	Registered() { all().push_back(static_cast<Owner*>(this)); }
+	~Registered()
+	{
+		std::vector<Owner*>& owners = all();
+		for (size_t i = 0; i < owners.size(); ++i)
+			if (owners[i] == static_cast<Owner*>(this)) owners.erase(owners.begin() + long(i));
+	}
+	Registered(const Registered&) = delete;
+	Registered& operator=(const Registered&) = delete;
+};
+
+struct VehicleOwner : Registered<VehicleOwner>
 {
 	btDynamicsWorld* world;
 	std::unique_ptr<btDefaultVehicleRaycaster> raycaster;
 	std::unique_ptr<btRaycastVehicle> vehicle;
 };
-std::vector<std::unique_ptr<VehicleOwner>> g_vehicles;
+std::vector<VehicleOwner*>& g_vehicles = Registered<VehicleOwner>::all();
 
 void buildVehicle(TestWorld& t)
 {
@@ -312,8 +332,7 @@ void buildVehicle(TestWorld& t)
 	for (int i = 0; i < 3; ++i) t.addBody(crate, btScalar(0.5), pose(btVector3(0.4 * i - 0.4, 0.3, 6 + 0.7 * i)));
 	btRigidBody* chassis = t.addBody(t.shape<btBoxShape>(btVector3(0.8, 0.25, 1.8)), 400, pose(btVector3(0, 1.0, 0)));
 	chassis->setActivationState(DISABLE_DEACTIVATION);
-	g_vehicles.emplace_back(new VehicleOwner());
-	VehicleOwner& owner = *g_vehicles.back();
+	VehicleOwner& owner = *t.keep(new VehicleOwner());
 	owner.world = t.world();
 	owner.raycaster.reset(new btDefaultVehicleRaycaster(t.world()));
 	btRaycastVehicle::btVehicleTuning tuning;
@@ -338,14 +357,14 @@ void buildVehicle(TestWorld& t)
 // Boxes and spheres falling through two sensor volumes onto the ground: a plain btGhostObject (its
 // list of overlapping objects) and a btPairCachingGhostObject whose own pairs are dispatched after every
 // step, as a character controller does (their algorithms and manifolds are in the dispatcher's array).
-struct GhostOwner
+struct GhostOwner : Registered<GhostOwner>
 {
 	btDynamicsWorld* world;
 	std::unique_ptr<btGhostPairCallback> callback;
 	std::unique_ptr<btGhostObject> sensor;
 	std::unique_ptr<btPairCachingGhostObject> cachingSensor;
 };
-std::vector<std::unique_ptr<GhostOwner>> g_ghosts;
+std::vector<GhostOwner*>& g_ghosts = Registered<GhostOwner>::all();
 
 void dispatchGhostPairs(btDynamicsWorld* world, btScalar)
 {
@@ -358,8 +377,7 @@ void dispatchGhostPairs(btDynamicsWorld* world, btScalar)
 void buildGhosts(TestWorld& t)
 {
 	t.addGround(btScalar(0.8), btScalar(0));
-	g_ghosts.emplace_back(new GhostOwner());
-	GhostOwner& owner = *g_ghosts.back();
+	GhostOwner& owner = *t.keep(new GhostOwner());
 	owner.world = t.world();
 	owner.callback.reset(new btGhostPairCallback());
 	t.world()->getPairCache()->setInternalGhostPairCallback(owner.callback.get());
@@ -384,7 +402,7 @@ void buildGhosts(TestWorld& t)
 
 // A kinematic character walking up three steps and across a few loose boxes it pushes: its ghost's
 // pairs, the controller's step, fall and contact state carry from step to step.
-struct CharacterOwner
+struct CharacterOwner : Registered<CharacterOwner>
 {
 	btDynamicsWorld* world;
 	std::unique_ptr<btGhostPairCallback> callback;
@@ -392,7 +410,7 @@ struct CharacterOwner
 	std::unique_ptr<btPairCachingGhostObject> ghost;
 	std::unique_ptr<btKinematicCharacterController> controller;
 };
-std::vector<std::unique_ptr<CharacterOwner>> g_characters;
+std::vector<CharacterOwner*>& g_characters = Registered<CharacterOwner>::all();
 
 void buildCharacter(TestWorld& t)
 {
@@ -405,8 +423,7 @@ void buildCharacter(TestWorld& t)
 	}
 	btCollisionShape* crate = t.shape<btBoxShape>(btVector3(0.25, 0.25, 0.25));
 	for (int i = 0; i < 3; ++i) t.addBody(crate, btScalar(0.3), pose(btVector3(0.6 * i - 0.6, 1.1, 5.6)));
-	g_characters.emplace_back(new CharacterOwner());
-	CharacterOwner& owner = *g_characters.back();
+	CharacterOwner& owner = *t.keep(new CharacterOwner());
 	owner.world = t.world();
 	owner.callback.reset(new btGhostPairCallback());
 	t.world()->getPairCache()->setInternalGhostPairCallback(owner.callback.get());
@@ -1011,8 +1028,7 @@ TEST(WorldSnapshotBadInput, GhostSnapshotIntoAWorldWithOtherGhostsIsRefused)
 	expectUnchanged(*other.world(), before);
 	other.world()->removeCollisionObject(plain.get());
 }
-// (The ghost tests' worlds remove their pairs, and with them the ghosts' pairs, when they are destroyed;
-// the ghosts themselves live in g_ghosts until the program ends.)
+
 
 TEST(WorldSnapshotBadInput, CharacterSnapshotIntoAWorldWithoutItsControllerIsRefused)
 {
