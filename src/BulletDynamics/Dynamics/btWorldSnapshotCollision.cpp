@@ -11,6 +11,7 @@
 
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/BroadphaseCollision/btSimpleBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h"
@@ -33,6 +34,7 @@ namespace
 using namespace snapshot_access;
 
 const int kBroadphaseDbvt = 1;
+const int kBroadphaseSimple = 2;
 const int kPairCacheHashed = 1;
 
 // The collision algorithms whose whole state the snapshot holds (exact classes: a subclass may keep more).
@@ -106,6 +108,58 @@ btDbvtBroadphase* dbvtOf(btDiscreteDynamicsWorld& world)
 	return dynamic_cast<btDbvtBroadphase*>(world.getBroadphase());
 }
 
+// btSimpleBroadphase (exactly: a subclass may keep more): its only step state is each proxy's box and
+// id; it finds pairs by testing every two proxies in handle order.
+btSimpleBroadphase* simpleOf(btDiscreteDynamicsWorld& world)
+{
+	btBroadphaseInterface* broadphase = world.getBroadphase();
+	return broadphase && typeid(*broadphase) == typeid(btSimpleBroadphase) ? static_cast<btSimpleBroadphase*>(broadphase)
+	                                                                        : 0;
+}
+
+template <class IO>
+void plainProxyFields(IO& io, btBroadphaseProxy& proxy)
+{
+	io.field("proxy m_uniqueId", proxy.m_uniqueId);
+	io.field("proxy m_aabbMin", proxy.m_aabbMin);
+	io.field("proxy m_aabbMax", proxy.m_aabbMax);
+}
+
+void saveSimpleBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
+{
+	out.context("broadphase", -1);
+	out.field("kind", kBroadphaseSimple);
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+	{
+		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		out.context("object", i);
+		out.field("has proxy", bool(proxy != 0));
+		if (proxy) plainProxyFields(out, *proxy);
+	}
+}
+
+bool readSimpleBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
+{
+	if (!simpleOf(world))
+	{
+		in.fail("broadphase: the snapshot's is a btSimpleBroadphase, the world's is not");
+		return false;
+	}
+	for (int i = 0; i < world.getNumCollisionObjects() && in.ok(); ++i)
+	{
+		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		const bool has = in.flag("has proxy");
+		if (in.ok() && has != (proxy != 0))
+		{
+			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
+			        has ? "has" : "has not");
+			break;
+		}
+		if (has) plainProxyFields(in, *proxy);
+	}
+	return in.ok();
+}
+
 btHashedOverlappingPairCache* hashedCacheOf(btDiscreteDynamicsWorld& world)
 {
 	return world.getBroadphase() ? dynamic_cast<btHashedOverlappingPairCache*>(world.getPairCache()) : 0;
@@ -157,21 +211,19 @@ void dbvtCounters(IO& io, btDbvtBroadphase& dbvt)
 	io.field("m_needcleanup", dbvt.m_needcleanup);
 }
 
-template <class IO>
-void proxyFields(IO& io, btDbvtProxy& proxy)
-{
-	io.field("proxy m_uniqueId", proxy.m_uniqueId);
-	io.field("proxy m_aabbMin", proxy.m_aabbMin);
-	io.field("proxy m_aabbMax", proxy.m_aabbMax);
-	io.field("proxy set", proxy.set);
-}
+
 
 bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
 {
+	if (simpleOf(world))
+	{
+		saveSimpleBroadphase(world, out);
+		return true;
+	}
 	btDbvtBroadphase* dbvt = dbvtOf(world);
 	if (!dbvt)
 	{
-		setError(error, errorSize, "broadphase: only btDbvtBroadphase is supported");
+		setError(error, errorSize, "broadphase: only btDbvtBroadphase and btSimpleBroadphase are supported");
 		return false;
 	}
 	const int n = world.getNumCollisionObjects();
@@ -186,7 +238,8 @@ bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* e
 		out.field("has proxy", bool(proxy != 0));
 		if (!proxy) continue;
 		++proxies;
-		proxyFields(out, *proxy);
+		plainProxyFields(out, *proxy);
+		out.field("proxy set", proxy->set);
 	}
 	if (proxies != dbvt->m_sets[0].m_leaves + dbvt->m_sets[1].m_leaves)
 	{
@@ -339,6 +392,7 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 {
 	const int n = world.getNumCollisionObjects();
 	const int kind = in.value<int>("broadphase kind");
+	if (in.ok() && kind == kBroadphaseSimple) return readSimpleBroadphase(world, in);
 	if (in.ok() && kind != kBroadphaseDbvt) in.fail("broadphase: unknown kind %d", kind);
 	btDbvtBroadphase* dbvt = dbvtOf(world);
 	if (in.ok() && !dbvt) in.fail("broadphase: the world's broadphase is not a btDbvtBroadphase");
@@ -993,9 +1047,9 @@ void saveManifolds(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
 
 bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size_t errorSize)
 {
-	if (!dbvtOf(world))
+	if (!dbvtOf(world) && !simpleOf(world))
 	{
-		setError(error, errorSize, "broadphase: only btDbvtBroadphase is supported");
+		setError(error, errorSize, "broadphase: only btDbvtBroadphase and btSimpleBroadphase are supported");
 		return false;
 	}
 	if (!hashedCacheOf(world))

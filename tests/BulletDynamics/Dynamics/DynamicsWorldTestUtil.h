@@ -29,6 +29,18 @@ public:
 		m_world->setGravity(gravity);
 	}
 
+	/// A plain world on broadphase (taken over; btDbvtBroadphase by default).
+	explicit TestWorld(btBroadphaseInterface* broadphase, const btVector3& gravity = btVector3(0, -10, 0))
+	    : m_configuration(new btDefaultCollisionConfiguration()),
+	      m_dispatcher(new btCollisionDispatcher(m_configuration.get())),
+	      m_broadphase(broadphase),
+	      m_solver(new btSequentialImpulseConstraintSolver()),
+	      m_world(new btDiscreteDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(),
+	                                          m_configuration.get()))
+	{
+		m_world->setGravity(gravity);
+	}
+
 	/// Tag for the multithreaded constructor.
 	struct Multithreaded
 	{
@@ -138,7 +150,7 @@ private:
 	std::vector<std::shared_ptr<void>> m_kept;
 	std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
 	std::unique_ptr<btCollisionDispatcher> m_dispatcher;
-	std::unique_ptr<btDbvtBroadphase> m_broadphase;
+	std::unique_ptr<btBroadphaseInterface> m_broadphase;
 	std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
 	std::unique_ptr<btConstraintSolverPoolMt> m_solverPool;
 	std::unique_ptr<btSequentialImpulseConstraintSolverMt> m_solverMt;

@@ -562,6 +562,10 @@ using WorldFactory = std::function<std::unique_ptr<TestWorld>()>;
 std::unique_ptr<TestWorld> plainWorld() { return std::unique_ptr<TestWorld>(new TestWorld()); }
 // Bullet's multithreaded world with a pool of two solvers and a large-batch solver (run on the calling
 // thread unless a scheduler is set: the pool's per-solver state and shared warm starts are what count).
+std::unique_ptr<TestWorld> simpleBroadphaseWorld()
+{
+	return std::unique_ptr<TestWorld>(new TestWorld(new btSimpleBroadphase()));
+}
 std::unique_ptr<TestWorld> mtWorld() { return std::unique_ptr<TestWorld>(new TestWorld(TestWorld::Multithreaded(), 2)); }
 
 // Runs warmup steps, saves, runs steps more (trace A), restores, checks the world equals the snapshot,
@@ -624,6 +628,17 @@ TEST(WorldSnapshot, SleepingBodiesContinueBitIdenticallyFor1000Steps)
 }
 
 TEST(WorldSnapshot, CcdBodiesContinueBitIdenticallyFor200Steps) { expectRollbackIsExact(buildCcd, 2, 200); }
+
+TEST(WorldSnapshot, SimpleBroadphasePileContinuesBitIdenticallyFor150Steps)
+{
+	// btSimpleBroadphase: each proxy's box (sleeping bodies' boxes are not refreshed) and the pairs.
+	expectRollbackIsExact(buildPile, 30, 150, btScalar(1. / 60.), simpleBroadphaseWorld);
+}
+
+TEST(WorldSnapshot, SimpleBroadphaseSleepersContinueBitIdenticallyFor1000Steps)
+{
+	expectRollbackIsExact(buildSleepers, 30, 1000, btScalar(1. / 60.), simpleBroadphaseWorld);
+}
 
 TEST(WorldSnapshot, MtWorldWithJointsContinuesBitIdenticallyFor120Steps)
 {
@@ -968,6 +983,34 @@ TEST(WorldSnapshotBadInput, VehicleSnapshotIntoAWorldWithoutItOrWithOtherWheelsI
 	EXPECT_FALSE(caliber::restoreWorldState(*fiveWheels.world(), &snapshot[0], snapshot.size(), &error));
 	EXPECT_NE(std::string(error.message).find("wheels"), std::string::npos) << error.message;
 	expectUnchanged(*fiveWheels.world(), before);
+}
+
+TEST(WorldSnapshotBadInput, SnapshotOfAnotherBroadphaseIsRefused)
+{
+	std::unique_ptr<TestWorld> dbvt = plainWorld(), simple = simpleBroadphaseWorld();
+	buildSmall(*dbvt);
+	buildSmall(*simple);
+	dbvt->run(5);
+	simple->run(5);
+	Bytes dbvtSnapshot, simpleSnapshot;
+	caliber::SnapshotError error;
+	ASSERT_TRUE(caliber::saveWorldState(*dbvt->world(), dbvtSnapshot, &error)) << error.message;
+	ASSERT_TRUE(caliber::saveWorldState(*simple->world(), simpleSnapshot, &error)) << error.message;
+	Bytes before = stateOf(*simple->world());
+	EXPECT_FALSE(caliber::restoreWorldState(*simple->world(), &dbvtSnapshot[0], dbvtSnapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("broadphase"), std::string::npos) << error.message;
+	expectUnchanged(*simple->world(), before);
+	before = stateOf(*dbvt->world());
+	EXPECT_FALSE(caliber::restoreWorldState(*dbvt->world(), &simpleSnapshot[0], simpleSnapshot.size(), &error));
+	EXPECT_NE(std::string(error.message).find("broadphase"), std::string::npos) << error.message;
+	expectUnchanged(*dbvt->world(), before);
+
+	// btAxisSweep3 is not supported: refused on save.
+	TestWorld sweep(new btAxisSweep3(btVector3(-100, -100, -100), btVector3(100, 100, 100)));
+	buildSmall(sweep);
+	sweep.run(3);
+	EXPECT_FALSE(caliber::saveWorldState(*sweep.world(), dbvtSnapshot, &error));
+	EXPECT_NE(std::string(error.message).find("broadphase"), std::string::npos) << error.message;
 }
 
 TEST(WorldSnapshotBadInput, SnapshotOfAnotherSolverSetUpIsRefused)
