@@ -213,6 +213,14 @@ std::vector<char> saveShape(btCollisionShape* shape, int flags = 0)
 	return bytesOf(s);
 }
 
+// An importer into no world that deletes what it made (btWorldImporter's destructor leaves that to
+// deleteAllData, as Bullet's does).
+struct OwningImporter : btBulletWorldImporter
+{
+	OwningImporter() : btBulletWorldImporter(0) {}
+	~OwningImporter() override { deleteAllData(); }
+};
+
 btBvhTriangleMeshShape* onlyMesh(btBulletWorldImporter& importer)
 {
 	EXPECT_EQ(importer.getNumCollisionShapes(), 1);
@@ -233,7 +241,7 @@ TEST(MeshExtras, QuantizedAndPlainTreesReadBackFieldByFieldAndAnswerRaysAlike)
 		std::vector<char> file = saveShape(&original);
 		ASSERT_TRUE(findChunk(walkChunks(file), BT_QUANTIZED_BVH_CODE));
 
-		btBulletWorldImporter importer(0);
+		OwningImporter importer;
 		WarningLog log;
 		ASSERT_TRUE(importer.loadFileFromMemory(&file[0], int(file.size())));
 		EXPECT_EQ(log.count(), 0) << log.all();
@@ -254,7 +262,7 @@ TEST(MeshExtras, ScaledMeshKeepsItsScalingWithTheStoredTree)
 	terrain.mesh.setScaling(btVector3(2, btScalar(0.5), 3));
 	btBvhTriangleMeshShape original(&terrain.mesh, true);
 	std::vector<char> file = saveShape(&original);
-	btBulletWorldImporter importer(0);
+	OwningImporter importer;
 	ASSERT_TRUE(importer.loadFileFromMemory(&file[0], int(file.size())));
 	btBvhTriangleMeshShape* read = onlyMesh(importer);
 	ASSERT_TRUE(read);
@@ -279,7 +287,7 @@ TEST(MeshExtras, TriangleInfoMapReadsBackEveryEntryAndTolerance)
 	std::vector<char> file = saveShape(&original);
 	ASSERT_TRUE(findChunk(walkChunks(file), BT_TRIANLGE_INFO_MAP));
 
-	btBulletWorldImporter importer(0);
+	OwningImporter importer;
 	ASSERT_TRUE(importer.loadFileFromMemory(&file[0], int(file.size())));
 	btBvhTriangleMeshShape* read = onlyMesh(importer);
 	ASSERT_TRUE(read);
@@ -316,7 +324,7 @@ TEST(MeshExtras, NoBvhAndNoTriangleInfoMapFlagsLeaveThemOut)
 	const std::vector<ChunkAt> chunks = walkChunks(file);
 	EXPECT_FALSE(findChunk(chunks, BT_QUANTIZED_BVH_CODE));
 	EXPECT_FALSE(findChunk(chunks, BT_TRIANLGE_INFO_MAP));
-	btBulletWorldImporter importer(0);
+	OwningImporter importer;
 	ASSERT_TRUE(importer.loadFileFromMemory(&file[0], int(file.size())));
 	btBvhTriangleMeshShape* read = onlyMesh(importer);
 	ASSERT_TRUE(read);
@@ -341,7 +349,7 @@ TEST(MeshExtras, SerializeSingleBvhAndMapWriteOneChunkEachThatLoads)
 	EXPECT_TRUE(findChunk(chunks, BT_QUANTIZED_BVH_CODE) && !findChunk(chunks, BT_QUANTIZED_BVH_CODE, 1));
 	EXPECT_TRUE(findChunk(chunks, BT_TRIANLGE_INFO_MAP) && !findChunk(chunks, BT_TRIANLGE_INFO_MAP, 1));
 	EXPECT_FALSE(findChunk(chunks, BT_SHAPE_CODE));
-	btBulletWorldImporter importer(0);
+	OwningImporter importer;
 	ASSERT_TRUE(importer.loadFileFromMemory(&file[0], int(file.size())));
 	ASSERT_EQ(importer.getNumBvhs(), 1);
 	ASSERT_EQ(importer.getNumTriangleInfoMaps(), 1);
@@ -560,7 +568,7 @@ void loadDamaged(Damage damage, const char* expectedWarning, bool expectStoredTr
 	ASSERT_EQ(parsed.m_bvhs.size(), 1);
 	ASSERT_EQ(parsed.m_triangleInfoMaps.size(), 1);
 	damage(parsed);
-	btBulletWorldImporter importer(0);
+	OwningImporter importer;
 	WarningLog log;
 	ASSERT_TRUE(importer.loadFileFromMemory(&parsed));
 	if (expectedWarning)

@@ -9,6 +9,7 @@
 
 #include <typeinfo>
 
+#include "BulletCollision/BroadphaseCollision/btAxisSweep3.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/BroadphaseCollision/btSimpleBroadphase.h"
@@ -35,6 +36,8 @@ using namespace snapshot_access;
 
 const int kBroadphaseDbvt = 1;
 const int kBroadphaseSimple = 2;
+const int kBroadphaseSweep16 = 3;
+const int kBroadphaseSweep32 = 4;
 const int kPairCacheHashed = 1;
 
 // The collision algorithms whose whole state the snapshot holds (exact classes: a subclass may keep more).
@@ -123,6 +126,173 @@ void plainProxyFields(IO& io, btBroadphaseProxy& proxy)
 	io.field("proxy m_uniqueId", proxy.m_uniqueId);
 	io.field("proxy m_aabbMin", proxy.m_aabbMin);
 	io.field("proxy m_aabbMax", proxy.m_aabbMax);
+}
+
+// btAxisSweep3 / bt32BitAxisSweep3 (exactly): per axis the sorted edge list, whose order among equal
+// positions decides which pairs the next moves find first, and each proxy's box. The handles' edge
+// indices follow from the lists. (The optional ray accelerator's tree is not held: it orders ray tests
+// only.)
+template <class Index>
+struct SweepAccess : btAxisSweep3Internal<Index>
+{
+	typedef btAxisSweep3Internal<Index> Sweep;
+	typedef typename Sweep::Edge Edge;
+	typedef typename Sweep::Handle Handle;
+	static Index& numHandles(Sweep& s) { return s.*(&SweepAccess::m_numHandles); }
+	static Index maxHandles(Sweep& s) { return s.*(&SweepAccess::m_maxHandles); }
+	static Index sentinel(Sweep& s) { return s.*(&SweepAccess::m_handleSentinel); }
+	static Edge* edges(Sweep& s, int axis) { return (s.*(&SweepAccess::m_pEdges))[axis]; }
+	static Handle* handles(Sweep& s) { return s.*(&SweepAccess::m_pHandles); }
+};
+
+template <class Index>
+btAxisSweep3Internal<Index>* sweepOf(btDiscreteDynamicsWorld& world);
+template <>
+btAxisSweep3Internal<unsigned short>* sweepOf(btDiscreteDynamicsWorld& world)
+{
+	btBroadphaseInterface* broadphase = world.getBroadphase();
+	return broadphase && typeid(*broadphase) == typeid(btAxisSweep3) ? static_cast<btAxisSweep3*>(broadphase) : 0;
+}
+template <>
+btAxisSweep3Internal<unsigned int>* sweepOf(btDiscreteDynamicsWorld& world)
+{
+	btBroadphaseInterface* broadphase = world.getBroadphase();
+	return broadphase && typeid(*broadphase) == typeid(bt32BitAxisSweep3) ? static_cast<bt32BitAxisSweep3*>(broadphase)
+	                                                                      : 0;
+}
+
+// The handle index of object i's proxy in sweep, 0 when it has none or it is not one of sweep's.
+template <class Index>
+Index sweepHandleOf(btAxisSweep3Internal<Index>& sweep, btCollisionObject* object)
+{
+	typedef SweepAccess<Index> A;
+	btBroadphaseProxy* proxy = object->getBroadphaseHandle();
+	if (!proxy) return 0;
+	const typename A::Handle* first = A::handles(sweep);
+	const typename A::Handle* handle = static_cast<const typename A::Handle*>(proxy);
+	if (handle <= first || handle >= first + A::maxHandles(sweep)) return 0;
+	return Index(handle - first);
+}
+
+template <class Index>
+void saveSweep(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>& sweep, int kind, SnapshotWriter& out)
+{
+	typedef SweepAccess<Index> A;
+	out.context("broadphase", -1);
+	out.field("kind", kind);
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+	{
+		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		out.context("object", i);
+		out.field("has proxy", bool(proxy != 0));
+		if (proxy) plainProxyFields(out, *proxy);
+	}
+	out.context("broadphase", -1);
+	// Two edges per handle in use, and the sentinel's two at the ends.
+	const int count = 2 * int(A::numHandles(sweep)) + 2;
+	out.field("edge count", count);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		const typename A::Edge* edges = A::edges(sweep, axis);
+		for (int e = 0; e < count; ++e)
+		{
+			out.field("edge m_pos", unsigned(edges[e].m_pos));
+			out.field("edge m_handle", unsigned(edges[e].m_handle));
+		}
+	}
+}
+
+template <class Index>
+bool readSweep(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>* sweep, SnapshotReader& in)
+{
+	typedef SweepAccess<Index> A;
+	if (!sweep)
+	{
+		in.fail("broadphase: the snapshot's is an axis sweep of another kind than the world's broadphase");
+		return false;
+	}
+	const int n = world.getNumCollisionObjects();
+	// Which handle belongs to a world object: the edge lists must list exactly those and the sentinel.
+	btAlignedObjectArray<char> inWorld;
+	inWorld.resize(int(A::maxHandles(*sweep)), 0);
+	for (int i = 0; i < n && in.ok(); ++i)
+	{
+		btCollisionObject* object = world.getCollisionObjectArray()[i];
+		btBroadphaseProxy* proxy = object->getBroadphaseHandle();
+		const bool has = in.flag("has proxy");
+		if (in.ok() && has != (proxy != 0))
+		{
+			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
+			        has ? "has" : "has not");
+			break;
+		}
+		if (!has) continue;
+		plainProxyFields(in, *proxy);
+		const Index handle = sweepHandleOf(*sweep, object);
+		if (in.ok() && handle == 0) in.fail("object %d: its proxy is not a handle of the world's broadphase", i);
+		if (handle) inWorld[int(handle)] = 1;
+	}
+	const int count = in.value<int>("edge count");
+	if (in.ok() && count != 2 * int(A::numHandles(*sweep)) + 2)
+		in.fail("broadphase: %d edges per axis, the world's broadphase has %d", count,
+		        2 * int(A::numHandles(*sweep)) + 2);
+	if (!in.ok()) return false;
+	btAlignedObjectArray<unsigned> positions[3], owners[3];
+	for (int axis = 0; axis < 3 && in.ok(); ++axis)
+	{
+		btAlignedObjectArray<char> seenMin, seenMax;
+		seenMin.resize(inWorld.size(), 0);
+		seenMax.resize(inWorld.size(), 0);
+		for (int e = 0; e < count && in.ok(); ++e)
+		{
+			const unsigned pos = in.value<unsigned>("edge m_pos");
+			const unsigned handle = in.value<unsigned>("edge m_handle");
+			if (!in.ok()) break;
+			const bool isMax = (pos & 1u) != 0;
+			// The sentinel's edges close the list at both ends; every other edge is a world object's, once
+			// as minimum (even position) and once as maximum (odd), the minimum first, positions sorted.
+			const bool end = e == 0 || e == count - 1;
+			const char* problem = 0;
+			if (pos > unsigned(A::sentinel(*sweep)) || (e > 0 && pos < positions[axis][e - 1]))
+				problem = "out of order";
+			else if (end && (handle != 0 || isMax != (e == count - 1) ||
+			                 (e == count - 1 && pos != unsigned(A::sentinel(*sweep)))))
+				problem = "not the sentinel";
+			else if (!end && (handle == 0 || handle >= unsigned(inWorld.size()) || !inWorld[int(handle)]))
+				problem = "not a world object's handle";
+			else if (!end && (isMax ? seenMax[int(handle)] : seenMin[int(handle)]))
+				problem = "listed twice";
+			else if (!end && isMax && !seenMin[int(handle)])
+				problem = "its maximum before its minimum";
+			if (problem)
+			{
+				in.fail("broadphase: axis %d edge %d (position %u, handle %u): %s", axis, e, pos, handle, problem);
+				break;
+			}
+			if (!end) (isMax ? seenMax : seenMin)[int(handle)] = 1;
+			positions[axis].push_back(pos);
+			owners[axis].push_back(handle);
+		}
+	}
+	if (!in.ok() || !in.applying()) return in.ok();
+	typename A::Handle* handles = A::handles(*sweep);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		typename A::Edge* edges = A::edges(*sweep, axis);
+		for (int e = 0; e < count; ++e)
+		{
+			edges[e].m_pos = Index(positions[axis][e]);
+			edges[e].m_handle = Index(owners[axis][e]);
+			typename A::Handle& h = handles[owners[axis][e]];
+			if (e == 0)
+				h.m_minEdges[axis] = 0;
+			else if (positions[axis][e] & 1u)
+				h.m_maxEdges[axis] = Index(e);
+			else
+				h.m_minEdges[axis] = Index(e);
+		}
+	}
+	return true;
 }
 
 void saveSimpleBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
@@ -220,10 +390,22 @@ bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* e
 		saveSimpleBroadphase(world, out);
 		return true;
 	}
+	if (btAxisSweep3Internal<unsigned short>* sweep = sweepOf<unsigned short>(world))
+	{
+		saveSweep(world, *sweep, kBroadphaseSweep16, out);
+		return true;
+	}
+	if (btAxisSweep3Internal<unsigned int>* sweep = sweepOf<unsigned int>(world))
+	{
+		saveSweep(world, *sweep, kBroadphaseSweep32, out);
+		return true;
+	}
 	btDbvtBroadphase* dbvt = dbvtOf(world);
 	if (!dbvt)
 	{
-		setError(error, errorSize, "broadphase: only btDbvtBroadphase and btSimpleBroadphase are supported");
+		setError(error, errorSize,
+		         "broadphase: only btDbvtBroadphase, btSimpleBroadphase, btAxisSweep3 and bt32BitAxisSweep3 are "
+		         "supported");
 		return false;
 	}
 	const int n = world.getNumCollisionObjects();
@@ -393,6 +575,8 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	const int n = world.getNumCollisionObjects();
 	const int kind = in.value<int>("broadphase kind");
 	if (in.ok() && kind == kBroadphaseSimple) return readSimpleBroadphase(world, in);
+	if (in.ok() && kind == kBroadphaseSweep16) return readSweep(world, sweepOf<unsigned short>(world), in);
+	if (in.ok() && kind == kBroadphaseSweep32) return readSweep(world, sweepOf<unsigned int>(world), in);
 	if (in.ok() && kind != kBroadphaseDbvt) in.fail("broadphase: unknown kind %d", kind);
 	btDbvtBroadphase* dbvt = dbvtOf(world);
 	if (in.ok() && !dbvt) in.fail("broadphase: the world's broadphase is not a btDbvtBroadphase");
@@ -957,12 +1141,13 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 				        child.index1);
 				return false;
 			}
+			// Wrappers keep a reference to their transform: named, so that it outlives them.
+			const btTransform world0 = wrap0.getWorldTransform() * shape0->getChildTransform(child.index0);
+			const btTransform world1 = wrap1.getWorldTransform() * shape1->getChildTransform(child.index1);
 			btCollisionObjectWrapper child0(&wrap0, shape0->getChildShape(child.index0), wrap0.getCollisionObject(),
-			                                wrap0.getWorldTransform() * shape0->getChildTransform(child.index0), -1,
-			                                child.index0);
+			                                world0, -1, child.index0);
 			btCollisionObjectWrapper child1(&wrap1, shape1->getChildShape(child.index1), wrap1.getCollisionObject(),
-			                                wrap1.getWorldTransform() * shape1->getChildTransform(child.index1), -1,
-			                                child.index1);
+			                                world1, -1, child.index1);
 			btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm entry;
 			entry.m_algorithm = 0;
 			entry.m_lastFrame = child.lastFrame;
@@ -1047,9 +1232,11 @@ void saveManifolds(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
 
 bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size_t errorSize)
 {
-	if (!dbvtOf(world) && !simpleOf(world))
+	if (!dbvtOf(world) && !simpleOf(world) && !sweepOf<unsigned short>(world) && !sweepOf<unsigned int>(world))
 	{
-		setError(error, errorSize, "broadphase: only btDbvtBroadphase and btSimpleBroadphase are supported");
+		setError(error, errorSize,
+		         "broadphase: only btDbvtBroadphase, btSimpleBroadphase, btAxisSweep3 and bt32BitAxisSweep3 are "
+		         "supported");
 		return false;
 	}
 	if (!hashedCacheOf(world))

@@ -566,6 +566,15 @@ std::unique_ptr<TestWorld> simpleBroadphaseWorld()
 {
 	return std::unique_ptr<TestWorld>(new TestWorld(new btSimpleBroadphase()));
 }
+std::unique_ptr<TestWorld> sweepWorld()
+{
+	return std::unique_ptr<TestWorld>(new TestWorld(new btAxisSweep3(btVector3(-60, -20, -60), btVector3(60, 60, 60))));
+}
+std::unique_ptr<TestWorld> sweep32World()
+{
+	return std::unique_ptr<TestWorld>(
+	    new TestWorld(new bt32BitAxisSweep3(btVector3(-60, -20, -60), btVector3(60, 60, 60))));
+}
 std::unique_ptr<TestWorld> mtWorld() { return std::unique_ptr<TestWorld>(new TestWorld(TestWorld::Multithreaded(), 2)); }
 
 // Runs warmup steps, saves, runs steps more (trace A), restores, checks the world equals the snapshot,
@@ -638,6 +647,22 @@ TEST(WorldSnapshot, SimpleBroadphasePileContinuesBitIdenticallyFor150Steps)
 TEST(WorldSnapshot, SimpleBroadphaseSleepersContinueBitIdenticallyFor1000Steps)
 {
 	expectRollbackIsExact(buildSleepers, 30, 1000, btScalar(1. / 60.), simpleBroadphaseWorld);
+}
+
+TEST(WorldSnapshot, AxisSweepPileContinuesBitIdenticallyFor150Steps)
+{
+	// btAxisSweep3: the sorted edge lists (their order among equal positions) and each proxy's box.
+	expectRollbackIsExact(buildPile, 30, 150, btScalar(1. / 60.), sweepWorld);
+}
+
+TEST(WorldSnapshot, AxisSweep32SleepersContinueBitIdenticallyFor1000Steps)
+{
+	expectRollbackIsExact(buildSleepers, 30, 1000, btScalar(1. / 60.), sweep32World);
+}
+
+TEST(WorldSnapshot, AxisSweepJointChainsContinueBitIdenticallyFor120Steps)
+{
+	expectRollbackIsExact(buildJoints, 25, 120, btScalar(1. / 60.), sweepWorld);
 }
 
 TEST(WorldSnapshot, MtWorldWithJointsContinuesBitIdenticallyFor120Steps)
@@ -1005,12 +1030,47 @@ TEST(WorldSnapshotBadInput, SnapshotOfAnotherBroadphaseIsRefused)
 	EXPECT_NE(std::string(error.message).find("broadphase"), std::string::npos) << error.message;
 	expectUnchanged(*dbvt->world(), before);
 
-	// btAxisSweep3 is not supported: refused on save.
-	TestWorld sweep(new btAxisSweep3(btVector3(-100, -100, -100), btVector3(100, 100, 100)));
-	buildSmall(sweep);
-	sweep.run(3);
-	EXPECT_FALSE(caliber::saveWorldState(*sweep.world(), dbvtSnapshot, &error));
+	// A 16-bit sweep's snapshot into a 32-bit sweep world, and a dbvt snapshot into a sweep world.
+	std::unique_ptr<TestWorld> sweep = sweepWorld(), sweep32 = sweep32World();
+	buildSmall(*sweep);
+	buildSmall(*sweep32);
+	sweep->run(5);
+	sweep32->run(5);
+	Bytes sweepSnapshot;
+	ASSERT_TRUE(caliber::saveWorldState(*sweep->world(), sweepSnapshot, &error)) << error.message;
+	before = stateOf(*sweep32->world());
+	EXPECT_FALSE(caliber::restoreWorldState(*sweep32->world(), &sweepSnapshot[0], sweepSnapshot.size(), &error));
 	EXPECT_NE(std::string(error.message).find("broadphase"), std::string::npos) << error.message;
+	expectUnchanged(*sweep32->world(), before);
+	before = stateOf(*sweep->world());
+	EXPECT_FALSE(caliber::restoreWorldState(*sweep->world(), &dbvtSnapshot[0], dbvtSnapshot.size(), &error));
+	expectUnchanged(*sweep->world(), before);
+}
+
+TEST(WorldSnapshotBadInput, CorruptedAxisSweepSnapshotsNeverCrashAndChangeNothing)
+{
+	// Every byte of a sweep world's snapshot flipped in turn (the edge lists included): a restore either
+	// succeeds or is refused with the world unchanged, and the broadphase keeps working.
+	std::unique_ptr<TestWorld> t = sweepWorld();
+	buildSmall(*t);
+	t->run(8);
+	const Bytes good = stateOf(*t->world());
+	int refused = 0;
+	for (int k = 0; k < good.size(); k += 5)
+	{
+		Bytes bad = good;
+		bad[k] ^= 0x5a;
+		const Bytes before = stateOf(*t->world());
+		caliber::SnapshotError error;
+		if (!caliber::restoreWorldState(*t->world(), &bad[0], bad.size(), &error))
+		{
+			++refused;
+			expectUnchanged(*t->world(), before);
+		}
+		ASSERT_TRUE(caliber::restoreWorldState(*t->world(), &good[0], good.size(), &error)) << error.message;
+	}
+	EXPECT_GT(refused, 0);
+	t->run(2);
 }
 
 TEST(WorldSnapshotBadInput, SnapshotOfAnotherSolverSetUpIsRefused)
