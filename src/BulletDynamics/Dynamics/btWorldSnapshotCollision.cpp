@@ -128,6 +128,16 @@ void plainProxyFields(IO& io, btBroadphaseProxy& proxy)
 	io.field("proxy m_aabbMax", proxy.m_aabbMax);
 }
 
+// Reads whether object i has a broadphase proxy; a difference from the world's object fails the read.
+bool readHasProxy(SnapshotReader& in, int i, const btBroadphaseProxy* proxy)
+{
+	const bool has = in.flag("has proxy");
+	if (in.ok() && has != (proxy != 0))
+		in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
+		        has ? "has" : "has not");
+	return in.ok() && has;
+}
+
 // btAxisSweep3 / bt32BitAxisSweep3 (exactly): per axis the sorted edge list, whose order among equal
 // positions decides which pairs the next moves find first, and each proxy's box. The handles' edge
 // indices follow from the lists. (The optional ray accelerator's tree is not held: it orders ray tests
@@ -219,13 +229,8 @@ bool readSweep(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>* swee
 	{
 		btCollisionObject* object = world.getCollisionObjectArray()[i];
 		btBroadphaseProxy* proxy = object->getBroadphaseHandle();
-		const bool has = in.flag("has proxy");
-		if (in.ok() && has != (proxy != 0))
-		{
-			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
-			        has ? "has" : "has not");
-			break;
-		}
+		const bool has = readHasProxy(in, i, proxy);
+		if (!in.ok()) break;
 		if (!has) continue;
 		plainProxyFields(in, *proxy);
 		const Index handle = sweepHandleOf(*sweep, object);
@@ -318,13 +323,8 @@ bool readSimpleBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	for (int i = 0; i < world.getNumCollisionObjects() && in.ok(); ++i)
 	{
 		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
-		const bool has = in.flag("has proxy");
-		if (in.ok() && has != (proxy != 0))
-		{
-			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
-			        has ? "has" : "has not");
-			break;
-		}
+		const bool has = readHasProxy(in, i, proxy);
+		if (!in.ok()) break;
 		if (has) plainProxyFields(in, *proxy);
 	}
 	return in.ok();
@@ -588,13 +588,8 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	for (int i = 0; i < n && in.ok(); ++i)
 	{
 		btDbvtProxy* proxy = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle());
-		const bool has = in.flag("has proxy");
-		if (in.ok() && has != (proxy != 0))
-		{
-			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
-			        has ? "has" : "has not");
-			break;
-		}
+		const bool has = readHasProxy(in, i, proxy);
+		if (!in.ok()) break;
 		if (!has) continue;
 		const int uniqueId = in.value<int>("proxy m_uniqueId");
 		const btVector3 aabbMin = in.vector("proxy m_aabbMin");
