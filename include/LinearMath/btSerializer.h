@@ -43,7 +43,7 @@ enum btSerializationFlags
 	BT_SERIALIZE_NO_BVH = 1,               ///< Triangle meshes are written without their BVH.
 	BT_SERIALIZE_NO_TRIANGLEINFOMAP = 2,   ///< Triangle meshes are written without their triangle info map.
 	BT_SERIALIZE_NO_DUPLICATE_ASSERT = 4,  ///< Writing the same object twice does not assert.
-	BT_SERIALIZE_CONTACT_MANIFOLDS = 8,    ///< Ask for contact manifolds (not written yet: see docs/serialization.md).
+	BT_SERIALIZE_CONTACT_MANIFOLDS = 8,    ///< Also write the dispatcher's contact manifolds (btPersistentManifoldData chunks).
 };
 
 /// The interface every serialize() method writes through.

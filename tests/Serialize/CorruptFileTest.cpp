@@ -292,3 +292,30 @@ TEST(CorruptFile, MeshIndexOutsideItsVerticesSkipsTheMesh)
 		}
 	EXPECT_TRUE(found) << "no index chunk in the sample";
 }
+
+TEST(CorruptFile, BodyValuesTheWorldWouldRejectAreCaughtByTheLoader)
+{
+	const std::vector<ChunkAt> chunks = walkChunks(sample().bytes);
+	const ChunkAt* ground = findChunk(chunks, BT_RIGIDBODY_CODE, 0);  // the static mesh body
+	const ChunkAt* box = findChunk(chunks, BT_RIGIDBODY_CODE, 1);
+	ASSERT_TRUE(ground && box);
+	typedef decltype(btRigidBodyData().m_inverseMass) Number;
+	{
+		// A mass on a mesh: meshes have no inertia (btTriangleMeshShape asserts), so the body is made static.
+		std::vector<char> bytes = sample().bytes;
+		poke(bytes, ground->data + offsetof(btRigidBodyData, m_inverseMass), Number(1));
+		const LoadResult r = load(bytes, true);
+		EXPECT_TRUE(r.ok);
+		EXPECT_EQ(r.bodies, 4);
+		EXPECT_NE(r.warnings.find("made static"), std::string::npos) << r.warnings;
+	}
+	{
+		// A negative linear factor (btRigidBody asserts on it): the body is skipped.
+		std::vector<char> bytes = sample().bytes;
+		poke(bytes, box->data + offsetof(btRigidBodyData, m_linearFactor) + sizeof(Number), Number(-1));
+		const LoadResult r = load(bytes, true);
+		EXPECT_TRUE(r.ok);
+		EXPECT_EQ(r.bodies, 3);
+		EXPECT_NE(r.warnings.find("skipped"), std::string::npos) << r.warnings;
+	}
+}

@@ -184,24 +184,6 @@ TEST(Serializer, TooSmallCallersBufferFallsBackToOwnBufferWithWarning)
 	EXPECT_EQ(buffer[0], 0xab) << "the caller's buffer must not be overrun";
 }
 
-TEST(Serializer, UnsupportedPartsAreReportedNotSilentlyDropped)
-{
-	TestWorld w;
-	btDefaultSerializer s;
-	s.setSerializationFlags(BT_SERIALIZE_CONTACT_MANIFOLDS);
-	WarningLog log;
-	w.world.serialize(&s);
-	EXPECT_TRUE(log.contains("CONTACT_MANIFOLDS")) << log.all();
-	btVector3 v[3] = {btVector3(0, 0, 0), btVector3(1, 0, 0), btVector3(0, 0, 1)};
-	int idx[3] = {0, 1, 2};
-	btTriangleIndexVertexArray mesh(1, idx, 3 * sizeof(int), 3, &v[0][0], sizeof(btVector3));
-	btBvhTriangleMeshShape shape(&mesh, true);
-	s.startSerialization();
-	shape.serializeSingleBvh(&s);
-	EXPECT_TRUE(log.contains("BVHs are not written")) << log.all();
-	s.finishSerialization();
-}
-
 #if CALIBER_ASSERTS_ENABLED
 TEST(SerializerDeathTest, NonsenseChunkSizesAndIndicesAssert)
 {

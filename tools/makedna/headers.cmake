@@ -20,6 +20,7 @@ set(CALIBER_DNA_HEADERS
   include/BulletCollision/CollisionShapes/btCapsuleShape.h
   include/BulletCollision/CollisionShapes/btConvexHullShape.h
   include/BulletCollision/CollisionDispatch/btCollisionObject.h
+  include/BulletCollision/NarrowPhaseCollision/btPersistentManifold.h
   include/BulletDynamics/ConstraintSolver/btContactSolverInfo.h
   include/BulletDynamics/Dynamics/btDynamicsWorld.h
   include/BulletDynamics/Dynamics/btRigidBody.h

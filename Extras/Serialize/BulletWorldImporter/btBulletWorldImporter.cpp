@@ -66,6 +66,41 @@ public:
 		const bParse::bChunkInd* info = m_blocks.find(btHashPtr(name));
 		if (!info || info->dna_nr >= 0) name = 0;
 	}
+	// A plain (struct-less) block holding at least count ints, such as a triangle info map's keys.
+	bool holdsInts(const void* p, long long count) const
+	{
+		const bParse::bChunkInd* info = p ? m_blocks.find(btHashPtr(p)) : 0;
+		return info && info->dna_nr < 0 && count >= 0 && info->len >= 4 * count;
+	}
+
+	// A stored BVH whose arrays are blocks of the right structs holding at least their counts (the tree
+	// itself is checked by deSerializeFloat / Double).
+	template <class BvhData>
+	bool bvhComplete(const BvhData* b, const char* nodeStruct) const
+	{
+		const int nc = b->m_numContiguousLeafNodes, nq = b->m_numQuantizedContiguousNodes, nh = b->m_numSubtreeHeaders;
+		if (nc < 0 || nq < 0 || nh < 0) return false;
+		return (nc == 0 || isA(b->m_contiguousNodesPtr, nodeStruct, nc)) &&
+		       (nq == 0 || isA(b->m_quantizedContiguousNodesPtr, "btQuantizedBvhNodeData", nq)) &&
+		       (nh == 0 || isA(b->m_subTreeInfoPtr, "btBvhSubtreeInfoData", nh));
+	}
+	bool bvhBlockComplete(void* p) const
+	{
+		if (isA(p, "btQuantizedBvhFloatData"))
+			return bvhComplete(static_cast<btQuantizedBvhFloatData*>(p), "btOptimizedBvhNodeFloatData");
+		if (isA(p, "btQuantizedBvhDoubleData"))
+			return bvhComplete(static_cast<btQuantizedBvhDoubleData*>(p), "btOptimizedBvhNodeDoubleData");
+		return false;
+	}
+	bool triangleInfoMapComplete(void* p) const
+	{
+		if (!isA(p, "btTriangleInfoMapData")) return false;
+		const btTriangleInfoMapData* d = static_cast<btTriangleInfoMapData*>(p);
+		return d->m_numKeys >= 0 && d->m_numValues == d->m_numKeys &&
+		       (d->m_numKeys == 0 || (holdsInts(d->m_keyArrayPtr, d->m_numKeys) &&
+		                              isA(d->m_valueArrayPtr, "btTriangleInfoData", d->m_numValues)));
+	}
+
 	bool isShape(const void* p) const { return p && m_shapes.find(btHashPtr(p)); }
 	bool isBody(const void* p) const { return p && m_bodies.find(btHashPtr(p)); }
 
@@ -299,12 +334,63 @@ private:
 		return true;
 	}
 
+	// Every leaf of the stored tree names a triangle of the mesh (the mesh query reads that triangle).
+	template <class BvhData>
+	static bool leavesFit(const BvhData* b, const btStridingMeshInterfaceData& m)
+	{
+		const int used = b->m_useQuantization ? b->m_numQuantizedContiguousNodes : b->m_numContiguousLeafNodes;
+		if (b->m_curNodeIndex < 0 || b->m_curNodeIndex > used) return false;
+		for (int i = 0; i < b->m_curNodeIndex; ++i)
+		{
+			int part, triangle;
+			if (b->m_useQuantization)
+			{
+				const int v = b->m_quantizedContiguousNodesPtr[i].m_escapeIndexOrTriangleIndex;
+				if (v < 0) continue;
+				part = v >> (31 - MAX_NUM_PARTS_IN_BITS);
+				triangle = v & ((1 << (31 - MAX_NUM_PARTS_IN_BITS)) - 1);
+			}
+			else
+			{
+				if (b->m_contiguousNodesPtr[i].m_escapeIndex >= 0) continue;
+				part = b->m_contiguousNodesPtr[i].m_subPart;
+				triangle = b->m_contiguousNodesPtr[i].m_triangleIndex;
+			}
+			if (part < 0 || part >= m.m_numMeshParts || triangle < 0 || triangle >= m.m_meshPartsPtr[part].m_numTriangles)
+				return false;
+		}
+		return true;
+	}
+
+	// A stored tree or map that does not fit is dropped (the mesh then builds its own tree).
+	void checkMeshExtras(btTriangleMeshShapeData& mesh) const
+	{
+		const btStridingMeshInterfaceData& m = mesh.m_meshInterface;
+		if (mesh.m_quantizedFloatBvh &&
+		    !(isA(mesh.m_quantizedFloatBvh, "btQuantizedBvhFloatData") &&
+		      bvhComplete(mesh.m_quantizedFloatBvh, "btOptimizedBvhNodeFloatData") &&
+		      leavesFit(mesh.m_quantizedFloatBvh, m)))
+		{
+			btReportWarning("Caliber: btBulletWorldImporter: a mesh's stored BVH does not fit the mesh; it is rebuilt\n");
+			mesh.m_quantizedFloatBvh = 0;
+		}
+		if (mesh.m_quantizedDoubleBvh &&
+		    !(isA(mesh.m_quantizedDoubleBvh, "btQuantizedBvhDoubleData") &&
+		      bvhComplete(mesh.m_quantizedDoubleBvh, "btOptimizedBvhNodeDoubleData") &&
+		      leavesFit(mesh.m_quantizedDoubleBvh, m)))
+		{
+			btReportWarning("Caliber: btBulletWorldImporter: a mesh's stored BVH does not fit the mesh; it is rebuilt\n");
+			mesh.m_quantizedDoubleBvh = 0;
+		}
+		if (mesh.m_triangleInfoMap && !triangleInfoMapComplete(mesh.m_triangleInfoMap))
+		{
+			btReportWarning("Caliber: btBulletWorldImporter: a mesh's triangle info map is malformed; it is dropped\n");
+			mesh.m_triangleInfoMap = 0;
+		}
+	}
+
 	bool checkMesh(btTriangleMeshShapeData& mesh)
 	{
-		// BVHs and triangle info maps are rebuilt, never read.
-		mesh.m_quantizedFloatBvh = 0;
-		mesh.m_quantizedDoubleBvh = 0;
-		mesh.m_triangleInfoMap = 0;
 		btStridingMeshInterfaceData& m = mesh.m_meshInterface;
 		if (!finite(m.m_scaling) || m.m_numMeshParts <= 0 || !isA(m.m_meshPartsPtr, "btMeshPartData", m.m_numMeshParts))
 			return false;
@@ -355,6 +441,7 @@ private:
 			else
 				return false;
 		}
+		checkMeshExtras(mesh);
 		return true;
 	}
 
@@ -380,13 +467,48 @@ bool objectFinite(const ObjectData& d)
 	       Checker::finite(d.m_anisotropicFriction);
 }
 
+// Factors scale the solver's response: btRigidBody accepts none below zero.
+template <class V>
+bool nonNegative(const V& v)
+{
+	return v.m_floats[0] >= 0 && v.m_floats[1] >= 0 && v.m_floats[2] >= 0;
+}
+
 template <class BodyData>
 bool bodyFinite(const BodyData& d)
 {
 	return objectFinite(d.m_collisionObjectData) && Checker::finite(d.m_linearVelocity) &&
 	       Checker::finite(d.m_angularVelocity) && Checker::finite(d.m_gravity_acceleration) &&
 	       Checker::finite(d.m_invInertiaLocal) && Checker::finite(d.m_linearFactor) &&
-	       Checker::finite(d.m_angularFactor) && isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
+	       Checker::finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
+	       nonNegative(d.m_invInertiaLocal) &&
+	       isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
+}
+
+// The number of leaves among the tree nodes a stored BVH lists.
+template <class BvhData>
+int storedLeafCount(const BvhData& d)
+{
+	const int used = d.m_useQuantization ? d.m_numQuantizedContiguousNodes : d.m_numContiguousLeafNodes;
+	if (d.m_curNodeIndex < 0 || d.m_curNodeIndex > used) return -1;
+	int leaves = 0;
+	for (int i = 0; i < d.m_curNodeIndex; ++i)
+		leaves += d.m_useQuantization ? d.m_quantizedContiguousNodesPtr[i].m_escapeIndexOrTriangleIndex >= 0
+		                              : d.m_contiguousNodesPtr[i].m_escapeIndex < 0;
+	return leaves;
+}
+
+// The number of leaves a query with an all-covering box reaches.
+int reachableLeaves(const btQuantizedBvh& bvh)
+{
+	struct Count : btNodeOverlapCallback
+	{
+		int leaves = 0;
+		void processNode(int, int) override { ++leaves; }
+	} count;
+	const btVector3 huge(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+	bvh.reportAabbOverlappingNodex(&count, -huge, huge);
+	return count.leaves;
 }
 
 // The struct each joint kind has in float and in double files (and the older double layouts).
@@ -546,6 +668,57 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 			setDynamicsWorldInfo(gravity, solverInfo);
 		else
 			warn("the world settings are malformed; the world's own are kept");
+	}
+	// 1b. Stored BVHs and triangle info maps, shared by the meshes that point at them (a tree is kept only
+	// when deSerialize accepted it: a full-box query then finds every leaf the file lists).
+	for (int i = 0; i < file->m_bvhs.size(); ++i)
+	{
+		void* block = file->m_bvhs[i];
+		if (!check.bvhBlockComplete(block))
+		{
+			warn("BVH " + std::to_string(i) + " is malformed; meshes using it rebuild their own");
+			continue;
+		}
+		btOptimizedBvh* bvh = createOptimizedBvh();
+		int leaves = 0;
+		if (check.isA(block, "btQuantizedBvhFloatData"))
+		{
+			btQuantizedBvhFloatData* d = static_cast<btQuantizedBvhFloatData*>(block);
+			bvh->deSerializeFloat(*d);
+			leaves = storedLeafCount(*d);
+		}
+		else
+		{
+			btQuantizedBvhDoubleData* d = static_cast<btQuantizedBvhDoubleData*>(block);
+			bvh->deSerializeDouble(*d);
+			leaves = storedLeafCount(*d);
+		}
+		if (reachableLeaves(*bvh) == leaves)
+			m_bvhMap.insert(btHashPtr(block), bvh);
+		else
+			warn("BVH " + std::to_string(i) + " is not a well-formed tree; meshes using it rebuild their own");
+	}
+	const bool swapped = (file->getFlags() & bParse::FD_ENDIAN_SWAP) != 0;
+	for (int i = 0; i < file->m_triangleInfoMaps.size(); ++i)
+	{
+		void* block = file->m_triangleInfoMaps[i];
+		if (!check.triangleInfoMapComplete(block))
+		{
+			warn("triangle info map " + std::to_string(i) + " is malformed; it is skipped");
+			continue;
+		}
+		btTriangleInfoMapData* d = static_cast<btTriangleInfoMapData*>(block);
+		// The keys are a plain int array: the converter leaves them in the writer's byte order.
+		if (swapped)
+			for (int k = 0; k < d->m_numKeys; ++k)
+			{
+				unsigned char* b = reinterpret_cast<unsigned char*>(&d->m_keyArrayPtr[k]);
+				btSwap(b[0], b[3]);
+				btSwap(b[1], b[2]);
+			}
+		btTriangleInfoMap* map = createTriangleInfoMap();
+		map->deSerialize(*d);
+		if (map->size() == d->m_numKeys) m_timMap.insert(btHashPtr(block), map);
 	}
 	// 2. Shapes (compound children convert on demand through the shape map).
 	for (int i = 0; i < file->m_collisionShapes.size(); ++i)

@@ -301,8 +301,15 @@ btCollisionShape* btWorldImporter::convertCollisionShape(btCollisionShapeData* s
 				btReportWarning("Caliber: btWorldImporter: a triangle mesh without parts is skipped\n");
 				return 0;
 			}
-			// The BVH is always rebuilt from the mesh (docs/serialization.md).
-			btBvhTriangleMeshShape* meshShape = createBvhTriangleMeshShape(meshInterface, 0);
+			// A stored BVH that the loader accepted is used as is; otherwise the mesh builds its own.
+			btOptimizedBvh* bvh = 0;
+			void* bvhData = meshData->m_quantizedFloatBvh ? static_cast<void*>(meshData->m_quantizedFloatBvh)
+			                                              : static_cast<void*>(meshData->m_quantizedDoubleBvh);
+			if (btOptimizedBvh** known = bvhData ? m_bvhMap.find(btHashPtr(bvhData)) : 0) bvh = *known;
+			btBvhTriangleMeshShape* meshShape = createBvhTriangleMeshShape(meshInterface, bvh);
+			if (btTriangleInfoMap** map =
+			        meshData->m_triangleInfoMap ? m_timMap.find(btHashPtr(meshData->m_triangleInfoMap)) : 0)
+				meshShape->setTriangleInfoMap(*map);
 			meshShape->setMargin(meshData->m_collisionMargin);
 			shape = meshShape;
 			if (shapeData->m_shapeType == SCALED_TRIANGLE_MESH_SHAPE_PROXYTYPE)
@@ -801,7 +808,27 @@ btRigidBody* btWorldImporter::createRigidBody(bool isDynamic, btScalar mass, con
 {
 	btVector3 localInertia(0, 0, 0);
 	if (!isDynamic) mass = 0;
+	if (mass != 0 && shape && shape->isNonMoving())
+	{
+		// Meshes and planes have no inertia (their calculateLocalInertia asserts): such a body is static.
+		btReportWarning("Caliber: btWorldImporter: a body with mass has a static-only shape (mesh, plane); it is made static\n");
+		mass = 0;
+	}
+	if (!btIsFinite(mass) || mass < 0)
+	{
+		// An inverse mass so small that the mass overflows (btRigidBody asserts on it).
+		btReportWarning("Caliber: btWorldImporter: a body's mass is not a finite number; it is made static\n");
+		mass = 0;
+	}
 	if (mass != 0 && shape) shape->calculateLocalInertia(mass, localInertia);
+	for (int axis = 0; axis < 3; ++axis)
+		if (!btIsFinite(localInertia[axis]) || localInertia[axis] < 0)
+		{
+			// Huge shapes overflow their inertia; the file's inverse inertia is applied afterwards anyway.
+			btReportWarning("Caliber: btWorldImporter: a body's shape gives no finite inertia; zero is used\n");
+			localInertia.setValue(0, 0, 0);
+			break;
+		}
 	btRigidBody::btRigidBodyConstructionInfo info(mass, 0, shape, localInertia);
 	info.m_startWorldTransform = startTransform;
 	btRigidBody* body = new btRigidBody(info);
@@ -881,7 +908,8 @@ btBvhTriangleMeshShape* btWorldImporter::createBvhTriangleMeshShape(btStridingMe
 {
 	btBvhTriangleMeshShape* shape = bvh ? new btBvhTriangleMeshShape(trimesh, bvh->isQuantized(), false)
 	                                    : new btBvhTriangleMeshShape(trimesh, true);
-	if (bvh) shape->setOptimizedBvh(bvh);
+	// The tree was built for the mesh's scaling (read from the file with the mesh): keep it.
+	if (bvh) shape->setOptimizedBvh(bvh, trimesh->getScaling());
 	m_allocatedCollisionShapes.push_back(shape);
 	return shape;
 }

@@ -5,6 +5,20 @@
 #include "LinearMath/btAlignedObjectArray.h"
 #include "LinearMath/btVector3.h"
 
+class btSerializer;
+struct btQuantizedBvhFloatData;
+struct btQuantizedBvhDoubleData;
+
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btQuantizedBvhData btQuantizedBvhDoubleData
+#define btOptimizedBvhNodeData btOptimizedBvhNodeDoubleData
+#define btQuantizedBvhDataName "btQuantizedBvhDoubleData"
+#else
+#define btQuantizedBvhData btQuantizedBvhFloatData
+#define btOptimizedBvhNodeData btOptimizedBvhNodeFloatData
+#define btQuantizedBvhDataName "btQuantizedBvhFloatData"
+#endif
+
 /// Subtrees at most this many bytes get a btBvhSubtreeInfo header.
 #define MAX_SUBTREE_SIZE_IN_BYTES 2048
 /// Bits of a quantized leaf's payload that hold the part id (the other 21 hold the triangle index).
@@ -125,8 +139,9 @@ typedef btAlignedObjectArray<btBvhSubtreeInfo> BvhSubtreeInfoArray;
 /// left child follows it, and an internal node stores the size of its subtree so that a query skips it
 /// in one step (stackless traversal, reading memory front to back). Boxes are 16-bit quantized
 /// (12 bytes per node plus payload, 16 in all) or plain btVector3 pairs. Built by binned surface area
-/// heuristic over leaf centroids along the widest axis. Serialization (serialize, deSerializeInPlace,
-/// calculateSerializeBufferSize) is not provided.
+/// heuristic over leaf centroids along the widest axis. Serialized in .bullet files through the
+/// btSerializer interface (serialize, deSerializeFloat, deSerializeDouble); Bullet's older in-place
+/// buffer format (deSerializeInPlace) is not provided.
 ATTRIBUTE_ALIGNED16(class)
 btQuantizedBvh
 {
@@ -328,6 +343,18 @@ public:
 	bool isQuantized() { return m_useQuantization; }
 	/// True when the boxes are quantized.
 	bool isQuantized() const { return m_useQuantization; }
+
+	/// Bytes of the struct serialize() writes (btQuantizedBvhFloatData or DoubleData, the build's precision).
+	virtual int calculateSerializeBufferSizeNew() const;
+	/// Writes the tree's struct into dataBuffer and its node and subtree arrays as chunks of their own;
+	/// returns the struct's name.
+	virtual const char* serialize(void* dataBuffer, btSerializer* serializer) const;
+	/// Replaces this tree by the one data describes (read from a file written in single precision). A
+	/// description that is not a well-formed tree (counts, escape indices, subtree headers, quantization
+	/// box; docs/bad-input.md) is reported through btReportWarning and leaves an empty tree.
+	virtual void deSerializeFloat(struct btQuantizedBvhFloatData & quantizedBvhFloatData);
+	/// As deSerializeFloat, from a file written in double precision.
+	virtual void deSerializeDouble(struct btQuantizedBvhDoubleData & quantizedBvhDoubleData);
 };
 
 // clang-format off

@@ -43,7 +43,7 @@ protected:
 
 	/// Writes every shape (once) and every plain collision object as chunks (docs/serialization.md).
 	void serializeCollisionObjects(btSerializer* serializer);
-	/// Contact manifolds are not written yet: with BT_SERIALIZE_CONTACT_MANIFOLDS this reports a warning.
+	/// With BT_SERIALIZE_CONTACT_MANIFOLDS, writes every manifold of the dispatcher, in its order.
 	void serializeContactManifolds(btSerializer* serializer);
 
 public:

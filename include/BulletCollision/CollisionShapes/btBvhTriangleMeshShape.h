@@ -92,10 +92,9 @@ public:
 	int calculateSerializeBufferSize() const override;
 	/// Writes the shape's data struct into dataBuffer and returns the struct's name.
 	const char* serialize(void* dataBuffer, btSerializer* serializer) const override;
-	/// Writes the BVH as a chunk of its own. Caliber does not write BVHs yet: readers rebuild them
-	/// (docs/serialization.md); this reports that nothing was written.
+	/// Writes the BVH alone as a chunk of its own (a file of precomputed trees; nothing without a tree).
 	virtual void serializeSingleBvh(btSerializer * serializer) const;
-	/// Writes the triangle info map as a chunk of its own (not written yet, as serializeSingleBvh).
+	/// Writes the triangle info map alone as a chunk of its own (nothing without a map).
 	virtual void serializeSingleTriangleInfoMap(btSerializer * serializer) const;
 };
 

@@ -42,7 +42,6 @@ struct btTriangleInfo
 typedef btHashMap<btHashInt, btTriangleInfo> btInternalTriangleInfoMap;
 
 /// Internal-edge information of a whole mesh, with the tolerances used when it is generated and applied.
-/// Serialization (calculateSerializeBufferSize, serialize, deSerialize) is not provided.
 struct btTriangleInfoMap : public btInternalTriangleInfoMap
 {
 	/// Dot-product tolerance deciding whether an edge or contact normal counts as convex.
@@ -71,6 +70,16 @@ struct btTriangleInfoMap : public btInternalTriangleInfoMap
 
 	/// Maps may be deleted through base pointers of derived types.
 	virtual ~btTriangleInfoMap() {}
+
+	/// Bytes of the struct serialize() writes (btTriangleInfoMapData).
+	virtual int calculateSerializeBufferSize() const;
+	/// Writes the map's struct into dataBuffer and its arrays (hash table, links, values, keys) as
+	/// chunks of their own; returns the struct's name.
+	virtual const char* serialize(void* dataBuffer, class btSerializer* serializer) const;
+	/// Replaces the map's entries and tolerances by those of data. The entries are inserted anew from
+	/// the key and value arrays (the stored hash table and links are not trusted); counts that disagree,
+	/// missing arrays or non-finite numbers are reported through btReportWarning and leave an empty map.
+	void deSerialize(struct btTriangleInfoMapData & data);
 };
 
 // clang-format off

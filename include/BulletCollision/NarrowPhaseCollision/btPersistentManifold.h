@@ -11,6 +11,8 @@
 
 class btCollisionObject;
 class btPersistentManifold;
+struct btCollisionObjectDoubleData;
+struct btCollisionObjectFloatData;
 
 /// Breaking threshold given to manifolds by their default constructor (0.02).
 extern btScalar gContactBreakingThreshold;
@@ -139,6 +141,120 @@ public:
 
 	/// Removes all points (releasing their user data); calls gContactEndedCallback when it had points.
 	void clearManifold();
+
+	/// Bytes of the struct serialize() writes (btPersistentManifoldFloatData or DoubleData).
+	int calculateSerializeBufferSize() const;
+	/// Writes manifold (Bullet's signature: the manifold to write is passed, usually this) into dataBuffer:
+	/// every point, the thresholds, companion ids and the two objects' ids; returns the struct's name.
+	const char* serialize(const class btPersistentManifold* manifold, void* dataBuffer,
+	                      class btSerializer* serializer) const;
+	/// Replaces the points, thresholds and companion ids by those of the data (the bodies are not
+	/// changed: the caller resolves them). A point count outside [0, MANIFOLD_CACHE_SIZE] or non-finite
+	/// numbers are reported through btReportWarning and leave the manifold without points.
+	void deSerialize(const struct btPersistentManifoldDoubleData* manifoldDataPtr);
+	/// As above, from single precision data.
+	void deSerialize(const struct btPersistentManifoldFloatData* manifoldDataPtr);
 };
+
+// clang-format off
+/// File layout of btPersistentManifoldDoubleData in .bullet files (Bullet's struct and field names;
+/// tools/makedna reads it). Bullet's declaration puts m_padding after the two thresholds, where the
+/// compiler then adds padding its DNA does not describe; here m_padding comes before the doubles so
+/// every offset is the sum of the sizes before it. Readers match fields by name, so files agree.
+struct btPersistentManifoldDoubleData
+{
+	btVector3DoubleData m_pointCacheLocalPointA[4];
+	btVector3DoubleData m_pointCacheLocalPointB[4];
+	btVector3DoubleData m_pointCachePositionWorldOnA[4];
+	btVector3DoubleData m_pointCachePositionWorldOnB[4];
+	btVector3DoubleData m_pointCacheNormalWorldOnB[4];
+	btVector3DoubleData m_pointCacheLateralFrictionDir1[4];
+	btVector3DoubleData m_pointCacheLateralFrictionDir2[4];
+	double m_pointCacheDistance[4];
+	double m_pointCacheAppliedImpulse[4];
+	double m_pointCachePrevRHS[4];
+	double m_pointCacheCombinedFriction[4];
+	double m_pointCacheCombinedRollingFriction[4];
+	double m_pointCacheCombinedSpinningFriction[4];
+	double m_pointCacheCombinedRestitution[4];
+	int m_pointCachePartId0[4];
+	int m_pointCachePartId1[4];
+	int m_pointCacheIndex0[4];
+	int m_pointCacheIndex1[4];
+	int m_pointCacheContactPointFlags[4];
+	double m_pointCacheAppliedImpulseLateral1[4];
+	double m_pointCacheAppliedImpulseLateral2[4];
+	double m_pointCacheContactMotion1[4];
+	double m_pointCacheContactMotion2[4];
+	double m_pointCacheContactCFM[4];
+	double m_pointCacheCombinedContactStiffness1[4];
+	double m_pointCacheContactERP[4];
+	double m_pointCacheCombinedContactDamping1[4];
+	double m_pointCacheFrictionCFM[4];
+	int m_pointCacheLifeTime[4];
+	int m_numCachedPoints;
+	int m_companionIdA;
+	int m_companionIdB;
+	int m_index1a;
+	int m_objectType;
+	int m_padding;
+	double m_contactBreakingThreshold;
+	double m_contactProcessingThreshold;
+	btCollisionObjectDoubleData* m_body0;
+	btCollisionObjectDoubleData* m_body1;
+};
+
+/// File layout of btPersistentManifoldFloatData in .bullet files (Bullet's struct and field names; tools/makedna reads it).
+struct btPersistentManifoldFloatData
+{
+	btVector3FloatData m_pointCacheLocalPointA[4];
+	btVector3FloatData m_pointCacheLocalPointB[4];
+	btVector3FloatData m_pointCachePositionWorldOnA[4];
+	btVector3FloatData m_pointCachePositionWorldOnB[4];
+	btVector3FloatData m_pointCacheNormalWorldOnB[4];
+	btVector3FloatData m_pointCacheLateralFrictionDir1[4];
+	btVector3FloatData m_pointCacheLateralFrictionDir2[4];
+	float m_pointCacheDistance[4];
+	float m_pointCacheAppliedImpulse[4];
+	float m_pointCachePrevRHS[4];
+	float m_pointCacheCombinedFriction[4];
+	float m_pointCacheCombinedRollingFriction[4];
+	float m_pointCacheCombinedSpinningFriction[4];
+	float m_pointCacheCombinedRestitution[4];
+	int m_pointCachePartId0[4];
+	int m_pointCachePartId1[4];
+	int m_pointCacheIndex0[4];
+	int m_pointCacheIndex1[4];
+	int m_pointCacheContactPointFlags[4];
+	float m_pointCacheAppliedImpulseLateral1[4];
+	float m_pointCacheAppliedImpulseLateral2[4];
+	float m_pointCacheContactMotion1[4];
+	float m_pointCacheContactMotion2[4];
+	float m_pointCacheContactCFM[4];
+	float m_pointCacheCombinedContactStiffness1[4];
+	float m_pointCacheContactERP[4];
+	float m_pointCacheCombinedContactDamping1[4];
+	float m_pointCacheFrictionCFM[4];
+	int m_pointCacheLifeTime[4];
+	int m_numCachedPoints;
+	int m_companionIdA;
+	int m_companionIdB;
+	int m_index1a;
+	int m_objectType;
+	float m_contactBreakingThreshold;
+	float m_contactProcessingThreshold;
+	int m_padding;
+	btCollisionObjectFloatData* m_body0;
+	btCollisionObjectFloatData* m_body1;
+};
+// clang-format on
+
+#ifdef BT_USE_DOUBLE_PRECISION
+#define btPersistentManifoldData btPersistentManifoldDoubleData
+#define btPersistentManifoldDataName "btPersistentManifoldDoubleData"
+#else
+#define btPersistentManifoldData btPersistentManifoldFloatData
+#define btPersistentManifoldDataName "btPersistentManifoldFloatData"
+#endif
 
 #endif  // BT_PERSISTENT_MANIFOLD_H

@@ -2,8 +2,10 @@
 //
 // Writing collision objects and collision worlds into .bullet files (docs/serialization.md).
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
+#include "BulletCollision/BroadphaseCollision/btDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
 
@@ -84,11 +86,17 @@ void btCollisionWorld::serializeCollisionObjects(btSerializer* serializer)
 
 void btCollisionWorld::serializeContactManifolds(btSerializer* serializer)
 {
-	if (serializer->getSerializationFlags() & BT_SERIALIZE_CONTACT_MANIFOLDS)
-		btReportWarning(
-		    "Caliber: btCollisionWorld: BT_SERIALIZE_CONTACT_MANIFOLDS is not supported yet; no "
-		    "contact manifolds were written\n",
-		    getDebugDrawer());
+	if (!(serializer->getSerializationFlags() & BT_SERIALIZE_CONTACT_MANIFOLDS) || !getDispatcher()) return;
+	// In the dispatcher's order; the objects are referred to by their ids in the file.
+	btDispatcher* dispatcher = getDispatcher();
+	for (int i = 0; i < dispatcher->getNumManifolds(); ++i)
+	{
+		const btPersistentManifold* manifold = dispatcher->getInternalManifoldPointer()[i];
+		btChunk* chunk = serializer->allocate(size_t(manifold->calculateSerializeBufferSize()), 1);
+		if (!chunk) return;
+		const char* structType = manifold->serialize(manifold, chunk->m_oldPtr, serializer);
+		serializer->finalizeChunk(chunk, structType, BT_CONTACTMANIFOLD_CODE, const_cast<btPersistentManifold*>(manifold));
+	}
 }
 
 void btCollisionWorld::serialize(btSerializer* serializer)

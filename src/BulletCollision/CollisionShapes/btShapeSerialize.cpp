@@ -353,28 +353,64 @@ const char* btBvhTriangleMeshShape::serialize(void* dataBuffer, btSerializer* se
 	m_meshInterface->serialize(&shapeData->m_meshInterface, serializer);
 	shapeData->m_collisionMargin = float(m_collisionMargin);
 	memset(shapeData->m_pad3, 0, sizeof(shapeData->m_pad3));
-	// The BVH and the triangle info map are not written yet: a reader builds the BVH from the mesh
-	// (docs/serialization.md), as Bullet's importer does for files written with BT_SERIALIZE_NO_BVH.
 	shapeData->m_quantizedFloatBvh = 0;
 	shapeData->m_quantizedDoubleBvh = 0;
 	shapeData->m_triangleInfoMap = 0;
+	const int flags = serializer->getSerializationFlags();
+	// A BVH or map shared by several shapes is written once; later shapes point at the same id.
+	if (m_bvh && !(flags & BT_SERIALIZE_NO_BVH))
+	{
+		void* id = serializer->findPointer(m_bvh) ? serializer->getUniquePointer(m_bvh) : 0;
+		if (!id)
+		{
+			btChunk* chunk = serializer->allocate(size_t(m_bvh->calculateSerializeBufferSizeNew()), 1);
+			if (chunk)
+			{
+				const char* structType = m_bvh->serialize(chunk->m_oldPtr, serializer);
+				serializer->finalizeChunk(chunk, structType, BT_QUANTIZED_BVH_CODE, m_bvh);
+				id = serializer->getUniquePointer(m_bvh);
+			}
+		}
+#ifdef BT_USE_DOUBLE_PRECISION
+		shapeData->m_quantizedDoubleBvh = static_cast<btQuantizedBvhDoubleData*>(id);
+#else
+		shapeData->m_quantizedFloatBvh = static_cast<btQuantizedBvhFloatData*>(id);
+#endif
+	}
+	if (m_triangleInfoMap && !(flags & BT_SERIALIZE_NO_TRIANGLEINFOMAP))
+	{
+		void* id = serializer->findPointer(m_triangleInfoMap) ? serializer->getUniquePointer(m_triangleInfoMap) : 0;
+		if (!id)
+		{
+			btChunk* chunk = serializer->allocate(size_t(m_triangleInfoMap->calculateSerializeBufferSize()), 1);
+			if (chunk)
+			{
+				const char* structType = m_triangleInfoMap->serialize(chunk->m_oldPtr, serializer);
+				serializer->finalizeChunk(chunk, structType, BT_TRIANLGE_INFO_MAP, m_triangleInfoMap);
+				id = serializer->getUniquePointer(m_triangleInfoMap);
+			}
+		}
+		shapeData->m_triangleInfoMap = static_cast<btTriangleInfoMapData*>(id);
+	}
 	return "btTriangleMeshShapeData";
 }
 
 void btBvhTriangleMeshShape::serializeSingleBvh(btSerializer* serializer) const
 {
-	(void)serializer;
-	btReportWarning(
-	    "Caliber: btBvhTriangleMeshShape::serializeSingleBvh: BVHs are not written yet; readers "
-	    "rebuild them from the mesh\n");
+	if (!m_bvh) return;
+	btChunk* chunk = serializer->allocate(size_t(m_bvh->calculateSerializeBufferSizeNew()), 1);
+	if (!chunk) return;
+	const char* structType = m_bvh->serialize(chunk->m_oldPtr, serializer);
+	serializer->finalizeChunk(chunk, structType, BT_QUANTIZED_BVH_CODE, m_bvh);
 }
 
 void btBvhTriangleMeshShape::serializeSingleTriangleInfoMap(btSerializer* serializer) const
 {
-	(void)serializer;
-	btReportWarning(
-	    "Caliber: btBvhTriangleMeshShape::serializeSingleTriangleInfoMap: triangle info maps are not "
-	    "written yet\n");
+	if (!m_triangleInfoMap) return;
+	btChunk* chunk = serializer->allocate(size_t(m_triangleInfoMap->calculateSerializeBufferSize()), 1);
+	if (!chunk) return;
+	const char* structType = m_triangleInfoMap->serialize(chunk->m_oldPtr, serializer);
+	serializer->finalizeChunk(chunk, structType, BT_TRIANLGE_INFO_MAP, m_triangleInfoMap);
 }
 
 int btScaledBvhTriangleMeshShape::calculateSerializeBufferSize() const

@@ -9,7 +9,9 @@
 
 #include <typeinfo>
 
+#include "BulletCollision/CollisionDispatch/btGhostObject.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotAccess.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotInternal.h"
@@ -23,6 +25,20 @@ namespace snapshot_access
 // The one explicit instantiation per member (a program may hold only one). It lives in this file, the
 // one every snapshot call links, so the static library never drops it.
 CALIBER_SNAPSHOT_MEMBERS(CALIBER_SNAPSHOT_BIND)
+
+// btConstraintSolverPoolMt keeps its solvers in a private array of a private type. The pointer to that
+// member is taken in an explicit instantiation (exempt from access checking) and handed out by a friend
+// function whose return type is deduced, so the private type is never named.
+struct PoolSolversTag
+{
+};
+auto poolSolversMember(PoolSolversTag);
+template <auto Member, class Tag>
+struct DeduceMember
+{
+	friend auto poolSolversMember(Tag) { return Member; }
+};
+template struct DeduceMember<&btConstraintSolverPoolMt::m_solvers, PoolSolversTag>;
 }  // namespace snapshot_access
 
 namespace snapshot
@@ -32,9 +48,73 @@ namespace
 using namespace snapshot_access;
 
 const char kMagic[8] = {'C', 'A', 'L', 'S', 'N', 'A', 'P', 0};
-const unsigned kVersion = 1;
+const unsigned kVersion = 2;  // 2: compound algorithms, own manifold counts
 const unsigned kByteOrderMark = 0x01020304u;
 const int kSolverSequentialImpulse = 1;
+const int kSolverPool = 2;
+const int kActionRaycastVehicle = 1;
+const int kActionCharacterController = 2;
+
+// The actions whose whole state the snapshot holds (exact classes: a subclass may keep more).
+btRaycastVehicle* vehicleOf(btActionInterface* action)
+{
+	return action && typeid(*action) == typeid(btRaycastVehicle) ? static_cast<btRaycastVehicle*>(action) : 0;
+}
+
+btKinematicCharacterController* characterOf(btActionInterface* action)
+{
+	return action && typeid(*action) == typeid(btKinematicCharacterController)
+	           ? static_cast<btKinematicCharacterController*>(action)
+	           : 0;
+}
+
+// The character's motion between steps: walk or velocity input in progress, jump and fall state,
+// positions and orientations of the step being made, the contact it touched.
+template <class IO>
+void characterFields(IO& io, btKinematicCharacterController& c)
+{
+	io.field("m_verticalVelocity", characterVerticalVelocity(c));
+	io.field("m_verticalOffset", characterVerticalOffset(c));
+	io.field("m_jumpSpeed", characterJumpSpeed(c));
+	io.field("m_walkDirection", characterWalkDirection(c));
+	io.field("m_normalizedDirection", characterNormalizedDirection(c));
+	io.field("m_AngVel", characterAngularVelocity(c));
+	io.field("m_jumpPosition", characterJumpPosition(c));
+	io.field("m_currentPosition", characterCurrentPosition(c));
+	io.field("m_currentStepOffset", characterCurrentStepOffset(c));
+	io.field("m_targetPosition", characterTargetPosition(c));
+	io.field("m_currentOrientation", characterCurrentOrientation(c));
+	io.field("m_targetOrientation", characterTargetOrientation(c));
+	io.field("m_touchingContact", characterTouchingContact(c));
+	io.field("m_touchingNormal", characterTouchingNormal(c));
+	io.field("m_wasOnGround", characterWasOnGround(c));
+	io.field("m_wasJumping", characterWasJumping(c));
+	io.field("m_useWalkDirection", characterUseWalkDirection(c));
+	io.field("m_velocityTimeInterval", characterVelocityTimeInterval(c));
+	io.field("m_jumpAxis", characterJumpAxis(c));
+}
+
+// A wheel's state that one substep leaves for the next (its settings and the driver's inputs, steering,
+// engine force and brake, are the user's).
+template <class IO>
+void wheelFields(IO& io, btWheelInfo& wheel)
+{
+	btWheelInfo::RaycastInfo& ray = wheel.m_raycastInfo;
+	io.field("m_contactNormalWS", ray.m_contactNormalWS);
+	io.field("m_contactPointWS", ray.m_contactPointWS);
+	io.field("m_suspensionLength", ray.m_suspensionLength);
+	io.field("m_hardPointWS", ray.m_hardPointWS);
+	io.field("m_wheelDirectionWS", ray.m_wheelDirectionWS);
+	io.field("m_wheelAxleWS", ray.m_wheelAxleWS);
+	io.field("m_isInContact", ray.m_isInContact);
+	io.field("m_worldTransform", wheel.m_worldTransform);
+	io.field("m_rotation", wheel.m_rotation);
+	io.field("m_deltaRotation", wheel.m_deltaRotation);
+	io.field("m_clippedInvContactDotSuspension", wheel.m_clippedInvContactDotSuspension);
+	io.field("m_suspensionRelativeVelocity", wheel.m_suspensionRelativeVelocity);
+	io.field("m_wheelsSuspensionForce", wheel.m_wheelsSuspensionForce);
+	io.field("m_skidInfo", wheel.m_skidInfo);
+}
 
 template <class IO>
 void objectFields(IO& io, btCollisionObject& object)
@@ -107,9 +187,45 @@ int bodyIndex(const btDiscreteDynamicsWorld& world, const btRigidBody& body)
 	return world.getCollisionObjectArray()[index] == &body ? index : -1;
 }
 
-btSequentialImpulseConstraintSolver* solverOf(btDiscreteDynamicsWorld& world)
+// The solvers whose order state the snapshot holds: the world's sequential-impulse solver (kind 1), or
+// each solver of its btConstraintSolverPoolMt followed by the Mt world's large-batch solver if it has one
+// (kind 2). The joint warm starts live in the first one's store (a pool's solvers and the large-batch
+// solver share it). False when a solver is of another kind.
+bool solversOf(btDiscreteDynamicsWorld& world, btAlignedObjectArray<btSequentialImpulseConstraintSolver*>& solvers,
+               int& kind)
 {
-	return dynamic_cast<btSequentialImpulseConstraintSolver*>(world.getConstraintSolver());
+	solvers.resize(0);
+	kind = 0;
+	btConstraintSolver* solver = world.getConstraintSolver();
+	if (btSequentialImpulseConstraintSolver* single = dynamic_cast<btSequentialImpulseConstraintSolver*>(solver))
+	{
+		kind = kSolverSequentialImpulse;
+		solvers.push_back(single);
+		return true;
+	}
+	btConstraintSolverPoolMt* pool = dynamic_cast<btConstraintSolverPoolMt*>(solver);
+	if (!pool) return false;
+	auto& threadSolvers = pool->*poolSolversMember(PoolSolversTag());
+	for (int i = 0; i < threadSolvers.size(); ++i)
+	{
+		btSequentialImpulseConstraintSolver* member =
+		    dynamic_cast<btSequentialImpulseConstraintSolver*>(threadSolvers[i].solver);
+		if (!member) return false;
+		solvers.push_back(member);
+	}
+	if (btConstraintSolver* large = caliber::stepContextOf(world).largeBatchSolver)
+	{
+		btSequentialImpulseConstraintSolver* member = dynamic_cast<btSequentialImpulseConstraintSolver*>(large);
+		if (!member) return false;
+		solvers.push_back(member);
+	}
+	kind = kSolverPool;
+	return solvers.size() > 0;
+}
+
+JointWarmStartStore& warmStartStoreOf(btSequentialImpulseConstraintSolver& first)
+{
+	return solverScratchOf(first).jointWarmStarts();
 }
 
 void setError(char* error, size_t errorSize, const char* format, ...)
@@ -120,31 +236,78 @@ void setError(char* error, size_t errorSize, const char* format, ...)
 	va_end(args);
 }
 
+int objectIndexOf(const btDiscreteDynamicsWorld& world, const void* object)
+{
+	const btCollisionObject* o = static_cast<const btCollisionObject*>(object);
+	for (int i = 0; o && i < world.getNumCollisionObjects(); ++i)
+		if (world.getCollisionObjectArray()[i] == o) return i;
+	return -1;
+}
+
 // What the snapshot cannot hold; checked before saving and before restoring.
 bool worldSupported(btDiscreteDynamicsWorld& world, char* error, size_t errorSize)
 {
-	if (worldActions(world).size())
+	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
+	for (int a = 0; a < actions.size(); ++a)
 	{
-		setError(error, errorSize, "world: it has actions (vehicles, character controllers), whose state is not held");
-		return false;
+		if (btKinematicCharacterController* character = characterOf(actions[a]))
+		{
+			if (objectIndexOf(world, characterGhost(*character)) < 0)
+			{
+				setError(error, errorSize, "action %d: the character's ghost object is not in the world", a);
+				return false;
+			}
+			continue;
+		}
+		btRaycastVehicle* vehicle = vehicleOf(actions[a]);
+		if (!vehicle)
+		{
+			setError(error, errorSize,
+			         "action %d: only btRaycastVehicle and btKinematicCharacterController are supported (user "
+			         "actions and subclasses keep state the snapshot does not hold)",
+			         a);
+			return false;
+		}
+		if (bodyIndex(world, *vehicle->getRigidBody()) < 0)
+		{
+			setError(error, errorSize, "action %d: the vehicle's chassis is not a body of the world", a);
+			return false;
+		}
+		for (int w = 0; w < vehicle->getNumWheels(); ++w)
+		{
+			const void* ground = vehicle->getWheelInfo(w).m_raycastInfo.m_groundObject;
+			if (ground && objectIndexOf(world, ground) < 0)
+			{
+				setError(error, errorSize, "action %d: wheel %d stands on an object outside the world", a, w);
+				return false;
+			}
+		}
 	}
 	if (predictiveManifolds(world).size())
 	{
 		setError(error, errorSize, "world: it has predictive manifolds, which are not held");
 		return false;
 	}
-	if (!solverOf(world))
+	btAlignedObjectArray<btSequentialImpulseConstraintSolver*> solvers;
+	int solverKind;
+	if (!solversOf(world, solvers, solverKind))
 	{
-		setError(error, errorSize, "solver: only btSequentialImpulseConstraintSolver (and subclasses) is supported");
+		setError(error, errorSize,
+		         "solver: only btSequentialImpulseConstraintSolver (and subclasses), alone or in a "
+		         "btConstraintSolverPoolMt, is supported");
 		return false;
 	}
 	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
 	{
 		const btCollisionObject* object = world.getCollisionObjectArray()[i];
 		const int type = object->getInternalType();
-		if (type != btCollisionObject::CO_COLLISION_OBJECT && type != btCollisionObject::CO_RIGID_BODY)
+		// Ghosts of Bullet's two classes (a subclass may keep more state).
+		const bool ghost = type == btCollisionObject::CO_GHOST_OBJECT &&
+		                   (typeid(*object) == typeid(btGhostObject) || typeid(*object) == typeid(btPairCachingGhostObject));
+		if (type != btCollisionObject::CO_COLLISION_OBJECT && type != btCollisionObject::CO_RIGID_BODY && !ghost)
 		{
-			setError(error, errorSize, "object %d: internal type %d (soft bodies, ghosts) is not supported", i, type);
+			setError(error, errorSize,
+			         "object %d: internal type %d (soft bodies, ghost subclasses) is not supported", i, type);
 			return false;
 		}
 	}
@@ -186,8 +349,10 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 		return false;
 	}
 
-	btSequentialImpulseConstraintSolver& solver = *solverOf(world);
-	JointWarmStartStore& warmStarts = solverScratchOf(solver).warmStarts;
+	btAlignedObjectArray<btSequentialImpulseConstraintSolver*> solvers;
+	int solverKind;
+	solversOf(world, solvers, solverKind);
+	JointWarmStartStore& warmStarts = warmStartStoreOf(*solvers[0]);
 	const int joints = world.getNumConstraints();
 	out.context("joints", -1);
 	out.field("joint count", joints);
@@ -207,10 +372,53 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 			out.field("warm-start impulse", (*impulses)[r]);
 		}
 	}
+	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
+	out.context("actions", -1);
+	out.field("action count", actions.size());
+	for (int a = 0; a < actions.size(); ++a)
+	{
+		out.context("action", a);
+		if (btKinematicCharacterController* character = characterOf(actions[a]))
+		{
+			out.field("kind", kActionCharacterController);
+			out.field("ghost", objectIndexOf(world, characterGhost(*character)));
+			characterFields(io, *character);
+			continue;
+		}
+		btRaycastVehicle& vehicle = *vehicleOf(actions[a]);
+		out.field("kind", kActionRaycastVehicle);
+		out.field("chassis", bodyIndex(world, *vehicle.getRigidBody()));
+		out.field("wheel count", vehicle.getNumWheels());
+		out.field("m_currentVehicleSpeedKmHour", vehicleSpeed(vehicle));
+		btAlignedObjectArray<btVector3>* vectors[2] = {&vehicleForwardWS(vehicle), &vehicleAxle(vehicle)};
+		for (btAlignedObjectArray<btVector3>* list : vectors)
+		{
+			out.field("direction count", list->size());
+			for (int w = 0; w < list->size(); ++w) out.field("direction", (*list)[w]);
+		}
+		btAlignedObjectArray<btScalar>* scalars[2] = {&vehicleForwardImpulse(vehicle), &vehicleSideImpulse(vehicle)};
+		for (btAlignedObjectArray<btScalar>* list : scalars)
+		{
+			out.field("impulse count", list->size());
+			for (int w = 0; w < list->size(); ++w) out.field("impulse", (*list)[w]);
+		}
+		for (int w = 0; w < vehicle.getNumWheels(); ++w)
+		{
+			out.context("action", a, w);
+			btWheelInfo& wheel = vehicle.getWheelInfo(w);
+			out.field("ground object", objectIndexOf(world, wheel.m_raycastInfo.m_groundObject));
+			wheelFields(io, wheel);
+		}
+	}
+
 	out.context("solver", -1);
-	out.field("kind", kSolverSequentialImpulse);
-	out.field("m_btSeed2", static_cast<unsigned long long>(solver.getRandSeed()));
-	out.field("solve count", solverScratchOf(solver).solveCount);
+	out.field("kind", solverKind);
+	out.field("solver count", solvers.size());
+	for (int i = 0; i < solvers.size(); ++i)
+	{
+		out.field("m_btSeed2", static_cast<unsigned long long>(solvers[i]->getRandSeed()));
+		out.field("solve count", solverScratchOf(*solvers[i]).solveCount);
+	}
 	// The world numbers its solver batches (SolveIndexScope): the next step's row order depends on it.
 	out.field("world solve count", caliber::stepContextOf(world).solveCounter);
 
@@ -259,7 +467,9 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 	}
 	if (in.ok()) readCollisionState(world, in);
 
-	btSequentialImpulseConstraintSolver* solver = solverOf(world);
+	btAlignedObjectArray<btSequentialImpulseConstraintSolver*> solvers;
+	int liveSolverKind = 0;
+	if (!solversOf(world, solvers, liveSolverKind)) in.fail("solver: the world's solver is not supported");
 	const int joints = world.getNumConstraints();
 	const int savedJoints = in.value<int>("joint count");
 	if (in.ok() && savedJoints != joints) in.fail("world: %d joints, the snapshot has %d", joints, savedJoints);
@@ -283,9 +493,9 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 			in.fail("joint %d: %d warm-start rows", j, rows);
 		btAlignedObjectArray<btScalar> impulses;
 		for (int r = 0; r < rows && in.ok(); ++r) impulses.push_back(in.scalar("warm-start impulse"));
-		if (in.ok() && apply && solver)
+		if (in.ok() && apply)
 		{
-			JointWarmStartStore& store = solverScratchOf(*solver).warmStarts;
+			JointWarmStartStore& store = warmStartStoreOf(*solvers[0]);
 			if (rows < 0)
 			{
 				store.forget(&joint);
@@ -298,16 +508,89 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 			}
 		}
 	}
+	btAlignedObjectArray<btActionInterface*>& actions = worldActions(world);
+	const int actionCount = in.value<int>("action count");
+	if (in.ok() && actionCount != actions.size())
+		in.fail("world: %d actions, the snapshot has %d", actions.size(), actionCount);
+	for (int a = 0; a < actions.size() && in.ok(); ++a)
+	{
+		const int kind = in.value<int>("kind");
+		if (btKinematicCharacterController* character = characterOf(actions[a]))
+		{
+			const int ghost = in.value<int>("ghost");
+			if (in.ok() && (kind != kActionCharacterController || ghost != objectIndexOf(world, characterGhost(*character))))
+			{
+				in.fail("action %d: kind %d on object %d, not the world's character controller on object %d", a, kind,
+				        ghost, objectIndexOf(world, characterGhost(*character)));
+				break;
+			}
+			characterFields(in, *character);
+			continue;
+		}
+		btRaycastVehicle* vehicle = vehicleOf(actions[a]);
+		if (in.ok() && (kind != kActionRaycastVehicle || !vehicle))
+		{
+			in.fail("action %d: kind %d, not the world's raycast vehicle", a, kind);
+			break;
+		}
+		const int chassis = in.value<int>("chassis");
+		const int wheels = in.value<int>("wheel count");
+		if (in.ok() && (chassis != bodyIndex(world, *vehicle->getRigidBody()) || wheels != vehicle->getNumWheels()))
+		{
+			in.fail("action %d: a vehicle on object %d with %d wheels, the snapshot's on %d with %d", a,
+			        bodyIndex(world, *vehicle->getRigidBody()), vehicle->getNumWheels(), chassis, wheels);
+			break;
+		}
+		in.field("m_currentVehicleSpeedKmHour", vehicleSpeed(*vehicle));
+		btAlignedObjectArray<btVector3>* vectors[2] = {&vehicleForwardWS(*vehicle), &vehicleAxle(*vehicle)};
+		for (btAlignedObjectArray<btVector3>* list : vectors)
+		{
+			const int count = in.count("direction count", wheels);
+			btAlignedObjectArray<btVector3> values;
+			for (int w = 0; w < count && in.ok(); ++w) values.push_back(in.vector("direction"));
+			if (in.ok() && apply) *list = values;
+		}
+		btAlignedObjectArray<btScalar>* scalars[2] = {&vehicleForwardImpulse(*vehicle), &vehicleSideImpulse(*vehicle)};
+		for (btAlignedObjectArray<btScalar>* list : scalars)
+		{
+			const int count = in.count("impulse count", wheels);
+			btAlignedObjectArray<btScalar> values;
+			for (int w = 0; w < count && in.ok(); ++w) values.push_back(in.scalar("impulse"));
+			if (in.ok() && apply) *list = values;
+		}
+		for (int w = 0; w < wheels && in.ok(); ++w)
+		{
+			btWheelInfo& wheel = vehicle->getWheelInfo(w);
+			const int ground = in.value<int>("ground object");
+			if (in.ok() && (ground < -1 || ground >= n))
+				in.fail("action %d: wheel %d stands on object %d, not an object of the world", a, w, ground);
+			wheelFields(in, wheel);
+			if (in.ok() && apply)
+				wheel.m_raycastInfo.m_groundObject = ground < 0 ? 0 : world.getCollisionObjectArray()[ground];
+		}
+	}
 	const int solverKind = in.value<int>("solver kind");
-	if (in.ok() && solverKind != kSolverSequentialImpulse) in.fail("solver: unknown kind %d", solverKind);
-	const unsigned long long seed = in.value<unsigned long long>("m_btSeed2");
-	const unsigned solveCount = in.value<unsigned>("solve count");
+	const int solverCount = in.value<int>("solver count");
+	if (in.ok() && (solverKind != liveSolverKind || solverCount != solvers.size()))
+		in.fail("solver: kind %d with %d solvers, the snapshot's kind %d with %d (a pool of another size, or "
+		        "a large-batch solver more or less)",
+		        liveSolverKind, solvers.size(), solverKind, solverCount);
+	btAlignedObjectArray<unsigned long long> seeds;
+	btAlignedObjectArray<unsigned> solveCounts;
+	for (int i = 0; i < solverCount && in.ok(); ++i)
+	{
+		seeds.push_back(in.value<unsigned long long>("m_btSeed2"));
+		solveCounts.push_back(in.value<unsigned>("solve count"));
+	}
 	const unsigned worldSolveCount = in.value<unsigned>("world solve count");
 	if (in.ok() && in.remaining() != 0) in.fail("trailing bytes after the snapshot");
-	if (in.ok() && apply && solver)
+	if (in.ok() && apply)
 	{
-		solver->setRandSeed(static_cast<unsigned long>(seed));
-		solverScratchOf(*solver).solveCount = solveCount;
+		for (int i = 0; i < solvers.size(); ++i)
+		{
+			solvers[i]->setRandSeed(static_cast<unsigned long>(seeds[i]));
+			solverScratchOf(*solvers[i]).solveCount = solveCounts[i];
+		}
 		caliber::stepContextOf(world).solveCounter = worldSolveCount;
 	}
 	if (!in.ok()) setError(error, errorSize, "%s", in.error());

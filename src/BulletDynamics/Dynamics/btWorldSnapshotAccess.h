@@ -14,13 +14,16 @@
 
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btCompoundCompoundCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btConvexConcaveCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/Character/btKinematicCharacterController.h"
 #include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btHingeConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Vehicle/btRaycastVehicle.h"
 
 namespace caliber
 {
@@ -89,12 +92,45 @@ BindMember<Tag, Member> BindMember<Tag, Member>::instance;
 	X(convexHaveLastAxis, btConvexConvexAlgorithm, bool, m_haveLastSeparatingAxis)                              \
 	X(concaveCallback, btConvexConcaveCollisionAlgorithm, btConvexTriangleCallback, m_btConvexTriangleCallback) \
 	X(triangleAlgorithm, btConvexTriangleCallback, btCollisionAlgorithm*, m_triangleAlgorithm)                  \
+	/* compound algorithms: a child algorithm per child, or per pair of children with the frame counter */     \
+	X(compoundChildren, btCompoundCollisionAlgorithm, CompoundChildAlgorithms, m_childCollisionAlgorithms)      \
+	X(compoundSwapped, btCompoundCollisionAlgorithm, bool, m_isSwapped)                                         \
+	X(compoundSharedManifold, btCompoundCollisionAlgorithm, btPersistentManifold*, m_sharedManifold)            \
+	X(compoundPairs, btCompoundCompoundCollisionAlgorithm, CompoundChildPairs, m_childPairAlgorithms)           \
+	X(compoundFrame, btCompoundCompoundCollisionAlgorithm, int, m_frame)                                        \
 	/* joints: the time step of the last rows (read by the next getInfo1), the accumulated hinge angle */       \
 	X(jointAppliedImpulse, btTypedConstraint, btScalar, m_appliedImpulse)                                       \
 	X(jointEnabled, btTypedConstraint, bool, m_isEnabled)                                                       \
 	X(hingeLastTimeStep, btHingeConstraint, btScalar, m_lastTimeStep)                                           \
 	X(hingeAccumulatedAngle, btHingeAccumulatedAngleConstraint, btScalar, m_accumulatedAngle)                   \
-	X(coneLastTimeStep, btConeTwistConstraint, btScalar, m_lastTimeStep)
+	X(coneLastTimeStep, btConeTwistConstraint, btScalar, m_lastTimeStep)                                        \
+	/* the raycast vehicle: speed and the tyre friction's directions and impulses of the last substep */       \
+	X(vehicleSpeed, btRaycastVehicle, btScalar, m_currentVehicleSpeedKmHour)                                    \
+	X(vehicleForwardWS, btRaycastVehicle, btAlignedObjectArray<btVector3>, m_forwardWS)                         \
+	X(vehicleAxle, btRaycastVehicle, btAlignedObjectArray<btVector3>, m_axle)                                   \
+	X(vehicleForwardImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_forwardImpulse)                \
+	X(vehicleSideImpulse, btRaycastVehicle, btAlignedObjectArray<btScalar>, m_sideImpulse)                      \
+	/* the kinematic character controller: its motion state between steps (settings are the user's) */          \
+	X(characterGhost, btKinematicCharacterController, btPairCachingGhostObject*, m_ghostObject)                 \
+	X(characterVerticalVelocity, btKinematicCharacterController, btScalar, m_verticalVelocity)                  \
+	X(characterVerticalOffset, btKinematicCharacterController, btScalar, m_verticalOffset)                      \
+	X(characterJumpSpeed, btKinematicCharacterController, btScalar, m_jumpSpeed)                                \
+	X(characterWalkDirection, btKinematicCharacterController, btVector3, m_walkDirection)                       \
+	X(characterNormalizedDirection, btKinematicCharacterController, btVector3, m_normalizedDirection)           \
+	X(characterAngularVelocity, btKinematicCharacterController, btVector3, m_AngVel)                            \
+	X(characterJumpPosition, btKinematicCharacterController, btVector3, m_jumpPosition)                         \
+	X(characterCurrentPosition, btKinematicCharacterController, btVector3, m_currentPosition)                   \
+	X(characterCurrentStepOffset, btKinematicCharacterController, btScalar, m_currentStepOffset)                \
+	X(characterTargetPosition, btKinematicCharacterController, btVector3, m_targetPosition)                     \
+	X(characterCurrentOrientation, btKinematicCharacterController, btQuaternion, m_currentOrientation)          \
+	X(characterTargetOrientation, btKinematicCharacterController, btQuaternion, m_targetOrientation)            \
+	X(characterTouchingContact, btKinematicCharacterController, bool, m_touchingContact)                        \
+	X(characterTouchingNormal, btKinematicCharacterController, btVector3, m_touchingNormal)                     \
+	X(characterWasOnGround, btKinematicCharacterController, bool, m_wasOnGround)                                \
+	X(characterWasJumping, btKinematicCharacterController, bool, m_wasJumping)                                  \
+	X(characterUseWalkDirection, btKinematicCharacterController, bool, m_useWalkDirection)                      \
+	X(characterVelocityTimeInterval, btKinematicCharacterController, btScalar, m_velocityTimeInterval)          \
+	X(characterJumpAxis, btKinematicCharacterController, btVector3, m_jumpAxis)
 
 // Declares caliber::snapshot_access::accessor(Class&) -> MemberType& (bound in btWorldSnapshot.cpp).
 #define CALIBER_SNAPSHOT_DECLARE(Accessor, Class, MemberType, member) \
@@ -109,6 +145,9 @@ BindMember<Tag, Member> BindMember<Tag, Member>::instance;
 	template struct BindMember<Accessor##Tag, &Class::member>;
 
 typedef btManifoldPoint ManifoldPointCache[MANIFOLD_CACHE_SIZE];
+typedef btAlignedObjectArray<btCollisionAlgorithm*> CompoundChildAlgorithms;
+typedef btHashMap<btCompoundCompoundCollisionAlgorithm::ChildPairKey, btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm>
+    CompoundChildPairs;
 
 namespace caliber
 {

@@ -9,15 +9,19 @@
 
 #include <typeinfo>
 
+#include "BulletCollision/BroadphaseCollision/btAxisSweep3.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/BroadphaseCollision/btSimpleBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btEmptyCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btGhostObject.h"
 #include "BulletCollision/CollisionDispatch/btSphereBoxCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btSphereSphereCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btSphereTriangleCollisionAlgorithm.h"
+#include "BulletCollision/CollisionShapes/btCompoundShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleShape.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotAccess.h"
 #include "BulletDynamics/Dynamics/btWorldSnapshotInternal.h"
@@ -31,6 +35,9 @@ namespace
 using namespace snapshot_access;
 
 const int kBroadphaseDbvt = 1;
+const int kBroadphaseSimple = 2;
+const int kBroadphaseSweep16 = 3;
+const int kBroadphaseSweep32 = 4;
 const int kPairCacheHashed = 1;
 
 // The collision algorithms whose whole state the snapshot holds (exact classes: a subclass may keep more).
@@ -45,8 +52,16 @@ enum AlgorithmKind
 	kConvexPlane = 6,
 	kSphereTriangle = 7,
 	kEmpty = 8,
+	kCompound = 9,
+	kCompoundCompound = 10,
 	kUnsupported = -1
 };
+
+// Compounds inside compounds nest algorithms; deeper nesting than this is refused (and a corrupt
+// snapshot cannot recurse without bound).
+const int kMaxAlgorithmDepth = 8;
+// Children of one compound, and child pairs of one compound-compound algorithm, at most.
+const int kMaxChildren = 1 << 16;
 
 int algorithmKind(const btCollisionAlgorithm* algorithm)
 {
@@ -60,6 +75,8 @@ int algorithmKind(const btCollisionAlgorithm* algorithm)
 	if (type == typeid(btConvexPlaneCollisionAlgorithm)) return kConvexPlane;
 	if (type == typeid(btSphereTriangleCollisionAlgorithm)) return kSphereTriangle;
 	if (type == typeid(btEmptyAlgorithm)) return kEmpty;
+	if (type == typeid(btCompoundCollisionAlgorithm)) return kCompound;
+	if (type == typeid(btCompoundCompoundCollisionAlgorithm)) return kCompoundCompound;
 	return kUnsupported;
 }
 
@@ -69,6 +86,11 @@ int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)
 	const int index = object->getWorldArrayIndex();
 	if (index < 0 || index >= world.getNumCollisionObjects()) return -1;
 	return world.getCollisionObjectArray()[index] == object ? index : -1;
+}
+
+btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
+{
+	return world.getCollisionObjectArray()[index];
 }
 
 int proxyObjectIndex(const btCollisionWorld& world, const btBroadphaseProxy* proxy)
@@ -89,9 +111,242 @@ btDbvtBroadphase* dbvtOf(btDiscreteDynamicsWorld& world)
 	return dynamic_cast<btDbvtBroadphase*>(world.getBroadphase());
 }
 
+// btSimpleBroadphase (exactly: a subclass may keep more): its only step state is each proxy's box and
+// id; it finds pairs by testing every two proxies in handle order.
+btSimpleBroadphase* simpleOf(btDiscreteDynamicsWorld& world)
+{
+	btBroadphaseInterface* broadphase = world.getBroadphase();
+	return broadphase && typeid(*broadphase) == typeid(btSimpleBroadphase) ? static_cast<btSimpleBroadphase*>(broadphase)
+	                                                                        : 0;
+}
+
+template <class IO>
+void plainProxyFields(IO& io, btBroadphaseProxy& proxy)
+{
+	io.field("proxy m_uniqueId", proxy.m_uniqueId);
+	io.field("proxy m_aabbMin", proxy.m_aabbMin);
+	io.field("proxy m_aabbMax", proxy.m_aabbMax);
+}
+
+// Reads whether object i has a broadphase proxy; a difference from the world's object fails the read.
+bool readHasProxy(SnapshotReader& in, int i, const btBroadphaseProxy* proxy)
+{
+	const bool has = in.flag("has proxy");
+	if (in.ok() && has != (proxy != 0))
+		in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
+		        has ? "has" : "has not");
+	return in.ok() && has;
+}
+
+// btAxisSweep3 / bt32BitAxisSweep3 (exactly): per axis the sorted edge list, whose order among equal
+// positions decides which pairs the next moves find first, and each proxy's box. The handles' edge
+// indices follow from the lists. (The optional ray accelerator's tree is not held: it orders ray tests
+// only.)
+template <class Index>
+struct SweepAccess : btAxisSweep3Internal<Index>
+{
+	typedef btAxisSweep3Internal<Index> Sweep;
+	typedef typename Sweep::Edge Edge;
+	typedef typename Sweep::Handle Handle;
+	static Index& numHandles(Sweep& s) { return s.*(&SweepAccess::m_numHandles); }
+	static Index maxHandles(Sweep& s) { return s.*(&SweepAccess::m_maxHandles); }
+	static Index sentinel(Sweep& s) { return s.*(&SweepAccess::m_handleSentinel); }
+	static Edge* edges(Sweep& s, int axis) { return (s.*(&SweepAccess::m_pEdges))[axis]; }
+	static Handle* handles(Sweep& s) { return s.*(&SweepAccess::m_pHandles); }
+};
+
+template <class Index>
+btAxisSweep3Internal<Index>* sweepOf(btDiscreteDynamicsWorld& world);
+template <>
+btAxisSweep3Internal<unsigned short>* sweepOf(btDiscreteDynamicsWorld& world)
+{
+	btBroadphaseInterface* broadphase = world.getBroadphase();
+	return broadphase && typeid(*broadphase) == typeid(btAxisSweep3) ? static_cast<btAxisSweep3*>(broadphase) : 0;
+}
+template <>
+btAxisSweep3Internal<unsigned int>* sweepOf(btDiscreteDynamicsWorld& world)
+{
+	btBroadphaseInterface* broadphase = world.getBroadphase();
+	return broadphase && typeid(*broadphase) == typeid(bt32BitAxisSweep3) ? static_cast<bt32BitAxisSweep3*>(broadphase)
+	                                                                      : 0;
+}
+
+// The handle index of object i's proxy in sweep, 0 when it has none or it is not one of sweep's.
+template <class Index>
+Index sweepHandleOf(btAxisSweep3Internal<Index>& sweep, btCollisionObject* object)
+{
+	typedef SweepAccess<Index> A;
+	btBroadphaseProxy* proxy = object->getBroadphaseHandle();
+	if (!proxy) return 0;
+	const typename A::Handle* first = A::handles(sweep);
+	const typename A::Handle* handle = static_cast<const typename A::Handle*>(proxy);
+	if (handle <= first || handle >= first + A::maxHandles(sweep)) return 0;
+	return Index(handle - first);
+}
+
+template <class Index>
+void saveSweep(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>& sweep, int kind, SnapshotWriter& out)
+{
+	typedef SweepAccess<Index> A;
+	out.context("broadphase", -1);
+	out.field("kind", kind);
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+	{
+		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		out.context("object", i);
+		out.field("has proxy", bool(proxy != 0));
+		if (proxy) plainProxyFields(out, *proxy);
+	}
+	out.context("broadphase", -1);
+	// Two edges per handle in use, and the sentinel's two at the ends.
+	const int count = 2 * int(A::numHandles(sweep)) + 2;
+	out.field("edge count", count);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		const typename A::Edge* edges = A::edges(sweep, axis);
+		for (int e = 0; e < count; ++e)
+		{
+			out.field("edge m_pos", unsigned(edges[e].m_pos));
+			out.field("edge m_handle", unsigned(edges[e].m_handle));
+		}
+	}
+}
+
+template <class Index>
+bool readSweep(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>* sweep, SnapshotReader& in)
+{
+	typedef SweepAccess<Index> A;
+	if (!sweep)
+	{
+		in.fail("broadphase: the snapshot's is an axis sweep of another kind than the world's broadphase");
+		return false;
+	}
+	const int n = world.getNumCollisionObjects();
+	// Which handle belongs to a world object: the edge lists must list exactly those and the sentinel.
+	btAlignedObjectArray<char> inWorld;
+	inWorld.resize(int(A::maxHandles(*sweep)), 0);
+	for (int i = 0; i < n && in.ok(); ++i)
+	{
+		btCollisionObject* object = world.getCollisionObjectArray()[i];
+		btBroadphaseProxy* proxy = object->getBroadphaseHandle();
+		const bool has = readHasProxy(in, i, proxy);
+		if (!in.ok()) break;
+		if (!has) continue;
+		plainProxyFields(in, *proxy);
+		const Index handle = sweepHandleOf(*sweep, object);
+		if (in.ok() && handle == 0) in.fail("object %d: its proxy is not a handle of the world's broadphase", i);
+		if (handle) inWorld[int(handle)] = 1;
+	}
+	const int count = in.value<int>("edge count");
+	if (in.ok() && count != 2 * int(A::numHandles(*sweep)) + 2)
+		in.fail("broadphase: %d edges per axis, the world's broadphase has %d", count,
+		        2 * int(A::numHandles(*sweep)) + 2);
+	if (!in.ok()) return false;
+	btAlignedObjectArray<unsigned> positions[3], owners[3];
+	for (int axis = 0; axis < 3 && in.ok(); ++axis)
+	{
+		btAlignedObjectArray<char> seenMin, seenMax;
+		seenMin.resize(inWorld.size(), 0);
+		seenMax.resize(inWorld.size(), 0);
+		for (int e = 0; e < count && in.ok(); ++e)
+		{
+			const unsigned pos = in.value<unsigned>("edge m_pos");
+			const unsigned handle = in.value<unsigned>("edge m_handle");
+			if (!in.ok()) break;
+			const bool isMax = (pos & 1u) != 0;
+			// The sentinel's edges close the list at both ends; every other edge is a world object's, once
+			// as minimum (even position) and once as maximum (odd), the minimum first, positions sorted.
+			const bool end = e == 0 || e == count - 1;
+			const char* problem = 0;
+			if (pos > unsigned(A::sentinel(*sweep)) || (e > 0 && pos < positions[axis][e - 1]))
+				problem = "out of order";
+			else if (end && (handle != 0 || isMax != (e == count - 1) ||
+			                 (e == count - 1 && pos != unsigned(A::sentinel(*sweep)))))
+				problem = "not the sentinel";
+			else if (!end && (handle == 0 || handle >= unsigned(inWorld.size()) || !inWorld[int(handle)]))
+				problem = "not a world object's handle";
+			else if (!end && (isMax ? seenMax[int(handle)] : seenMin[int(handle)]))
+				problem = "listed twice";
+			else if (!end && isMax && !seenMin[int(handle)])
+				problem = "its maximum before its minimum";
+			if (problem)
+			{
+				in.fail("broadphase: axis %d edge %d (position %u, handle %u): %s", axis, e, pos, handle, problem);
+				break;
+			}
+			if (!end) (isMax ? seenMax : seenMin)[int(handle)] = 1;
+			positions[axis].push_back(pos);
+			owners[axis].push_back(handle);
+		}
+	}
+	if (!in.ok() || !in.applying()) return in.ok();
+	typename A::Handle* handles = A::handles(*sweep);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		typename A::Edge* edges = A::edges(*sweep, axis);
+		for (int e = 0; e < count; ++e)
+		{
+			edges[e].m_pos = Index(positions[axis][e]);
+			edges[e].m_handle = Index(owners[axis][e]);
+			typename A::Handle& h = handles[owners[axis][e]];
+			if (e == 0)
+				h.m_minEdges[axis] = 0;
+			else if (positions[axis][e] & 1u)
+				h.m_maxEdges[axis] = Index(e);
+			else
+				h.m_minEdges[axis] = Index(e);
+		}
+	}
+	return true;
+}
+
+void saveSimpleBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
+{
+	out.context("broadphase", -1);
+	out.field("kind", kBroadphaseSimple);
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+	{
+		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		out.context("object", i);
+		out.field("has proxy", bool(proxy != 0));
+		if (proxy) plainProxyFields(out, *proxy);
+	}
+}
+
+bool readSimpleBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
+{
+	if (!simpleOf(world))
+	{
+		in.fail("broadphase: the snapshot's is a btSimpleBroadphase, the world's is not");
+		return false;
+	}
+	for (int i = 0; i < world.getNumCollisionObjects() && in.ok(); ++i)
+	{
+		btBroadphaseProxy* proxy = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		const bool has = readHasProxy(in, i, proxy);
+		if (!in.ok()) break;
+		if (has) plainProxyFields(in, *proxy);
+	}
+	return in.ok();
+}
+
 btHashedOverlappingPairCache* hashedCacheOf(btDiscreteDynamicsWorld& world)
 {
 	return world.getBroadphase() ? dynamic_cast<btHashedOverlappingPairCache*>(world.getPairCache()) : 0;
+}
+
+// The ghost objects of the world, in the world's order (each keeps its overlapping objects, and a
+// pair-caching ghost its own pairs with their algorithms).
+void ghostsOf(btDiscreteDynamicsWorld& world, btAlignedObjectArray<int>& ghosts)
+{
+	ghosts.resize(0);
+	for (int i = 0; i < world.getNumCollisionObjects(); ++i)
+		if (btGhostObject::upcast(world.getCollisionObjectArray()[i])) ghosts.push_back(i);
+}
+
+btPairCachingGhostObject* cachingGhostOf(btCollisionObject* object)
+{
+	return dynamic_cast<btPairCachingGhostObject*>(object);
 }
 
 // The manifolds a pair's algorithm owns, in the algorithm's order.
@@ -126,21 +381,31 @@ void dbvtCounters(IO& io, btDbvtBroadphase& dbvt)
 	io.field("m_needcleanup", dbvt.m_needcleanup);
 }
 
-template <class IO>
-void proxyFields(IO& io, btDbvtProxy& proxy)
-{
-	io.field("proxy m_uniqueId", proxy.m_uniqueId);
-	io.field("proxy m_aabbMin", proxy.m_aabbMin);
-	io.field("proxy m_aabbMax", proxy.m_aabbMax);
-	io.field("proxy set", proxy.set);
-}
+
 
 bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
 {
+	if (simpleOf(world))
+	{
+		saveSimpleBroadphase(world, out);
+		return true;
+	}
+	if (btAxisSweep3Internal<unsigned short>* sweep = sweepOf<unsigned short>(world))
+	{
+		saveSweep(world, *sweep, kBroadphaseSweep16, out);
+		return true;
+	}
+	if (btAxisSweep3Internal<unsigned int>* sweep = sweepOf<unsigned int>(world))
+	{
+		saveSweep(world, *sweep, kBroadphaseSweep32, out);
+		return true;
+	}
 	btDbvtBroadphase* dbvt = dbvtOf(world);
 	if (!dbvt)
 	{
-		setError(error, errorSize, "broadphase: only btDbvtBroadphase is supported");
+		setError(error, errorSize,
+		         "broadphase: only btDbvtBroadphase, btSimpleBroadphase, btAxisSweep3 and bt32BitAxisSweep3 are "
+		         "supported");
 		return false;
 	}
 	const int n = world.getNumCollisionObjects();
@@ -155,7 +420,8 @@ bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* e
 		out.field("has proxy", bool(proxy != 0));
 		if (!proxy) continue;
 		++proxies;
-		proxyFields(out, *proxy);
+		plainProxyFields(out, *proxy);
+		out.field("proxy set", proxy->set);
 	}
 	if (proxies != dbvt->m_sets[0].m_leaves + dbvt->m_sets[1].m_leaves)
 	{
@@ -308,6 +574,9 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 {
 	const int n = world.getNumCollisionObjects();
 	const int kind = in.value<int>("broadphase kind");
+	if (in.ok() && kind == kBroadphaseSimple) return readSimpleBroadphase(world, in);
+	if (in.ok() && kind == kBroadphaseSweep16) return readSweep(world, sweepOf<unsigned short>(world), in);
+	if (in.ok() && kind == kBroadphaseSweep32) return readSweep(world, sweepOf<unsigned int>(world), in);
 	if (in.ok() && kind != kBroadphaseDbvt) in.fail("broadphase: unknown kind %d", kind);
 	btDbvtBroadphase* dbvt = dbvtOf(world);
 	if (in.ok() && !dbvt) in.fail("broadphase: the world's broadphase is not a btDbvtBroadphase");
@@ -319,13 +588,8 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	for (int i = 0; i < n && in.ok(); ++i)
 	{
 		btDbvtProxy* proxy = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle());
-		const bool has = in.flag("has proxy");
-		if (in.ok() && has != (proxy != 0))
-		{
-			in.fail("object %d: %s a broadphase proxy, the snapshot's %s", i, proxy ? "has" : "has no",
-			        has ? "has" : "has not");
-			break;
-		}
+		const bool has = readHasProxy(in, i, proxy);
+		if (!in.ok()) break;
 		if (!has) continue;
 		const int uniqueId = in.value<int>("proxy m_uniqueId");
 		const btVector3 aabbMin = in.vector("proxy m_aabbMin");
@@ -431,9 +695,20 @@ void convexState(IO& io, btConvexConvexAlgorithm& algorithm)
 	io.field("m_lastSeparatingAxis", convexLastAxis(algorithm));
 }
 
-bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, int kind, char* error, size_t errorSize,
-                   int pairIndex)
+// Writes an algorithm's kind and state; compound algorithms write their child algorithms after it
+// (a child slot without an algorithm is kind 0), depth first.
+bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, char* error, size_t errorSize, int pairIndex,
+                   int depth)
 {
+	const int kind = algorithmKind(algorithm);
+	if (kind == kUnsupported || depth > kMaxAlgorithmDepth)
+	{
+		setError(error, errorSize,
+		         "pair %d: a collision algorithm the snapshot does not support (soft bodies, user algorithms, "
+		         "compounds nested deeper than %d)",
+		         pairIndex, kMaxAlgorithmDepth);
+		return false;
+	}
 	out.field("algorithm", kind);
 	if (kind == kConvexConvex)
 	{
@@ -456,6 +731,76 @@ bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, int kin
 		out.field("triangle algorithm", triangleKind);
 		if (triangleKind == kConvexConvex) convexState(out, *static_cast<btConvexConvexAlgorithm*>(triangle));
 	}
+	else if (kind >= kBoxBox && kind <= kSphereTriangle)
+	{
+		// Made in the constructor only when the bodies were active then (see remakeAlgorithm).
+		btManifoldArray manifolds;
+		algorithm->getAllContactManifolds(manifolds);
+		out.field("own manifolds", manifolds.size());
+	}
+	else if (kind == kCompound)
+	{
+		CompoundChildAlgorithms& children = compoundChildren(*static_cast<btCompoundCollisionAlgorithm*>(algorithm));
+		out.field("child count", children.size());
+		for (int c = 0; c < children.size(); ++c)
+			if (!saveAlgorithm(out, children[c], error, errorSize, pairIndex, depth + 1)) return false;
+	}
+	else if (kind == kCompoundCompound)
+	{
+		btCompoundCompoundCollisionAlgorithm& both = *static_cast<btCompoundCompoundCollisionAlgorithm*>(algorithm);
+		CompoundChildPairs& pairs = compoundPairs(both);
+		out.field("m_frame", compoundFrame(both));
+		out.field("child pair count", pairs.size());
+		for (int c = 0; c < pairs.size(); ++c)
+		{
+			const btCompoundCompoundCollisionAlgorithm::ChildPairKey key = pairs.getKeyAtIndex(c);
+			const btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm* entry = pairs.getAtIndex(c);
+			out.field("child 0", key.m_index0);
+			out.field("child 1", key.m_index1);
+			out.field("m_lastFrame", entry->m_lastFrame);
+			if (!saveAlgorithm(out, entry->m_algorithm, error, errorSize, pairIndex, depth + 1)) return false;
+		}
+	}
+	return true;
+}
+
+// Writes a pair list (the world's, or a pair-caching ghost's) with each pair's algorithm and the indices
+// of the manifolds it owns in the dispatcher's array, marking them in owned.
+bool savePairList(btDiscreteDynamicsWorld& world, btBroadphasePairArray& pairs, SnapshotWriter& out,
+                  btAlignedObjectArray<char>& owned, char* error, size_t errorSize, const char* section)
+{
+	btDispatcher* dispatcher = world.getDispatcher();
+	btManifoldArray manifolds;
+	out.field("pair count", pairs.size());
+	for (int i = 0; i < pairs.size(); ++i)
+	{
+		btBroadphasePair& pair = pairs[i];
+		out.context(section, i);
+		const int object0 = proxyObjectIndex(world, pair.m_pProxy0);
+		const int object1 = proxyObjectIndex(world, pair.m_pProxy1);
+		if (object0 < 0 || object1 < 0)
+		{
+			setError(error, errorSize, "%s %d: a proxy of an object outside the world", section, i);
+			return false;
+		}
+		out.field("object 0", object0);
+		out.field("object 1", object1);
+		if (!saveAlgorithm(out, pair.m_algorithm, error, errorSize, i, 0)) return false;
+		pairManifolds(pair, manifolds);
+		out.field("manifold count", manifolds.size());
+		for (int m = 0; m < manifolds.size(); ++m)
+		{
+			const int index = manifolds[m]->m_index1a;
+			if (index < 0 || index >= owned.size() || dispatcher->getManifoldByIndexInternal(index) != manifolds[m] ||
+			    owned[index])
+			{
+				setError(error, errorSize, "%s %d: a manifold the dispatcher does not list", section, i);
+				return false;
+			}
+			owned[index] = 1;
+			out.field("manifold", index);
+		}
+	}
 	return true;
 }
 
@@ -471,48 +816,39 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 	const int manifoldCount = dispatcher->getNumManifolds();
 	btAlignedObjectArray<char> owned;
 	owned.resize(manifoldCount, 0);
-	btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
-	btManifoldArray manifolds;
 	out.context("pairs", -1);
 	out.field("cache", kPairCacheHashed);
-	out.field("pair count", pairs.size());
-	for (int i = 0; i < pairs.size(); ++i)
+	if (!savePairList(world, cache->getOverlappingPairArray(), out, owned, error, errorSize, "pair")) return false;
+
+	// Ghosts: the overlapping objects in their order, and a pair-caching ghost's own pairs.
+	btAlignedObjectArray<int> ghosts;
+	ghostsOf(world, ghosts);
+	out.context("ghosts", -1);
+	out.field("ghost count", ghosts.size());
+	for (int g = 0; g < ghosts.size(); ++g)
 	{
-		btBroadphasePair& pair = pairs[i];
-		out.context("pair", i);
-		const int object0 = proxyObjectIndex(world, pair.m_pProxy0);
-		const int object1 = proxyObjectIndex(world, pair.m_pProxy1);
-		if (object0 < 0 || object1 < 0)
+		btCollisionObject* object = objectAt(world, ghosts[g]);
+		btGhostObject* ghost = btGhostObject::upcast(object);
+		btPairCachingGhostObject* caching = cachingGhostOf(object);
+		out.context("ghost", ghosts[g]);
+		out.field("object", ghosts[g]);
+		out.field("pair caching", bool(caching != 0));
+		btAlignedObjectArray<btCollisionObject*>& overlapping = ghost->getOverlappingPairs();
+		out.field("overlapping count", overlapping.size());
+		for (int k = 0; k < overlapping.size(); ++k)
 		{
-			setError(error, errorSize, "pair %d: a proxy of an object outside the world", i);
-			return false;
-		}
-		out.field("object 0", object0);
-		out.field("object 1", object1);
-		const int kind = algorithmKind(pair.m_algorithm);
-		if (kind == kUnsupported)
-		{
-			setError(error, errorSize,
-			         "pair %d (objects %d, %d): a collision algorithm the snapshot does not support (compound shapes, "
-			         "soft bodies, user algorithms)",
-			         i, object0, object1);
-			return false;
-		}
-		if (!saveAlgorithm(out, pair.m_algorithm, kind, error, errorSize, i)) return false;
-		pairManifolds(pair, manifolds);
-		out.field("manifold count", manifolds.size());
-		for (int m = 0; m < manifolds.size(); ++m)
-		{
-			const int index = manifolds[m]->m_index1a;
-			if (index < 0 || index >= manifoldCount || dispatcher->getManifoldByIndexInternal(index) != manifolds[m] ||
-			    owned[index])
+			const int index = objectIndex(world, overlapping[k]);
+			if (index < 0)
 			{
-				setError(error, errorSize, "pair %d: a manifold the dispatcher does not list", i);
+				setError(error, errorSize, "ghost %d: it overlaps an object outside the world", ghosts[g]);
 				return false;
 			}
-			owned[index] = 1;
-			out.field("manifold", index);
+			out.field("overlapping", index);
 		}
+		if (caching &&
+		    !savePairList(world, caching->getOverlappingPairCache()->getOverlappingPairArray(), out, owned, error,
+		                  errorSize, "ghost pair"))
+			return false;
 	}
 	for (int m = 0; m < manifoldCount; ++m)
 	{
@@ -526,20 +862,119 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 	return true;
 }
 
-struct SavedPair
+// An algorithm as saved: its kind and state, and for compounds where its children are.
+struct SavedAlgorithm
 {
-	int object0, object1;
 	int kind;
 	bool ownsManifold;
 	int triangleKind;
 	bool haveAxis;
 	btVector3 axis;
+	int ownManifolds;
+	int frame;
+	int firstChild, childCount;  // into the flat child list
+};
+
+// A child slot of a compound algorithm (compound-compound: a child pair with its last frame).
+struct SavedChild
+{
+	int index0, index1, lastFrame;
+	int algorithm;  // into the algorithm list; -1 for an empty slot
+};
+
+struct SavedPair
+{
+	int object0, object1;
+	int algorithm;                     // into the algorithm list; -1 for none
 	int firstManifold, manifoldCount;  // into the flat manifold list
 };
 
-btCollisionObject* objectAt(btDiscreteDynamicsWorld& world, int index)
+struct SavedAlgorithms
 {
-	return world.getCollisionObjectArray()[index];
+	btAlignedObjectArray<SavedAlgorithm> algorithms;
+	btAlignedObjectArray<SavedChild> children;
+};
+
+// Reads one algorithm (and, depth first, its children); the index of its record, -1 for kind 0 or on
+// failure.
+int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int depth)
+{
+	SavedAlgorithm a;
+	a.kind = in.value<int>("algorithm");
+	a.ownsManifold = false;
+	a.triangleKind = kNoAlgorithm;
+	a.haveAxis = false;
+	a.axis.setValue(0, 0, 0);
+	a.ownManifolds = 0;
+	a.frame = 0;
+	a.firstChild = a.childCount = 0;
+	if (!in.ok()) return -1;
+	if (a.kind < kNoAlgorithm || a.kind > kCompoundCompound || depth > kMaxAlgorithmDepth)
+	{
+		in.fail("pair %d: unknown algorithm %d (or nested deeper than %d)", pairIndex, a.kind, kMaxAlgorithmDepth);
+		return -1;
+	}
+	if (a.kind == kNoAlgorithm) return -1;
+	btAlignedObjectArray<SavedChild> block;  // this algorithm's children, appended once complete
+	if (a.kind == kConvexConvex)
+	{
+		a.ownsManifold = in.flag("owns manifold");
+		a.haveAxis = in.flag("m_haveLastSeparatingAxis");
+		a.axis = in.vector("m_lastSeparatingAxis");
+	}
+	else if (a.kind == kConvexConcave)
+	{
+		a.triangleKind = in.value<int>("triangle algorithm");
+		if (in.ok() && a.triangleKind != kNoAlgorithm && a.triangleKind != kConvexConvex &&
+		    a.triangleKind != kSphereTriangle && a.triangleKind != kEmpty)
+			in.fail("pair %d: unknown triangle algorithm %d", pairIndex, a.triangleKind);
+		if (a.triangleKind == kConvexConvex)
+		{
+			a.haveAxis = in.flag("m_haveLastSeparatingAxis");
+			a.axis = in.vector("m_lastSeparatingAxis");
+		}
+	}
+	else if (a.kind >= kBoxBox && a.kind <= kSphereTriangle)
+		a.ownManifolds = in.count("own manifolds", 1);
+	else if (a.kind == kCompound)
+	{
+		const int count = in.count("child count", kMaxChildren);
+		for (int c = 0; c < count && in.ok(); ++c)
+		{
+			SavedChild child;
+			child.index0 = c;
+			child.index1 = -1;
+			child.lastFrame = 0;
+			child.algorithm = readAlgorithm(in, saved, pairIndex, depth + 1);
+			block.push_back(child);
+		}
+	}
+	else if (a.kind == kCompoundCompound)
+	{
+		a.frame = in.value<int>("m_frame");
+		const int count = in.count("child pair count", kMaxChildren);
+		for (int c = 0; c < count && in.ok(); ++c)
+		{
+			SavedChild child;
+			child.index0 = in.value<int>("child 0");
+			child.index1 = in.value<int>("child 1");
+			child.lastFrame = in.value<int>("m_lastFrame");
+			if (in.ok() && (child.index0 < 0 || child.index1 < 0))
+				in.fail("pair %d: child pair %d names children %d, %d", pairIndex, c, child.index0, child.index1);
+			for (int k = 0; k < c && in.ok(); ++k)
+				if (block[k].index0 == child.index0 && block[k].index1 == child.index1)
+					in.fail("pair %d: child pair %d, %d listed twice", pairIndex, child.index0, child.index1);
+			child.algorithm = readAlgorithm(in, saved, pairIndex, depth + 1);
+			if (in.ok() && child.algorithm < 0) in.fail("pair %d: a child pair without an algorithm", pairIndex);
+			block.push_back(child);
+		}
+	}
+	if (!in.ok()) return -1;
+	a.firstChild = saved.children.size();
+	a.childCount = block.size();
+	for (int c = 0; c < block.size(); ++c) saved.children.push_back(block[c]);
+	saved.algorithms.push_back(a);
+	return saved.algorithms.size() - 1;
 }
 
 // Makes the triangle algorithm of a mesh pair as btConvexTriangleCallback::processTriangle makes it.
@@ -565,20 +1000,29 @@ btCollisionAlgorithm* makeTriangleAlgorithm(btDispatcher* dispatcher, btConvexTr
 	return 0;
 }
 
-// Makes pair's algorithm again and sets the state the snapshot holds; false when the dispatcher makes
-// another kind or no manifold can be made.
-bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, const SavedPair& saved, SnapshotReader& in,
-                     int pairIndex)
+void freeAlgorithm(btDispatcher* dispatcher, btCollisionAlgorithm*& algorithm)
 {
-	btDispatcher* dispatcher = world.getDispatcher();
-	btCollisionObject* object0 = objectAt(world, saved.object0);
-	btCollisionObject* object1 = objectAt(world, saved.object1);
-	// As the dispatcher's near callback wraps the pair.
-	btCollisionObjectWrapper wrap0(0, object0->getCollisionShape(), object0, object0->getWorldTransform(), -1, -1);
-	btCollisionObjectWrapper wrap1(0, object1->getCollisionShape(), object1, object1->getWorldTransform(), -1, -1);
-	pair.m_algorithm = dispatcher->findAlgorithm(&wrap0, &wrap1, 0, BT_CONTACT_POINT_ALGORITHMS);
-	int kind = algorithmKind(pair.m_algorithm);
-	if (kind >= kBoxBox && kind <= kSphereTriangle)
+	if (!algorithm) return;
+	algorithm->~btCollisionAlgorithm();
+	dispatcher->freeCollisionAlgorithm(algorithm);
+	algorithm = 0;
+}
+
+// Makes the algorithm for wrap0 and wrap1 again, as the near callback (top level, shared null) or a
+// compound algorithm (children, with its shared manifold) makes it, and gives it the saved state, its
+// children included. False (with the reason) when the dispatcher makes another kind, a saved child does
+// not exist in the shapes, or no manifold can be made; whatever was made is then in result, for the
+// caller to free with the rest.
+bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& wrap0,
+                     const btCollisionObjectWrapper& wrap1, btPersistentManifold* shared, const SavedAlgorithms& saved,
+                     int savedIndex, SnapshotReader& in, int pairIndex, btCollisionAlgorithm*& result)
+{
+	const SavedAlgorithm& s = saved.algorithms[savedIndex];
+	btCollisionObject* object0 = const_cast<btCollisionObject*>(wrap0.getCollisionObject());
+	btCollisionObject* object1 = const_cast<btCollisionObject*>(wrap1.getCollisionObject());
+	result = dispatcher->findAlgorithm(&wrap0, &wrap1, shared, BT_CONTACT_POINT_ALGORITHMS);
+	int kind = algorithmKind(result);
+	if (kind >= kBoxBox && kind <= kSphereTriangle && !shared)
 	{
 		// These algorithms make their manifold in the constructor, and only when the dispatcher's
 		// needsCollision holds then: a pair made while both bodies slept has none. When the bodies'
@@ -586,31 +1030,29 @@ bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, con
 		// that gives the saved one (needsCollision reads only whether either body is active), and the
 		// restored activation goes back.
 		btManifoldArray manifolds;
-		pair.m_algorithm->getAllContactManifolds(manifolds);
-		if (manifolds.size() != saved.manifoldCount)
+		result->getAllContactManifolds(manifolds);
+		if (manifolds.size() != s.ownManifolds)
 		{
-			pair.m_algorithm->~btCollisionAlgorithm();
-			dispatcher->freeCollisionAlgorithm(pair.m_algorithm);
+			freeAlgorithm(dispatcher, result);
 			const int state0 = activationState(*object0), state1 = activationState(*object1);
-			const int forced = saved.manifoldCount > 0 ? ACTIVE_TAG : ISLAND_SLEEPING;
+			const int forced = s.ownManifolds > 0 ? ACTIVE_TAG : ISLAND_SLEEPING;
 			activationState(*object0) = forced;
 			activationState(*object1) = forced;
-			pair.m_algorithm = dispatcher->findAlgorithm(&wrap0, &wrap1, 0, BT_CONTACT_POINT_ALGORITHMS);
+			result = dispatcher->findAlgorithm(&wrap0, &wrap1, shared, BT_CONTACT_POINT_ALGORITHMS);
 			activationState(*object0) = state0;
 			activationState(*object1) = state1;
-			kind = algorithmKind(pair.m_algorithm);
+			kind = algorithmKind(result);
 		}
 	}
-	if (kind != saved.kind)
+	if (kind != s.kind)
 	{
-		in.fail("pair %d (objects %d, %d): the dispatcher makes algorithm kind %d, the snapshot has %d", pairIndex,
-		        saved.object0, saved.object1, kind, saved.kind);
+		in.fail("pair %d: the dispatcher makes algorithm kind %d, the snapshot has %d", pairIndex, kind, s.kind);
 		return false;
 	}
 	if (kind == kConvexConvex)
 	{
-		btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(pair.m_algorithm);
-		if (saved.ownsManifold && !convexManifold(convex))
+		btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(result);
+		if (s.ownsManifold && !convexManifold(convex))
 		{
 			// The manifold processCollision makes at the pair's first step.
 			convexManifold(convex) = dispatcher->getNewManifold(object0, object1);
@@ -621,31 +1063,95 @@ bool remakeAlgorithm(btDiscreteDynamicsWorld& world, btBroadphasePair& pair, con
 			}
 			convexOwnsManifold(convex) = true;
 		}
-		convexHaveLastAxis(convex) = saved.haveAxis;
-		convexLastAxis(convex) = saved.axis;
+		convexHaveLastAxis(convex) = s.haveAxis;
+		convexLastAxis(convex) = s.axis;
 	}
 	else if (kind == kConvexConcave)
 	{
-		btConvexConcaveCollisionAlgorithm& concave = *static_cast<btConvexConcaveCollisionAlgorithm*>(pair.m_algorithm);
+		btConvexConcaveCollisionAlgorithm& concave = *static_cast<btConvexConcaveCollisionAlgorithm*>(result);
 		btConvexTriangleCallback& callback = concaveCallback(concave);
 		callback.clearWrapperData();  // it kept our wrappers, which die here
-		if (saved.triangleKind != kNoAlgorithm)
+		if (s.triangleKind != kNoAlgorithm)
 		{
 			const bool swapped = callback.m_manifoldPtr->getBody0() != object0;
 			btCollisionAlgorithm* triangle = makeTriangleAlgorithm(dispatcher, callback, swapped ? wrap1 : wrap0,
-			                                                       swapped ? wrap0 : wrap1, saved.triangleKind);
+			                                                       swapped ? wrap0 : wrap1, s.triangleKind);
 			if (!triangle)
 			{
 				in.fail("pair %d: the dispatcher makes another triangle algorithm than the snapshot's", pairIndex);
 				return false;
 			}
 			triangleAlgorithm(callback) = triangle;
-			if (saved.triangleKind == kConvexConvex)
+			if (s.triangleKind == kConvexConvex)
 			{
 				btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(triangle);
-				convexHaveLastAxis(convex) = saved.haveAxis;
-				convexLastAxis(convex) = saved.axis;
+				convexHaveLastAxis(convex) = s.haveAxis;
+				convexLastAxis(convex) = s.axis;
 			}
+		}
+	}
+	else if (kind == kCompound)
+	{
+		// As btCompoundCollisionAlgorithm::processCollision wraps a child: the compound's wrapper as parent,
+		// the child's shape and world transform, the child index as index.
+		btCompoundCollisionAlgorithm& compound = *static_cast<btCompoundCollisionAlgorithm*>(result);
+		CompoundChildAlgorithms& slots = compoundChildren(compound);
+		const bool swapped = compoundSwapped(compound);
+		const btCollisionObjectWrapper& compoundWrap = swapped ? wrap1 : wrap0;
+		const btCollisionObjectWrapper& otherWrap = swapped ? wrap0 : wrap1;
+		const btCompoundShape* shape = static_cast<const btCompoundShape*>(compoundWrap.getCollisionShape());
+		if (slots.size() != s.childCount || shape->getNumChildShapes() != s.childCount)
+		{
+			in.fail("pair %d: a compound of %d children, the snapshot's has %d", pairIndex, shape->getNumChildShapes(),
+			        s.childCount);
+			return false;
+		}
+		for (int c = 0; c < s.childCount; ++c)
+		{
+			const SavedChild& child = saved.children[s.firstChild + c];
+			if (child.algorithm < 0) continue;
+			const btTransform childWorld = compoundWrap.getWorldTransform() * shape->getChildTransform(c);
+			btCollisionObjectWrapper childWrap(&compoundWrap, shape->getChildShape(c), compoundWrap.getCollisionObject(),
+			                                   childWorld, -1, c);
+			if (!remakeAlgorithm(dispatcher, swapped ? otherWrap : childWrap, swapped ? childWrap : otherWrap,
+			                     compoundSharedManifold(compound), saved, child.algorithm, in, pairIndex, slots[c]))
+				return false;
+		}
+	}
+	else if (kind == kCompoundCompound)
+	{
+		// As btCompoundCompoundCollisionAlgorithm::processCollision wraps a pair of children; the pairs go
+		// back into its map in the saved order (which is the order their manifolds are listed in).
+		btCompoundCompoundCollisionAlgorithm& both = *static_cast<btCompoundCompoundCollisionAlgorithm*>(result);
+		CompoundChildPairs& pairs = compoundPairs(both);
+		const btCompoundShape* shape0 = static_cast<const btCompoundShape*>(wrap0.getCollisionShape());
+		const btCompoundShape* shape1 = static_cast<const btCompoundShape*>(wrap1.getCollisionShape());
+		compoundFrame(both) = s.frame;
+		for (int c = 0; c < s.childCount; ++c)
+		{
+			const SavedChild& child = saved.children[s.firstChild + c];
+			if (child.index0 >= shape0->getNumChildShapes() || child.index1 >= shape1->getNumChildShapes())
+			{
+				in.fail("pair %d: child pair %d, %d is not a pair of the compounds' children", pairIndex, child.index0,
+				        child.index1);
+				return false;
+			}
+			// Wrappers keep a reference to their transform: named, so that it outlives them.
+			const btTransform world0 = wrap0.getWorldTransform() * shape0->getChildTransform(child.index0);
+			const btTransform world1 = wrap1.getWorldTransform() * shape1->getChildTransform(child.index1);
+			btCollisionObjectWrapper child0(&wrap0, shape0->getChildShape(child.index0), wrap0.getCollisionObject(),
+			                                world0, -1, child.index0);
+			btCollisionObjectWrapper child1(&wrap1, shape1->getChildShape(child.index1), wrap1.getCollisionObject(),
+			                                world1, -1, child.index1);
+			btCompoundCompoundCollisionAlgorithm::ChildPairAlgorithm entry;
+			entry.m_algorithm = 0;
+			entry.m_lastFrame = child.lastFrame;
+			const bool made = remakeAlgorithm(dispatcher, child0, child1, compoundSharedManifold(both), saved,
+			                                  child.algorithm, in, pairIndex, entry.m_algorithm);
+			// Inserted even when it failed, so that the compound algorithm frees it with the others.
+			if (entry.m_algorithm)
+				pairs.insert(btCompoundCompoundCollisionAlgorithm::ChildPairKey(child.index0, child.index1), entry);
+			if (!made) return false;
 		}
 	}
 	return true;
@@ -721,9 +1227,11 @@ void saveManifolds(btDiscreteDynamicsWorld& world, SnapshotWriter& out)
 
 bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size_t errorSize)
 {
-	if (!dbvtOf(world))
+	if (!dbvtOf(world) && !simpleOf(world) && !sweepOf<unsigned short>(world) && !sweepOf<unsigned int>(world))
 	{
-		setError(error, errorSize, "broadphase: only btDbvtBroadphase is supported");
+		setError(error, errorSize,
+		         "broadphase: only btDbvtBroadphase, btSimpleBroadphase, btAxisSweep3 and bt32BitAxisSweep3 are "
+		         "supported");
 		return false;
 	}
 	if (!hashedCacheOf(world))
@@ -740,6 +1248,18 @@ bool collisionStateReplaceable(btDiscreteDynamicsWorld& world, char* error, size
 		pairManifolds(pairs[i], manifolds);
 		owned += manifolds.size();
 	}
+	btAlignedObjectArray<int> ghosts;
+	ghostsOf(world, ghosts);
+	for (int g = 0; g < ghosts.size(); ++g)
+		if (btPairCachingGhostObject* caching = cachingGhostOf(objectAt(world, ghosts[g])))
+		{
+			btBroadphasePairArray& ghostPairs = caching->getOverlappingPairCache()->getOverlappingPairArray();
+			for (int i = 0; i < ghostPairs.size(); ++i)
+			{
+				pairManifolds(ghostPairs[i], manifolds);
+				owned += manifolds.size();
+			}
+		}
 	if (owned != world.getDispatcher()->getNumManifolds())
 	{
 		setError(error, errorSize,
@@ -782,10 +1302,12 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 
 	const int cacheKind = in.value<int>("pair cache kind");
 	if (in.ok() && cacheKind != kPairCacheHashed) in.fail("pairs: unknown pair cache kind %d", cacheKind);
-	const int pairCount = in.count("pair count", int(btMin<long long>(0x7fffffff, (long long)n * (n - 1) / 2)));
-	btAlignedObjectArray<SavedPair> saved;
+	const int pairLimit = int(btMin<long long>(0x7fffffff, (long long)n * (n - 1) / 2));
+	const int pairCount = in.count("pair count", pairLimit);
+	btAlignedObjectArray<SavedPair> saved;  // the world's pairs, then each pair-caching ghost's
+	SavedAlgorithms algorithms;
 	btAlignedObjectArray<int> manifoldIndex;  // flat, per pair in order
-	for (int i = 0; i < pairCount && in.ok(); ++i)
+	auto readPair = [&](int i)
 	{
 		SavedPair pair;
 		pair.object0 = in.value<int>("object 0");
@@ -794,35 +1316,52 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		                pair.object0 == pair.object1 || !objectAt(world, pair.object0)->getBroadphaseHandle() ||
 		                !objectAt(world, pair.object1)->getBroadphaseHandle()))
 			in.fail("pair %d: objects %d and %d are not two objects with proxies", i, pair.object0, pair.object1);
-		pair.kind = in.value<int>("algorithm");
-		pair.ownsManifold = false;
-		pair.triangleKind = kNoAlgorithm;
-		pair.haveAxis = false;
-		pair.axis.setValue(0, 0, 0);
-		if (in.ok() && (pair.kind < kNoAlgorithm || pair.kind > kEmpty))
-			in.fail("pair %d: unknown algorithm %d", i, pair.kind);
-		if (pair.kind == kConvexConvex)
-		{
-			pair.ownsManifold = in.flag("owns manifold");
-			pair.haveAxis = in.flag("m_haveLastSeparatingAxis");
-			pair.axis = in.vector("m_lastSeparatingAxis");
-		}
-		else if (pair.kind == kConvexConcave)
-		{
-			pair.triangleKind = in.value<int>("triangle algorithm");
-			if (in.ok() && pair.triangleKind != kNoAlgorithm && pair.triangleKind != kConvexConvex &&
-			    pair.triangleKind != kSphereTriangle && pair.triangleKind != kEmpty)
-				in.fail("pair %d: unknown triangle algorithm %d", i, pair.triangleKind);
-			if (pair.triangleKind == kConvexConvex)
-			{
-				pair.haveAxis = in.flag("m_haveLastSeparatingAxis");
-				pair.axis = in.vector("m_lastSeparatingAxis");
-			}
-		}
+		pair.algorithm = in.ok() ? readAlgorithm(in, algorithms, i, 0) : -1;
 		pair.manifoldCount = in.count("manifold count", 64);
 		pair.firstManifold = manifoldIndex.size();
 		for (int m = 0; m < pair.manifoldCount && in.ok(); ++m) manifoldIndex.push_back(in.value<int>("manifold"));
 		saved.push_back(pair);
+	};
+	for (int i = 0; i < pairCount && in.ok(); ++i) readPair(i);
+
+	// Ghosts, in the world's order: their overlapping objects, and a pair-caching ghost's own pairs.
+	struct SavedGhost
+	{
+		int object;
+		int firstOverlap, overlapCount;
+		int firstPair, pairCount;
+	};
+	btAlignedObjectArray<SavedGhost> savedGhosts;
+	btAlignedObjectArray<int> overlaps;
+	btAlignedObjectArray<int> liveGhosts;
+	ghostsOf(world, liveGhosts);
+	const int ghostCount = in.value<int>("ghost count");
+	if (in.ok() && ghostCount != liveGhosts.size())
+		in.fail("ghosts: the world has %d ghost objects, the snapshot %d", liveGhosts.size(), ghostCount);
+	for (int g = 0; g < liveGhosts.size() && in.ok(); ++g)
+	{
+		SavedGhost ghost;
+		ghost.object = in.value<int>("object");
+		const bool caching = in.flag("pair caching");
+		if (in.ok() && (ghost.object != liveGhosts[g] || caching != (cachingGhostOf(objectAt(world, liveGhosts[g])) != 0)))
+		{
+			in.fail("ghost %d: object %d, %spair caching, is not the world's ghost %d", g, ghost.object,
+			        caching ? "" : "not ", liveGhosts[g]);
+			break;
+		}
+		ghost.overlapCount = in.count("overlapping count", n);
+		ghost.firstOverlap = overlaps.size();
+		for (int k = 0; k < ghost.overlapCount && in.ok(); ++k)
+		{
+			const int other = in.value<int>("overlapping");
+			if (in.ok() && (other < 0 || other >= n || other == ghost.object))
+				in.fail("ghost %d: overlapping object %d is not another object of the world", ghost.object, other);
+			overlaps.push_back(other);
+		}
+		ghost.firstPair = saved.size();
+		ghost.pairCount = caching ? in.count("pair count", pairLimit) : 0;
+		for (int i = 0; i < ghost.pairCount && in.ok(); ++i) readPair(i);
+		savedGhosts.push_back(ghost);
 	}
 	const int manifoldCount = in.count("manifold count", manifoldIndex.size());
 	if (in.ok() && manifoldCount != manifoldIndex.size())
@@ -844,20 +1383,29 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	order.resize(manifoldCount, 0);
 	if (in.applying())
 	{
-		btBroadphasePairArray& live = cache->getOverlappingPairArray();
 		btManifoldArray manifolds;
-		for (int i = 0; i < saved.size() && in.ok(); ++i)
+		// Adds saved pair i back into cache at slot and remakes its algorithm.
+		auto restorePair = [&](int i, btOverlappingPairCache* target, int slot)
 		{
+			btBroadphasePairArray& live = target->getOverlappingPairArray();
 			btBroadphaseProxy* proxy0 = objectAt(world, saved[i].object0)->getBroadphaseHandle();
 			btBroadphaseProxy* proxy1 = objectAt(world, saved[i].object1)->getBroadphaseHandle();
-			btBroadphasePair* pair = cache->addOverlappingPair(proxy0, proxy1);
-			if (!pair || pair != &live[i] || pair->m_pProxy0 != proxy0)
+			btBroadphasePair* pair = target->addOverlappingPair(proxy0, proxy1);
+			if (!pair || pair != &live[slot] || pair->m_pProxy0 != proxy0)
 			{
 				in.fail("pair %d: the pair cache does not take it back in place (filter or ids changed)", i);
 				return false;
 			}
-			if (saved[i].kind == kNoAlgorithm) continue;
-			if (!remakeAlgorithm(world, *pair, saved[i], in, i)) return false;
+			if (saved[i].algorithm < 0) return true;
+			btCollisionObject* object0 = objectAt(world, saved[i].object0);
+			btCollisionObject* object1 = objectAt(world, saved[i].object1);
+			// As the dispatcher's near callback wraps the pair.
+			btCollisionObjectWrapper wrap0(0, object0->getCollisionShape(), object0, object0->getWorldTransform(), -1,
+			                               -1);
+			btCollisionObjectWrapper wrap1(0, object1->getCollisionShape(), object1, object1->getWorldTransform(), -1,
+			                               -1);
+			if (!remakeAlgorithm(dispatcher, wrap0, wrap1, 0, algorithms, saved[i].algorithm, in, i, pair->m_algorithm))
+				return false;
 			pairManifolds(*pair, manifolds);
 			if (manifolds.size() != saved[i].manifoldCount)
 			{
@@ -866,6 +1414,30 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 				return false;
 			}
 			for (int m = 0; m < manifolds.size(); ++m) order[manifoldIndex[saved[i].firstManifold + m]] = manifolds[m];
+			return true;
+		};
+		// The world's pairs (the ghost pair callback, if any, tells the ghosts as they come back) ...
+		for (int i = 0; i < pairCount; ++i)
+			if (!restorePair(i, cache, i)) return false;
+		// ... then each ghost's list and own pairs as saved (those the callback made go first).
+		for (int g = 0; g < savedGhosts.size(); ++g)
+		{
+			const SavedGhost& ghost = savedGhosts[g];
+			btCollisionObject* object = objectAt(world, ghost.object);
+			btAlignedObjectArray<btCollisionObject*>& list = btGhostObject::upcast(object)->getOverlappingPairs();
+			list.resize(0);
+			for (int k = 0; k < ghost.overlapCount; ++k) list.push_back(objectAt(world, overlaps[ghost.firstOverlap + k]));
+			btPairCachingGhostObject* caching = cachingGhostOf(object);
+			if (!caching) continue;
+			btHashedOverlappingPairCache* own = caching->getOverlappingPairCache();
+			btBroadphasePairArray& ownPairs = own->getOverlappingPairArray();
+			while (ownPairs.size())
+			{
+				btBroadphasePair& last = ownPairs[ownPairs.size() - 1];
+				own->removeOverlappingPair(last.m_pProxy0, last.m_pProxy1, dispatcher);
+			}
+			for (int k = 0; k < ghost.pairCount; ++k)
+				if (!restorePair(ghost.firstPair + k, own, k)) return false;
 		}
 		if (dispatcher->getNumManifolds() != manifoldCount)
 		{

@@ -68,6 +68,11 @@ public:
 		bytes(name, &byte, 1);
 	}
 	void field(const char* name, const btVector3& value) { bytes(name, value.m_floats, 3 * sizeof(btScalar)); }
+	void field(const char* name, const btQuaternion& value)
+	{
+		const btScalar q[4] = {value.x(), value.y(), value.z(), value.w()};
+		bytes(name, q, sizeof(q));
+	}
 	/// The checked fields of the reader, written as plain fields.
 	void field(const char* name, const int& value, int, int) { field(name, value); }
 	void fieldKeepingBits(const char* name, const int& value, int) { field(name, value); }
@@ -209,6 +214,12 @@ public:
 		btScalar m[9];
 		if (bytes(name, m, sizeof(m)) && checkFinite(name, m, 9) && m_apply)
 			target.setValue(m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8]);
+	}
+	void field(const char* name, btQuaternion& target)
+	{
+		btScalar q[4];
+		if (!bytes(name, q, sizeof(q)) || !checkFinite(name, q, 4)) return;
+		if (m_apply) target.setValue(q[0], q[1], q[2], q[3]);
 	}
 	void field(const char* name, btTransform& target)
 	{

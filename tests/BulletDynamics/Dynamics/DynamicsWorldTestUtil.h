@@ -8,6 +8,9 @@
 #include <memory>
 #include <vector>
 
+#include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
+#include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
+#include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace caliber_test
@@ -23,6 +26,36 @@ public:
 	      m_world(new btDiscreteDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(),
 	                                          m_configuration.get()))
 	{
+		m_world->setGravity(gravity);
+	}
+
+	/// A plain world on broadphase (taken over; btDbvtBroadphase by default).
+	explicit TestWorld(btBroadphaseInterface* broadphase, const btVector3& gravity = btVector3(0, -10, 0))
+	    : m_configuration(new btDefaultCollisionConfiguration()),
+	      m_dispatcher(new btCollisionDispatcher(m_configuration.get())),
+	      m_broadphase(broadphase),
+	      m_solver(new btSequentialImpulseConstraintSolver()),
+	      m_world(new btDiscreteDynamicsWorld(m_dispatcher.get(), m_broadphase.get(), m_solver.get(),
+	                                          m_configuration.get()))
+	{
+		m_world->setGravity(gravity);
+	}
+
+	/// Tag for the multithreaded constructor.
+	struct Multithreaded
+	{
+	};
+	/// Bullet 2.89's multithreaded world (btCollisionDispatcherMt, a btConstraintSolverPoolMt of poolSize
+	/// solvers and a btSequentialImpulseConstraintSolverMt for large islands); solver() is then null.
+	TestWorld(Multithreaded, int poolSize, const btVector3& gravity = btVector3(0, -10, 0))
+	    : m_configuration(new btDefaultCollisionConfiguration()),
+	      m_dispatcher(new btCollisionDispatcherMt(m_configuration.get())),
+	      m_broadphase(new btDbvtBroadphase()),
+	      m_solverPool(new btConstraintSolverPoolMt(poolSize)),
+	      m_solverMt(new btSequentialImpulseConstraintSolverMt())
+	{
+		m_world.reset(new btDiscreteDynamicsWorldMt(m_dispatcher.get(), m_broadphase.get(), m_solverPool.get(),
+		                                            m_solverMt.get(), m_configuration.get()));
 		m_world->setGravity(gravity);
 	}
 
@@ -103,11 +136,24 @@ public:
 
 	const std::vector<btRigidBody*>& bodies() const { return m_bodies; }
 
+	/// Keeps object (anything a scene needs besides shapes, bodies and joints: vehicles, ghosts, their
+	/// callbacks) until after the world is gone.
+	template <class T>
+	T* keep(T* object)
+	{
+		m_kept.emplace_back(object);
+		return object;
+	}
+
 private:
+	// First, so destroyed last: kept objects may be referred to by the world until it is gone.
+	std::vector<std::shared_ptr<void>> m_kept;
 	std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;
 	std::unique_ptr<btCollisionDispatcher> m_dispatcher;
-	std::unique_ptr<btDbvtBroadphase> m_broadphase;
+	std::unique_ptr<btBroadphaseInterface> m_broadphase;
 	std::unique_ptr<btSequentialImpulseConstraintSolver> m_solver;
+	std::unique_ptr<btConstraintSolverPoolMt> m_solverPool;
+	std::unique_ptr<btSequentialImpulseConstraintSolverMt> m_solverMt;
 	std::unique_ptr<btDiscreteDynamicsWorld> m_world;
 	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
 	std::vector<std::unique_ptr<btDefaultMotionState>> m_motionStates;
