@@ -295,9 +295,31 @@ Parts buildClusterCombine(Scene& s)
 Parts buildClusterStackSoft(Scene& s)
 {
 	Parts p;
+	// Flat discs (the hull of three rings of 16 points and the two face centres): flat faces rest on one
+	// another; domed ones (ellipsoids) roll off each other once the contacts can turn the clusters.
 	for (int i = 0; i < 4; ++i)
-		p.softs.push_back(
-		    clusterBody(s, btVector3(0, btScalar(0.5 + 1.1 * i), 0), btVector3(1.2, 0.5, 1.2), 128, 1, 6));
+	{
+		const btScalar y = btScalar(0.5 + 1.1 * i);
+		btVector3 points[50];
+		int count = 0;
+		for (int ring = 0; ring < 3; ++ring)
+			for (int k = 0; k < 16; ++k)
+			{
+				const btScalar a = SIMD_2_PI * btScalar(k) / 16;
+				points[count++] = btVector3(btScalar(1.2) * btCos(a), y + btScalar(0.45) * btScalar(ring - 1),
+				                            btScalar(1.2) * btSin(a));
+			}
+		points[count++] = btVector3(0, y + btScalar(0.45), 0);
+		points[count++] = btVector3(0, y - btScalar(0.45), 0);
+		btSoftBody* b = s.addSoft(btSoftBodyHelpers::CreateFromConvexHull(s.info(), points, count, false));
+		b->setTotalMass(1, true);
+		b->m_cfg.kPR = 200;
+		b->m_cfg.kDF = btScalar(0.5);
+		b->m_cfg.piterations = 4;
+		b->m_cfg.collisions = btSoftBody::fCollision::CL_RS | btSoftBody::fCollision::CL_SS;
+		b->generateClusters(6);
+		p.softs.push_back(b);
+	}
 	return p;
 }
 

@@ -87,7 +87,7 @@ Parts buildClusterSocket(Scene& scene);
 Parts buildClusterHinge(Scene& scene);
 /// A chain from a world point: two soft balls and a 1 kg box (rigids[0]) joined by linear joints.
 Parts buildClusterCombine(Scene& scene);
-/// Four soft discs stacked (CL_SS).
+/// Four flat soft discs (2.4 x 0.9 m, 6 clusters) stacked (CL_SS).
 Parts buildClusterStackSoft(Scene& scene);
 /// A soft disc between two 1 kg boxes (rigids), stacked on the ground.
 Parts buildClusterStackMixed(Scene& scene);

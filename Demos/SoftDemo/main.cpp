@@ -311,7 +311,7 @@ bool clusterStack(const soft_demo::Parts& parts, Scene& s, int frames, btScalar 
 
 bool clusterStackSoft(int frames)
 {
-	printf("ClusterStackSoft: four soft discs (2.4 x 1 m, 6 clusters, CL_SS) stacked.\n");
+	printf("ClusterStackSoft: four flat soft discs (2.4 x 0.9 m, 6 clusters, CL_SS) stacked.\n");
 	Scene s;
 	const soft_demo::Parts parts = soft_demo::buildClusterStackSoft(s);
 	return clusterStack(parts, s, frames, btScalar(0.5 + 1.1 * 3));

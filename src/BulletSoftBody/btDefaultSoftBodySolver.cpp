@@ -2,6 +2,7 @@
 #include "BulletSoftBody/btDefaultSoftBodySolver.h"
 
 #include "BulletSoftBody/btSoftBody.h"
+#include "btSoftBodyClusters.h"
 #include "btSoftBodyInternal.h"
 
 btDefaultSoftBodySolver::btDefaultSoftBodySolver() : m_updateSolverConstants(true) {}
@@ -27,8 +28,29 @@ void btDefaultSoftBodySolver::predictMotion(btScalar solverdt)
 void btDefaultSoftBodySolver::solveConstraints(btScalar solverdt)
 {
 	(void)solverdt;  // each body keeps the step of its predictMotion
+	// Bodies with clusters leave their cluster stage (contacts and joints) to solveClusterStages, which
+	// solves them all together: clusters of different bodies pressed together are solved in one sweep.
+	static thread_local btAlignedObjectArray<btSoftBody*> clustered;
+	clustered.resize(0);
 	for (int i = 0; i < m_softBodySet.size(); ++i)
-		if (m_softBodySet[i]->isActive()) m_softBodySet[i]->solveConstraints();
+	{
+		btSoftBody* body = m_softBodySet[i];
+		if (!body->isActive()) continue;
+		const bool defer = body->m_clusters.size() > 0 || body->m_joints.size() > 0;
+		if (defer)
+		{
+			caliber::clusterState(*body).deferred = true;
+			clustered.push_back(body);
+		}
+		body->solveConstraints();
+	}
+	if (clustered.size() == 0) return;
+	caliber::solveClusterStages(&clustered[0], clustered.size());
+	for (int i = 0; i < clustered.size(); ++i)
+	{
+		caliber::clusterState(*clustered[i]).deferred = false;
+		caliber::finishSoftSolve(*clustered[i]);
+	}
 }
 
 void btDefaultSoftBodySolver::updateSoftBodies()

@@ -303,7 +303,11 @@ void btSoftBody::predictMotion(btScalar dt)
 	m_sst.updmrg = m_sst.radmrg * btScalar(0.25);
 	m_rcontacts.resize(0);
 	m_scontacts.resize(0);
-	if (m_clusters.size() > 0) caliber::clusterState(*this).contacts.resize(0);
+	if (m_clusters.size() > 0)
+	{
+		caliber::clusterState(*this).contacts.resize(0);
+		caliber::clusterState(*this).weights.resize(0);
+	}
 	if (m_faces.size() > 0)  // only faces take corner contacts (ropes skip the side table)
 	{
 		caliber::SoftFaceContacts& faceContacts = caliber::softFaceContacts(*this);
@@ -685,10 +689,20 @@ void btSoftBody::solveConstraints()
 		for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], dt);
 		caliber::collideClustersWithClusters(*this, *this);
 	}
-	if (m_clusters.size() > 0 || m_joints.size() > 0) caliber::solveClusterStage(*this, dt);
+	if (m_clusters.size() > 0 || m_joints.size() > 0)
+	{
+		// The default solver runs the cluster stages of its bodies together, then finishes each body.
+		if (caliber::clusterState(*this).deferred) return;
+		caliber::solveClusterStage(*this, dt);
+	}
 	// Contacts have the last word: the links (and pose matching) of the last sweep must not leave nodes
 	// inside rigid objects, nor rigid points behind faces.
 	solveContacts(*this, dt, faceContacts);
+}
+
+void caliber::finishSoftSolve(btSoftBody& body)
+{
+	solveContacts(body, body.m_sst.sdt, body.m_faces.size() > 0 ? &caliber::softFaceContacts(body) : 0);
 }
 
 void btSoftBody::staticSolve(int iterations)
