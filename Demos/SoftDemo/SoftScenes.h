@@ -89,7 +89,7 @@ Parts buildClusterHinge(Scene& scene);
 Parts buildClusterCombine(Scene& scene);
 /// Four flat soft discs (2.4 x 0.9 m, 6 clusters) stacked (CL_SS).
 Parts buildClusterStackSoft(Scene& scene);
-/// A soft disc between two 1 kg boxes (rigids), stacked on the ground.
+/// Soft disc, 1 kg box, soft disc, 1 kg box (rigids) stacked from the ground up.
 Parts buildClusterStackMixed(Scene& scene);
 
 /// 25 sticks (ropes with bending links) fixed at the ground, leaning over.

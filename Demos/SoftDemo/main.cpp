@@ -319,25 +319,23 @@ bool clusterStackSoft(int frames)
 
 bool clusterStackMixed(int frames)
 {
-	printf("ClusterStackMixed: a soft disc (1 kg, 6 clusters, CL_RS) between two 1 kg boxes, on the ground.\n");
+	printf("ClusterStackMixed: soft disc, box, soft disc, box (flat 0.4 m discs of 6 clusters, 0.6 m boxes of 1 kg).\n");
 	Scene s;
 	const soft_demo::Parts parts = soft_demo::buildClusterStackMixed(s);
-	btSoftBody* disc = parts.softs[0];
-	btRigidBody* top = parts.rigids[1];
-	btScalar lowestTop = BT_LARGE_FLOAT;
-	for (int i = 0; i < frames; ++i)
-	{
-		s.step(1);
-		lowestTop = btMin(lowestTop, top->getCenterOfMassPosition().y());
-	}
-	const btVector3 p = top->getCenterOfMassPosition();
-	const btScalar drift = btVector3(p.x(), 0, p.z()).length();
-	printf(
-	    "  the top box at y = %.2f m (built at 2.00, lowest %.2f), %.2f m off the axis; the disc's centre at %.2f m\n",
-	    double(p.y()), double(lowestTop), double(drift), double(disc->evaluateCom().y()));
-	// The disc's top is domed: the box slides a little way off the axis, still on the disc (radius 1.2 m).
-	return report(allFinite(disc) && lowestTop > 1.5 && p.y() > disc->evaluateCom().y() + 0.3 && drift < 1,
-	              "the disc carries the top box (above 1.5 m, within 1 m of the axis)");
+	s.step(frames);
+	// Where the boxes would rest on rigid discs: 0.7 and 1.7 m. The lower disc's gas (P V = 200 J, 1.8 m^3)
+	// carries 30 N on the box's 2.6 m^2 and gives about 11% of its 0.4 m (4 cm); the upper one about 1.5 cm.
+	btScalar worst = 0;
+	for (int k = 0; k < 2; ++k)
+		worst = btMax(worst, btFabs(parts.rigids[size_t(k)]->getCenterOfMassPosition().y() - btScalar(0.7 + k)));
+	const btVector3 top = parts.rigids[1]->getCenterOfMassPosition();
+	printf("  the boxes at y = %.2f and %.2f m (rigid discs: 0.70 and 1.70), the worst %.3f m off; the top box %.2f m off the axis\n",
+	       double(parts.rigids[0]->getCenterOfMassPosition().y()), double(top.y()), double(worst),
+	       double(btVector3(top.x(), 0, top.z()).length()));
+	// A box sinking into a disc or the stack falling over moves a box by tens of centimetres.
+	return report(allFinite(parts.softs[0]) && allFinite(parts.softs[1]) && worst < btScalar(0.1) &&
+	                  btVector3(top.x(), 0, top.z()).length() < btScalar(0.5),
+	              "the discs carry the boxes within 10 cm of their rigid-stack heights; the top stays within 0.5 m of the axis");
 }
 
 struct Entry
