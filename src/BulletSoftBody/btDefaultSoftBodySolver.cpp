@@ -2,6 +2,7 @@
 #include "BulletSoftBody/btDefaultSoftBodySolver.h"
 
 #include "BulletSoftBody/btSoftBody.h"
+#include "LinearMath/btThreads.h"
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyInternal.h"
 
@@ -19,11 +20,45 @@ void btDefaultSoftBodySolver::optimize(btAlignedObjectArray<btSoftBody*>& softBo
 
 void btDefaultSoftBodySolver::copyBackToSoftBodies(bool bMove) { (void)bMove; }
 
-void btDefaultSoftBodySolver::predictMotion(btScalar solverdt)
+namespace
 {
-	for (int i = 0; i < m_softBodySet.size(); ++i)
-		if (m_softBodySet[i]->isActive()) m_softBodySet[i]->predictMotion(solverdt);
+// predictMotion and integrateMotion of the solver's bodies on the task scheduler's threads, one body per
+// task: each touches its own body only (its side tables are locked maps), so the results are those of the
+// loop on one thread, bit for bit. A body's own node loops run serially inside such a task (a loop started
+// inside a loop body runs on its thread), in parallel when the world has a single soft body.
+struct BodyStage : btIParallelForBody
+{
+	btSoftBody* const* bodies;
+	btScalar dt;
+	bool predict;
+	void forLoop(int begin, int end) const override
+	{
+		for (int i = begin; i < end; ++i)
+		{
+			if (!bodies[i]->isActive()) continue;
+			if (predict)
+				bodies[i]->predictMotion(dt);
+			else
+				bodies[i]->integrateMotion();
+		}
+	}
+};
+
+void runStage(btAlignedObjectArray<btSoftBody*>& bodies, btScalar dt, bool predict)
+{
+	if (bodies.size() == 0) return;
+	BodyStage stage;
+	stage.bodies = &bodies[0];
+	stage.dt = dt;
+	stage.predict = predict;
+	if (bodies.size() == 1)
+		stage.forLoop(0, 1);
+	else
+		btParallelFor(0, bodies.size(), 1, stage);
 }
+}  // namespace
+
+void btDefaultSoftBodySolver::predictMotion(btScalar solverdt) { runStage(m_softBodySet, solverdt, true); }
 
 void btDefaultSoftBodySolver::solveConstraints(btScalar solverdt)
 {
@@ -53,11 +88,7 @@ void btDefaultSoftBodySolver::solveConstraints(btScalar solverdt)
 	}
 }
 
-void btDefaultSoftBodySolver::updateSoftBodies()
-{
-	for (int i = 0; i < m_softBodySet.size(); ++i)
-		if (m_softBodySet[i]->isActive()) m_softBodySet[i]->integrateMotion();
-}
+void btDefaultSoftBodySolver::updateSoftBodies() { runStage(m_softBodySet, 0, false); }
 
 void btDefaultSoftBodySolver::processCollision(btSoftBody* softBody,
                                                const btCollisionObjectWrapper* collisionObjectWrap)
