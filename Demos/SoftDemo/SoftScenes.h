@@ -49,6 +49,16 @@ private:
 	std::vector<btSoftBody*> m_softs;
 };
 
+/// Bullet's SoftDemo motor for angular joints: turns towards goal by at most maxStep (rad/s) per solve.
+struct Motor : btSoftBody::AJoint::IControl
+{
+	btScalar goal = 0, maxStep = 1;
+	btScalar Speed(btSoftBody::AJoint*, btScalar current) override
+	{
+		return current + btMin(maxStep, btMax(-maxStep, goal - current));
+	}
+};
+
 /// What each scene adds (the bodies SoftDemo measures).
 struct Parts
 {

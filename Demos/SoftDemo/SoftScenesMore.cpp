@@ -40,15 +40,6 @@ btSoftBody* clusterBall(Scene& s, const btVector3& centre, const btVector3& radi
 	return b;
 }
 
-// Bullet's SoftDemo motor (as ClusterHinge's): turns towards goal by at most maxStep (rad/s) per solve.
-struct Motor : btSoftBody::AJoint::IControl
-{
-	btScalar goal = 0, maxStep = 1;
-	btScalar Speed(btSoftBody::AJoint*, btScalar current) override
-	{
-		return current + btMin(maxStep, btMax(-maxStep, goal - current));
-	}
-};
 Motor g_carMotor;  // outlives every scene (joints keep a pointer to their control)
 }  // namespace
 
