@@ -197,15 +197,6 @@ btSoftBody* clusterBody(Scene& s, const btVector3& centre, const btVector3& radi
 	return b;
 }
 
-// Bullet's SoftDemo motor: turns towards goal by at most maxStep (rad/s) per solve.
-struct Motor : btSoftBody::AJoint::IControl
-{
-	btScalar goal = 0, maxStep = 1;
-	btScalar Speed(btSoftBody::AJoint*, btScalar current) override
-	{
-		return current + btMin(maxStep, btMax(-maxStep, goal - current));
-	}
-};
 Motor g_hingeMotor;  // outlives every scene (joints keep a pointer to their control)
 }  // namespace
 
@@ -292,24 +283,52 @@ Parts buildClusterCombine(Scene& s)
 	return p;
 }
 
+namespace
+{
+// A flat soft disc (1 kg, 6 clusters, gas, CL_RS and CL_SS): the hull of three rings of 16 points and the
+// two face centres, so that its faces are flat: flat faces rest on one another, where domed ones (ellipsoids)
+// roll off each other once the contacts can turn the clusters.
+btSoftBody* flatDisc(Scene& s, const btVector3& centre, btScalar radius, btScalar halfHeight)
+{
+	btVector3 points[50];
+	int count = 0;
+	for (int ring = 0; ring < 3; ++ring)
+		for (int k = 0; k < 16; ++k)
+		{
+			const btScalar a = SIMD_2_PI * btScalar(k) / 16;
+			points[count++] = centre + btVector3(radius * btCos(a), halfHeight * btScalar(ring - 1), radius * btSin(a));
+		}
+	points[count++] = centre + btVector3(0, halfHeight, 0);
+	points[count++] = centre - btVector3(0, halfHeight, 0);
+	btSoftBody* b = s.addSoft(btSoftBodyHelpers::CreateFromConvexHull(s.info(), points, count, false));
+	b->setTotalMass(1, true);
+	b->m_cfg.kPR = 200;
+	b->m_cfg.kDF = btScalar(0.5);
+	b->m_cfg.piterations = 4;
+	b->m_cfg.collisions = btSoftBody::fCollision::CL_RS | btSoftBody::fCollision::CL_SS;
+	b->generateClusters(6);
+	return b;
+}
+}  // namespace
+
 Parts buildClusterStackSoft(Scene& s)
 {
 	Parts p;
 	for (int i = 0; i < 4; ++i)
-		p.softs.push_back(
-		    clusterBody(s, btVector3(0, btScalar(0.5 + 1.1 * i), 0), btVector3(1.2, 0.5, 1.2), 128, 1, 6));
+		p.softs.push_back(flatDisc(s, btVector3(0, btScalar(0.5 + 1.1 * i), 0), btScalar(1.2), btScalar(0.45)));
 	return p;
 }
 
 Parts buildClusterStackMixed(Scene& s)
 {
 	Parts p;
-	// A soft disc between two 1 kg boxes, on the ground (a box pressed between two soft bodies is solved by
-	// each in turn and sinks into the lower one: see docs/soft-bodies.md, "Clusters").
+	// Soft disc, box, soft disc, box from the ground up (0.4 m discs, 0.6 m boxes of 1 kg): the lower box is
+	// pressed between the two discs, whose cluster stages the solver runs together.
 	btCollisionShape* box = s.own(new btBoxShape(btVector3(0.8, 0.3, 0.8)));
-	p.rigids.push_back(s.addRigid(1, btVector3(0, 0.3, 0), box));
-	p.softs.push_back(clusterBody(s, btVector3(0, 1.15, 0), btVector3(1.2, 0.5, 1.2), 128, 1, 6));
-	p.rigids.push_back(s.addRigid(1, btVector3(0, 2.0, 0), box));
+	p.softs.push_back(flatDisc(s, btVector3(0, 0.2, 0), btScalar(1.2), btScalar(0.2)));
+	p.rigids.push_back(s.addRigid(1, btVector3(0, 0.75, 0), box));
+	p.softs.push_back(flatDisc(s, btVector3(0, 1.3, 0), btScalar(1.2), btScalar(0.2)));
+	p.rigids.push_back(s.addRigid(1, btVector3(0, 1.85, 0), box));
 	return p;
 }
 
@@ -326,14 +345,28 @@ const Builder kBuilders[] = {{"Cloth", buildCloth},
                              {"Ropes", buildRopes},
                              {"RopeAttach", buildRopeAttach},
                              {"ClothAttach", buildClothAttach},
+                             {"Sticks", buildSticks},
+                             {"Collide", buildCollide},
+                             {"Collide2", buildCollide2},
+                             {"Collide3", buildCollide3},
                              {"Friction", buildFriction},
                              {"Impact", buildImpact},
+                             {"Aero", buildAero},
+                             {"Aero2", buildAero2},
+                             {"Torus", buildTorus},
+                             {"TorusMatch", buildTorusMatch},
+                             {"Bunny", buildBunny},
+                             {"BunnyMatch", buildBunnyMatch},
+                             {"Cutting1", buildCutting1},
+                             {"TetraCube", buildTetraCube},
                              {"ClusterDeform", buildClusterDeform},
                              {"ClusterCollide1", buildClusterCollide1},
                              {"ClusterCollide2", buildClusterCollide2},
                              {"ClusterSocket", buildClusterSocket},
                              {"ClusterHinge", buildClusterHinge},
                              {"ClusterCombine", buildClusterCombine},
+                             {"ClusterCar", buildClusterCar},
+                             {"ClusterRobot", buildClusterRobot},
                              {"ClusterStackSoft", buildClusterStackSoft},
                              {"ClusterStackMixed", buildClusterStackMixed}};
 }  // namespace

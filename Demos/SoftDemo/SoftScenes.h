@@ -2,8 +2,10 @@
 #ifndef CALIBER_DEMOS_SOFT_SCENES_H
 #define CALIBER_DEMOS_SOFT_SCENES_H
 // SoftDemo's scenes (our own set-ups after Bullet's SoftDemo): Cloth, Pressure, Volume, Ropes,
-// RopeAttach, ClothAttach, Friction, Impact and the cluster scenes ClusterDeform, ClusterCollide1,
-// ClusterCollide2, ClusterSocket, ClusterHinge, ClusterCombine, ClusterStackSoft, ClusterStackMixed, each built into a
+// RopeAttach, ClothAttach, Sticks, Collide, Collide2, Collide3, Friction, Impact, Aero, Aero2, Torus,
+// TorusMatch, Bunny, BunnyMatch, Cutting1, TetraCube and the cluster scenes ClusterDeform, ClusterCollide1,
+// ClusterCollide2, ClusterSocket, ClusterHinge, ClusterCombine, ClusterCar, ClusterRobot, ClusterStackSoft,
+// ClusterStackMixed (SoftScenes.cpp, SoftScenesMore.cpp), each built into a
 // soft-rigid world with a 100 m ground (top face at y = 0). Used by SoftDemo, which runs and measures them, and by the
 // demo browser.
 
@@ -47,6 +49,16 @@ private:
 	std::vector<btSoftBody*> m_softs;
 };
 
+/// Bullet's SoftDemo motor for angular joints: turns towards goal by at most maxStep (rad/s) per solve.
+struct Motor : btSoftBody::AJoint::IControl
+{
+	btScalar goal = 0, maxStep = 1;
+	btScalar Speed(btSoftBody::AJoint*, btScalar current) override
+	{
+		return current + btMin(maxStep, btMax(-maxStep, goal - current));
+	}
+};
+
 /// What each scene adds (the bodies SoftDemo measures).
 struct Parts
 {
@@ -85,10 +97,39 @@ Parts buildClusterSocket(Scene& scene);
 Parts buildClusterHinge(Scene& scene);
 /// A chain from a world point: two soft balls and a 1 kg box (rigids[0]) joined by linear joints.
 Parts buildClusterCombine(Scene& scene);
-/// Four soft discs stacked (CL_SS).
+/// Four flat soft discs (2.4 x 0.9 m, 6 clusters) stacked (CL_SS).
 Parts buildClusterStackSoft(Scene& scene);
-/// A soft disc between two 1 kg boxes (rigids), stacked on the ground.
+/// Soft disc, 1 kg box, soft disc, 1 kg box (rigids) stacked from the ground up.
 Parts buildClusterStackMixed(Scene& scene);
+
+/// 25 sticks (ropes with bending links) fixed at the ground, leaning over.
+Parts buildSticks(Scene& scene);
+/// Two gas balls (VF_SS) thrown at each other.
+Parts buildCollide(Scene& scene);
+/// Three soft volumes (kVC, VF_SS) falling on one another.
+Parts buildCollide2(Scene& scene);
+/// A free cloth (softs[1]) dropped onto a cloth pinned at its corners (softs[0]), VF_SS.
+Parts buildCollide3(Scene& scene);
+/// A flag hanging from two corners in a 10 m/s wind along +x.
+Parts buildAero(Scene& scene);
+/// Four free sheets falling through a 4 m/s wind along +z, with drag and lift on faces.
+Parts buildAero2(Scene& scene);
+/// A torus (our own procedural mesh) keeping its volume by kVC, dropped.
+Parts buildTorus(Scene& scene);
+/// The torus with soft links and pose matching (kMT).
+Parts buildTorusMatch(Scene& scene);
+/// A blob of gas (our own lumpy mesh standing in for Bullet's bunny), dropped.
+Parts buildBunny(Scene& scene);
+/// The blob with soft links and pose matching (kMT).
+Parts buildBunnyMatch(Scene& scene);
+/// A cloth hanging from its two top corners (SoftDemo cuts it with refine).
+Parts buildCutting1(Scene& scene);
+/// A 3 kg chassis (rigids[0]) on four soft cluster wheels driven by angular-joint motors.
+Parts buildClusterCar(Scene& scene);
+/// A rigid hub (rigids[0]) on three soft cluster feet, tumbling down a slope.
+Parts buildClusterRobot(Scene& scene);
+/// A cube of tetras (from TetGen text made here), dropped.
+Parts buildTetraCube(Scene& scene);
 
 /// The scenes' names, in SoftDemo's order.
 std::vector<std::string> sceneNames();

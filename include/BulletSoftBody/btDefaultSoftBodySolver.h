@@ -2,7 +2,8 @@
 #ifndef BT_SOFT_BODY_DEFAULT_SOLVER_H
 #define BT_SOFT_BODY_DEFAULT_SOLVER_H
 
-/// btDefaultSoftBodySolver: steps each soft body on the calling thread with btSoftBody's own solver.
+/// btDefaultSoftBodySolver: steps the soft bodies with btSoftBody's own solver: their prediction and velocity
+/// update on the task scheduler (the same bits at any thread count), their solves on the calling thread.
 
 #include "BulletSoftBody/btSoftBodySolvers.h"
 

@@ -792,6 +792,11 @@ public:
 	bool cutLink(int node0, int node1, btScalar position);
 	/// As above, with node pointers.
 	bool cutLink(const Node* node0, const Node* node1, btScalar position);
+	/// Splits the links (and, for bodies with faces, the face edges) across which ifn changes sign at a new
+	/// node on its zero set, found by bisection to accurary (a fraction of the link's length), and splits the
+	/// faces to match; with cut, the body is also cut along that set (each new node doubled, one for each
+	/// side). The total mass is kept. Not for bodies with tetras or clusters (a warning; nothing done).
+	void refine(ImplicitFn* ifn, btScalar accurary, bool cut);
 	/// First face (or, for bodies without faces, nothing) hit by the segment; fills results and returns
 	/// true on a hit.
 	bool rayTest(const btVector3& rayFrom, const btVector3& rayTo, sRayCast& results);

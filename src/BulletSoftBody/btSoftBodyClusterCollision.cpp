@@ -38,6 +38,17 @@ void fillHull(const btSoftBody::Cluster& c, btAlignedObjectArray<btVector3>& poi
 	hull.setMargin(margin);
 }
 
+// True when one of body's joints joins its cluster c to other.
+bool joined(const btSoftBody& body, const btSoftBody::Cluster* c, const btSoftBody::Cluster* other)
+{
+	for (int i = 0; i < body.m_joints.size(); ++i)
+	{
+		const btSoftBody::Joint* j = body.m_joints[i];
+		if (j->m_bodies[0].m_soft == c && j->m_bodies[1].m_soft == other) return true;
+	}
+	return false;
+}
+
 btTransform at(const btVector3& origin)
 {
 	btTransform t;
@@ -76,6 +87,7 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 		contact.object = object;
 		contact.node = 0;
 		contact.distance = 0;
+		contact.weightsA = contact.weightsB = -1;
 		contact.localA = c.m_framexform.inverse() * res.witnesses[0];
 		contact.localB = inverse * res.witnesses[1];
 		contact.normal = inverse.getBasis() * res.normal;  // from the shape towards the cluster, in its frame
@@ -161,6 +173,7 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 			if (!cb.m_collide || cb.m_nodes.size() == 0 || !boxA.overlaps(boxesB[j])) continue;
 			if (self && a.m_clusterConnectivity.size() == countA * countA && a.m_clusterConnectivity[i + j * countA])
 				continue;  // neighbours share nodes: they touch by construction
+			if (joined(a, &ca, &cb) || joined(b, &cb, &ca)) continue;  // a joint holds them together: no contact
 			if (!filled) fillHull(ca, state.points, hullA, thickness);
 			filled = true;
 			fillHull(cb, state.points2, hullB, thickness);
@@ -174,15 +187,43 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 			contact.other = &cb;
 			contact.object = 0;
 			contact.node = 0;
-			contact.localA = ca.m_com;
-			contact.localB = cb.m_com;
-			contact.distance = res.distance;
 			contact.normal = res.normal;  // from b's hull towards a's
 			contact.hardness = hardness;
 			contact.friction = friction;
 			contact.maxCorrection =
 			    self ? btMin(ca.m_maxSelfCollisionImpulse, cb.m_maxSelfCollisionImpulse) : BT_LARGE_FLOAT;
-			state.contacts.push_back(contact);
+			// A contact at point, followed on each side as a material point of its cluster.
+			auto add = [&](const btVector3& point, btScalar distance)
+			{
+				contact.distance = distance;
+				contact.weightsA = caliber::materialPointWeights(ca, point, state.weights);
+				contact.weightsB = caliber::materialPointWeights(cb, point, state.weights);
+				contact.localA = caliber::materialPoint(ca, state.weights, contact.weightsA);
+				contact.localB = caliber::materialPoint(cb, state.weights, contact.weightsB);
+				state.contacts.push_back(contact);
+			};
+			const int first = state.contacts.size();
+			// The deepest point alone lets a cluster rest on one point and tip (as against rigid shapes): every
+			// node of either hull within reach of the contact plane, over the other hull, is held too.
+			const btVector3& n = res.normal;
+			const Box overA = clusterBox(ca, thickness), overB = clusterBox(cb, thickness);
+			for (int k = 0; k < ca.m_nodes.size(); ++k)
+			{
+				const btVector3& x = ca.m_nodes[k]->m_x;
+				const btScalar d = n.dot(x - res.witnesses[1]) - thickness;  // A's grown surface to B's
+				const btVector3 onPlane = x - n * (d + thickness);
+				if (d < reach && ca.m_nodes[k]->m_im > 0 && Box{onPlane, onPlane}.overlaps(overB))
+					add(onPlane + n * ((d + thickness) / 2), d);
+			}
+			for (int k = 0; k < cb.m_nodes.size(); ++k)
+			{
+				const btVector3& x = cb.m_nodes[k]->m_x;
+				const btScalar d = n.dot(res.witnesses[0] - x) - thickness;
+				const btVector3 onPlane = x + n * (d + thickness);
+				if (d < reach && cb.m_nodes[k]->m_im > 0 && Box{onPlane, onPlane}.overlaps(overA))
+					add(onPlane - n * ((d + thickness) / 2), d);
+			}
+			if (state.contacts.size() == first) add((res.witnesses[0] + res.witnesses[1]) / 2, res.distance);
 		}
 	}
 }

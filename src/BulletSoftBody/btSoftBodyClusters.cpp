@@ -159,6 +159,47 @@ void caliber::clusterMotion(const btSoftBody::Cluster& c, btScalar dt, btVector3
 	velocity /= total * dt;
 }
 
+int caliber::materialPointWeights(const btSoftBody::Cluster& c, const btVector3& p,
+                                  btAlignedObjectArray<btScalar>& weights)
+{
+	const int offset = weights.size();
+	const int n = c.m_nodes.size();
+	weights.resize(offset + n);
+	btScalar total = 0;
+	btVector3 com(0, 0, 0);
+	for (int j = 0; j < n; ++j)
+	{
+		total += frameWeight(c, j);
+		com += c.m_nodes[j]->m_x * frameWeight(c, j);
+	}
+	if (!(total > 0)) return offset;
+	com /= total;
+	// Second moment A of the nodes about the centre; the weights w_j / W + w_j r_j . (A^-1 (p - com)) sum to
+	// one and give back p: sum w_j r_j r_j^T A^-1 (p - com) = p - com.
+	btMatrix3x3 moment(0, 0, 0, 0, 0, 0, 0, 0, 0);
+	for (int j = 0; j < n; ++j)
+	{
+		const btVector3 r = c.m_nodes[j]->m_x - com;
+		for (int a = 0; a < 3; ++a)
+			for (int b = 0; b < 3; ++b) moment[a][b] += frameWeight(c, j) * r[a] * r[b];
+	}
+	const btScalar trace = moment[0][0] + moment[1][1] + moment[2][2];
+	// A flat or linear cluster has no moment across itself: a small regularisation drops that part of p.
+	for (int a = 0; a < 3; ++a) moment[a][a] += btScalar(1e-4) * (trace > 0 ? trace : btScalar(1));
+	const btVector3 g = moment.inverse() * (p - com);
+	for (int j = 0; j < n; ++j)
+		weights[offset + j] = frameWeight(c, j) * (1 / total + (c.m_nodes[j]->m_x - com).dot(g));
+	return offset;
+}
+
+btVector3 caliber::materialPoint(const btSoftBody::Cluster& c, const btAlignedObjectArray<btScalar>& weights,
+                                 int offset)
+{
+	btVector3 p(0, 0, 0);
+	for (int j = 0; j < c.m_nodes.size(); ++j) p += c.m_nodes[j]->m_x * weights[offset + j];
+	return p;
+}
+
 btScalar caliber::clusterAngularInverseMass(const btSoftBody::Cluster& c, const btVector3& n)
 {
 	if (!(c.m_imass > 0)) return 0;

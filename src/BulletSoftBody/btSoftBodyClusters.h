@@ -15,18 +15,22 @@ namespace caliber
 {
 /// A contact of one of the body's clusters with a rigid object or another cluster, found this step.
 /// Against an object the constraint is normal . (pA - pB) >= 0, pA the node (or the witness point carried
-/// by the cluster's frame), pB carried by the object. Between clusters it is distance + normal . (the
-/// clusters' centres' moves since) >= 0, pushing the centres (a cluster's frame can turn abruptly as its
-/// nodes deform, which would move a witness point carried by it).
+/// by the cluster's frame), pB carried by the object. Between clusters it is distance + normal . (the moves
+/// since of each cluster's material point at the contact) >= 0, each point an affine combination of its
+/// cluster's nodes (materialPointWeights): it moves exactly with the cluster's rigid motions and smoothly
+/// as the nodes deform (a point carried by the cluster's frame would jump when the best-fit rotation
+/// does). The push acts at the contact point, so an off-centre hit turns the clusters, and angular
+/// momentum is conserved.
 struct ClusterContact
 {
 	btSoftBody::Cluster* cluster;     // side A: a cluster of the body
 	btSoftBody::Cluster* other;       // side B when a cluster (of this or another soft body), else 0
 	const btCollisionObject* object;  // side B when a rigid object, else 0
 	btSoftBody::Node* node;           // the node at pA (manifold points against objects), else 0
-	btVector3 localA;                 // pA in A's frame (m_framexform); between clusters, A's centre when found
-	btVector3 localB;                 // pB in the object's frame; between clusters, B's centre when found
+	btVector3 localA;                 // pA in A's frame (m_framexform); between clusters, A's material point when found
+	btVector3 localB;                 // pB in the object's frame; between clusters, B's material point when found
 	btScalar distance;                // between clusters: the signed distance when found
+	int weightsA, weightsB;           // between clusters: where the material points' weights start (ClusterState)
 	btVector3 normal;                 // from B towards A: world axes for clusters, B's frame for objects
 	btScalar hardness;                // fraction of the error closed per solve
 	btScalar friction;                // Coulomb coefficient
@@ -46,10 +50,12 @@ struct Box
 
 struct ClusterState
 {
+	bool deferred = false;                          // solveConstraints leaves the cluster stage to the solver
 	btAlignedObjectArray<ClusterContact> contacts;  // this step's, cleared in predictMotion
 	btAlignedObjectArray<btVector3> points;         // scratch: a cluster's hull points
 	btAlignedObjectArray<btVector3> points2;        // scratch: the other cluster's
 	btAlignedObjectArray<Box> boxes;                // scratch: the other body's clusters' boxes
+	btAlignedObjectArray<btScalar> weights;         // material points of the contacts between clusters
 };
 
 /// The body's cluster state (contacts of this step).
@@ -68,6 +74,12 @@ btScalar clusterInverseMass(const btSoftBody::Cluster& c, const btVector3& r, co
 /// A cluster's centre of mass and its velocity over the step so far ((x - q) / dt), from its nodes now:
 /// every move of a neighbour sharing nodes shows in them.
 void clusterMotion(const btSoftBody::Cluster& c, btScalar dt, btVector3& com, btVector3& velocity);
+/// Appends to weights one weight per node of c such that the sum of weight times node position is p now
+/// and moves with every rigid motion of the cluster (an affine combination: the mass shares plus a first
+/// moment towards p; a flat cluster keeps only p's part in its plane). Returns where they start.
+int materialPointWeights(const btSoftBody::Cluster& c, const btVector3& p, btAlignedObjectArray<btScalar>& weights);
+/// The point the weights at offset follow, from c's nodes now.
+btVector3 materialPoint(const btSoftBody::Cluster& c, const btAlignedObjectArray<btScalar>& weights, int offset);
 /// Effective inverse angular mass of a cluster about unit axis n.
 btScalar clusterAngularInverseMass(const btSoftBody::Cluster& c, const btVector3& n);
 /// Moves a cluster as a rigid body by the position impulse p (kg m) at offset r, over a step dt: its
@@ -87,6 +99,12 @@ void collideClustersWithClusters(btSoftBody& a, btSoftBody& b);
 /// The cluster stage of a step: citerations solves of the cluster contacts and joints, then shape
 /// matching; called by solveConstraints after the node solvers.
 void solveClusterStage(btSoftBody& body, btScalar dt);
+/// The cluster stages of several bodies at once, their solves interleaved (each body's step is its
+/// m_sst.sdt): called by btDefaultSoftBodySolver after the bodies' solveConstraints, for the bodies whose
+/// stage it deferred (see deferClusterStage).
+void solveClusterStages(btSoftBody* const* bodies, int count);
+/// The end of solveConstraints after a deferred cluster stage: the node contacts' last solve.
+void finishSoftSolve(btSoftBody& body);
 }  // namespace caliber
 
 #endif  // CALIBER_SOFT_BODY_CLUSTERS_H

@@ -7,6 +7,7 @@
 
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletSoftBody/btSoftBody.h"
+#include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
 
 namespace caliber
@@ -43,6 +44,19 @@ void softBodyWarning(const char* message);
 
 /// True when index addresses one of count elements.
 inline bool validIndex(int index, int count) { return index >= 0 && index < count; }
+
+/// Runs loop over the node indices [0, count) in chunks on the task scheduler (serially for a small body,
+/// or inside another parallel loop). For loops whose iterations touch only their own node, so that every
+/// thread count gives the same bits.
+inline void forEachNodeChunk(int count, const btIParallelForBody& loop)
+{
+	const int grain = 1024;
+	if (count <= 0) return;
+	if (count <= grain)
+		loop.forLoop(0, count);
+	else
+		btParallelFor(0, count, grain, loop);
+}
 
 /// A rigid body that a soft body can move (dynamic, in or out of a world).
 bool isMovable(const btRigidBody* body);

@@ -404,7 +404,7 @@ bool ownCluster(const btSoftBody& body, const btSoftBody::Cluster* c)
 	return i >= 0 && i < body.m_clusters.size() && body.m_clusters[i] == c;
 }
 
-void solveContact(caliber::ClusterContact& c, btScalar dt)
+void solveContact(caliber::ClusterContact& c, const btAlignedObjectArray<btScalar>& weights, btScalar dt)
 {
 	// The clusters' centres and velocities are measured from their nodes at each contact: clusters share
 	// nodes, so each push also moves the neighbours of the cluster pushed.
@@ -414,14 +414,22 @@ void solveContact(caliber::ClusterContact& c, btScalar dt)
 	btVector3 ra, rb, normal, vb(0, 0, 0);
 	btScalar gap;
 	btSoftBody::Body other;
+	btVector3 comB(0, 0, 0);
 	if (c.other)
 	{
 		other = btSoftBody::Body(c.other);
-		btVector3 comB;
 		caliber::clusterMotion(*c.other, dt, comB, vb);
 		normal = c.normal;
-		gap = c.distance + normal.dot((comA - c.localA) - (comB - c.localB));
-		ra = rb = btVector3(0, 0, 0);  // the centres are pushed
+		// How far each side's material point at the contact moved since it was found.
+		const btVector3 pa = caliber::materialPoint(a, weights, c.weightsA);
+		const btVector3 pb = caliber::materialPoint(*c.other, weights, c.weightsB);
+		gap = c.distance + normal.dot((pa - c.localA) - (pb - c.localB));
+		// Both pushes act at one point (between the two sides' points), so angular momentum is kept.
+		const btVector3 point = (pa + pb) / 2;
+		ra = point - comA;
+		rb = point - comB;
+		va += a.m_av.cross(ra);
+		vb += c.other->m_av.cross(rb);
 	}
 	else
 	{
@@ -437,7 +445,8 @@ void solveContact(caliber::ClusterContact& c, btScalar dt)
 		if (other.m_rigid) vb = other.m_rigid->getVelocityInLocalPoint(rb);
 	}
 	if (gap >= 0) return;
-	a.m_com = comA;  // the pushes below turn about the centre now
+	a.m_com = comA;  // the pushes below turn about the centres now
+	if (c.other) c.other->m_com = comB;
 	const btScalar wa = caliber::clusterInverseMass(a, ra, normal);
 	const btScalar wb = sideInverseMass(other, rb, normal);
 	const btScalar w = wa + wb;
@@ -459,6 +468,8 @@ void solveContact(caliber::ClusterContact& c, btScalar dt)
 	{
 		btVector3 comB;
 		caliber::clusterMotion(*c.other, dt, comB, vb);
+		va += a.m_av.cross(ra);
+		vb += c.other->m_av.cross(rb);
 	}
 	else
 	{
@@ -478,7 +489,16 @@ void solveContact(caliber::ClusterContact& c, btScalar dt)
 }
 }  // namespace
 
-void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
+namespace
+{
+using caliber::ClusterContact;
+using caliber::ClusterState;
+using caliber::clusterState;
+using caliber::refreshCluster;
+
+// The cluster stage in three parts, so that the solver can interleave the solves of several bodies
+// (solveClusterStages).
+bool beginClusterStage(btSoftBody& body, btScalar dt)
 {
 	// Joints whose other side left are dropped (as anchors are).
 	for (int i = body.m_joints.size() - 1; i >= 0; --i)
@@ -496,42 +516,55 @@ void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
 	ClusterState& state = clusterState(body);
 	bool matching = false;
 	for (int i = 0; i < body.m_clusters.size(); ++i) matching = matching || body.m_clusters[i]->m_matching > 0;
-	if (state.contacts.size() == 0 && body.m_joints.size() == 0 && !matching) return;
+	if (state.contacts.size() == 0 && body.m_joints.size() == 0 && !matching) return false;
 	const int iterations = btMax(body.m_cfg.citerations, 1);
 	for (int i = 0; i < body.m_joints.size(); ++i) body.m_joints[i]->Prepare(dt, iterations);
-	for (int it = 0; it < iterations; ++it)
-	{
-		// Frames, inertias and velocities from the nodes before each solve: a cluster's move also moves
-		// the nodes it shares with its neighbours, whose frames would otherwise go stale.
-		for (int i = 0; i < body.m_clusters.size(); ++i) refreshCluster(*body.m_clusters[i], dt);
-		for (int i = 0; i < state.contacts.size(); ++i)
-			if (state.contacts[i].other && !ownCluster(body, state.contacts[i].other))
-				refreshCluster(*state.contacts[i].other, dt);
-		for (int i = 0; i < body.m_joints.size(); ++i)
-			if (btSoftBody::Cluster* c = body.m_joints[i]->m_bodies[1].m_soft)
-				if (!ownCluster(body, c)) refreshCluster(*c, dt);
-		for (int i = 0; i < state.contacts.size(); ++i) solveContact(state.contacts[i], dt);
-		for (int i = 0; i < body.m_joints.size(); ++i) body.m_joints[i]->Solve(dt, 1);
-	}
+	return true;
+}
+
+void clusterStageSolve(btSoftBody& body, btScalar dt, int iteration)
+{
+	ClusterState& state = clusterState(body);
+	// Frames, inertias and velocities from the nodes before each solve: a cluster's move also moves
+	// the nodes it shares with its neighbours, whose frames would otherwise go stale.
+	for (int i = 0; i < body.m_clusters.size(); ++i) refreshCluster(*body.m_clusters[i], dt);
+	for (int i = 0; i < state.contacts.size(); ++i)
+		if (state.contacts[i].other && !ownCluster(body, state.contacts[i].other))
+			refreshCluster(*state.contacts[i].other, dt);
+	for (int i = 0; i < body.m_joints.size(); ++i)
+		if (btSoftBody::Cluster* c = body.m_joints[i]->m_bodies[1].m_soft)
+			if (!ownCluster(body, c)) refreshCluster(*c, dt);
+	// Every other solve runs backwards: Gauss-Seidel favours the contacts solved first (they take the larger
+	// corrections, and with them the larger friction), which would tip and slide a body resting on several.
+	const int count = state.contacts.size();
+	if (iteration & 1)
+		for (int i = count - 1; i >= 0; --i) solveContact(state.contacts[i], state.weights, dt);
+	else
+		for (int i = 0; i < count; ++i) solveContact(state.contacts[i], state.weights, dt);
+	for (int i = 0; i < body.m_joints.size(); ++i) body.m_joints[i]->Solve(dt, 1);
+}
+
+void endClusterStage(btSoftBody& body, btScalar dt)
+{
+	ClusterState& state = clusterState(body);
 	for (int i = body.m_joints.size() - 1; i >= 0; --i)
 	{
 		body.m_joints[i]->Terminate(dt);
 		if (body.m_joints[i]->m_delete) deleteJoint(body, i);
 	}
 	// Shape matching: each node goes m_matching of the way to its place in its cluster's rigid rest shape.
-	if (matching)
-		for (int i = 0; i < body.m_clusters.size(); ++i)
+	for (int i = 0; i < body.m_clusters.size(); ++i)
+	{
+		btSoftBody::Cluster& c = *body.m_clusters[i];
+		if (!(c.m_matching > 0)) continue;
+		refreshCluster(c, dt);
+		const btScalar k = btClamped(c.m_matching, btScalar(0), btScalar(1));
+		for (int j = 0; j < c.m_nodes.size(); ++j)
 		{
-			btSoftBody::Cluster& c = *body.m_clusters[i];
-			if (!(c.m_matching > 0)) continue;
-			refreshCluster(c, dt);
-			const btScalar k = btClamped(c.m_matching, btScalar(0), btScalar(1));
-			for (int j = 0; j < c.m_nodes.size(); ++j)
-			{
-				btSoftBody::Node& n = *c.m_nodes[j];
-				if (n.m_im > 0) n.m_x += (c.m_framexform * c.m_framerefs[j] - n.m_x) * k;
-			}
+			btSoftBody::Node& n = *c.m_nodes[j];
+			if (n.m_im > 0) n.m_x += (c.m_framexform * c.m_framerefs[j] - n.m_x) * k;
 		}
+	}
 	// Nodes held against static and kinematic objects end the stage on their surface (the clusters'
 	// Gauss-Seidel moves, sharing nodes, and shape matching can leave a node behind): the node alone is put back, its
 	// start point with it, so that velocities do not change (as a split impulse).
@@ -546,4 +579,33 @@ void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
 		c.node->m_x -= normal * gap;
 		c.node->m_q -= normal * gap;
 	}
+}
+}  // namespace
+
+void caliber::solveClusterStage(btSoftBody& body, btScalar dt)
+{
+	if (!beginClusterStage(body, dt)) return;
+	for (int it = 0; it < btMax(body.m_cfg.citerations, 1); ++it) clusterStageSolve(body, dt, it);
+	endClusterStage(body, dt);
+}
+
+void caliber::solveClusterStages(btSoftBody* const* bodies, int count)
+{
+	// One Gauss-Seidel sweep over every body's cluster contacts and joints per iteration: a cluster
+	// touching clusters of two other bodies (the middle of a stack) is solved against both in each sweep,
+	// where stages run one body after the other would leave each body's stage to undo the last one's turn.
+	btAlignedObjectArray<char> active;
+	active.resize(count, 0);
+	int iterations = 0;
+	for (int b = 0; b < count; ++b)
+	{
+		active[b] = beginClusterStage(*bodies[b], bodies[b]->m_sst.sdt);
+		if (active[b]) iterations = btMax(iterations, btMax(bodies[b]->m_cfg.citerations, 1));
+	}
+	for (int it = 0; it < iterations; ++it)
+		for (int b = 0; b < count; ++b)
+			if (active[b] && it < btMax(bodies[b]->m_cfg.citerations, 1))
+				clusterStageSolve(*bodies[b], bodies[b]->m_sst.sdt, it);
+	for (int b = 0; b < count; ++b)
+		if (active[b]) endClusterStage(*bodies[b], bodies[b]->m_sst.sdt);
 }

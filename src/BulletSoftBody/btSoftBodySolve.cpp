@@ -2,6 +2,8 @@
 // btSoftBody's step: forces, prediction, the position solve (links, anchors, rigid contacts, pose
 // matching) and the velocity update. The model is explained in docs/soft-bodies.md.
 
+#include <atomic>
+
 #include "BulletSoftBody/btSoftBody.h"
 #include "LinearMath/btPolarDecomposition.h"
 #include "btSoftBodyClusters.h"
@@ -303,7 +305,11 @@ void btSoftBody::predictMotion(btScalar dt)
 	m_sst.updmrg = m_sst.radmrg * btScalar(0.25);
 	m_rcontacts.resize(0);
 	m_scontacts.resize(0);
-	if (m_clusters.size() > 0) caliber::clusterState(*this).contacts.resize(0);
+	if (m_clusters.size() > 0)
+	{
+		caliber::clusterState(*this).contacts.resize(0);
+		caliber::clusterState(*this).weights.resize(0);
+	}
 	if (m_faces.size() > 0)  // only faces take corner contacts (ropes skip the side table)
 	{
 		caliber::SoftFaceContacts& faceContacts = caliber::softFaceContacts(*this);
@@ -314,18 +320,35 @@ void btSoftBody::predictMotion(btScalar dt)
 	const btScalar maxMove = m_worldInfo ? m_worldInfo->m_maxDisplacement : btScalar(1000);
 	// Forces that depend on the velocity (air) see the velocity the step starts with.
 	applyForces();
-	for (int i = 0; i < m_nodes.size(); ++i)
-		if (m_nodes[i].m_im > 0) m_nodes[i].m_v += gravity * m_sst.sdt;
-	for (int i = 0; i < m_nodes.size(); ++i)
+	struct Predict : btIParallelForBody
 	{
-		Node& n = m_nodes[i];
-		n.m_q = n.m_x;
-		n.m_vn = n.m_v;
-		if (n.m_im <= 0) continue;
-		btVector3 move = n.m_v * m_sst.sdt;
-		const btScalar len = move.length();
-		if (len > maxMove) move *= maxMove / len;
-		n.m_x += move;
+		btSoftBody::Node* nodes;
+		btVector3 gravity;
+		btScalar dt, maxMove;
+		void forLoop(int begin, int end) const override
+		{
+			for (int i = begin; i < end; ++i)
+			{
+				Node& n = nodes[i];
+				if (n.m_im > 0) n.m_v += gravity * dt;
+				n.m_q = n.m_x;
+				n.m_vn = n.m_v;
+				if (n.m_im <= 0) continue;
+				btVector3 move = n.m_v * dt;
+				const btScalar len = move.length();
+				if (len > maxMove) move *= maxMove / len;
+				n.m_x += move;
+			}
+		}
+	};
+	if (m_nodes.size() > 0)
+	{
+		Predict predict;
+		predict.nodes = &m_nodes[0];
+		predict.gravity = gravity;
+		predict.dt = m_sst.sdt;
+		predict.maxMove = maxMove;
+		caliber::forEachNodeChunk(m_nodes.size(), predict);
 	}
 	// The clusters' frames at the predicted positions, for the collision pass.
 	for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], m_sst.sdt);
@@ -685,10 +708,20 @@ void btSoftBody::solveConstraints()
 		for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], dt);
 		caliber::collideClustersWithClusters(*this, *this);
 	}
-	if (m_clusters.size() > 0 || m_joints.size() > 0) caliber::solveClusterStage(*this, dt);
+	if (m_clusters.size() > 0 || m_joints.size() > 0)
+	{
+		// The default solver runs the cluster stages of its bodies together, then finishes each body.
+		if (caliber::clusterState(*this).deferred) return;
+		caliber::solveClusterStage(*this, dt);
+	}
 	// Contacts have the last word: the links (and pose matching) of the last sweep must not leave nodes
 	// inside rigid objects, nor rigid points behind faces.
 	solveContacts(*this, dt, faceContacts);
+}
+
+void caliber::finishSoftSolve(btSoftBody& body)
+{
+	solveContacts(body, body.m_sst.sdt, body.m_faces.size() > 0 ? &caliber::softFaceContacts(body) : 0);
 }
 
 void btSoftBody::staticSolve(int iterations)
@@ -717,25 +750,36 @@ void btSoftBody::integrateMotion()
 	// contacts move the nodes of both bodies).
 	if (m_sst.sdt > 0)
 	{
-		const btScalar keep = 1 - btClamped(m_cfg.kDP, btScalar(0), btScalar(1));
-		bool repaired = false;
-		for (int i = 0; i < m_nodes.size(); ++i)
+		struct Velocities : btIParallelForBody
 		{
-			Node& n = m_nodes[i];
-			if (n.m_im <= 0)
+			btSoftBody::Node* nodes;
+			btScalar scale;
+			mutable std::atomic<bool> repaired{false};
+			void forLoop(int begin, int end) const override
 			{
-				n.m_v.setValue(0, 0, 0);
-				continue;
+				for (int i = begin; i < end; ++i)
+				{
+					Node& n = nodes[i];
+					if (n.m_im <= 0)
+					{
+						n.m_v.setValue(0, 0, 0);
+						continue;
+					}
+					n.m_v = (n.m_x - n.m_q) * scale;
+					if (!caliber::isFinite(n.m_x) || !caliber::isFinite(n.m_v))
+					{
+						n.m_x = n.m_q;
+						n.m_v.setValue(0, 0, 0);
+						repaired.store(true, std::memory_order_relaxed);
+					}
+				}
 			}
-			n.m_v = (n.m_x - n.m_q) * (m_sst.isdt * keep);
-			if (!caliber::isFinite(n.m_x) || !caliber::isFinite(n.m_v))
-			{
-				n.m_x = n.m_q;
-				n.m_v.setValue(0, 0, 0);
-				repaired = true;
-			}
-		}
-		if (repaired)
+		};
+		Velocities velocities;
+		velocities.nodes = m_nodes.size() > 0 ? &m_nodes[0] : 0;
+		velocities.scale = m_sst.isdt * (1 - btClamped(m_cfg.kDP, btScalar(0), btScalar(1)));
+		caliber::forEachNodeChunk(m_nodes.size(), velocities);
+		if (velocities.repaired.load(std::memory_order_relaxed))
 			caliber::softBodyWarning(
 			    "Caliber: btSoftBody: a node's state became non-finite; it is put back where it started the step\n");
 	}

@@ -1,0 +1,72 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The soft-body stages on the task scheduler (docs/soft-bodies.md, "Threads"): the bodies' prediction and
+// velocity update run one body per task, a large body's node loops in chunks; the results are the same
+// bits at any thread count.
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "LinearMath/btThreads.h"
+#include "SoftBodyTestUtil.h"
+
+using caliber_test::hashNodes;
+using caliber_test::SoftTestWorld;
+
+namespace
+{
+// A scene with a large pinned cloth (2500 nodes: its node loops are split in chunks of 1024), a box
+// falling on it, three gas balls and a rope, stepped 40 times on the current scheduler: each soft
+// body's node positions, hashed.
+std::vector<uint64_t> runScene()
+{
+	SoftTestWorld w;
+	w.addGround();
+	std::vector<btSoftBody*> bodies;
+	btSoftBody* cloth = w.addSoft(btSoftBodyHelpers::CreatePatch(w.info(), btVector3(-3, 4, -3), btVector3(3, 4, -3),
+	                                                             btVector3(-3, 4, 3), btVector3(3, 4, 3), 50, 50,
+	                                                             1 + 2 + 4 + 8, true));
+	cloth->setTotalMass(2);
+	cloth->m_cfg.piterations = 4;
+	bodies.push_back(cloth);
+	w.addRigid(1, btVector3(0.2, 6, 0.1), w.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3)));
+	for (int i = 0; i < 3; ++i)
+	{
+		btSoftBody* ball = w.addSoft(btSoftBodyHelpers::CreateEllipsoid(
+		    w.info(), btVector3(btScalar(5 + 1.2 * i), btScalar(1 + 1.5 * i), 0), btVector3(0.5, 0.5, 0.5), 96));
+		ball->setTotalMass(1, true);
+		ball->m_cfg.kPR = 100;
+		ball->m_cfg.collisions |= btSoftBody::fCollision::VF_SS;
+		bodies.push_back(ball);
+	}
+	btSoftBody* rope =
+	    w.addSoft(btSoftBodyHelpers::CreateRope(w.info(), btVector3(-6, 5, 0), btVector3(-4, 5, 0), 20, 1));
+	rope->setTotalMass(btScalar(0.5));
+	bodies.push_back(rope);
+	w.step(40);
+	std::vector<uint64_t> hashes;
+	for (const btSoftBody* b : bodies) hashes.push_back(hashNodes(*b));
+	return hashes;
+}
+}  // namespace
+
+TEST(SoftBodyThreads, NodePositionsHaveTheSameBitsAtOneTwoAndFourThreads)
+{
+#if defined(BT_THREADSAFE) && BT_THREADSAFE
+	btSetTaskScheduler(btGetSequentialTaskScheduler());
+	const std::vector<uint64_t> reference = runScene();
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	ASSERT_NE(pool.get(), nullptr);
+	for (int threads : {1, 2, 4})
+	{
+		pool->setNumThreads(threads);
+		ASSERT_EQ(pool->getNumThreads(), btMin(threads, pool->getMaxNumThreads()));
+		btSetTaskScheduler(pool.get());
+		EXPECT_EQ(runScene(), reference) << threads << " threads";
+		btSetTaskScheduler(0);
+	}
+#else
+	GTEST_SKIP() << "a single-threaded library has no thread pool: the stages run on the calling thread";
+#endif
+}
