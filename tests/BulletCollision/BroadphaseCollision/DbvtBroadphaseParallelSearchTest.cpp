@@ -10,6 +10,7 @@
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
 
 namespace
 {
@@ -37,14 +38,7 @@ std::vector<std::pair<int, int> > pairsOf(btOverlappingPairCache* cache)
 // boxes, so hundreds of proxies are searched each step), for 20 steps; returns the pairs after each step.
 std::vector<std::vector<std::pair<int, int> > > run(int threads)
 {
-	std::unique_ptr<btITaskScheduler> owned;
-	if (threads > 0)
-	{
-		owned.reset(btCreateDefaultTaskScheduler());
-		btITaskScheduler* scheduler = owned ? owned.get() : btGetSequentialTaskScheduler();
-		btSetTaskScheduler(scheduler);
-		scheduler->setNumThreads(threads);
-	}
+	caliber_test::ScopedTaskScheduler scheduler(threads);
 	btDbvtBroadphase broadphase;
 	Lcg random;
 	const int kBoxes = 600;
@@ -70,7 +64,6 @@ std::vector<std::vector<std::pair<int, int> > > run(int threads)
 		history.push_back(pairsOf(broadphase.getOverlappingPairCache()));
 	}
 	for (btBroadphaseProxy* proxy : proxies) broadphase.destroyProxy(proxy, 0);
-	btSetTaskScheduler(0);
 	return history;
 }
 }  // namespace

@@ -14,6 +14,7 @@
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -74,23 +75,7 @@ struct BouncingBlock
 		world->addRigidBody(bodies.back().get());
 		return bodies.back().get();
 	}
-	std::vector<btScalar> state() const
-	{
-		std::vector<btScalar> bits;
-		for (const auto& body : bodies)
-		{
-			const btTransform& t = body->getWorldTransform();
-			for (int r = 0; r < 3; ++r)
-				for (int c = 0; c < 3; ++c) bits.push_back(t.getBasis()[r][c]);
-			for (int c = 0; c < 3; ++c)
-			{
-				bits.push_back(t.getOrigin()[c]);
-				bits.push_back(body->getLinearVelocity()[c]);
-				bits.push_back(body->getAngularVelocity()[c]);
-			}
-		}
-		return bits;
-	}
+	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(bodies); }
 	// The fastest upward speed of a box of the bottom layer (the first 100 boxes after the ground: the
 	// layers are added bottom first).
 	btScalar fastestRise() const
@@ -114,18 +99,8 @@ struct BouncingBlock
 // The state after 12 steps (the impact is in the first) with the scheduler at `threads` (0: none).
 std::vector<btScalar> run(bool mt, int threads, btScalar* rise = nullptr)
 {
-	std::unique_ptr<btITaskScheduler> owned;
-	if (threads > 0)
-	{
-		owned.reset(btCreateDefaultTaskScheduler());
-		btITaskScheduler* scheduler = owned ? owned.get() : btGetSequentialTaskScheduler();
-		btSetTaskScheduler(scheduler);
-		scheduler->setNumThreads(threads);
-	}
-	else if (mt)
-	{
-		btSetTaskScheduler(btGetSequentialTaskScheduler());
-	}
+	caliber_test::ScopedTaskScheduler scheduler(threads);
+	if (threads <= 0 && mt) btSetTaskScheduler(btGetSequentialTaskScheduler());
 	std::vector<btScalar> bits;
 	{
 		BouncingBlock block(mt);
@@ -138,7 +113,6 @@ std::vector<btScalar> run(bool mt, int threads, btScalar* rise = nullptr)
 		if (rise) *rise = fastest;
 		bits = block.state();
 	}
-	btSetTaskScheduler(0);
 	return bits;
 }
 }  // namespace

@@ -13,6 +13,7 @@
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -128,23 +129,7 @@ struct Pyramid
 		}
 	}
 	// The bits of every box's pose and velocities.
-	std::vector<btScalar> state() const
-	{
-		std::vector<btScalar> bits;
-		for (const auto& body : bodies)
-		{
-			const btTransform& t = body->getWorldTransform();
-			for (int r = 0; r < 3; ++r)
-				for (int c = 0; c < 3; ++c) bits.push_back(t.getBasis()[r][c]);
-			for (int c = 0; c < 3; ++c)
-			{
-				bits.push_back(t.getOrigin()[c]);
-				bits.push_back(body->getLinearVelocity()[c]);
-				bits.push_back(body->getAngularVelocity()[c]);
-			}
-		}
-		return bits;
-	}
+	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(bodies); }
 	void motionStatesStart(size_t i, btTransform& start) const { start = motionStates[i]->m_startWorldTrans; }
 
 	std::unique_ptr<btDefaultCollisionConfiguration> config;

@@ -14,6 +14,7 @@
 #include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -105,23 +106,7 @@ struct World
 		return bodies.back().get();
 	}
 	// The bits of every body's pose and velocities.
-	std::vector<btScalar> state() const
-	{
-		std::vector<btScalar> bits;
-		for (const auto& body : bodies)
-		{
-			const btTransform& t = body->getWorldTransform();
-			for (int r = 0; r < 3; ++r)
-				for (int c = 0; c < 3; ++c) bits.push_back(t.getBasis()[r][c]);
-			for (int c = 0; c < 3; ++c)
-			{
-				bits.push_back(t.getOrigin()[c]);
-				bits.push_back(body->getLinearVelocity()[c]);
-				bits.push_back(body->getAngularVelocity()[c]);
-			}
-		}
-		return bits;
-	}
+	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(bodies); }
 
 	std::unique_ptr<btDefaultCollisionConfiguration> config;
 	std::unique_ptr<btCollisionDispatcher> dispatcher;
@@ -154,10 +139,7 @@ void expectWideSweepGivesRowByRowBits(Scene scene, int solverMode, int threads, 
 {
 	ColourEverySolve colourAll;
 	caliber::setWideContactLanes(lanes);
-	std::unique_ptr<btITaskScheduler> owned(btCreateDefaultTaskScheduler());
-	btITaskScheduler* scheduler = owned ? owned.get() : btGetSequentialTaskScheduler();
-	btSetTaskScheduler(scheduler);
-	scheduler->setNumThreads(threads);
+	caliber_test::ScopedTaskScheduler scheduler(threads);
 	World wide(scene, solverMode), rowByRow(scene, solverMode);
 	const std::vector<btScalar> start = wide.state();
 	for (int i = 0; i < steps; ++i)
@@ -167,7 +149,6 @@ void expectWideSweepGivesRowByRowBits(Scene scene, int solverMode, int threads, 
 		caliber::setWideContactRowsEnabled(false);
 		rowByRow.world->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
 	}
-	btSetTaskScheduler(0);
 	const std::vector<btScalar> a = wide.state(), b = rowByRow.state();
 	ASSERT_EQ(a.size(), b.size());
 	// Something happened (the comparison is not of two worlds at rest where they started).

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -57,23 +58,7 @@ struct Chains
 		for (auto& joint : joints) world->removeConstraint(joint.get());
 		for (auto& body : bodies) world->removeRigidBody(body.get());
 	}
-	std::vector<btScalar> state() const
-	{
-		std::vector<btScalar> bits;
-		for (const auto& body : bodies)
-		{
-			const btTransform& t = body->getWorldTransform();
-			for (int r = 0; r < 3; ++r)
-				for (int c = 0; c < 3; ++c) bits.push_back(t.getBasis()[r][c]);
-			for (int c = 0; c < 3; ++c)
-			{
-				bits.push_back(t.getOrigin()[c]);
-				bits.push_back(body->getLinearVelocity()[c]);
-				bits.push_back(body->getAngularVelocity()[c]);
-			}
-		}
-		return bits;
-	}
+	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(bodies); }
 	// The largest gap between the pivots of a joint.
 	btScalar largestPivotGap() const
 	{
@@ -99,14 +84,7 @@ struct Chains
 
 std::vector<btScalar> run(int threads, btScalar* gap = nullptr)
 {
-	std::unique_ptr<btITaskScheduler> owned;
-	if (threads > 0)
-	{
-		owned.reset(btCreateDefaultTaskScheduler());
-		btITaskScheduler* scheduler = owned ? owned.get() : btGetSequentialTaskScheduler();
-		btSetTaskScheduler(scheduler);
-		scheduler->setNumThreads(threads);
-	}
+	caliber_test::ScopedTaskScheduler scheduler(threads);
 	std::vector<btScalar> bits;
 	{
 		Chains chains;
@@ -114,7 +92,6 @@ std::vector<btScalar> run(int threads, btScalar* gap = nullptr)
 		if (gap) *gap = chains.largestPivotGap();
 		bits = chains.state();
 	}
-	btSetTaskScheduler(0);
 	return bits;
 }
 }  // namespace

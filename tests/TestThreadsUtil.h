@@ -1,0 +1,59 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_TEST_THREADS_UTIL_H
+#define CALIBER_TEST_THREADS_UTIL_H
+
+// What the threading tests share: a task scheduler for a scope, and the bits of bodies' states to
+// compare between runs at different thread counts.
+
+#include <memory>
+#include <vector>
+
+#include "LinearMath/btThreads.h"
+#include "LinearMath/btTransform.h"
+
+namespace caliber_test
+{
+/// The thread pool with `threads` threads as the task scheduler for the scope (a library built without
+/// threads has no pool: the sequential scheduler stands in); threads 0 sets none. No scheduler after.
+class ScopedTaskScheduler
+{
+public:
+	explicit ScopedTaskScheduler(int threads)
+	{
+		if (threads <= 0) return;
+		m_pool.reset(btCreateDefaultTaskScheduler());
+		btITaskScheduler* scheduler = m_pool ? m_pool.get() : btGetSequentialTaskScheduler();
+		btSetTaskScheduler(scheduler);
+		scheduler->setNumThreads(threads);
+	}
+	~ScopedTaskScheduler() { btSetTaskScheduler(0); }
+	ScopedTaskScheduler(const ScopedTaskScheduler&) = delete;
+	ScopedTaskScheduler& operator=(const ScopedTaskScheduler&) = delete;
+
+private:
+	std::unique_ptr<btITaskScheduler> m_pool;
+};
+
+/// The bits of every body's basis, position and velocities, in order (bodies: pointers or smart pointers
+/// to btRigidBody).
+template <class Bodies>
+std::vector<btScalar> bodyStateBits(const Bodies& bodies)
+{
+	std::vector<btScalar> bits;
+	for (const auto& body : bodies)
+	{
+		const btTransform& t = body->getWorldTransform();
+		for (int r = 0; r < 3; ++r)
+			for (int c = 0; c < 3; ++c) bits.push_back(t.getBasis()[r][c]);
+		for (int c = 0; c < 3; ++c)
+		{
+			bits.push_back(t.getOrigin()[c]);
+			bits.push_back(body->getLinearVelocity()[c]);
+			bits.push_back(body->getAngularVelocity()[c]);
+		}
+	}
+	return bits;
+}
+}  // namespace caliber_test
+
+#endif  // CALIBER_TEST_THREADS_UTIL_H
