@@ -4,8 +4,6 @@
 
 /// btBoxBoxCollisionAlgorithm: the contact manifold of two boxes (via btBoxBoxDetector).
 
-#include <new>
-
 #include "BulletCollision/BroadphaseCollision/btDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btActivatingCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btCollisionCreateFunc.h"
@@ -46,11 +44,7 @@ public:
 		/// A new algorithm sharing ci.m_manifold.
 		btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
 		                                               const btCollisionObjectWrapper* body0Wrap,
-		                                               const btCollisionObjectWrapper* body1Wrap) override
-		{
-			void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(btBoxBoxCollisionAlgorithm));
-			return new (mem) btBoxBoxCollisionAlgorithm(ci.m_manifold, ci, body0Wrap, body1Wrap);
-		}
+		                                               const btCollisionObjectWrapper* body1Wrap) override;
 	};
 };
 

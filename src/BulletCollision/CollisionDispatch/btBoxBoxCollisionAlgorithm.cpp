@@ -6,7 +6,55 @@
 #include "BulletCollision/CollisionDispatch/btBoxBoxDetector.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
+#include "BulletCollision/CollisionDispatch/btCachedCollisionAlgorithms.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
+
+#include "LinearMath/btMemberAccess.h"
+
+#include <new>
+
+CALIBER_MEMBER_ACCESS(BoxBoxManifold, btBoxBoxCollisionAlgorithm, btPersistentManifold*, m_manifoldPtr)
+CALIBER_MEMBER_ACCESS(BoxBoxOwnsManifold, btBoxBoxCollisionAlgorithm, bool, m_ownManifold)
+
+namespace caliber
+{
+void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* body0Wrap,
+                                             const btCollisionObjectWrapper* body1Wrap,
+                                             const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
+{
+	btPersistentManifold* manifold = this->*memberOf(BoxBoxManifold{});
+	if (manifold && resultOut && body0Wrap && body1Wrap &&
+	    pairMayUseContactCache(this->*memberOf(BoxBoxOwnsManifold{}), body0Wrap, body1Wrap))
+	{
+		const btTransform& t0 = body0Wrap->getWorldTransform();
+		const btTransform& t1 = body1Wrap->getWorldTransform();
+		const btScalar reach = resultOut->m_closestPointDistanceThreshold;
+		// A non-finite pose never passes the test: the full path reports it.
+		const btBoxShape* box1 = static_cast<const btBoxShape*>(body1Wrap->getCollisionShape());
+		if (m_poseCache.covers(t0, t1, reach, box1->getHalfExtentsWithMargin().length()))
+		{
+			resultOut->setPersistentManifold(manifold);
+			resultOut->refreshContactPoints();
+			return;
+		}
+		btBoxBoxCollisionAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
+		m_poseCache.store(t0, t1, reach);
+		return;
+	}
+	m_poseCache.valid = false;
+	btBoxBoxCollisionAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
+}
+
+int cachedBoxBoxAlgorithmSize() { return int(sizeof(CachedBoxBoxAlgorithm)); }
+}  // namespace caliber
+
+btCollisionAlgorithm* btBoxBoxCollisionAlgorithm::CreateFunc::CreateCollisionAlgorithm(
+    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0Wrap,
+    const btCollisionObjectWrapper* body1Wrap)
+{
+	void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(caliber::CachedBoxBoxAlgorithm));
+	return new (mem) caliber::CachedBoxBoxAlgorithm(ci.m_manifold, ci, body0Wrap, body1Wrap);
+}
 
 btBoxBoxCollisionAlgorithm::btBoxBoxCollisionAlgorithm(btPersistentManifold* mf,
                                                        const btCollisionAlgorithmConstructionInfo& ci,

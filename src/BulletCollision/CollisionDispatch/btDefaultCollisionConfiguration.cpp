@@ -1,5 +1,6 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
+#include "BulletCollision/CollisionDispatch/btPairPoseCache.h"
 
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
@@ -77,6 +78,7 @@ btDefaultCollisionConfiguration::btDefaultCollisionConfiguration(const btDefault
 	algorithmSize = maxSize<btSphereSphereCollisionAlgorithm>(algorithmSize);
 	algorithmSize = maxSize<btSphereBoxCollisionAlgorithm>(algorithmSize);
 	algorithmSize = maxSize<btBoxBoxCollisionAlgorithm>(algorithmSize);
+	algorithmSize = btMax(algorithmSize, caliber::cachedBoxBoxAlgorithmSize());
 	algorithmSize = maxSize<btSphereTriangleCollisionAlgorithm>(algorithmSize);
 	algorithmSize = maxSize<btConvexPlaneCollisionAlgorithm>(algorithmSize);
 

@@ -14,6 +14,7 @@
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/BroadphaseCollision/btSimpleBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btCachedCollisionAlgorithms.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletCollision/CollisionDispatch/btConvexPlaneCollisionAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btEmptyCollisionAlgorithm.h"
@@ -54,6 +55,7 @@ enum AlgorithmKind
 	kEmpty = 8,
 	kCompound = 9,
 	kCompoundCompound = 10,
+	kCachedBoxBox = 11,  // caliber::CachedBoxBoxAlgorithm, the default box-box algorithm (with its contact cache)
 	kUnsupported = -1
 };
 
@@ -77,7 +79,20 @@ int algorithmKind(const btCollisionAlgorithm* algorithm)
 	if (type == typeid(btEmptyAlgorithm)) return kEmpty;
 	if (type == typeid(btCompoundCollisionAlgorithm)) return kCompound;
 	if (type == typeid(btCompoundCompoundCollisionAlgorithm)) return kCompoundCompound;
+	if (type == typeid(caliber::CachedBoxBoxAlgorithm)) return kCachedBoxBox;
 	return kUnsupported;
+}
+
+// The single-manifold algorithms, which make their manifold in the constructor.
+bool makesOwnManifold(int kind) { return (kind >= kBoxBox && kind <= kSphereTriangle) || kind == kCachedBoxBox; }
+
+template <class IO>
+void poseCacheState(IO& io, caliber::PairPoseCache& cache)
+{
+	io.field("contact cache valid", cache.valid);
+	io.field("contact cache offset", cache.offset);
+	for (int k = 0; k < 3; ++k) io.field("contact cache turn column", cache.turnColumns[k]);
+	io.field("contact cache reach", cache.reach);
 }
 
 int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)
@@ -731,12 +746,14 @@ bool saveAlgorithm(SnapshotWriter& out, btCollisionAlgorithm* algorithm, char* e
 		out.field("triangle algorithm", triangleKind);
 		if (triangleKind == kConvexConvex) convexState(out, *static_cast<btConvexConvexAlgorithm*>(triangle));
 	}
-	else if (kind >= kBoxBox && kind <= kSphereTriangle)
+	else if (makesOwnManifold(kind))
 	{
 		// Made in the constructor only when the bodies were active then (see remakeAlgorithm).
 		btManifoldArray manifolds;
 		algorithm->getAllContactManifolds(manifolds);
 		out.field("own manifolds", manifolds.size());
+		if (kind == kCachedBoxBox)
+			poseCacheState(out, static_cast<caliber::CachedBoxBoxAlgorithm*>(algorithm)->poseCache());
 	}
 	else if (kind == kCompound)
 	{
@@ -873,6 +890,7 @@ struct SavedAlgorithm
 	int ownManifolds;
 	int frame;
 	int firstChild, childCount;  // into the flat child list
+	caliber::PairPoseCache poseCache;
 };
 
 // A child slot of a compound algorithm (compound-compound: a child pair with its last frame).
@@ -909,7 +927,7 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 	a.frame = 0;
 	a.firstChild = a.childCount = 0;
 	if (!in.ok()) return -1;
-	if (a.kind < kNoAlgorithm || a.kind > kCompoundCompound || depth > kMaxAlgorithmDepth)
+	if (a.kind < kNoAlgorithm || a.kind > kCachedBoxBox || depth > kMaxAlgorithmDepth)
 	{
 		in.fail("pair %d: unknown algorithm %d (or nested deeper than %d)", pairIndex, a.kind, kMaxAlgorithmDepth);
 		return -1;
@@ -934,8 +952,11 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 			a.axis = in.vector("m_lastSeparatingAxis");
 		}
 	}
-	else if (a.kind >= kBoxBox && a.kind <= kSphereTriangle)
+	else if (makesOwnManifold(a.kind))
+	{
 		a.ownManifolds = in.count("own manifolds", 1);
+		if (a.kind == kCachedBoxBox) poseCacheState(in, a.poseCache);
+	}
 	else if (a.kind == kCompound)
 	{
 		const int count = in.count("child count", kMaxChildren);
@@ -1022,7 +1043,7 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 	btCollisionObject* object1 = const_cast<btCollisionObject*>(wrap1.getCollisionObject());
 	result = dispatcher->findAlgorithm(&wrap0, &wrap1, shared, BT_CONTACT_POINT_ALGORITHMS);
 	int kind = algorithmKind(result);
-	if (kind >= kBoxBox && kind <= kSphereTriangle && !shared)
+	if (makesOwnManifold(kind) && !shared)
 	{
 		// These algorithms make their manifold in the constructor, and only when the dispatcher's
 		// needsCollision holds then: a pair made while both bodies slept has none. When the bodies'
@@ -1065,6 +1086,10 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 		}
 		convexHaveLastAxis(convex) = s.haveAxis;
 		convexLastAxis(convex) = s.axis;
+	}
+	else if (kind == kCachedBoxBox)
+	{
+		static_cast<caliber::CachedBoxBoxAlgorithm*>(result)->poseCache() = s.poseCache;
 	}
 	else if (kind == kConvexConcave)
 	{

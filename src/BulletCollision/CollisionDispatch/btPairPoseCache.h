@@ -1,0 +1,76 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+#ifndef CALIBER_PAIR_POSE_CACHE_H
+#define CALIBER_PAIR_POSE_CACHE_H
+
+// The contact cache of a convex pair (in the spirit of Jolt's body pair cache): when no point of one
+// body has moved by more than a small distance relative to the other since their contacts were last
+// found, and the pair is not closing faster than that per step, the contacts found then are the
+// contacts now. Refreshing the manifold (the same points at their new world positions, with their new
+// distances) then replaces the narrowphase. The motion is measured from the pose of the last full
+// detection, not the last step's, so small motions cannot add up unseen. See include/Caliber/ContactCache.h.
+
+#include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
+#include "LinearMath/btTransform.h"
+
+namespace caliber
+{
+/// The process-wide distance (include/Caliber/ContactCache.h); 0 when the cache is off.
+btScalar contactCacheDistance();
+
+/// Sizes of the cached algorithms the factories make (the collision configuration sizes its pool for them).
+int cachedBoxBoxAlgorithmSize();
+
+/// The pose of body 1 in body 0's frame at the last full detection, and the reach (speculative
+/// distance) the detection used.
+struct PairPoseCache
+{
+	btVector3 offset;          ///< R0^T (p1 - p0)
+	btVector3 turnColumns[3];  ///< the columns of R0^T R1
+	btScalar reach = btScalar(0);
+	bool valid = false;
+
+	/// True when the cached contacts still hold: every point of body 1 (within extent1 of its origin)
+	/// moved less than the cache distance relative to body 0, and this query's reach is within the
+	/// larger of the cached reach and that distance (a pair closing faster than that gets a full
+	/// detection, which may add speculative points).
+	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach, btScalar extent1) const
+	{
+		if (!valid) return false;
+		const btScalar distance = contactCacheDistance();
+		if (!(queryReach <= btMax(reach, distance))) return false;
+		const btMatrix3x3& r0 = t0.getBasis();
+		const btMatrix3x3& r1 = t1.getBasis();
+		// A point q of body 1 (in its frame) sits at offset + sum_k q_k column_k in body 0's frame, so it
+		// moved by at most |d offset| + sum_k |q_k| |d column_k| <= |d offset| + extent1 |(|d column_k|)_k|.
+		const btScalar moved = ((t1.getOrigin() - t0.getOrigin()) * r0 - offset).length();
+		btScalar turn2 = btScalar(0);
+		for (int k = 0; k < 3; ++k) turn2 += (r1.getColumn(k) * r0 - turnColumns[k]).length2();
+		return moved + extent1 * btSqrt(turn2) <= distance;
+	}
+	/// Remembers the pose and reach of a full detection.
+	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach)
+	{
+		const btMatrix3x3& r0 = t0.getBasis();
+		const btMatrix3x3& r1 = t1.getBasis();
+		offset = (t1.getOrigin() - t0.getOrigin()) * r0;
+		for (int k = 0; k < 3; ++k) turnColumns[k] = r1.getColumn(k) * r0;
+		reach = queryReach;
+		valid = true;
+	}
+};
+
+/// Whether a pair may use the cache at all: the cache is on, the algorithm owns its manifold (a shared
+/// one collects other queries' points too), and no contact-added callback asks to see every point of
+/// every step (CF_CUSTOM_MATERIAL_CALLBACK).
+inline bool pairMayUseContactCache(bool ownsManifold, const btCollisionObjectWrapper* body0Wrap,
+                                   const btCollisionObjectWrapper* body1Wrap)
+{
+	if (!ownsManifold || !(contactCacheDistance() > btScalar(0))) return false;
+	const int flags =
+	    body0Wrap->getCollisionObject()->getCollisionFlags() | body1Wrap->getCollisionObject()->getCollisionFlags();
+	return !(flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
+}
+}  // namespace caliber
+
+#endif  // CALIBER_PAIR_POSE_CACHE_H
