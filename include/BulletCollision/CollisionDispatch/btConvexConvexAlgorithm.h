@@ -78,12 +78,7 @@ public:
 		/// A new algorithm sharing ci.m_manifold.
 		btCollisionAlgorithm* CreateCollisionAlgorithm(btCollisionAlgorithmConstructionInfo& ci,
 		                                               const btCollisionObjectWrapper* body0Wrap,
-		                                               const btCollisionObjectWrapper* body1Wrap) override
-		{
-			void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(btConvexConvexAlgorithm));
-			return new (mem) btConvexConvexAlgorithm(ci.m_manifold, ci, body0Wrap, body1Wrap, m_pdSolver,
-			                                         m_numPerturbationIterations, m_minimumPointsPerturbationThreshold);
-		}
+		                                               const btCollisionObjectWrapper* body1Wrap) override;
 	};
 };
 

@@ -30,15 +30,15 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
 		const btTransform& t1 = body1Wrap->getWorldTransform();
 		const btScalar reach = resultOut->m_closestPointDistanceThreshold;
 		// A non-finite pose never passes the test: the full path reports it.
-		const btBoxShape* box1 = static_cast<const btBoxShape*>(body1Wrap->getCollisionShape());
-		if (m_poseCache.covers(t0, t1, reach, box1->getHalfExtentsWithMargin().length()))
+		if (m_poseCache.covers(t0, t1, reach))
 		{
 			resultOut->setPersistentManifold(manifold);
 			resultOut->refreshContactPoints();
 			return;
 		}
 		btBoxBoxCollisionAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
-		m_poseCache.store(t0, t1, reach);
+		const btBoxShape* box1 = static_cast<const btBoxShape*>(body1Wrap->getCollisionShape());
+		m_poseCache.store(t0, t1, reach, box1->getHalfExtentsWithMargin().length());
 		return;
 	}
 	m_poseCache.valid = false;

@@ -7,6 +7,7 @@
 // makes btBoxBoxCollisionAlgorithm itself gets the algorithm without the cache.
 
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
+#include "BulletCollision/CollisionDispatch/btConvexConvexAlgorithm.h"
 #include "BulletCollision/CollisionDispatch/btPairPoseCache.h"
 
 namespace caliber
@@ -18,6 +19,23 @@ public:
 
 	/// Refreshes the manifold when the cache covers the pair's motion; otherwise detects and remembers
 	/// the pose.
+	void processCollision(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap,
+	                      const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut) override;
+
+	PairPoseCache& poseCache() { return m_poseCache; }
+
+private:
+	PairPoseCache m_poseCache;
+};
+
+/// The cache is used for pairs of polyhedra (shapes with initializePolyhedralFeatures), whose manifold
+/// the clipping fills in one detection; pairs that build their manifold over several steps (one GJK point
+/// per step) are detected every step.
+class CachedConvexConvexAlgorithm : public btConvexConvexAlgorithm
+{
+public:
+	using btConvexConvexAlgorithm::btConvexConvexAlgorithm;
+
 	void processCollision(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap,
 	                      const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut) override;
 

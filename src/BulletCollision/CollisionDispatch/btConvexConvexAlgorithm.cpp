@@ -3,6 +3,7 @@
 
 #include "BulletCollision/CollisionDispatch/btAlgorithmUtil.h"
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
+#include "BulletCollision/CollisionDispatch/btCachedCollisionAlgorithms.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleCapsuleContact.h"
 #include "BulletCollision/CollisionDispatch/btCapsuleTriangleContact.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
@@ -15,7 +16,13 @@
 #include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
+#include "LinearMath/btMemberAccess.h"
 #include "LinearMath/btQuaternion.h"
+
+#include <new>
+
+CALIBER_MEMBER_ACCESS(ConvexPairManifold, btConvexConvexAlgorithm, btPersistentManifold*, m_manifoldPtr)
+CALIBER_MEMBER_ACCESS(ConvexPairOwnsManifold, btConvexConvexAlgorithm, bool, m_ownManifold)
 
 namespace
 {
@@ -149,6 +156,57 @@ btConvexConvexAlgorithm::CreateFunc::CreateFunc(btConvexPenetrationDepthSolver* 
 }
 
 btConvexConvexAlgorithm::CreateFunc::~CreateFunc() {}
+
+btCollisionAlgorithm* btConvexConvexAlgorithm::CreateFunc::CreateCollisionAlgorithm(
+    btCollisionAlgorithmConstructionInfo& ci, const btCollisionObjectWrapper* body0Wrap,
+    const btCollisionObjectWrapper* body1Wrap)
+{
+	void* mem = ci.m_dispatcher1->allocateCollisionAlgorithm(sizeof(caliber::CachedConvexConvexAlgorithm));
+	return new (mem) caliber::CachedConvexConvexAlgorithm(ci.m_manifold, ci, body0Wrap, body1Wrap, m_pdSolver,
+	                                                      m_numPerturbationIterations,
+	                                                      m_minimumPointsPerturbationThreshold);
+}
+
+namespace caliber
+{
+int cachedConvexConvexAlgorithmSize() { return int(sizeof(CachedConvexConvexAlgorithm)); }
+
+void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* body0Wrap,
+                                                   const btCollisionObjectWrapper* body1Wrap,
+                                                   const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
+{
+	if (resultOut && body0Wrap && body1Wrap && body0Wrap->getCollisionShape() && body1Wrap->getCollisionShape() &&
+	    pairMayUseContactCache(this->*memberOf(ConvexPairOwnsManifold{}), body0Wrap, body1Wrap))
+	{
+		const btConvexShape* shape0 = static_cast<const btConvexShape*>(body0Wrap->getCollisionShape());
+		const btConvexShape* shape1 = static_cast<const btConvexShape*>(body1Wrap->getCollisionShape());
+		// Triangles (a mesh's, or a lone btTriangleShape) take the face paths, which are not cached.
+		if (polyhedronOf(shape0) && polyhedronOf(shape1) && shape0->getShapeType() != TRIANGLE_SHAPE_PROXYTYPE &&
+		    shape1->getShapeType() != TRIANGLE_SHAPE_PROXYTYPE)
+		{
+			const btTransform& t0 = body0Wrap->getWorldTransform();
+			const btTransform& t1 = body1Wrap->getWorldTransform();
+			const btScalar reach = resultOut->m_closestPointDistanceThreshold;
+			btPersistentManifold* manifold = this->*memberOf(ConvexPairManifold{});
+			// A non-finite pose never passes the test: the full path reports it.
+			if (manifold && m_poseCache.covers(t0, t1, reach))
+			{
+				resultOut->setPersistentManifold(manifold);
+				resultOut->refreshContactPoints();
+				return;
+			}
+			btConvexConvexAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
+			btVector3 center;
+			btScalar radius;
+			shape1->getBoundingSphere(center, radius);
+			m_poseCache.store(t0, t1, reach, center.length() + radius);
+			return;
+		}
+	}
+	m_poseCache.valid = false;
+	btConvexConvexAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
+}
+}  // namespace caliber
 
 btConvexConvexAlgorithm::btConvexConvexAlgorithm(btPersistentManifold* mf,
                                                  const btCollisionAlgorithmConstructionInfo& ci,

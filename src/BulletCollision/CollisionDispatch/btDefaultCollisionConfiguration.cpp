@@ -79,6 +79,7 @@ btDefaultCollisionConfiguration::btDefaultCollisionConfiguration(const btDefault
 	algorithmSize = maxSize<btSphereBoxCollisionAlgorithm>(algorithmSize);
 	algorithmSize = maxSize<btBoxBoxCollisionAlgorithm>(algorithmSize);
 	algorithmSize = btMax(algorithmSize, caliber::cachedBoxBoxAlgorithmSize());
+	algorithmSize = btMax(algorithmSize, caliber::cachedConvexConvexAlgorithmSize());
 	algorithmSize = maxSize<btSphereTriangleCollisionAlgorithm>(algorithmSize);
 	algorithmSize = maxSize<btConvexPlaneCollisionAlgorithm>(algorithmSize);
 

@@ -20,21 +20,23 @@ btScalar contactCacheDistance();
 
 /// Sizes of the cached algorithms the factories make (the collision configuration sizes its pool for them).
 int cachedBoxBoxAlgorithmSize();
+int cachedConvexConvexAlgorithmSize();
 
-/// The pose of body 1 in body 0's frame at the last full detection, and the reach (speculative
-/// distance) the detection used.
+/// The pose of body 1 in body 0's frame at the last full detection, the reach (speculative distance) the
+/// detection used, and how far body 1's shape reaches from its origin.
 struct PairPoseCache
 {
-	btVector3 offset;          ///< R0^T (p1 - p0)
-	btVector3 turnColumns[3];  ///< the columns of R0^T R1
+	// Zero until stored, so that a snapshot of an unused cache has defined bytes.
+	btVector3 offset{0, 0, 0};  ///< R0^T (p1 - p0)
+	btVector3 turnColumns[3] = {btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0)};  ///< columns of R0^T R1
 	btScalar reach = btScalar(0);
+	btScalar extent1 = btScalar(0);  ///< no point of body 1's shape is farther from its origin
 	bool valid = false;
 
-	/// True when the cached contacts still hold: every point of body 1 (within extent1 of its origin)
-	/// moved less than the cache distance relative to body 0, and this query's reach is within the
-	/// larger of the cached reach and that distance (a pair closing faster than that gets a full
-	/// detection, which may add speculative points).
-	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach, btScalar extent1) const
+	/// True when the cached contacts still hold: every point of body 1 moved less than the cache distance
+	/// relative to body 0, and this query's reach is within the larger of the cached reach and that
+	/// distance (a pair closing faster than that gets a full detection, which may add speculative points).
+	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach) const
 	{
 		if (!valid) return false;
 		const btScalar distance = contactCacheDistance();
@@ -48,9 +50,10 @@ struct PairPoseCache
 		for (int k = 0; k < 3; ++k) turn2 += (r1.getColumn(k) * r0 - turnColumns[k]).length2();
 		return moved + extent1 * btSqrt(turn2) <= distance;
 	}
-	/// Remembers the pose and reach of a full detection.
-	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach)
+	/// Remembers the pose and reach of a full detection, and body 1's extent.
+	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach, btScalar shapeExtent1)
 	{
+		extent1 = shapeExtent1;
 		const btMatrix3x3& r0 = t0.getBasis();
 		const btMatrix3x3& r1 = t1.getBasis();
 		offset = (t1.getOrigin() - t0.getOrigin()) * r0;

@@ -69,7 +69,10 @@ int algorithmKind(const btCollisionAlgorithm* algorithm)
 {
 	if (!algorithm) return kNoAlgorithm;
 	const std::type_info& type = typeid(*algorithm);
-	if (type == typeid(btConvexConvexAlgorithm)) return kConvexConvex;
+	// The cached subclass the default factory makes has the same state plus its contact cache, which is
+	// saved after the rest (cachedConvexOf).
+	if (type == typeid(btConvexConvexAlgorithm) || type == typeid(caliber::CachedConvexConvexAlgorithm))
+		return kConvexConvex;
 	if (type == typeid(btConvexConcaveCollisionAlgorithm)) return kConvexConcave;
 	if (type == typeid(btBoxBoxCollisionAlgorithm)) return kBoxBox;
 	if (type == typeid(btSphereSphereCollisionAlgorithm)) return kSphereSphere;
@@ -93,6 +96,7 @@ void poseCacheState(IO& io, caliber::PairPoseCache& cache)
 	io.field("contact cache offset", cache.offset);
 	for (int k = 0; k < 3; ++k) io.field("contact cache turn column", cache.turnColumns[k]);
 	io.field("contact cache reach", cache.reach);
+	io.field("contact cache extent", cache.extent1);
 }
 
 int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)
@@ -703,11 +707,20 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 
 // ---- pairs and their algorithms -----------------------------------------------------------------
 
-template <class IO>
-void convexState(IO& io, btConvexConvexAlgorithm& algorithm)
+caliber::CachedConvexConvexAlgorithm* cachedConvexOf(btConvexConvexAlgorithm& algorithm)
 {
-	io.field("m_haveLastSeparatingAxis", convexHaveLastAxis(algorithm));
-	io.field("m_lastSeparatingAxis", convexLastAxis(algorithm));
+	return typeid(algorithm) == typeid(caliber::CachedConvexConvexAlgorithm)
+	           ? static_cast<caliber::CachedConvexConvexAlgorithm*>(&algorithm)
+	           : 0;
+}
+
+void convexState(SnapshotWriter& out, btConvexConvexAlgorithm& algorithm)
+{
+	out.field("m_haveLastSeparatingAxis", convexHaveLastAxis(algorithm));
+	out.field("m_lastSeparatingAxis", convexLastAxis(algorithm));
+	caliber::CachedConvexConvexAlgorithm* cached = cachedConvexOf(algorithm);
+	out.field("contact cache", cached != 0);
+	if (cached) poseCacheState(out, cached->poseCache());
 }
 
 // Writes an algorithm's kind and state; compound algorithms write their child algorithms after it
@@ -891,6 +904,7 @@ struct SavedAlgorithm
 	int frame;
 	int firstChild, childCount;  // into the flat child list
 	caliber::PairPoseCache poseCache;
+	bool hasPoseCache;  // a convex-convex algorithm with a contact cache
 };
 
 // A child slot of a compound algorithm (compound-compound: a child pair with its last frame).
@@ -913,6 +927,26 @@ struct SavedAlgorithms
 	btAlignedObjectArray<SavedChild> children;
 };
 
+void readConvexState(SnapshotReader& in, SavedAlgorithm& a)
+{
+	a.haveAxis = in.flag("m_haveLastSeparatingAxis");
+	a.axis = in.vector("m_lastSeparatingAxis");
+	a.hasPoseCache = in.flag("contact cache");
+	if (a.hasPoseCache) poseCacheState(in, a.poseCache);
+}
+
+// Gives a remade convex-convex algorithm its saved state; false when the snapshot has a contact cache and
+// the dispatcher made an algorithm without one.
+bool restoreConvexState(btConvexConvexAlgorithm& convex, const SavedAlgorithm& s)
+{
+	convexHaveLastAxis(convex) = s.haveAxis;
+	convexLastAxis(convex) = s.axis;
+	caliber::CachedConvexConvexAlgorithm* cached = cachedConvexOf(convex);
+	if (s.hasPoseCache && !cached) return false;
+	if (cached) cached->poseCache() = s.hasPoseCache ? s.poseCache : caliber::PairPoseCache();
+	return true;
+}
+
 // Reads one algorithm (and, depth first, its children); the index of its record, -1 for kind 0 or on
 // failure.
 int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int depth)
@@ -922,6 +956,7 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 	a.ownsManifold = false;
 	a.triangleKind = kNoAlgorithm;
 	a.haveAxis = false;
+	a.hasPoseCache = false;
 	a.axis.setValue(0, 0, 0);
 	a.ownManifolds = 0;
 	a.frame = 0;
@@ -937,8 +972,7 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 	if (a.kind == kConvexConvex)
 	{
 		a.ownsManifold = in.flag("owns manifold");
-		a.haveAxis = in.flag("m_haveLastSeparatingAxis");
-		a.axis = in.vector("m_lastSeparatingAxis");
+		readConvexState(in, a);
 	}
 	else if (a.kind == kConvexConcave)
 	{
@@ -948,8 +982,7 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 			in.fail("pair %d: unknown triangle algorithm %d", pairIndex, a.triangleKind);
 		if (a.triangleKind == kConvexConvex)
 		{
-			a.haveAxis = in.flag("m_haveLastSeparatingAxis");
-			a.axis = in.vector("m_lastSeparatingAxis");
+			readConvexState(in, a);
 		}
 	}
 	else if (makesOwnManifold(a.kind))
@@ -1084,8 +1117,11 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 			}
 			convexOwnsManifold(convex) = true;
 		}
-		convexHaveLastAxis(convex) = s.haveAxis;
-		convexLastAxis(convex) = s.axis;
+		if (!restoreConvexState(convex, s))
+		{
+			in.fail("pair %d: the snapshot has a contact cache, the dispatcher's convex algorithm has none", pairIndex);
+			return false;
+		}
 	}
 	else if (kind == kCachedBoxBox)
 	{
@@ -1110,8 +1146,12 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 			if (s.triangleKind == kConvexConvex)
 			{
 				btConvexConvexAlgorithm& convex = *static_cast<btConvexConvexAlgorithm*>(triangle);
-				convexHaveLastAxis(convex) = s.haveAxis;
-				convexLastAxis(convex) = s.axis;
+				if (!restoreConvexState(convex, s))
+				{
+					in.fail("pair %d: the snapshot has a contact cache, the dispatcher's triangle algorithm has none",
+					        pairIndex);
+					return false;
+				}
 			}
 		}
 	}

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
@@ -14,6 +15,7 @@
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "Caliber/ContactCache.h"
 #include "LinearMath/btWarningHook.h"
@@ -31,6 +33,25 @@ struct CacheDistanceScope
 	btScalar saved;
 };
 
+// A cuboid hull of the given half extents, with or without its polyhedral features.
+btConvexHullShape* cuboidHull(const btVector3& half, bool polyhedral)
+{
+	btConvexHullShape* hull = new btConvexHullShape();
+	for (int i = 0; i < 8; ++i)
+		hull->addPoint(
+		    btVector3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(), i & 4 ? half.z() : -half.z()),
+		    i == 7);
+	if (polyhedral) hull->initializePolyhedralFeatures();
+	return hull;
+}
+
+enum class Shapes
+{
+	Boxes,            // btBoxShape pair: the box-box algorithm
+	PolyhedralHulls,  // hulls with polyhedral features: convex-convex with clipping
+	PlainHulls        // hulls without: convex-convex with one GJK point per step (never cached)
+};
+
 // A 1 m box (body 1) resting 1 cm deep on a static slab (body 0), in a bare collision world.
 struct BoxOnSlab
 {
@@ -38,14 +59,24 @@ struct BoxOnSlab
 	btCollisionDispatcher dispatcher{&config};
 	btDbvtBroadphase broadphase;
 	btCollisionWorld world{&dispatcher, &broadphase, &config};
-	btBoxShape slabShape{btVector3(5, 1, 5)};
-	btBoxShape boxShape{btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5))};
+	std::unique_ptr<btCollisionShape> slabShape, boxShape;
 	btCollisionObject slab, box;
 
-	explicit BoxOnSlab(btScalar depth = btScalar(0.01))
+	explicit BoxOnSlab(btScalar depth = btScalar(0.01), Shapes shapes = Shapes::Boxes)
 	{
-		slab.setCollisionShape(&slabShape);
-		box.setCollisionShape(&boxShape);
+		const btVector3 slabHalf(5, 1, 5), boxHalf(btScalar(0.5), btScalar(0.5), btScalar(0.5));
+		if (shapes == Shapes::Boxes)
+		{
+			slabShape.reset(new btBoxShape(slabHalf));
+			boxShape.reset(new btBoxShape(boxHalf));
+		}
+		else
+		{
+			slabShape.reset(cuboidHull(slabHalf, shapes == Shapes::PolyhedralHulls));
+			boxShape.reset(cuboidHull(boxHalf, shapes == Shapes::PolyhedralHulls));
+		}
+		slab.setCollisionShape(slabShape.get());
+		box.setCollisionShape(boxShape.get());
 		world.addCollisionObject(&slab);
 		world.addCollisionObject(&box);
 		world.getDispatchInfo().m_timeStep = btScalar(1) / btScalar(60);
@@ -98,6 +129,31 @@ TEST(ContactCache, ABoxThatMovedLessThanTheDistanceKeepsItsPointsRefreshedAtTheN
 	caliber::setContactCacheDistance(0);
 	scene.place(btVector3(btScalar(0.0006), btScalar(1.4902), 0), btQuaternion::getIdentity());
 	EXPECT_NE(scene.firstLocalPointOnSlab(), onSlab);
+}
+
+TEST(ContactCache, PolyhedralHullsUseTheCacheAndOtherConvexPairsAreDetectedEveryStep)
+{
+	CacheDistanceScope scope(kCacheDistance);
+	for (Shapes shapes : {Shapes::PolyhedralHulls, Shapes::PlainHulls})
+	{
+		BoxOnSlab scene(btScalar(0.01), shapes);
+		// The convex algorithm makes its manifold in its first detection; the cache starts at the second.
+		scene.place(btVector3(0, btScalar(1.49), 0), btQuaternion::getIdentity());
+		ASSERT_TRUE(scene.manifold());
+		ASSERT_GT(scene.manifold()->getNumContacts(), 0);
+		const btVector3 onSlab = scene.firstLocalPointOnSlab();
+		scene.place(btVector3(btScalar(0.0003), btScalar(1.49), 0), btQuaternion::getIdentity());
+		if (shapes == Shapes::PolyhedralHulls)
+		{
+			EXPECT_EQ(scene.manifold()->getNumContacts(), 4);
+			EXPECT_EQ(scene.firstLocalPointOnSlab(), onSlab) << "polyhedral hulls: the cached point was replaced";
+		}
+		else
+		{
+			// One GJK point per step builds the manifold up over several steps: caching would freeze it.
+			EXPECT_NE(scene.firstLocalPointOnSlab(), onSlab) << "hulls without polyhedra must be detected";
+		}
+	}
 }
 
 TEST(ContactCache, MotionBeyondTheDistanceIsDetectedAgainCountedFromTheLastDetection)

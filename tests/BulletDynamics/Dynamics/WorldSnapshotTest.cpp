@@ -59,6 +59,24 @@ void buildStack(TestWorld& t)
 	for (int i = 0; i < 10; ++i) t.addBody(box, 1, pose(btVector3(0.01 * (i % 3), 0.25 + 0.5 * i, 0)));
 }
 
+// Hulls with polyhedral features stacked on a hull slab: clipped manifolds, whose pairs keep their contacts
+// in the contact cache while they rest (include/Caliber/ContactCache.h).
+void buildPolyhedralStack(TestWorld& t)
+{
+	btConvexHullShape* slab = t.shape<btConvexHullShape>();
+	btConvexHullShape* block = t.shape<btConvexHullShape>();
+	for (int i = 0; i < 8; ++i)
+	{
+		const btScalar sx = (i & 1) ? 1 : -1, sy = (i & 2) ? 1 : -1, sz = (i & 4) ? 1 : -1;
+		slab->addPoint(btVector3(4 * sx, btScalar(0.5) * sy, 4 * sz));
+		block->addPoint(btVector3(btScalar(0.5) * sx, btScalar(0.25) * sy, btScalar(0.5) * sz));
+	}
+	slab->initializePolyhedralFeatures();
+	block->initializePolyhedralFeatures();
+	t.addBody(slab, 0, btVector3(0, btScalar(-0.5), 0));
+	for (int i = 0; i < 6; ++i) t.addBody(block, 1, pose(btVector3(0.01 * (i % 3), 0.26 + 0.5 * i, 0)));
+}
+
 // Chains hanging from static anchors, one per joint kind, swinging into each other and onto the ground:
 // hinge (with a motor and limits), accumulated-angle hinge, cone twist, ball, slider, 6-DoF, 6-DoF spring,
 // 6-DoF spring2, universal, fixed. Joint warm starts, limits, motors and the position correction.
@@ -619,6 +637,12 @@ void expectRollbackIsExact(const Builder& build, int warmup, int steps, btScalar
 TEST(WorldSnapshot, PileContinuesBitIdenticallyFor150Steps) { expectRollbackIsExact(buildPile, 30, 150); }
 
 TEST(WorldSnapshot, StackContinuesBitIdenticallyFor1000Steps) { expectRollbackIsExact(buildStack, 20, 1000); }
+
+TEST(WorldSnapshot, PolyhedralHullStackContinuesBitIdenticallyFor300Steps)
+{
+	// Saved once the stack rests, so that its pairs hold contact caches.
+	expectRollbackIsExact(buildPolyhedralStack, 120, 300);
+}
 
 TEST(WorldSnapshot, JointChainsContinueBitIdenticallyFor120Steps) { expectRollbackIsExact(buildJoints, 25, 120); }
 
