@@ -29,16 +29,21 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
 		const btTransform& t0 = body0Wrap->getWorldTransform();
 		const btTransform& t1 = body1Wrap->getWorldTransform();
 		const btScalar reach = resultOut->m_closestPointDistanceThreshold;
+		const btVector3 half0 =
+		    static_cast<const btBoxShape*>(body0Wrap->getCollisionShape())->getHalfExtentsWithMargin();
+		const btVector3 half1 =
+		    static_cast<const btBoxShape*>(body1Wrap->getCollisionShape())->getHalfExtentsWithMargin();
+		const PairShapes shapes = {-half0, half0, -half1, half1};
 		// A non-finite pose never passes the test: the full path reports it.
-		if (m_poseCache.covers(t0, t1, reach))
+		if (m_poseCache.covers(t0, t1, reach, shapes))
 		{
 			resultOut->setPersistentManifold(manifold);
+			refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
 			resultOut->refreshContactPoints();
 			return;
 		}
 		btBoxBoxCollisionAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
-		const btBoxShape* box1 = static_cast<const btBoxShape*>(body1Wrap->getCollisionShape());
-		m_poseCache.store(t0, t1, reach, box1->getHalfExtentsWithMargin().length());
+		m_poseCache.store(t0, t1, reach, shapes);
 		return;
 	}
 	m_poseCache.valid = false;

@@ -188,18 +188,19 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
 			const btTransform& t1 = body1Wrap->getWorldTransform();
 			const btScalar reach = resultOut->m_closestPointDistanceThreshold;
 			btPersistentManifold* manifold = this->*memberOf(ConvexPairManifold{});
+			PairShapes shapes;
+			shape0->getAabb(btTransform::getIdentity(), shapes.min0, shapes.max0);
+			shape1->getAabb(btTransform::getIdentity(), shapes.min1, shapes.max1);
 			// A non-finite pose never passes the test: the full path reports it.
-			if (manifold && m_poseCache.covers(t0, t1, reach))
+			if (manifold && m_poseCache.covers(t0, t1, reach, shapes))
 			{
 				resultOut->setPersistentManifold(manifold);
+				refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
 				resultOut->refreshContactPoints();
 				return;
 			}
 			btConvexConvexAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
-			btVector3 center;
-			btScalar radius;
-			shape1->getBoundingSphere(center, radius);
-			m_poseCache.store(t0, t1, reach, center.length() + radius);
+			m_poseCache.store(t0, t1, reach, shapes);
 			return;
 		}
 	}

@@ -1,5 +1,6 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
+#include "BulletCollision/CollisionDispatch/btPairPoseCache.h"
 
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "LinearMath/btMinMax.h"
@@ -157,4 +158,42 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 		                         stored.m_index1);
 	}
 	if (gContactStartedCallback && isNewCollision) gContactStartedCallback(m_manifoldPtr);
+}
+
+void caliber::refreshPointMaterials(btPersistentManifold& manifold, const btCollisionObject* object0,
+                                    const btCollisionObject* object1)
+{
+	const int points = manifold.getNumContacts();
+	if (points == 0) return;
+	// The same values and flags addContactPoint gives a new point (replaceContactPoint keeps them).
+	const btScalar friction = gCalculateCombinedFrictionCallback(object0, object1);
+	const btScalar restitution = gCalculateCombinedRestitutionCallback(object0, object1);
+	const btScalar rolling = gCalculateCombinedRollingFrictionCallback(object0, object1);
+	const btScalar spinning = gCalculateCombinedSpinningFrictionCallback(object0, object1);
+	const int flags = object0->getCollisionFlags() | object1->getCollisionFlags();
+	const bool stiffness = (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) != 0;
+	const btScalar damping = stiffness ? gCalculateCombinedContactDampingCallback(object0, object1) : btScalar(0);
+	const btScalar stiffnessValue = stiffness ? gCalculateCombinedContactStiffnessCallback(object0, object1) : btScalar(0);
+	for (int i = 0; i < points; ++i)
+	{
+		btManifoldPoint& point = manifold.getContactPoint(i);
+		point.m_combinedFriction = friction;
+		point.m_combinedRestitution = restitution;
+		point.m_combinedRollingFriction = rolling;
+		point.m_combinedSpinningFriction = spinning;
+		if (stiffness)
+		{
+			point.m_combinedContactDamping1 = damping;
+			point.m_combinedContactStiffness1 = stiffnessValue;
+			point.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+		}
+		else
+		{
+			point.m_contactPointFlags &= ~BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+		}
+		if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR)
+			point.m_contactPointFlags |= BT_CONTACT_FLAG_FRICTION_ANCHOR;
+		else
+			point.m_contactPointFlags &= ~BT_CONTACT_FLAG_FRICTION_ANCHOR;
+	}
 }

@@ -13,6 +13,8 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "LinearMath/btTransform.h"
 
+class btPersistentManifold;
+
 namespace caliber
 {
 /// The process-wide distance (include/Caliber/ContactCache.h); 0 when the cache is off.
@@ -22,23 +24,50 @@ btScalar contactCacheDistance();
 int cachedBoxBoxAlgorithmSize();
 int cachedConvexConvexAlgorithmSize();
 
+/// Gives the points of manifold the material values a detection gives the points it reports (combined
+/// friction, restitution, rolling and spinning friction, contact stiffness and damping, the friction
+/// anchor flag), from the objects as they are now: a cached pair takes a material change at once.
+/// object0 and object1 in the order of the algorithm's wrappers, as btManifoldResult::addContactPoint.
+void refreshPointMaterials(btPersistentManifold& manifold, const btCollisionObject* object0,
+                           const btCollisionObject* object1);
+
+/// What the cache knows of the two shapes: their boxes in their own frames (margins and scaling
+/// included). A shape that was resized, rescaled or given another margin no longer matches, and the pair
+/// is detected again.
+struct PairShapes
+{
+	btVector3 min0{0, 0, 0}, max0{0, 0, 0}, min1{0, 0, 0}, max1{0, 0, 0};
+
+	bool operator==(const PairShapes& o) const
+	{
+		return min0 == o.min0 && max0 == o.max0 && min1 == o.min1 && max1 == o.max1;
+	}
+	/// How far from its origin a point of shape 1 can be.
+	btScalar extent1() const
+	{
+		const btVector3 far(btMax(btFabs(min1.x()), btFabs(max1.x())), btMax(btFabs(min1.y()), btFabs(max1.y())),
+		                    btMax(btFabs(min1.z()), btFabs(max1.z())));
+		return far.length();
+	}
+};
+
 /// The pose of body 1 in body 0's frame at the last full detection, the reach (speculative distance) the
-/// detection used, and how far body 1's shape reaches from its origin.
+/// detection used, and the two shapes then.
 struct PairPoseCache
 {
 	// Zero until stored, so that a snapshot of an unused cache has defined bytes.
-	btVector3 offset{0, 0, 0};  ///< R0^T (p1 - p0)
+	btVector3 offset{0, 0, 0};                                                                ///< R0^T (p1 - p0)
 	btVector3 turnColumns[3] = {btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0)};  ///< columns of R0^T R1
 	btScalar reach = btScalar(0);
-	btScalar extent1 = btScalar(0);  ///< no point of body 1's shape is farther from its origin
+	PairShapes shapes;
 	bool valid = false;
 
 	/// True when the cached contacts still hold: every point of body 1 moved less than the cache distance
 	/// relative to body 0, and this query's reach is within the larger of the cached reach and that
 	/// distance (a pair closing faster than that gets a full detection, which may add speculative points).
-	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach) const
+	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow) const
 	{
-		if (!valid) return false;
+		if (!valid || !(shapesNow == shapes)) return false;
 		const btScalar distance = contactCacheDistance();
 		if (!(queryReach <= btMax(reach, distance))) return false;
 		const btMatrix3x3& r0 = t0.getBasis();
@@ -48,12 +77,12 @@ struct PairPoseCache
 		const btScalar moved = ((t1.getOrigin() - t0.getOrigin()) * r0 - offset).length();
 		btScalar turn2 = btScalar(0);
 		for (int k = 0; k < 3; ++k) turn2 += (r1.getColumn(k) * r0 - turnColumns[k]).length2();
-		return moved + extent1 * btSqrt(turn2) <= distance;
+		return moved + shapes.extent1() * btSqrt(turn2) <= distance;
 	}
-	/// Remembers the pose and reach of a full detection, and body 1's extent.
-	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach, btScalar shapeExtent1)
+	/// Remembers the pose, reach and shapes of a full detection.
+	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow)
 	{
-		extent1 = shapeExtent1;
+		shapes = shapesNow;
 		const btMatrix3x3& r0 = t0.getBasis();
 		const btMatrix3x3& r1 = t1.getBasis();
 		offset = (t1.getOrigin() - t0.getOrigin()) * r0;

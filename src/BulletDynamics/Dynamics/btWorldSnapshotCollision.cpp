@@ -96,7 +96,10 @@ void poseCacheState(IO& io, caliber::PairPoseCache& cache)
 	io.field("contact cache offset", cache.offset);
 	for (int k = 0; k < 3; ++k) io.field("contact cache turn column", cache.turnColumns[k]);
 	io.field("contact cache reach", cache.reach);
-	io.field("contact cache extent", cache.extent1);
+	io.field("contact cache shape 0 min", cache.shapes.min0);
+	io.field("contact cache shape 0 max", cache.shapes.max0);
+	io.field("contact cache shape 1 min", cache.shapes.min1);
+	io.field("contact cache shape 1 max", cache.shapes.max1);
 }
 
 int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)

@@ -156,6 +156,51 @@ TEST(ContactCache, PolyhedralHullsUseTheCacheAndOtherConvexPairsAreDetectedEvery
 	}
 }
 
+TEST(ContactCache, AMaterialChangeReachesTheCachedPointsAtOnce)
+{
+	CacheDistanceScope scope(kCacheDistance);
+	for (Shapes shapes : {Shapes::Boxes, Shapes::PolyhedralHulls})
+	{
+		BoxOnSlab scene(btScalar(0.01), shapes);
+		scene.place(btVector3(0, btScalar(1.49), 0), btQuaternion::getIdentity());
+		const btVector3 onSlab = scene.firstLocalPointOnSlab();
+		// Ice under a resting box: a box held by friction on a slope must start to slide at once, not once it
+		// has moved (it would never move). So must a bounce, rolling friction and soft contacts.
+		scene.slab.setFriction(0);
+		scene.box.setRestitution(btScalar(0.5));
+		scene.slab.setRestitution(btScalar(0.5));
+		scene.box.setRollingFriction(btScalar(0.2));
+		scene.slab.setRollingFriction(btScalar(0.5));
+		scene.box.setContactStiffnessAndDamping(1000, 10);
+		scene.place(btVector3(0, btScalar(1.49), 0), btQuaternion::getIdentity());
+		ASSERT_EQ(scene.firstLocalPointOnSlab(), onSlab) << "the pair must still be cached for this test";
+		const btPersistentManifold* m = scene.manifold();
+		for (int i = 0; i < m->getNumContacts(); ++i)
+		{
+			const btManifoldPoint& p = m->getContactPoint(i);
+			EXPECT_EQ(p.m_combinedFriction, btScalar(0));
+			EXPECT_EQ(p.m_combinedRestitution, btScalar(0.25));
+			// Bullet's rule r0 f1 + r1 f0, with the slab's friction now 0 and the box's the default 0.5.
+			EXPECT_EQ(p.m_combinedRollingFriction, btScalar(0.5) * btScalar(0.5));
+			EXPECT_TRUE(p.m_contactPointFlags & BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING);
+			// In series with the slab's default (a huge stiffness): the box's own.
+			EXPECT_NEAR(p.m_combinedContactStiffness1, btScalar(1000), btScalar(0.01));
+		}
+	}
+}
+
+TEST(ContactCache, AResizedShapeIsDetectedAgain)
+{
+	CacheDistanceScope scope(kCacheDistance);
+	BoxOnSlab scene;
+	const btVector3 onBox = scene.firstLocalPointOnBox();
+	// The box grows by 10% without moving: its corners are elsewhere, and so are the contacts.
+	scene.boxShape->setLocalScaling(btVector3(btScalar(1.1), btScalar(1.1), btScalar(1.1)));
+	scene.place(btVector3(0, btScalar(1.49), 0), btQuaternion::getIdentity());
+	EXPECT_NE(scene.firstLocalPointOnBox(), onBox);
+	EXPECT_NEAR(btFabs(scene.firstLocalPointOnBox().x()), btScalar(0.55), btScalar(0.01));
+}
+
 TEST(ContactCache, MotionBeyondTheDistanceIsDetectedAgainCountedFromTheLastDetection)
 {
 	CacheDistanceScope scope(kCacheDistance);
