@@ -35,7 +35,7 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
 		    static_cast<const btBoxShape*>(body1Wrap->getCollisionShape())->getHalfExtentsWithMargin();
 		const PairShapes shapes = {-half0, half0, -half1, half1};
 		// A non-finite pose never passes the test: the full path reports it.
-		if (m_poseCache.covers(t0, t1, reach, shapes))
+		if (m_poseCache.covers(t0, t1, reach, shapes, manifold->getNumContacts()))
 		{
 			resultOut->setPersistentManifold(manifold);
 			refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
@@ -43,7 +43,7 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
 			return;
 		}
 		btBoxBoxCollisionAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
-		m_poseCache.store(t0, t1, reach, shapes);
+		m_poseCache.store(t0, t1, reach, shapes, manifold->getNumContacts());
 		return;
 	}
 	m_poseCache.valid = false;

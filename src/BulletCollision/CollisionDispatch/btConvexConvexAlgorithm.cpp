@@ -192,7 +192,7 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
 			shape0->getAabb(btTransform::getIdentity(), shapes.min0, shapes.max0);
 			shape1->getAabb(btTransform::getIdentity(), shapes.min1, shapes.max1);
 			// A non-finite pose never passes the test: the full path reports it.
-			if (manifold && m_poseCache.covers(t0, t1, reach, shapes))
+			if (manifold && m_poseCache.covers(t0, t1, reach, shapes, manifold->getNumContacts()))
 			{
 				resultOut->setPersistentManifold(manifold);
 				refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
@@ -200,7 +200,8 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
 				return;
 			}
 			btConvexConvexAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
-			m_poseCache.store(t0, t1, reach, shapes);
+			btPersistentManifold* made = this->*memberOf(ConvexPairManifold{});
+			m_poseCache.store(t0, t1, reach, shapes, made ? made->getNumContacts() : -1);
 			return;
 		}
 	}

@@ -60,14 +60,18 @@ struct PairPoseCache
 	btVector3 turnColumns[3] = {btVector3(0, 0, 0), btVector3(0, 0, 0), btVector3(0, 0, 0)};  ///< columns of R0^T R1
 	btScalar reach = btScalar(0);
 	PairShapes shapes;
+	int points = 0;  ///< the manifold's points after the detection
 	bool valid = false;
 
 	/// True when the cached contacts still hold: every point of body 1 moved less than the cache distance
 	/// relative to body 0, and this query's reach is within the larger of the cached reach and that
 	/// distance (a pair closing faster than that gets a full detection, which may add speculative points).
-	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow) const
+	/// A manifold that lost or gained points since (a refresh dropped one that drifted apart, the program
+	/// cleared it) is detected again too.
+	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow,
+	            int pointsNow) const
 	{
-		if (!valid || !(shapesNow == shapes)) return false;
+		if (!valid || pointsNow != points || !(shapesNow == shapes)) return false;
 		const btScalar distance = contactCacheDistance();
 		if (!(queryReach <= btMax(reach, distance))) return false;
 		const btMatrix3x3& r0 = t0.getBasis();
@@ -79,10 +83,12 @@ struct PairPoseCache
 		for (int k = 0; k < 3; ++k) turn2 += (r1.getColumn(k) * r0 - turnColumns[k]).length2();
 		return moved + shapes.extent1() * btSqrt(turn2) <= distance;
 	}
-	/// Remembers the pose, reach and shapes of a full detection.
-	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow)
+	/// Remembers the pose, reach, shapes and point count of a full detection.
+	void store(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow,
+	           int pointsNow)
 	{
 		shapes = shapesNow;
+		points = pointsNow;
 		const btMatrix3x3& r0 = t0.getBasis();
 		const btMatrix3x3& r1 = t1.getBasis();
 		offset = (t1.getOrigin() - t0.getOrigin()) * r0;

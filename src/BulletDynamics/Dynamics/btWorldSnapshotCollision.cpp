@@ -100,6 +100,7 @@ void poseCacheState(IO& io, caliber::PairPoseCache& cache)
 	io.field("contact cache shape 0 max", cache.shapes.max0);
 	io.field("contact cache shape 1 min", cache.shapes.min1);
 	io.field("contact cache shape 1 max", cache.shapes.max1);
+	io.field("contact cache points", cache.points);
 }
 
 int objectIndex(const btCollisionWorld& world, const btCollisionObject* object)

@@ -189,6 +189,18 @@ TEST(ContactCache, AMaterialChangeReachesTheCachedPointsAtOnce)
 	}
 }
 
+TEST(ContactCache, AClearedManifoldIsFilledAgainAtTheNextDetection)
+{
+	CacheDistanceScope scope(kCacheDistance);
+	BoxOnSlab scene;
+	ASSERT_EQ(scene.manifold()->getNumContacts(), 4);
+	// A program that empties a manifold (as after a teleport) must not leave the resting box without
+	// contacts until it has sunk a millimetre.
+	scene.manifold()->clearManifold();
+	scene.place(btVector3(0, btScalar(1.49), 0), btQuaternion::getIdentity());
+	EXPECT_EQ(scene.manifold()->getNumContacts(), 4);
+}
+
 TEST(ContactCache, AResizedShapeIsDetectedAgain)
 {
 	CacheDistanceScope scope(kCacheDistance);
