@@ -404,12 +404,16 @@ TEST(SoftBodyFile, ClothSavedBeforeItsFirstStepStepsBitIdenticallyAfterLoading)
 	ASSERT_TRUE(importer.loadFileFromMemory(copy.data(), int(copy.size())));
 	ASSERT_EQ(importer.getNumSoftBodies(), 1);
 	btSoftBody* read = importer.getSoftBodyByIndex(0);
+#ifdef BT_USE_DOUBLE_PRECISION
+	// The file rounded the start to float (grid points 0.4 m apart: a relative 6e-8 at most); 30 steps of free
+	// fall (0.5 s, 1.25 m: no contact yet) carry that rounding unchanged, so 1e-6 m bounds it.
+	a.step(30);
+	b.step(30);
+	for (int i = 0; i < cloth->m_nodes.size(); ++i)
+		for (int k = 0; k < 3; ++k) EXPECT_NEAR(cloth->m_nodes[i].m_x[k], read->m_nodes[i].m_x[k], 1e-6);
+#else
 	a.step(90);
 	b.step(90);
-#ifdef BT_USE_DOUBLE_PRECISION
-	for (int i = 0; i < cloth->m_nodes.size(); ++i)
-		EXPECT_NEAR(cloth->m_nodes[i].m_x.y(), read->m_nodes[i].m_x.y(), 1e-4);  // float rounding of the start
-#else
 	for (int i = 0; i < cloth->m_nodes.size(); ++i)
 	{
 		EXPECT_EQ(cloth->m_nodes[i].m_x, read->m_nodes[i].m_x) << "node " << i;

@@ -589,6 +589,15 @@ bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 				continue;
 			}
 			btSoftBody::Cluster* first = psb->m_clusters[0];
+			btVector3 refA;
+			readVector(refA, jd.m_refs[0]);
+			// What appending would assert on (a joint to its own cluster, a zero axis) is file data here.
+			if (other.m_soft == first ||
+			    (jd.m_jointType == btSoftBody::Joint::eType::Angular && !(refA.length2() > SIMD_EPSILON)))
+			{
+				warn(where + " joins a cluster to itself or has a zero axis; it is skipped");
+				continue;
+			}
 			const int before = psb->m_joints.size();
 			if (jd.m_jointType == btSoftBody::Joint::eType::Linear)
 			{

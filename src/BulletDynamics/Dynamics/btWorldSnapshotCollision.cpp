@@ -54,6 +54,7 @@ enum AlgorithmKind
 	kEmpty = 8,
 	kCompound = 9,
 	kCompoundCompound = 10,
+	kStateless = 11,  // an algorithm of an upper layer without state between steps (SnapshotExtension)
 	kUnsupported = -1
 };
 
@@ -77,6 +78,7 @@ int algorithmKind(const btCollisionAlgorithm* algorithm)
 	if (type == typeid(btEmptyAlgorithm)) return kEmpty;
 	if (type == typeid(btCompoundCollisionAlgorithm)) return kCompound;
 	if (type == typeid(btCompoundCompoundCollisionAlgorithm)) return kCompoundCompound;
+	if (currentExtension() && currentExtension()->statelessAlgorithm(algorithm)) return kStateless;
 	return kUnsupported;
 }
 
@@ -116,8 +118,9 @@ btDbvtBroadphase* dbvtOf(btDiscreteDynamicsWorld& world)
 btSimpleBroadphase* simpleOf(btDiscreteDynamicsWorld& world)
 {
 	btBroadphaseInterface* broadphase = world.getBroadphase();
-	return broadphase && typeid(*broadphase) == typeid(btSimpleBroadphase) ? static_cast<btSimpleBroadphase*>(broadphase)
-	                                                                        : 0;
+	return broadphase && typeid(*broadphase) == typeid(btSimpleBroadphase)
+	           ? static_cast<btSimpleBroadphase*>(broadphase)
+	           : 0;
 }
 
 template <class IO>
@@ -380,8 +383,6 @@ void dbvtCounters(IO& io, btDbvtBroadphase& dbvt)
 	io.field("m_deferedcollide", dbvt.m_deferedcollide);
 	io.field("m_needcleanup", dbvt.m_needcleanup);
 }
-
-
 
 bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
 {
@@ -845,9 +846,8 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 			}
 			out.field("overlapping", index);
 		}
-		if (caching &&
-		    !savePairList(world, caching->getOverlappingPairCache()->getOverlappingPairArray(), out, owned, error,
-		                  errorSize, "ghost pair"))
+		if (caching && !savePairList(world, caching->getOverlappingPairCache()->getOverlappingPairArray(), out, owned,
+		                             error, errorSize, "ghost pair"))
 			return false;
 	}
 	for (int m = 0; m < manifoldCount; ++m)
@@ -909,7 +909,8 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 	a.frame = 0;
 	a.firstChild = a.childCount = 0;
 	if (!in.ok()) return -1;
-	if (a.kind < kNoAlgorithm || a.kind > kCompoundCompound || depth > kMaxAlgorithmDepth)
+	if (a.kind < kNoAlgorithm || a.kind > kStateless || (a.kind == kStateless && !currentExtension()) ||
+	    depth > kMaxAlgorithmDepth)
 	{
 		in.fail("pair %d: unknown algorithm %d (or nested deeper than %d)", pairIndex, a.kind, kMaxAlgorithmDepth);
 		return -1;
@@ -1111,8 +1112,8 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 			const SavedChild& child = saved.children[s.firstChild + c];
 			if (child.algorithm < 0) continue;
 			const btTransform childWorld = compoundWrap.getWorldTransform() * shape->getChildTransform(c);
-			btCollisionObjectWrapper childWrap(&compoundWrap, shape->getChildShape(c), compoundWrap.getCollisionObject(),
-			                                   childWorld, -1, c);
+			btCollisionObjectWrapper childWrap(&compoundWrap, shape->getChildShape(c),
+			                                   compoundWrap.getCollisionObject(), childWorld, -1, c);
 			if (!remakeAlgorithm(dispatcher, swapped ? otherWrap : childWrap, swapped ? childWrap : otherWrap,
 			                     compoundSharedManifold(compound), saved, child.algorithm, in, pairIndex, slots[c]))
 				return false;
@@ -1343,7 +1344,8 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		SavedGhost ghost;
 		ghost.object = in.value<int>("object");
 		const bool caching = in.flag("pair caching");
-		if (in.ok() && (ghost.object != liveGhosts[g] || caching != (cachingGhostOf(objectAt(world, liveGhosts[g])) != 0)))
+		if (in.ok() &&
+		    (ghost.object != liveGhosts[g] || caching != (cachingGhostOf(objectAt(world, liveGhosts[g])) != 0)))
 		{
 			in.fail("ghost %d: object %d, %spair caching, is not the world's ghost %d", g, ghost.object,
 			        caching ? "" : "not ", liveGhosts[g]);
@@ -1426,7 +1428,8 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 			btCollisionObject* object = objectAt(world, ghost.object);
 			btAlignedObjectArray<btCollisionObject*>& list = btGhostObject::upcast(object)->getOverlappingPairs();
 			list.resize(0);
-			for (int k = 0; k < ghost.overlapCount; ++k) list.push_back(objectAt(world, overlaps[ghost.firstOverlap + k]));
+			for (int k = 0; k < ghost.overlapCount; ++k)
+				list.push_back(objectAt(world, overlaps[ghost.firstOverlap + k]));
 			btPairCachingGhostObject* caching = cachingGhostOf(object);
 			if (!caching) continue;
 			btHashedOverlappingPairCache* own = caching->getOverlappingPairCache();
