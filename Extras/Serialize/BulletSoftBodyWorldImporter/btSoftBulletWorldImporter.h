@@ -16,8 +16,8 @@ class btSoftRigidDynamicsWorld;
 class btSoftBulletWorldImporter : public btBulletWorldImporter
 {
 public:
-	/// world may be null: the bodies are then made with this importer's own btSoftBodyWorldInfo and added
-	/// nowhere.
+	/// world may be null: the bodies are then made with this importer's own btSoftBodyWorldInfo (keep the
+	/// importer while they live) and added nowhere.
 	btSoftBulletWorldImporter(btSoftRigidDynamicsWorld* world = 0);
 	~btSoftBulletWorldImporter() override;
 

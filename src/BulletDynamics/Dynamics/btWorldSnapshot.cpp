@@ -58,7 +58,7 @@ struct ExtensionScope
 };
 
 const char kMagic[8] = {'C', 'A', 'L', 'S', 'N', 'A', 'P', 0};
-const unsigned kVersion = 2;  // 2: compound algorithms, own manifold counts
+const unsigned kVersion = 3;  // 2: compound algorithms, own manifold counts; 3: the sweep's ray accelerator
 const unsigned kByteOrderMark = 0x01020304u;
 const int kSolverSequentialImpulse = 1;
 const int kSolverPool = 2;
