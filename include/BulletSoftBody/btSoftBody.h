@@ -872,6 +872,12 @@ public:
 	void updateArea(bool averageArea = true);
 	/// Adds pressure, volume, aerodynamic and user forces into the velocities (part of predictMotion).
 	void applyForces();
+
+	/// Bytes of btSoftBodyFloatData (BulletSoftBody/btSoftBodyData.h).
+	virtual int calculateSerializeBufferSize() const;
+	/// Writes the body into dataBuffer and its parts (materials, nodes, links, faces, tetras, anchors, pose,
+	/// clusters, joints) as chunks of their own; returns the struct's name (docs/serialization.md).
+	virtual const char* serialize(void* dataBuffer, class btSerializer* serializer) const;
 };
 
 #endif  // _BT_SOFT_BODY_H

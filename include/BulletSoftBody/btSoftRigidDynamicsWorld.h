@@ -32,7 +32,7 @@ protected:
 	virtual void internalSingleStepSimulation(btScalar timeStep);
 	/// Solves the soft bodies' constraints and contacts over timeStep.
 	void solveSoftBodiesConstraints(btScalar timeStep);
-	/// Writes the soft bodies (serialization of soft bodies is not implemented yet: nothing).
+	/// Writes each soft body as a btSoftBodyFloatData chunk (BT_SOFTBODY_CODE) with its parts.
 	void serializeSoftBodies(btSerializer* serializer);
 
 public:
@@ -66,6 +66,10 @@ public:
 	btSoftBodyArray& getSoftBodyArray() { return m_softBodies; }
 	/// The soft bodies, in the order added.
 	const btSoftBodyArray& getSoftBodyArray() const { return m_softBodies; }
+
+	/// Writes the world into serializer as a complete .bullet file: the rigid world's content, then the soft
+	/// bodies (docs/serialization.md, "Soft bodies").
+	virtual void serialize(btSerializer* serializer);
 
 	/// Ray test of rigid objects and soft bodies' faces (a soft hit reports the face in m_triangleIndex).
 	virtual void rayTest(const btVector3& rayFromWorld, const btVector3& rayToWorld,

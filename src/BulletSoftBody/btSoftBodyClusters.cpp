@@ -681,3 +681,12 @@ void btSoftBody::clusterDCImpulse(Cluster* cluster, const btVector3& impulse)
 	cluster->m_dimpulses[0] += impulse * cluster->m_imass;
 	++cluster->m_ndimpulses;
 }
+
+btSoftBody::Cluster* caliber::appendCluster(btSoftBody& body)
+{
+	btSoftBody::Cluster* c = newCluster();
+	c->m_clusterIndex = body.m_clusters.size();
+	body.m_clusters.push_back(c);
+	registerCluster(c, &body);
+	return c;
+}

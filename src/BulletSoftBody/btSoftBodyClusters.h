@@ -105,6 +105,9 @@ void solveClusterStage(btSoftBody& body, btScalar dt);
 void solveClusterStages(btSoftBody* const* bodies, int count);
 /// The end of solveConstraints after a deferred cluster stage: the node contacts' last solve.
 void finishSoftSolve(btSoftBody& body);
+/// A new cluster appended to body.m_clusters, registered as the body's (for readers that rebuild clusters
+/// from stored data, btSoftBodySerialize.cpp).
+btSoftBody::Cluster* appendCluster(btSoftBody& body);
 }  // namespace caliber
 
 #endif  // CALIBER_SOFT_BODY_CLUSTERS_H

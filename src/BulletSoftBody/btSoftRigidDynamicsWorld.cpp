@@ -73,8 +73,6 @@ void btSoftRigidDynamicsWorld::solveSoftBodiesConstraints(btScalar timeStep)
 	m_softBodySolver->solveConstraints(timeStep);
 }
 
-void btSoftRigidDynamicsWorld::serializeSoftBodies(btSerializer* serializer) { (void)serializer; }
-
 void btSoftRigidDynamicsWorld::addSoftBody(btSoftBody* body, int collisionFilterGroup, int collisionFilterMask)
 {
 	btAssert(body && "btSoftRigidDynamicsWorld::addSoftBody: null body");

@@ -182,8 +182,10 @@ void btDefaultSerializer::finalizeChunk(btChunk* chunk, const char* structType, 
 	if (!chunk) return;
 	if (!(m_serializationFlags & BT_SERIALIZE_NO_DUPLICATE_ASSERT)) btAssert(!findPointer(oldPtr));
 	chunk->m_dna_nr = getReverseType(structType);
-	// Plain arrays (names, index lists) are written as "char" or "int" and have no struct.
-	if (chunk->m_dna_nr < 0 && strcmp(structType, "char") != 0 && strcmp(structType, "int") != 0)
+	// Plain arrays (names, index lists, a soft body's weights) are written as "char", "int" or "float"
+	// and have no struct.
+	if (chunk->m_dna_nr < 0 && strcmp(structType, "char") != 0 && strcmp(structType, "int") != 0 &&
+	    strcmp(structType, "float") != 0)
 	{
 		btAssert(!"btDefaultSerializer::finalizeChunk: the DNA has no such struct");
 		const std::string message =

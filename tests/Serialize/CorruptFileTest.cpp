@@ -275,6 +275,35 @@ TEST(CorruptFile, CountsBeyondTheirArraysSkipTheShape)
 	}
 }
 
+TEST(CorruptFile, NegativeSizeMarginOrScalingSkipsThePrimitive)
+{
+	// A box's stored half extents, margin and scaling become its size: a negative one would reach the
+	// box's constructor (which asserts on it) unless the loader refuses the shape first.
+	const std::vector<ChunkAt> chunks = walkChunks(sample().bytes);
+	int boxes = 0;
+	for (const ChunkAt& c : chunks)
+	{
+		if (c.code != BT_SHAPE_CODE) continue;
+		int shapeType;
+		memcpy(&shapeType, &sample().bytes[c.data + offsetof(btCollisionShapeData, m_shapeType)], 4);
+		if (shapeType != BOX_SHAPE_PROXYTYPE) continue;
+		++boxes;
+		const size_t fields[3] = {offsetof(btConvexInternalShapeData, m_implicitShapeDimensions),
+		                          offsetof(btConvexInternalShapeData, m_collisionMargin),
+		                          offsetof(btConvexInternalShapeData, m_localScaling) + sizeof(float)};
+		for (size_t field : fields)
+		{
+			std::vector<char> bytes = sample().bytes;
+			poke(bytes, c.data + field, -0.75f);
+			const LoadResult r = load(bytes, true);
+			EXPECT_TRUE(r.ok);
+			EXPECT_LT(r.bodies, 4) << "field at " << field;
+			EXPECT_NE(r.warnings.find("inconsistent data"), std::string::npos) << r.warnings;
+		}
+	}
+	EXPECT_EQ(boxes, 1);
+}
+
 TEST(CorruptFile, MeshIndexOutsideItsVerticesSkipsTheMesh)
 {
 	const std::vector<ChunkAt> chunks = walkChunks(sample().bytes);

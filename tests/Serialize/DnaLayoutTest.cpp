@@ -20,6 +20,7 @@
 #include "BulletCollision/CollisionShapes/btTriangleInfoMap.h"
 #include "BulletDynamics/ConstraintSolver/btGearConstraint.h"
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
+#include "BulletSoftBody/btSoftBodyData.h"
 
 namespace
 {

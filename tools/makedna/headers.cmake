@@ -32,7 +32,8 @@ set(CALIBER_DNA_HEADERS
   include/BulletDynamics/ConstraintSolver/btGeneric6DofSpringConstraint.h
   include/BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h
   include/BulletDynamics/ConstraintSolver/btSliderConstraint.h
-  include/BulletDynamics/ConstraintSolver/btGearConstraint.h)
+  include/BulletDynamics/ConstraintSolver/btGearConstraint.h
+  include/BulletSoftBody/btSoftBodyData.h)
 set(CALIBER_DNA_OPTIONS --also ListBase --also btPositionAndRadius --skip btContactSolverInfoData)
 set(CALIBER_DNA_TABLE src/LinearMath/SerializerDnaTables.inc)
 set(CALIBER_DNA_FIELDS tests/Serialize/DnaLayoutFields.inc)

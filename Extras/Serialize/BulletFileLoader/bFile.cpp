@@ -575,22 +575,45 @@ void bFile::parseInternal(int verboseMode, char* memDna, int memDnaLength)
 			if (memStruct < 0) continue;  // a struct this reader does not know: skipped
 			const long long fileSize = fileLayouts[size_t(chunk.dna_nr)].size;
 			const long long memSize = memLayouts[size_t(memStruct)].size;
-			if (chunk.nr <= 0 || fileSize * chunk.nr > chunk.len || memSize * chunk.nr > kMaxBlockBytes)
+			if (chunk.nr > 0 && fileSize * chunk.nr > chunk.len &&
+			    (long long)chunk.len == (long long)chunk.nr * ptrSize &&
+			    (long long)chunk.nr * long(sizeof(void*)) <= kMaxBlockBytes)
+			{
+				// An array of pointers (the target of a `**` field, such as a soft body's materials): Bullet
+				// writes it with the pointed-to struct's type and pointer-sized elements. Each element becomes a
+				// fix-up; the block is marked kPointerArrayDna and ends with a null.
+				const size_t bytes = size_t(chunk.nr + 1) * sizeof(void*);
+				block = static_cast<char*>(btAlignedAlloc(bytes, 16));
+				memset(block, 0, bytes);
+				m_pointerFixupArray.push_back(block);
+				for (int e = 0; e < chunk.nr; ++e)
+				{
+					const uint64_t old = readUnsigned(src + e * ptrSize, ptrSize, swap);
+					if (old)
+						fixups.push_back(Fixup{size_t(m_pointerFixupArray.size() - 1), int(e * sizeof(void*)), old});
+				}
+				chunk.dna_nr = kPointerArrayDna;
+				chunk.len = int(size_t(chunk.nr) * sizeof(void*));
+			}
+			else if (chunk.nr <= 0 || fileSize * chunk.nr > chunk.len || memSize * chunk.nr > kMaxBlockBytes)
 			{
 				fail(("a chunk of " + std::string(typeName) + " claims " + std::to_string(chunk.nr) +
 				      " structs, more than its " + std::to_string(chunk.len) + " bytes hold")
 				         .c_str());
 				return;
 			}
-			const size_t bytes = size_t(memSize * chunk.nr);
-			block = static_cast<char*>(btAlignedAlloc(bytes > 0 ? bytes : 1, 16));
-			memset(block, 0, bytes > 0 ? bytes : 1);
-			m_pointerFixupArray.push_back(block);
-			for (int e = 0; e < chunk.nr; ++e)
-				converter.convert(memStruct, block, int(e * memSize), chunk.dna_nr, src + e * fileSize,
-				                  size_t(m_pointerFixupArray.size() - 1), 0);
-			chunk.dna_nr = memStruct;
-			chunk.len = int(bytes);
+			else
+			{
+				const size_t bytes = size_t(memSize * chunk.nr);
+				block = static_cast<char*>(btAlignedAlloc(bytes > 0 ? bytes : 1, 16));
+				memset(block, 0, bytes > 0 ? bytes : 1);
+				m_pointerFixupArray.push_back(block);
+				for (int e = 0; e < chunk.nr; ++e)
+					converter.convert(memStruct, block, int(e * memSize), chunk.dna_nr, src + e * fileSize,
+					                  size_t(m_pointerFixupArray.size() - 1), 0);
+				chunk.dna_nr = memStruct;
+				chunk.len = int(bytes);
+			}
 		}
 		else
 		{

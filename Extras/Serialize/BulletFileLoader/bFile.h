@@ -37,6 +37,10 @@ enum bFileFlags
 	FD_FILEDNA_IS_MEMDNA = 256
 };
 
+/// The dna_nr a converted block's chunk header gets when the block is an array of pointers (the target of a
+/// `**` field): nr pointers into other converted blocks (or null), then one null.
+const int kPointerArrayDna = -2;
+
 /// Verbosity bits of parse().
 enum bFileVerboseMode
 {

@@ -139,13 +139,13 @@ private:
 		{
 			case BOX_SHAPE_PROXYTYPE:
 			case SPHERE_SHAPE_PROXYTYPE:
-				return !strcmp(type, "btConvexInternalShapeData") && convexFinite(shape);
+				return !strcmp(type, "btConvexInternalShapeData") && convexFinite(shape) && primitiveSized(shape);
 			case CAPSULE_SHAPE_PROXYTYPE:
-				return !strcmp(type, "btCapsuleShapeData") && convexFinite(shape);
+				return !strcmp(type, "btCapsuleShapeData") && convexFinite(shape) && primitiveSized(shape);
 			case CYLINDER_SHAPE_PROXYTYPE:
-				return !strcmp(type, "btCylinderShapeData") && convexFinite(shape);
+				return !strcmp(type, "btCylinderShapeData") && convexFinite(shape) && primitiveSized(shape);
 			case CONE_SHAPE_PROXYTYPE:
-				return !strcmp(type, "btConeShapeData") && convexFinite(shape);
+				return !strcmp(type, "btConeShapeData") && convexFinite(shape) && primitiveSized(shape);
 			case STATIC_PLANE_PROXYTYPE:
 			{
 				if (strcmp(type, "btStaticPlaneShapeData")) return false;
@@ -328,9 +328,19 @@ private:
 		const btConvexInternalShapeData* d = reinterpret_cast<btConvexInternalShapeData*>(shape);
 		if (!finite(d->m_implicitShapeDimensions) || !finite(d->m_localScaling) || !isfinite(d->m_collisionMargin))
 			return false;
-		// Scaling divides the stored dimensions: zero scaling cannot be undone.
+		// Scaling divides the stored dimensions: zero scaling cannot be undone, and shapes keep it positive
+		// (Bullet's and Caliber's setLocalScaling store its absolute value), as they keep margins.
 		for (int i = 0; i < 3; ++i)
-			if (d->m_localScaling.m_floats[i] == 0.f) return false;
+			if (!(d->m_localScaling.m_floats[i] > 0)) return false;
+		return d->m_collisionMargin >= 0;
+	}
+
+	// A box, sphere, capsule, cylinder or cone: the stored dimensions are sizes, never negative.
+	bool primitiveSized(btCollisionShapeData* shape) const
+	{
+		const btConvexInternalShapeData* d = reinterpret_cast<btConvexInternalShapeData*>(shape);
+		for (int i = 0; i < 3; ++i)
+			if (!(d->m_implicitShapeDimensions.m_floats[i] >= 0)) return false;
 		return true;
 	}
 
@@ -356,7 +366,8 @@ private:
 				part = b->m_contiguousNodesPtr[i].m_subPart;
 				triangle = b->m_contiguousNodesPtr[i].m_triangleIndex;
 			}
-			if (part < 0 || part >= m.m_numMeshParts || triangle < 0 || triangle >= m.m_meshPartsPtr[part].m_numTriangles)
+			if (part < 0 || part >= m.m_numMeshParts || triangle < 0 ||
+			    triangle >= m.m_meshPartsPtr[part].m_numTriangles)
 				return false;
 		}
 		return true;
@@ -366,20 +377,20 @@ private:
 	void checkMeshExtras(btTriangleMeshShapeData& mesh) const
 	{
 		const btStridingMeshInterfaceData& m = mesh.m_meshInterface;
-		if (mesh.m_quantizedFloatBvh &&
-		    !(isA(mesh.m_quantizedFloatBvh, "btQuantizedBvhFloatData") &&
-		      bvhComplete(mesh.m_quantizedFloatBvh, "btOptimizedBvhNodeFloatData") &&
-		      leavesFit(mesh.m_quantizedFloatBvh, m)))
+		if (mesh.m_quantizedFloatBvh && !(isA(mesh.m_quantizedFloatBvh, "btQuantizedBvhFloatData") &&
+		                                  bvhComplete(mesh.m_quantizedFloatBvh, "btOptimizedBvhNodeFloatData") &&
+		                                  leavesFit(mesh.m_quantizedFloatBvh, m)))
 		{
-			btReportWarning("Caliber: btBulletWorldImporter: a mesh's stored BVH does not fit the mesh; it is rebuilt\n");
+			btReportWarning(
+			    "Caliber: btBulletWorldImporter: a mesh's stored BVH does not fit the mesh; it is rebuilt\n");
 			mesh.m_quantizedFloatBvh = 0;
 		}
-		if (mesh.m_quantizedDoubleBvh &&
-		    !(isA(mesh.m_quantizedDoubleBvh, "btQuantizedBvhDoubleData") &&
-		      bvhComplete(mesh.m_quantizedDoubleBvh, "btOptimizedBvhNodeDoubleData") &&
-		      leavesFit(mesh.m_quantizedDoubleBvh, m)))
+		if (mesh.m_quantizedDoubleBvh && !(isA(mesh.m_quantizedDoubleBvh, "btQuantizedBvhDoubleData") &&
+		                                   bvhComplete(mesh.m_quantizedDoubleBvh, "btOptimizedBvhNodeDoubleData") &&
+		                                   leavesFit(mesh.m_quantizedDoubleBvh, m)))
 		{
-			btReportWarning("Caliber: btBulletWorldImporter: a mesh's stored BVH does not fit the mesh; it is rebuilt\n");
+			btReportWarning(
+			    "Caliber: btBulletWorldImporter: a mesh's stored BVH does not fit the mesh; it is rebuilt\n");
 			mesh.m_quantizedDoubleBvh = 0;
 		}
 		if (mesh.m_triangleInfoMap && !triangleInfoMapComplete(mesh.m_triangleInfoMap))
@@ -481,8 +492,7 @@ bool bodyFinite(const BodyData& d)
 	       Checker::finite(d.m_angularVelocity) && Checker::finite(d.m_gravity_acceleration) &&
 	       Checker::finite(d.m_invInertiaLocal) && Checker::finite(d.m_linearFactor) &&
 	       Checker::finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
-	       nonNegative(d.m_invInertiaLocal) &&
-	       isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
+	       nonNegative(d.m_invInertiaLocal) && isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
 }
 
 // The number of leaves among the tree nodes a stored BVH lists.

@@ -47,8 +47,19 @@ namespace
 {
 using namespace snapshot_access;
 
+thread_local const SnapshotExtension* t_extension = 0;
+
+// Sets the extension of one snapshot call on this thread.
+struct ExtensionScope
+{
+	const SnapshotExtension* previous;
+	explicit ExtensionScope(const SnapshotExtension* extension) : previous(t_extension) { t_extension = extension; }
+	~ExtensionScope() { t_extension = previous; }
+};
+
 const char kMagic[8] = {'C', 'A', 'L', 'S', 'N', 'A', 'P', 0};
-const unsigned kVersion = 3;  // 2: compound algorithms, own manifold counts; 3: box-box contact caches
+// 2: compound algorithms, own manifold counts; 3: the sweep's ray accelerator; 4: contact caches
+const unsigned kVersion = 4;
 const unsigned kByteOrderMark = 0x01020304u;
 const int kSolverSequentialImpulse = 1;
 const int kSolverPool = 2;
@@ -302,12 +313,15 @@ bool worldSupported(btDiscreteDynamicsWorld& world, char* error, size_t errorSiz
 		const btCollisionObject* object = world.getCollisionObjectArray()[i];
 		const int type = object->getInternalType();
 		// Ghosts of Bullet's two classes (a subclass may keep more state).
-		const bool ghost = type == btCollisionObject::CO_GHOST_OBJECT &&
-		                   (typeid(*object) == typeid(btGhostObject) || typeid(*object) == typeid(btPairCachingGhostObject));
-		if (type != btCollisionObject::CO_COLLISION_OBJECT && type != btCollisionObject::CO_RIGID_BODY && !ghost)
+		const bool ghost =
+		    type == btCollisionObject::CO_GHOST_OBJECT &&
+		    (typeid(*object) == typeid(btGhostObject) || typeid(*object) == typeid(btPairCachingGhostObject));
+		const bool extended = t_extension && t_extension->acceptsObject(*object);
+		if (type != btCollisionObject::CO_COLLISION_OBJECT && type != btCollisionObject::CO_RIGID_BODY && !ghost &&
+		    !extended)
 		{
-			setError(error, errorSize,
-			         "object %d: internal type %d (soft bodies, ghost subclasses) is not supported", i, type);
+			setError(error, errorSize, "object %d: internal type %d (soft bodies, ghost subclasses) is not supported",
+			         i, type);
 			return false;
 		}
 	}
@@ -421,6 +435,11 @@ bool saveAll(btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>
 	}
 	// The world numbers its solver batches (SolveIndexScope): the next step's row order depends on it.
 	out.field("world solve count", caliber::stepContextOf(world).solveCounter);
+	if (t_extension && !t_extension->save(world, out, error, errorSize))
+	{
+		buffer.resize(0);
+		return false;
+	}
 
 	const unsigned size = unsigned(buffer.size());
 	memcpy(&buffer[sizeAt], &size, sizeof(size));
@@ -518,7 +537,8 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 		if (btKinematicCharacterController* character = characterOf(actions[a]))
 		{
 			const int ghost = in.value<int>("ghost");
-			if (in.ok() && (kind != kActionCharacterController || ghost != objectIndexOf(world, characterGhost(*character))))
+			if (in.ok() &&
+			    (kind != kActionCharacterController || ghost != objectIndexOf(world, characterGhost(*character))))
 			{
 				in.fail("action %d: kind %d on object %d, not the world's character controller on object %d", a, kind,
 				        ghost, objectIndexOf(world, characterGhost(*character)));
@@ -572,9 +592,10 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 	const int solverKind = in.value<int>("solver kind");
 	const int solverCount = in.value<int>("solver count");
 	if (in.ok() && (solverKind != liveSolverKind || solverCount != solvers.size()))
-		in.fail("solver: kind %d with %d solvers, the snapshot's kind %d with %d (a pool of another size, or "
-		        "a large-batch solver more or less)",
-		        liveSolverKind, solvers.size(), solverKind, solverCount);
+		in.fail(
+		    "solver: kind %d with %d solvers, the snapshot's kind %d with %d (a pool of another size, or "
+		    "a large-batch solver more or less)",
+		    liveSolverKind, solvers.size(), solverKind, solverCount);
 	btAlignedObjectArray<unsigned long long> seeds;
 	btAlignedObjectArray<unsigned> solveCounts;
 	for (int i = 0; i < solverCount && in.ok(); ++i)
@@ -583,6 +604,7 @@ bool readAll(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t s
 		solveCounts.push_back(in.value<unsigned>("solve count"));
 	}
 	const unsigned worldSolveCount = in.value<unsigned>("world solve count");
+	if (in.ok() && t_extension) t_extension->read(world, in);
 	if (in.ok() && in.remaining() != 0) in.fail("trailing bytes after the snapshot");
 	if (in.ok() && apply)
 	{
@@ -602,11 +624,31 @@ void noteError(SnapshotError* error, const char* message)
 	if (error) snprintf(error->message, sizeof(error->message), "%s", message);
 }
 }  // namespace
+
+const SnapshotExtension* currentExtension() { return t_extension; }
 }  // namespace snapshot
 
 bool saveWorldState(const btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>& buffer,
                     SnapshotError* error)
 {
+	return saveWorldStateWith(world, buffer, error, 0);
+}
+
+bool restoreWorldState(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t size, SnapshotError* error)
+{
+	return restoreWorldStateWith(world, data, size, error, 0);
+}
+
+bool compareWorldState(const btDiscreteDynamicsWorld& world, const unsigned char* data, size_t size,
+                       SnapshotDifference* difference, SnapshotError* error)
+{
+	return compareWorldStateWith(world, data, size, difference, error, 0);
+}
+
+bool saveWorldStateWith(const btDiscreteDynamicsWorld& world, btAlignedObjectArray<unsigned char>& buffer,
+                        SnapshotError* error, const snapshot::SnapshotExtension* extension)
+{
+	snapshot::ExtensionScope scope(extension);
 	char message[256] = {0};
 	// Saving reads only; the accessors are written for the restore, hence the cast.
 	const bool saved =
@@ -615,8 +657,10 @@ bool saveWorldState(const btDiscreteDynamicsWorld& world, btAlignedObjectArray<u
 	return saved;
 }
 
-bool restoreWorldState(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t size, SnapshotError* error)
+bool restoreWorldStateWith(btDiscreteDynamicsWorld& world, const unsigned char* data, size_t size, SnapshotError* error,
+                           const snapshot::SnapshotExtension* extension)
 {
+	snapshot::ExtensionScope scope(extension);
 	char message[256] = {0};
 	btAssert((data || !size) && "restoreWorldState: null data");
 	if (!data || size == 0)
@@ -654,9 +698,11 @@ bool restoreWorldState(btDiscreteDynamicsWorld& world, const unsigned char* data
 	return true;
 }
 
-bool compareWorldState(const btDiscreteDynamicsWorld& world, const unsigned char* data, size_t size,
-                       SnapshotDifference* difference, SnapshotError* error)
+bool compareWorldStateWith(const btDiscreteDynamicsWorld& world, const unsigned char* data, size_t size,
+                           SnapshotDifference* difference, SnapshotError* error,
+                           const snapshot::SnapshotExtension* extension)
 {
+	snapshot::ExtensionScope scope(extension);
 	if (difference)
 	{
 		snprintf(difference->section, sizeof(difference->section), "header");

@@ -7,6 +7,7 @@
 // dispatcher (as the near callback makes them), their lazily made manifolds and GJK warm starts are set
 // as saved, and the dispatcher's manifold array is put back into the saved order.
 
+#include <functional>
 #include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btAxisSweep3.h"
@@ -55,7 +56,8 @@ enum AlgorithmKind
 	kEmpty = 8,
 	kCompound = 9,
 	kCompoundCompound = 10,
-	kCachedBoxBox = 11,  // caliber::CachedBoxBoxAlgorithm, the default box-box algorithm (with its contact cache)
+	kStateless = 11,  // an algorithm of an upper layer without state between steps (SnapshotExtension)
+	kCachedBoxBox = 12,  // caliber::CachedBoxBoxAlgorithm, the default box-box algorithm (with its contact cache)
 	kUnsupported = -1
 };
 
@@ -83,6 +85,7 @@ int algorithmKind(const btCollisionAlgorithm* algorithm)
 	if (type == typeid(btCompoundCollisionAlgorithm)) return kCompound;
 	if (type == typeid(btCompoundCompoundCollisionAlgorithm)) return kCompoundCompound;
 	if (type == typeid(caliber::CachedBoxBoxAlgorithm)) return kCachedBoxBox;
+	if (currentExtension() && currentExtension()->statelessAlgorithm(algorithm)) return kStateless;
 	return kUnsupported;
 }
 
@@ -139,8 +142,9 @@ btDbvtBroadphase* dbvtOf(btDiscreteDynamicsWorld& world)
 btSimpleBroadphase* simpleOf(btDiscreteDynamicsWorld& world)
 {
 	btBroadphaseInterface* broadphase = world.getBroadphase();
-	return broadphase && typeid(*broadphase) == typeid(btSimpleBroadphase) ? static_cast<btSimpleBroadphase*>(broadphase)
-	                                                                        : 0;
+	return broadphase && typeid(*broadphase) == typeid(btSimpleBroadphase)
+	           ? static_cast<btSimpleBroadphase*>(broadphase)
+	           : 0;
 }
 
 template <class IO>
@@ -163,8 +167,7 @@ bool readHasProxy(SnapshotReader& in, int i, const btBroadphaseProxy* proxy)
 
 // btAxisSweep3 / bt32BitAxisSweep3 (exactly): per axis the sorted edge list, whose order among equal
 // positions decides which pairs the next moves find first, and each proxy's box. The handles' edge
-// indices follow from the lists. (The optional ray accelerator's tree is not held: it orders ray tests
-// only.)
+// indices follow from the lists. The optional ray accelerator is held as a dbvt of its own (below).
 template <class Index>
 struct SweepAccess : btAxisSweep3Internal<Index>
 {
@@ -176,6 +179,7 @@ struct SweepAccess : btAxisSweep3Internal<Index>
 	static Index sentinel(Sweep& s) { return s.*(&SweepAccess::m_handleSentinel); }
 	static Edge* edges(Sweep& s, int axis) { return (s.*(&SweepAccess::m_pEdges))[axis]; }
 	static Handle* handles(Sweep& s) { return s.*(&SweepAccess::m_pHandles); }
+	static btDbvtBroadphase* accelerator(Sweep& s) { return s.*(&SweepAccess::m_raycastAccelerator); }
 };
 
 template <class Index>
@@ -404,41 +408,44 @@ void dbvtCounters(IO& io, btDbvtBroadphase& dbvt)
 	io.field("m_needcleanup", dbvt.m_needcleanup);
 }
 
-
-
-bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
+// A btDbvtBroadphase whose proxies belong to the world's objects: the world's broadphase, or an axis
+// sweep's ray accelerator (whose proxies mirror the sweep's handles).
+struct DbvtView
 {
-	if (simpleOf(world))
-	{
-		saveSimpleBroadphase(world, out);
-		return true;
-	}
-	if (btAxisSweep3Internal<unsigned short>* sweep = sweepOf<unsigned short>(world))
-	{
-		saveSweep(world, *sweep, kBroadphaseSweep16, out);
-		return true;
-	}
-	if (btAxisSweep3Internal<unsigned int>* sweep = sweepOf<unsigned int>(world))
-	{
-		saveSweep(world, *sweep, kBroadphaseSweep32, out);
-		return true;
-	}
-	btDbvtBroadphase* dbvt = dbvtOf(world);
-	if (!dbvt)
-	{
-		setError(error, errorSize,
-		         "broadphase: only btDbvtBroadphase, btSimpleBroadphase, btAxisSweep3 and bt32BitAxisSweep3 are "
-		         "supported");
-		return false;
-	}
+	btDbvtBroadphase* dbvt;
+	std::function<btDbvtProxy*(int object)> proxyOf;
+};
+
+DbvtView mainDbvtView(btDiscreteDynamicsWorld& world, btDbvtBroadphase* dbvt)
+{
+	return DbvtView{dbvt, [&world](int i)
+	                { return static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle()); }};
+}
+
+template <class Index>
+DbvtView acceleratorView(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>& sweep)
+{
+	return DbvtView{SweepAccess<Index>::accelerator(sweep),
+	                [&world](int i) -> btDbvtProxy*
+	                {
+		                btBroadphaseProxy* handle = world.getCollisionObjectArray()[i]->getBroadphaseHandle();
+		                if (!handle) return 0;
+		                typedef typename btAxisSweep3Internal<Index>::Handle Handle;
+		                return static_cast<btDbvtProxy*>(static_cast<Handle*>(handle)->m_dbvtProxy);
+	                }};
+}
+
+// Both trees node for node, each proxy's id, box and stage, the stage lists in order and the counters.
+bool saveDbvtState(btDiscreteDynamicsWorld& world, const DbvtView& view, SnapshotWriter& out, char* error,
+                   size_t errorSize)
+{
+	btDbvtBroadphase* dbvt = view.dbvt;
 	const int n = world.getNumCollisionObjects();
 	int proxies = 0;
-	out.context("broadphase", -1);
-	out.field("kind", kBroadphaseDbvt);
 	dbvtCounters(out, *dbvt);
 	for (int i = 0; i < n; ++i)
 	{
-		btDbvtProxy* proxy = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle());
+		btDbvtProxy* proxy = view.proxyOf(i);
 		out.context("object", i);
 		out.field("has proxy", bool(proxy != 0));
 		if (!proxy) continue;
@@ -498,6 +505,48 @@ bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* e
 	return true;
 }
 
+// An axis sweep's optional ray accelerator: a dbvt of its own, whose tree decides the order in which ray
+// and box tests visit objects (and so which of two tied hits a closest-hit callback keeps).
+template <class Index>
+bool saveAccelerator(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>& sweep, SnapshotWriter& out,
+                     char* error, size_t errorSize)
+{
+	const DbvtView view = acceleratorView(world, sweep);
+	out.context("broadphase", -1);
+	out.field("ray accelerator", bool(view.dbvt != 0));
+	return !view.dbvt || saveDbvtState(world, view, out, error, errorSize);
+}
+
+bool saveBroadphase(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error, size_t errorSize)
+{
+	if (simpleOf(world))
+	{
+		saveSimpleBroadphase(world, out);
+		return true;
+	}
+	if (btAxisSweep3Internal<unsigned short>* sweep = sweepOf<unsigned short>(world))
+	{
+		saveSweep(world, *sweep, kBroadphaseSweep16, out);
+		return saveAccelerator(world, *sweep, out, error, errorSize);
+	}
+	if (btAxisSweep3Internal<unsigned int>* sweep = sweepOf<unsigned int>(world))
+	{
+		saveSweep(world, *sweep, kBroadphaseSweep32, out);
+		return saveAccelerator(world, *sweep, out, error, errorSize);
+	}
+	btDbvtBroadphase* dbvt = dbvtOf(world);
+	if (!dbvt)
+	{
+		setError(error, errorSize,
+		         "broadphase: only btDbvtBroadphase, btSimpleBroadphase, btAxisSweep3 and bt32BitAxisSweep3 are "
+		         "supported");
+		return false;
+	}
+	out.context("broadphase", -1);
+	out.field("kind", kBroadphaseDbvt);
+	return saveDbvtState(world, mainDbvtView(world, dbvt), out, error, errorSize);
+}
+
 struct SavedNode
 {
 	bool leaf;
@@ -542,7 +591,7 @@ bool checkTree(SnapshotReader& in, const btAlignedObjectArray<SavedNode>& nodes,
 }
 
 // Replaces a tree's internal nodes by the saved ones; the leaves stay the proxies' own nodes.
-void rebuildTree(btDbvt& tree, const btAlignedObjectArray<SavedNode>& nodes, btDiscreteDynamicsWorld& world)
+void rebuildTree(btDbvt& tree, const btAlignedObjectArray<SavedNode>& nodes, const DbvtView& view)
 {
 	// The old internal nodes go to the tree's free list (linked through parent, as the tree frees them);
 	// the new tree needs as many, since its leaves are the same.
@@ -566,8 +615,7 @@ void rebuildTree(btDbvt& tree, const btAlignedObjectArray<SavedNode>& nodes, btD
 		btDbvtNode* node;
 		if (nodes[i].leaf)
 		{
-			node = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[nodes[i].object]->getBroadphaseHandle())
-			           ->leaf;
+			node = view.proxyOf(nodes[i].object)->leaf;
 		}
 		else
 		{
@@ -593,24 +641,17 @@ void rebuildTree(btDbvt& tree, const btAlignedObjectArray<SavedNode>& nodes, btD
 	}
 }
 
-bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
+bool readDbvtState(btDiscreteDynamicsWorld& world, const DbvtView& view, SnapshotReader& in)
 {
 	const int n = world.getNumCollisionObjects();
-	const int kind = in.value<int>("broadphase kind");
-	if (in.ok() && kind == kBroadphaseSimple) return readSimpleBroadphase(world, in);
-	if (in.ok() && kind == kBroadphaseSweep16) return readSweep(world, sweepOf<unsigned short>(world), in);
-	if (in.ok() && kind == kBroadphaseSweep32) return readSweep(world, sweepOf<unsigned int>(world), in);
-	if (in.ok() && kind != kBroadphaseDbvt) in.fail("broadphase: unknown kind %d", kind);
-	btDbvtBroadphase* dbvt = dbvtOf(world);
-	if (in.ok() && !dbvt) in.fail("broadphase: the world's broadphase is not a btDbvtBroadphase");
-	if (!in.ok()) return false;
+	btDbvtBroadphase* dbvt = view.dbvt;
 	dbvtCounters(in, *dbvt);
 
 	btAlignedObjectArray<int> proxySet;  // per object: its tree, -1 without a proxy
 	proxySet.resize(n, -1);
 	for (int i = 0; i < n && in.ok(); ++i)
 	{
-		btDbvtProxy* proxy = static_cast<btDbvtProxy*>(world.getCollisionObjectArray()[i]->getBroadphaseHandle());
+		btDbvtProxy* proxy = view.proxyOf(i);
 		const bool has = readHasProxy(in, i, proxy);
 		if (!in.ok()) break;
 		if (!has) continue;
@@ -687,8 +728,7 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		dbvt->m_stageRoots[stage] = 0;
 		for (int k = 0; k < stageMembers[stage].size(); ++k)
 		{
-			btDbvtProxy* proxy = static_cast<btDbvtProxy*>(
-			    world.getCollisionObjectArray()[stageMembers[stage][k]]->getBroadphaseHandle());
+			btDbvtProxy* proxy = view.proxyOf(stageMembers[stage][k]);
 			proxy->stage = stage;
 			proxy->links[0] = previous;
 			proxy->links[1] = 0;
@@ -702,11 +742,47 @@ bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 	for (int set = 0; set < 2; ++set)
 	{
 		btDbvt& tree = dbvt->m_sets[set];
-		rebuildTree(tree, nodes[set], world);
+		rebuildTree(tree, nodes[set], view);
 		tree.m_lkhd = lookahead[set];
 		tree.m_opath = path[set];
 	}
 	return true;
+}
+
+template <class Index>
+bool readSweepAndAccelerator(btDiscreteDynamicsWorld& world, btAxisSweep3Internal<Index>* sweep, SnapshotReader& in)
+{
+	if (!readSweep(world, sweep, in)) return false;
+	const DbvtView view = acceleratorView(world, *sweep);
+	const bool has = in.flag("ray accelerator");
+	if (in.ok() && has != (view.dbvt != 0))
+		in.fail("broadphase: the snapshot's axis sweep %s a ray accelerator, the world's %s", has ? "has" : "has no",
+		        view.dbvt ? "has" : "has not");
+	if (!in.ok()) return false;
+	return !has || readDbvtState(world, view, in);
+}
+
+bool readBroadphase(btDiscreteDynamicsWorld& world, SnapshotReader& in)
+{
+	const int kind = in.value<int>("broadphase kind");
+	if (in.ok() && kind == kBroadphaseSimple) return readSimpleBroadphase(world, in);
+	if (in.ok() && kind == kBroadphaseSweep16)
+	{
+		btAxisSweep3Internal<unsigned short>* sweep = sweepOf<unsigned short>(world);
+		if (!sweep) return readSweep(world, sweep, in);  // fails with the reason
+		return readSweepAndAccelerator(world, sweep, in);
+	}
+	if (in.ok() && kind == kBroadphaseSweep32)
+	{
+		btAxisSweep3Internal<unsigned int>* sweep = sweepOf<unsigned int>(world);
+		if (!sweep) return readSweep(world, sweep, in);
+		return readSweepAndAccelerator(world, sweep, in);
+	}
+	if (in.ok() && kind != kBroadphaseDbvt) in.fail("broadphase: unknown kind %d", kind);
+	btDbvtBroadphase* dbvt = dbvtOf(world);
+	if (in.ok() && !dbvt) in.fail("broadphase: the world's broadphase is not a btDbvtBroadphase");
+	if (!in.ok()) return false;
+	return readDbvtState(world, mainDbvtView(world, dbvt), in);
 }
 
 // ---- pairs and their algorithms -----------------------------------------------------------------
@@ -879,9 +955,8 @@ bool savePairs(btDiscreteDynamicsWorld& world, SnapshotWriter& out, char* error,
 			}
 			out.field("overlapping", index);
 		}
-		if (caching &&
-		    !savePairList(world, caching->getOverlappingPairCache()->getOverlappingPairArray(), out, owned, error,
-		                  errorSize, "ghost pair"))
+		if (caching && !savePairList(world, caching->getOverlappingPairCache()->getOverlappingPairArray(), out, owned,
+		                             error, errorSize, "ghost pair"))
 			return false;
 	}
 	for (int m = 0; m < manifoldCount; ++m)
@@ -966,7 +1041,8 @@ int readAlgorithm(SnapshotReader& in, SavedAlgorithms& saved, int pairIndex, int
 	a.frame = 0;
 	a.firstChild = a.childCount = 0;
 	if (!in.ok()) return -1;
-	if (a.kind < kNoAlgorithm || a.kind > kCachedBoxBox || depth > kMaxAlgorithmDepth)
+	if (a.kind < kNoAlgorithm || a.kind > kCachedBoxBox || (a.kind == kStateless && !currentExtension()) ||
+	    depth > kMaxAlgorithmDepth)
 	{
 		in.fail("pair %d: unknown algorithm %d (or nested deeper than %d)", pairIndex, a.kind, kMaxAlgorithmDepth);
 		return -1;
@@ -1180,8 +1256,8 @@ bool remakeAlgorithm(btDispatcher* dispatcher, const btCollisionObjectWrapper& w
 			const SavedChild& child = saved.children[s.firstChild + c];
 			if (child.algorithm < 0) continue;
 			const btTransform childWorld = compoundWrap.getWorldTransform() * shape->getChildTransform(c);
-			btCollisionObjectWrapper childWrap(&compoundWrap, shape->getChildShape(c), compoundWrap.getCollisionObject(),
-			                                   childWorld, -1, c);
+			btCollisionObjectWrapper childWrap(&compoundWrap, shape->getChildShape(c),
+			                                   compoundWrap.getCollisionObject(), childWorld, -1, c);
 			if (!remakeAlgorithm(dispatcher, swapped ? otherWrap : childWrap, swapped ? childWrap : otherWrap,
 			                     compoundSharedManifold(compound), saved, child.algorithm, in, pairIndex, slots[c]))
 				return false;
@@ -1412,7 +1488,8 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 		SavedGhost ghost;
 		ghost.object = in.value<int>("object");
 		const bool caching = in.flag("pair caching");
-		if (in.ok() && (ghost.object != liveGhosts[g] || caching != (cachingGhostOf(objectAt(world, liveGhosts[g])) != 0)))
+		if (in.ok() &&
+		    (ghost.object != liveGhosts[g] || caching != (cachingGhostOf(objectAt(world, liveGhosts[g])) != 0)))
 		{
 			in.fail("ghost %d: object %d, %spair caching, is not the world's ghost %d", g, ghost.object,
 			        caching ? "" : "not ", liveGhosts[g]);
@@ -1495,7 +1572,8 @@ bool readCollisionState(btDiscreteDynamicsWorld& world, SnapshotReader& in)
 			btCollisionObject* object = objectAt(world, ghost.object);
 			btAlignedObjectArray<btCollisionObject*>& list = btGhostObject::upcast(object)->getOverlappingPairs();
 			list.resize(0);
-			for (int k = 0; k < ghost.overlapCount; ++k) list.push_back(objectAt(world, overlaps[ghost.firstOverlap + k]));
+			for (int k = 0; k < ghost.overlapCount; ++k)
+				list.push_back(objectAt(world, overlaps[ghost.firstOverlap + k]));
 			btPairCachingGhostObject* caching = cachingGhostOf(object);
 			if (!caching) continue;
 			btHashedOverlappingPairCache* own = caching->getOverlappingPairCache();

@@ -359,8 +359,8 @@ void buildVehicle(TestWorld& t)
 	for (int w = 0; w < 4; ++w)
 	{
 		const btVector3 at(w % 2 ? 0.9 : -0.9, 0.0, w < 2 ? 1.4 : -1.4);
-		btWheelInfo& wheel =
-		    owner.vehicle->addWheel(at, btVector3(0, -1, 0), btVector3(-1, 0, 0), btScalar(0.6), btScalar(0.4), tuning, w < 2);
+		btWheelInfo& wheel = owner.vehicle->addWheel(at, btVector3(0, -1, 0), btVector3(-1, 0, 0), btScalar(0.6),
+		                                             btScalar(0.4), tuning, w < 2);
 		wheel.m_suspensionStiffness = 20;
 		wheel.m_wheelsDampingRelaxation = btScalar(2.3);
 		wheel.m_wheelsDampingCompression = btScalar(4.4);
@@ -593,7 +593,10 @@ std::unique_ptr<TestWorld> sweep32World()
 	return std::unique_ptr<TestWorld>(
 	    new TestWorld(new bt32BitAxisSweep3(btVector3(-60, -20, -60), btVector3(60, 60, 60))));
 }
-std::unique_ptr<TestWorld> mtWorld() { return std::unique_ptr<TestWorld>(new TestWorld(TestWorld::Multithreaded(), 2)); }
+std::unique_ptr<TestWorld> mtWorld()
+{
+	return std::unique_ptr<TestWorld>(new TestWorld(TestWorld::Multithreaded(), 2));
+}
 
 // Runs warmup steps, saves, runs steps more (trace A), restores, checks the world equals the snapshot,
 // runs steps again (trace B, which must equal A bit for bit); then restores into a second, freshly
@@ -682,6 +685,54 @@ TEST(WorldSnapshot, AxisSweepPileContinuesBitIdenticallyFor150Steps)
 TEST(WorldSnapshot, AxisSweep32SleepersContinueBitIdenticallyFor1000Steps)
 {
 	expectRollbackIsExact(buildSleepers, 30, 1000, btScalar(1. / 60.), sweep32World);
+}
+
+namespace
+{
+// The objects a grid of vertical rays meets, each ray's hits in the order the broadphase visits them
+// (all-hits callbacks keep that order; closest-hit callbacks keep the first of two tied hits).
+std::vector<int> rayVisitOrder(btDiscreteDynamicsWorld& world)
+{
+	std::vector<int> order;
+	for (int i = -4; i <= 4; ++i)
+		for (int k = -4; k <= 4; ++k)
+		{
+			const btVector3 from(btScalar(0.5 * i), 30, btScalar(0.5 * k)),
+			    to(btScalar(0.5 * i), -5, btScalar(0.5 * k));
+			btCollisionWorld::AllHitsRayResultCallback hits(from, to);
+			world.rayTest(from, to, hits);
+			for (int h = 0; h < hits.m_collisionObjects.size(); ++h)
+				order.push_back(hits.m_collisionObjects[h]->getWorldArrayIndex());
+			order.push_back(-1);
+		}
+	return order;
+}
+}  // namespace
+
+TEST(WorldSnapshot, AxisSweepRayAcceleratorVisitsObjectsInTheSavedOrderAfterRestore)
+{
+	// btAxisSweep3's ray accelerator is a dbvt of its own: its tree decides the order in which ray tests
+	// visit objects. After a restore, in the same world and in a fresh one, rays must meet the objects in
+	// the order they did when the snapshot was taken.
+	std::unique_ptr<TestWorld> first = sweepWorld();
+	buildPile(*first);
+	first->run(30, btScalar(1. / 60.));
+	Bytes snapshot;
+	caliber::SnapshotError error;
+	ASSERT_TRUE(caliber::saveWorldState(*first->world(), snapshot, &error)) << error.message;
+	const std::vector<int> saved = rayVisitOrder(*first->world());
+	int hits = 0;
+	for (int o : saved) hits += o >= 0;
+	ASSERT_GT(hits, 100);
+	first->run(200, btScalar(1. / 60.));
+	ASSERT_NE(rayVisitOrder(*first->world()), saved) << "the pile must have moved";
+	ASSERT_TRUE(caliber::restoreWorldState(*first->world(), &snapshot[0], snapshot.size(), &error)) << error.message;
+	EXPECT_EQ(rayVisitOrder(*first->world()), saved);
+	std::unique_ptr<TestWorld> second = sweepWorld();
+	buildPile(*second);
+	second->run(7, btScalar(1. / 60.));
+	ASSERT_TRUE(caliber::restoreWorldState(*second->world(), &snapshot[0], snapshot.size(), &error)) << error.message;
+	EXPECT_EQ(rayVisitOrder(*second->world()), saved);
 }
 
 TEST(WorldSnapshot, AxisSweepJointChainsContinueBitIdenticallyFor120Steps)
@@ -1156,7 +1207,6 @@ TEST(WorldSnapshotBadInput, GhostSnapshotIntoAWorldWithOtherGhostsIsRefused)
 	other.world()->removeCollisionObject(plain.get());
 }
 
-
 TEST(WorldSnapshotBadInput, CharacterSnapshotIntoAWorldWithoutItsControllerIsRefused)
 {
 	TestWorld t;
@@ -1194,7 +1244,8 @@ TEST(WorldSnapshotBadInput, CompoundWithOtherChildrenIsRefusedAndChangesNothing)
 
 	TestWorld other;
 	buildCompoundPair(other);
-	btCompoundShape* compound = static_cast<btCompoundShape*>(other.world()->getCollisionObjectArray()[1]->getCollisionShape());
+	btCompoundShape* compound =
+	    static_cast<btCompoundShape*>(other.world()->getCollisionObjectArray()[1]->getCollisionShape());
 	compound->addChildShape(pose(btVector3(0, 0.3, 0)), compound->getChildShape(0));
 	other.run(20);
 	const Bytes before = stateOf(*other.world());
