@@ -106,8 +106,9 @@ btVector3 aeroForce(const btVector3& rel, const btVector3& n, btScalar area, btS
 // Compliance per unit of the links' inverse mass for stiffness kLST, as explained in updateLinkConstants.
 static btScalar complianceFactor(btScalar kLST, int iterations)
 {
-	const btScalar k = btClamped(kLST, btScalar(0), btScalar(1));
-	if (k <= 0) return -1;  // no stiffness: the link is skipped
+	// No stiffness (or a NaN one, see docs/bad-input.md): the constraint is skipped.
+	if (!(kLST > 0)) return -1;
+	const btScalar k = btMin(kLST, btScalar(1));
 	if (k >= 1) return 0;
 	const btScalar kStep = 1 - btPow(1 - k, btScalar(btMax(iterations, 1)));
 	return (1 - kStep) / kStep * kReferenceStep * kReferenceStep;
@@ -127,6 +128,17 @@ void btSoftBody::updateLinkConstants()
 		Link& l = m_links[i];
 		l.m_c0 = l.m_n[0]->m_im + l.m_n[1]->m_im;
 		l.m_c1 = l.m_rl * l.m_rl;
+	}
+	// A tetra's volume constraint gets its stiffness the same way, from m_kVST: m_c1 keeps its
+	// W = sum of im_i |dV/dx_i|^2 now (the shape the constants are built at, normally the rest shape), so
+	// that the constraint closes kStep of a lone tetra's volume error in one step of h_ref and its
+	// stiffness dP/dV is kStep / ((1 - kStep) W h_ref^2), whatever the step and sweep count.
+	for (int i = 0; i < m_tetras.size(); ++i)
+	{
+		Tetra& t = m_tetras[i];
+		caliber::tetraGradients(t);
+		t.m_c1 = 0;
+		for (int j = 0; j < 4; ++j) t.m_c1 += t.m_n[j]->m_im * t.m_c0[j].length2();
 	}
 }
 
@@ -379,6 +391,35 @@ void solveLinks(btSoftBody& body, btScalar dt)
 		const btVector3 corr = d * (dlambda / len);
 		a.m_x -= corr * a.m_im;
 		b.m_x += corr * b.m_im;
+	}
+}
+
+// Tetra volumes (m_kVST): each tetra's signed volume V = V0 (its rest volume m_rv) by XPBD, with the
+// compliance that m_kVST gives through complianceFactor, as links get theirs from m_kLST (W in m_c1,
+// updateLinkConstants); the multiplier accumulates in m_c2 over the step. The signed volume keeps a
+// tetra from turning inside out.
+void solveTetras(btSoftBody& body, btScalar dt)
+{
+	const btScalar idt2 = btScalar(1) / (dt * dt);
+	const btSoftBody::Material* lastMaterial = 0;
+	btScalar factor = -1;
+	for (int i = 0; i < body.m_tetras.size(); ++i)
+	{
+		btSoftBody::Tetra& t = body.m_tetras[i];
+		if (t.m_material != lastMaterial)
+		{
+			lastMaterial = t.m_material;
+			factor = complianceFactor(t.m_material ? t.m_material->m_kVST : btScalar(1), body.m_cfg.piterations);
+		}
+		if (factor < 0 || !(t.m_c1 > 0)) continue;
+		const btScalar volume = caliber::tetraGradients(t);
+		btScalar w = 0;
+		for (int j = 0; j < 4; ++j) w += t.m_n[j]->m_im * t.m_c0[j].length2();
+		const btScalar alpha = factor * t.m_c1 * idt2;
+		if (!(w + alpha > 0)) continue;
+		const btScalar dlambda = (-(volume - t.m_rv) - alpha * t.m_c2) / (w + alpha);
+		t.m_c2 += dlambda;
+		for (int j = 0; j < 4; ++j) t.m_n[j]->m_x += t.m_c0[j] * (dlambda * t.m_n[j]->m_im);
 	}
 }
 
@@ -650,6 +691,7 @@ void btSoftBody::solveConstraints()
 		l.m_c2 = 0;
 		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
 	}
+	for (int i = 0; i < m_tetras.size(); ++i) m_tetras[i].m_c2 = 0;
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
 	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
 	// A pressurised closed body whose skin cannot stretch holds its rest volume V0: its skin's tension
@@ -669,6 +711,7 @@ void btSoftBody::solveConstraints()
 			{
 				case ePSolver::Linear:
 					solveLinks(*this, dt);
+					if (m_tetras.size() > 0) solveTetras(*this, dt);
 					caliber::solveTethers(*this, tethers);
 					if (keepVolume)
 						solveVolume(*this, dt, m_pose.m_volume, 1 / m_cfg.kVC, 1 / m_cfg.kVC, volumeLambda,
