@@ -9,6 +9,7 @@
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyInternal.h"
+#include "btSoftBodyLinkColours.h"
 #include "btSoftBodyTethers.h"
 
 namespace caliber
@@ -310,6 +311,7 @@ void btSoftBody::predictMotion(btScalar dt)
 	if (m_bUpdateRtCst) updateConstants();
 	// Tethers and the skin's rest volume are (re)built from the shape before this step moves it.
 	caliber::softBodyTethers(*this);
+	caliber::softLinkColours(*this);
 	m_sst.sdt = dt * m_cfg.timescale;
 	m_sst.isdt = m_sst.sdt > 0 ? btScalar(1) / m_sst.sdt : btScalar(0);
 	m_sst.velmrg = m_sst.sdt * 3;
@@ -369,28 +371,62 @@ void btSoftBody::predictMotion(btScalar dt)
 
 namespace
 {
-void solveLinks(btSoftBody& body, btScalar dt)
+// Blocks of links of one colour (no two blocks share a node; btSoftBodyLinkColours.h), blocks[begin, end),
+// each block's links in index order: any split of the blocks over threads gives the bits of one thread.
+struct LinkSweep : btIParallelForBody
 {
-	const btScalar idt2 = btScalar(1) / (dt * dt);
-	for (int i = 0; i < body.m_links.size(); ++i)
+	btSoftBody::Link* links;
+	const int* blocks;
+	int linkCount;
+	btScalar idt2;
+	void forLoop(int begin, int end) const override
 	{
-		btSoftBody::Link& l = body.m_links[i];
-		const btScalar compliance = l.m_c3.x();
-		if (compliance < 0) continue;
-		btSoftBody::Node& a = *l.m_n[0];
-		btSoftBody::Node& b = *l.m_n[1];
-		const btScalar w = a.m_im + b.m_im;
-		if (w <= 0) continue;
-		const btVector3 d = b.m_x - a.m_x;
-		const btScalar len = d.length();
-		if (len <= SIMD_EPSILON) continue;
-		const btScalar c = len - l.m_rl;
-		const btScalar alpha = compliance * idt2;
-		const btScalar dlambda = (-c - alpha * l.m_c2) / (w + alpha);
-		l.m_c2 += dlambda;
-		const btVector3 corr = d * (dlambda / len);
-		a.m_x -= corr * a.m_im;
-		b.m_x += corr * b.m_im;
+		for (int k = begin; k < end; ++k)
+		{
+			const int first = blocks[k] * caliber::kLinkBlock;
+			const int last = btMin(first + caliber::kLinkBlock, linkCount);
+			for (int i = first; i < last; ++i)
+			{
+				btSoftBody::Link& l = links[i];
+				const btScalar compliance = l.m_c3.x();
+				if (compliance < 0) continue;
+				btSoftBody::Node& a = *l.m_n[0];
+				btSoftBody::Node& b = *l.m_n[1];
+				const btScalar w = a.m_im + b.m_im;
+				if (w <= 0) continue;
+				const btVector3 d = b.m_x - a.m_x;
+				const btScalar len = d.length();
+				if (len <= SIMD_EPSILON) continue;
+				const btScalar c = len - l.m_rl;
+				const btScalar alpha = compliance * idt2;
+				const btScalar dlambda = (-c - alpha * l.m_c2) / (w + alpha);
+				l.m_c2 += dlambda;
+				const btVector3 corr = d * (dlambda / len);
+				a.m_x -= corr * a.m_im;
+				b.m_x += corr * b.m_im;
+			}
+		}
+	}
+};
+
+// One Gauss-Seidel sweep over the links, colour by colour; a colour of several blocks is spread over
+// the task scheduler, a block per task.
+void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours& colours)
+{
+	const int links = body.m_links.size();
+	if (links == 0 || colours.blocks.size() != (links + caliber::kLinkBlock - 1) / caliber::kLinkBlock) return;
+	LinkSweep sweep;
+	sweep.links = &body.m_links[0];
+	sweep.blocks = &colours.blocks[0];
+	sweep.linkCount = links;
+	sweep.idt2 = btScalar(1) / (dt * dt);
+	for (int c = 0; c + 1 < colours.start.size(); ++c)
+	{
+		const int begin = colours.start[c], end = colours.start[c + 1];
+		if (end - begin > 1)
+			btParallelFor(begin, end, 1, sweep);
+		else
+			sweep.forLoop(begin, end);
 	}
 }
 
@@ -694,6 +730,7 @@ void btSoftBody::solveConstraints()
 	for (int i = 0; i < m_tetras.size(); ++i) m_tetras[i].m_c2 = 0;
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
 	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
+	const caliber::SoftLinkColours& linkColours = caliber::softLinkColours(*this, false);
 	// A pressurised closed body whose skin cannot stretch holds its rest volume V0: its skin's tension
 	// balances any pressure above V0 (a closed surface of rigid triangles cannot grow), and the gas resists
 	// compression with the stiffness of P V = kPR, dP / dV = -kPR / V0^2, i.e. the compliance V0^2 / kPR.
@@ -710,7 +747,7 @@ void btSoftBody::solveConstraints()
 		for (int s = 0; s < m_cfg.m_psequence.size(); ++s) switch (m_cfg.m_psequence[s])
 			{
 				case ePSolver::Linear:
-					solveLinks(*this, dt);
+					solveLinks(*this, dt, linkColours);
 					if (m_tetras.size() > 0) solveTetras(*this, dt);
 					caliber::solveTethers(*this, tethers);
 					if (keepVolume)
@@ -777,7 +814,8 @@ void btSoftBody::staticSolve(int iterations)
 		l.m_c2 = 0;
 		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
 	}
-	for (int it = 0; it < iterations; ++it) solveLinks(*this, kReferenceStep);
+	const caliber::SoftLinkColours& colours = caliber::softLinkColours(*this);
+	for (int it = 0; it < iterations; ++it) solveLinks(*this, kReferenceStep, colours);
 }
 
 void btSoftBody::solveCommonConstraints(btSoftBody** bodies, int count, int iterations)
