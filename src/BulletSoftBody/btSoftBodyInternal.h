@@ -84,6 +84,12 @@ void moveRigid(btRigidBody* body, const btVector3& p, const btVector3& r, btScal
 /// Turns a dynamic body by the angular position impulse l (kg m^2), as moveRigid.
 void turnRigid(btRigidBody* body, const btVector3& l, btScalar dt, btScalar velocityShare = 1);
 
+/// The dispatcher's soft-rigid pair (either order): hands the rigid object to the soft body's solver (or
+/// its default handler) unless the body disabled collisions with it. Returns the soft body (0 when the
+/// pair has none or two) and the rigid object in rigidOut (btSoftRigidCollisionAlgorithm.cpp; also
+/// btSoftBodyConcaveCollisionAlgorithm's).
+btSoftBody* collideSoftRigidPair(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap,
+                                 btCollisionObject** rigidOut = 0);
 /// The soft-rigid contact search of one node set against one rigid object (btSoftBodyCollision.cpp).
 void collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrapper& rigid);
 }  // namespace caliber
