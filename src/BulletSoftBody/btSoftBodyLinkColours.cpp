@@ -9,16 +9,16 @@
 namespace
 {
 // A fingerprint of the links' nodes (which the colouring depends on), O(links) once per step; a
-// user's randomizeConstraints or a rewritten link changes it.
-unsigned fingerprint(const btSoftBody& body)
+// user's randomizeConstraints or a rewritten link changes it. It hashes the node addresses themselves
+// (no index arithmetic: this runs every step over every link); nodes moved to a new array change it too,
+// which only costs a rebuild.
+uint64_t fingerprint(const btSoftBody& body)
 {
-	unsigned h = 2166136261u;
-	const btSoftBody::Node* base = body.m_nodes.size() ? &body.m_nodes[0] : 0;
+	uint64_t h = 1469598103934665603ull;
 	for (int i = 0; i < body.m_links.size(); ++i)
 	{
 		const btSoftBody::Link& l = body.m_links[i];
-		h = (h ^ unsigned(l.m_n[0] - base)) * 16777619u;
-		h = (h ^ unsigned(l.m_n[1] - base)) * 16777619u;
+		h = (h ^ (uint64_t(uintptr_t(l.m_n[0])) * 3u + uint64_t(uintptr_t(l.m_n[1])))) * 1099511628211ull;
 	}
 	return h;
 }
@@ -79,7 +79,7 @@ caliber::SoftLinkColours& caliber::softLinkColours(btSoftBody& body, bool refres
 {
 	SoftLinkColours& c = sideTable<SoftLinkColours>().acquire(&body);
 	if (!refresh && c.nodeCount == body.m_nodes.size() && c.linkCount == body.m_links.size()) return c;
-	const unsigned signature = fingerprint(body);
+	const uint64_t signature = fingerprint(body);
 	if (c.nodeCount != body.m_nodes.size() || c.linkCount != body.m_links.size() || c.signature != signature)
 	{
 		build(body, c);

@@ -11,6 +11,8 @@
 // body with at most kLinkBlock links is one block: its sweep is the plain index order. Caliber-only
 // state, in a side table keyed by the body.
 
+#include <cstdint>
+
 #include "BulletSoftBody/btSoftBody.h"
 #include "LinearMath/btAlignedObjectArray.h"
 
@@ -26,7 +28,7 @@ struct SoftLinkColours
 	// What the colouring was built from: rebuilt when any of it changes.
 	int nodeCount = -1;
 	int linkCount = -1;
-	unsigned signature = 0;
+	uint64_t signature = 0;
 };
 
 /// The body's link colouring, rebuilt when its links' nodes changed (checked when refresh is set: once
