@@ -311,7 +311,7 @@ void btSoftBody::predictMotion(btScalar dt)
 	if (m_bUpdateRtCst) updateConstants();
 	// Tethers and the skin's rest volume are (re)built from the shape before this step moves it.
 	caliber::softBodyTethers(*this);
-	caliber::softLinkColours(*this);
+	if (m_links.size() > caliber::kLinkBlock) caliber::softLinkColours(*this);
 	m_sst.sdt = dt * m_cfg.timescale;
 	m_sst.isdt = m_sst.sdt > 0 ? btScalar(1) / m_sst.sdt : btScalar(0);
 	m_sst.velmrg = m_sst.sdt * 3;
@@ -410,19 +410,27 @@ struct LinkSweep : btIParallelForBody
 };
 
 // One Gauss-Seidel sweep over the links, colour by colour; a colour of several blocks is spread over
-// the task scheduler, a block per task.
-void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours& colours)
+// the task scheduler, a block per task. A body of one block (colours 0) is swept in index order.
+void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours)
 {
 	const int links = body.m_links.size();
-	if (links == 0 || colours.blocks.size() != (links + caliber::kLinkBlock - 1) / caliber::kLinkBlock) return;
+	if (links == 0) return;
 	LinkSweep sweep;
 	sweep.links = &body.m_links[0];
-	sweep.blocks = &colours.blocks[0];
 	sweep.linkCount = links;
 	sweep.idt2 = btScalar(1) / (dt * dt);
-	for (int c = 0; c + 1 < colours.start.size(); ++c)
+	if (!colours || links <= caliber::kLinkBlock)
 	{
-		const int begin = colours.start[c], end = colours.start[c + 1];
+		const int onlyBlock = 0;
+		sweep.blocks = &onlyBlock;
+		sweep.forLoop(0, 1);
+		return;
+	}
+	if (colours->blocks.size() != (links + caliber::kLinkBlock - 1) / caliber::kLinkBlock) return;
+	sweep.blocks = &colours->blocks[0];
+	for (int c = 0; c + 1 < colours->start.size(); ++c)
+	{
+		const int begin = colours->start[c], end = colours->start[c + 1];
 		if (end - begin > 1)
 			btParallelFor(begin, end, 1, sweep);
 		else
@@ -730,7 +738,9 @@ void btSoftBody::solveConstraints()
 	for (int i = 0; i < m_tetras.size(); ++i) m_tetras[i].m_c2 = 0;
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
 	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
-	const caliber::SoftLinkColours& linkColours = caliber::softLinkColours(*this, false);
+	// Bodies of one block of links need no colouring (nor its side table lookup).
+	const caliber::SoftLinkColours* linkColours =
+	    m_links.size() > caliber::kLinkBlock ? &caliber::softLinkColours(*this, false) : 0;
 	// A pressurised closed body whose skin cannot stretch holds its rest volume V0: its skin's tension
 	// balances any pressure above V0 (a closed surface of rigid triangles cannot grow), and the gas resists
 	// compression with the stiffness of P V = kPR, dP / dV = -kPR / V0^2, i.e. the compliance V0^2 / kPR.
@@ -814,7 +824,8 @@ void btSoftBody::staticSolve(int iterations)
 		l.m_c2 = 0;
 		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
 	}
-	const caliber::SoftLinkColours& colours = caliber::softLinkColours(*this);
+	const caliber::SoftLinkColours* colours =
+	    m_links.size() > caliber::kLinkBlock ? &caliber::softLinkColours(*this) : 0;
 	for (int it = 0; it < iterations; ++it) solveLinks(*this, kReferenceStep, colours);
 }
 
