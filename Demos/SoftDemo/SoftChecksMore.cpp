@@ -298,7 +298,8 @@ bool cutting1(int frames)
 
 bool tetraCube(int frames)
 {
-	printf("TetraCube: a 1 m cube of 162 tetras (TetGen text made here; links on the tetras' edges) dropped 2 m.\n");
+	printf("TetraCube: a 1 m cube of 162 tetras (TetGen text made here; links on the tetras' edges, each tetra's\n"
+	       "  volume held by kVST = 1) dropped 2 m.\n");
 	Scene s;
 	btSoftBody* c = soft_demo::buildTetraCube(s).softs[0];
 	const VolumeRun r = dropAndMeasure(s, c, frames, tetraVolume);

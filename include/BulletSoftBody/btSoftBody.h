@@ -204,7 +204,7 @@ public:
 	{
 		btScalar m_kLST;  ///< Linear stiffness, [0, 1]: 1 is inextensible (see docs/soft-bodies.md).
 		btScalar m_kAST;  ///< Angular stiffness, [0, 1] (kept for Bullet's API; unused).
-		btScalar m_kVST;  ///< Volume stiffness, [0, 1] (tetra volumes).
+		btScalar m_kVST;  ///< Volume stiffness of tetras, [0, 1]: 1 keeps each tetra's volume, 0 switches it off.
 		int m_flags;      ///< fMaterial flags.
 	};
 	/// Base of nodes, links, faces and tetras: their material.
@@ -253,9 +253,9 @@ public:
 		Node* m_n[4];        ///< The four nodes.
 		btScalar m_rv;       ///< Rest volume.
 		btDbvtNode* m_leaf;  ///< Leaf in the tetra tree (Caliber keeps none: 0).
-		btVector3 m_c0[4];   ///< Volume gradients (scratch).
-		btScalar m_c1;       ///< Scratch.
-		btScalar m_c2;       ///< Scratch.
+		btVector3 m_c0[4];   ///< Volume gradients (scratch of the solver).
+		btScalar m_c1;       ///< Sum of im_i |dV/dx_i|^2 (the compliance is m_c1 times a factor of m_kVST).
+		btScalar m_c2;       ///< Scratch of the solver (the accumulated multiplier of the step).
 	};
 	/// A contact of a node with a rigid object, found this step.
 	struct RContact

@@ -10,6 +10,7 @@
 #include "btSoftBodyInternal.h"
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
+#include "btSoftBodyLinkColours.h"
 #include "btSoftBodyTethers.h"
 
 namespace caliber
@@ -124,6 +125,7 @@ btSoftBody::~btSoftBody()
 	m_joints.resize(0);
 	caliber::releaseClusterState(*this);
 	caliber::releaseSoftBodyTethers(*this);
+	caliber::releaseSoftLinkColours(*this);
 	caliber::releaseSoftFaceContacts(*this);
 	delete m_collisionShape;
 	m_collisionShape = 0;

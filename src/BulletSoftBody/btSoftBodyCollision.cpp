@@ -110,6 +110,7 @@ bool closestOnConvex(const btConvexShape& shape, const btTransform& t, const btV
 struct NearestTriangle : btTriangleCallback
 {
 	btVector3 query;
+	btVector3 motion{0, 0, 0};  // the node's move over the step (predicted minus start)
 	btScalar bestDistance2 = BT_LARGE_FLOAT;
 	btVector3 point{0, 0, 0};
 	btVector3 normal{0, 0, 0};
@@ -124,8 +125,11 @@ struct NearestTriangle : btTriangleCallback
 		const btScalar d2 = (query - p).length2();
 		if (d2 >= bestDistance2) return;
 		n /= len;
-		// Meshes are thin: the side is the one the node came from.
-		if (n.dot(query - tri[0]) < 0) n = -n;
+		// Meshes are thin: the side is the one the node came from. A node resting on the triangle starts on
+		// its plane (within rounding: 0.1 mm), where that side is unclear: then it is the side the node moves
+		// away from (a resting node is pulled into the surface by gravity each step).
+		const btScalar side = n.dot(query - tri[0]);
+		if (btFabs(side) > btScalar(1e-4) ? side < 0 : n.dot(motion) > 0) n = -n;
 		bestDistance2 = d2;
 		point = p;
 		normal = n;
@@ -139,6 +143,7 @@ bool closestOnConcave(const btConcaveShape& shape, const btTransform& t, const b
 	NearestTriangle nearest;
 	nearest.query = t.invXform(q);
 	const btVector3 xl = t.invXform(x);
+	nearest.motion = xl - nearest.query;
 	btVector3 lo = nearest.query, hi = nearest.query;
 	lo.setMin(xl);
 	hi.setMax(xl);

@@ -58,6 +58,21 @@ inline void forEachNodeChunk(int count, const btIParallelForBody& loop)
 		btParallelFor(0, count, grain, loop);
 }
 
+/// A tetra's signed volume (as tetraVolume: (x1 - x0) . ((x2 - x0) x (x3 - x0)) / 6) and its gradients with
+/// respect to the four nodes, written to t.m_c0 (the tetra volume constraint, btSoftBodySolve.cpp).
+inline btScalar tetraGradients(btSoftBody::Tetra& t)
+{
+	const btVector3 e1 = t.m_n[1]->m_x - t.m_n[0]->m_x;
+	const btVector3 e2 = t.m_n[2]->m_x - t.m_n[0]->m_x;
+	const btVector3 e3 = t.m_n[3]->m_x - t.m_n[0]->m_x;
+	const btScalar sixth = btScalar(1) / btScalar(6);
+	t.m_c0[1] = e2.cross(e3) * sixth;
+	t.m_c0[2] = e3.cross(e1) * sixth;
+	t.m_c0[3] = e1.cross(e2) * sixth;
+	t.m_c0[0] = -(t.m_c0[1] + t.m_c0[2] + t.m_c0[3]);
+	return e1.dot(t.m_c0[1]);
+}
+
 /// A rigid body that a soft body can move (dynamic, in or out of a world).
 bool isMovable(const btRigidBody* body);
 /// Inverse effective mass of a rigid body at offset r (from its centre of mass) along unit direction n
@@ -69,6 +84,12 @@ void moveRigid(btRigidBody* body, const btVector3& p, const btVector3& r, btScal
 /// Turns a dynamic body by the angular position impulse l (kg m^2), as moveRigid.
 void turnRigid(btRigidBody* body, const btVector3& l, btScalar dt, btScalar velocityShare = 1);
 
+/// The dispatcher's soft-rigid pair (either order): hands the rigid object to the soft body's solver (or
+/// its default handler) unless the body disabled collisions with it. Returns the soft body (0 when the
+/// pair has none or two) and the rigid object in rigidOut (btSoftRigidCollisionAlgorithm.cpp; also
+/// btSoftBodyConcaveCollisionAlgorithm's).
+btSoftBody* collideSoftRigidPair(const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap,
+                                 btCollisionObject** rigidOut = 0);
 /// The soft-rigid contact search of one node set against one rigid object (btSoftBodyCollision.cpp).
 void collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrapper& rigid);
 }  // namespace caliber

@@ -4,6 +4,7 @@
 #include <new>
 
 #include "BulletCollision/BroadphaseCollision/btBroadphaseProxy.h"
+#include "BulletSoftBody/btSoftBodyConcaveCollisionAlgorithm.h"
 #include "BulletSoftBody/btSoftRigidCollisionAlgorithm.h"
 #include "BulletSoftBody/btSoftSoftCollisionAlgorithm.h"
 #include "LinearMath/btAlignedAllocator.h"
@@ -33,8 +34,8 @@ btSoftBodyRigidBodyCollisionConfiguration::btSoftBodyRigidBodyCollisionConfigura
 	m_softSoftCreateFunc = makeCreateFunc<btSoftSoftCollisionAlgorithm::CreateFunc>(false);
 	m_softRigidConvexCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(false);
 	m_swappedSoftRigidConvexCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(true);
-	m_softRigidConcaveCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(false);
-	m_swappedSoftRigidConcaveCreateFunc = makeCreateFunc<btSoftRigidCollisionAlgorithm::CreateFunc>(true);
+	m_softRigidConcaveCreateFunc = makeCreateFunc<btSoftBodyConcaveCollisionAlgorithm::CreateFunc>(false);
+	m_swappedSoftRigidConcaveCreateFunc = makeCreateFunc<btSoftBodyConcaveCollisionAlgorithm::SwappedCreateFunc>(true);
 }
 
 btSoftBodyRigidBodyCollisionConfiguration::~btSoftBodyRigidBodyCollisionConfiguration()

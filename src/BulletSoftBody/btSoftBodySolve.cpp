@@ -9,6 +9,7 @@
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyInternal.h"
+#include "btSoftBodyLinkColours.h"
 #include "btSoftBodyTethers.h"
 
 namespace caliber
@@ -106,8 +107,9 @@ btVector3 aeroForce(const btVector3& rel, const btVector3& n, btScalar area, btS
 // Compliance per unit of the links' inverse mass for stiffness kLST, as explained in updateLinkConstants.
 static btScalar complianceFactor(btScalar kLST, int iterations)
 {
-	const btScalar k = btClamped(kLST, btScalar(0), btScalar(1));
-	if (k <= 0) return -1;  // no stiffness: the link is skipped
+	// No stiffness (or a NaN one, see docs/bad-input.md): the constraint is skipped.
+	if (!(kLST > 0)) return -1;
+	const btScalar k = btMin(kLST, btScalar(1));
 	if (k >= 1) return 0;
 	const btScalar kStep = 1 - btPow(1 - k, btScalar(btMax(iterations, 1)));
 	return (1 - kStep) / kStep * kReferenceStep * kReferenceStep;
@@ -127,6 +129,17 @@ void btSoftBody::updateLinkConstants()
 		Link& l = m_links[i];
 		l.m_c0 = l.m_n[0]->m_im + l.m_n[1]->m_im;
 		l.m_c1 = l.m_rl * l.m_rl;
+	}
+	// A tetra's volume constraint gets its stiffness the same way, from m_kVST: m_c1 keeps its
+	// W = sum of im_i |dV/dx_i|^2 now (the shape the constants are built at, normally the rest shape), so
+	// that the constraint closes kStep of a lone tetra's volume error in one step of h_ref and its
+	// stiffness dP/dV is kStep / ((1 - kStep) W h_ref^2), whatever the step and sweep count.
+	for (int i = 0; i < m_tetras.size(); ++i)
+	{
+		Tetra& t = m_tetras[i];
+		caliber::tetraGradients(t);
+		t.m_c1 = 0;
+		for (int j = 0; j < 4; ++j) t.m_c1 += t.m_n[j]->m_im * t.m_c0[j].length2();
 	}
 }
 
@@ -298,6 +311,7 @@ void btSoftBody::predictMotion(btScalar dt)
 	if (m_bUpdateRtCst) updateConstants();
 	// Tethers and the skin's rest volume are (re)built from the shape before this step moves it.
 	caliber::softBodyTethers(*this);
+	if (m_links.size() > caliber::kLinkBlock) caliber::softLinkColours(*this);
 	m_sst.sdt = dt * m_cfg.timescale;
 	m_sst.isdt = m_sst.sdt > 0 ? btScalar(1) / m_sst.sdt : btScalar(0);
 	m_sst.velmrg = m_sst.sdt * 3;
@@ -357,28 +371,99 @@ void btSoftBody::predictMotion(btScalar dt)
 
 namespace
 {
-void solveLinks(btSoftBody& body, btScalar dt)
+// Blocks of links of one colour (no two blocks share a node; btSoftBodyLinkColours.h), blocks[begin, end),
+// each block's links in index order: any split of the blocks over threads gives the bits of one thread.
+struct LinkSweep : btIParallelForBody
+{
+	btSoftBody::Link* links;
+	const int* blocks;
+	int linkCount;
+	btScalar idt2;
+	void forLoop(int begin, int end) const override
+	{
+		for (int k = begin; k < end; ++k)
+		{
+			const int first = blocks[k] * caliber::kLinkBlock;
+			const int last = btMin(first + caliber::kLinkBlock, linkCount);
+			for (int i = first; i < last; ++i)
+			{
+				btSoftBody::Link& l = links[i];
+				const btScalar compliance = l.m_c3.x();
+				if (compliance < 0) continue;
+				btSoftBody::Node& a = *l.m_n[0];
+				btSoftBody::Node& b = *l.m_n[1];
+				const btScalar w = a.m_im + b.m_im;
+				if (w <= 0) continue;
+				const btVector3 d = b.m_x - a.m_x;
+				const btScalar len = d.length();
+				if (len <= SIMD_EPSILON) continue;
+				const btScalar c = len - l.m_rl;
+				const btScalar alpha = compliance * idt2;
+				const btScalar dlambda = (-c - alpha * l.m_c2) / (w + alpha);
+				l.m_c2 += dlambda;
+				const btVector3 corr = d * (dlambda / len);
+				a.m_x -= corr * a.m_im;
+				b.m_x += corr * b.m_im;
+			}
+		}
+	}
+};
+
+// One Gauss-Seidel sweep over the links, colour by colour; a colour of several blocks is spread over
+// the task scheduler, a block per task. A body of one block (colours 0) is swept in index order.
+void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours)
+{
+	const int links = body.m_links.size();
+	if (links == 0) return;
+	LinkSweep sweep;
+	sweep.links = &body.m_links[0];
+	sweep.linkCount = links;
+	sweep.idt2 = btScalar(1) / (dt * dt);
+	if (!colours || links <= caliber::kLinkBlock)
+	{
+		const int onlyBlock = 0;
+		sweep.blocks = &onlyBlock;
+		sweep.forLoop(0, 1);
+		return;
+	}
+	if (colours->blocks.size() != (links + caliber::kLinkBlock - 1) / caliber::kLinkBlock) return;
+	sweep.blocks = &colours->blocks[0];
+	for (int c = 0; c + 1 < colours->start.size(); ++c)
+	{
+		const int begin = colours->start[c], end = colours->start[c + 1];
+		if (end - begin > 1)
+			btParallelFor(begin, end, 1, sweep);
+		else
+			sweep.forLoop(begin, end);
+	}
+}
+
+// Tetra volumes (m_kVST): each tetra's signed volume V = V0 (its rest volume m_rv) by XPBD, with the
+// compliance that m_kVST gives through complianceFactor, as links get theirs from m_kLST (W in m_c1,
+// updateLinkConstants); the multiplier accumulates in m_c2 over the step. The signed volume keeps a
+// tetra from turning inside out.
+void solveTetras(btSoftBody& body, btScalar dt)
 {
 	const btScalar idt2 = btScalar(1) / (dt * dt);
-	for (int i = 0; i < body.m_links.size(); ++i)
+	const btSoftBody::Material* lastMaterial = 0;
+	btScalar factor = -1;
+	for (int i = 0; i < body.m_tetras.size(); ++i)
 	{
-		btSoftBody::Link& l = body.m_links[i];
-		const btScalar compliance = l.m_c3.x();
-		if (compliance < 0) continue;
-		btSoftBody::Node& a = *l.m_n[0];
-		btSoftBody::Node& b = *l.m_n[1];
-		const btScalar w = a.m_im + b.m_im;
-		if (w <= 0) continue;
-		const btVector3 d = b.m_x - a.m_x;
-		const btScalar len = d.length();
-		if (len <= SIMD_EPSILON) continue;
-		const btScalar c = len - l.m_rl;
-		const btScalar alpha = compliance * idt2;
-		const btScalar dlambda = (-c - alpha * l.m_c2) / (w + alpha);
-		l.m_c2 += dlambda;
-		const btVector3 corr = d * (dlambda / len);
-		a.m_x -= corr * a.m_im;
-		b.m_x += corr * b.m_im;
+		btSoftBody::Tetra& t = body.m_tetras[i];
+		if (t.m_material != lastMaterial)
+		{
+			lastMaterial = t.m_material;
+			factor = complianceFactor(t.m_material ? t.m_material->m_kVST : btScalar(1), body.m_cfg.piterations);
+		}
+		if (factor < 0 || !(t.m_c1 > 0)) continue;
+		const btScalar volume = caliber::tetraGradients(t);
+		btScalar w = 0;
+		for (int j = 0; j < 4; ++j) w += t.m_n[j]->m_im * t.m_c0[j].length2();
+		const btScalar alpha = factor * t.m_c1 * idt2;
+		if (!(w + alpha > 0)) continue;
+		const btScalar dlambda = (-(volume - t.m_rv) - alpha * t.m_c2) / (w + alpha);
+		t.m_c2 += dlambda;
+		for (int j = 0; j < 4; ++j) t.m_n[j]->m_x += t.m_c0[j] * (dlambda * t.m_n[j]->m_im);
 	}
 }
 
@@ -650,8 +735,12 @@ void btSoftBody::solveConstraints()
 		l.m_c2 = 0;
 		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
 	}
+	for (int i = 0; i < m_tetras.size(); ++i) m_tetras[i].m_c2 = 0;
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
 	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
+	// Bodies of one block of links need no colouring (nor its side table lookup).
+	const caliber::SoftLinkColours* linkColours =
+	    m_links.size() > caliber::kLinkBlock ? &caliber::softLinkColours(*this, false) : 0;
 	// A pressurised closed body whose skin cannot stretch holds its rest volume V0: its skin's tension
 	// balances any pressure above V0 (a closed surface of rigid triangles cannot grow), and the gas resists
 	// compression with the stiffness of P V = kPR, dP / dV = -kPR / V0^2, i.e. the compliance V0^2 / kPR.
@@ -668,7 +757,8 @@ void btSoftBody::solveConstraints()
 		for (int s = 0; s < m_cfg.m_psequence.size(); ++s) switch (m_cfg.m_psequence[s])
 			{
 				case ePSolver::Linear:
-					solveLinks(*this, dt);
+					solveLinks(*this, dt, linkColours);
+					if (m_tetras.size() > 0) solveTetras(*this, dt);
 					caliber::solveTethers(*this, tethers);
 					if (keepVolume)
 						solveVolume(*this, dt, m_pose.m_volume, 1 / m_cfg.kVC, 1 / m_cfg.kVC, volumeLambda,
@@ -734,7 +824,9 @@ void btSoftBody::staticSolve(int iterations)
 		l.m_c2 = 0;
 		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
 	}
-	for (int it = 0; it < iterations; ++it) solveLinks(*this, kReferenceStep);
+	const caliber::SoftLinkColours* colours =
+	    m_links.size() > caliber::kLinkBlock ? &caliber::softLinkColours(*this) : 0;
+	for (int it = 0; it < iterations; ++it) solveLinks(*this, kReferenceStep, colours);
 }
 
 void btSoftBody::solveCommonConstraints(btSoftBody** bodies, int count, int iterations)

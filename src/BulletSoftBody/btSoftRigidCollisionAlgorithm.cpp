@@ -4,6 +4,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletSoftBody/btSoftBody.h"
 #include "BulletSoftBody/btSoftBodySolvers.h"
+#include "btSoftBodyInternal.h"
 
 btSoftRigidCollisionAlgorithm::btSoftRigidCollisionAlgorithm(btPersistentManifold* mf,
                                                              const btCollisionAlgorithmConstructionInfo& ci,
@@ -24,6 +25,14 @@ void btSoftRigidCollisionAlgorithm::processCollision(const btCollisionObjectWrap
 {
 	(void)dispatchInfo;
 	(void)resultOut;
+	btCollisionObject* rigid = 0;
+	m_softBody = caliber::collideSoftRigidPair(body0Wrap, body1Wrap, &rigid);
+	m_rigidCollisionObject = rigid;
+}
+
+btSoftBody* caliber::collideSoftRigidPair(const btCollisionObjectWrapper* body0Wrap,
+                                          const btCollisionObjectWrapper* body1Wrap, btCollisionObject** rigidOut)
+{
 	// Which side is soft is read from the objects, whatever order the dispatcher passes them in.
 	const btCollisionObjectWrapper* softWrap = body0Wrap;
 	const btCollisionObjectWrapper* rigidWrap = body1Wrap;
@@ -33,16 +42,16 @@ void btSoftRigidCollisionAlgorithm::processCollision(const btCollisionObjectWrap
 		rigidWrap = body0Wrap;
 	}
 	btSoftBody* soft = const_cast<btSoftBody*>(btSoftBody::upcast(softWrap->getCollisionObject()));
-	if (!soft || btSoftBody::upcast(rigidWrap->getCollisionObject())) return;
-	m_softBody = soft;
-	m_rigidCollisionObject = const_cast<btCollisionObject*>(rigidWrap->getCollisionObject());
-	if (soft->m_collisionDisabledObjects.findLinearSearch(m_rigidCollisionObject) !=
-	    soft->m_collisionDisabledObjects.size())
-		return;
+	if (!soft || btSoftBody::upcast(rigidWrap->getCollisionObject())) return 0;
+	btCollisionObject* rigid = const_cast<btCollisionObject*>(rigidWrap->getCollisionObject());
+	if (rigidOut) *rigidOut = rigid;
+	if (soft->m_collisionDisabledObjects.findLinearSearch(rigid) != soft->m_collisionDisabledObjects.size())
+		return soft;
 	if (soft->getSoftBodySolver())
 		soft->getSoftBodySolver()->processCollision(soft, rigidWrap);
 	else
 		soft->defaultCollisionHandler(rigidWrap);
+	return soft;
 }
 
 btScalar btSoftRigidCollisionAlgorithm::calculateTimeOfImpact(btCollisionObject* body0, btCollisionObject* body1,

@@ -1,7 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // The soft-body stages on the task scheduler (docs/soft-bodies.md, "Threads"): the bodies' prediction and
-// velocity update run one body per task, a large body's node loops in chunks; the results are the same
-// bits at any thread count.
+// velocity update run one body per task, a large body's node loops in chunks and its link sweeps in
+// blocks of one colour at a time; the results are the same bits at any thread count.
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,8 @@ using caliber_test::SoftTestWorld;
 
 namespace
 {
-// A scene with a large pinned cloth (2500 nodes: its node loops are split in chunks of 1024), a box
+// A scene with a large pinned cloth (2500 nodes: its node loops are split in chunks of 1024, its 7000
+// links in blocks of 1024 whose colours hold several; btSoftBodyLinkColours.h), a box
 // falling on it, three gas balls and a rope, stepped 40 times on the current scheduler: each soft
 // body's node positions, hashed.
 std::vector<uint64_t> runScene()
@@ -24,9 +25,9 @@ std::vector<uint64_t> runScene()
 	SoftTestWorld w;
 	w.addGround();
 	std::vector<btSoftBody*> bodies;
-	btSoftBody* cloth = w.addSoft(btSoftBodyHelpers::CreatePatch(w.info(), btVector3(-3, 4, -3), btVector3(3, 4, -3),
-	                                                             btVector3(-3, 4, 3), btVector3(3, 4, 3), 50, 50,
-	                                                             1 + 2 + 4 + 8, true));
+	btSoftBody* cloth =
+	    w.addSoft(btSoftBodyHelpers::CreatePatch(w.info(), btVector3(-3, 4, -3), btVector3(3, 4, -3),
+	                                             btVector3(-3, 4, 3), btVector3(3, 4, 3), 50, 50, 1 + 2 + 4 + 8, true));
 	cloth->setTotalMass(2);
 	cloth->m_cfg.piterations = 4;
 	bodies.push_back(cloth);
