@@ -219,6 +219,8 @@ void btGeneric6DofSpringConstraint::internalUpdateSprings(btConstraintInfo2* inf
 	const btVector3 linVelA = m_rbA.getLinearVelocity(), linVelB = m_rbB.getLinearVelocity();
 	const btVector3 angVelA = m_rbA.getAngularVelocity(), angVelB = m_rbB.getAngularVelocity();
 	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
+	// Called before this joint's rows exist: the coordinates' own effective masses, no locked ones held.
+	caliber::forgetSixDofLockedBlock();
 	const SpringSettings springs = {m_springEnabled, m_equilibriumPoint, m_springStiffness, m_springDamping};
 	const btScalar h = btScalar(1) / info->fps;
 	for (int i = 0; i < 6; ++i)
