@@ -21,6 +21,54 @@
 #include <type_traits>
 #include <utility>
 
+namespace caliber
+{
+/// The alignment of a btAlignedObjectArray's elements: T's own, and at least 16 bytes. A function (not
+/// a constant at class scope) so that an array can be a member of T itself.
+template <typename T>
+constexpr unsigned alignedArrayAlignment()
+{
+	return alignof(T) > 16 ? unsigned(alignof(T)) : 16u;
+}
+
+/// Moves count live elements from one block into raw storage and ends their lives in the old one.
+template <typename T>
+inline void moveArrayElements(T* from, int count, T* to)
+{
+	for (int i = 0; i < count; ++i)
+	{
+		new (&to[i]) T(std::move(from[i]));
+		from[i].~T();
+	}
+}
+
+/// Default-initialises slots [first, last) (no zeroing for plain data), so that a later destructor
+/// call is matched.
+template <typename T>
+inline void defaultInitArrayElements(T* data, int first, int last)
+{
+	if constexpr (std::is_default_constructible<T>::value && !std::is_trivially_default_constructible<T>::value)
+	{
+		for (int i = first; i < last; ++i) new (&data[i]) T;
+	}
+	else
+	{
+		(void)data;
+		(void)first;
+		(void)last;
+	}
+}
+
+/// Exchanges two elements by moves.
+template <typename T>
+inline void swapArrayElements(T& a, T& b)
+{
+	T tmp(std::move(a));
+	a = std::move(b);
+	b = std::move(tmp);
+}
+}  // namespace caliber
+
 /// Growable array of T with aligned storage, Bullet's container.
 template <typename T>
 class btAlignedObjectArray
@@ -31,9 +79,23 @@ class btAlignedObjectArray
 	// False after initializeFromBuffer: the storage belongs to the caller and is never freed here.
 	bool m_ownsMemory;
 
-	// Computed inside functions (not at class scope) so that the array can be a member of T itself.
-	static constexpr unsigned elementAlignment() { return alignof(T) > 16 ? unsigned(alignof(T)) : 16u; }
+	bool isValidIndex(int n) const { return n >= 0 && n < m_size; }
 
+protected:
+	/// Capacity to grow to when an array of the given size is full: doubling, starting at 1.
+	int allocSize(int size) const
+	{
+		if (size <= 0) return 1;
+		return size > INT_MAX / 2 ? INT_MAX : size * 2;
+	}
+
+	/// Copy-constructs elements [start, end) into dest, raw storage for end - start elements.
+	void copy(int start, int end, T* dest) const
+	{
+		for (int i = start; i < end; ++i) new (&dest[i - start]) T(m_data[i]);
+	}
+
+	/// An empty array that owns no storage (forgets any storage it had: call deallocate first).
 	void init()
 	{
 		m_size = 0;
@@ -42,47 +104,8 @@ class btAlignedObjectArray
 		m_ownsMemory = true;
 	}
 
-	T* allocateElements(int count)
-	{
-		if (count <= 0) return nullptr;
-		T* block = btAlignedAllocator<T, elementAlignment()>().allocate(count);
-		btAssert(block != nullptr);
-		return block;
-	}
-
-	// The body of both resize overloads; construct(slot) builds one new element in place.
-	template <typename Construct>
-	void resizeConstructing(int newsize, Construct construct)
-	{
-		btAssert(newsize >= 0);
-		if (newsize < 0) newsize = 0;
-		if (newsize < m_size)
-		{
-			destroyRange(newsize, m_size);
-		}
-		else if (newsize > m_size)
-		{
-			if (newsize > m_capacity)
-			{
-				// Fill the new block first: a fill value may live in the old one.
-				T* newData = allocateElements(newsize);
-				for (int i = m_size; i < newsize; ++i) construct(&newData[i]);
-				relocateTo(newData, newsize);
-			}
-			else
-			{
-				for (int i = m_size; i < newsize; ++i) construct(&m_data[i]);
-			}
-		}
-		m_size = newsize;
-	}
-
-	void releaseStorage()
-	{
-		if (m_data && m_ownsMemory) btAlignedAllocator<T, elementAlignment()>().deallocate(m_data);
-	}
-
-	void destroyRange(int first, int last)
+	/// Ends the lives of elements [first, last); the size and the storage stay as they are.
+	void destroy(int first, int last)
 	{
 		if constexpr (!std::is_trivially_destructible<T>::value)
 		{
@@ -95,49 +118,22 @@ class btAlignedObjectArray
 		}
 	}
 
-	// Default-initialises (no zeroing for plain data) so that a later destructor call is matched.
-	void defaultInitRange(int first, int last)
+	/// Raw aligned storage for size elements, or null for size <= 0. The caller owns it until it
+	/// becomes the array's storage.
+	void* allocate(int size)
 	{
-		if constexpr (std::is_default_constructible<T>::value && !std::is_trivially_default_constructible<T>::value)
-		{
-			for (int i = first; i < last; ++i) new (&m_data[i]) T;
-		}
-		else
-		{
-			(void)first;
-			(void)last;
-		}
+		if (size <= 0) return nullptr;
+		T* block = btAlignedAllocator<T, caliber::alignedArrayAlignment<T>()>().allocate(size);
+		btAssert(block != nullptr);
+		return block;
 	}
 
-	// Moves the live elements into newData (capacity newCapacity) and frees the old storage.
-	void relocateTo(T* newData, int newCapacity)
+	/// Frees the storage when the array owns it (not a caller's initializeFromBuffer block) and
+	/// forgets it; the elements must have been destroyed first.
+	void deallocate()
 	{
-		for (int i = 0; i < m_size; ++i)
-		{
-			new (&newData[i]) T(std::move(m_data[i]));
-			m_data[i].~T();
-		}
-		releaseStorage();
-		m_data = newData;
-		m_capacity = newCapacity;
-		m_ownsMemory = true;
-	}
-
-	static void swapElements(T& a, T& b)
-	{
-		T tmp(std::move(a));
-		a = std::move(b);
-		b = std::move(tmp);
-	}
-
-	bool isValidIndex(int n) const { return n >= 0 && n < m_size; }
-
-protected:
-	/// Capacity to grow to when an array of the given size is full: doubling, starting at 1.
-	int allocSize(int size) const
-	{
-		if (size <= 0) return 1;
-		return size > INT_MAX / 2 ? INT_MAX : size * 2;
+		if (m_data && m_ownsMemory) btAlignedAllocator<T, caliber::alignedArrayAlignment<T>()>().deallocate(m_data);
+		m_data = nullptr;
 	}
 
 public:
@@ -198,8 +194,8 @@ public:
 	/// Destroys every element and frees the storage (capacity becomes 0).
 	void clear()
 	{
-		destroyRange(0, m_size);
-		releaseStorage();
+		destroy(0, m_size);
+		deallocate();
 		init();
 	}
 
@@ -220,12 +216,12 @@ public:
 		if (newsize < 0) newsize = 0;
 		if (newsize < m_size)
 		{
-			destroyRange(newsize, m_size);
+			destroy(newsize, m_size);
 		}
 		else if (newsize > m_size)
 		{
 			reserve(newsize);
-			defaultInitRange(m_size, newsize);
+			caliber::defaultInitArrayElements(m_data, m_size, newsize);
 		}
 		m_size = newsize;
 	}
@@ -234,21 +230,53 @@ public:
 	/// constructor for classes), removed ones are destroyed. Asserts newsize >= 0.
 	void resize(int newsize)
 	{
-		resizeConstructing(newsize, [](T* slot) { new (slot) T(); });
+		btAssert(newsize >= 0);
+		if (newsize < 0) newsize = 0;
+		if (newsize < m_size)
+		{
+			destroy(newsize, m_size);
+		}
+		else if (newsize > m_size)
+		{
+			reserve(newsize);
+			for (int i = m_size; i < newsize; ++i) new (&m_data[i]) T();
+		}
+		m_size = newsize;
 	}
 
 	/// Sets the size; new elements are copies of fillData (which may be an element of this array),
 	/// removed ones are destroyed. Grows capacity to exactly newsize when needed. Asserts newsize >= 0.
 	void resize(int newsize, const T& fillData)
 	{
-		resizeConstructing(newsize, [&fillData](T* slot) { new (slot) T(fillData); });
+		btAssert(newsize >= 0);
+		if (newsize < 0) newsize = 0;
+		if (newsize < m_size)
+		{
+			destroy(newsize, m_size);
+		}
+		else if (newsize > m_capacity)
+		{
+			// Fill the new block first: fillData may live in the old one.
+			T* newData = static_cast<T*>(allocate(newsize));
+			for (int i = m_size; i < newsize; ++i) new (&newData[i]) T(fillData);
+			caliber::moveArrayElements(m_data, m_size, newData);
+			deallocate();
+			m_data = newData;
+			m_capacity = newsize;
+			m_ownsMemory = true;
+		}
+		else
+		{
+			for (int i = m_size; i < newsize; ++i) new (&m_data[i]) T(fillData);
+		}
+		m_size = newsize;
 	}
 
 	/// Appends a default-initialised element (uninitialised for plain data) and returns it.
 	T& expandNonInitializing()
 	{
 		if (m_size == m_capacity) reserve(allocSize(m_size));
-		defaultInitRange(m_size, m_size + 1);
+		caliber::defaultInitArrayElements(m_data, m_size, m_size + 1);
 		++m_size;
 		return m_data[m_size - 1];
 	}
@@ -276,9 +304,13 @@ public:
 		{
 			// Construct the new element before moving the old ones: value may live in the old block.
 			const int newCapacity = allocSize(m_size);
-			T* newData = allocateElements(newCapacity);
+			T* newData = static_cast<T*>(allocate(newCapacity));
 			new (&newData[m_size]) T(value);
-			relocateTo(newData, newCapacity);
+			caliber::moveArrayElements(m_data, m_size, newData);
+			deallocate();
+			m_data = newData;
+			m_capacity = newCapacity;
+			m_ownsMemory = true;
 		}
 		else
 		{
@@ -291,8 +323,12 @@ public:
 	void reserve(int count)
 	{
 		if (count <= m_capacity) return;
-		T* newData = allocateElements(count);
-		relocateTo(newData, count);
+		T* newData = static_cast<T*>(allocate(count));
+		caliber::moveArrayElements(m_data, m_size, newData);
+		deallocate();
+		m_data = newData;
+		m_capacity = count;
+		m_ownsMemory = true;
 	}
 
 	/// Default ordering functor for the sorts: operator<.
@@ -330,7 +366,7 @@ public:
 				while (compare(pivot, m_data[j])) --j;
 				if (i <= j)
 				{
-					if (i != j) swapElements(m_data[i], m_data[j]);
+					if (i != j) caliber::swapArrayElements(m_data[i], m_data[j]);
 					++i;
 					--j;
 				}
@@ -377,7 +413,7 @@ public:
 	{
 		btAssert(isValidIndex(index0) && isValidIndex(index1));
 		if (!isValidIndex(index0) || !isValidIndex(index1) || index0 == index1) return;
-		swapElements(m_data[index0], m_data[index1]);
+		caliber::swapArrayElements(m_data[index0], m_data[index1]);
 	}
 
 	/// Sorts the whole array with compare in O(n log n) worst case; not stable.
@@ -388,7 +424,7 @@ public:
 		for (int k = n / 2; k > 0; --k) downHeap(m_data, k, n, compare);
 		while (n > 1)
 		{
-			swapElements(m_data[0], m_data[n - 1]);
+			caliber::swapArrayElements(m_data[0], m_data[n - 1]);
 			--n;
 			downHeap(m_data, 1, n, compare);
 		}
@@ -439,7 +475,7 @@ public:
 	{
 		btAssert(index >= 0 && index <= m_size);
 		if (!isValidIndex(index)) return;
-		if (index != m_size - 1) swapElements(m_data[index], m_data[m_size - 1]);
+		if (index != m_size - 1) caliber::swapArrayElements(m_data[index], m_data[m_size - 1]);
 		pop_back();
 	}
 
@@ -469,10 +505,10 @@ public:
 	void copyFromArray(const btAlignedObjectArray& otherArray)
 	{
 		if (this == &otherArray) return;
-		destroyRange(0, m_size);
+		destroy(0, m_size);
 		m_size = 0;
 		reserve(otherArray.m_size);
-		for (int i = 0; i < otherArray.m_size; ++i) new (&m_data[i]) T(otherArray.m_data[i]);
+		otherArray.copy(0, otherArray.m_size, m_data);
 		m_size = otherArray.m_size;
 	}
 };

@@ -19,8 +19,10 @@
 #include <string>
 #include <utility>
 
+namespace caliber
+{
 /// Mixes the bits of a 32-bit value so that nearby inputs land far apart (an xorshift-multiply finaliser).
-SIMD_FORCE_INLINE unsigned int btHashMix32(unsigned int value)
+SIMD_FORCE_INLINE unsigned int hashMix32(unsigned int value)
 {
 	value ^= value >> 16;
 	value *= 0x7feb352du;
@@ -29,6 +31,33 @@ SIMD_FORCE_INLINE unsigned int btHashMix32(unsigned int value)
 	value ^= value >> 16;
 	return value;
 }
+
+/// btHashMap's bucket of a key hash in a table of bucketCount buckets (a power of two >= 2): the hash
+/// is re-mixed (Fibonacci hashing, the top bits) so that user key types with weak hashes still spread.
+SIMD_FORCE_INLINE int hashMapBucket(unsigned int hash, int bucketCount)
+{
+#if defined(__GNUC__)
+	const int bits = __builtin_ctz(unsigned(bucketCount));
+#else
+	int bits = 0;
+	while ((1 << bits) < bucketCount) ++bits;
+#endif
+	return int((hash * 2654435769u) >> (32 - bits));
+}
+
+/// Makes the link (the bucket's head or an entry's next index) that points at entry index point at
+/// replacement instead; the entry must be in that bucket's chain.
+inline void hashMapRelink(int* bucketHead, int* next, int index, int replacement)
+{
+	int* link = bucketHead;
+	while (*link != index)
+	{
+		btAssert(*link >= 0);
+		link = &next[*link];
+	}
+	*link = replacement;
+}
+}  // namespace caliber
 
 /// Key wrapping a copied string (the map keeps its own copy, so the caller's buffer may go away).
 struct btHashString
@@ -77,7 +106,7 @@ public:
 	/// True when both keys wrap the same int.
 	bool equals(const btHashInt& other) const { return m_uid == other.m_uid; }
 	/// The hash value used by btHashMap.
-	unsigned int getHash() const { return btHashMix32(static_cast<unsigned int>(m_uid)); }
+	unsigned int getHash() const { return caliber::hashMix32(static_cast<unsigned int>(m_uid)); }
 };
 
 /// Key wrapping a pointer (compared by address, never dereferenced).
@@ -99,7 +128,8 @@ public:
 	unsigned int getHash() const
 	{
 		const uint64_t bits = static_cast<uint64_t>(reinterpret_cast<uintptr_t>(m_pointer));
-		return btHashMix32(static_cast<unsigned int>(bits) ^ btHashMix32(static_cast<unsigned int>(bits >> 32)));
+		return caliber::hashMix32(static_cast<unsigned int>(bits) ^
+		                          caliber::hashMix32(static_cast<unsigned int>(bits >> 32)));
 	}
 };
 
@@ -120,7 +150,7 @@ public:
 	bool equals(const btHashKeyPtr<Value>& other) const { return getUid1() == other.getUid1(); }
 
 	/// The hash value used by btHashMap.
-	unsigned int getHash() const { return btHashMix32(static_cast<unsigned int>(m_uid)); }
+	unsigned int getHash() const { return caliber::hashMix32(static_cast<unsigned int>(m_uid)); }
 };
 
 /// Int key typed by the value it maps to.
@@ -140,7 +170,7 @@ public:
 	bool equals(const btHashKey<Value>& other) const { return getUid1() == other.getUid1(); }
 
 	/// The hash value used by btHashMap.
-	unsigned int getHash() const { return btHashMix32(static_cast<unsigned int>(m_uid)); }
+	unsigned int getHash() const { return caliber::hashMix32(static_cast<unsigned int>(m_uid)); }
 };
 
 /// Hash map from Key (with getHash() and equals()) to Value, stored in dense arrays.
@@ -157,44 +187,23 @@ protected:
 	/// Keys, in entry order.
 	btAlignedObjectArray<Key> m_keyArray;
 
-	/// Bucket of key for the current table. The hash is re-mixed (Fibonacci hashing on the top bits)
-	/// so that user key types with weak hashes still spread over the buckets.
-	int bucketOf(const Key& key) const
+	/// Makes the bucket table big enough for the entries (load factor at most 1: the table doubles,
+	/// starting at 16 buckets) and relinks every entry; insert calls it after adding an entry. The key
+	/// is not used (Bullet's signature).
+	void growTables(const Key& /*key*/)
 	{
-		const unsigned int mixed = key.getHash() * 2654435769u;
-		return int(mixed >> m_bucketShift);
-	}
-
-	/// Resizes the bucket table to bucketCount (a power of two >= 2) and relinks every entry.
-	void rehash(int bucketCount)
-	{
-		int bits = 0;
-		while ((1 << bits) < bucketCount) ++bits;
-		m_bucketShift = 32u - unsigned(bits);
+		int bucketCount = m_hashTable.size() > 0 ? m_hashTable.size() : 16;
+		while (bucketCount < m_keyArray.size()) bucketCount *= 2;
+		if (bucketCount == m_hashTable.size()) return;
 		m_hashTable.resize(bucketCount);
 		for (int b = 0; b < bucketCount; ++b) m_hashTable[b] = -1;
 		for (int i = 0; i < m_keyArray.size(); ++i)
 		{
-			const int bucket = bucketOf(m_keyArray[i]);
+			const int bucket = caliber::hashMapBucket(m_keyArray[i].getHash(), bucketCount);
 			m_next[i] = m_hashTable[bucket];
 			m_hashTable[bucket] = i;
 		}
 	}
-
-	/// Makes the slot (bucket head or a next link) that points at entry index point at replacement.
-	void relink(int index, int replacement)
-	{
-		int* link = &m_hashTable[bucketOf(m_keyArray[index])];
-		while (*link != index)
-		{
-			btAssert(*link >= 0);
-			link = &m_next[*link];
-		}
-		*link = replacement;
-	}
-
-private:
-	unsigned int m_bucketShift = 32u;
 
 public:
 	/// Adds key with value, or replaces the value when key is present.
@@ -213,10 +222,10 @@ public:
 		// Load factor at most 1: chains stay short and the table doubles with the entries.
 		if (index + 1 > m_hashTable.size())
 		{
-			rehash(m_hashTable.size() > 0 ? m_hashTable.size() * 2 : 16);
+			growTables(key);
 			return;
 		}
-		const int bucket = bucketOf(key);
+		const int bucket = caliber::hashMapBucket(key.getHash(), m_hashTable.size());
 		m_next[index] = m_hashTable[bucket];
 		m_hashTable[bucket] = index;
 	}
@@ -226,12 +235,15 @@ public:
 	{
 		const int index = findIndex(key);
 		if (index < 0) return;
-		relink(index, m_next[index]);
+		const int buckets = m_hashTable.size();
+		caliber::hashMapRelink(&m_hashTable[caliber::hashMapBucket(m_keyArray[index].getHash(), buckets)], &m_next[0],
+		                       index, m_next[index]);
 		const int last = m_keyArray.size() - 1;
 		if (index != last)
 		{
 			// Move the last entry into the hole and repoint whichever link referred to it.
-			relink(last, index);
+			caliber::hashMapRelink(&m_hashTable[caliber::hashMapBucket(m_keyArray[last].getHash(), buckets)],
+			                       &m_next[0], last, index);
 			m_keyArray[index] = std::move(m_keyArray[last]);
 			m_valueArray[index] = std::move(m_valueArray[last]);
 			m_next[index] = m_next[last];
@@ -291,7 +303,7 @@ public:
 	int findIndex(const Key& key) const
 	{
 		if (m_hashTable.size() == 0) return -1;
-		for (int i = m_hashTable[bucketOf(key)]; i >= 0; i = m_next[i])
+		for (int i = m_hashTable[caliber::hashMapBucket(key.getHash(), m_hashTable.size())]; i >= 0; i = m_next[i])
 			if (key.equals(m_keyArray[i])) return i;
 		return -1;
 	}
@@ -303,7 +315,6 @@ public:
 		m_next.clear();
 		m_valueArray.clear();
 		m_keyArray.clear();
-		m_bucketShift = 32u;
 	}
 };
 

@@ -247,3 +247,39 @@ TEST(HashMap, BadValueIndexGivesNullInRelease)
 	EXPECT_EQ(map.getAtIndex(-1), nullptr);
 }
 #endif
+
+namespace
+{
+// A user map written against Bullet 2.89's protected interface: it walks the bucket chains itself.
+class ChainCountingMap : public btHashMap<btHashInt, int>
+{
+public:
+	// Entries reachable from the bucket heads through m_next; each entry is in exactly one chain.
+	int reachableEntries() const
+	{
+		int reached = 0;
+		for (int b = 0; b < m_hashTable.size(); ++b)
+			for (int i = m_hashTable[b]; i >= 0; i = m_next[i]) ++reached;
+		return reached;
+	}
+	int bucketCount() const { return m_hashTable.size(); }
+	int keyOfEntry(int i) const { return m_keyArray[i].getUid1(); }
+	void grow() { growTables(btHashInt(0)); }
+};
+}  // namespace
+
+TEST(HashMap, SubclassSeesBulletsProtectedChainsAndGrowTables)
+{
+	ChainCountingMap map;
+	EXPECT_EQ(map.reachableEntries(), 0);
+	for (int k = 0; k < 100; ++k) map.insert(btHashInt(k * 7), k);
+	EXPECT_EQ(map.reachableEntries(), 100) << "every entry hangs in one bucket chain";
+	EXPECT_GE(map.bucketCount(), 100) << "load factor at most 1";
+	EXPECT_EQ(map.keyOfEntry(5), 35) << "m_keyArray holds the keys in insertion order";
+	const int buckets = map.bucketCount();
+	map.grow();
+	EXPECT_EQ(map.bucketCount(), buckets) << "growTables leaves a big enough table alone";
+	for (int k = 0; k < 100; k += 2) map.remove(btHashInt(k * 7));
+	EXPECT_EQ(map.reachableEntries(), 50);
+	for (int k = 1; k < 100; k += 2) ASSERT_NE(map.find(btHashInt(k * 7)), nullptr) << k;
+}

@@ -140,8 +140,9 @@ typedef btAlignedObjectArray<btBvhSubtreeInfo> BvhSubtreeInfoArray;
 /// in one step (stackless traversal, reading memory front to back). Boxes are 16-bit quantized
 /// (12 bytes per node plus payload, 16 in all) or plain btVector3 pairs. Built by binned surface area
 /// heuristic over leaf centroids along the widest axis. Serialized in .bullet files through the
-/// btSerializer interface (serialize, deSerializeFloat, deSerializeDouble); Bullet's older in-place
-/// buffer format (deSerializeInPlace) is not provided.
+/// btSerializer interface (serialize, deSerializeFloat, deSerializeDouble), or into one caller-owned
+/// block that is later used where it lies (serialize(buffer, size, swapEndian), deSerializeInPlace), in
+/// a layout of Caliber's own (docs/meshes-heightfields-and-compounds.md, "In-place buffers").
 ATTRIBUTE_ALIGNED16(class)
 btQuantizedBvh
 {
@@ -343,6 +344,23 @@ public:
 	bool isQuantized() { return m_useQuantization; }
 	/// True when the boxes are quantized.
 	bool isQuantized() const { return m_useQuantization; }
+
+	/// Bytes serialize(buffer, size, swapEndian) needs for this tree.
+	unsigned calculateSerializeBufferSize() const;
+	/// Writes the tree into a 16-byte aligned block of at least calculateSerializeBufferSize() bytes,
+	/// byte-swapped for a machine of the other byte order when i_swapEndian. A null, misaligned or too
+	/// small block asserts and, without asserts, writes nothing and returns false.
+	virtual bool serialize(void* o_alignedDataBuffer, unsigned i_dataBufferSize, bool i_swapEndian) const;
+	/// The tree a block written by serialize holds, built in the block itself (its arrays point into
+	/// the block, which the caller keeps alive and frees; destroy the tree with ~btQuantizedBvh(), never
+	/// delete). Byte-swaps the block first when i_swapEndian. A block that is not such a tree (null or
+	/// misaligned, too small, wrong magic, version, precision or byte order, counts past its end, a
+	/// non-finite or inverted box, bad escape indices or subtree headers) is reported through
+	/// btReportWarning and gives null, the block left as it was.
+	static btQuantizedBvh* deSerializeInPlace(void* i_alignedDataBuffer, unsigned int i_dataBufferSize,
+	                                          bool i_swapEndian);
+	/// Slack bytes to add to an allocation that is not 16-byte aligned, to align an in-place block in it.
+	static unsigned int getAlignmentSerializationPadding();
 
 	/// Bytes of the struct serialize() writes (btQuantizedBvhFloatData or DoubleData, the build's precision).
 	virtual int calculateSerializeBufferSizeNew() const;

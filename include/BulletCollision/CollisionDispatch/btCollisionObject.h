@@ -216,6 +216,9 @@ public:
 	const btCollisionShape* getRootCollisionShape() const { return m_rootCollisionShape; }
 	/// The shape given to setCollisionShape.
 	btCollisionShape* getRootCollisionShape() { return m_rootCollisionShape; }
+	/// Swaps the shape the narrowphase sees (a compound child, say) without touching the root shape
+	/// or the update revision; the caller puts the root shape back when done.
+	void internalSetTemporaryCollisionShape(btCollisionShape * collisionShape) { m_collisionShape = collisionShape; }
 
 	/// Adds (true) or removes (false) co from the objects this one never collides with.
 	void setIgnoreCollisionCheck(const btCollisionObject* co, bool ignoreCollisionCheck);

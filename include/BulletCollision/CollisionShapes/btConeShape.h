@@ -15,11 +15,7 @@ btConeShape : public btConvexInternalShape
 	btScalar m_sinAngle;
 	btScalar m_radius;
 	btScalar m_height;
-	btScalar m_unscaledRadius;
-	btScalar m_unscaledHeight;
 	int m_coneIndices[3];
-
-	void updateDerived();
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -40,6 +40,13 @@ public:
 	/// (internal nodes, which must lie after them), last to first. Quantized leaves are clamped to the
 	/// quantization box. index is unused (Bullet's signature).
 	void updateBvhNodes(btStridingMeshInterface * meshInterface, int firstNode, int endNode, int index);
+
+	/// btQuantizedBvh::serialize(o_alignedDataBuffer, i_dataBufferSize, i_swapEndian).
+	virtual bool serializeInPlace(void* o_alignedDataBuffer, unsigned i_dataBufferSize, bool i_swapEndian) const;
+	/// As btQuantizedBvh::deSerializeInPlace, building a btOptimizedBvh in the block (refit and
+	/// refitPartial then work on the block's arrays).
+	static btOptimizedBvh* deSerializeInPlace(void* i_alignedDataBuffer, unsigned int i_dataBufferSize,
+	                                          bool i_swapEndian);
 };
 
 #endif  // BT_OPTIMIZED_BVH_H

@@ -19,19 +19,6 @@ btTriangleMesh : public btTriangleIndexVertexArray
 	bool m_use32bitIndices;
 	bool m_use4componentVertices;
 
-	// Welding lookup: a hash grid over the vertices (cell size m_weldCellSize), filled lazily so that
-	// meshes that never weld pay nothing. Buckets hold chains through m_weldNext.
-	btAlignedObjectArray<int> m_weldBucketHeads;
-	btAlignedObjectArray<int> m_weldNext;
-	btScalar m_weldCellSize;
-	int m_weldHashedCount;
-
-	void syncIndexedMesh();
-	void updateWeldHash(btScalar cellSize);
-	void insertIntoWeldHash(int vertexIndex);
-	unsigned weldBucket(long long cx, long long cy, long long cz) const;
-	btVector3 storedVertex(int i) const;
-
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 
@@ -46,6 +33,7 @@ public:
 	btTriangleMesh(const btTriangleMesh& other);
 	/// A deep copy (the subpart points at this mesh's own arrays).
 	btTriangleMesh& operator=(const btTriangleMesh& other);
+	~btTriangleMesh() override;
 
 	/// True when indices are 32 bits.
 	bool getUse32bitIndices() const { return m_use32bitIndices; }

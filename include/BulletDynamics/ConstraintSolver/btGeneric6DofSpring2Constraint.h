@@ -246,11 +246,6 @@ private:
 	/// Euler rotation axes); m_calculatedAxis holds them normalised.
 	btVector3 m_angularJacobian[3];
 
-	/// Updates every coordinate's current position and limit state from the calculated transforms.
-	void testLimits();
-	/// Writes the rows getInfo1 counted; returns how many.
-	int writeRows(btConstraintInfo2 * info);
-
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();
 

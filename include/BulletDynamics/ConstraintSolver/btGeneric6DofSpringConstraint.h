@@ -30,6 +30,14 @@ protected:
 
 	/// Sets the defaults: springs off, equilibrium 0, no stiffness or damping.
 	void init();
+	/// Bullet's way of driving the springs through the 6-DoF joint's motors, for subclasses that write
+	/// their rows with btGeneric6DofConstraint::getInfo2: each spring coordinate's motor is enabled, its
+	/// target is the rate the spring's impulse of this step gives, and its force bound is that impulse
+	/// per step, so the motor row applies the spring row's impulse (exactly where the coordinate does not
+	/// lean on the locked ones: the target uses the coordinate's own effective mass). This joint's getInfo2
+	/// writes spring rows instead and does not call it. A null info or one without a step (fps <= 0)
+	/// asserts and changes nothing.
+	void internalUpdateSprings(btConstraintInfo2 * info);
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -34,35 +34,31 @@ protected:
 	btTransform m_rbAFrame;
 	btTransform m_rbBFrame;
 
-	btScalar m_motorTargetVelocity;
-	btScalar m_maxMotorImpulse;
+	btScalar m_motorTargetVelocity = 0;
+	btScalar m_maxMotorImpulse = 0;
 	btAngularLimit m_limit;
 	/// Hinge angle measured when the rows were last built.
-	btScalar m_hingeAngle;
+	btScalar m_hingeAngle = 0;
 	/// +1 measures the angle of A relative to B (Bullet's default), -1 of B relative to A.
 	btScalar m_referenceSign;
 
 private:
 	/// Whether this step has a limit row (past the limit, or close enough to reach it soon): decided in
 	/// getInfo1, read by getInfo2 (Bullet's hinge keeps the same decision in its limit).
-	bool m_limitRowNeeded;
+	bool m_limitRowNeeded = false;
 	/// The time step of the joint's last rows, for judging in getInfo1 whether a limit can be reached soon.
-	btScalar m_lastTimeStep;
+	btScalar m_lastTimeStep = btScalar(1) / btScalar(60);
 
 protected:
-	bool m_angularOnly;
-	bool m_enableAngularMotor;
+	bool m_angularOnly = false;
+	bool m_enableAngularMotor = false;
 	bool m_useReferenceFrameA;
-	bool m_useOffsetForConstraintFrame;
-	int m_flags;
-	btScalar m_normalCFM;
-	btScalar m_normalERP;
-	btScalar m_stopCFM;
-	btScalar m_stopERP;
-
-private:
-	/// The settings every constructor starts from.
-	void initDefaults(bool useReferenceFrameA);
+	bool m_useOffsetForConstraintFrame = false;
+	int m_flags = 0;
+	btScalar m_normalCFM = 0;
+	btScalar m_normalERP = 0;
+	btScalar m_stopCFM = 0;
+	btScalar m_stopERP = 0;
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

@@ -103,8 +103,6 @@ protected:
 	btScalar m_maxAngMotorForce;
 
 	void initParams();
-	/// The member and flag that setParam / getParam address for (num, axis); false if there is none.
-	static bool paramSlot(int num, int axis, btScalar btSliderConstraint::*& member, int& flag);
 
 public:
 	BT_DECLARE_ALIGNED_ALLOCATOR();

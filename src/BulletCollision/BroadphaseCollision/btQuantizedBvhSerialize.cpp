@@ -7,6 +7,7 @@
 #include "BulletCollision/BroadphaseCollision/btQuantizedBvh.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
+#include "QuantizedBvhTreeCheck.h"
 
 #include <math.h>
 #include <string.h>
@@ -31,40 +32,6 @@ struct PlainNodes
 	bool isLeaf(int i) const { return nodes[i].m_escapeIndex < 0; }
 	long long escape(int i) const { return nodes[i].m_escapeIndex; }
 };
-
-// True when nodes [0, numNodes) form one depth-first tree: the root's subtree is the whole array and
-// every internal node's size is one plus the sizes of its two children (the left one right after it,
-// the right one after the left's subtree). By induction every escape then lands inside the array.
-template <class Nodes>
-bool wellFormedTree(const Nodes& n, int numNodes)
-{
-	if (numNodes == 0) return true;
-	const auto size = [&](int i) { return n.isLeaf(i) ? 1LL : n.escape(i); };
-	if (size(0) != numNodes) return false;
-	for (int i = 0; i < numNodes; ++i)
-	{
-		if (n.isLeaf(i)) continue;
-		const long long e = n.escape(i);
-		if (e < 3 || i + e > numNodes) return false;
-		const long long left = size(i + 1);
-		if (left < 1 || left > e - 2) return false;
-		const long long right = size(int(i + 1 + left));
-		if (right < 1 || 1 + left + right != e) return false;
-	}
-	return true;
-}
-
-template <class Nodes>
-bool headersFit(const Nodes& n, int numNodes, const btBvhSubtreeInfoData* headers, int numHeaders)
-{
-	for (int h = 0; h < numHeaders; ++h)
-	{
-		const long long root = headers[h].m_rootNodeIndex, count = headers[h].m_subtreeSize;
-		if (root < 0 || root >= numNodes || count < 1 || root + count > numNodes) return false;
-		if ((n.isLeaf(int(root)) ? 1LL : n.escape(int(root))) != count) return false;
-	}
-	return true;
-}
 
 template <class V>
 bool finite3(const V& v)
@@ -99,8 +66,8 @@ const char* problemOf(const Data& d)
 			if (!(d.m_bvhAabbMin.m_floats[a] <= d.m_bvhAabbMax.m_floats[a]) || !(d.m_bvhQuantization.m_floats[a] > 0))
 				return "an inverted quantization box or a quantization that is not positive";
 		const QuantizedNodes nodes = {d.m_quantizedContiguousNodesPtr};
-		if (!wellFormedTree(nodes, numNodes)) return "the nodes do not form a tree (escape indices)";
-		if (!headersFit(nodes, numNodes, d.m_subTreeInfoPtr, d.m_numSubtreeHeaders))
+		if (!caliber::wellFormedBvhTree(nodes, numNodes)) return "the nodes do not form a tree (escape indices)";
+		if (!caliber::bvhSubtreeHeadersFit(nodes, numNodes, d.m_subTreeInfoPtr, d.m_numSubtreeHeaders))
 			return "a subtree header outside the tree";
 	}
 	else
@@ -113,8 +80,8 @@ const char* problemOf(const Data& d)
 			if (node.m_escapeIndex < 0 && (node.m_subPart < 0 || node.m_triangleIndex < 0))
 				return "a leaf with a negative part or triangle index";
 		}
-		if (!wellFormedTree(nodes, numNodes)) return "the nodes do not form a tree (escape indices)";
-		if (!headersFit(nodes, numNodes, d.m_subTreeInfoPtr, d.m_numSubtreeHeaders))
+		if (!caliber::wellFormedBvhTree(nodes, numNodes)) return "the nodes do not form a tree (escape indices)";
+		if (!caliber::bvhSubtreeHeadersFit(nodes, numNodes, d.m_subTreeInfoPtr, d.m_numSubtreeHeaders))
 			return "a subtree header outside the tree";
 	}
 	return 0;
@@ -166,9 +133,9 @@ struct BvhFields : btQuantizedBvh
 		const char* problem = problemOf<Data, NodeData>(d);
 		if (problem)
 		{
-			btReportWarning((std::string("Caliber: btQuantizedBvh::deSerialize: ") + problem +
-			                 "; the tree is left empty\n")
-			                    .c_str());
+			btReportWarning(
+			    (std::string("Caliber: btQuantizedBvh::deSerialize: ") + problem + "; the tree is left empty\n")
+			        .c_str());
 			contiguous.resize(0);
 			quantized.resize(0);
 			headers.resize(0);

@@ -148,6 +148,129 @@ btScalar clippingMargin(const btConvexShape* shape)
 {
 	return shape->getShapeType() == BOX_SHAPE_PROXYTYPE ? btScalar(0) : shape->getMargin();
 }
+// The closed-form contacts tried before GJK; true when they settle the pair (GJK is not run).
+// facePointsReported: the triangle's face points were reported and GJK still runs for its edges.
+bool contactWithoutGjk(const btConvexShape* shapeA, const btTransform& transformA, const btConvexShape* shapeB,
+                       const btTransform& transformB, caliber::TriangleClipping clipping, btScalar reach,
+                       btManifoldResult& resultOut, bool& facePointsReported)
+{
+	if (shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE && shapeB->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
+	{
+		// Two capsules in closed form (as Bullet does); crossing core segments go on to GJK/EPA.
+		btVector3 normalOnB, pointOnB;
+		btScalar distance;
+		if (caliber::capsuleCapsuleContact(*static_cast<const btCapsuleShape*>(shapeA), transformA,
+		                                   *static_cast<const btCapsuleShape*>(shapeB), transformB, normalOnB, pointOnB,
+		                                   distance))
+		{
+			if (distance <= reach) resultOut.addContactPoint(normalOnB, pointOnB, distance);
+			return true;
+		}
+	}
+	// A box against a mesh triangle: the contact along the triangle's normal, in closed form before GJK,
+	// with the whole clipped face when the box is over the face (a box landing flat, or fast on
+	// speculative points, is held at its corners at once). GJK is spared for most triangles (beyond reach,
+	// or under the box) and left the edges and vertices. The mesh collector chooses among all triangles'
+	// points.
+	if (clipping == caliber::kClipBeforeGjk)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
+		    *shapeA, transformA, *static_cast<const btTriangleShape*>(shapeB), transformB, reach, resultOut);
+		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact) return true;
+		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+	// A capsule against a mesh triangle in closed form: both ends of a capsule lying on the face, and the
+	// edge's point when an edge is nearer (GJK gave one point per triangle, on which a capsule rolls).
+	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
+	{
+		const caliber::TriangleFaceOutcome outcome =
+		    caliber::capsuleTriangleContact(*static_cast<const btCapsuleShape*>(shapeA), transformA,
+		                                    *static_cast<const btTriangleShape*>(shapeB), transformB, reach, resultOut);
+		if (outcome != caliber::kTriangleNeedsGjk) return true;
+	}
+	return false;
+}
+
+// The two polyhedral shapes of a pair, their polyhedra, the pair's transforms and its objects.
+struct PolyhedralPair
+{
+	const btConvexShape* shapeA;
+	const btConvexShape* shapeB;
+	const btConvexPolyhedron* polyA;
+	const btConvexPolyhedron* polyB;
+	const btDiscreteCollisionDetectorInterface::ClosestPointInput* input;
+	const btCollisionObjectWrapper* body0Wrap;
+	const btCollisionObjectWrapper* body1Wrap;
+};
+
+// Two polyhedra: the face of one clipped against the other along a separating axis (SAT's when enabled,
+// else GJK's normal), the margins added back; GJK's point when clipping keeps none. ownManifold is the
+// manifold to drop stale points from before clipping, or null when the algorithm does not own it.
+void clipPolyhedra(const PolyhedralPair& pair, const GjkPointResult& gjkPoint, const btDispatcherInfo& dispatchInfo,
+                   btScalar reach, btPersistentManifold* ownManifold, btVertexArray& worldVertsB1,
+                   btVertexArray& worldVertsB2, btManifoldResult& resultOut)
+{
+	const btTransform& transformA = pair.input->m_transformA;
+	const btTransform& transformB = pair.input->m_transformB;
+	bool haveAxis = false;
+	btVector3 separatingAxis(0, 0, 0);
+	if (dispatchInfo.m_enableSatConvex)
+	{
+		// SAT sees the margin-free polyhedra: cores that are apart while the margins touch fall
+		// through to GJK's axis below.
+		DiscardResult discard;
+		haveAxis = btPolyhedralContactClipping::findSeparatingAxis(*pair.polyA, *pair.polyB, transformA, transformB,
+		                                                           separatingAxis, discard);
+	}
+	if (!haveAxis && gjkPoint.found() && gjkPoint.m_distance <= reach)
+	{
+		const btScalar axisLength = gjkPoint.m_normalOnSurfaceB.length();
+		haveAxis = axisLength > SIMD_EPSILON;
+		if (haveAxis) separatingAxis = gjkPoint.m_normalOnSurfaceB / axisLength;
+	}
+	if (!haveAxis) return;
+	if (ownManifold) caliber::dropStalePoints(ownManifold, pair.body0Wrap, pair.body1Wrap);
+	MarginRestoringResult clipped(resultOut, clippingMargin(pair.shapeA), clippingMargin(pair.shapeB));
+	// The margins are added back after clipping, so clipping may keep points up to reach + margins.
+	btPolyhedralContactClipping::clipHullAgainstHull(
+	    separatingAxis, *pair.polyA, *pair.polyB, transformA, transformB, btScalar(-BT_LARGE_FLOAT),
+	    reach + clipped.m_marginA + clipped.m_marginB, worldVertsB1, worldVertsB2, clipped);
+	if (clipped.m_count == 0 && gjkPoint.found())
+		resultOut.addContactPoint(gjkPoint.m_normalOnSurfaceB, gjkPoint.m_closestPointInB, gjkPoint.m_distance);
+}
+
+// Bullet's optional multipoint: the shape with the smaller angular disc rotated slightly about axes
+// across the normal, iterations times around it; each rotated copy touches at another point of a flat
+// contact, reported back in the unrotated frame.
+void addPerturbedPoints(btGjkPairDetector& gjk, btVoronoiSimplexSolver& simplexSolver,
+                        const btDiscreteCollisionDetectorInterface::ClosestPointInput& input,
+                        const btConvexShape* shapeA, const btConvexShape* shapeB, btVector3 normal, int iterations,
+                        btIDebugDraw* debugDraw, btManifoldResult& resultOut)
+{
+	normal.safeNormalize();
+	btVector3 tangent0, tangent1;
+	btPlaneSpace1(normal, tangent0, tangent1);
+	const btScalar discA = shapeA->getAngularMotionDisc();
+	const btScalar discB = shapeB->getAngularMotionDisc();
+	const bool perturbA = discA < discB;
+	const btScalar disc = perturbA ? discA : discB;
+	const btScalar angleLimit = btScalar(0.125) * SIMD_PI;
+	btScalar tiltAngle = disc > SIMD_EPSILON ? gContactBreakingThreshold / disc : angleLimit;
+	if (tiltAngle > angleLimit) tiltAngle = angleLimit;
+	const btQuaternion tilt(tangent0, tiltAngle);
+	for (int i = 0; i < iterations; ++i)
+	{
+		const btQuaternion aroundNormal(normal, SIMD_2_PI * btScalar(i) / btScalar(iterations));
+		const btMatrix3x3 rotation(aroundNormal.inverse() * tilt * aroundNormal);
+		btDiscreteCollisionDetectorInterface::ClosestPointInput perturbed = input;
+		const btTransform& real = perturbA ? input.m_transformA : input.m_transformB;
+		btTransform& rotated = perturbA ? perturbed.m_transformA : perturbed.m_transformB;
+		rotated.setBasis(rotation * real.getBasis());
+		UnperturbingResult unperturbing(resultOut, real * rotated.inverse(), perturbA);
+		simplexSolver.reset();
+		gjk.getClosestPoints(perturbed, unperturbing, debugDraw);
+	}
+}
 }  // namespace
 
 btConvexConvexAlgorithm::CreateFunc::CreateFunc(btConvexPenetrationDepthSolver* pdSolver)
@@ -258,54 +381,15 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const btConvexShape* shapeB = static_cast<const btConvexShape*>(body1Wrap->getCollisionShape());
 	const btScalar reach = m_manifoldPtr->getContactBreakingThreshold() + resultOut->m_closestPointDistanceThreshold;
 
-	if (shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE && shapeB->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
-	{
-		// Two capsules in closed form (as Bullet does); crossing core segments go on to GJK/EPA below.
-		btVector3 normalOnB, pointOnB;
-		btScalar distance;
-		if (caliber::capsuleCapsuleContact(*static_cast<const btCapsuleShape*>(shapeA), body0Wrap->getWorldTransform(),
-		                                   *static_cast<const btCapsuleShape*>(shapeB), body1Wrap->getWorldTransform(),
-		                                   normalOnB, pointOnB, distance))
-		{
-			if (distance <= reach) resultOut->addContactPoint(normalOnB, pointOnB, distance);
-			if (m_ownManifold) resultOut->refreshContactPoints();
-			return;
-		}
-	}
-
-	// A box against a mesh triangle: the contact along the triangle's normal, in closed form before GJK,
-	// with the whole clipped face when the box is over the face (a box landing flat, or fast on
-	// speculative points, is held at its corners at once). GJK is spared for most triangles (beyond reach,
-	// or under the box) and left the edges and vertices. The mesh collector chooses among all triangles'
-	// points.
-	bool facePointsReported = false;
 	const bool againstTriangle = shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE;
 	const caliber::TriangleClipping clipping =
 	    againstTriangle ? caliber::triangleClippingOf(*shapeA) : caliber::kNoClipping;
-	if (clipping == caliber::kClipBeforeGjk)
+	bool facePointsReported = false;
+	if (contactWithoutGjk(shapeA, body0Wrap->getWorldTransform(), shapeB, body1Wrap->getWorldTransform(), clipping,
+	                      reach, *resultOut, facePointsReported))
 	{
-		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContact(
-		    *shapeA, body0Wrap->getWorldTransform(), *static_cast<const btTriangleShape*>(shapeB),
-		    body1Wrap->getWorldTransform(), reach, *resultOut);
-		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact)
-		{
-			if (m_ownManifold) resultOut->refreshContactPoints();
-			return;
-		}
-		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
-	}
-	// A capsule against a mesh triangle in closed form: both ends of a capsule lying on the face, and the
-	// edge's point when an edge is nearer (GJK gave one point per triangle, on which a capsule rolls).
-	if (shapeB->getShapeType() == TRIANGLE_SHAPE_PROXYTYPE && shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
-	{
-		const caliber::TriangleFaceOutcome outcome = caliber::capsuleTriangleContact(
-		    *static_cast<const btCapsuleShape*>(shapeA), body0Wrap->getWorldTransform(),
-		    *static_cast<const btTriangleShape*>(shapeB), body1Wrap->getWorldTransform(), reach, *resultOut);
-		if (outcome != caliber::kTriangleNeedsGjk)
-		{
-			if (m_ownManifold) resultOut->refreshContactPoints();
-			return;
-		}
+		if (m_ownManifold) resultOut->refreshContactPoints();
+		return;
 	}
 
 	btVoronoiSimplexSolver simplexSolver;
@@ -356,34 +440,9 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const btConvexPolyhedron* polyB = polyhedronOf(shapeB);
 	if (polyA && polyB && !facePointsReported)
 	{
-		bool haveAxis = false;
-		btVector3 separatingAxis(0, 0, 0);
-		if (dispatchInfo.m_enableSatConvex)
-		{
-			// SAT sees the margin-free polyhedra: cores that are apart while the margins touch fall
-			// through to GJK's axis below.
-			DiscardResult discard;
-			haveAxis = btPolyhedralContactClipping::findSeparatingAxis(*polyA, *polyB, input.m_transformA,
-			                                                           input.m_transformB, separatingAxis, discard);
-		}
-		if (!haveAxis && gjkPoint.found() && gjkPoint.m_distance <= reach)
-		{
-			const btScalar axisLength = gjkPoint.m_normalOnSurfaceB.length();
-			haveAxis = axisLength > SIMD_EPSILON;
-			if (haveAxis) separatingAxis = gjkPoint.m_normalOnSurfaceB / axisLength;
-		}
-		if (haveAxis)
-		{
-			if (m_ownManifold) caliber::dropStalePoints(m_manifoldPtr, body0Wrap, body1Wrap);
-			MarginRestoringResult clipped(*resultOut, clippingMargin(shapeA), clippingMargin(shapeB));
-			// The margins are added back after clipping, so clipping may keep points up to reach + margins.
-			btPolyhedralContactClipping::clipHullAgainstHull(
-			    separatingAxis, *polyA, *polyB, input.m_transformA, input.m_transformB, btScalar(-BT_LARGE_FLOAT),
-			    reach + clipped.m_marginA + clipped.m_marginB, worldVertsB1, worldVertsB2, clipped);
-			if (clipped.m_count == 0 && gjkPoint.found())
-				resultOut->addContactPoint(gjkPoint.m_normalOnSurfaceB, gjkPoint.m_closestPointInB,
-				                           gjkPoint.m_distance);
-		}
+		const PolyhedralPair pair = {shapeA, shapeB, polyA, polyB, &input, body0Wrap, body1Wrap};
+		clipPolyhedra(pair, gjkPoint, dispatchInfo, reach, m_ownManifold ? m_manifoldPtr : 0, worldVertsB1,
+		              worldVertsB2, *resultOut);
 		if (m_ownManifold) resultOut->refreshContactPoints();
 		return;
 	}
@@ -395,32 +454,8 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	// normal; each rotated copy touches at another point of a flat contact.
 	if (gjkPoint.found() && m_numPerturbationIterations > 0 &&
 	    m_manifoldPtr->getNumContacts() < m_minimumPointsPerturbationThreshold)
-	{
-		btVector3 normal = gjkPoint.m_normalOnSurfaceB;
-		normal.safeNormalize();
-		btVector3 tangent0, tangent1;
-		btPlaneSpace1(normal, tangent0, tangent1);
-		const btScalar discA = shapeA->getAngularMotionDisc();
-		const btScalar discB = shapeB->getAngularMotionDisc();
-		const bool perturbA = discA < discB;
-		const btScalar disc = perturbA ? discA : discB;
-		const btScalar angleLimit = btScalar(0.125) * SIMD_PI;
-		btScalar tiltAngle = disc > SIMD_EPSILON ? gContactBreakingThreshold / disc : angleLimit;
-		if (tiltAngle > angleLimit) tiltAngle = angleLimit;
-		const btQuaternion tilt(tangent0, tiltAngle);
-		for (int i = 0; i < m_numPerturbationIterations; ++i)
-		{
-			const btQuaternion aroundNormal(normal, SIMD_2_PI * btScalar(i) / btScalar(m_numPerturbationIterations));
-			const btMatrix3x3 rotation(aroundNormal.inverse() * tilt * aroundNormal);
-			btDiscreteCollisionDetectorInterface::ClosestPointInput perturbed = input;
-			const btTransform& real = perturbA ? input.m_transformA : input.m_transformB;
-			btTransform& rotated = perturbA ? perturbed.m_transformA : perturbed.m_transformB;
-			rotated.setBasis(rotation * real.getBasis());
-			UnperturbingResult unperturbing(*resultOut, real * rotated.inverse(), perturbA);
-			simplexSolver.reset();
-			gjk.getClosestPoints(perturbed, unperturbing, dispatchInfo.m_debugDraw);
-		}
-	}
+		addPerturbedPoints(gjk, simplexSolver, input, shapeA, shapeB, gjkPoint.m_normalOnSurfaceB,
+		                   m_numPerturbationIterations, dispatchInfo.m_debugDraw, *resultOut);
 
 	if (m_ownManifold) resultOut->refreshContactPoints();
 }

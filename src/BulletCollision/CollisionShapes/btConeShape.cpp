@@ -3,51 +3,66 @@
 
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 
-btConeShape::btConeShape(btScalar radius, btScalar height)
-    : m_sinAngle(0), m_radius(0), m_height(0), m_unscaledRadius(0), m_unscaledHeight(0)
+namespace
+{
+// The scaled radius, height and sine of the half angle from the unscaled sizes, which the cone keeps
+// in m_implicitShapeDimensions as Bullet does (the radius on the two radial axes, the height on the up
+// axis): rescaling from them never accumulates rounding or loses a size to a zero scale.
+void scaledConeSizes(const btVector3& unscaled, const btVector3& scaling, const int* coneIndices, btScalar& radius,
+                     btScalar& height, btScalar& sinAngle)
+{
+	const int up = coneIndices[1];
+	const btScalar radialScale = btScalar(0.5) * (scaling[coneIndices[0]] + scaling[coneIndices[2]]);
+	radius = unscaled[coneIndices[0]] * radialScale;
+	height = unscaled[up] * scaling[up];
+	const btScalar slant = btSqrt(radius * radius + height * height);
+	sinAngle = slant > btScalar(0) ? radius / slant : btScalar(0);
+}
+
+btVector3 unscaledConeDimensions(btScalar radius, btScalar height, int up)
+{
+	btVector3 dimensions(radius, radius, radius);
+	dimensions[up] = height;
+	return dimensions;
+}
+}  // namespace
+
+btConeShape::btConeShape(btScalar radius, btScalar height) : m_sinAngle(0), m_radius(0), m_height(0)
 {
 	m_shapeType = CONE_SHAPE_PROXYTYPE;
 	m_coneIndices[0] = 0;
 	m_coneIndices[1] = 1;
 	m_coneIndices[2] = 2;
-	m_unscaledRadius = caliber::checkSize(radius);
-	m_unscaledHeight = caliber::checkSize(height);
-	updateDerived();
-}
-
-void btConeShape::updateDerived()
-{
-	const int up = m_coneIndices[1];
-	const btScalar radialScale = btScalar(0.5) * (m_localScaling[m_coneIndices[0]] + m_localScaling[m_coneIndices[2]]);
-	m_radius = m_unscaledRadius * radialScale;
-	m_height = m_unscaledHeight * m_localScaling[up];
-	const btScalar slant = btSqrt(m_radius * m_radius + m_height * m_height);
-	m_sinAngle = slant > btScalar(0) ? m_radius / slant : btScalar(0);
-	m_implicitShapeDimensions.setValue(m_radius, m_radius, m_radius);
-	m_implicitShapeDimensions[up] = m_height;
+	m_implicitShapeDimensions = unscaledConeDimensions(caliber::checkSize(radius), caliber::checkSize(height), 1);
+	scaledConeSizes(m_implicitShapeDimensions, m_localScaling, m_coneIndices, m_radius, m_height, m_sinAngle);
 }
 
 void btConeShape::setRadius(btScalar radius)
 {
 	const btScalar r = caliber::checkSize(radius);
 	const btScalar radialScale = btScalar(0.5) * (m_localScaling[m_coneIndices[0]] + m_localScaling[m_coneIndices[2]]);
-	m_unscaledRadius = radialScale > btScalar(0) ? r / radialScale : r;
-	updateDerived();
+	const btScalar unscaledRadius = radialScale > btScalar(0) ? r / radialScale : r;
+	m_implicitShapeDimensions =
+	    unscaledConeDimensions(unscaledRadius, m_implicitShapeDimensions[m_coneIndices[1]], m_coneIndices[1]);
+	scaledConeSizes(m_implicitShapeDimensions, m_localScaling, m_coneIndices, m_radius, m_height, m_sinAngle);
 	m_radius = r;  // exactly what was asked for, even where scaling rounds
 }
 
 void btConeShape::setHeight(btScalar height)
 {
 	const btScalar h = caliber::checkSize(height);
-	const btScalar axialScale = m_localScaling[m_coneIndices[1]];
-	m_unscaledHeight = axialScale > btScalar(0) ? h / axialScale : h;
-	updateDerived();
+	const int up = m_coneIndices[1];
+	const btScalar axialScale = m_localScaling[up];
+	m_implicitShapeDimensions[up] = axialScale > btScalar(0) ? h / axialScale : h;
+	scaledConeSizes(m_implicitShapeDimensions, m_localScaling, m_coneIndices, m_radius, m_height, m_sinAngle);
 	m_height = h;
 }
 
 void btConeShape::setConeUpIndex(int upIndex)
 {
 	btAssert(upIndex >= 0 && upIndex <= 2);
+	const btScalar oldUnscaledRadius = m_implicitShapeDimensions[m_coneIndices[0]];
+	const btScalar oldUnscaledHeight = m_implicitShapeDimensions[m_coneIndices[1]];
 	switch (upIndex)
 	{
 		case 0:
@@ -68,13 +83,15 @@ void btConeShape::setConeUpIndex(int upIndex)
 		default:
 			return;
 	}
-	updateDerived();
+	// The sizes follow the axis: the radius moves to the new radial axes, the height to the new up axis.
+	m_implicitShapeDimensions = unscaledConeDimensions(oldUnscaledRadius, oldUnscaledHeight, m_coneIndices[1]);
+	scaledConeSizes(m_implicitShapeDimensions, m_localScaling, m_coneIndices, m_radius, m_height, m_sinAngle);
 }
 
 void btConeShape::setLocalScaling(const btVector3& scaling)
 {
 	btConvexInternalShape::setLocalScaling(scaling);
-	updateDerived();
+	scaledConeSizes(m_implicitShapeDimensions, m_localScaling, m_coneIndices, m_radius, m_height, m_sinAngle);
 }
 
 btVector3 btConeShape::localGetSupportingVertexWithoutMargin(const btVector3& vec) const

@@ -2,9 +2,12 @@
 #include "BulletCollision/CollisionShapes/btOptimizedBvh.h"
 
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhInPlace.h"
 #include "BulletCollision/CollisionShapes/btStridingMeshInterface.h"
 #include "LinearMath/btAabbUtil2.h"
 #include "btMeshTriangleAccess.h"
+
+#include <new>
 
 namespace
 {
@@ -31,6 +34,27 @@ bool readLeafBox(caliber::ReadOnlyMeshPart& part, const btStridingMeshInterface&
 btOptimizedBvh::btOptimizedBvh() {}
 
 btOptimizedBvh::~btOptimizedBvh() {}
+
+// The in-place block's object region is sized for btQuantizedBvh; a btOptimizedBvh is built there too.
+static_assert(sizeof(btOptimizedBvh) <= caliber::kInPlaceBvhObjectBytes, "in-place object region too small");
+
+bool btOptimizedBvh::serializeInPlace(void* o_alignedDataBuffer, unsigned i_dataBufferSize, bool i_swapEndian) const
+{
+	return btQuantizedBvh::serialize(o_alignedDataBuffer, i_dataBufferSize, i_swapEndian);
+}
+
+btOptimizedBvh* btOptimizedBvh::deSerializeInPlace(void* i_alignedDataBuffer, unsigned int i_dataBufferSize,
+                                                   bool i_swapEndian)
+{
+	if (const char* problem = caliber::prepareInPlaceBvh(i_alignedDataBuffer, i_dataBufferSize, i_swapEndian))
+	{
+		caliber::warnInPlaceBvh("btOptimizedBvh::deSerializeInPlace", problem);
+		return 0;
+	}
+	btOptimizedBvh* bvh = new (i_alignedDataBuffer) btOptimizedBvh();
+	caliber::adoptInPlaceBvh(*bvh, i_alignedDataBuffer);
+	return bvh;
+}
 
 namespace
 {

@@ -92,7 +92,7 @@ const char* btConeShape::serialize(void* dataBuffer, btSerializer* serializer) c
 	// the up axis (local scaling is stored beside them).
 	const int up = getConeUpIndex();
 	float dims[3];
-	for (int i = 0; i < 3; ++i) dims[i] = float(i == up ? m_unscaledHeight : m_unscaledRadius);
+	for (int i = 0; i < 3; ++i) dims[i] = float(m_implicitShapeDimensions[i]);
 	for (int i = 0; i < 3; ++i) shapeData->m_convexInternalShapeData.m_implicitShapeDimensions.m_floats[i] = dims[i];
 	shapeData->m_convexInternalShapeData.m_implicitShapeDimensions.m_floats[3] = 0.f;
 	shapeData->m_upIndex = up;

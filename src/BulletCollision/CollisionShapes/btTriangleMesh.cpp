@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "LinearMath/btSideTable.h"
 #include "btShapeGuards.h"
 
 namespace
@@ -16,14 +17,105 @@ long long weldCell(btScalar value, btScalar cellSize)
 	if (c < -limit) c = -limit;
 	return (long long)c;
 }
+
+// A mesh's welding lookup: a hash grid over its vertices (cell size cellSize), built on the first
+// welding addTriangle so that meshes that never weld pay nothing. Buckets hold chains through next.
+// It lives in a side table keyed by the mesh (Bullet's class has no place for it), looked up once
+// per welded vertex; the mesh's destructor drops it.
+struct WeldGrid
+{
+	btAlignedObjectArray<int> bucketHeads;
+	btAlignedObjectArray<int> next;
+	btScalar cellSize = 0;
+	int hashedCount = 0;
+
+	unsigned bucket(long long cx, long long cy, long long cz) const
+	{
+		unsigned long long h = (unsigned long long)cx * 0x9E3779B97F4A7C15ull;
+		h ^= (unsigned long long)cy * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+		h ^= (unsigned long long)cz * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+		h ^= h >> 29;
+		return unsigned(h) & unsigned(bucketHeads.size() - 1);
+	}
+};
+
+void forgetWeldGrid(const btTriangleMesh* mesh) { caliber::sideTable<WeldGrid>().release(mesh); }
+
+// Vertex i of the mesh's only subpart, whichever layout it is stored in.
+btVector3 subpartVertex(const btIndexedMesh& mesh, int i)
+{
+	const btScalar* v = reinterpret_cast<const btScalar*>(mesh.m_vertexBase + size_t(i) * size_t(mesh.m_vertexStride));
+	return btVector3(v[0], v[1], v[2]);
+}
+
+void insertIntoWeldGrid(WeldGrid& grid, const btIndexedMesh& mesh, int vertexIndex)
+{
+	const btVector3 v = subpartVertex(mesh, vertexIndex);
+	if (grid.next.size() <= vertexIndex) grid.next.resize(vertexIndex + 1, -1);
+	if (!caliber::isFinite(v))
+	{
+		grid.next[vertexIndex] = -1;
+		return;
+	}
+	const unsigned b =
+	    grid.bucket(weldCell(v.x(), grid.cellSize), weldCell(v.y(), grid.cellSize), weldCell(v.z(), grid.cellSize));
+	grid.next[vertexIndex] = grid.bucketHeads[b];
+	grid.bucketHeads[b] = vertexIndex;
+}
+
+// Brings the grid up to date with the mesh's vertices, rebuilt when the cell size changes or the
+// buckets run short.
+void updateWeldGrid(WeldGrid& grid, const btIndexedMesh& mesh, btScalar cellSize)
+{
+	const int numVertices = mesh.m_numVertices;
+	int buckets = grid.bucketHeads.size();
+	const bool rebuild = cellSize != grid.cellSize || buckets < 2 * (numVertices + 1);
+	if (rebuild)
+	{
+		buckets = 64;
+		while (buckets < 4 * (numVertices + 1)) buckets *= 2;
+		grid.bucketHeads.resize(0);
+		grid.bucketHeads.resize(buckets, -1);
+		grid.next.resize(0);
+		grid.cellSize = cellSize;
+		grid.hashedCount = 0;
+	}
+	// Doubling capacity keeps one-vertex-at-a-time growth linear overall.
+	if (grid.next.capacity() < numVertices) grid.next.reserve(2 * numVertices);
+	if (grid.next.size() < numVertices) grid.next.resize(numVertices, -1);
+	for (; grid.hashedCount < numVertices; ++grid.hashedCount) insertIntoWeldGrid(grid, mesh, grid.hashedCount);
+}
+
+// Points the subpart at the arrays, which may have moved on any append.
+void pointSubpartAtArrays(btIndexedMesh& mesh, bool use4componentVertices, bool use32bitIndices,
+                          const btAlignedObjectArray<btVector3>& vertices4,
+                          const btAlignedObjectArray<btScalar>& vertices3,
+                          const btAlignedObjectArray<unsigned int>& indices32,
+                          const btAlignedObjectArray<unsigned short int>& indices16)
+{
+	if (use4componentVertices)
+	{
+		mesh.m_numVertices = vertices4.size();
+		mesh.m_vertexBase = vertices4.size() ? reinterpret_cast<const unsigned char*>(&vertices4[0]) : 0;
+	}
+	else
+	{
+		mesh.m_numVertices = vertices3.size() / 3;
+		mesh.m_vertexBase = vertices3.size() ? reinterpret_cast<const unsigned char*>(&vertices3[0]) : 0;
+	}
+	if (use32bitIndices)
+		mesh.m_triangleIndexBase = indices32.size() ? reinterpret_cast<const unsigned char*>(&indices32[0]) : 0;
+	else
+		mesh.m_triangleIndexBase = indices16.size() ? reinterpret_cast<const unsigned char*>(&indices16[0]) : 0;
+}
 }  // namespace
 
+#define CALIBER_SYNC_SUBPART()                                                                                 \
+	pointSubpartAtArrays(m_indexedMeshes[0], m_use4componentVertices, m_use32bitIndices, m_4componentVertices, \
+	                     m_3componentVertices, m_32bitIndices, m_16bitIndices)
+
 btTriangleMesh::btTriangleMesh(bool use32bitIndices, bool use4componentVertices)
-    : m_use32bitIndices(use32bitIndices),
-      m_use4componentVertices(use4componentVertices),
-      m_weldCellSize(0),
-      m_weldHashedCount(0),
-      m_weldingThreshold(0)
+    : m_use32bitIndices(use32bitIndices), m_use4componentVertices(use4componentVertices), m_weldingThreshold(0)
 {
 	btIndexedMesh mesh;
 	mesh.m_indexType = use32bitIndices ? PHY_INTEGER : PHY_SHORT;
@@ -40,11 +132,9 @@ btTriangleMesh::btTriangleMesh(const btTriangleMesh& other)
       m_16bitIndices(other.m_16bitIndices),
       m_use32bitIndices(other.m_use32bitIndices),
       m_use4componentVertices(other.m_use4componentVertices),
-      m_weldCellSize(0),
-      m_weldHashedCount(0),
       m_weldingThreshold(other.m_weldingThreshold)
 {
-	syncIndexedMesh();
+	CALIBER_SYNC_SUBPART();
 }
 
 btTriangleMesh& btTriangleMesh::operator=(const btTriangleMesh& other)
@@ -58,89 +148,13 @@ btTriangleMesh& btTriangleMesh::operator=(const btTriangleMesh& other)
 	m_use32bitIndices = other.m_use32bitIndices;
 	m_use4componentVertices = other.m_use4componentVertices;
 	m_weldingThreshold = other.m_weldingThreshold;
-	// The welding hash is rebuilt on the next welding lookup.
-	m_weldBucketHeads.resize(0);
-	m_weldNext.resize(0);
-	m_weldCellSize = 0;
-	m_weldHashedCount = 0;
-	syncIndexedMesh();
+	// The welding grid is rebuilt on the next welding lookup.
+	forgetWeldGrid(this);
+	CALIBER_SYNC_SUBPART();
 	return *this;
 }
 
-void btTriangleMesh::syncIndexedMesh()
-{
-	// Arrays may reallocate on every append, so the subpart's pointers are refreshed each time.
-	btIndexedMesh& mesh = m_indexedMeshes[0];
-	if (m_use4componentVertices)
-	{
-		mesh.m_numVertices = m_4componentVertices.size();
-		mesh.m_vertexBase =
-		    m_4componentVertices.size() ? reinterpret_cast<const unsigned char*>(&m_4componentVertices[0]) : 0;
-	}
-	else
-	{
-		mesh.m_numVertices = m_3componentVertices.size() / 3;
-		mesh.m_vertexBase =
-		    m_3componentVertices.size() ? reinterpret_cast<const unsigned char*>(&m_3componentVertices[0]) : 0;
-	}
-	if (m_use32bitIndices)
-		mesh.m_triangleIndexBase =
-		    m_32bitIndices.size() ? reinterpret_cast<const unsigned char*>(&m_32bitIndices[0]) : 0;
-	else
-		mesh.m_triangleIndexBase =
-		    m_16bitIndices.size() ? reinterpret_cast<const unsigned char*>(&m_16bitIndices[0]) : 0;
-}
-
-btVector3 btTriangleMesh::storedVertex(int i) const
-{
-	if (m_use4componentVertices) return m_4componentVertices[i];
-	return btVector3(m_3componentVertices[3 * i], m_3componentVertices[3 * i + 1], m_3componentVertices[3 * i + 2]);
-}
-
-unsigned btTriangleMesh::weldBucket(long long cx, long long cy, long long cz) const
-{
-	unsigned long long h = (unsigned long long)cx * 0x9E3779B97F4A7C15ull;
-	h ^= (unsigned long long)cy * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-	h ^= (unsigned long long)cz * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-	h ^= h >> 29;
-	return unsigned(h) & unsigned(m_weldBucketHeads.size() - 1);
-}
-
-void btTriangleMesh::insertIntoWeldHash(int vertexIndex)
-{
-	const btVector3 v = storedVertex(vertexIndex);
-	if (m_weldNext.size() <= vertexIndex) m_weldNext.resize(vertexIndex + 1, -1);
-	if (!caliber::isFinite(v))
-	{
-		m_weldNext[vertexIndex] = -1;
-		return;
-	}
-	const unsigned b =
-	    weldBucket(weldCell(v.x(), m_weldCellSize), weldCell(v.y(), m_weldCellSize), weldCell(v.z(), m_weldCellSize));
-	m_weldNext[vertexIndex] = m_weldBucketHeads[b];
-	m_weldBucketHeads[b] = vertexIndex;
-}
-
-void btTriangleMesh::updateWeldHash(btScalar cellSize)
-{
-	const int numVertices = m_indexedMeshes[0].m_numVertices;
-	int buckets = m_weldBucketHeads.size();
-	const bool rebuild = cellSize != m_weldCellSize || buckets < 2 * (numVertices + 1);
-	if (rebuild)
-	{
-		buckets = 64;
-		while (buckets < 4 * (numVertices + 1)) buckets *= 2;
-		m_weldBucketHeads.resize(0);
-		m_weldBucketHeads.resize(buckets, -1);
-		m_weldNext.resize(0);
-		m_weldCellSize = cellSize;
-		m_weldHashedCount = 0;
-	}
-	// Doubling capacity keeps one-vertex-at-a-time growth linear overall.
-	if (m_weldNext.capacity() < numVertices) m_weldNext.reserve(2 * numVertices);
-	if (m_weldNext.size() < numVertices) m_weldNext.resize(numVertices, -1);
-	for (; m_weldHashedCount < numVertices; ++m_weldHashedCount) insertIntoWeldHash(m_weldHashedCount);
-}
+btTriangleMesh::~btTriangleMesh() { forgetWeldGrid(this); }
 
 int btTriangleMesh::findOrAddVertex(const btVector3& vertex, bool removeDuplicateVertices)
 {
@@ -148,11 +162,13 @@ int btTriangleMesh::findOrAddVertex(const btVector3& vertex, bool removeDuplicat
 	{
 		const btScalar threshold =
 		    (m_weldingThreshold > btScalar(0) && btIsFinite(m_weldingThreshold)) ? m_weldingThreshold : btScalar(0);
+		const btIndexedMesh& mesh = m_indexedMeshes[0];
+		WeldGrid& grid = caliber::sideTable<WeldGrid>().acquire(this);
 		// With threshold 0 only exact copies match, and they share a cell of any size.
-		updateWeldHash(threshold > btScalar(0) ? threshold : btScalar(1));
-		const long long cx = weldCell(vertex.x(), m_weldCellSize);
-		const long long cy = weldCell(vertex.y(), m_weldCellSize);
-		const long long cz = weldCell(vertex.z(), m_weldCellSize);
+		updateWeldGrid(grid, mesh, threshold > btScalar(0) ? threshold : btScalar(1));
+		const long long cx = weldCell(vertex.x(), grid.cellSize);
+		const long long cy = weldCell(vertex.y(), grid.cellSize);
+		const long long cz = weldCell(vertex.z(), grid.cellSize);
 		const int reach = threshold > btScalar(0) ? 1 : 0;
 		const btScalar threshold2 = threshold * threshold;
 		int best = -1;
@@ -160,9 +176,10 @@ int btTriangleMesh::findOrAddVertex(const btVector3& vertex, bool removeDuplicat
 			for (int dy = -reach; dy <= reach; ++dy)
 				for (int dz = -reach; dz <= reach; ++dz)
 				{
-					for (int i = m_weldBucketHeads[weldBucket(cx + dx, cy + dy, cz + dz)]; i >= 0; i = m_weldNext[i])
+					for (int i = grid.bucketHeads[grid.bucket(cx + dx, cy + dy, cz + dz)]; i >= 0; i = grid.next[i])
 					{
-						if ((best < 0 || i < best) && (storedVertex(i) - vertex).length2() <= threshold2) best = i;
+						if ((best < 0 || i < best) && (subpartVertex(mesh, i) - vertex).length2() <= threshold2)
+							best = i;
 					}
 				}
 		if (best >= 0) return best;
@@ -178,7 +195,7 @@ int btTriangleMesh::findOrAddVertex(const btVector3& vertex, bool removeDuplicat
 		m_3componentVertices.push_back(vertex.y());
 		m_3componentVertices.push_back(vertex.z());
 	}
-	syncIndexedMesh();
+	CALIBER_SYNC_SUBPART();
 	return m_indexedMeshes[0].m_numVertices - 1;
 }
 
@@ -195,7 +212,7 @@ void btTriangleMesh::addIndex(int index)
 		btAssert(fits && "btTriangleMesh::addIndex: index does not fit 16 bits");
 		m_16bitIndices.push_back(fits ? (unsigned short)index : (unsigned short)0xFFFF);
 	}
-	syncIndexedMesh();
+	CALIBER_SYNC_SUBPART();
 }
 
 void btTriangleMesh::addTriangleIndices(int index1, int index2, int index3)
@@ -241,3 +258,5 @@ void btTriangleMesh::preallocateIndices(int numindices)
 	else
 		m_16bitIndices.reserve(m_16bitIndices.size() + numindices);
 }
+
+#undef CALIBER_SYNC_SUBPART

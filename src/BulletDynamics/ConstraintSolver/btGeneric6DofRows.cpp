@@ -230,6 +230,8 @@ const LockedBlock& lockedBlockOf(const btGeneric6DofConstraint* joint)
 }
 }  // namespace
 
+void forgetSixDofLockedBlock() { t_lockedBlock.joint = 0; }
+
 btScalar sixDofCoordinateInverseMass(const btGeneric6DofConstraint& joint, int coordinate)
 {
 	RowJacobian j;

@@ -42,6 +42,10 @@ void writeSixDofCoordinateRow(const btGeneric6DofConstraint& joint, btTypedConst
 /// writeSixDofLimitMotorRows found them earlier in the same getInfo2): the inverse of the coordinate's
 /// effective mass (0 if nothing can move it).
 btScalar sixDofCoordinateInverseMass(const btGeneric6DofConstraint& joint, int coordinate);
+/// Forgets this thread's block of locked rows, so that the coordinate functions above see no locked
+/// coordinates held until the next writeSixDofLimitMotorRows (for callers outside a getInfo2, where the
+/// block on the thread may be another joint's, even one that died at the same address).
+void forgetSixDofLockedBlock();
 }  // namespace caliber
 
 #endif  // CALIBER_GENERIC_6DOF_ROWS_H

@@ -293,11 +293,7 @@ void btGeneric6DofSpring2Constraint::calculateTransforms(const btTransform& tran
 		m_calculatedAxis[n].safeNormalize();
 	}
 
-	testLimits();
-}
-
-void btGeneric6DofSpring2Constraint::testLimits()
-{
+	// Every coordinate's current position and limit state.
 	for (int i = 0; i < 3; ++i)
 	{
 		m_linearLimits.m_currentLinearDiff[i] = m_calculatedLinearDiff[i];
@@ -335,13 +331,6 @@ void btGeneric6DofSpring2Constraint::getInfo1(btConstraintInfo1* info)
 	}
 	info->m_numConstraintRows = rows;
 	info->nub = locked;
-}
-
-void btGeneric6DofSpring2Constraint::getInfo2(btConstraintInfo2* info)
-{
-	// Measured again (getInfo1 did so for the same poses): getInfo2 must stand on its own.
-	calculateTransforms();
-	writeRows(info);
 }
 
 namespace
@@ -511,8 +500,11 @@ void writeSpringRows(RowWriter& w)
 }
 }  // namespace
 
-int btGeneric6DofSpring2Constraint::writeRows(btConstraintInfo2* info)
+void btGeneric6DofSpring2Constraint::getInfo2(btConstraintInfo2* info)
 {
+	// Measured again (getInfo1 did so for the same poses): getInfo2 must stand on its own.
+	calculateTransforms();
+
 	// Each coordinate's Jacobian, written so that J v is the coordinate's rate.
 	CoordinateRow jacobian[6];
 	const btVector3 pivotB = m_calculatedTransformB.getOrigin();
@@ -594,7 +586,6 @@ int btGeneric6DofSpring2Constraint::writeRows(btConstraintInfo2* info)
 	writeLimitRows(writer);
 	writeMotorRows(writer);
 	writeSpringRows(writer);
-	return writer.next;
 }
 
 // ---- settings -----------------------------------------------------------------------------------

@@ -148,6 +148,32 @@ bool hasSpringRow(const btGeneric6DofConstraint& joint, const SpringSettings& sp
 	       (springs.stiffness[index] > btScalar(0) || springs.damping[index] > btScalar(0));
 }
 
+// The impulse coordinate index's spring applies this step (the rule at the top of this file), with
+// the coordinate's rate before it and its effective inverse mass.
+struct SpringImpulse
+{
+	btScalar impulse;
+	btScalar rate;
+	btScalar inverseMass;
+};
+
+SpringImpulse springImpulse(const btGeneric6DofConstraint& joint, const SpringSettings& springs, int i, btScalar h,
+                            const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+                            const btVector3& angVelB)
+{
+	const btScalar k = springs.stiffness[i], d = springs.damping[i];
+	btScalar stretch = caliber::sixDofCoordinate(joint, i) - springs.equilibrium[i];
+	if (i >= 3) stretch = btNormalizeAngle(stretch);
+	SpringImpulse out;
+	out.rate = caliber::sixDofCoordinateVelocity(joint, i, linVelA, linVelB, angVelA, angVelB);
+	out.inverseMass = caliber::sixDofCoordinateInverseMass(joint, i);
+	const btScalar omegaH2 = h * h * k * out.inverseMass;
+	const btScalar theta = omegaH2 <= btScalar(2) ? btScalar(0) : btScalar(0.5) * (1 - btScalar(2) / omegaH2);
+	const btScalar implicitRate = theta * h * k + d;  // force per unit of the step's new rate
+	out.impulse = -h * (k * stretch + implicitRate * out.rate) / (1 + h * implicitRate * out.inverseMass);
+	return out;
+}
+
 // Writes the spring rows from row on; returns how many.
 int writeSpringRows(const btGeneric6DofConstraint& joint, const SpringSettings& springs,
                     btTypedConstraint::btConstraintInfo2* info, int row, const btVector3& linVelA,
@@ -158,15 +184,7 @@ int writeSpringRows(const btGeneric6DofConstraint& joint, const SpringSettings& 
 	for (int i = 0; i < 6; ++i)
 	{
 		if (!hasSpringRow(joint, springs, i)) continue;
-		const btScalar k = springs.stiffness[i], d = springs.damping[i];
-		btScalar stretch = caliber::sixDofCoordinate(joint, i) - springs.equilibrium[i];
-		if (i >= 3) stretch = btNormalizeAngle(stretch);
-		const btScalar rate = caliber::sixDofCoordinateVelocity(joint, i, linVelA, linVelB, angVelA, angVelB);
-		const btScalar inverseMass = caliber::sixDofCoordinateInverseMass(joint, i);
-		const btScalar omegaH2 = h * h * k * inverseMass;
-		const btScalar theta = omegaH2 <= btScalar(2) ? btScalar(0) : btScalar(0.5) * (1 - btScalar(2) / omegaH2);
-		const btScalar implicitRate = theta * h * k + d;  // force per unit of the step's new rate
-		const btScalar impulse = -h * (k * stretch + implicitRate * rate) / (1 + h * implicitRate * inverseMass);
+		const btScalar impulse = springImpulse(joint, springs, i, h, linVelA, linVelB, angVelA, angVelB).impulse;
 		caliber::writeSixDofCoordinateRow(joint, info, row, i, btScalar(0));
 		caliber::JointRow jointRow(*info, row);
 		jointRow.lower() = impulse;
@@ -192,4 +210,38 @@ void btGeneric6DofSpringConstraint::getInfo2(btConstraintInfo2* info)
 	const int row = caliber::writeSixDofLimitMotorRows(*this, info, linVelA, linVelB, angVelA, angVelB);
 	const SpringSettings springs = {m_springEnabled, m_equilibriumPoint, m_springStiffness, m_springDamping};
 	writeSpringRows(*this, springs, info, row, linVelA, linVelB, angVelA, angVelB);
+}
+
+void btGeneric6DofSpringConstraint::internalUpdateSprings(btConstraintInfo2* info)
+{
+	btAssert(info && info->fps > btScalar(0) && "btGeneric6DofSpringConstraint::internalUpdateSprings: no step");
+	if (!info || !(info->fps > btScalar(0)) || !btIsFinite(info->fps)) return;
+	const btVector3 linVelA = m_rbA.getLinearVelocity(), linVelB = m_rbB.getLinearVelocity();
+	const btVector3 angVelA = m_rbA.getAngularVelocity(), angVelB = m_rbB.getAngularVelocity();
+	calculateTransforms(m_rbA.getCenterOfMassTransform(), m_rbB.getCenterOfMassTransform());
+	// Called before this joint's rows exist: the coordinates' own effective masses, no locked ones held.
+	caliber::forgetSixDofLockedBlock();
+	const SpringSettings springs = {m_springEnabled, m_equilibriumPoint, m_springStiffness, m_springDamping};
+	const btScalar h = btScalar(1) / info->fps;
+	for (int i = 0; i < 6; ++i)
+	{
+		if (!hasSpringRow(*this, springs, i)) continue;
+		// A motor that reaches the rate the spring's impulse gives, with exactly that impulse as its
+		// bound, is the spring row written as a motor row.
+		const SpringImpulse s = springImpulse(*this, springs, i, h, linVelA, linVelB, angVelA, angVelB);
+		const btScalar targetRate = s.rate + s.inverseMass * s.impulse;
+		const btScalar maxForce = btFabs(s.impulse) * info->fps;
+		if (i < 3)
+		{
+			m_linearLimits.m_enableMotor[i] = true;
+			m_linearLimits.m_targetVelocity[i] = targetRate;
+			m_linearLimits.m_maxMotorForce[i] = maxForce;
+		}
+		else
+		{
+			m_angularLimits[i - 3].m_enableMotor = true;
+			m_angularLimits[i - 3].m_targetVelocity = targetRate;
+			m_angularLimits[i - 3].m_maxMotorForce = maxForce;
+		}
+	}
 }

@@ -55,7 +55,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
                                      bool useReferenceFrameA)
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA, rbB)
 {
-	initDefaults(useReferenceFrameA);
+	setUseReferenceFrameA(useReferenceFrameA);
 	setFramesFromPivotsAndAxes(*this, pivotInA, pivotInB, axisInA, axisInB);
 }
 
@@ -63,7 +63,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btVector3& pivotInA
                                      bool useReferenceFrameA)
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA)
 {
-	initDefaults(useReferenceFrameA);
+	setUseReferenceFrameA(useReferenceFrameA);
 	// The world (the fixed body, at the identity) holds the pivot and axis where they are now.
 	const btTransform& a = rbA.getCenterOfMassTransform();
 	setFramesFromPivotsAndAxes(*this, pivotInA, a(pivotInA), axisInA, a.getBasis() * axisInA);
@@ -73,7 +73,7 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, btRigidBody& rbB, const b
                                      const btTransform& rbBFrame, bool useReferenceFrameA)
     : btTypedConstraint(HINGE_CONSTRAINT_TYPE, rbA, rbB), m_rbAFrame(rbAFrame), m_rbBFrame(rbBFrame)
 {
-	initDefaults(useReferenceFrameA);
+	setUseReferenceFrameA(useReferenceFrameA);
 	if (!usableAxis(rbAFrame.getBasis().getColumn(2)) || !usableAxis(rbBFrame.getBasis().getColumn(2)))
 		rejectAxis(*this);
 }
@@ -83,19 +83,8 @@ btHingeConstraint::btHingeConstraint(btRigidBody& rbA, const btTransform& rbAFra
       m_rbAFrame(rbAFrame),
       m_rbBFrame(rbA.getCenterOfMassTransform() * rbAFrame)
 {
-	initDefaults(useReferenceFrameA);
-	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis(*this);
-}
-
-void btHingeConstraint::initDefaults(bool useReferenceFrameA)
-{
-	m_motorTargetVelocity = m_maxMotorImpulse = m_hingeAngle = 0;
-	m_angularOnly = m_enableAngularMotor = m_useOffsetForConstraintFrame = false;
-	m_flags = 0;
-	m_limitRowNeeded = false;
-	m_lastTimeStep = btScalar(1) / btScalar(60);
-	m_normalCFM = m_normalERP = m_stopCFM = m_stopERP = 0;
 	setUseReferenceFrameA(useReferenceFrameA);
+	if (!usableAxis(rbAFrame.getBasis().getColumn(2))) rejectAxis(*this);
 }
 
 void btHingeConstraint::setFrames(const btTransform& frameA, const btTransform& frameB)

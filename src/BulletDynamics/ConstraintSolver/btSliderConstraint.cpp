@@ -539,71 +539,79 @@ void btSliderConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTra
 	BlockDecoupler(m_rbA, m_rbB).apply(*info, blockRows, layout.rows);
 }
 
-bool btSliderConstraint::paramSlot(int num, int axis, btScalar btSliderConstraint::*& member, int& flag)
+namespace
 {
-	if (axis < -1 || axis > 5) return false;
-	const bool across = axis == 1 || axis == 2 || axis == 4 || axis == 5;
-	const bool angular = axis >= 3;
-	switch (num)
+// The member and flag that setParam / getParam address for (num, axis); false if there is none. The
+// protected members are named through a class derived from the slider (it is never built).
+struct SliderParamSlots : btSliderConstraint
+{
+	static bool find(int num, int axis, btScalar btSliderConstraint::*& member, int& flag)
 	{
-		case BT_CONSTRAINT_STOP_ERP:
-			if (across)
-			{
-				member = angular ? &btSliderConstraint::m_softnessOrthoAng : &btSliderConstraint::m_softnessOrthoLin;
-				flag = angular ? BT_SLIDER_FLAGS_ERP_ORTANG : BT_SLIDER_FLAGS_ERP_ORTLIN;
-			}
-			else
-			{
-				member = angular ? &btSliderConstraint::m_softnessLimAng : &btSliderConstraint::m_softnessLimLin;
-				flag = angular ? BT_SLIDER_FLAGS_ERP_LIMANG : BT_SLIDER_FLAGS_ERP_LIMLIN;
-			}
-			return true;
-		case BT_CONSTRAINT_ERP:
-			if (across)
-			{
-				member = angular ? &btSliderConstraint::m_softnessOrthoAng : &btSliderConstraint::m_softnessOrthoLin;
-				flag = angular ? BT_SLIDER_FLAGS_ERP_ORTANG : BT_SLIDER_FLAGS_ERP_ORTLIN;
-			}
-			else
-			{
-				member = angular ? &btSliderConstraint::m_softnessDirAng : &btSliderConstraint::m_softnessDirLin;
-				flag = angular ? BT_SLIDER_FLAGS_ERP_DIRANG : BT_SLIDER_FLAGS_ERP_DIRLIN;
-			}
-			return true;
-		case BT_CONSTRAINT_STOP_CFM:
-			if (across)
-			{
-				member = angular ? &btSliderConstraint::m_cfmOrthoAng : &btSliderConstraint::m_cfmOrthoLin;
-				flag = angular ? BT_SLIDER_FLAGS_CFM_ORTANG : BT_SLIDER_FLAGS_CFM_ORTLIN;
-			}
-			else
-			{
-				member = angular ? &btSliderConstraint::m_cfmLimAng : &btSliderConstraint::m_cfmLimLin;
-				flag = angular ? BT_SLIDER_FLAGS_CFM_LIMANG : BT_SLIDER_FLAGS_CFM_LIMLIN;
-			}
-			return true;
-		case BT_CONSTRAINT_CFM:
-			if (across)
-			{
-				member = angular ? &btSliderConstraint::m_cfmOrthoAng : &btSliderConstraint::m_cfmOrthoLin;
-				flag = angular ? BT_SLIDER_FLAGS_CFM_ORTANG : BT_SLIDER_FLAGS_CFM_ORTLIN;
-			}
-			else
-			{
-				member = angular ? &btSliderConstraint::m_cfmDirAng : &btSliderConstraint::m_cfmDirLin;
-				flag = angular ? BT_SLIDER_FLAGS_CFM_DIRANG : BT_SLIDER_FLAGS_CFM_DIRLIN;
-			}
-			return true;
-		default:
-			return false;
+		if (axis < -1 || axis > 5) return false;
+		const bool across = axis == 1 || axis == 2 || axis == 4 || axis == 5;
+		const bool angular = axis >= 3;
+		switch (num)
+		{
+			case BT_CONSTRAINT_STOP_ERP:
+				if (across)
+				{
+					member = angular ? &SliderParamSlots::m_softnessOrthoAng : &SliderParamSlots::m_softnessOrthoLin;
+					flag = angular ? BT_SLIDER_FLAGS_ERP_ORTANG : BT_SLIDER_FLAGS_ERP_ORTLIN;
+				}
+				else
+				{
+					member = angular ? &SliderParamSlots::m_softnessLimAng : &SliderParamSlots::m_softnessLimLin;
+					flag = angular ? BT_SLIDER_FLAGS_ERP_LIMANG : BT_SLIDER_FLAGS_ERP_LIMLIN;
+				}
+				return true;
+			case BT_CONSTRAINT_ERP:
+				if (across)
+				{
+					member = angular ? &SliderParamSlots::m_softnessOrthoAng : &SliderParamSlots::m_softnessOrthoLin;
+					flag = angular ? BT_SLIDER_FLAGS_ERP_ORTANG : BT_SLIDER_FLAGS_ERP_ORTLIN;
+				}
+				else
+				{
+					member = angular ? &SliderParamSlots::m_softnessDirAng : &SliderParamSlots::m_softnessDirLin;
+					flag = angular ? BT_SLIDER_FLAGS_ERP_DIRANG : BT_SLIDER_FLAGS_ERP_DIRLIN;
+				}
+				return true;
+			case BT_CONSTRAINT_STOP_CFM:
+				if (across)
+				{
+					member = angular ? &SliderParamSlots::m_cfmOrthoAng : &SliderParamSlots::m_cfmOrthoLin;
+					flag = angular ? BT_SLIDER_FLAGS_CFM_ORTANG : BT_SLIDER_FLAGS_CFM_ORTLIN;
+				}
+				else
+				{
+					member = angular ? &SliderParamSlots::m_cfmLimAng : &SliderParamSlots::m_cfmLimLin;
+					flag = angular ? BT_SLIDER_FLAGS_CFM_LIMANG : BT_SLIDER_FLAGS_CFM_LIMLIN;
+				}
+				return true;
+			case BT_CONSTRAINT_CFM:
+				if (across)
+				{
+					member = angular ? &SliderParamSlots::m_cfmOrthoAng : &SliderParamSlots::m_cfmOrthoLin;
+					flag = angular ? BT_SLIDER_FLAGS_CFM_ORTANG : BT_SLIDER_FLAGS_CFM_ORTLIN;
+				}
+				else
+				{
+					member = angular ? &SliderParamSlots::m_cfmDirAng : &SliderParamSlots::m_cfmDirLin;
+					flag = angular ? BT_SLIDER_FLAGS_CFM_DIRANG : BT_SLIDER_FLAGS_CFM_DIRLIN;
+				}
+				return true;
+			default:
+				return false;
+		}
 	}
-}
+};
+}  // namespace
 
 void btSliderConstraint::setParam(int num, btScalar value, int axis)
 {
 	btScalar btSliderConstraint::*member = 0;
 	int flag = 0;
-	const bool known = paramSlot(num, axis, member, flag);
+	const bool known = SliderParamSlots::find(num, axis, member, flag);
 	btAssertConstrParams(known);
 	if (!known) return;
 	this->*member = value;
@@ -614,7 +622,7 @@ btScalar btSliderConstraint::getParam(int num, int axis) const
 {
 	btScalar btSliderConstraint::*member = 0;
 	int flag = 0;
-	const bool known = paramSlot(num, axis, member, flag);
+	const bool known = SliderParamSlots::find(num, axis, member, flag);
 	btAssertConstrParams(known);
 	if (!known) return SIMD_INFINITY;
 	btAssertConstrParams(m_flags & flag);

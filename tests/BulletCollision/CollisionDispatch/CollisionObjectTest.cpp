@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
+#include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "LinearMath/btQuaternion.h"
 #include "LinearMath/btWarningHook.h"
@@ -209,4 +210,19 @@ TEST(CollisionObject, NegativeOrNonFiniteMaterialAndCcdValuesAreReportedAndIgnor
 	EXPECT_EQ(object.getContactDamping(), btScalar(0.3));
 	object.setRestitution(btScalar(1.5));
 	EXPECT_EQ(object.getRestitution(), btScalar(1.5)) << "restitution above 1 (a bumper) is allowed";
+}
+
+TEST(CollisionObject, TemporaryShapeLeavesTheRootShapeAndRevisionAlone)
+{
+	btSphereShape root(1);
+	btBoxShape child(btVector3(1, 1, 1));
+	btCollisionObject object;
+	object.setCollisionShape(&root);
+	const int revision = object.getUpdateRevisionInternal();
+	object.internalSetTemporaryCollisionShape(&child);
+	EXPECT_EQ(object.getCollisionShape(), &child);
+	EXPECT_EQ(object.getRootCollisionShape(), &root) << "the root shape is what setCollisionShape gave";
+	EXPECT_EQ(object.getUpdateRevisionInternal(), revision) << "a temporary swap is not a shape change";
+	object.internalSetTemporaryCollisionShape(&root);
+	EXPECT_EQ(object.getCollisionShape(), &root);
 }

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -214,5 +216,110 @@ TEST(Generic6DofSpringConstraint, SpringOnALockedCoordinateDoesNothingAndSetters
 	EXPECT_EQ(spring->getEquilibriumPoint(9), btScalar(0));
 	EXPECT_EQ(warnings.count(), 2 + 8) << "each out-of-range index is reported";
 	EXPECT_EQ(spring->getStiffness(0), btScalar(100)) << "and changes nothing";
+#endif
+}
+
+namespace
+{
+// A spring joint written for Bullet: its springs drive the 6-DoF joint's motors through
+// internalUpdateSprings, and the base 6-DoF joint writes the rows.
+class BulletStyleSpring : public btGeneric6DofSpringConstraint
+{
+public:
+	BulletStyleSpring(btRigidBody& body, const btTransform& frame, bool useLinearReferenceFrameB)
+	    : btGeneric6DofSpringConstraint(body, frame, useLinearReferenceFrameB)
+	{
+	}
+	void getInfo1(btConstraintInfo1* info) override { btGeneric6DofConstraint::getInfo1(info); }
+	void getInfo2(btConstraintInfo2* info) override
+	{
+		internalUpdateSprings(info);
+		btGeneric6DofConstraint::getInfo2(info);
+	}
+	void updateSprings(btConstraintInfo2* info) { internalUpdateSprings(info); }
+};
+}  // namespace
+
+TEST(Generic6DofSpringConstraint, InternalUpdateSpringsSetsTheMotorToTheSpringsForceAndNewRate)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* body = w.addBody(w.shape<btBoxShape>(btVector3(0.1, 0.1, 0.1)), 2, btVector3(0, 0, 0));
+	BulletStyleSpring* spring = w.addJoint<BulletStyleSpring>(false, *body, btTransform::getIdentity(), true);
+	spring->setLinearLowerLimit(btVector3(0, 1, 0));
+	spring->setLinearUpperLimit(btVector3(0, -1, 0));
+	spring->enableSpring(1, true);
+	spring->setStiffness(1, 50);
+	spring->setEquilibriumPoint(1, btScalar(-0.2));  // the body sits 0.2 m above its rest point
+	btTypedConstraint::btConstraintInfo2 info;
+	memset(&info, 0, sizeof(info));
+	info.fps = 240;
+	info.m_numIterations = 10;
+	spring->updateSprings(&info);
+	const btTranslationalLimitMotor* motor = spring->getTranslationalLimitMotor();
+	EXPECT_TRUE(motor->m_enableMotor[1]);
+	// At rest, stretched 0.2 m: the spring's force is k x = 10 N, and one step of it gives the body
+	// the rate -F h / m. Tolerance: float rounding of the products.
+	EXPECT_NEAR(motor->m_maxMotorForce[1], 10, 1e-4);
+	EXPECT_NEAR(motor->m_targetVelocity[1], -10.0 / 240 / 2, 1e-6);
+	EXPECT_FALSE(motor->m_enableMotor[0]) << "a coordinate without a spring keeps its motor off";
+}
+
+TEST(Generic6DofSpringConstraint, BulletStyleSubclassOscillatesLikeTheSpringRows)
+{
+	// The same spring twice: Caliber's spring rows, and a subclass driving the motors.
+	const double mass = 2, omega = 2 * M_PI, stiffness = mass * omega * omega;
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* bodies[2];
+	btGeneric6DofSpringConstraint* springs[2];
+	for (int k = 0; k < 2; ++k)
+	{
+		bodies[k] =
+		    w.addBody(w.shape<btBoxShape>(btVector3(0.1, 0.1, 0.1)), btScalar(mass), btVector3(btScalar(5 * k), 0, 0));
+		bodies[k]->setSleepingThresholds(0, 0);
+		const btTransform frame(btMatrix3x3::getIdentity(), btVector3(0, 0, 0));
+		springs[k] = k == 0 ? w.addJoint<btGeneric6DofSpringConstraint>(false, *bodies[k], frame, true)
+		                    : static_cast<btGeneric6DofSpringConstraint*>(
+		                          w.addJoint<BulletStyleSpring>(false, *bodies[k], frame, true));
+		springs[k]->setLinearLowerLimit(btVector3(0, 1, 0));
+		springs[k]->setLinearUpperLimit(btVector3(0, -1, 0));
+		springs[k]->setAngularLowerLimit(btVector3(0, 0, 0));
+		springs[k]->setAngularUpperLimit(btVector3(0, 0, 0));
+		springs[k]->enableSpring(1, true);
+		springs[k]->setStiffness(1, btScalar(stiffness));
+		springs[k]->setEquilibriumPoint(1, btScalar(-0.2));
+	}
+	// Bullet enables a spring coordinate's motor with the spring, so getInfo1 counts its row.
+	springs[1]->getTranslationalLimitMotor()->m_enableMotor[1] = true;
+	CrossingTimer timers[2];
+	double maxGap = 0;
+	for (int i = 0; i < 480; ++i)
+	{
+		w.run(1, kH);
+		double y[2];
+		for (int k = 0; k < 2; ++k) y[k] = double(bodies[k]->getCenterOfMassPosition().y());
+		for (int k = 0; k < 2; ++k) timers[k].sample(double(kH) * (i + 1), y[k] + 0.2);
+		maxGap = std::max(maxGap, std::fabs(y[0] - y[1]));
+	}
+	// Both are semi-implicit Euler springs of 1 s period. Tolerance: the motor row reaches the spring's
+	// impulse only as the solver's iterations converge with the locked rows beside it; 1 % of the
+	// 0.2 m amplitude.
+	EXPECT_NEAR(timers[1].period(), timers[0].period(), 1e-3);
+	EXPECT_LT(maxGap, 2e-3);
+}
+
+TEST(Generic6DofSpringConstraintDeathTest, InternalUpdateSpringsWithoutAStepAsserts)
+{
+	TestWorld w(btVector3(0, 0, 0));
+	btRigidBody* body = w.addBody(w.shape<btBoxShape>(btVector3(0.1, 0.1, 0.1)), 2, btVector3(0, 0, 0));
+	BulletStyleSpring* spring = w.addJoint<BulletStyleSpring>(false, *body, btTransform::getIdentity(), true);
+	spring->enableSpring(1, true);
+	spring->setStiffness(1, 50);
+	btTypedConstraint::btConstraintInfo2 info;
+	memset(&info, 0, sizeof(info));
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(spring->updateSprings(&info), "no step");
+#else
+	spring->updateSprings(&info);
+	EXPECT_FALSE(spring->getTranslationalLimitMotor()->m_enableMotor[1]) << "nothing changes without a step";
 #endif
 }
