@@ -83,6 +83,12 @@ struct BoxOnSlab
 		world.getDispatchInfo().m_useContinuous = true;
 		place(btVector3(0, btScalar(1.5) - depth, 0), btQuaternion::getIdentity());
 	}
+	// The objects die before the world (members go in reverse order): take them out first.
+	~BoxOnSlab()
+	{
+		world.removeCollisionObject(&box);
+		world.removeCollisionObject(&slab);
+	}
 	void place(const btVector3& origin, const btQuaternion& rotation)
 	{
 		box.setWorldTransform(btTransform(rotation, origin));
