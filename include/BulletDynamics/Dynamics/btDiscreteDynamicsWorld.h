@@ -172,7 +172,10 @@ public:
 	void setSynchronizeAllMotionStates(bool synchronizeAll) { m_synchronizeAllMotionStates = synchronizeAll; }
 	bool getSynchronizeAllMotionStates() const { return m_synchronizeAllMotionStates; }
 
-	/// Kept for source compatibility (Caliber does not bounce at a CCD time of impact).
+	/// When true, the contacts of the predictive manifolds (m_predictiveManifolds, which only a subclass
+	/// fills in Caliber) take their bodies' combined restitution and bounce like other contacts; when false
+	/// (the default) they keep the restitution they were made with. Caliber's own speculative contacts
+	/// bounce either way.
 	void setApplySpeculativeContactRestitution(bool enable) { m_applySpeculativeContactRestitution = enable; }
 	bool getApplySpeculativeContactRestitution() const { return m_applySpeculativeContactRestitution; }
 

@@ -10,6 +10,7 @@
 #include "BulletDynamics/Dynamics/btActionInterface.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "BulletDynamics/Dynamics/btSpeculativeContactRestitution.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btAlignedObject.h"
 #include "LinearMath/btIDebugDraw.h"
@@ -185,6 +186,7 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	caliber::quarantineNonFiniteBodies(*this, m_nonStaticRigidBodies, context);
 	predictUnconstraintMotion(timeStep);
 	createPredictiveContacts(timeStep);
+	if (m_applySpeculativeContactRestitution) caliber::giveSpeculativeContactsRestitution(m_predictiveManifolds);
 
 	btDispatcherInfo& dispatchInfo = getDispatchInfo();
 	dispatchInfo.m_timeStep = timeStep;
