@@ -24,7 +24,8 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
 {
 	btPersistentManifold* manifold = this->*memberOf(BoxBoxManifold{});
 	if (manifold && resultOut && body0Wrap && body1Wrap &&
-	    pairMayUseContactCache(this->*memberOf(BoxBoxOwnsManifold{}), body0Wrap, body1Wrap))
+	    pairMayUseContactCache(this->*memberOf(BoxBoxOwnsManifold{}), body0Wrap, body1Wrap) &&
+	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold))
 	{
 		const btTransform& t0 = body0Wrap->getWorldTransform();
 		const btTransform& t1 = body1Wrap->getWorldTransform();

@@ -299,7 +299,8 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
                                                    const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
 	if (resultOut && body0Wrap && body1Wrap && body0Wrap->getCollisionShape() && body1Wrap->getCollisionShape() &&
-	    pairMayUseContactCache(this->*memberOf(ConvexPairOwnsManifold{}), body0Wrap, body1Wrap))
+	    pairMayUseContactCache(this->*memberOf(ConvexPairOwnsManifold{}), body0Wrap, body1Wrap) &&
+	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold))
 	{
 		const btConvexShape* shape0 = static_cast<const btConvexShape*>(body0Wrap->getCollisionShape());
 		const btConvexShape* shape1 = static_cast<const btConvexShape*>(body1Wrap->getCollisionShape());

@@ -98,6 +98,12 @@ struct PairPoseCache
 	}
 };
 
+/// Whether a pair's reach (how far it may close this step) lets the cache keep or remember its contacts: a
+/// pair that may close more than four cache distances moves too fast for its contacts to hold at the next
+/// step, so it is detected and not remembered (a pair in free fall pays nothing for the cache). Pairs a
+/// little faster than the distance are remembered: the solver often stops them within the step.
+inline bool slowEnoughForContactCache(btScalar reach) { return reach <= btScalar(4) * contactCacheDistance(); }
+
 /// Whether a pair may use the cache at all: the cache is on, the algorithm owns its manifold (a shared
 /// one collects other queries' points too), and no contact-added callback asks to see every point of
 /// every step (CF_CUSTOM_MATERIAL_CALLBACK).
