@@ -27,22 +27,15 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
 	    pairMayUseContactCache(this->*memberOf(BoxBoxOwnsManifold{}), body0Wrap, body1Wrap) &&
 	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold))
 	{
-		const btTransform& t0 = body0Wrap->getWorldTransform();
-		const btTransform& t1 = body1Wrap->getWorldTransform();
-		const btScalar reach = resultOut->m_closestPointDistanceThreshold;
 		const btVector3 half0 =
 		    static_cast<const btBoxShape*>(body0Wrap->getCollisionShape())->getHalfExtentsWithMargin();
 		const btVector3 half1 =
 		    static_cast<const btBoxShape*>(body1Wrap->getCollisionShape())->getHalfExtentsWithMargin();
 		const PairShapes shapes = {-half0, half0, -half1, half1};
-		// A non-finite pose never passes the test: the full path reports it.
-		if (m_poseCache.covers(t0, t1, reach, shapes, manifold->getNumContacts()))
-		{
-			resultOut->setPersistentManifold(manifold);
-			refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
-			resultOut->refreshContactPoints();
-			return;
-		}
+		if (keepCachedContacts(m_poseCache, manifold, shapes, body0Wrap, body1Wrap, resultOut)) return;
+		const btTransform& t0 = body0Wrap->getWorldTransform();
+		const btTransform& t1 = body1Wrap->getWorldTransform();
+		const btScalar reach = resultOut->m_closestPointDistanceThreshold;
 		btBoxBoxCollisionAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
 		m_poseCache.store(t0, t1, reach, shapes, manifold->getNumContacts());
 		return;

@@ -308,21 +308,15 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
 		if (polyhedronOf(shape0) && polyhedronOf(shape1) && shape0->getShapeType() != TRIANGLE_SHAPE_PROXYTYPE &&
 		    shape1->getShapeType() != TRIANGLE_SHAPE_PROXYTYPE)
 		{
-			const btTransform& t0 = body0Wrap->getWorldTransform();
-			const btTransform& t1 = body1Wrap->getWorldTransform();
-			const btScalar reach = resultOut->m_closestPointDistanceThreshold;
-			btPersistentManifold* manifold = this->*memberOf(ConvexPairManifold{});
 			PairShapes shapes;
 			shape0->getAabb(btTransform::getIdentity(), shapes.min0, shapes.max0);
 			shape1->getAabb(btTransform::getIdentity(), shapes.min1, shapes.max1);
-			// A non-finite pose never passes the test: the full path reports it.
-			if (manifold && m_poseCache.covers(t0, t1, reach, shapes, manifold->getNumContacts()))
-			{
-				resultOut->setPersistentManifold(manifold);
-				refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
-				resultOut->refreshContactPoints();
+			if (keepCachedContacts(m_poseCache, this->*memberOf(ConvexPairManifold{}), shapes, body0Wrap, body1Wrap,
+			                       resultOut))
 				return;
-			}
+			const btTransform& t0 = body0Wrap->getWorldTransform();
+			const btTransform& t1 = body1Wrap->getWorldTransform();
+			const btScalar reach = resultOut->m_closestPointDistanceThreshold;
 			btConvexConvexAlgorithm::processCollision(body0Wrap, body1Wrap, dispatchInfo, resultOut);
 			btPersistentManifold* made = this->*memberOf(ConvexPairManifold{});
 			m_poseCache.store(t0, t1, reach, shapes, made ? made->getNumContacts() : -1);

@@ -11,9 +11,8 @@
 
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
+#include "BulletCollision/CollisionDispatch/btManifoldResult.h"
 #include "LinearMath/btTransform.h"
-
-class btPersistentManifold;
 
 namespace caliber
 {
@@ -97,6 +96,23 @@ struct PairPoseCache
 		valid = true;
 	}
 };
+
+/// The cached step of an algorithm that owns manifold: when cache covers the pair (poses of the query's
+/// wrappers, its reach, the shapes, the manifold's point count), gives the points their current materials,
+/// refreshes them and returns true; otherwise returns false, and the caller detects and stores.
+inline bool keepCachedContacts(const PairPoseCache& cache, btPersistentManifold* manifold, const PairShapes& shapes,
+                               const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap,
+                               btManifoldResult* resultOut)
+{
+	// A non-finite pose never passes the test: the full path reports it.
+	if (!manifold || !cache.covers(body0Wrap->getWorldTransform(), body1Wrap->getWorldTransform(),
+	                               resultOut->m_closestPointDistanceThreshold, shapes, manifold->getNumContacts()))
+		return false;
+	resultOut->setPersistentManifold(manifold);
+	refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
+	resultOut->refreshContactPoints();
+	return true;
+}
 
 /// Whether a pair's reach (how far it may close this step) lets the cache keep or remember its contacts: a
 /// pair that may close more than four cache distances moves too fast for its contacts to hold at the next
