@@ -21,6 +21,7 @@
 #include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
+#include "LinearMath/btScratchArray.h"
 #include "LinearMath/btSideTable.h"
 
 bool btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = false;
@@ -240,8 +241,7 @@ void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& 
 {
 	const int numBodies = pools.bodies->size();
 	const int rowsPerPoint = 1 + frictionRowsPerContact;
-	mt.warmStartFirst.resize(0);
-	mt.warmStartFirst.resize(numBodies + 1, 0);
+	caliber::assignScratch(mt.warmStartFirst, numBodies + 1, 0);
 	for (int i = 0; i < mt.points.size(); ++i)
 	{
 		const caliber::ContactPointRows& point = mt.points[i];
@@ -249,8 +249,8 @@ void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& 
 		if (point.solverBodyIdB != fixedBodyId) mt.warmStartFirst[point.solverBodyIdB + 1] += rowsPerPoint;
 	}
 	for (int b = 0; b < numBodies; ++b) mt.warmStartFirst[b + 1] += mt.warmStartFirst[b];
-	mt.warmStarts.resizeNoInitialize(mt.warmStartFirst[numBodies]);
-	mt.warmStartCursor.resizeNoInitialize(numBodies);
+	caliber::resizeScratch(mt.warmStarts, mt.warmStartFirst[numBodies]);
+	caliber::resizeScratch(mt.warmStartCursor, numBodies);
 	for (int b = 0; b < numBodies; ++b) mt.warmStartCursor[b] = mt.warmStartFirst[b];
 	for (int i = 0; i < mt.points.size(); ++i)
 	{
@@ -424,12 +424,12 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	// go, in the serial order; the rows filled on the threads; the warm starts applied in the serial order.
 	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	MtSolverScratch& mt = mtScratchOf(*this);
-	mt.manifoldBodies.resizeNoInitialize(2 * numManifolds);
-	mt.plannedCount.resizeNoInitialize(numManifolds);
-	mt.planned.resizeNoInitialize(numManifolds * MANIFOLD_CACHE_SIZE);
-	mt.plannedRolling.resizeNoInitialize(numManifolds);
-	mt.pointStart.resizeNoInitialize(numManifolds);
-	mt.manifoldRollingStart.resizeNoInitialize(numManifolds);
+	caliber::resizeScratch(mt.manifoldBodies, 2 * numManifolds);
+	caliber::resizeScratch(mt.plannedCount, numManifolds);
+	caliber::resizeScratch(mt.planned, numManifolds * MANIFOLD_CACHE_SIZE);
+	caliber::resizeScratch(mt.plannedRolling, numManifolds);
+	caliber::resizeScratch(mt.pointStart, numManifolds);
+	caliber::resizeScratch(mt.manifoldRollingStart, numManifolds);
 	for (int i = 0; i < numManifolds; ++i)
 	{
 		btPersistentManifold* manifold = manifoldPtr[i];
@@ -467,10 +467,10 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 		numPoints += count;
 		nextRolling += mt.plannedRolling[i];
 	}
-	mt.points.resizeNoInitialize(numPoints);
-	m_tmpSolverContactConstraintPool.resizeNoInitialize(contactBase + numPoints);
-	m_tmpSolverContactFrictionConstraintPool.resizeNoInitialize(frictionBase + numPoints * frictionRowsPerContact);
-	m_tmpSolverContactRollingFrictionConstraintPool.resizeNoInitialize(nextRolling);
+	caliber::resizeScratch(mt.points, numPoints);
+	caliber::resizeScratch(m_tmpSolverContactConstraintPool, contactBase + numPoints);
+	caliber::resizeScratch(m_tmpSolverContactFrictionConstraintPool, frictionBase + numPoints * frictionRowsPerContact);
+	caliber::resizeScratch(m_tmpSolverContactRollingFrictionConstraintPool, nextRolling);
 	if (numPoints == 0) return;
 	PlacePoints place;
 	place.mt = &mt;
@@ -528,13 +528,10 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	const int numSolverBodies = m_tmpSolverBodyPool.size();
 	// Greedy colouring in manifold order: each manifold takes the lowest colour neither of its moving
 	// bodies has (the fixed entry is shared freely).
-	mt.bodyColours.resize(0);
-	mt.bodyColours.resize(numSolverBodies, 0);
-	mt.manifoldColour.resize(numManifoldsWithRows);
-	mt.colourCount.resize(0);
-	mt.colourCount.resize(kColours + 1, 0);
-	mt.colourRows.resize(0);
-	mt.colourRows.resize(kColours + 1, 0);
+	caliber::assignScratch(mt.bodyColours, numSolverBodies, 0);
+	caliber::resizeScratch(mt.manifoldColour, numManifoldsWithRows);
+	caliber::assignScratch(mt.colourCount, kColours + 1, 0);
+	caliber::assignScratch(mt.colourRows, kColours + 1, 0);
 	for (int m = 0; m < numManifoldsWithRows; ++m)
 	{
 		const btSolverConstraint& first = contacts[scratch.manifoldFirstRow[m]];
@@ -553,22 +550,21 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	}
 	// Manifolds colour by colour, and within a colour by their first moving body (two stable counting
 	// sorts): a run of batches then holds the bodies of one region of the island (see the sweep).
-	mt.bodyOrder.resize(0);
-	mt.bodyOrder.resize(numSolverBodies + 1, 0);
+	caliber::assignScratch(mt.bodyOrder, numSolverBodies + 1, 0);
 	for (int m = 0; m < numManifoldsWithRows; ++m)
 		++mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], m_fixedBodyId) + 1];
 	for (int b = 0; b < numSolverBodies; ++b) mt.bodyOrder[b + 1] += mt.bodyOrder[b];
-	mt.byBody.resize(numManifoldsWithRows);
+	caliber::resizeScratch(mt.byBody, numManifoldsWithRows);
 	for (int m = 0; m < numManifoldsWithRows; ++m)
 		mt.byBody[mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], m_fixedBodyId)]++] = m;
-	mt.colourCursor.resize(kColours + 1);
+	caliber::resizeScratch(mt.colourCursor, kColours + 1);
 	int start = 0;
 	for (int c = 0; c <= kColours; ++c)
 	{
 		mt.colourCursor[c] = start;
 		start += mt.colourCount[c];
 	}
-	mt.orderedManifolds.resize(numManifoldsWithRows);
+	caliber::resizeScratch(mt.orderedManifolds, numManifoldsWithRows);
 	for (int k = 0; k < numManifoldsWithRows; ++k)
 	{
 		const int m = mt.byBody[k];
@@ -655,14 +651,12 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 
 	// Rolling rows grouped by their contact row (counting sort).
 	const int numContacts = contacts.size();
-	mt.rollingStart.resize(0);
-	mt.rollingStart.resize(numContacts + 1, 0);
+	caliber::assignScratch(mt.rollingStart, numContacts + 1, 0);
 	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
 	for (int r = 0; r < numRolling; ++r) ++mt.rollingStart[m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex + 1];
 	for (int j = 0; j < numContacts; ++j) mt.rollingStart[j + 1] += mt.rollingStart[j];
-	mt.rollingRows.resize(numRolling);
-	mt.colourCursor.resize(0);
-	mt.colourCursor.resize(numContacts, 0);
+	caliber::resizeScratch(mt.rollingRows, numRolling);
+	caliber::assignScratch(mt.colourCursor, numContacts, 0);
 	for (int r = 0; r < numRolling; ++r)
 	{
 		const int j = m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex;
@@ -736,7 +730,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 			const btBatchedConstraints::Range& phase =
 			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
 			const int numBatches = phase.end - phase.begin;
-			mt.batchResidual.resizeNoInitialize(numBatches);
+			caliber::resizeScratch(mt.batchResidual, numBatches);
 			sweep.firstBatch = phase.begin;
 			sweep.batchResidual = &mt.batchResidual[0];
 			btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);

@@ -10,6 +10,7 @@
 #include <atomic>
 
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
+#include "LinearMath/btScratchArray.h"
 
 #if defined(BT_USE_SSE) && (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
 #define CALIBER_WIDE_EIGHT_LANES 1
@@ -388,7 +389,7 @@ void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batch
                 const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows)
 {
 	const int numBatches = batchManifoldBegin.size() - 1;
-	batchFirstGroup.resizeNoInitialize(numBatches + 1);
+	caliber::resizeScratch(batchFirstGroup, numBatches + 1);
 	int numGroups = 0, numBlocks = 0;
 	for (int b = 0; b < numBatches; ++b)
 	{
@@ -407,9 +408,9 @@ void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batch
 		}
 	}
 	batchFirstGroup[numBatches] = numGroups;
-	layout.groups.resizeNoInitialize(numGroups);
-	layout.normalBlocks.resizeNoInitialize(numBlocks);
-	layout.frictionBlocks.resizeNoInitialize(numBlocks * frictionRows);
+	caliber::resizeScratch(layout.groups, numGroups);
+	caliber::resizeScratch(layout.normalBlocks, numBlocks);
+	caliber::resizeScratch(layout.frictionBlocks, numBlocks * frictionRows);
 	// The groups' first blocks, in order (fill then runs batch by batch on any thread).
 	int nextBlock = 0, g = 0;
 	for (int b = 0; b < numBatches; ++b)
