@@ -120,6 +120,20 @@ void btDiscreteDynamicsWorld::saveKinematicState(btScalar timeStep)
 	}
 }
 
+namespace
+{
+// Whether a body's pose and velocities are all finite, in one test: x * 0 is 0 for a finite x and NaN
+// for an infinite or NaN one, and a sum of zeros stays exactly 0 (a plain sum could overflow).
+bool stateIsFinite(const btRigidBody& body)
+{
+	const btMatrix3x3& basis = body.getWorldTransform().getBasis();
+	const btVector3 zero(0, 0, 0);
+	const btVector3 sum = basis[0] * zero + basis[1] * zero + basis[2] * zero + body.getWorldTransform().getOrigin() * zero +
+	                      body.getLinearVelocity() * zero + body.getAngularVelocity() * zero;
+	return sum.x() + sum.y() + sum.z() == btScalar(0);
+}
+}  // namespace
+
 void caliber::quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world,
                                         const btAlignedObjectArray<btRigidBody*>& bodies, WorldStepContext& context)
 {
@@ -127,9 +141,7 @@ void caliber::quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world,
 	{
 		btRigidBody* body = bodies[i];
 		if (body->getActivationState() == DISABLE_SIMULATION) continue;
-		if (caliber::isFinite(body->getWorldTransform()) && caliber::isFinite(body->getLinearVelocity()) &&
-		    caliber::isFinite(body->getAngularVelocity()))
-			continue;
+		if (stateIsFinite(*body)) continue;
 		// A body whose state is no longer a number would hand NaN to everything it touches: it leaves the
 		// broadphase (so it has no pairs) and the simulation, at its last finite pose when there is one.
 		if (!context.reportedNonFiniteBody)
@@ -189,7 +201,10 @@ void predictBody(btRigidBody* body, btScalar timeStep, const btContactSolverInfo
 			gyroscopicChange += body->computeGyroscopicImpulseImplicit_World(timeStep);
 		// The default implicit flag is applied when the body turns (integrateTransformsInternal), as
 		// conservation of angular momentum; bodies that do not turn freely keep Bullet's Newton step.
-		if ((flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) && !caliber::spinFollowsAngularMomentum(*body))
+		// An isotropic body (a cube, a sphere) has no gyroscopic effect, w x (I w) = 0: Bullet's Newton step
+		// would only add its rounding.
+		if ((flags & BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY) && !caliber::spinFollowsAngularMomentum(*body) &&
+		    !caliber::hasIsotropicInertia(*body))
 			gyroscopicChange += body->computeGyroscopicImpulseImplicit_Body(timeStep);
 		body->integrateVelocities(timeStep);
 		if (!gyroscopicChange.fuzzyZero())

@@ -181,9 +181,10 @@ void btRigidBody::setDamping(btScalar lin_damping, btScalar ang_damping)
 
 void btRigidBody::applyDamping(btScalar timeStep)
 {
-	// Exponential decay per second, independent of how a second is cut into steps.
-	m_linearVelocity *= btPow(btScalar(1) - m_linearDamping, timeStep);
-	m_angularVelocity *= btPow(btScalar(1) - m_angularDamping, timeStep);
+	// Exponential decay per second, independent of how a second is cut into steps. Without damping the
+	// factor is exactly 1, and the power (a library call per body and step) is skipped.
+	if (m_linearDamping != btScalar(0)) m_linearVelocity *= btPow(btScalar(1) - m_linearDamping, timeStep);
+	if (m_angularDamping != btScalar(0)) m_angularVelocity *= btPow(btScalar(1) - m_angularDamping, timeStep);
 	if (!m_additionalDamping) return;
 
 	// Bodies that are nearly at rest get damped hard, so that they settle and can fall asleep.

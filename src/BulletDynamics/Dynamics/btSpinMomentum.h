@@ -30,6 +30,13 @@ inline bool spinFollowsAngularMomentum(const btRigidBody& body)
 	return !(inverse.x() == inverse.y() && inverse.y() == inverse.z());
 }
 
+/// Whether body's inertia is the same about every axis (its inverse diagonal has three equal entries).
+inline bool hasIsotropicInertia(const btRigidBody& body)
+{
+	const btVector3& inverse = body.getInvInertiaDiagLocal();
+	return inverse.x() == inverse.y() && inverse.y() == inverse.z();
+}
+
 /// The angular velocity with which body, turned from basis `from` to basis `to`, carries the angular
 /// momentum it had with its present angular velocity in `from`.
 inline btVector3 angularVelocityAfterTurn(const btRigidBody& body, const btMatrix3x3& from, const btMatrix3x3& to)
