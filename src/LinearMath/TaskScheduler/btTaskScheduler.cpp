@@ -135,7 +135,15 @@ private:
 	{
 		m_plan = plan;
 		const int helpers = (getNumThreads() - 1 < plan.count - 1) ? getNumThreads() - 1 : plan.count - 1;
-		m_nextChunk.store(0, std::memory_order_relaxed);
+		// Each taker owns a contiguous block of the chunks and takes from it first, then from the others'
+		// (see runChunks). Blocks depend only on the chunk and taker counts, so a per-body loop gives
+		// each thread the same bodies from stage to stage: they stay in its core's cache.
+		m_takers = helpers + 1;
+		for (int t = 0; t < m_takers; ++t)
+		{
+			m_blocks[t].next.store(int((long long)plan.count * t / m_takers), std::memory_order_relaxed);
+			m_blocks[t].end = int((long long)plan.count * (t + 1) / m_takers);
+		}
 		m_busyWorkers.store(helpers, std::memory_order_relaxed);
 		m_sleepHint.store(false, std::memory_order_relaxed);
 		caliber::beginThreadsRunning();
@@ -148,7 +156,7 @@ private:
 		m_wake.notify_all();
 		{
 			caliber::ParallelBodyScope scope;
-			runChunks();
+			runChunks(0);
 		}
 		for (int spin = 0; m_busyWorkers.load(std::memory_order_acquire) != 0; ++spin)
 		{
@@ -160,18 +168,25 @@ private:
 		caliber::endThreadsRunning();
 	}
 
-	void runChunks()
+	// Taker `taker` runs its own block's chunks, then helps with the others' in turn.
+	void runChunks(int taker)
 	{
-		for (;;)
+		for (int i = 0; i < m_takers; ++i)
 		{
-			const int k = m_nextChunk.fetch_add(1, std::memory_order_relaxed);
-			if (k >= m_plan.count) return;
-			int chunkBegin, chunkEnd;
-			m_plan.range(k, chunkBegin, chunkEnd);
-			if (m_forBody)
-				m_forBody->forLoop(chunkBegin, chunkEnd);
-			else
-				m_partials[k] = m_sumBody->sumLoop(chunkBegin, chunkEnd);
+			ChunkBlock& block = m_blocks[(taker + i) % m_takers];
+			for (;;)
+			{
+				// A cheap look first: an exhausted block costs no atomic write on its line.
+				if (block.next.load(std::memory_order_relaxed) >= block.end) break;
+				const int k = block.next.fetch_add(1, std::memory_order_relaxed);
+				if (k >= block.end) break;
+				int chunkBegin, chunkEnd;
+				m_plan.range(k, chunkBegin, chunkEnd);
+				if (m_forBody)
+					m_forBody->forLoop(chunkBegin, chunkEnd);
+				else
+					m_partials[k] = m_sumBody->sumLoop(chunkBegin, chunkEnd);
+			}
 		}
 	}
 
@@ -213,7 +228,7 @@ private:
 			if (slot >= int(seen & 0xff)) continue;
 			{
 				caliber::ParallelBodyScope scope;
-				runChunks();
+				runChunks(slot + 1);
 			}
 			m_busyWorkers.fetch_sub(1, std::memory_order_release);
 		}
@@ -228,9 +243,15 @@ private:
 	const btIParallelSumBody* m_sumBody = 0;
 	btAlignedObjectArray<btScalar> m_partials;
 	unsigned long long m_post = 0;  // the posting thread's copy of m_posted
-	// Each on a cache line of its own: every thread takes chunks from m_nextChunk while idle workers
+	// Each on a cache line of its own: the threads take chunks from the blocks' cursors while idle workers
 	// spin on m_posted, and sharing a line would make each take a cache miss for the other.
-	alignas(64) std::atomic<int> m_nextChunk{0};
+	struct alignas(64) ChunkBlock
+	{
+		std::atomic<int> next{0};
+		int end = 0;
+	};
+	ChunkBlock m_blocks[BT_MAX_THREAD_COUNT];
+	int m_takers = 1;
 	alignas(64) std::atomic<int> m_busyWorkers{0};
 	alignas(64) std::atomic<unsigned long long> m_posted{0};
 	alignas(64) std::atomic<bool> m_sleepHint{false};
