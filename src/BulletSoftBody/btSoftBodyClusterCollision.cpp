@@ -49,6 +49,12 @@ bool joined(const btSoftBody& body, const btSoftBody::Cluster* c, const btSoftBo
 	return false;
 }
 
+// A split factor in [0, 1]; NaN is 1 (no recovery turns into velocity: never adds energy).
+btScalar splitFactor(btScalar split)
+{
+	return split == split ? btClamped(split, btScalar(0), btScalar(1)) : btScalar(1);
+}
+
 btTransform at(const btVector3& origin)
 {
 	btTransform t;
@@ -65,13 +71,16 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 	shape->getAabb(t, shapeBox.lo, shapeBox.hi);
 	const bool fixed = object->isStaticOrKinematicObject();
 	const btScalar hardness = btClamped(fixed ? body.m_cfg.kSKHR_CL : body.m_cfg.kSRHR_CL, btScalar(0), btScalar(1));
+	const btScalar split = splitFactor(fixed ? body.m_cfg.kSK_SPLT_CL : body.m_cfg.kSR_SPLT_CL);
 	const btScalar friction = body.m_cfg.kDF * object->getFriction();
 	btConvexPointCloudShape hull;
 	const btTransform inverse = t.inverse();
 	const btVector3 slack(reach / 8, reach / 8, reach / 8);  // the plane lies on the box's face, give or take rounding
-	for (int i = 0; i < body.m_clusters.size(); ++i)
+	// The tree's candidates, in index order (the exact test below is the one a scan of all clusters makes).
+	caliber::clustersNear(body, shapeBox.lo, shapeBox.hi, state.near);
+	for (int k = 0; k < state.near.size(); ++k)
 	{
-		btSoftBody::Cluster& c = *body.m_clusters[i];
+		btSoftBody::Cluster& c = *body.m_clusters[state.near[k]];
 		if (!c.m_collide || c.m_nodes.size() == 0 || !shapeBox.overlaps(clusterBox(c, reach))) continue;
 		fillHull(c, state.points, hull, 0);
 		btGjkEpaSolver2::sResults res;
@@ -92,6 +101,7 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 		contact.localB = inverse * res.witnesses[1];
 		contact.normal = inverse.getBasis() * res.normal;  // from the shape towards the cluster, in its frame
 		contact.hardness = hardness;
+		contact.split = split;
 		contact.friction = friction;
 		contact.maxCorrection = BT_LARGE_FLOAT;
 		state.contacts.push_back(contact);
@@ -152,13 +162,10 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 	    btScalar(0.25) * btMin(a.getCollisionShape()->getMargin(), b.getCollisionShape()->getMargin());
 	const btScalar hardness =
 	    btClamped(btScalar(0.5) * (a.m_cfg.kSSHR_CL + b.m_cfg.kSSHR_CL), btScalar(0), btScalar(1));
+	const btScalar split = btScalar(0.5) * (splitFactor(a.m_cfg.kSS_SPLT_CL) + splitFactor(b.m_cfg.kSS_SPLT_CL));
 	const btScalar friction = btMax(a.m_cfg.kDF, b.m_cfg.kDF);
 	const btScalar reach = btMin(a.getCollisionShape()->getMargin(), b.getCollisionShape()->getMargin());
 	ClusterState& state = clusterState(a);
-	btAlignedObjectArray<Box>& boxesB = state.boxes;
-	boxesB.resize(b.m_clusters.size());
-	for (int j = 0; j < b.m_clusters.size(); ++j)
-		if (b.m_clusters[j]->m_nodes.size() > 0) boxesB[j] = clusterBox(*b.m_clusters[j], thickness + reach);
 	const int countA = a.m_clusters.size();
 	btConvexPointCloudShape hullA, hullB;
 	for (int i = 0; i < countA; ++i)
@@ -167,10 +174,14 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 		if (!ca.m_collide || ca.m_nodes.size() == 0) continue;
 		const Box boxA = clusterBox(ca, thickness + reach);
 		bool filled = false;
-		for (int j = self ? i + 1 : 0; j < b.m_clusters.size(); ++j)
+		// b's clusters near ca by b's cluster tree, in index order; the exact box test follows.
+		caliber::clustersNear(b, boxA.lo, boxA.hi, state.near);
+		for (int k = 0; k < state.near.size(); ++k)
 		{
+			const int j = state.near[k];
+			if (self && j <= i) continue;
 			btSoftBody::Cluster& cb = *b.m_clusters[j];
-			if (!cb.m_collide || cb.m_nodes.size() == 0 || !boxA.overlaps(boxesB[j])) continue;
+			if (!cb.m_collide || cb.m_nodes.size() == 0 || !boxA.overlaps(clusterBox(cb, thickness + reach))) continue;
 			if (self && a.m_clusterConnectivity.size() == countA * countA && a.m_clusterConnectivity[i + j * countA])
 				continue;  // neighbours share nodes: they touch by construction
 			if (joined(a, &ca, &cb) || joined(b, &cb, &ca)) continue;  // a joint holds them together: no contact
@@ -189,6 +200,7 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 			contact.node = 0;
 			contact.normal = res.normal;  // from b's hull towards a's
 			contact.hardness = hardness;
+			contact.split = split;
 			contact.friction = friction;
 			contact.maxCorrection =
 			    self ? btMin(ca.m_maxSelfCollisionImpulse, cb.m_maxSelfCollisionImpulse) : BT_LARGE_FLOAT;

@@ -453,11 +453,14 @@ void solveContact(caliber::ClusterContact& c, const btAlignedObjectArray<btScala
 	if (!(w > 0)) return;
 	const btScalar correction = btMin(-gap * c.hardness, c.maxCorrection);
 	const btScalar lambda = correction / w;
-	// As for node contacts: velocities change only as far as the sides stop approaching (an inelastic
-	// contact); the rest of the push moves positions alone, so resolving a penetration never launches.
+	// Velocities change as far as the sides stop approaching (an inelastic contact); of the rest of the push
+	// (the penetration's recovery), the split factor moves positions alone and the remainder changes
+	// velocities too, as Bullet's split cluster impulses: a split of 1 never launches anything, 0 turns the
+	// whole recovery into a separating velocity.
 	const btScalar approach = (vb - va).dot(normal);
 	const btScalar change = lambda * w / dt;
-	const btScalar share = change > 0 ? btClamped(approach / change, btScalar(0), btScalar(1)) : btScalar(1);
+	const btScalar stop = change > 0 ? btClamped(approach / change, btScalar(0), btScalar(1)) : btScalar(1);
+	const btScalar share = stop + (1 - stop) * (1 - c.split);
 	caliber::moveCluster(a, normal * lambda, ra, dt, share);
 	sidePush(other, -normal * lambda, rb, dt, share);
 	if (!(c.friction > 0)) return;
