@@ -9,30 +9,12 @@
 
 #include "SoftBodyTestUtil.h"
 
+using caliber_test::rigidSoftBox;
 using caliber_test::SoftTestWorld;
 
 namespace
 {
 const btScalar kStep = btScalar(1) / 60;
-
-// A rigid box of soft nodes: its 8 corners, every pair linked inextensibly, one cluster, no friction.
-btSoftBody* rigidSoftBox(SoftTestWorld& w, const btVector3& centre, const btVector3& half, int collisions)
-{
-	btVector3 corners[8];
-	for (int i = 0; i < 8; ++i)
-		corners[i] = centre + btVector3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
-		                                i & 4 ? half.z() : -half.z());
-	btSoftBody* b = btSoftBodyHelpers::CreateFromConvexHull(w.info(), corners, 8, false);
-	for (int i = 0; i < b->m_nodes.size(); ++i)
-		for (int j = i + 1; j < b->m_nodes.size(); ++j) b->appendLink(i, j, 0, true);
-	b->m_materials[0]->m_kLST = 1;
-	b->setTotalMass(1);
-	b->m_cfg.piterations = 10;
-	b->m_cfg.kDF = 0;
-	b->m_cfg.collisions = collisions;
-	b->generateClusters(1);
-	return w.addSoft(b);
-}
 
 btVector3 meanVelocity(const btSoftBody& b)
 {
@@ -52,7 +34,8 @@ Recovery recoverFromGround(btScalar split)
 {
 	SoftTestWorld w(btVector3(0, 0, 0));
 	w.addGround();
-	btSoftBody* box = rigidSoftBox(w, btVector3(0, 0.25, 0), btVector3(0.3, 0.3, 0.3), btSoftBody::fCollision::CL_RS);
+	btSoftBody* box =
+	    rigidSoftBox(w, btVector3(0, 0.25, 0), btVector3(0.3, 0.3, 0.3), 1, btSoftBody::fCollision::CL_RS);
 	box->m_cfg.kSK_SPLT_CL = split;
 	const btScalar before = box->evaluateCom().y();
 	w.step(1);
@@ -85,9 +68,9 @@ TEST(SoftBodyClusterSplit, SoftSoftSplitSeparatesPenetratingBodiesKeepingMomentu
 	for (btScalar split : {btScalar(1), btScalar(0.25), btScalar(0)})
 	{
 		SoftTestWorld w(btVector3(0, 0, 0));
-		btSoftBody* a = rigidSoftBox(w, btVector3(0, 5, 0), btVector3(0.3, 0.3, 0.3), btSoftBody::fCollision::CL_SS);
+		btSoftBody* a = rigidSoftBox(w, btVector3(0, 5, 0), btVector3(0.3, 0.3, 0.3), 1, btSoftBody::fCollision::CL_SS);
 		btSoftBody* b =
-		    rigidSoftBox(w, btVector3(0.625, 5, 0), btVector3(0.3, 0.3, 0.3), btSoftBody::fCollision::CL_SS);
+		    rigidSoftBox(w, btVector3(0.625, 5, 0), btVector3(0.3, 0.3, 0.3), 1, btSoftBody::fCollision::CL_SS);
 		a->m_cfg.kSS_SPLT_CL = b->m_cfg.kSS_SPLT_CL = split;
 		const btScalar before = b->evaluateCom().x() - a->evaluateCom().x();
 		w.step(1);
