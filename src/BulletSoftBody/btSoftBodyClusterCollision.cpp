@@ -104,7 +104,10 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 		contact.split = split;
 		contact.friction = friction;
 		contact.maxCorrection = BT_LARGE_FLOAT;
+		contact.patch = 1;
+		const int head = state.contacts.size();
 		state.contacts.push_back(contact);
+		contact.patch = 0;
 		// The deepest point alone lets a cluster rest on one point and tip its other nodes through the
 		// surface: every node within reach of the contact plane is held too (a contact manifold on the plane).
 		const btVector3& n = res.normal;
@@ -120,6 +123,7 @@ void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btC
 			contact.localB = inverse * onPlane;
 			contact.node = node;
 			state.contacts.push_back(contact);
+			++state.contacts[head].patch;
 		}
 	}
 }
@@ -201,6 +205,7 @@ void caliber::collideClustersWithClusters(btSoftBody& a, btSoftBody& b)
 			contact.normal = res.normal;  // from b's hull towards a's
 			contact.hardness = hardness;
 			contact.split = split;
+			contact.patch = 1;  // each point its own friction (the points lie on both hulls)
 			contact.friction = friction;
 			contact.maxCorrection =
 			    self ? btMin(ca.m_maxSelfCollisionImpulse, cb.m_maxSelfCollisionImpulse) : BT_LARGE_FLOAT;

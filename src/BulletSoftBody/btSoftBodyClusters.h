@@ -37,6 +37,8 @@ struct ClusterContact
 	                                  // alone (Bullet's kS*_SPLT_CL); the rest changes velocities too
 	btScalar friction;                // Coulomb coefficient
 	btScalar maxCorrection;           // largest correction per solve (self-collision), in m
+	int patch;                        // a manifold's first contact: its number of contacts, whose friction is
+	                                  // solved together (1: this point's own friction); the others: 0
 };
 
 /// An axis-aligned box (of a cluster's nodes, or a shape).
