@@ -63,69 +63,126 @@ btTransform at(const btVector3& origin)
 	return t;
 }
 
+// What one rigid convex shape's cluster contacts share.
+struct ConvexTarget
+{
+	const btCollisionObject* object;
+	const btConvexShape* shape;
+	btTransform t, inverse;
+	Box shapeBox;
+	btScalar reach, hardness, split, friction;
+};
+
+// The contacts of one cluster with the shape, appended to out: its deepest point (the manifold's first
+// contact, whose patch counts them) and every node within reach over the shape.
+void clusterAgainstConvex(const ConvexTarget& g, btSoftBody::Cluster& c, btAlignedObjectArray<btVector3>& points,
+                          btAlignedObjectArray<caliber::ClusterContact>& out)
+{
+	if (!c.m_collide || c.m_nodes.size() == 0 || !g.shapeBox.overlaps(clusterBox(c, g.reach))) return;
+	btConvexPointCloudShape hull;
+	fillHull(c, points, hull, 0);
+	btGjkEpaSolver2::sResults res;
+	const btTransform hullAt = at(c.m_com);
+	// Signed distance between the surfaces (margins included); contacts are kept within reach, so that
+	// a cluster closing in during the step is held too.
+	if (!btGjkEpaSolver2::SignedDistance(&hull, hullAt, g.shape, g.t, c.m_com - g.t.getOrigin(), res) ||
+	    !(res.distance < g.reach))
+		return;
+	caliber::ClusterContact contact;
+	contact.cluster = &c;
+	contact.other = 0;
+	contact.object = g.object;
+	contact.node = 0;
+	contact.distance = 0;
+	contact.weightsA = contact.weightsB = -1;
+	contact.localA = c.m_framexform.inverse() * res.witnesses[0];
+	contact.localB = g.inverse * res.witnesses[1];
+	contact.normal = g.inverse.getBasis() * res.normal;  // from the shape towards the cluster, in its frame
+	contact.hardness = g.hardness;
+	contact.split = g.split;
+	contact.friction = g.friction;
+	contact.maxCorrection = BT_LARGE_FLOAT;
+	contact.patch = 1;
+	const int head = out.size();
+	out.push_back(contact);
+	contact.patch = 0;
+	// The deepest point alone lets a cluster rest on one point and tip its other nodes through the
+	// surface: every node within reach of the contact plane is held too (a contact manifold on the plane).
+	const btScalar r = g.reach / 8;  // the plane lies on the box's face, give or take rounding
+	const btVector3 slack(r, r, r);
+	const btVector3& n = res.normal;
+	for (int j = 0; j < c.m_nodes.size(); ++j)
+	{
+		btSoftBody::Node* node = c.m_nodes[j];
+		const btScalar d = n.dot(node->m_x - res.witnesses[1]);
+		if (d >= g.reach || node->m_im <= 0) continue;
+		// Only nodes over the shape: beside a small shape the contact plane is not its surface.
+		const btVector3 onPlane = node->m_x - n * d;
+		if (!Box{onPlane - slack, onPlane + slack}.overlaps(g.shapeBox)) continue;
+		contact.localA = c.m_framexform.inverse() * node->m_x;
+		contact.localB = g.inverse * onPlane;
+		contact.node = node;
+		out.push_back(contact);
+		++out[head].patch;
+	}
+}
+
+// Clusters [begin, end) of the candidates on the task scheduler, each into its own list.
+struct ClusterGather : btIParallelForBody
+{
+	const ConvexTarget* target;
+	btSoftBody* body;
+	caliber::ClusterState* state;
+	void forLoop(int begin, int end) const override
+	{
+		for (int k = begin; k < end; ++k)
+		{
+			state->lists[k].resize(0);
+			clusterAgainstConvex(*target, *body->m_clusters[state->near[k]], state->hulls[k], state->lists[k]);
+		}
+	}
+};
+
+// Below this many candidate clusters the contacts are found on the calling thread.
+const int kParallelClusters = 4;
+
 void collideWithConvex(btSoftBody& body, caliber::ClusterState& state, const btCollisionObject* object,
                        const btConvexShape* shape, const btTransform& t)
 {
-	const btScalar reach = body.getCollisionShape()->getMargin();
-	Box shapeBox;
-	shape->getAabb(t, shapeBox.lo, shapeBox.hi);
+	ConvexTarget g;
+	g.object = object;
+	g.shape = shape;
+	g.t = t;
+	g.inverse = t.inverse();
+	shape->getAabb(t, g.shapeBox.lo, g.shapeBox.hi);
+	g.reach = body.getCollisionShape()->getMargin();
 	const bool fixed = object->isStaticOrKinematicObject();
-	const btScalar hardness = btClamped(fixed ? body.m_cfg.kSKHR_CL : body.m_cfg.kSRHR_CL, btScalar(0), btScalar(1));
-	const btScalar split = splitFactor(fixed ? body.m_cfg.kSK_SPLT_CL : body.m_cfg.kSR_SPLT_CL);
-	const btScalar friction = body.m_cfg.kDF * object->getFriction();
-	btConvexPointCloudShape hull;
-	const btTransform inverse = t.inverse();
-	const btVector3 slack(reach / 8, reach / 8, reach / 8);  // the plane lies on the box's face, give or take rounding
-	// The tree's candidates, in index order (the exact test below is the one a scan of all clusters makes).
-	caliber::clustersNear(body, shapeBox.lo, shapeBox.hi, state.near);
-	for (int k = 0; k < state.near.size(); ++k)
+	g.hardness = btClamped(fixed ? body.m_cfg.kSKHR_CL : body.m_cfg.kSRHR_CL, btScalar(0), btScalar(1));
+	g.split = splitFactor(fixed ? body.m_cfg.kSK_SPLT_CL : body.m_cfg.kSR_SPLT_CL);
+	g.friction = body.m_cfg.kDF * object->getFriction();
+	// The tree's candidates, in index order (the exact test is the one a scan of all clusters makes).
+	caliber::clustersNear(body, g.shapeBox.lo, g.shapeBox.hi, state.near);
+	const int m = state.near.size();
+	if (m < kParallelClusters)
 	{
-		btSoftBody::Cluster& c = *body.m_clusters[state.near[k]];
-		if (!c.m_collide || c.m_nodes.size() == 0 || !shapeBox.overlaps(clusterBox(c, reach))) continue;
-		fillHull(c, state.points, hull, 0);
-		btGjkEpaSolver2::sResults res;
-		const btTransform hullAt = at(c.m_com);
-		// Signed distance between the surfaces (margins included); contacts are kept within reach, so that
-		// a cluster closing in during the step is held too.
-		if (!btGjkEpaSolver2::SignedDistance(&hull, hullAt, shape, t, c.m_com - t.getOrigin(), res) ||
-		    !(res.distance < reach))
-			continue;
-		caliber::ClusterContact contact;
-		contact.cluster = &c;
-		contact.other = 0;
-		contact.object = object;
-		contact.node = 0;
-		contact.distance = 0;
-		contact.weightsA = contact.weightsB = -1;
-		contact.localA = c.m_framexform.inverse() * res.witnesses[0];
-		contact.localB = inverse * res.witnesses[1];
-		contact.normal = inverse.getBasis() * res.normal;  // from the shape towards the cluster, in its frame
-		contact.hardness = hardness;
-		contact.split = split;
-		contact.friction = friction;
-		contact.maxCorrection = BT_LARGE_FLOAT;
-		contact.patch = 1;
-		const int head = state.contacts.size();
-		state.contacts.push_back(contact);
-		contact.patch = 0;
-		// The deepest point alone lets a cluster rest on one point and tip its other nodes through the
-		// surface: every node within reach of the contact plane is held too (a contact manifold on the plane).
-		const btVector3& n = res.normal;
-		for (int j = 0; j < c.m_nodes.size(); ++j)
-		{
-			btSoftBody::Node* node = c.m_nodes[j];
-			const btScalar d = n.dot(node->m_x - res.witnesses[1]);
-			if (d >= reach || node->m_im <= 0) continue;
-			// Only nodes over the shape: beside a small shape the contact plane is not its surface.
-			const btVector3 onPlane = node->m_x - n * d;
-			if (!Box{onPlane - slack, onPlane + slack}.overlaps(shapeBox)) continue;
-			contact.localA = c.m_framexform.inverse() * node->m_x;
-			contact.localB = inverse * onPlane;
-			contact.node = node;
-			state.contacts.push_back(contact);
-			++state.contacts[head].patch;
-		}
+		for (int k = 0; k < m; ++k)
+			clusterAgainstConvex(g, *body.m_clusters[state.near[k]], state.points, state.contacts);
+		return;
 	}
+	// Several clusters: on the task scheduler, each cluster's contacts into its own list, joined in order (the
+	// contacts and their order are those of one thread).
+	if (state.lists.size() < m)
+	{
+		state.lists.resize(m);
+		state.hulls.resize(m);
+	}
+	ClusterGather gather;
+	gather.target = &g;
+	gather.body = &body;
+	gather.state = &state;
+	btParallelFor(0, m, 1, gather);
+	for (int k = 0; k < m; ++k)
+		for (int i = 0; i < state.lists[k].size(); ++i) state.contacts.push_back(state.lists[k][i]);
 }
 }  // namespace
 

@@ -60,6 +60,8 @@ struct ClusterState
 	btAlignedObjectArray<btVector3> points2;        // scratch: the other cluster's
 	btAlignedObjectArray<btScalar> weights;         // material points of the contacts between clusters
 	btAlignedObjectArray<int> near;                 // scratch: the clusters a tree query found
+	btAlignedObjectArray<btAlignedObjectArray<ClusterContact>> lists;  // scratch: each candidate's contacts
+	btAlignedObjectArray<btAlignedObjectArray<btVector3>> hulls;       // scratch: each candidate's hull points
 };
 
 /// The body's cluster state (contacts of this step).

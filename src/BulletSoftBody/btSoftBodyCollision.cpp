@@ -157,7 +157,7 @@ bool closestOnConcave(const btConcaveShape& shape, const btTransform& t, const b
 
 struct ContactSearch
 {
-	btSoftBody& body;
+	btAlignedObjectArray<btSoftBody::RContact>* out;  // where the contacts found go
 	const btCollisionObject* object;
 	btScalar margin;
 	btScalar friction;
@@ -179,7 +179,7 @@ struct ContactSearch
 		c.m_c2 = node.m_im;
 		c.m_c3 = friction;
 		c.m_c4 = hardness;
-		body.m_rcontacts.push_back(c);
+		out->push_back(c);
 	}
 
 	void collide(btSoftBody::Node& node, const btCollisionShape* shape, const btTransform& t)
@@ -215,6 +215,59 @@ struct ContactSearch
 	}
 };
 }  // namespace
+
+namespace
+{
+// Node contacts are gathered in chunks of this many nodes, on the task scheduler when there are several.
+const int kContactChunk = 1024;
+
+// The node contacts each chunk found this step (a side table keyed by the body; kept to reuse its storage).
+struct NodeContactChunks
+{
+	btAlignedObjectArray<btAlignedObjectArray<btSoftBody::RContact>> chunks;
+};
+
+// The node contacts with one shape of chunks [begin, end) of nodes; with lists, chunk k's into lists[k],
+// else into the search's list.
+struct NodeGather : btIParallelForBody
+{
+	ContactSearch search;
+	btSoftBody::Node* nodes;
+	int count;
+	const btCollisionShape* shape;
+	const btTransform* t;
+	btVector3 lo, hi;  // the shape's box grown by the margin
+	btAlignedObjectArray<btSoftBody::RContact>* lists = 0;
+	explicit NodeGather(const ContactSearch& s) : search(s) {}
+	void forLoop(int begin, int end) const override
+	{
+		ContactSearch s = search;
+		for (int k = btMax(begin, 0); k < btMax(end, 1); ++k)
+		{
+			if (lists)
+			{
+				s.out = &lists[k];
+				s.out->resize(0);
+			}
+			const int last = btMin((k + 1) * kContactChunk, count);
+			for (int i = k * kContactChunk; i < last; ++i)
+			{
+				btSoftBody::Node& n = nodes[i];
+				if (n.m_im <= 0) continue;
+				btVector3 nlo = n.m_q, nhi = n.m_q;
+				nlo.setMin(n.m_x);
+				nhi.setMax(n.m_x);
+				if (nlo.x() > hi.x() || nhi.x() < lo.x() || nlo.y() > hi.y() || nhi.y() < lo.y() || nlo.z() > hi.z() ||
+				    nhi.z() < lo.z())
+					continue;
+				s.collide(n, shape, *t);
+			}
+		}
+	}
+};
+}  // namespace
+
+void caliber::releaseNodeContactChunks(const btSoftBody& body) { sideTable<NodeContactChunks>().release(&body); }
 
 caliber::SoftFaceContacts& caliber::softFaceContacts(const btSoftBody& body)
 {
@@ -427,19 +480,29 @@ void caliber::collideSoftWithRigid(btSoftBody& body, const btCollisionObjectWrap
 	lo -= m;
 	hi += m;
 	ContactSearch search{
-	    body, object, margin, body.m_cfg.kDF * object->getFriction(),
+	    &body.m_rcontacts, object, margin, body.m_cfg.kDF * object->getFriction(),
 	    object->isStaticOrKinematicObject() ? btScalar(1) : btClamped(body.m_cfg.kCHR, btScalar(0), btScalar(1))};
-	for (int i = 0; i < body.m_nodes.size(); ++i)
+	if (body.m_nodes.size() == 0) return;
+	NodeGather gather(search);
+	gather.nodes = &body.m_nodes[0];
+	gather.count = body.m_nodes.size();
+	gather.shape = shape;
+	gather.t = &t;
+	gather.lo = lo;
+	gather.hi = hi;
+	const int chunks = (body.m_nodes.size() + kContactChunk - 1) / kContactChunk;
+	if (chunks <= 1)
+		gather.forLoop(0, chunks);
+	else
 	{
-		btSoftBody::Node& n = body.m_nodes[i];
-		if (n.m_im <= 0) continue;
-		btVector3 nlo = n.m_q, nhi = n.m_q;
-		nlo.setMin(n.m_x);
-		nhi.setMax(n.m_x);
-		if (nlo.x() > hi.x() || nhi.x() < lo.x() || nlo.y() > hi.y() || nhi.y() < lo.y() || nlo.z() > hi.z() ||
-		    nhi.z() < lo.z())
-			continue;
-		search.collide(n, shape, t);
+		// Chunks of nodes on the task scheduler, each into its own list; the lists are joined in chunk
+		// order, so the contacts and their order are those of one thread.
+		NodeContactChunks& lists = sideTable<NodeContactChunks>().acquire(&body);
+		if (lists.chunks.size() < chunks) lists.chunks.resize(chunks);
+		gather.lists = &lists.chunks[0];
+		btParallelFor(0, chunks, 1, gather);
+		for (int k = 0; k < chunks; ++k)
+			for (int i = 0; i < lists.chunks[k].size(); ++i) body.m_rcontacts.push_back(lists.chunks[k][i]);
 	}
 	if (body.m_faces.size() == 0) return;
 	// Corners of polyhedra against faces, along the object's motion over the step.
