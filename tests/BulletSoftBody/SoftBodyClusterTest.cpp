@@ -498,6 +498,10 @@ TEST(SoftBodyClusters, ClustersAndJointsAreDrawnWhenAskedFor)
 	b->appendLinearJoint(lj);
 	btSoftBodyHelpers::Draw(b, &joints, fDrawFlags::Joints);
 	EXPECT_EQ(joints.lines, 4);  // a cross at the joint and the line between its sides
+	// The cluster tree (m_cdbvt): a box per node, 2n - 1 for n leaves; from depth 1, the two clusters' leaves.
 	btSoftBodyHelpers::DrawClusterTree(b, &tree);
-	EXPECT_EQ(tree.lines, 12 * b->clusterCount());  // a box per cluster
+	EXPECT_EQ(tree.lines, 12 * (2 * b->clusterCount() - 1));
+	LineCounter leaves;
+	btSoftBodyHelpers::DrawClusterTree(b, &leaves, 1);
+	EXPECT_EQ(leaves.lines, 12 * b->clusterCount());
 }

@@ -18,9 +18,9 @@ using caliber_test::SoftTestWorld;
 
 namespace
 {
-// ThreadSanitizer runs the scene some 50 times slower: fewer steps there keep the stage short (every
+// The sanitizers run the scene 25 to 50 times slower: fewer steps there keep their stages short (every
 // stage above still runs from the first steps: the box touches the cloth, the clusters the ground).
-#if defined(__SANITIZE_THREAD__)
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
 const int kSteps = 10;
 #else
 const int kSteps = 40;
