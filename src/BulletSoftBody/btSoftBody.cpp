@@ -127,6 +127,7 @@ btSoftBody::~btSoftBody()
 	caliber::releaseSoftBodyTethers(*this);
 	caliber::releaseSoftLinkColours(*this);
 	caliber::releaseSoftFaceContacts(*this);
+	caliber::releaseNodeContactChunks(*this);
 	delete m_collisionShape;
 	m_collisionShape = 0;
 	for (int i = 0; i < m_materials.size(); ++i) btAlignedFree(m_materials[i]);

@@ -570,6 +570,7 @@ void btSoftBody::releaseCluster(int index)
 			m_joints.removeAtIndex(i);
 		}
 	}
+	caliber::removeClusterLeaf(*this, *c);
 	deleteCluster(c);
 	m_clusters.removeAtIndex(index);
 	for (int i = 0; i < m_clusters.size(); ++i) m_clusters[i]->m_clusterIndex = i;

@@ -33,8 +33,12 @@ struct ClusterContact
 	int weightsA, weightsB;           // between clusters: where the material points' weights start (ClusterState)
 	btVector3 normal;                 // from B towards A: world axes for clusters, B's frame for objects
 	btScalar hardness;                // fraction of the error closed per solve
+	btScalar split;                   // fraction of the push beyond stopping the approach that moves positions
+	                                  // alone (Bullet's kS*_SPLT_CL); the rest changes velocities too
 	btScalar friction;                // Coulomb coefficient
 	btScalar maxCorrection;           // largest correction per solve (self-collision), in m
+	int patch;                        // a manifold's first contact: its number of contacts, whose friction is
+	                                  // solved together (1: this point's own friction); the others: 0
 };
 
 /// An axis-aligned box (of a cluster's nodes, or a shape).
@@ -54,8 +58,10 @@ struct ClusterState
 	btAlignedObjectArray<ClusterContact> contacts;  // this step's, cleared in predictMotion
 	btAlignedObjectArray<btVector3> points;         // scratch: a cluster's hull points
 	btAlignedObjectArray<btVector3> points2;        // scratch: the other cluster's
-	btAlignedObjectArray<Box> boxes;                // scratch: the other body's clusters' boxes
 	btAlignedObjectArray<btScalar> weights;         // material points of the contacts between clusters
+	btAlignedObjectArray<int> near;                 // scratch: the clusters a tree query found
+	btAlignedObjectArray<btAlignedObjectArray<ClusterContact>> lists;  // scratch: each candidate's contacts
+	btAlignedObjectArray<btAlignedObjectArray<btVector3>> hulls;       // scratch: each candidate's hull points
 };
 
 /// The body's cluster state (contacts of this step).
@@ -96,6 +102,19 @@ bool collideClustersWithRigid(btSoftBody& body, const btCollisionObjectWrapper& 
 /// Finds the contacts of a's clusters with b's (CL_SS), or with a's own clusters that share no node when
 /// a == b (CL_SELF).
 void collideClustersWithClusters(btSoftBody& a, btSoftBody& b);
+/// Brings the body's cluster tree (m_cdbvt) up to date with its clusters' nodes now: one leaf per cluster
+/// that collides (m_collide, with nodes), a fat box over the nodes grown by clusterTreeGrow; rebuilt when
+/// clusters were made or released. Called by predictMotion and before self-collision
+/// (btSoftBodyClusterTree.cpp).
+void updateClusterTree(btSoftBody& body);
+/// How far beyond its nodes a leaf of the body's cluster tree reaches at least (1.25 margins: the widest
+/// box a cluster contact tests).
+btScalar clusterTreeGrow(const btSoftBody& body);
+/// The indices of the body's clusters whose leaves meet the box [lo, hi], in ascending order (a superset
+/// of the clusters whose nodes' box grown by clusterTreeGrow meets it).
+void clustersNear(const btSoftBody& body, const btVector3& lo, const btVector3& hi, btAlignedObjectArray<int>& out);
+/// Takes a cluster's leaf out of the body's tree (the cluster is being released).
+void removeClusterLeaf(btSoftBody& body, btSoftBody::Cluster& c);
 /// The cluster stage of a step: citerations solves of the cluster contacts and joints, then shape
 /// matching; called by solveConstraints after the node solvers.
 void solveClusterStage(btSoftBody& body, btScalar dt);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "BulletSoftBody/btSoftBodyHelpers.h"
+#include "btSoftBodyClusters.h"
 
 namespace
 {
@@ -131,23 +132,30 @@ void btSoftBodyHelpers::DrawFaceTree(btSoftBody* psb, btIDebugDraw* idraw, int m
 	DrawNodeTree(psb, idraw, mindepth, maxdepth);
 }
 
+namespace
+{
+// The boxes of a tree's nodes from depth mindepth down to maxdepth (-1: the leaves), as Bullet draws its trees.
+void drawTree(btIDebugDraw* idraw, const btDbvtNode* node, int depth, int mindepth, int maxdepth)
+{
+	if (!node || (maxdepth >= 0 && depth > maxdepth)) return;
+	if (node->isinternal())
+	{
+		drawTree(idraw, node->childs[0], depth + 1, mindepth, maxdepth);
+		drawTree(idraw, node->childs[1], depth + 1, mindepth, maxdepth);
+	}
+	if (depth >= mindepth)
+		idraw->drawAabb(node->volume.Mins(), node->volume.Maxs(),
+		                node->isinternal() ? btVector3(1, 0, 1) : btVector3(0, 1, 1));
+}
+}  // namespace
+
 void btSoftBodyHelpers::DrawClusterTree(btSoftBody* psb, btIDebugDraw* idraw, int mindepth, int maxdepth)
 {
-	// Caliber keeps no cluster tree: the clusters' boxes are its leaves (depth 0).
-	(void)maxdepth;
-	if (!psb || !idraw || mindepth > 0) return;
-	for (int i = 0; i < psb->m_clusters.size(); ++i)
-	{
-		const btSoftBody::Cluster& c = *psb->m_clusters[i];
-		if (c.m_nodes.size() == 0) continue;
-		btVector3 lo = c.m_nodes[0]->m_x, hi = lo;
-		for (int j = 1; j < c.m_nodes.size(); ++j)
-		{
-			lo.setMin(c.m_nodes[j]->m_x);
-			hi.setMax(c.m_nodes[j]->m_x);
-		}
-		idraw->drawAabb(lo, hi, btVector3(0, 1, 1));
-	}
+	if (!psb || !idraw) return;
+	// The tree as the clusters stand now (a body not stepped since its clusters were made has none yet; the
+	// tree only culls, so bringing it up to date changes no result).
+	if (psb->m_clusters.size() > 0) caliber::updateClusterTree(*psb);
+	drawTree(idraw, psb->m_cdbvt.m_root, 0, mindepth, maxdepth);
 }
 
 void btSoftBodyHelpers::DrawFrame(btSoftBody* psb, btIDebugDraw* idraw)

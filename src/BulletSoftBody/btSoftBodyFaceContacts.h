@@ -56,6 +56,8 @@ struct SoftFaceContacts
 SoftFaceContacts& softFaceContacts(const btSoftBody& body);
 /// Forgets the body's face contacts (its destructor).
 void releaseSoftFaceContacts(const btSoftBody& body);
+/// Forgets the lists the body's node contacts are gathered in by chunks (its destructor).
+void releaseNodeContactChunks(const btSoftBody& body);
 }  // namespace caliber
 
 #endif  // CALIBER_SOFT_BODY_FACE_CONTACTS_H

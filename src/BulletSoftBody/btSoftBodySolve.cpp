@@ -366,6 +366,7 @@ void btSoftBody::predictMotion(btScalar dt)
 	}
 	// The clusters' frames at the predicted positions, for the collision pass.
 	for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], m_sst.sdt);
+	if (m_clusters.size() > 0) caliber::updateClusterTree(*this);
 	updateBounds();
 }
 
@@ -796,6 +797,7 @@ void btSoftBody::solveConstraints()
 	if ((m_cfg.collisions & fCollision::CL_SELF) && m_clusters.size() > 1)
 	{
 		for (int i = 0; i < m_clusters.size(); ++i) caliber::refreshCluster(*m_clusters[i], dt);
+		caliber::updateClusterTree(*this);  // the node solves moved the clusters since the prediction
 		caliber::collideClustersWithClusters(*this, *this);
 	}
 	if (m_clusters.size() > 0 || m_joints.size() > 0)

@@ -10,6 +10,7 @@
 #include "SoftBodyTestUtil.h"
 
 using caliber_test::lowestNodeY;
+using caliber_test::rigidSoftBox;
 using caliber_test::SoftTestWorld;
 using caliber_test::WarningCounter;
 
@@ -188,26 +189,6 @@ TEST(SoftBodyClusters, ClusterBallsCollideWithoutInterpenetrating)
 
 namespace
 {
-// A rigid box of soft nodes: its 8 corners (mass / 8 each), every pair linked inextensibly, one cluster,
-// colliding through clusters only, no friction.
-btSoftBody* rigidSoftBox(SoftTestWorld& w, const btVector3& centre, const btVector3& half, btScalar mass)
-{
-	btVector3 corners[8];
-	for (int i = 0; i < 8; ++i)
-		corners[i] = centre + btVector3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
-		                                i & 4 ? half.z() : -half.z());
-	btSoftBody* b = btSoftBodyHelpers::CreateFromConvexHull(w.info(), corners, 8, false);
-	for (int i = 0; i < b->m_nodes.size(); ++i)
-		for (int j = i + 1; j < b->m_nodes.size(); ++j) b->appendLink(i, j, 0, true);
-	b->m_materials[0]->m_kLST = 1;
-	b->setTotalMass(mass);
-	b->m_cfg.piterations = 10;
-	b->m_cfg.kDF = 0;
-	b->m_cfg.collisions = btSoftBody::fCollision::CL_SS;
-	b->generateClusters(1);
-	return w.addSoft(b);
-}
-
 // Momentum, angular momentum about the origin and kinetic energy of the nodes of some bodies.
 struct Motion
 {
@@ -241,8 +222,9 @@ TEST(SoftBodyClusters, OffCentreClusterHitSpinsTheBodyKeepingMomentumAndAngularM
 	// opposite and act at one point; the bar's links turning at 1-2 rad/s lose a little of the latter by
 	// their position projection (0.1% over the second measured).
 	SoftTestWorld w(btVector3(0, 0, 0));
-	btSoftBody* bar = rigidSoftBox(w, btVector3(0, 5, 0), btVector3(0.1, 1, 0.1), 1);
-	btSoftBody* cube = rigidSoftBox(w, btVector3(-1.5, 5.7, 0), btVector3(0.2, 0.2, 0.2), 1);
+	btSoftBody* bar = rigidSoftBox(w, btVector3(0, 5, 0), btVector3(0.1, 1, 0.1), 1, btSoftBody::fCollision::CL_SS);
+	btSoftBody* cube =
+	    rigidSoftBox(w, btVector3(-1.5, 5.7, 0), btVector3(0.2, 0.2, 0.2), 1, btSoftBody::fCollision::CL_SS);
 	cube->setVelocity(btVector3(4, 0, 0));
 	const std::vector<btSoftBody*> both = {bar, cube};
 	const Motion before = motion(both);
@@ -516,6 +498,10 @@ TEST(SoftBodyClusters, ClustersAndJointsAreDrawnWhenAskedFor)
 	b->appendLinearJoint(lj);
 	btSoftBodyHelpers::Draw(b, &joints, fDrawFlags::Joints);
 	EXPECT_EQ(joints.lines, 4);  // a cross at the joint and the line between its sides
+	// The cluster tree (m_cdbvt): a box per node, 2n - 1 for n leaves; from depth 1, the two clusters' leaves.
 	btSoftBodyHelpers::DrawClusterTree(b, &tree);
-	EXPECT_EQ(tree.lines, 12 * b->clusterCount());  // a box per cluster
+	EXPECT_EQ(tree.lines, 12 * (2 * b->clusterCount() - 1));
+	LineCounter leaves;
+	btSoftBodyHelpers::DrawClusterTree(b, &leaves, 1);
+	EXPECT_EQ(leaves.lines, 12 * b->clusterCount());
 }

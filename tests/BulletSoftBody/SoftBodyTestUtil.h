@@ -90,6 +90,27 @@ private:
 	std::vector<btSoftBody*> m_softs;
 };
 
+/// A rigid box of soft nodes, added to w: its 8 corners (mass / 8 each), every pair linked inextensibly,
+/// 10 sweeps, one cluster, no friction, colliding as collisions says (clusters only, e.g. CL_RS or CL_SS).
+inline btSoftBody* rigidSoftBox(SoftTestWorld& w, const btVector3& centre, const btVector3& half, btScalar mass,
+                                int collisions)
+{
+	btVector3 corners[8];
+	for (int i = 0; i < 8; ++i)
+		corners[i] = centre + btVector3(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
+		                                i & 4 ? half.z() : -half.z());
+	btSoftBody* b = btSoftBodyHelpers::CreateFromConvexHull(w.info(), corners, 8, false);
+	for (int i = 0; i < b->m_nodes.size(); ++i)
+		for (int j = i + 1; j < b->m_nodes.size(); ++j) b->appendLink(i, j, 0, true);
+	b->m_materials[0]->m_kLST = 1;
+	b->setTotalMass(mass);
+	b->m_cfg.piterations = 10;
+	b->m_cfg.kDF = 0;
+	b->m_cfg.collisions = collisions;
+	b->generateClusters(1);
+	return w.addSoft(b);
+}
+
 /// Lowest node height of a body.
 inline btScalar lowestNodeY(const btSoftBody& s)
 {
