@@ -267,7 +267,10 @@ bool usableSide(const btSoftBody::Body& b) { return !b.m_soft || caliber::cluste
 template <class J>
 J* newJoint()
 {
-	return new (btAlignedAlloc(sizeof(J), 16)) J();
+	J* joint = new (btAlignedAlloc(sizeof(J), 16)) J();
+	// Scratch that not every joint kind's preparation writes, but that snapshots save: never uninitialised.
+	joint->m_massmatrix.setValue(0, 0, 0, 0, 0, 0, 0, 0, 0);
+	return joint;
 }
 
 bool checkJoint(btSoftBody& self, btSoftBody::Cluster* body0, const btSoftBody::Body& body1, const char* what)

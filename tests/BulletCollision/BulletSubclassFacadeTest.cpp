@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
+#include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleMesh.h"
 #include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
@@ -57,7 +59,41 @@ void addStackedSquares(btTriangleMesh& mesh, int n)
 		mesh.addTriangle(btVector3(0, y, 0), btVector3(1, y, 1), btVector3(0, y, 1));
 	}
 }
+
+// Bullet 2.89's data members of btDbvt and of btSimulationIslandManager, in Bullet's order: a member that
+// Bullet's classes do not declare would make Caliber's larger (one that fits in padding would not; the
+// layout of the rest is what a class written against Bullet's headers assumes).
+struct BulletDbvtMembers
+{
+	btDbvtNode* m_root;
+	btDbvtNode* m_free;
+	int m_lkhd;
+	int m_leaves;
+	unsigned m_opath;
+	btAlignedObjectArray<btDbvt::sStkNN> m_stkStack;
+};
+
+struct BulletIslandManagerMembers
+{
+	virtual ~BulletIslandManagerMembers() {}
+	btUnionFind m_unionFind;
+	btAlignedObjectArray<btPersistentManifold*> m_islandmanifold;
+	btAlignedObjectArray<btCollisionObject*> m_islandBodies;
+	bool m_splitIslands;
+};
 }  // namespace
+
+TEST(BulletSubclassFacade, DbvtAndIslandManagerDeclareBulletsDataMembersOnly)
+{
+	EXPECT_EQ(sizeof(btDbvt), sizeof(BulletDbvtMembers));
+	EXPECT_EQ(sizeof(btSimulationIslandManager), sizeof(BulletIslandManagerMembers));
+	// Bullet's public fields, reached by name as Bullet's users do.
+	btDbvt tree;
+	EXPECT_EQ(tree.m_root, nullptr);
+	EXPECT_EQ(tree.m_free, nullptr);
+	EXPECT_EQ(tree.m_leaves, 0);
+	EXPECT_EQ(tree.m_stkStack.size(), 0);
+}
 
 TEST(BulletSubclassFacade, SortedPairCacheSubclassSeesItsPairsAsOverlappingPairArray)
 {

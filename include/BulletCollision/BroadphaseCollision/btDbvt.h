@@ -138,6 +138,53 @@ struct btDbvtNode
 /// A stack of nodes the caller keeps between queries (collideTVNoStackAlloc, rayTestInternal).
 typedef btAlignedObjectArray<const btDbvtNode*> btNodeStack;
 
+namespace caliber
+{
+/// A stack that lives on the C++ stack up to InlineCapacity entries and moves to the heap beyond
+/// (static queries allocate nothing unless the tree is unusually deep). Internal to btDbvt's queries and
+/// its own walks (not a member of btDbvt: Bullet's class has no such type).
+template <typename E, int InlineCapacity>
+struct DbvtLocalStack
+{
+	/// The entries while they fit.
+	E m_inline[InlineCapacity];
+	/// The entries once they no longer fit in m_inline.
+	btAlignedObjectArray<E> m_heap;
+	/// m_inline or the heap array's storage.
+	E* m_data;
+	/// The number of entries.
+	int m_size;
+	/// The room in m_data.
+	int m_capacity;
+	/// An empty stack.
+	DbvtLocalStack() : m_data(m_inline), m_size(0), m_capacity(InlineCapacity) {}
+	/// Pushes value (moving to the heap when full).
+	DBVT_INLINE void push(const E& value)
+	{
+		if (m_size == m_capacity) grow();
+		m_data[m_size++] = value;
+	}
+	/// Pops the top entry (the stack must not be empty).
+	DBVT_INLINE E pop() { return m_data[--m_size]; }
+	/// True when there is no entry.
+	DBVT_INLINE bool empty() const { return m_size == 0; }
+	/// Doubles the room, moving the entries to the heap array.
+	void grow()
+	{
+		const int capacity = m_capacity * 2;
+		if (m_data == m_inline)
+		{
+			m_heap.resize(capacity);
+			for (int i = 0; i < m_size; ++i) m_heap[i] = m_inline[i];
+		}
+		else
+			m_heap.resize(capacity);
+		m_data = &m_heap[0];
+		m_capacity = capacity;
+	}
+};
+}  // namespace caliber
+
 /// The dynamic AABB tree: a binary tree of boxes whose leaves can be inserted, moved and removed at any
 /// time, used by the dbvt broadphase and the compound shape. Insertion picks the sibling that adds the
 /// least surface area to the tree (branch and bound over the whole tree); see docs for the design.
@@ -354,80 +401,9 @@ struct btDbvt
 		return stock.size() - 1;
 	}
 
-	/// A stack that lives on the C++ stack up to InlineCapacity entries and moves to the heap beyond
-	/// (static queries allocate nothing unless the tree is unusually deep). Internal to the queries.
-	template <typename E, int InlineCapacity>
-	struct sLocalStack
-	{
-		/// The entries while they fit.
-		E m_inline[InlineCapacity];
-		/// The entries once they no longer fit in m_inline.
-		btAlignedObjectArray<E> m_heap;
-		/// m_inline or the heap array's storage.
-		E* m_data;
-		/// The number of entries.
-		int m_size;
-		/// The room in m_data.
-		int m_capacity;
-		/// An empty stack.
-		sLocalStack() : m_data(m_inline), m_size(0), m_capacity(InlineCapacity) {}
-		/// Pushes value (moving to the heap when full).
-		DBVT_INLINE void push(const E& value)
-		{
-			if (m_size == m_capacity) grow();
-			m_data[m_size++] = value;
-		}
-		/// Pops the top entry (the stack must not be empty).
-		DBVT_INLINE E pop() { return m_data[--m_size]; }
-		/// True when there is no entry.
-		DBVT_INLINE bool empty() const { return m_size == 0; }
-		/// Doubles the room, moving the entries to the heap array.
-		void grow()
-		{
-			const int capacity = m_capacity * 2;
-			if (m_data == m_inline)
-			{
-				m_heap.resize(capacity);
-				for (int i = 0; i < m_size; ++i) m_heap[i] = m_inline[i];
-			}
-			else
-				m_heap.resize(capacity);
-			m_data = &m_heap[0];
-			m_capacity = capacity;
-		}
-	};
-
 private:
 	btDbvt(const btDbvt&);
 	btDbvt& operator=(const btDbvt&);
-
-	btDbvtNode* allocateNode();
-	void freeNode(btDbvtNode* node);
-	void releaseAllNodes();
-	void insertLeaf(btDbvtNode* start, btDbvtNode* leaf);
-	btDbvtNode* removeLeaf(btDbvtNode* leaf);
-	void rotate(btDbvtNode* node);
-	void reinsertLeaf(btDbvtNode* leaf, int lookahead);
-	void collectLeavesFreeInternals(btAlignedObjectArray<btDbvtNode*>& leaves);
-	btDbvtNode* buildBottomUp(btDbvtNode** leaves, int count);
-	btDbvtNode* buildTopDown(btDbvtNode** leaves, int count, int bottomUpThreshold);
-
-	/// Blocks of nodes (allocated in chunks so that steady-state insert/remove never allocates).
-	btAlignedObjectArray<btDbvtNode*> m_nodeBlocks;
-	/// The number of nodes of the next block.
-	int m_nextBlockSize;
-	/// The branch-and-bound stack of insertion: a node, the area its ancestors would grow by, and its cost.
-	struct sInsertCandidate
-	{
-		btDbvtNode* node;
-		btScalar inheritedCost;
-		btScalar mergedArea;  // half area of the union of node and the new leaf
-	};
-	btAlignedObjectArray<sInsertCandidate> m_insertStack;
-	/// Scratch arrays of the rebuilds (kept to avoid allocating on every optimize call).
-	btAlignedObjectArray<btDbvtNode*> m_rebuildLeaves;
-	btAlignedObjectArray<btScalar> m_rebuildCosts;
-	btAlignedObjectArray<int> m_rebuildPartners;
 };
 
 // ---- btDbvtAabbMm ---------------------------------------------------------------------------------------

@@ -164,9 +164,6 @@ struct btDbvtBroadphase : public btBroadphaseInterface
 private:
 	btDbvtBroadphase(const btDbvtBroadphase&);
 	btDbvtBroadphase& operator=(const btDbvtBroadphase&);
-
-	/// Scratch stack of the pair search queries (Caliber's; passed to the pair search in the .cpp).
-	btNodeStack m_queryStack;
 };
 
 #endif  // BT_DBVT_BROADPHASE_H

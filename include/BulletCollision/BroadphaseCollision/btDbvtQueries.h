@@ -13,7 +13,7 @@ DBVT_PREFIX
 inline void btDbvt::enumNodes(const btDbvtNode* root, DBVT_IPOLICY)
 {
 	if (!root) return;
-	sLocalStack<const btDbvtNode*, 128> stack;
+	caliber::DbvtLocalStack<const btDbvtNode*, 128> stack;
 	stack.push(root);
 	while (!stack.empty())
 	{
@@ -31,7 +31,7 @@ DBVT_PREFIX
 inline void btDbvt::enumLeaves(const btDbvtNode* root, DBVT_IPOLICY)
 {
 	if (!root) return;
-	sLocalStack<const btDbvtNode*, 128> stack;
+	caliber::DbvtLocalStack<const btDbvtNode*, 128> stack;
 	stack.push(root);
 	while (!stack.empty())
 	{
@@ -130,7 +130,7 @@ DBVT_PREFIX
 inline void btDbvt::collideTV(const btDbvtNode* root, const btDbvtVolume& volume, DBVT_IPOLICY) const
 {
 	if (!root) return;
-	sLocalStack<const btDbvtNode*, 128> stack;
+	caliber::DbvtLocalStack<const btDbvtNode*, 128> stack;
 	stack.push(root);
 	while (!stack.empty())
 	{
@@ -167,7 +167,7 @@ inline void btDbvt::rayTest(const btDbvtNode* root, const btVector3& rayFrom, co
 		inverse[axis] = direction[axis] == btScalar(0) ? btScalar(BT_LARGE_FLOAT) : btScalar(1) / direction[axis];
 		signs[axis] = inverse[axis] < btScalar(0) ? 1u : 0u;
 	}
-	sLocalStack<const btDbvtNode*, 128> stack;
+	caliber::DbvtLocalStack<const btDbvtNode*, 128> stack;
 	stack.push(root);
 	while (!stack.empty())
 	{
@@ -229,7 +229,7 @@ inline void btDbvt::collideKDOP(const btDbvtNode* root, const btVector3* normals
 	for (int i = 0; i < count; ++i)
 		signs[i] = (normals[i].x() >= 0 ? 1 : 0) + (normals[i].y() >= 0 ? 2 : 0) + (normals[i].z() >= 0 ? 4 : 0);
 	const unsigned allInside = count == 32 ? ~0u : ((1u << count) - 1u);
-	sLocalStack<sStkNP, 128> stack;
+	caliber::DbvtLocalStack<sStkNP, 128> stack;
 	stack.push(sStkNP(root, 0u));
 	while (!stack.empty())
 	{
@@ -275,7 +275,7 @@ inline void btDbvt::collideOCL(const btDbvtNode* root, const btVector3* normals,
 	const unsigned allInside = count == 32 ? ~0u : ((1u << count) - 1u);
 	// fullsort: a binary min-heap on the sort value (a child never sorts before its parent, so leaves
 	// come out in increasing order); otherwise a depth-first stack with the nearer child on top.
-	sLocalStack<sStkNPS, 128> open;
+	caliber::DbvtLocalStack<sStkNPS, 128> open;
 	open.push(sStkNPS(root, 0u, root->volume.ProjectMinimum(sortaxis, sortSigns)));
 	while (!open.empty())
 	{
@@ -354,7 +354,7 @@ DBVT_PREFIX
 inline void btDbvt::collideTU(const btDbvtNode* root, DBVT_IPOLICY)
 {
 	if (!root) return;
-	sLocalStack<const btDbvtNode*, 128> stack;
+	caliber::DbvtLocalStack<const btDbvtNode*, 128> stack;
 	stack.push(root);
 	while (!stack.empty())
 	{

@@ -22,11 +22,6 @@ class btSimulationIslandManager
 	btUnionFind m_unionFind;
 	btAlignedObjectArray<btPersistentManifold*> m_islandmanifold;
 	btAlignedObjectArray<btCollisionObject*> m_islandBodies;
-	// Scratch of processIslands, kept to avoid allocating every step: manifolds grouped by island, and
-	// the first index (and fill count) of each island's group.
-	btAlignedObjectArray<btPersistentManifold*> m_sortedManifolds;
-	btAlignedObjectArray<int> m_islandManifoldStart;
-	btAlignedObjectArray<int> m_islandManifoldFill;
 	bool m_splitIslands;
 
 public:

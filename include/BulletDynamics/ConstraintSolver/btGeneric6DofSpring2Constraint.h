@@ -24,6 +24,7 @@
 /// Rows: locked coordinates give equality rows first (the solver solves them together exactly), then
 /// two one-sided rows per limited coordinate, then motors, then springs.
 
+#include "BulletDynamics/ConstraintSolver/btJacobianEntry.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btTransform.h"
 #include "LinearMath/btVector3.h"
@@ -222,6 +223,11 @@ protected:
 	btTransform m_frameInA;
 	btTransform m_frameInB;
 
+	/// Bullet's per-axis Jacobian entries, declared for subclasses; neither Bullet's rows nor Caliber's
+	/// fill them.
+	btJacobianEntry m_jacLinear[3];
+	btJacobianEntry m_jacAng[3];
+
 	btTranslationalLimitMotor2 m_linearLimits;
 	btRotationalLimitMotor2 m_angularLimits[3];
 
@@ -233,6 +239,12 @@ protected:
 	/// Unit world directions along which each angle's rate is measured (see getAxis).
 	btVector3 m_calculatedAxis[3];
 	btVector3 m_calculatedLinearDiff;
+	/// How a correction is shared: m_factA = invMassB / (invMassA + invMassB), m_factB = 1 - m_factA (0.5
+	/// each when both are immovable); m_hasStaticBody when either inverse mass is (near) zero. Updated by
+	/// calculateTransforms.
+	btScalar m_factA;
+	btScalar m_factB;
+	bool m_hasStaticBody;
 	int m_flags;
 
 	btGeneric6DofSpring2Constraint& operator=(btGeneric6DofSpring2Constraint&)
@@ -240,6 +252,45 @@ protected:
 		btAssert(0);
 		return *this;
 	}
+
+	/// Writes the rows of the three angular coordinates (each as get_limit_motor_info2 does, about the
+	/// exact rate direction of its angle) from row row_offset on; returns the row after the last one
+	/// written. calculateTransforms must have run for these poses. The coordinates' own stop and motor
+	/// ERP and CFM apply where set through setParam, info's ERP and the rows' starting CFM otherwise.
+	int setAngularLimits(btConstraintInfo2 * info, int row_offset, const btTransform& transA, const btTransform& transB,
+	                     const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+	                     const btVector3& angVelB);
+	/// The same for the three linear coordinates (each along A's frame axis, acting at B's pivot), from
+	/// row `row` on.
+	int setLinearLimits(btConstraintInfo2 * info, int row, const btTransform& transA, const btTransform& transB,
+	                    const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+	                    const btVector3& angVelB);
+
+	/// From the calculated transforms: the linear coordinates (m_calculatedLinearDiff, B's pivot in A's
+	/// frame) and their limit states.
+	void calculateLinearInfo();
+	/// From the calculated transforms: the Euler angles (m_calculatedAxisAngleDiff) and the directions
+	/// their rates are measured along (m_calculatedAxis, unit length).
+	void calculateAngleInfo();
+	/// Angle axis_index's position (the same angle a turn away when that is inside or nearer the limits)
+	/// and limit state (m_currentLimit: 0 free, 3 locked, 4 limited).
+	void testAngularLimitMotor(int axis_index);
+
+	/// Writes the Jacobian of row srow along ax1: rotational, A turns about ax1 and B about -ax1;
+	/// otherwise A moves along ax1 and B along -ax1, and with rotAllowed each body also turns about its
+	/// centre of mass (transA's and transB's origins) as a push at B's pivot would turn it.
+	void calculateJacobi(btRotationalLimitMotor2 * limot, const btTransform& transA, const btTransform& transB,
+	                     btConstraintInfo2* info, int srow, btVector3& ax1, int rotational, int rotAllowed);
+	/// Writes the rows of one coordinate with limot's settings (its m_currentLimit, m_currentPosition,
+	/// limits, bounce, motor, servo and spring; its ERPs and CFMs as they are) from row `row` on: a locked
+	/// row, or a row per limit end, then a motor row and a spring row when enabled; returns how many rows
+	/// it wrote. The rows measure the coordinate's rate: an angle's along ax1 (rotational), a linear
+	/// coordinate's (B's pivot relative to A along ax1) along -ax1. Bounds and targets are those of
+	/// getInfo2's rows.
+	int get_limit_motor_info2(btRotationalLimitMotor2 * limot, const btTransform& transA, const btTransform& transB,
+	                          const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+	                          const btVector3& angVelB, btConstraintInfo2* info, int row, btVector3& ax1,
+	                          int rotational, int rotAllowed = false);
 
 private:
 	/// The world vectors d_n with d_n . (wA - wB) = d(angle n)/dt exactly (the dual basis of the three

@@ -4,9 +4,14 @@
 #include <algorithm>
 #include <new>
 
+#include "LinearMath/btSideTable.h"
+
 // Design (see docs, "btDbvt"):
-// - Nodes come from blocks owned by the tree and are recycled through a free list, so that a tree in
-//   steady state (as many inserts as removes) never allocates. Leaves never move in memory.
+// - Nodes come from blocks owned by the tree and are recycled through a free list (Bullet's m_free, linked
+//   through parent), so that a tree in steady state (as many inserts as removes) never allocates. Leaves
+//   never move in memory. btDbvt declares only Bullet's members: the blocks are listed in a side table
+//   (looked up when the free list runs dry and when the tree drops its nodes, never per insert), the
+//   insertion's search stack lives on the C++ stack and the rebuilds' arrays are per thread.
 // - Insertion chooses the sibling that minimises the total surface area added to the tree: the area of
 //   the new parent plus the growth of every ancestor. The search is a branch and bound over the whole
 //   tree: a subtree is skipped when even a perfect fit inside it (the leaf's own area plus the growth
@@ -57,148 +62,92 @@ btDbvtVolume sanitizedVolume(const btDbvtVolume& v)
 SIMD_FORCE_INLINE int indexOfChild(const btDbvtNode* node) { return node->parent->childs[1] == node ? 1 : 0; }
 }  // namespace
 
-btDbvt::btDbvt() : m_root(0), m_free(0), m_lkhd(-1), m_leaves(0), m_opath(0), m_nextBlockSize(64) {}
-
-btDbvt::~btDbvt() { releaseAllNodes(); }
-
-void btDbvt::clear()
+namespace caliber
 {
-	releaseAllNodes();
-	m_stkStack.clear();
-	m_insertStack.clear();
-	m_rebuildLeaves.clear();
-	m_rebuildCosts.clear();
-	m_rebuildPartners.clear();
-}
-
-void btDbvt::releaseAllNodes()
+namespace
 {
-	for (int i = 0; i < m_nodeBlocks.size(); ++i) btAlignedFree(m_nodeBlocks[i]);
-	m_nodeBlocks.clear();
-	m_root = 0;
-	m_free = 0;
-	m_leaves = 0;
-	m_opath = 0;
-	m_lkhd = -1;
-	m_nextBlockSize = 64;
-}
-
-btDbvtNode* btDbvt::allocateNode()
+/// The node blocks of one tree, freed with the tree's nodes.
+struct DbvtNodeBlocks
 {
-	if (!m_free)
+	btAlignedObjectArray<btDbvtNode*> blocks;
+	/// The number of nodes of the next block: twice the last, up to 4096.
+	int nextBlockSize = 64;
+	~DbvtNodeBlocks()
 	{
-		// A new block, twice the last one up to 4096 nodes: few allocations while a tree grows.
-		const int count = m_nextBlockSize;
-		m_nextBlockSize = btMin(m_nextBlockSize * 2, 4096);
+		for (int i = 0; i < blocks.size(); ++i) btAlignedFree(blocks[i]);
+	}
+};
+
+/// An entry of the insertion's branch-and-bound stack: a node, what its ancestors would grow by, and the
+/// half area of its union with the new leaf.
+struct InsertCandidate
+{
+	btDbvtNode* node;
+	btScalar inheritedCost;
+	btScalar mergedArea;
+};
+
+/// The rebuilds' arrays, kept per thread so that repeated optimize calls do not allocate.
+struct RebuildScratch
+{
+	btAlignedObjectArray<btDbvtNode*> leaves;
+	btAlignedObjectArray<btScalar> costs;
+	btAlignedObjectArray<int> partners;
+};
+
+RebuildScratch& rebuildScratch()
+{
+	static thread_local RebuildScratch scratch;
+	return scratch;
+}
+
+/// Frees every node of tree at once (its blocks) and empties it.
+void releaseAllNodes(btDbvt& tree)
+{
+	sideTable<DbvtNodeBlocks>().release(&tree);
+	tree.m_root = 0;
+	tree.m_free = 0;
+	tree.m_leaves = 0;
+	tree.m_opath = 0;
+	tree.m_lkhd = -1;
+}
+
+/// A node off the tree's free list (a new block when the list is empty), unlinked.
+btDbvtNode* allocateNode(btDbvt& tree)
+{
+	if (!tree.m_free)
+	{
+		// Few allocations while a tree grows; the side table is only looked up here.
+		DbvtNodeBlocks& owned = sideTable<DbvtNodeBlocks>().acquire(&tree);
+		const int count = owned.nextBlockSize;
+		owned.nextBlockSize = btMin(owned.nextBlockSize * 2, 4096);
 		btDbvtNode* block = static_cast<btDbvtNode*>(btAlignedAlloc(sizeof(btDbvtNode) * count, 16));
-		m_nodeBlocks.push_back(block);
+		owned.blocks.push_back(block);
 		for (int i = count - 1; i >= 0; --i)
 		{
 			btDbvtNode* node = new (&block[i]) btDbvtNode;
-			node->parent = m_free;
-			m_free = node;
+			node->parent = tree.m_free;
+			tree.m_free = node;
 		}
 	}
-	btDbvtNode* node = m_free;
-	m_free = node->parent;
+	btDbvtNode* node = tree.m_free;
+	tree.m_free = node->parent;
 	node->parent = 0;
 	node->childs[0] = 0;
 	node->childs[1] = 0;
 	return node;
 }
 
-void btDbvt::freeNode(btDbvtNode* node)
+/// Puts node back on the tree's free list (linked through parent, as Bullet's m_free).
+SIMD_FORCE_INLINE void freeNode(btDbvt& tree, btDbvtNode* node)
 {
 	node->childs[0] = 0;
 	node->childs[1] = 0;
-	node->parent = m_free;
-	m_free = node;
+	node->parent = tree.m_free;
+	tree.m_free = node;
 }
 
-btDbvtNode* btDbvt::insert(const btDbvtVolume& box, void* data)
-{
-	btDbvtNode* leaf = allocateNode();
-	leaf->volume = sanitizedVolume(box);
-	leaf->childs[1] = 0;
-	leaf->data = data;
-	insertLeaf(m_root, leaf);
-	++m_leaves;
-	return leaf;
-}
-
-void btDbvt::insertLeaf(btDbvtNode* start, btDbvtNode* leaf)
-{
-	if (!m_root)
-	{
-		m_root = leaf;
-		leaf->parent = 0;
-		return;
-	}
-	if (!start) start = m_root;
-
-	// Branch and bound for the sibling of least cost (area of the new parent + growth of the ancestors).
-	const btDbvtVolume& box = leaf->volume;
-	const btScalar leafArea = halfArea(box);
-	btDbvtNode* best = start;
-	btScalar bestCost = halfArea(merged(box, start->volume));
-	m_insertStack.resizeNoInitialize(0);
-	sInsertCandidate first = {start, btScalar(0), bestCost};
-	m_insertStack.push_back(first);
-	while (m_insertStack.size() > 0)
-	{
-		const sInsertCandidate candidate = m_insertStack[m_insertStack.size() - 1];
-		m_insertStack.pop_back();
-		// Even a perfect fit under this node costs leafArea plus what its ancestors grow by.
-		if (leafArea + candidate.inheritedCost >= bestCost && candidate.node != start) continue;
-		btDbvtNode* node = candidate.node;
-		const btScalar cost = candidate.mergedArea + candidate.inheritedCost;
-		if (cost < bestCost)
-		{
-			bestCost = cost;
-			best = node;
-		}
-		if (node->isleaf()) continue;
-		const btScalar childInherited = candidate.inheritedCost + (candidate.mergedArea - halfArea(node->volume));
-		if (leafArea + childInherited < bestCost)
-		{
-			// Depth first, the child whose union with the leaf is smaller on top: a good sibling is found
-			// early and bounds the rest of the search.
-			const btScalar area0 = halfArea(merged(box, node->childs[0]->volume));
-			const btScalar area1 = halfArea(merged(box, node->childs[1]->volume));
-			const int nearer = area1 < area0 ? 1 : 0;
-			sInsertCandidate later = {node->childs[1 - nearer], childInherited, nearer ? area0 : area1};
-			sInsertCandidate sooner = {node->childs[nearer], childInherited, nearer ? area1 : area0};
-			m_insertStack.push_back(later);
-			m_insertStack.push_back(sooner);
-		}
-	}
-
-	// A new parent takes the sibling's place and adopts sibling and leaf.
-	btDbvtNode* oldParent = best->parent;
-	btDbvtNode* parent = allocateNode();
-	parent->parent = oldParent;
-	Merge(box, best->volume, parent->volume);
-	parent->childs[0] = best;
-	parent->childs[1] = leaf;
-	if (oldParent)
-		oldParent->childs[indexOfChild(best)] = parent;
-	else
-		m_root = parent;
-	best->parent = parent;
-	leaf->parent = parent;
-
-	// Grow the ancestors until one already contains the leaf (the ones above it contain it too), and try a
-	// rotation at each: cost-based insertion alone degenerates towards a list for sorted input.
-	rotate(parent);
-	for (btDbvtNode* node = oldParent; node; node = node->parent)
-	{
-		if (node->volume.Contain(box)) break;
-		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
-		rotate(node);
-	}
-}
-
-void btDbvt::rotate(btDbvtNode* node)
+void rotate(btDbvtNode* node)
 {
 	// Swapping a child of `node` with a grandchild under its other child keeps node's box and changes the
 	// box of that other child only; take the swap that shrinks it most (Catto, "Dynamic AABB trees", 2019).
@@ -233,11 +182,129 @@ void btDbvt::rotate(btDbvtNode* node)
 	Merge(opened->childs[0]->volume, opened->childs[1]->volume, opened->volume);
 }
 
-btDbvtNode* btDbvt::removeLeaf(btDbvtNode* leaf)
+/// The state of the search for a new leaf's sibling: the best so far and what bounds the rest.
+struct SiblingSearch
 {
-	if (leaf == m_root)
+	btDbvtVolume box;
+	btScalar leafArea;
+	btDbvtNode* start;
+	btDbvtNode* best;
+	btScalar bestCost;
+};
+
+/// One step of the branch and bound: takes candidate if it is the best so far and pushes its children
+/// that could still hold a better sibling (the nearer one last, so that it is searched first).
+template <class Push>
+SIMD_FORCE_INLINE void visitCandidate(SiblingSearch& search, const InsertCandidate& candidate, Push push)
+{
+	// Even a perfect fit under this node costs leafArea plus what its ancestors grow by.
+	if (search.leafArea + candidate.inheritedCost >= search.bestCost && candidate.node != search.start) return;
+	btDbvtNode* node = candidate.node;
+	const btScalar cost = candidate.mergedArea + candidate.inheritedCost;
+	if (cost < search.bestCost)
 	{
-		m_root = 0;
+		search.bestCost = cost;
+		search.best = node;
+	}
+	if (node->isleaf()) return;
+	const btScalar childInherited = candidate.inheritedCost + (candidate.mergedArea - halfArea(node->volume));
+	if (search.leafArea + childInherited < search.bestCost)
+	{
+		// The child whose union with the leaf is smaller on top: a good sibling is found early and bounds
+		// the rest of the search.
+		const btScalar area0 = halfArea(merged(search.box, node->childs[0]->volume));
+		const btScalar area1 = halfArea(merged(search.box, node->childs[1]->volume));
+		const int nearer = area1 < area0 ? 1 : 0;
+		const InsertCandidate later = {node->childs[1 - nearer], childInherited, nearer ? area0 : area1};
+		const InsertCandidate sooner = {node->childs[nearer], childInherited, nearer ? area1 : area0};
+		push(later);
+		push(sooner);
+	}
+}
+
+/// The search continued on a heap stack, for trees deeper than the inline stack of bestSibling.
+btDbvtNode* finishSearchOnHeap(SiblingSearch& search, const InsertCandidate* pending, int count)
+{
+	btAlignedObjectArray<InsertCandidate> stack;
+	for (int i = 0; i < count; ++i) stack.push_back(pending[i]);
+	while (stack.size() > 0)
+	{
+		const InsertCandidate candidate = stack[stack.size() - 1];
+		stack.pop_back();
+		visitCandidate(search, candidate, [&stack](const InsertCandidate& c) { stack.push_back(c); });
+	}
+	return search.best;
+}
+
+/// The sibling for a leaf with this box under start of least cost (area of the new parent + growth of the
+/// ancestors), by a depth-first branch and bound. The stack holds at most one entry per level plus one,
+/// so it lives in a local array (kept in registers and cache, nothing shared between threads); only trees
+/// deeper than it continue on the heap.
+btDbvtNode* bestSibling(btDbvtNode* start, const btDbvtVolume& box)
+{
+	const int kInline = 64;
+	SiblingSearch search;
+	search.box = box;
+	search.leafArea = halfArea(box);
+	search.start = start;
+	search.best = start;
+	search.bestCost = halfArea(merged(box, start->volume));
+	InsertCandidate stack[kInline];
+	int size = 0;
+	const InsertCandidate first = {start, btScalar(0), search.bestCost};
+	stack[size++] = first;
+	while (size > 0)
+	{
+		if (size > kInline - 2) return finishSearchOnHeap(search, stack, size);
+		const InsertCandidate candidate = stack[--size];
+		visitCandidate(search, candidate, [&stack, &size](const InsertCandidate& c) { stack[size++] = c; });
+	}
+	return search.best;
+}
+
+/// Links leaf into the tree, searching for its sibling under start (the root when start is null).
+void insertLeaf(btDbvt& tree, btDbvtNode* start, btDbvtNode* leaf)
+{
+	if (!tree.m_root)
+	{
+		tree.m_root = leaf;
+		leaf->parent = 0;
+		return;
+	}
+	const btDbvtVolume& box = leaf->volume;
+	btDbvtNode* best = bestSibling(start ? start : tree.m_root, box);
+
+	// A new parent takes the sibling's place and adopts sibling and leaf.
+	btDbvtNode* oldParent = best->parent;
+	btDbvtNode* parent = allocateNode(tree);
+	parent->parent = oldParent;
+	Merge(box, best->volume, parent->volume);
+	parent->childs[0] = best;
+	parent->childs[1] = leaf;
+	if (oldParent)
+		oldParent->childs[indexOfChild(best)] = parent;
+	else
+		tree.m_root = parent;
+	best->parent = parent;
+	leaf->parent = parent;
+
+	// Grow the ancestors until one already contains the leaf (the ones above it contain it too), and try a
+	// rotation at each: cost-based insertion alone degenerates towards a list for sorted input.
+	rotate(parent);
+	for (btDbvtNode* node = oldParent; node; node = node->parent)
+	{
+		if (node->volume.Contain(box)) break;
+		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
+		rotate(node);
+	}
+}
+
+/// Unlinks leaf (its parent goes to the free list); returns the node where a re-insertion may start.
+btDbvtNode* removeLeaf(btDbvt& tree, btDbvtNode* leaf)
+{
+	if (leaf == tree.m_root)
+	{
+		tree.m_root = 0;
 		return 0;
 	}
 	btDbvtNode* parent = leaf->parent;
@@ -246,14 +313,14 @@ btDbvtNode* btDbvt::removeLeaf(btDbvtNode* leaf)
 	leaf->parent = 0;
 	if (!grandParent)
 	{
-		m_root = sibling;
+		tree.m_root = sibling;
 		sibling->parent = 0;
-		freeNode(parent);
-		return m_root;
+		freeNode(tree, parent);
+		return tree.m_root;
 	}
 	grandParent->childs[indexOfChild(parent)] = sibling;
 	sibling->parent = grandParent;
-	freeNode(parent);
+	freeNode(tree, parent);
 	// Shrink the ancestors; once a box does not change, none above it does.
 	for (btDbvtNode* node = grandParent; node; node = node->parent)
 	{
@@ -264,53 +331,67 @@ btDbvtNode* btDbvt::removeLeaf(btDbvtNode* leaf)
 	return grandParent;
 }
 
+/// The node `lookahead` levels above start (the root for a negative lookahead; null stays null).
+btDbvtNode* reinsertionStart(btDbvt& tree, btDbvtNode* start, int lookahead)
+{
+	if (!start) return 0;
+	if (lookahead < 0) return tree.m_root;
+	for (int i = 0; i < lookahead && start->parent; ++i) start = start->parent;
+	return start;
+}
+
+void reinsertLeaf(btDbvt& tree, btDbvtNode* leaf, int lookahead)
+{
+	btDbvtNode* start = removeLeaf(tree, leaf);
+	insertLeaf(tree, reinsertionStart(tree, start, lookahead), leaf);
+}
+}  // namespace
+}  // namespace caliber
+
+btDbvt::btDbvt() : m_root(0), m_free(0), m_lkhd(-1), m_leaves(0), m_opath(0) {}
+
+btDbvt::~btDbvt() { caliber::releaseAllNodes(*this); }
+
+void btDbvt::clear()
+{
+	caliber::releaseAllNodes(*this);
+	m_stkStack.clear();
+}
+
+btDbvtNode* btDbvt::insert(const btDbvtVolume& box, void* data)
+{
+	btDbvtNode* leaf = caliber::allocateNode(*this);
+	leaf->volume = sanitizedVolume(box);
+	leaf->childs[1] = 0;
+	leaf->data = data;
+	caliber::insertLeaf(*this, m_root, leaf);
+	++m_leaves;
+	return leaf;
+}
+
 void btDbvt::remove(btDbvtNode* leaf)
 {
 	btAssert(leaf && leaf->isleaf() && "btDbvt::remove: not a leaf");
 	if (!leaf || !leaf->isleaf() || !m_root) return;
-	removeLeaf(leaf);
-	freeNode(leaf);
+	caliber::removeLeaf(*this, leaf);
+	caliber::freeNode(*this, leaf);
 	--m_leaves;
-}
-
-void btDbvt::reinsertLeaf(btDbvtNode* leaf, int lookahead)
-{
-	btDbvtNode* start = removeLeaf(leaf);
-	if (start)
-	{
-		if (lookahead >= 0)
-		{
-			for (int i = 0; i < lookahead && start->parent; ++i) start = start->parent;
-		}
-		else
-			start = m_root;
-	}
-	insertLeaf(start, leaf);
 }
 
 void btDbvt::update(btDbvtNode* leaf, int lookahead)
 {
 	btAssert(leaf && leaf->isleaf() && "btDbvt::update: not a leaf");
 	if (!leaf || !leaf->isleaf() || !m_root) return;
-	reinsertLeaf(leaf, lookahead);
+	caliber::reinsertLeaf(*this, leaf, lookahead);
 }
 
 void btDbvt::update(btDbvtNode* leaf, btDbvtVolume& volume)
 {
 	btAssert(leaf && leaf->isleaf() && "btDbvt::update: not a leaf");
 	if (!leaf || !leaf->isleaf() || !m_root) return;
-	btDbvtNode* start = removeLeaf(leaf);
+	btDbvtNode* start = caliber::removeLeaf(*this, leaf);
 	leaf->volume = sanitizedVolume(volume);
-	if (start)
-	{
-		if (m_lkhd >= 0)
-		{
-			for (int i = 0; i < m_lkhd && start->parent; ++i) start = start->parent;
-		}
-		else
-			start = m_root;
-	}
-	insertLeaf(start, leaf);
+	caliber::insertLeaf(*this, caliber::reinsertionStart(*this, start, m_lkhd), leaf);
 }
 
 bool btDbvt::update(btDbvtNode* leaf, btDbvtVolume& volume, const btVector3& velocity, btScalar margin)
@@ -348,18 +429,23 @@ void btDbvt::optimizeIncremental(int passes)
 		// The bits of m_opath pick a child at each level, so that successive passes visit different leaves.
 		btDbvtNode* node = m_root;
 		for (int bit = 0; node->isinternal(); bit = (bit + 1) % bits) node = node->childs[(m_opath >> bit) & 1];
-		reinsertLeaf(node, -1);
+		caliber::reinsertLeaf(*this, node, -1);
 		++m_opath;
 	}
 }
 
-void btDbvt::collectLeavesFreeInternals(btAlignedObjectArray<btDbvtNode*>& leaves)
+namespace caliber
+{
+namespace
+{
+/// Moves the tree's leaves into leaves and its internal nodes to the free list; the tree is left empty.
+void collectLeavesFreeInternals(btDbvt& tree, btAlignedObjectArray<btDbvtNode*>& leaves)
 {
 	leaves.resizeNoInitialize(0);
-	if (!m_root) return;
-	leaves.reserve(m_leaves);
-	sLocalStack<btDbvtNode*, 128> stack;
-	stack.push(m_root);
+	if (!tree.m_root) return;
+	leaves.reserve(tree.m_leaves);
+	DbvtLocalStack<btDbvtNode*, 128> stack;
+	stack.push(tree.m_root);
 	while (!stack.empty())
 	{
 		btDbvtNode* node = stack.pop();
@@ -367,23 +453,23 @@ void btDbvt::collectLeavesFreeInternals(btAlignedObjectArray<btDbvtNode*>& leave
 		{
 			stack.push(node->childs[0]);
 			stack.push(node->childs[1]);
-			freeNode(node);
+			freeNode(tree, node);
 		}
 		else
 			leaves.push_back(node);
 	}
-	m_root = 0;
+	tree.m_root = 0;
 }
 
-btDbvtNode* btDbvt::buildBottomUp(btDbvtNode** nodes, int count)
+btDbvtNode* buildBottomUp(btDbvt& tree, RebuildScratch& scratch, btDbvtNode** nodes, int count)
 {
 	// Agglomerative build: repeatedly join the two subtrees whose union has the least area. Each slot keeps
 	// its best partner, recomputed only when that partner disappears, which keeps the build near O(n^2).
 	if (count <= 0) return 0;
-	m_rebuildCosts.resizeNoInitialize(count);
-	m_rebuildPartners.resizeNoInitialize(count);
-	btScalar* cost = &m_rebuildCosts[0];
-	int* partner = &m_rebuildPartners[0];
+	scratch.costs.resizeNoInitialize(count);
+	scratch.partners.resizeNoInitialize(count);
+	btScalar* cost = &scratch.costs[0];
+	int* partner = &scratch.partners[0];
 	const btScalar unset = SIMD_INFINITY;
 	auto findPartner = [&](int i)
 	{
@@ -407,7 +493,7 @@ btDbvtNode* btDbvt::buildBottomUp(btDbvtNode** nodes, int count)
 		for (int k = 0; k < count; ++k)
 			if (nodes[k] && partner[k] >= 0 && (i < 0 || cost[k] < cost[i])) i = k;
 		const int j = partner[i];
-		btDbvtNode* parent = allocateNode();
+		btDbvtNode* parent = allocateNode(tree);
 		parent->childs[0] = nodes[i];
 		parent->childs[1] = nodes[j];
 		nodes[i]->parent = parent;
@@ -437,10 +523,10 @@ btDbvtNode* btDbvt::buildBottomUp(btDbvtNode** nodes, int count)
 	return 0;
 }
 
-btDbvtNode* btDbvt::buildTopDown(btDbvtNode** leaves, int count, int bottomUpThreshold)
+btDbvtNode* buildTopDown(btDbvt& tree, RebuildScratch& scratch, btDbvtNode** leaves, int count, int bottomUpThreshold)
 {
 	if (count == 1) return leaves[0];
-	if (count <= bottomUpThreshold) return buildBottomUp(leaves, count);
+	if (count <= bottomUpThreshold) return buildBottomUp(tree, scratch, leaves, count);
 	// Split at the median of the centres along the axis where the centres spread most.
 	btVector3 lo = leaves[0]->volume.Center(), hi = lo;
 	for (int i = 1; i < count; ++i)
@@ -455,9 +541,9 @@ btDbvtNode* btDbvt::buildTopDown(btDbvtNode** leaves, int count, int bottomUpThr
 	    leaves, leaves + half, leaves + count,
 	    [axis](const btDbvtNode* a, const btDbvtNode* b)
 	    { return a->volume.Mins()[axis] + a->volume.Maxs()[axis] < b->volume.Mins()[axis] + b->volume.Maxs()[axis]; });
-	btDbvtNode* left = buildTopDown(leaves, half, bottomUpThreshold);
-	btDbvtNode* right = buildTopDown(leaves + half, count - half, bottomUpThreshold);
-	btDbvtNode* parent = allocateNode();
+	btDbvtNode* left = buildTopDown(tree, scratch, leaves, half, bottomUpThreshold);
+	btDbvtNode* right = buildTopDown(tree, scratch, leaves + half, count - half, bottomUpThreshold);
+	btDbvtNode* parent = allocateNode(tree);
 	parent->childs[0] = left;
 	parent->childs[1] = right;
 	left->parent = parent;
@@ -465,20 +551,24 @@ btDbvtNode* btDbvt::buildTopDown(btDbvtNode** leaves, int count, int bottomUpThr
 	Merge(left->volume, right->volume, parent->volume);
 	return parent;
 }
+}  // namespace
+}  // namespace caliber
 
 void btDbvt::optimizeBottomUp()
 {
 	if (!m_root) return;
-	collectLeavesFreeInternals(m_rebuildLeaves);
-	m_root = buildBottomUp(&m_rebuildLeaves[0], m_rebuildLeaves.size());
+	caliber::RebuildScratch& scratch = caliber::rebuildScratch();
+	caliber::collectLeavesFreeInternals(*this, scratch.leaves);
+	m_root = caliber::buildBottomUp(*this, scratch, &scratch.leaves[0], scratch.leaves.size());
 	m_root->parent = 0;
 }
 
 void btDbvt::optimizeTopDown(int bu_treshold)
 {
 	if (!m_root) return;
-	collectLeavesFreeInternals(m_rebuildLeaves);
-	m_root = buildTopDown(&m_rebuildLeaves[0], m_rebuildLeaves.size(), btMax(bu_treshold, 1));
+	caliber::RebuildScratch& scratch = caliber::rebuildScratch();
+	caliber::collectLeavesFreeInternals(*this, scratch.leaves);
+	m_root = caliber::buildTopDown(*this, scratch, &scratch.leaves[0], scratch.leaves.size(), btMax(bu_treshold, 1));
 	m_root->parent = 0;
 }
 
@@ -532,13 +622,13 @@ void btDbvt::clone(btDbvt& dest, IClone* iclone) const
 		btDbvtNode* parent;
 		int childIndex;
 	};
-	sLocalStack<Pending, 128> stack;
+	caliber::DbvtLocalStack<Pending, 128> stack;
 	Pending first = {m_root, 0, 0};
 	stack.push(first);
 	while (!stack.empty())
 	{
 		const Pending p = stack.pop();
-		btDbvtNode* copy = dest.allocateNode();
+		btDbvtNode* copy = caliber::allocateNode(dest);
 		copy->volume = p.source->volume;
 		copy->parent = p.parent;
 		if (p.parent)
@@ -573,7 +663,7 @@ int btDbvt::maxdepth(const btDbvtNode* node)
 		const btDbvtNode* node;
 		int depth;
 	};
-	sLocalStack<Entry, 128> stack;
+	caliber::DbvtLocalStack<Entry, 128> stack;
 	Entry first = {node, 1};
 	stack.push(first);
 	int deepest = 0;

@@ -117,6 +117,7 @@ struct PairSearchScratch
 {
 	btAlignedObjectArray<btDbvtProxy*> pending;
 	btAlignedObjectArray<ChunkLists> chunks;
+	btNodeStack serialStack;  // the query stack of the search on the calling thread
 };
 
 struct PairListPolicy
@@ -393,11 +394,12 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 		PairSearchScratch& search = caliber::sideTable<PairSearchScratch>().acquire(this);
 		search.pending.resize(0);
 		for (int stage = DYNAMIC_SET; stage < STAGECOUNT; ++stage)
-			for (btDbvtProxy* proxy = m_stageRoots[stage]; proxy; proxy = proxy->links[1]) search.pending.push_back(proxy);
+			for (btDbvtProxy* proxy = m_stageRoots[stage]; proxy; proxy = proxy->links[1])
+				search.pending.push_back(proxy);
 		btITaskScheduler* scheduler = btGetTaskScheduler();
 		if (search.pending.size() < kMinProxiesForParallelSearch || !scheduler || scheduler->getNumThreads() < 2)
 		{
-			for (int i = 0; i < search.pending.size(); ++i) searchPairs(*this, search.pending[i], m_queryStack);
+			for (int i = 0; i < search.pending.size(); ++i) searchPairs(*this, search.pending[i], search.serialStack);
 		}
 		else
 		{
@@ -502,8 +504,8 @@ void btDbvtBroadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbM
 	policy.queryMax = aabbMax;
 	policy.callback = &callback;
 	const btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
-	for (int set = DYNAMIC_SET; set <= FIXED_SET; ++set)
-		m_sets[set].collideTVNoStackAlloc(m_sets[set].m_root, box, m_queryStack, policy);
+	// A stack per call (on the C++ stack): queries may run on several threads at once.
+	for (int set = DYNAMIC_SET; set <= FIXED_SET; ++set) m_sets[set].collideTV(m_sets[set].m_root, box, policy);
 }
 
 void btDbvtBroadphase::getBroadphaseAabb(btVector3& aabbMin, btVector3& aabbMax) const

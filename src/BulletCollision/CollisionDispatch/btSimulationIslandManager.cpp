@@ -20,6 +20,58 @@ int islandIdOf(const btPersistentManifold* manifold)
 }
 }  // namespace
 
+namespace caliber
+{
+namespace
+{
+/// Where each island's manifolds start once grouped, and the grouping's copy of the manifolds: per thread
+/// (so that a step allocates nothing once they have grown), not members of the island manager, which
+/// Bullet declares without them.
+struct IslandGroupingScratch
+{
+	btAlignedObjectArray<int> bounds;
+	btAlignedObjectArray<btPersistentManifold*> ungrouped;
+	bool inUse = false;
+};
+
+/// Sorts manifolds by island with a counting sort: O(n), and stable, so each island sees its manifolds in
+/// the dispatcher's order whatever the number of islands. Manifolds of no valid island are dropped. After
+/// it, island i's manifolds are manifolds[bounds[i] .. bounds[i + 1]).
+void groupManifoldsByIsland(btAlignedObjectArray<btPersistentManifold*>& manifolds, int numIslands,
+                            IslandGroupingScratch& scratch)
+{
+	btAlignedObjectArray<int>& bounds = scratch.bounds;
+	const int numManifolds = manifolds.size();
+	// Counts go two places up, so that after the prefix sum bounds[i + 1] is island i's first slot, and
+	// after the placement, which advances it, the first slot of island i + 1.
+	bounds.resize(0);
+	bounds.resize(numIslands + 2, 0);
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		const int islandId = islandIdOf(manifolds[i]);
+		if (islandId >= 0 && islandId < numIslands) ++bounds[islandId + 2];
+	}
+	for (int i = 2; i < numIslands + 2; ++i) bounds[i] += bounds[i - 1];
+	scratch.ungrouped.resize(0);
+	for (int i = 0; i < numManifolds; ++i) scratch.ungrouped.push_back(manifolds[i]);
+	manifolds.resize(bounds[numIslands + 1]);
+	for (int i = 0; i < numManifolds; ++i)
+	{
+		btPersistentManifold* manifold = scratch.ungrouped[i];
+		const int islandId = islandIdOf(manifold);
+		if (islandId < 0 || islandId >= numIslands) continue;
+		manifolds[bounds[islandId + 1]++] = manifold;
+	}
+}
+
+IslandGroupingScratch& threadIslandGroupingScratch()
+{
+	static thread_local IslandGroupingScratch scratch;
+	return scratch;
+}
+}  // namespace
+}  // namespace caliber
+
 btSimulationIslandManager::btSimulationIslandManager() : m_splitIslands(true) {}
 
 btSimulationIslandManager::~btSimulationIslandManager() {}
@@ -183,27 +235,15 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 		return;
 	}
 
-	// Group the manifolds by island with a counting sort: O(n), and stable, so each island sees its
-	// manifolds in the dispatcher's order whatever the number of islands.
+	// Each island's manifolds are a range of m_islandmanifold, as in Bullet. A callback that processes the
+	// islands of another manager on this thread gets a scratch of its own.
 	const int numElements = m_unionFind.getNumElements();
-	const int numManifolds = m_islandmanifold.size();
-	m_islandManifoldStart.resize(0);
-	m_islandManifoldStart.resize(numElements + 1, 0);
-	for (int i = 0; i < numManifolds; ++i)
-	{
-		const int islandId = islandIdOf(m_islandmanifold[i]);
-		if (islandId >= 0 && islandId < numElements) ++m_islandManifoldStart[islandId + 1];
-	}
-	for (int i = 0; i < numElements; ++i) m_islandManifoldStart[i + 1] += m_islandManifoldStart[i];
-	m_sortedManifolds.resize(m_islandManifoldStart[numElements]);
-	m_islandManifoldFill.resize(0);
-	m_islandManifoldFill.resize(numElements, 0);
-	for (int i = 0; i < numManifolds; ++i)
-	{
-		const int islandId = islandIdOf(m_islandmanifold[i]);
-		if (islandId < 0 || islandId >= numElements) continue;
-		m_sortedManifolds[m_islandManifoldStart[islandId] + m_islandManifoldFill[islandId]++] = m_islandmanifold[i];
-	}
+	caliber::IslandGroupingScratch& threadScratch = caliber::threadIslandGroupingScratch();
+	caliber::IslandGroupingScratch nestedScratch;
+	caliber::IslandGroupingScratch& scratch = threadScratch.inUse ? nestedScratch : threadScratch;
+	scratch.inUse = true;
+	caliber::groupManifoldsByIsland(m_islandmanifold, numElements, scratch);
+	const int* bounds = &scratch.bounds[0];
 
 	int islandEnd = 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
@@ -222,11 +262,12 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 		}
 		if (islandSleeping || m_islandBodies.size() == 0) continue;
 		const bool validId = islandId >= 0 && islandId < numElements;
-		const int first = validId ? m_islandManifoldStart[islandId] : 0;
-		const int count = validId ? m_islandManifoldStart[islandId + 1] - first : 0;
-		callback->processIsland(&m_islandBodies[0], m_islandBodies.size(), count ? &m_sortedManifolds[first] : 0, count,
+		const int first = validId ? bounds[islandId] : 0;
+		const int count = validId ? bounds[islandId + 1] - first : 0;
+		callback->processIsland(&m_islandBodies[0], m_islandBodies.size(), count ? &m_islandmanifold[first] : 0, count,
 		                        islandId);
 	}
+	scratch.inUse = false;
 	m_islandBodies.resize(0);
 }
 

@@ -224,63 +224,92 @@ btScalar innerRadius(const btConvexPolyhedron& hull, const btMatrix3x3& basis, c
 }
 }  // namespace
 
-bool btPolyhedralContactClipping::findSeparatingAxis(const btConvexPolyhedron& hullA, const btConvexPolyhedron& hullB,
-                                                     const btTransform& transA, const btTransform& transB,
-                                                     btVector3& sep,
-                                                     btDiscreteCollisionDetectorInterface::Result& resultOut)
+namespace
 {
-	const bool usable = hullA.m_vertices.size() > 0 && hullB.m_vertices.size() > 0 && hullA.m_faces.size() > 0 &&
-	                    hullB.m_faces.size() > 0 && caliber::isFinite(transA) && caliber::isFinite(transB);
-	btAssert(usable && "findSeparatingAxis: hull without faces or vertices, or non-finite transform");
-	if (!usable) return false;
-
-	const btVector3 centreDelta = transA(hullA.m_localCenter) - transB(hullB.m_localCenter);
-	const btScalar edgeBias = kEdgeAxisBias * (hullSize(hullA) + hullSize(hullB));
-	btScalar bestOverlap = SIMD_INFINITY;
-	btVector3 bestAxis(0, 0, 1);
-	int bestEdgeA = -1, bestEdgeB = -1;
-	int expected = 0, actual = 0;
-	bool separated = false;
+// The search for the axis of least overlap (SAT) of two hulls: the face normals of both, then the cross
+// products of their edges, every candidate axis tested by axisOverlap.
+struct AxisSearch
+{
+	const btConvexPolyhedron& hullA;
+	const btConvexPolyhedron& hullB;
+	const btTransform& transA;
+	const btTransform& transB;
+	btVector3 centreDelta;
+	btScalar edgeBias;  // an edge axis must beat the best face axis by this much (faces give better contacts)
 	// The inner solids overlap at least this much along an axis, so an axis whose bound is no better than
 	// the best overlap so far can neither separate (best >= 0) nor win, and is not projected. Only hulls
 	// with an inner sphere (built by initialize()) have a centre known to be inside.
-	const bool canCull = hullA.m_radius > 0 && hullB.m_radius > 0;
-	auto overlapLowerBound = [&](const btVector3& axis)
+	bool canCull;
+	btScalar bestOverlap = SIMD_INFINITY;
+	btVector3 bestAxis = btVector3(0, 0, 1);
+	int bestEdgeA = -1, bestEdgeB = -1;  // the winning unique edges (all-pairs path)
+	// Witness segments of a winning edge pair found on the Gauss-map path.
+	bool gaussEdgeWins = false;
+	btVector3 gaussA0 = btVector3(0, 0, 0), gaussA1 = btVector3(0, 0, 0);
+	btVector3 gaussB0 = btVector3(0, 0, 0), gaussB1 = btVector3(0, 0, 0);
+	int expected = 0, actual = 0;
+	bool separated = false;
+
+	AxisSearch(const btConvexPolyhedron& a, const btConvexPolyhedron& b, const btTransform& ta, const btTransform& tb)
+	    : hullA(a),
+	      hullB(b),
+	      transA(ta),
+	      transB(tb),
+	      centreDelta(ta(a.m_localCenter) - tb(b.m_localCenter)),
+	      edgeBias(kEdgeAxisBias * (hullSize(a) + hullSize(b))),
+	      canCull(a.m_radius > 0 && b.m_radius > 0)
+	{
+	}
+
+	btScalar overlapLowerBound(const btVector3& axis) const
 	{
 		if (!canCull) return -SIMD_INFINITY;
 		return innerRadius(hullA, transA.getBasis(), axis) + innerRadius(hullB, transB.getBasis(), axis) -
 		       btFabs(centreDelta.dot(axis));
-	};
+	}
+
+	// Tests the unit axis unless it cannot beat `bound`; true when it overlaps less than bound (the caller
+	// then records it as the best).
+	bool improves(const btVector3& unitAxis, btScalar bound, btVector3& signedAxis, btScalar& overlap)
+	{
+		if (overlapLowerBound(unitAxis) >= bound) return false;
+		++actual;
+		btScalar sign;
+		if (!axisOverlap(hullA, hullB, transA, transB, unitAxis, centreDelta, overlap, sign))
+		{
+			separated = true;
+			return false;
+		}
+		signedAxis = unitAxis * sign;
+		return overlap < bound;
+	}
 
 	// Face normals of A, then of B: the first strictly smaller overlap wins, so ties keep the earlier face.
-	for (int hullIndex = 0; hullIndex < 2 && !separated; ++hullIndex)
+	void testFaceNormals()
 	{
-		const btConvexPolyhedron& hull = hullIndex == 0 ? hullA : hullB;
-		const btMatrix3x3& basis = hullIndex == 0 ? transA.getBasis() : transB.getBasis();
-		for (int f = 0; f < hull.m_faces.size() && !separated; ++f)
+		for (int hullIndex = 0; hullIndex < 2 && !separated; ++hullIndex)
 		{
-			++expected;
-			const btVector3 axis = basis * faceNormal(hull.m_faces[f]);
-			const btScalar length2 = axis.length2();
-			if (!(length2 > SIMD_EPSILON)) continue;
-			const btVector3 unitAxis = axis / btSqrt(length2);
-			if (overlapLowerBound(unitAxis) >= bestOverlap) continue;
-			++actual;
-			btScalar overlap, sign;
-			if (!axisOverlap(hullA, hullB, transA, transB, unitAxis, centreDelta, overlap, sign))
-				separated = true;
-			else if (overlap < bestOverlap)
+			const btConvexPolyhedron& hull = hullIndex == 0 ? hullA : hullB;
+			const btMatrix3x3& basis = hullIndex == 0 ? transA.getBasis() : transB.getBasis();
+			for (int f = 0; f < hull.m_faces.size() && !separated; ++f)
 			{
-				bestOverlap = overlap;
-				bestAxis = unitAxis * sign;
+				++expected;
+				const btVector3 axis = basis * faceNormal(hull.m_faces[f]);
+				const btScalar length2 = axis.length2();
+				if (!(length2 > SIMD_EPSILON)) continue;
+				btVector3 signedAxis;
+				btScalar overlap;
+				if (improves(axis / btSqrt(length2), bestOverlap, signedAxis, overlap))
+				{
+					bestOverlap = overlap;
+					bestAxis = signedAxis;
+				}
 			}
 		}
 	}
 
-	// Witness segments of a winning edge pair found on the Gauss-map path.
-	bool gaussEdgeWins = false;
-	btVector3 gaussA0(0, 0, 0), gaussA1(0, 0, 0), gaussB0(0, 0, 0), gaussB1(0, 0, 0);
-	if (hullA.m_uniqueEdges.size() * hullB.m_uniqueEdges.size() <= kGaussMapPairThreshold)
+	// Every pair of unique edges (small hulls).
+	void testAllEdgePairs()
 	{
 		for (int ea = 0; ea < hullA.m_uniqueEdges.size() && !separated; ++ea)
 		{
@@ -292,23 +321,21 @@ bool btPolyhedralContactClipping::findSeparatingAxis(const btConvexPolyhedron& h
 				const btVector3 axis = edgeA.cross(edgeB);
 				const btScalar length2 = axis.length2();
 				if (!(length2 > kParallelCross2 * edgeA.length2() * edgeB.length2())) continue;
-				const btVector3 unitAxis = axis / btSqrt(length2);
-				if (overlapLowerBound(unitAxis) >= bestOverlap - edgeBias) continue;
-				++actual;
-				btScalar overlap, sign;
-				if (!axisOverlap(hullA, hullB, transA, transB, unitAxis, centreDelta, overlap, sign))
-					separated = true;
-				else if (overlap < bestOverlap - edgeBias)
+				btVector3 signedAxis;
+				btScalar overlap;
+				if (improves(axis / btSqrt(length2), bestOverlap - edgeBias, signedAxis, overlap))
 				{
 					bestOverlap = overlap;
-					bestAxis = unitAxis * sign;
+					bestAxis = signedAxis;
 					bestEdgeA = ea;
 					bestEdgeB = eb;
 				}
 			}
 		}
 	}
-	else if (!separated)
+
+	// The edge pairs whose arcs cross on the Gauss map (the Minkowski difference's faces; large hulls).
+	void testGaussMapEdgePairs()
 	{
 		// Per-thread scratch: no allocation once the arrays have grown to the largest hulls seen.
 		static thread_local btAlignedObjectArray<WorldEdge> edgesA, edgesB;
@@ -327,16 +354,12 @@ bool btPolyhedralContactClipping::findSeparatingAxis(const btConvexPolyhedron& h
 				const btVector3 axis = edgeA.cross(edgeB);
 				const btScalar length2 = axis.length2();
 				if (!(length2 > kParallelCross2 * edgeA.length2() * edgeB.length2())) continue;
-				const btVector3 unitAxis = axis / btSqrt(length2);
-				if (overlapLowerBound(unitAxis) >= bestOverlap - edgeBias) continue;
-				++actual;
-				btScalar overlap, sign;
-				if (!axisOverlap(hullA, hullB, transA, transB, unitAxis, centreDelta, overlap, sign))
-					separated = true;
-				else if (overlap < bestOverlap - edgeBias)
+				btVector3 signedAxis;
+				btScalar overlap;
+				if (improves(axis / btSqrt(length2), bestOverlap - edgeBias, signedAxis, overlap))
 				{
 					bestOverlap = overlap;
-					bestAxis = unitAxis * sign;
+					bestAxis = signedAxis;
 					gaussEdgeWins = true;
 					gaussA0 = a.start;
 					gaussA1 = a.end;
@@ -346,33 +369,60 @@ bool btPolyhedralContactClipping::findSeparatingAxis(const btConvexPolyhedron& h
 			}
 		}
 	}
-	addToCounter(gExpectedNbTests, expected);
-	addToCounter(gActualNbTests, actual);
-	if (separated || !(bestOverlap < SIMD_INFINITY)) return false;
-	sep = bestAxis;
 
-	if (bestEdgeA >= 0)
+	// When an edge pair won: the contact point between the witness edges.
+	void addEdgeContact(const btVector3& sep, btDiscreteCollisionDetectorInterface::Result& resultOut) const
 	{
-		// The witness edges: A's edge deepest towards B (along -sep), B's deepest towards A (along +sep).
-		btVector3 a0, a1, b0, b1;
-		const bool foundA =
-		    extremeParallelEdge(hullA, transA, hullA.m_uniqueEdges[bestEdgeA], (-sep) * transA.getBasis(), a0, a1);
-		const bool foundB =
-		    extremeParallelEdge(hullB, transB, hullB.m_uniqueEdges[bestEdgeB], sep * transB.getBasis(), b0, b1);
-		if (foundA && foundB)
+		if (bestEdgeA >= 0)
 		{
+			// The witness edges: A's edge deepest towards B (along -sep), B's deepest towards A (along +sep).
+			btVector3 a0, a1, b0, b1;
+			const bool foundA =
+			    extremeParallelEdge(hullA, transA, hullA.m_uniqueEdges[bestEdgeA], (-sep) * transA.getBasis(), a0, a1);
+			const bool foundB =
+			    extremeParallelEdge(hullB, transB, hullB.m_uniqueEdges[bestEdgeB], sep * transB.getBasis(), b0, b1);
+			if (foundA && foundB)
+			{
+				btVector3 onA, onB;
+				segmentClosestPoints(a0, a1, b0, b1, onA, onB);
+				resultOut.addContactPoint(sep, onB, -bestOverlap);
+			}
+		}
+		else if (gaussEdgeWins)
+		{
+			// The Minkowski face's own edges are the witnesses.
 			btVector3 onA, onB;
-			segmentClosestPoints(a0, a1, b0, b1, onA, onB);
+			segmentClosestPoints(gaussA0, gaussA1, gaussB0, gaussB1, onA, onB);
 			resultOut.addContactPoint(sep, onB, -bestOverlap);
 		}
 	}
-	else if (gaussEdgeWins)
+};
+}  // namespace
+
+bool btPolyhedralContactClipping::findSeparatingAxis(const btConvexPolyhedron& hullA, const btConvexPolyhedron& hullB,
+                                                     const btTransform& transA, const btTransform& transB,
+                                                     btVector3& sep,
+                                                     btDiscreteCollisionDetectorInterface::Result& resultOut)
+{
+	const bool usable = hullA.m_vertices.size() > 0 && hullB.m_vertices.size() > 0 && hullA.m_faces.size() > 0 &&
+	                    hullB.m_faces.size() > 0 && caliber::isFinite(transA) && caliber::isFinite(transB);
+	btAssert(usable && "findSeparatingAxis: hull without faces or vertices, or non-finite transform");
+	if (!usable) return false;
+
+	AxisSearch search(hullA, hullB, transA, transB);
+	search.testFaceNormals();
+	if (!search.separated)
 	{
-		// The Minkowski face's own edges are the witnesses.
-		btVector3 onA, onB;
-		segmentClosestPoints(gaussA0, gaussA1, gaussB0, gaussB1, onA, onB);
-		resultOut.addContactPoint(sep, onB, -bestOverlap);
+		if (hullA.m_uniqueEdges.size() * hullB.m_uniqueEdges.size() <= kGaussMapPairThreshold)
+			search.testAllEdgePairs();
+		else
+			search.testGaussMapEdgePairs();
 	}
+	addToCounter(gExpectedNbTests, search.expected);
+	addToCounter(gActualNbTests, search.actual);
+	if (search.separated || !(search.bestOverlap < SIMD_INFINITY)) return false;
+	sep = search.bestAxis;
+	search.addEdgeContact(sep, resultOut);
 	return true;
 }
 

@@ -230,6 +230,126 @@ void btConeTwistConstraint::getInfo2(btConstraintInfo2* info)
 	                   m_rbA.getInvInertiaTensorWorld(), m_rbB.getInvInertiaTensorWorld());
 }
 
+namespace
+{
+// The three point rows (rows 0..2): B's frame origin held on A's, along the world axes; linearCfm, when
+// given, replaces the rows' starting CFM. Returns the next row.
+int writePointRows(btTypedConstraint::btConstraintInfo2& info, const btTransform& transA, const btTransform& transB,
+                   const btTransform& frameA, const btTransform& frameB, const btVector3& angularVelocityA,
+                   const btVector3& angularVelocityB, btScalar linearErp, const btScalar* linearCfm)
+{
+	const btVector3 armA = frameA.getOrigin() - transA.getOrigin();
+	const btVector3 armB = frameB.getOrigin() - transB.getOrigin();
+	const btVector3 gap = frameB.getOrigin() - frameA.getOrigin();
+	const btVector3 targets =
+	    caliber::linearRowTargets(info, linearErp, gap, armA, angularVelocityA, armB, angularVelocityB);
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		btVector3 direction(0, 0, 0);
+		direction[axis] = btScalar(1);
+		caliber::JointRow r(info, axis);
+		r.setLinear(direction, armA, armB);
+		r.error() = targets[axis];
+		if (linearCfm) r.cfm() = *linearCfm;
+	}
+	return 3;
+}
+
+// The twist's state as getInfo1 left it.
+struct TwistLimit
+{
+	btVector3 axis;
+	btScalar angle, span, limitSign;
+	bool past;  // beyond a limit (limitSign says which)
+};
+
+// The twist limit row, oriented so that J v is the rate back into the range: -twist rate at the + end,
+// +twist rate at the - end. Inside, the end guarded is the one the twist heads for (the nearer in the
+// position pass); the row is speculative there (see getInfo2NonVirtual).
+void writeTwistLimitRow(caliber::JointRow& r, const TwistLimit& twist, const btVector3& relativeAngularVelocity,
+                        btScalar limitRate, btScalar fps, btScalar relaxation)
+{
+	btScalar sign = twist.limitSign;
+	if (!twist.past)
+	{
+		const btScalar twistRate = -relativeAngularVelocity.dot(twist.axis);
+		const bool towardsPlus = caliber::inJointPositionPass() ? twist.angle >= 0 : twistRate >= 0;
+		sign = towardsPlus ? btScalar(-1) : btScalar(1);
+	}
+	const btVector3 axis = twist.axis * -sign;
+	r.setAngular(axis);
+	const btScalar overshoot = btFabs(twist.angle) - twist.span;
+	if (twist.past)
+	{
+		caliber::setLimitRow(r, limitRate * overshoot, relativeAngularVelocity.dot(axis), relaxation);
+	}
+	else
+	{
+		const btScalar room = twist.span - (sign < 0 ? twist.angle : -twist.angle);
+		r.error() = -btMax(btScalar(0), room) * fps;
+		r.lower() = 0;
+		r.upper() = SIMD_INFINITY;
+	}
+}
+
+// The motor's settings.
+struct MotorDrive
+{
+	btQuaternion target;  // frame A seen in frame B
+	btScalar maxImpulse;  // negative: unbounded
+	bool normalized;      // maxImpulse is an angular velocity change
+};
+
+// The motor's three rows from row `row` on: B's turn rate relative to A that reaches the target in one
+// step, per world axis. Returns the next row.
+int writeMotorRows(btTypedConstraint::btConstraintInfo2& info, int row, const btTransform& frameA,
+                   const btTransform& frameB, const MotorDrive& drive, const btMatrix3x3& invInertiaWorldA,
+                   const btMatrix3x3& invInertiaWorldB)
+{
+	btVector3 desiredRateOfB(0, 0, 0);
+	btQuaternion qA, qB;
+	frameA.getBasis().getRotation(qA);
+	frameB.getBasis().getRotation(qB);
+	const btQuaternion current = qA.inverse() * qB;
+	const btQuaternion desired = drive.target.inverse();
+	btQuaternion error = desired * current.inverse();
+	if (error.w() < 0) error = btQuaternion(-error.x(), -error.y(), -error.z(), -error.w());
+	const btVector3 vector(error.x(), error.y(), error.z());
+	const btScalar sinHalf = vector.length();
+	if (sinHalf > SIMD_EPSILON)
+	{
+		const btScalar angle = btScalar(2) * btAtan2(sinHalf, error.w());
+		desiredRateOfB = frameA.getBasis() * (vector / sinHalf) * (angle * info.fps);
+	}
+	for (int k = 0; k < 3; ++k)
+	{
+		btVector3 axis(0, 0, 0);
+		axis[k] = btScalar(-1);  // J v = (wB - wA)_k
+		caliber::JointRow r(info, row++);
+		r.setAngular(axis);
+		r.error() = desiredRateOfB[k];
+		// Motor rows are velocity goals, never equality rows: an impulse bound always (a very large one
+		// when none is set), so the solver keeps them out of the joint's exact block and the position
+		// correction leaves them alone.
+		r.lower() = -kUnlimitedRowImpulse;
+		r.upper() = kUnlimitedRowImpulse;
+		if (drive.maxImpulse >= btScalar(0))
+		{
+			btScalar bound = drive.maxImpulse;
+			if (drive.normalized)
+			{
+				// Normalised: an angular velocity change; times the pair's rotational inertia about the axis.
+				const btScalar inverseInertia = axis.dot(invInertiaWorldA * axis) + axis.dot(invInertiaWorldB * axis);
+				bound = inverseInertia > SIMD_EPSILON ? drive.maxImpulse / inverseInertia : btScalar(0);
+			}
+			r.lower() = -bound;
+			r.upper() = bound;
+		}
+	}
+	return row;
+}
+}  // namespace
+
 void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTransform& transA,
                                                const btTransform& transB, const btMatrix3x3& invInertiaWorldA,
                                                const btMatrix3x3& invInertiaWorldB)
@@ -244,20 +364,9 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 	if (!m_angularOnly)
 	{
 		const btScalar linearErp = (m_flags & BT_CONETWIST_FLAGS_LIN_ERP) ? m_linERP : info->erp;
-		const btVector3 armA = frameA.getOrigin() - transA.getOrigin();
-		const btVector3 armB = frameB.getOrigin() - transB.getOrigin();
-		const btVector3 gap = frameB.getOrigin() - frameA.getOrigin();
-		const btVector3 targets = caliber::linearRowTargets(*info, linearErp, gap, armA, m_rbA.getAngularVelocity(),
-		                                                    armB, m_rbB.getAngularVelocity());
-		for (int axis = 0; axis < 3; ++axis, ++row)
-		{
-			btVector3 direction(0, 0, 0);
-			direction[axis] = btScalar(1);
-			caliber::JointRow r(*info, row);
-			r.setLinear(direction, armA, armB);
-			r.error() = targets[axis];
-			if (m_flags & BT_CONETWIST_FLAGS_LIN_CFM) r.cfm() = m_linCFM;
-		}
+		const btScalar* linearCfm = (m_flags & BT_CONETWIST_FLAGS_LIN_CFM) ? &m_linCFM : 0;
+		row = writePointRows(*info, transA, transB, frameA, frameB, m_rbA.getAngularVelocity(),
+		                     m_rbB.getAngularVelocity(), linearErp, linearCfm);
 	}
 
 	// Locked rotations are equality rows, so they join the linear rows in the solver's block.
@@ -311,76 +420,15 @@ void btConeTwistConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const bt
 	}
 	if (m_twistRowNeeded)
 	{
-		// Oriented so that J v is the rate back into the range: -twist rate at the + end, +twist rate at
-		// the - end. Inside, the end guarded is the one the twist heads for (the nearer in the position pass).
-		btScalar sign = m_twistLimitSign;
-		if (!m_solveTwistLimit)
-		{
-			const btScalar twistRate = -relativeAngularVelocity.dot(m_twistAxis);
-			const bool towardsPlus = caliber::inJointPositionPass() ? m_twistAngle >= 0 : twistRate >= 0;
-			sign = towardsPlus ? btScalar(-1) : btScalar(1);
-		}
-		const btVector3 axis = m_twistAxis * -sign;
+		TwistLimit twist = {m_twistAxis, m_twistAngle, m_twistSpan, m_twistLimitSign, m_solveTwistLimit};
 		caliber::JointRow r(*info, row++);
-		r.setAngular(axis);
-		const btScalar overshoot = btFabs(m_twistAngle) - m_twistSpan;
-		if (m_solveTwistLimit)
-		{
-			caliber::setLimitRow(r, limitRate * overshoot, relativeAngularVelocity.dot(axis), m_relaxationFactor);
-		}
-		else
-		{
-			const btScalar room = m_twistSpan - (sign < 0 ? m_twistAngle : -m_twistAngle);
-			r.error() = -btMax(btScalar(0), room) * info->fps;
-			r.lower() = 0;
-			r.upper() = SIMD_INFINITY;
-		}
+		writeTwistLimitRow(r, twist, relativeAngularVelocity, limitRate, info->fps, m_relaxationFactor);
 		if (angularCfm) r.cfm() = m_angCFM;
 	}
 	if (m_bMotorEnabled)
 	{
-		// Desired turn rate of B relative to A, world frame: to the motor target in one step.
-		btVector3 desiredRateOfB(0, 0, 0);
-		btQuaternion qA, qB;
-		frameA.getBasis().getRotation(qA);
-		frameB.getBasis().getRotation(qB);
-		const btQuaternion current = qA.inverse() * qB;
-		const btQuaternion desired = m_qTarget.inverse();  // m_qTarget is frame A seen in frame B
-		btQuaternion error = desired * current.inverse();
-		if (error.w() < 0) error = btQuaternion(-error.x(), -error.y(), -error.z(), -error.w());
-		const btVector3 vector(error.x(), error.y(), error.z());
-		const btScalar sinHalf = vector.length();
-		if (sinHalf > SIMD_EPSILON)
-		{
-			const btScalar angle = btScalar(2) * btAtan2(sinHalf, error.w());
-			desiredRateOfB = frameA.getBasis() * (vector / sinHalf) * (angle * info->fps);
-		}
-		for (int k = 0; k < 3; ++k)
-		{
-			btVector3 axis(0, 0, 0);
-			axis[k] = btScalar(-1);  // J v = (wB - wA)_k
-			caliber::JointRow r(*info, row++);
-			r.setAngular(axis);
-			r.error() = desiredRateOfB[k];
-			// Motor rows are velocity goals, never equality rows: an impulse bound always (a very large one
-			// when none is set), so the solver keeps them out of the joint's exact block and the position
-			// correction leaves them alone.
-			r.lower() = -kUnlimitedRowImpulse;
-			r.upper() = kUnlimitedRowImpulse;
-			if (m_maxMotorImpulse >= btScalar(0))
-			{
-				btScalar bound = m_maxMotorImpulse;
-				if (m_bNormalizedMotorStrength)
-				{
-					// Normalised: an angular velocity change; times the pair's rotational inertia about the axis.
-					const btScalar inverseInertia =
-					    axis.dot(invInertiaWorldA * axis) + axis.dot(invInertiaWorldB * axis);
-					bound = inverseInertia > SIMD_EPSILON ? m_maxMotorImpulse / inverseInertia : btScalar(0);
-				}
-				r.lower() = -bound;
-				r.upper() = bound;
-			}
-		}
+		const MotorDrive drive = {m_qTarget, m_maxMotorImpulse, m_bNormalizedMotorStrength};
+		row = writeMotorRows(*info, row, frameA, frameB, drive, invInertiaWorldA, invInertiaWorldB);
 	}
 	else if (m_dampingSet && m_damping > btScalar(0))
 	{

@@ -114,10 +114,10 @@ struct CoordinateRow
 			row.setLinear(direction, armA, armB);
 	}
 
-	btScalar rate(const btRigidBody& a, const btRigidBody& b) const
+	btScalar rate(const btVector3& linVelA, const btVector3& angVelA, const btVector3& linVelB,
+	              const btVector3& angVelB) const
 	{
-		return linA.dot(a.getLinearVelocity()) + angA.dot(a.getAngularVelocity()) + linB.dot(b.getLinearVelocity()) +
-		       angB.dot(b.getAngularVelocity());
+		return linA.dot(linVelA) + angA.dot(angVelA) + linB.dot(linVelB) + angB.dot(angVelB);
 	}
 
 	// J M^-1 J^T: the inverse of the mass the row moves, computed exactly as the solver computes it (so
@@ -164,6 +164,15 @@ bool checkIndex(int index, const char* function)
 	const bool valid = index >= 0 && index < 6;
 	if (!valid) warn(function, "coordinate index outside 0..5; call ignored");
 	btAssert(valid && "btGeneric6DofSpring2Constraint: coordinate index must be 0..5");
+	return valid;
+}
+
+// The per-angle accessors take 0..2; a user's index outside is reported, never read.
+bool angleIndexInRange(int index, const char* function)
+{
+	const bool valid = index >= 0 && index < 3;
+	if (!valid) warn(function, "index outside 0..2");
+	btAssert(valid && "btGeneric6DofSpring2Constraint: axis index must be 0..2");
 	return valid;
 }
 }  // namespace
@@ -220,6 +229,9 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbA,
       m_frameInA(frameInA),
       m_frameInB(frameInB),
       m_rotateOrder(rotOrder),
+      m_factA(btScalar(0.5)),
+      m_factB(btScalar(0.5)),
+      m_hasStaticBody(false),
       m_flags(0)
 {
 	if (!caliber::isFinite(frameInA) || !caliber::isFinite(frameInB))
@@ -238,6 +250,9 @@ btGeneric6DofSpring2Constraint::btGeneric6DofSpring2Constraint(btRigidBody& rbB,
     : btTypedConstraint(D6_SPRING_2_CONSTRAINT_TYPE, getFixedBody(), rbB),
       m_frameInB(frameInB),
       m_rotateOrder(rotOrder),
+      m_factA(btScalar(0.5)),
+      m_factB(btScalar(0.5)),
+      m_hasStaticBody(false),
       m_flags(0)
 {
 	if (!caliber::isFinite(frameInB) || !caliber::isFinite(rbB.getCenterOfMassTransform()))
@@ -261,14 +276,34 @@ void btGeneric6DofSpring2Constraint::calculateTransforms(const btTransform& tran
 {
 	m_calculatedTransformA = transA * m_frameInA;
 	m_calculatedTransformB = transB * m_frameInB;
-	const btMatrix3x3& basisA = m_calculatedTransformA.getBasis();
-	const btMatrix3x3& basisB = m_calculatedTransformB.getBasis();
+	calculateLinearInfo();
+	calculateAngleInfo();
+	for (int i = 0; i < 3; ++i) testAngularLimitMotor(i);
+	const btScalar invMassA = m_rbA.getInvMass(), invMassB = m_rbB.getInvMass();
+	m_hasStaticBody = invMassA < SIMD_EPSILON || invMassB < SIMD_EPSILON;
+	const btScalar invMassSum = invMassA + invMassB;
+	m_factA = invMassSum > btScalar(0) ? invMassB / invMassSum : btScalar(0.5);
+	m_factB = btScalar(1) - m_factA;
+}
 
-	// Linear coordinates: B's frame origin in A's frame.
+void btGeneric6DofSpring2Constraint::calculateLinearInfo()
+{
+	// B's frame origin in A's frame.
+	const btMatrix3x3& basisA = m_calculatedTransformA.getBasis();
 	const btVector3 gap = m_calculatedTransformB.getOrigin() - m_calculatedTransformA.getOrigin();
 	for (int i = 0; i < 3; ++i) m_calculatedLinearDiff[i] = basisA.getColumn(i).dot(gap);
+	for (int i = 0; i < 3; ++i)
+	{
+		m_linearLimits.m_currentLinearDiff[i] = m_calculatedLinearDiff[i];
+		m_linearLimits.testLimitValue(i, m_calculatedLinearDiff[i]);
+	}
+}
 
-	// Angular coordinates: Q = B^T A = R_i(a) R_j(b) R_k(c) (rows of Q: B's axes, columns: A's axes).
+void btGeneric6DofSpring2Constraint::calculateAngleInfo()
+{
+	const btMatrix3x3& basisA = m_calculatedTransformA.getBasis();
+	const btMatrix3x3& basisB = m_calculatedTransformB.getBasis();
+	// Q = B^T A = R_i(a) R_j(b) R_k(c) (rows of Q: B's axes, columns: A's axes).
 	const EulerOrder o = eulerOrder(m_rotateOrder);
 	decomposeEuler(basisB.transposeTimes(basisA), o, m_calculatedAxisAngleDiff);
 
@@ -292,20 +327,16 @@ void btGeneric6DofSpring2Constraint::calculateTransforms(const btTransform& tran
 		m_calculatedAxis[n] = m_angularJacobian[n];
 		m_calculatedAxis[n].safeNormalize();
 	}
+}
 
-	// Every coordinate's current position and limit state.
-	for (int i = 0; i < 3; ++i)
-	{
-		m_linearLimits.m_currentLinearDiff[i] = m_calculatedLinearDiff[i];
-		m_linearLimits.testLimitValue(i, m_calculatedLinearDiff[i]);
-	}
-	for (int i = 0; i < 3; ++i)
-	{
-		btRotationalLimitMotor2& limit = m_angularLimits[i];
-		// The same angle one turn away may be the one inside (or nearest) the limits.
-		limit.m_currentPosition = btAdjustAngleToLimits(m_calculatedAxisAngleDiff[i], limit.m_loLimit, limit.m_hiLimit);
-		limit.testLimitValue(limit.m_currentPosition);
-	}
+void btGeneric6DofSpring2Constraint::testAngularLimitMotor(int axis_index)
+{
+	if (!angleIndexInRange(axis_index, "testAngularLimitMotor")) axis_index = btMax(0, btMin(axis_index, 2));
+	btRotationalLimitMotor2& limit = m_angularLimits[axis_index];
+	// The same angle one turn away may be the one inside (or nearest) the limits.
+	limit.m_currentPosition =
+	    btAdjustAngleToLimits(m_calculatedAxisAngleDiff[axis_index], limit.m_loLimit, limit.m_hiLimit);
+	limit.testLimitValue(limit.m_currentPosition);
 }
 
 // ---- rows ---------------------------------------------------------------------------------------
@@ -342,9 +373,15 @@ struct RowWriter
 	btScalar fps, h;  // steps per second and step length (0 when fps is 0)
 	const btRigidBody& bodyA;
 	const btRigidBody& bodyB;
+	const btVector3& linVelA;
+	const btVector3& angVelA;
+	const btVector3& linVelB;
+	const btVector3& angVelB;
 	const CoordinateRow* jacobian;       // [6], J v is each coordinate's rate
 	const CoordinateSettings* settings;  // [6]
 	int next;
+
+	btScalar rate(int axis) const { return jacobian[axis].rate(linVelA, angVelA, linVelB, angVelB); }
 
 	caliber::JointRow startRow(int axis)
 	{
@@ -353,6 +390,30 @@ struct RowWriter
 		return row;
 	}
 };
+
+// The settings of a coordinate held in a limit motor (an angle's, or a linear coordinate's copied into that
+// form), ERPs and CFMs as they are.
+void readMotorSettings(const btRotationalLimitMotor2& m, CoordinateSettings& s)
+{
+	s.lo = m.m_loLimit;
+	s.hi = m.m_hiLimit;
+	s.position = m.m_currentPosition;
+	s.bounce = m.m_bounce;
+	s.motor = m.m_enableMotor;
+	s.servo = m.m_servoMotor;
+	s.spring = m.m_enableSpring;
+	s.targetVelocity = m.m_targetVelocity;
+	s.maxMotorForce = m.m_maxMotorForce;
+	s.servoTarget = m.m_servoTarget;
+	s.stiffness = m.m_springStiffness;
+	s.damping = m.m_springDamping;
+	s.equilibrium = m.m_equilibriumPoint;
+	s.state = m.m_currentLimit;
+	s.stopERP = m.m_stopERP;
+	s.motorERP = m.m_motorERP;
+	s.stopCFM = m.m_stopCFM;
+	s.motorCFM = m.m_motorCFM;
+}
 
 // A difference of two values of a coordinate: angles the short way round.
 btScalar coordinateDifference(int axis, btScalar to, btScalar from)
@@ -365,19 +426,22 @@ void setStopCFM(caliber::JointRow& row, const CoordinateSettings& s)
 	if (s.hasStopCFM) row.cfm() = s.stopCFM;
 }
 
+// A locked coordinate's equality row.
+void writeLockedRow(RowWriter& w, int axis)
+{
+	const CoordinateSettings& s = w.settings[axis];
+	caliber::JointRow row = w.startRow(axis);
+	row.error() = w.fps * s.stopERP * coordinateDifference(axis, s.lo, s.position);
+	row.lower() = -SIMD_INFINITY;
+	row.upper() = SIMD_INFINITY;
+	setStopCFM(row, s);
+}
+
 // Locked coordinates: equality rows, first, so that the solver solves them as one exact block.
 void writeLockedRows(RowWriter& w)
 {
 	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = w.settings[axis];
-		if (s.state != 3) continue;
-		caliber::JointRow row = w.startRow(axis);
-		row.error() = w.fps * s.stopERP * coordinateDifference(axis, s.lo, s.position);
-		row.lower() = -SIMD_INFINITY;
-		row.upper() = SIMD_INFINITY;
-		setStopCFM(row, s);
-	}
+		if (w.settings[axis].state == 3) writeLockedRow(w, axis);
 }
 
 // Limits: one one-sided row per end, always present so that the row count (and with it the warm start)
@@ -385,69 +449,73 @@ void writeLockedRows(RowWriter& w)
 // coordinate to close the whole gap in this step and so stays idle; past its end it pushes back at the
 // stop ERP. A coordinate that would reach its end within the step and has a bounce leaves at bounce
 // times its approach speed at once (no exact time of impact is solved).
+void writeLimitRowPair(RowWriter& w, int axis)
+{
+	const CoordinateSettings& s = w.settings[axis];
+	const btScalar erp = s.stopERP;
+	const btScalar rate = w.rate(axis);
+	const bool bounces = s.bounce > btScalar(0);
+
+	caliber::JointRow lower = w.startRow(axis);
+	const btScalar aboveLower = s.position - s.lo;
+	btScalar target = aboveLower >= btScalar(0) ? -aboveLower * w.fps : -aboveLower * w.fps * erp;
+	if (bounces && rate < btScalar(0) && aboveLower + rate * w.h < btScalar(0))
+		target = btMax(target, -s.bounce * rate);
+	lower.error() = target;
+	lower.lower() = btScalar(0);
+	lower.upper() = SIMD_INFINITY;
+	setStopCFM(lower, s);
+
+	caliber::JointRow upper = w.startRow(axis);
+	const btScalar belowUpper = s.hi - s.position;
+	target = belowUpper >= btScalar(0) ? belowUpper * w.fps : belowUpper * w.fps * erp;
+	if (bounces && rate > btScalar(0) && belowUpper - rate * w.h < btScalar(0))
+		target = btMin(target, -s.bounce * rate);
+	upper.error() = target;
+	upper.lower() = -SIMD_INFINITY;
+	upper.upper() = btScalar(0);
+	setStopCFM(upper, s);
+}
+
 void writeLimitRows(RowWriter& w)
 {
 	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = w.settings[axis];
-		if (s.state != 4) continue;
-		const btScalar erp = s.stopERP;
-		const btScalar rate = w.jacobian[axis].rate(w.bodyA, w.bodyB);
-		const bool bounces = s.bounce > btScalar(0);
-
-		caliber::JointRow lower = w.startRow(axis);
-		const btScalar aboveLower = s.position - s.lo;
-		btScalar target = aboveLower >= btScalar(0) ? -aboveLower * w.fps : -aboveLower * w.fps * erp;
-		if (bounces && rate < btScalar(0) && aboveLower + rate * w.h < btScalar(0))
-			target = btMax(target, -s.bounce * rate);
-		lower.error() = target;
-		lower.lower() = btScalar(0);
-		lower.upper() = SIMD_INFINITY;
-		setStopCFM(lower, s);
-
-		caliber::JointRow upper = w.startRow(axis);
-		const btScalar belowUpper = s.hi - s.position;
-		target = belowUpper >= btScalar(0) ? belowUpper * w.fps : belowUpper * w.fps * erp;
-		if (bounces && rate > btScalar(0) && belowUpper - rate * w.h < btScalar(0))
-			target = btMin(target, -s.bounce * rate);
-		upper.error() = target;
-		upper.lower() = -SIMD_INFINITY;
-		upper.upper() = btScalar(0);
-		setStopCFM(upper, s);
-	}
+		if (w.settings[axis].state == 4) writeLimitRowPair(w, axis);
 }
 
-// Motors and servos, bounded by the largest force times the step.
+// A motor's or servo's row, bounded by the largest force times the step.
+void writeMotorRow(RowWriter& w, int axis)
+{
+	const CoordinateSettings& s = w.settings[axis];
+	caliber::JointRow row = w.startRow(axis);
+	const btScalar erp = s.motorERP;
+	if (s.servo)
+	{
+		// Towards the target at up to |m_targetVelocity|, covering at most erp of the remaining gap
+		// per step so that the servo settles on the target instead of overshooting it. A weak motor
+		// also needs room to brake: decelerating at half its most, F K / 2 (the other half is left
+		// for loads on the coordinate and for the rows it shares its bodies with), a speed v stops
+		// within v^2 / (F K), so the servo never asks for more than sqrt(F K gap).
+		const btScalar gap = coordinateDifference(axis, s.servoTarget, s.position);
+		const btScalar brakingSpeed =
+		    btSqrt(btFabs(s.maxMotorForce) * w.jacobian[axis].inverseMass(w.bodyA, w.bodyB) * btFabs(gap));
+		const btScalar speed = btMin(btMin(btFabs(s.targetVelocity), w.fps * erp * btFabs(gap)), brakingSpeed);
+		row.error() = gap > btScalar(0) ? speed : (gap < btScalar(0) ? -speed : btScalar(0));
+	}
+	else
+	{
+		row.error() = s.motorVelocity * s.motorFactor;
+	}
+	const btScalar bound = btFabs(s.maxMotorForce) * w.h;
+	row.lower() = -bound;
+	row.upper() = bound;
+	if (s.hasMotorCFM) row.cfm() = s.motorCFM;
+}
+
 void writeMotorRows(RowWriter& w)
 {
 	for (int axis = 0; axis < 6; ++axis)
-	{
-		const CoordinateSettings& s = w.settings[axis];
-		if (s.state == 3 || !s.motor) continue;
-		caliber::JointRow row = w.startRow(axis);
-		const btScalar erp = s.motorERP;
-		if (s.servo)
-		{
-			// Towards the target at up to |m_targetVelocity|, covering at most erp of the remaining gap
-			// per step so that the servo settles on the target instead of overshooting it. A weak motor
-			// also needs room to brake: decelerating at half its most, F K / 2 (the other half is left
-			// for loads on the coordinate and for the rows it shares its bodies with), a speed v stops
-			// within v^2 / (F K), so the servo never asks for more than sqrt(F K gap).
-			const btScalar gap = coordinateDifference(axis, s.servoTarget, s.position);
-			const btScalar brakingSpeed =
-			    btSqrt(btFabs(s.maxMotorForce) * w.jacobian[axis].inverseMass(w.bodyA, w.bodyB) * btFabs(gap));
-			const btScalar speed = btMin(btMin(btFabs(s.targetVelocity), w.fps * erp * btFabs(gap)), brakingSpeed);
-			row.error() = gap > btScalar(0) ? speed : (gap < btScalar(0) ? -speed : btScalar(0));
-		}
-		else
-		{
-			row.error() = s.motorVelocity * s.motorFactor;
-		}
-		const btScalar bound = btFabs(s.maxMotorForce) * w.h;
-		row.lower() = -bound;
-		row.upper() = bound;
-		if (s.hasMotorCFM) row.cfm() = s.motorCFM;
-	}
+		if (w.settings[axis].state != 3 && w.settings[axis].motor) writeMotorRow(w, axis);
 }
 
 // Springs.
@@ -467,36 +535,55 @@ void writeMotorRows(RowWriter& w)
 //     p = -(h k x + D v) / (1 + K D),
 // and applied as a fixed impulse (both bounds p). Both forms give the same step for a spring on its
 // own; the soft row also shares the work correctly with other rows through the iterations.
-void writeSpringRows(RowWriter& w)
+void writeSpringRow(RowWriter& w, int axis)
 {
 	const btScalar h = w.h;
-	for (int axis = 0; axis < 6; ++axis)
+	const CoordinateSettings& s = w.settings[axis];
+	caliber::JointRow row = w.startRow(axis);
+	const btScalar k = s.stiffness > btScalar(0) ? s.stiffness : btScalar(0);
+	const btScalar c = s.damping > btScalar(0) ? s.damping : btScalar(0);
+	const btScalar x = coordinateDifference(axis, s.position, s.equilibrium);
+	const btScalar D = h * (h * k + c);
+	const btScalar K = w.jacobian[axis].inverseMass(w.bodyA, w.bodyB);
+	if (K * D * kLargestSoftRowCfm >= btScalar(1))
 	{
-		const CoordinateSettings& s = w.settings[axis];
-		if (s.state == 3 || !s.spring) continue;
-		caliber::JointRow row = w.startRow(axis);
-		const btScalar k = s.stiffness > btScalar(0) ? s.stiffness : btScalar(0);
-		const btScalar c = s.damping > btScalar(0) ? s.damping : btScalar(0);
-		const btScalar x = coordinateDifference(axis, s.position, s.equilibrium);
-		const btScalar D = h * (h * k + c);
-		const btScalar K = w.jacobian[axis].inverseMass(w.bodyA, w.bodyB);
-		if (K * D * kLargestSoftRowCfm >= btScalar(1))
-		{
-			row.error() = -w.fps * (h * k / (h * k + c)) * x;
-			row.cfm() = btScalar(1) / (K * D);
-			row.lower() = -SIMD_INFINITY;
-			row.upper() = SIMD_INFINITY;
-		}
-		else
-		{
-			const btScalar v = w.jacobian[axis].rate(w.bodyA, w.bodyB) * w.info.m_damping;
-			const btScalar p = -(h * k * x + D * v) / (btScalar(1) + K * D);
-			row.error() = btScalar(0);
-			row.cfm() = btScalar(0);
-			row.lower() = p;
-			row.upper() = p;
-		}
+		row.error() = -w.fps * (h * k / (h * k + c)) * x;
+		row.cfm() = btScalar(1) / (K * D);
+		row.lower() = -SIMD_INFINITY;
+		row.upper() = SIMD_INFINITY;
 	}
+	else
+	{
+		const btScalar v = w.rate(axis) * w.info.m_damping;
+		const btScalar p = -(h * k * x + D * v) / (btScalar(1) + K * D);
+		row.error() = btScalar(0);
+		row.cfm() = btScalar(0);
+		row.lower() = p;
+		row.upper() = p;
+	}
+}
+
+void writeSpringRows(RowWriter& w)
+{
+	for (int axis = 0; axis < 6; ++axis)
+		if (w.settings[axis].state != 3 && w.settings[axis].spring) writeSpringRow(w, axis);
+}
+
+// A coordinate's rows in the order Bullet's get_limit_motor_info2 writes them: the locked row, or the
+// limit rows, then the motor and the spring; returns how many.
+int writeCoordinateRows(RowWriter& w, int axis)
+{
+	const int first = w.next;
+	const CoordinateSettings& s = w.settings[axis];
+	if (s.state == 3)
+	{
+		writeLockedRow(w, axis);
+		return 1;
+	}
+	if (s.state == 4) writeLimitRowPair(w, axis);
+	if (s.motor) writeMotorRow(w, axis);
+	if (s.spring) writeSpringRow(w, axis);
+	return w.next - first;
 }
 }  // namespace
 
@@ -555,24 +642,9 @@ void btGeneric6DofSpring2Constraint::getInfo2(btConstraintInfo2* info)
 		else
 		{
 			const btRotationalLimitMotor2& m = m_angularLimits[axis - 3];
-			s.lo = m.m_loLimit;
-			s.hi = m.m_hiLimit;
-			s.position = m.m_currentPosition;
-			s.bounce = m.m_bounce;
-			s.motor = m.m_enableMotor;
-			s.servo = m.m_servoMotor;
-			s.spring = m.m_enableSpring;
-			s.targetVelocity = m.m_targetVelocity;
-			s.maxMotorForce = m.m_maxMotorForce;
-			s.servoTarget = m.m_servoTarget;
-			s.stiffness = m.m_springStiffness;
-			s.damping = m.m_springDamping;
-			s.equilibrium = m.m_equilibriumPoint;
-			s.state = m.m_currentLimit;
+			readMotorSettings(m, s);
 			s.stopERP = ownStopERP ? m.m_stopERP : info->erp;
 			s.motorERP = ownMotorERP ? m.m_motorERP : info->erp;
-			s.stopCFM = m.m_stopCFM;
-			s.motorCFM = m.m_motorCFM;
 		}
 		// Bullet's sense: the motor drives A relative to B, which for a linear coordinate (B's pivot in
 		// A's frame) is the opposite of the coordinate's rate.
@@ -580,27 +652,151 @@ void btGeneric6DofSpring2Constraint::getInfo2(btConstraintInfo2* info)
 		s.motorFactor = getMotorFactor(s.position, s.lo, s.hi, s.motorVelocity, fps * s.motorERP);
 	}
 
-	RowWriter writer{*info,    fps, fps > btScalar(0) ? btScalar(1) / fps : btScalar(0), m_rbA, m_rbB, jacobian,
-	                 settings, 0};
+	RowWriter writer{*info,
+	                 fps,
+	                 fps > btScalar(0) ? btScalar(1) / fps : btScalar(0),
+	                 m_rbA,
+	                 m_rbB,
+	                 m_rbA.getLinearVelocity(),
+	                 m_rbA.getAngularVelocity(),
+	                 m_rbB.getLinearVelocity(),
+	                 m_rbB.getAngularVelocity(),
+	                 jacobian,
+	                 settings,
+	                 0};
 	writeLockedRows(writer);
 	writeLimitRows(writer);
 	writeMotorRows(writer);
 	writeSpringRows(writer);
 }
 
-// ---- settings -----------------------------------------------------------------------------------
+// ---- Bullet's protected row interface (for subclasses; getInfo2 writes the same rows, grouped by kind)
 
 namespace
 {
-// The per-angle accessors take 0..2; a user's index outside is reported, never read.
-bool angleIndexInRange(int index, const char* function)
+// Resolves a coordinate's stop and motor ERP and CFM as getInfo2 does: its own where set through setParam
+// (flags), info's ERP and the starting CFM of the coordinate's first row otherwise.
+void resolveParams(btRotationalLimitMotor2& motor, int flags, const btTypedConstraint::btConstraintInfo2& info, int row)
 {
-	const bool valid = index >= 0 && index < 3;
-	if (!valid) warn(function, "index outside 0..2");
-	btAssert(valid && "btGeneric6DofSpring2Constraint: axis index must be 0..2");
-	return valid;
+	const btScalar startingCfm = info.cfm[row * info.rowskip];
+	if (!(flags & BT_6DOF_FLAGS_ERP_STOP2)) motor.m_stopERP = info.erp;
+	if (!(flags & BT_6DOF_FLAGS_ERP_MOTO2)) motor.m_motorERP = info.erp;
+	if (!(flags & BT_6DOF_FLAGS_CFM_STOP2)) motor.m_stopCFM = startingCfm;
+	if (!(flags & BT_6DOF_FLAGS_CFM_MOTO2)) motor.m_motorCFM = startingCfm;
 }
 }  // namespace
+
+int btGeneric6DofSpring2Constraint::setAngularLimits(btConstraintInfo2* info, int row_offset, const btTransform& transA,
+                                                     const btTransform& transB, const btVector3& linVelA,
+                                                     const btVector3& linVelB, const btVector3& angVelA,
+                                                     const btVector3& angVelB)
+{
+	btAssert(info && "btGeneric6DofSpring2Constraint::setAngularLimits: no rows");
+	if (!info) return row_offset;
+	int row = row_offset;
+	for (int i = 0; i < 3; ++i)
+	{
+		btRotationalLimitMotor2 motor(m_angularLimits[i]);
+		resolveParams(motor, m_flags >> ((3 + i) * BT_6DOF_FLAGS_AXIS_SHIFT2), *info, row);
+		btVector3 axis = m_angularJacobian[i];  // the exact rate direction (getAxis is its unit vector)
+		row += get_limit_motor_info2(&motor, transA, transB, linVelA, linVelB, angVelA, angVelB, info, row, axis, 1);
+	}
+	return row;
+}
+
+int btGeneric6DofSpring2Constraint::setLinearLimits(btConstraintInfo2* info, int row, const btTransform& transA,
+                                                    const btTransform& transB, const btVector3& linVelA,
+                                                    const btVector3& linVelB, const btVector3& angVelA,
+                                                    const btVector3& angVelB)
+{
+	btAssert(info && "btGeneric6DofSpring2Constraint::setLinearLimits: no rows");
+	if (!info) return row;
+	const btTranslationalLimitMotor2& m = m_linearLimits;
+	for (int i = 0; i < 3; ++i)
+	{
+		// The axis's settings in a limit motor's form.
+		btRotationalLimitMotor2 motor;
+		motor.m_loLimit = m.m_lowerLimit[i];
+		motor.m_hiLimit = m.m_upperLimit[i];
+		motor.m_bounce = m.m_bounce[i];
+		motor.m_stopERP = m.m_stopERP[i];
+		motor.m_stopCFM = m.m_stopCFM[i];
+		motor.m_motorERP = m.m_motorERP[i];
+		motor.m_motorCFM = m.m_motorCFM[i];
+		motor.m_enableMotor = m.m_enableMotor[i];
+		motor.m_servoMotor = m.m_servoMotor[i];
+		motor.m_enableSpring = m.m_enableSpring[i];
+		motor.m_servoTarget = m.m_servoTarget[i];
+		motor.m_springStiffness = m.m_springStiffness[i];
+		motor.m_springStiffnessLimited = m.m_springStiffnessLimited[i];
+		motor.m_springDamping = m.m_springDamping[i];
+		motor.m_springDampingLimited = m.m_springDampingLimited[i];
+		motor.m_equilibriumPoint = m.m_equilibriumPoint[i];
+		motor.m_targetVelocity = m.m_targetVelocity[i];
+		motor.m_maxMotorForce = m.m_maxMotorForce[i];
+		motor.m_currentLimit = m.m_currentLimit[i];
+		motor.m_currentLimitError = m.m_currentLimitError[i];
+		motor.m_currentLimitErrorHi = m.m_currentLimitErrorHi[i];
+		motor.m_currentPosition = m.m_currentLinearDiff[i];
+		resolveParams(motor, m_flags >> (i * BT_6DOF_FLAGS_AXIS_SHIFT2), *info, row);
+		btVector3 axis = m_calculatedTransformA.getBasis().getColumn(i);
+		row += get_limit_motor_info2(&motor, transA, transB, linVelA, linVelB, angVelA, angVelB, info, row, axis, 0, 1);
+	}
+	return row;
+}
+
+void btGeneric6DofSpring2Constraint::calculateJacobi(btRotationalLimitMotor2* limot, const btTransform& transA,
+                                                     const btTransform& transB, btConstraintInfo2* info, int srow,
+                                                     btVector3& ax1, int rotational, int rotAllowed)
+{
+	(void)limot;
+	btAssert(info && "btGeneric6DofSpring2Constraint::calculateJacobi: no rows");
+	if (!info) return;
+	caliber::JointRow row(*info, srow);
+	if (rotational)
+	{
+		row.setAngular(ax1);
+		return;
+	}
+	const btVector3 pivotB = m_calculatedTransformB.getOrigin();
+	const btVector3 zero(0, 0, 0);
+	row.setLinear(ax1, rotAllowed ? pivotB - transA.getOrigin() : zero,
+	              rotAllowed ? pivotB - transB.getOrigin() : zero);
+}
+
+int btGeneric6DofSpring2Constraint::get_limit_motor_info2(btRotationalLimitMotor2* limot, const btTransform& transA,
+                                                          const btTransform& transB, const btVector3& linVelA,
+                                                          const btVector3& linVelB, const btVector3& angVelA,
+                                                          const btVector3& angVelB, btConstraintInfo2* info, int row,
+                                                          btVector3& ax1, int rotational, int rotAllowed)
+{
+	btAssert(limot && info && "btGeneric6DofSpring2Constraint::get_limit_motor_info2: no motor or no rows");
+	if (!limot || !info) return 0;
+	// The coordinate as axis 3 (an angle) or 0 (linear) of the row writers, whose Jacobian J has J v equal
+	// to the coordinate's rate: for a linear coordinate (B's pivot relative to A) that is along -ax1.
+	const int axis = rotational ? 3 : 0;
+	CoordinateRow jacobian[6];
+	CoordinateSettings settings[6];
+	const btVector3 pivotB = m_calculatedTransformB.getOrigin();
+	const btVector3 zero(0, 0, 0);
+	jacobian[axis] = rotational ? CoordinateRow::rotation(ax1)
+	                            : CoordinateRow::linear(-ax1, rotAllowed ? pivotB - transA.getOrigin() : zero,
+	                                                    rotAllowed ? pivotB - transB.getOrigin() : zero);
+	CoordinateSettings& s = settings[axis];
+	readMotorSettings(*limot, s);
+	s.hasStopCFM = true;
+	s.hasMotorCFM = true;
+	const btScalar fps = info->fps;
+	s.motorVelocity = (rotational ? btScalar(1) : btScalar(-1)) * s.targetVelocity;
+	s.motorFactor = getMotorFactor(s.position, s.lo, s.hi, s.motorVelocity, fps * s.motorERP);
+	RowWriter writer{*info,    fps,      fps > btScalar(0) ? btScalar(1) / fps : btScalar(0),
+	                 m_rbA,    m_rbB,    linVelA,
+	                 angVelA,  linVelB,  angVelB,
+	                 jacobian, settings, row};
+	return writeCoordinateRows(writer, axis);
+}
+
+// ---- settings -----------------------------------------------------------------------------------
 
 btRotationalLimitMotor2* btGeneric6DofSpring2Constraint::getRotationalLimitMotor(int index)
 {

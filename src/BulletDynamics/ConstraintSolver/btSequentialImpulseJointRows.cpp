@@ -4,6 +4,7 @@
 // like contact rows (btSolverRowKernels.h).
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
+#include "BulletDynamics/ConstraintSolver/btJointRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
@@ -71,7 +72,7 @@ void decoupleFromBlock(const btSolverConstraint* blockRows, const caliber::Solve
 	row.m_rhs = independent ? target * row.m_jacDiagABInv : btScalar(0);
 }
 
-void clearRow(btSolverConstraint& row, btScalar cfm)
+void clearRow(btSolverConstraint& row, const caliber::JointRowParameters& parameters, btTypedConstraint* joint)
 {
 	const btVector3 zero(0, 0, 0);
 	row.m_relpos1CrossNormal = zero;
@@ -85,15 +86,49 @@ void clearRow(btSolverConstraint& row, btScalar cfm)
 	row.m_friction = 0;
 	row.m_jacDiagABInv = 0;
 	row.m_rhs = 0;
-	row.m_cfm = cfm;
+	row.m_cfm = parameters.cfm;
 	row.m_lowerLimit = -SIMD_INFINITY;
 	row.m_upperLimit = SIMD_INFINITY;
 	row.m_rhsPenetration = 0;
-	row.m_originalContactPoint = 0;
-	row.m_overrideNumSolverIterations = -1;
+	row.m_originalContactPoint = joint;
+	row.m_overrideNumSolverIterations = parameters.rowIterations;
 	row.m_frictionIndex = -1;
+	row.m_solverBodyIdA = parameters.solverBodyIdA;
+	row.m_solverBodyIdB = parameters.solverBodyIdB;
 }
 }  // namespace
+
+namespace
+{
+// The shared row set-up, inlined into the solver's convertJoint (once per joint per step).
+SIMD_FORCE_INLINE void setUpRows(btTypedConstraint& constraint, btSolverConstraint* firstRow, int numRows,
+                                 const caliber::JointRowParameters& parameters)
+{
+	for (int j = 0; j < numRows; ++j) clearRow(firstRow[j], parameters, &constraint);
+	btTypedConstraint::btConstraintInfo2 info2;
+	info2.fps = parameters.fps;
+	info2.erp = parameters.erp;
+	info2.m_J1linearAxis = firstRow->m_contactNormal1.m_floats;
+	info2.m_J1angularAxis = firstRow->m_relpos1CrossNormal.m_floats;
+	info2.m_J2linearAxis = firstRow->m_contactNormal2.m_floats;
+	info2.m_J2angularAxis = firstRow->m_relpos2CrossNormal.m_floats;
+	info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
+	btAssert(info2.rowskip * sizeof(btScalar) == sizeof(btSolverConstraint));
+	info2.m_constraintError = &firstRow->m_rhs;
+	info2.cfm = &firstRow->m_cfm;
+	info2.m_lowerLimit = &firstRow->m_lowerLimit;
+	info2.m_upperLimit = &firstRow->m_upperLimit;
+	info2.m_numIterations = parameters.numIterations;
+	info2.m_damping = parameters.damping;
+	constraint.getInfo2(&info2);
+}
+}  // namespace
+
+void caliber::setUpJointRows(btTypedConstraint& constraint, btSolverConstraint* firstRow, int numRows,
+                             const JointRowParameters& parameters)
+{
+	setUpRows(constraint, firstRow, numRows, parameters);
+}
 
 bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint* firstRow,
                            btTypedConstraint* constraint, const btTypedConstraint::btConstraintInfo1& info1,
@@ -105,31 +140,16 @@ bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverC
 	const int iterations = constraint->getOverrideNumSolverIterations() >= 0
 	                           ? constraint->getOverrideNumSolverIterations()
 	                           : infoGlobal.m_numIterations;
-	for (int j = 0; j < numRows; ++j)
-	{
-		clearRow(firstRow[j], infoGlobal.m_globalCfm);
-		firstRow[j].m_solverBodyIdA = solverBodyIdA;
-		firstRow[j].m_solverBodyIdB = solverBodyIdB;
-		firstRow[j].m_overrideNumSolverIterations = iterations;
-		firstRow[j].m_originalContactPoint = constraint;
-	}
-
-	btTypedConstraint::btConstraintInfo2 info2;
-	info2.fps = btScalar(1) / infoGlobal.m_timeStep;
-	info2.erp = infoGlobal.m_erp;
-	info2.m_J1linearAxis = firstRow->m_contactNormal1.m_floats;
-	info2.m_J1angularAxis = firstRow->m_relpos1CrossNormal.m_floats;
-	info2.m_J2linearAxis = firstRow->m_contactNormal2.m_floats;
-	info2.m_J2angularAxis = firstRow->m_relpos2CrossNormal.m_floats;
-	info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
-	btAssert(info2.rowskip * sizeof(btScalar) == sizeof(btSolverConstraint));
-	info2.m_constraintError = &firstRow->m_rhs;
-	info2.cfm = &firstRow->m_cfm;
-	info2.m_lowerLimit = &firstRow->m_lowerLimit;
-	info2.m_upperLimit = &firstRow->m_upperLimit;
-	info2.m_numIterations = infoGlobal.m_numIterations;
-	info2.m_damping = infoGlobal.m_damping;
-	constraint->getInfo2(&info2);
+	caliber::JointRowParameters parameters;
+	parameters.fps = btScalar(1) / infoGlobal.m_timeStep;
+	parameters.erp = infoGlobal.m_erp;
+	parameters.cfm = infoGlobal.m_globalCfm;
+	parameters.numIterations = infoGlobal.m_numIterations;
+	parameters.damping = infoGlobal.m_damping;
+	parameters.solverBodyIdA = solverBodyIdA;
+	parameters.solverBodyIdB = solverBodyIdB;
+	parameters.rowIterations = iterations;
+	setUpRows(*constraint, firstRow, numRows, parameters);
 
 	btRigidBody& rbA = constraint->getRigidBodyA();
 	btRigidBody& rbB = constraint->getRigidBodyB();

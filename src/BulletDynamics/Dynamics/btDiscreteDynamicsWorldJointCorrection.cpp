@@ -8,6 +8,7 @@
 // positions). Velocities are left alone, so no energy is added.
 #include "BulletDynamics/ConstraintSolver/btJointBlockMath.h"
 #include "BulletDynamics/ConstraintSolver/btJointPositionPass.h"
+#include "BulletDynamics/ConstraintSolver/btJointRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
@@ -187,36 +188,19 @@ bool correctLeftOverJoint(btTypedConstraint* constraint, int numIterations, btCo
 
 	rowScratch.resizeNoInitialize(info1.m_numConstraintRows);
 	btSolverConstraint* rows = &rowScratch[0];
-	for (int j = 0; j < info1.m_numConstraintRows; ++j)
-	{
-		btSolverConstraint& row = rows[j];
-		row.m_contactNormal1.setZero();
-		row.m_relpos1CrossNormal.setZero();
-		row.m_contactNormal2.setZero();
-		row.m_relpos2CrossNormal.setZero();
-		row.m_rhs = 0;
-		row.m_cfm = 0;
-		row.m_lowerLimit = -SIMD_INFINITY;
-		row.m_upperLimit = SIMD_INFINITY;
-	}
 	// fps = erp = 1: each row's "velocity" target is then its position error itself.
-	btTypedConstraint::btConstraintInfo2 info2;
-	info2.fps = btScalar(1);
-	info2.erp = btScalar(1);
-	info2.m_J1linearAxis = rows->m_contactNormal1.m_floats;
-	info2.m_J1angularAxis = rows->m_relpos1CrossNormal.m_floats;
-	info2.m_J2linearAxis = rows->m_contactNormal2.m_floats;
-	info2.m_J2angularAxis = rows->m_relpos2CrossNormal.m_floats;
-	info2.rowskip = int(sizeof(btSolverConstraint) / sizeof(btScalar));
-	info2.m_constraintError = &rows->m_rhs;
-	info2.cfm = &rows->m_cfm;
-	info2.m_lowerLimit = &rows->m_lowerLimit;
-	info2.m_upperLimit = &rows->m_upperLimit;
-	info2.m_numIterations = numIterations;
-	info2.m_damping = btScalar(1);
+	caliber::JointRowParameters parameters;
+	parameters.fps = btScalar(1);
+	parameters.erp = btScalar(1);
+	parameters.cfm = btScalar(0);
+	parameters.numIterations = numIterations;
+	parameters.damping = btScalar(1);
+	parameters.solverBodyIdA = -1;
+	parameters.solverBodyIdB = -1;
+	parameters.rowIterations = numIterations;
 	{
 		caliber::JointPositionPassScope positionPass;
-		constraint->getInfo2(&info2);
+		caliber::setUpJointRows(*constraint, rows, info1.m_numConstraintRows, parameters);
 	}
 
 	// The equality rows (leading, unbounded), solved exactly as a block, and the one-sided limit rows
@@ -322,7 +306,8 @@ bool sweepLeftOverJoints(btDiscreteDynamicsWorld& world, const btAlignedObjectAr
 	{
 		bool moved = false;
 		for (int c = 0; c < leftOver.size(); ++c)
-			if (correctLeftOverJoint(leftOver[c], numIterations, context.jointCorrectionRows, correctedBodies)) moved = true;
+			if (correctLeftOverJoint(leftOver[c], numIterations, context.jointCorrectionRows, correctedBodies))
+				moved = true;
 		return moved;
 	}
 	// A stable counting sort by island tag; then the used islands' starts.

@@ -338,6 +338,58 @@ TEST(Dbvt, InsertionKeepsTreeShallowForRandomAndSortedInput)
 	}
 }
 
+TEST(Dbvt, InsertionIntoATreeDeeperThanItsSearchStackStillFindsTheBestSibling)
+{
+	// The sibling search keeps about one pending node per level in a local array and continues on the heap
+	// in deeper trees. A caterpillar tree of 100 unit boxes along x (each internal node: one leaf and the
+	// rest) is 100 levels deep; a new box equal to the deepest leaf's adds the least area as that leaf's
+	// sibling (area 3 and no ancestor grows; every other sibling's union is longer), so a search that
+	// stopped at the array's end would pick a shallower node.
+	const int n = 100;
+	btDbvt tree;
+	std::vector<RefLeaf> ref;
+	for (int i = 0; i < n; ++i)
+	{
+		const btDbvtVolume box = btDbvtVolume::FromMM(btVector3(btScalar(i), 0, 0), btVector3(btScalar(i + 1), 1, 1));
+		ref.push_back({tree.insert(box, idToData(i)), box, true});
+	}
+	// Relink the tree's own internal nodes into the caterpillar.
+	std::vector<btDbvtNode*> internals, stack(1, tree.m_root);
+	while (!stack.empty())
+	{
+		btDbvtNode* node = stack.back();
+		stack.pop_back();
+		if (node->isleaf()) continue;
+		internals.push_back(node);
+		stack.push_back(node->childs[0]);
+		stack.push_back(node->childs[1]);
+	}
+	ASSERT_EQ(int(internals.size()), n - 1);
+	for (int i = n - 2; i >= 0; --i)
+	{
+		btDbvtNode* node = internals[i];
+		btDbvtNode* rest = i == n - 2 ? ref[n - 1].node : internals[i + 1];
+		node->childs[0] = ref[i].node;
+		node->childs[1] = rest;
+		ref[i].node->parent = node;
+		rest->parent = node;
+		Merge(ref[i].node->volume, rest->volume, node->volume);
+	}
+	tree.m_root = internals[0];
+	tree.m_root->parent = 0;
+	ASSERT_TRUE(treeIsConsistent(tree, ref));
+	ASSERT_EQ(btDbvt::maxdepth(tree.m_root), n);
+
+	const btDbvtVolume box = ref[n - 1].box;
+	btDbvtNode* leaf = tree.insert(box, idToData(n));
+	ref.push_back({leaf, box, true});
+	ASSERT_TRUE(treeIsConsistent(tree, ref));
+	const btDbvtNode* parent = leaf->parent;
+	ASSERT_NE(parent, nullptr);
+	const btDbvtNode* sibling = parent->childs[parent->childs[0] == leaf ? 1 : 0];
+	EXPECT_EQ(sibling, ref[n - 1].node) << "sibling is leaf " << (sibling->isleaf() ? dataToId(sibling) : -1);
+}
+
 TEST(Dbvt, CollideTTBetweenTwoTreesMatchesBruteForce)
 {
 	Random rng(7);

@@ -152,6 +152,57 @@ TEST(SimulationIslandManager, TouchingStacksMergeIntoOneIsland)
 	EXPECT_EQ(result.islands[0].bodies.size(), 6u);
 }
 
+// Steps another scene from inside its first island (as a program with two worlds might from a callback),
+// then records as RecordingCallback does.
+struct NestingCallback : public RecordingCallback
+{
+	TwoStacks* inner = nullptr;
+	size_t innerIslands = 0;
+	void processIsland(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
+	                   int islandId) override
+	{
+		if (inner)
+		{
+			innerIslands = inner->step().islands.size();
+			inner = nullptr;
+		}
+		RecordingCallback::processIsland(bodies, numBodies, manifolds, numManifolds, islandId);
+	}
+};
+
+TEST(SimulationIslandManager, IslandsProcessedInsideAnotherManagersCallbackKeepBothGroupings)
+{
+	// The grouping of manifolds by island is per-thread scratch; a manager working inside another's
+	// callback must not overwrite the outer grouping. The inner scene is one island of nine manifolds,
+	// the outer two islands of three, so a shared grouping would hand the outer's second island a wrong range.
+	TwoStacks outer, inner;
+	for (int level = 0; level < 3; ++level)
+	{
+		btVector3 origin = inner.m_stack[1][level].getWorldTransform().getOrigin();
+		origin.setX(btScalar(0.98));
+		TwoStacks::place(inner.m_stack[1][level], origin);
+	}
+	outer.m_world->performDiscreteCollisionDetection();
+	outer.m_islands.updateActivationState(outer.m_world.get(), &outer.m_dispatcher);
+	outer.m_islands.storeIslandActivationState(outer.m_world.get());
+	NestingCallback callback;
+	callback.inner = &inner;
+	outer.m_islands.buildAndProcessIslands(&outer.m_dispatcher, outer.m_world.get(), &callback);
+	EXPECT_EQ(callback.innerIslands, 1u);
+	ASSERT_EQ(callback.islands.size(), 2u);
+	for (const RecordedIsland& island : callback.islands)
+	{
+		int withContacts = 0;
+		for (btPersistentManifold* manifold : island.manifolds)
+		{
+			const bool mine = island.bodies.count(manifold->getBody0()) || island.bodies.count(manifold->getBody1());
+			EXPECT_TRUE(mine) << "island " << island.id << " was given another island's manifold";
+			if (manifold->getNumContacts() > 0) ++withContacts;
+		}
+		EXPECT_EQ(withContacts, 3) << "island " << island.id;
+	}
+}
+
 TEST(SimulationIslandManager, IslandSleepsOnlyWhenAllItsObjectsWantTo)
 {
 	TwoStacks scene;
