@@ -32,8 +32,9 @@ StackFigures restHeavyOnLight(btScalar heavyMass, btScalar lightMass, int iterat
 
 	StackFigures f = {0, 0, 0, 0};
 	btScalar lowestHeavy = BT_LARGE_FLOAT, highestHeavy = -BT_LARGE_FLOAT;
-	const int steps = int(seconds * 60);
-	const int settleSteps = 60;  // one second to take up the load
+	// One second to take up the load, then `seconds` at rest over which the jitter is measured.
+	const int settleSteps = 60;
+	const int steps = settleSteps + int(seconds * 60);
 	for (int i = 0; i < steps; ++i)
 	{
 		w.run(1);
