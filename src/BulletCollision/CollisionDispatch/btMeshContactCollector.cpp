@@ -13,6 +13,12 @@ namespace
 // Same tolerance as face clipping: a normal within about 2.5 degrees of the triangle's is its face's.
 const btScalar kFaceNormalCosine = btScalar(0.999);
 
+// A point on an edge or a vertex of its triangle whose normal leans further than this from the face's
+// (about 0.26 degrees) is that edge's or vertex's, even within kFaceNormalCosine: a sphere beside a
+// triangle it is not over meets the triangle's edge at a normal leaning by asin(offset / radius), a few
+// degrees when the edge is centimetres away, and that lean pushed a rolling sphere up by a centimetre.
+const btScalar kExactFaceNormalCosine = btScalar(0.99999);
+
 // A point closer than this fraction of the triangle's longest edge to a vertex or an edge is on it
 // (GJK's closest points carry about that much rounding in float).
 const btScalar kFeatureTolerance = btScalar(1e-3);
@@ -193,7 +199,15 @@ void MeshContactCollector::addContactPoint(const btVector3& normalOnBInWorld, co
 	}
 	CollectedTriangle& collected = s.triangles[slot];
 	const btScalar along = collected.faceNormal.dot(normalOnBInWorld);
-	const bool onFace = along * along >= collected.faceLimit2 && along != 0;
+	bool onFace = along * along >= collected.faceLimit2 && along != 0;
+	if (onFace && along * along < kExactFaceNormalCosine * kExactFaceNormalCosine * collected.faceNormal.length2())
+	{
+		// Near the face's normal but not on it: the face's only if the point lies inside the face.
+		const btTransform& transform = triangleWrap->getWorldTransform();
+		const btVector3 corners[3] = {transform(collected.vertices[0]), transform(collected.vertices[1]),
+		                              transform(collected.vertices[2])};
+		onFace = featureOf(corners, pointInWorld - normalOnBInWorld * m_triangleMargin) == 0;
+	}
 	if (onFace && !collected.faceContact)
 	{
 		collected.faceContact = true;

@@ -615,8 +615,12 @@ void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPo
 		                           (b.m_linearVelocity + b.m_angularVelocity.cross(rel_pos2));
 		const btVector3 tangential = velocity - normal * normal.dot(velocity);
 		const btScalar tangentialSpeed2 = tangential.length2();
+		// Below about 0.35 mm/s (the float epsilon, as a squared speed, in either precision) the velocity
+		// is the solver's noise, and following it would point each point's row anywhere: with double's
+		// epsilon, 100 kg taking up its load on 1 kg got rows along noise and walked 8 mm sideways.
+		const btScalar noiseSpeed2 = btScalar(1.1920928955078125e-07);
 		if (!(infoGlobal.m_solverMode & SOLVER_DISABLE_VELOCITY_DEPENDENT_FRICTION_DIRECTION) &&
-		    tangentialSpeed2 > SIMD_EPSILON)
+		    tangentialSpeed2 > noiseSpeed2)
 		{
 			cp.m_lateralFrictionDir1 = tangential / btSqrt(tangentialSpeed2);
 			cp.m_lateralFrictionDir2 = cp.m_lateralFrictionDir1.cross(normal).normalized();

@@ -823,10 +823,19 @@ TEST(MeshContactScenario, HullBoxSlidingDiagonallyAcrossAFineMeshAt10MetresPerSe
 	    slideAcrossFineGrid(hull, btScalar(0.5) + hull->getMargin(), w, btVector3(1, 0, btScalar(0.3)), false));
 }
 
-// Not passing yet (see the "Contact fidelity" issue): kept to be enabled when it does.
-TEST(MeshContactScenario, DISABLED_SphereRollingAcrossAFineMeshAt10MetresPerSecondKeepsItsSpeed)
+// Rolling (friction 1): the sphere's closest points on the triangles beside the one it is over are
+// edges a few centimetres away, whose normals lean by a couple of degrees; taken for face points (their
+// normals are within the face tolerance) they threw it up by 1.1 cm.
+TEST(MeshContactScenario, SphereRollingAcrossAFineMeshAt10MetresPerSecondKeepsItsSpeed)
 {
 	TestWorld w;
 	expectSlidesUndisturbed(slideAcrossFineGrid(w.shape<btSphereShape>(btScalar(0.5)), btScalar(0.5), w,
 	                                            btVector3(1, 0, btScalar(0.3)), true));
+}
+
+TEST(MeshContactScenario, SphereRollingStraightAcrossAFineMeshAt10MetresPerSecondKeepsItsSpeed)
+{
+	TestWorld w;
+	expectSlidesUndisturbed(
+	    slideAcrossFineGrid(w.shape<btSphereShape>(btScalar(0.5)), btScalar(0.5), w, btVector3(1, 0, 0), true));
 }
