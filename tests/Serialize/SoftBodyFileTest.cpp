@@ -554,3 +554,25 @@ TEST(SoftBodyFile, EveryByteOfTheSoftBodyChunksFlippedNeverCrashes)
 	EXPECT_GT(tried, 100);
 	EXPECT_GT(loaded, 0);  // flips of values (not counts) still load
 }
+
+// eRESTORE_EXISTING_OBJECTS writes the rigid part into the world's objects; soft bodies are not written into
+// existing ones (a soft world snapshot does that): they are reported and nothing is added.
+TEST(SoftBodyFile, RestoringExistingObjectsReportsTheSoftBodiesAndAddsNothing)
+{
+	Scene scene;
+	const std::vector<char> file = writeWorld(scene.w.world());
+	const int objects = scene.w.world().getNumCollisionObjects();
+	const btVector3 boxAt = scene.box->getWorldTransform().getOrigin();
+	scene.w.step(10);
+	ASSERT_NE(scene.box->getWorldTransform().getOrigin(), boxAt);  // it fell: the last check can fail
+	caliber_test::WarningLog log;
+	btSoftBulletWorldImporter importer(&scene.w.world());
+	importer.setImporterFlags(eRESTORE_EXISTING_OBJECTS);
+	EXPECT_FALSE(importer.loadFileFromMemory(const_cast<char*>(file.data()), int(file.size())));
+	EXPECT_TRUE(log.contains("the file's 2 soft bodies are not written into the world's")) << log.all();
+	EXPECT_EQ(importer.getNumSoftBodies(), 0);
+	EXPECT_EQ(scene.w.world().getNumCollisionObjects(), objects);
+	EXPECT_EQ(scene.w.world().getSoftBodyArray().size(), 2);
+	// The rigid box the cloth hangs from is back where it was saved.
+	EXPECT_EQ(scene.box->getWorldTransform().getOrigin(), boxAt);
+}

@@ -303,7 +303,17 @@ void btSoftBulletWorldImporter::deleteAllData()
 
 bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 {
-	if (!btBulletWorldImporter::convertAllObjects(file)) return false;
+	const bool rigidPartOk = btBulletWorldImporter::convertAllObjects(file);
+	if (m_importerFlags & eRESTORE_EXISTING_OBJECTS)
+	{
+		// Writing a file into existing soft bodies is not supported: a soft world snapshot does that exactly.
+		if (file && file->m_softBodies.size() > 0)
+			warn("eRESTORE_EXISTING_OBJECTS: the file's " + std::to_string(file->m_softBodies.size()) +
+			     " soft bodies are not written into the world's (not supported; Caliber/SoftWorldSnapshot.h restores "
+			     "soft bodies); they are skipped");
+		return rigidPartOk && file->m_softBodies.size() == 0;
+	}
+	if (!rigidPartOk) return false;
 	SoftChecker check(*file);
 	const bool swapped = (file->getFlags() & bParse::FD_ENDIAN_SWAP) != 0;
 	btSoftBodyWorldInfo& info = m_softRigidWorld ? m_softRigidWorld->getWorldInfo() : m_ownWorldInfo;

@@ -13,11 +13,13 @@
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
+#include "detail/RestoreExistingObjects.h"
 
 #include <math.h>
 #include <string.h>
 
 #include <string>
+#include <type_traits>
 
 namespace
 {
@@ -608,6 +610,20 @@ bool btBulletWorldImporter::loadFileFromMemory(bParse::btBulletFile* file)
 bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 {
 	if (!file || !file->ok()) return false;
+	// These maps are keyed by the converted blocks of one file: blocks of an earlier file are gone (and
+	// their addresses may come back), so each load starts them empty.
+	m_shapeMap.clear();
+	m_bodyMap.clear();
+	m_bvhMap.clear();
+	m_timMap.clear();
+	const bool restoring = (m_importerFlags & eRESTORE_EXISTING_OBJECTS) != 0;
+	if (restoring && !m_dynamicsWorld)
+	{
+		warn("eRESTORE_EXISTING_OBJECTS needs the importer's world, and it was given none; nothing was loaded");
+		return false;
+	}
+	caliber::importer::ExistingObjects existing(m_dynamicsWorld, m_objectNameMap);
+	bool allRestored = true;
 	Checker check(*file);
 	// 1. World settings (the first record).
 	if (file->m_dynamicsWorldInfo.size() > 0)
@@ -681,7 +697,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 	}
 	// 1b. Stored BVHs and triangle info maps, shared by the meshes that point at them (a tree is kept only
 	// when deSerialize accepted it: a full-box query then finds every leaf the file lists).
-	for (int i = 0; i < file->m_bvhs.size(); ++i)
+	for (int i = 0; i < file->m_bvhs.size() && !restoring; ++i)
 	{
 		void* block = file->m_bvhs[i];
 		if (!check.bvhBlockComplete(block))
@@ -709,7 +725,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 			warn("BVH " + std::to_string(i) + " is not a well-formed tree; meshes using it rebuild their own");
 	}
 	const bool swapped = (file->getFlags() & bParse::FD_ENDIAN_SWAP) != 0;
-	for (int i = 0; i < file->m_triangleInfoMaps.size(); ++i)
+	for (int i = 0; i < file->m_triangleInfoMaps.size() && !restoring; ++i)
 	{
 		void* block = file->m_triangleInfoMaps[i];
 		if (!check.triangleInfoMapComplete(block))
@@ -731,7 +747,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		if (map->size() == d->m_numKeys) m_timMap.insert(btHashPtr(block), map);
 	}
 	// 2. Shapes (compound children convert on demand through the shape map).
-	for (int i = 0; i < file->m_collisionShapes.size(); ++i)
+	for (int i = 0; i < file->m_collisionShapes.size() && !restoring; ++i)
 	{
 		btCollisionShapeData* shapeData = reinterpret_cast<btCollisionShapeData*>(file->m_collisionShapes[i]);
 		if (!check.shapeIsValid(shapeData))
@@ -743,28 +759,37 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		btCollisionShape* shape = convertCollisionShape(shapeData);
 		if (shape) m_shapeMap.insert(btHashPtr(shapeData), shape);
 	}
+	// The file's shape of an object, for the type check of a restore (0 when it is not a valid shape).
+	auto fileShape = [&](void* shape) { return check.isShape(shape) ? static_cast<btCollisionShapeData*>(shape) : 0; };
 	// 3. Rigid bodies.
 	for (int i = 0; i < file->m_rigidBodies.size(); ++i)
 	{
+		auto convert = [&](auto* d)
+		{
+			check.fixName(d->m_collisionObjectData.m_name);
+			if (!bodyFinite(*d) || !check.numbersSane(d))
+			{
+				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
+				allRestored = false;
+			}
+			else if (!restoring)
+			{
+				if constexpr (std::is_same<decltype(d), btRigidBodyFloatData*>::value)
+					convertRigidBodyFloat(d);
+				else
+					convertRigidBodyDouble(d);
+			}
+			else if (btCollisionObject* target =
+			             existing.restore(*d, fileShape(d->m_collisionObjectData.m_collisionShape), i))
+				m_bodyMap.insert(btHashPtr(d), target);
+			else
+				allRestored = false;
+		};
 		void* body = file->m_rigidBodies[i];
 		if (check.isA(body, "btRigidBodyFloatData"))
-		{
-			btRigidBodyFloatData* d = static_cast<btRigidBodyFloatData*>(body);
-			check.fixName(d->m_collisionObjectData.m_name);
-			if (bodyFinite(*d) && check.numbersSane(d))
-				convertRigidBodyFloat(d);
-			else
-				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
-		}
+			convert(static_cast<btRigidBodyFloatData*>(body));
 		else if (check.isA(body, "btRigidBodyDoubleData"))
-		{
-			btRigidBodyDoubleData* d = static_cast<btRigidBodyDoubleData*>(body);
-			check.fixName(d->m_collisionObjectData.m_name);
-			if (bodyFinite(*d) && check.numbersSane(d))
-				convertRigidBodyDouble(d);
-			else
-				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
-		}
+			convert(static_cast<btRigidBodyDoubleData*>(body));
 	}
 	// 4. Plain collision objects.
 	for (int i = 0; i < file->m_collisionObjects.size(); ++i)
@@ -773,6 +798,15 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		auto convert = [&](auto* d)
 		{
 			check.fixName(d->m_name);
+			if (restoring)
+			{
+				btCollisionObject* target = objectFinite(*d) && check.numbersSane(d)
+				                                ? existing.restore(*d, fileShape(d->m_collisionShape), i)
+				                                : 0;
+				if (target) m_bodyMap.insert(btHashPtr(d), target);
+				allRestored &= target != 0;
+				return;
+			}
 			btCollisionShape** shape = m_shapeMap.find(btHashPtr(d->m_collisionShape));
 			if (!shape || !objectFinite(*d) || !check.numbersSane(d))
 			{
@@ -808,11 +842,13 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		if (!type || !isJointStruct(type) || !jointStructMatches(common->m_objectType, type))
 		{
 			warn("joint " + std::to_string(i) + " has a struct that does not match its type; it is skipped");
+			allRestored = false;
 			continue;
 		}
 		if (!check.numbersSane(joint))
 		{
 			warn("joint " + std::to_string(i) + " has NaN or non-finite frames; it is skipped");
+			allRestored = false;
 			continue;
 		}
 		check.fixName(common->m_name);
@@ -825,7 +861,15 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		if ((bodyA && !rbA) || (bodyB && !rbB) || (!rbA && !rbB) || (bodyA && !check.isBody(bodyA)) ||
 		    (bodyB && !check.isBody(bodyB)))
 		{
-			warn("joint " + std::to_string(i) + " refers to a body that is not in the file; it is skipped");
+			warn("joint " + std::to_string(i) +
+			     (restoring ? " refers to a body that was not restored; it is not restored"
+			                : " refers to a body that is not in the file; it is skipped"));
+			allRestored = false;
+			continue;
+		}
+		if (restoring)
+		{
+			allRestored &= existing.restoreJoint(common, type, rbA, rbB, i);
 			continue;
 		}
 		if (isDoubleJoint(type))
@@ -835,5 +879,5 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		else
 			convertConstraintFloat(static_cast<btTypedConstraintFloatData*>(joint), rbA, rbB, file->getVersion());
 	}
-	return true;
+	return !restoring || allRestored;
 }
