@@ -314,6 +314,9 @@ bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		return rigidPartOk && file->m_softBodies.size() == 0;
 	}
 	if (!rigidPartOk) return false;
+	// Keyed by this file's converted blocks (an earlier file's are gone; their addresses may come back).
+	m_softBodyMap.clear();
+	m_clusterBodyMap.clear();
 	SoftChecker check(*file);
 	const bool swapped = (file->getFlags() & bParse::FD_ENDIAN_SWAP) != 0;
 	btSoftBodyWorldInfo& info = m_softRigidWorld ? m_softRigidWorld->getWorldInfo() : m_ownWorldInfo;
@@ -568,6 +571,16 @@ bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 				warn(where + " is not on a cluster of its body; it is skipped");
 				continue;
 			}
+			// A side names a cluster by its address, and only the first cluster's address is a chunk id
+			// (the cluster array's): a joint on another cluster cannot be told where it was, so it is not
+			// moved to the first one silently.
+			if (jd.m_bodyA != static_cast<void*>(d->m_clusters))
+			{
+				warn(where +
+				     " is on a cluster other than its body's first, which the format cannot name (only the "
+				     "first cluster's address is a chunk id); it is skipped");
+				continue;
+			}
 			btSoftBody::Body other;
 			bool ok = true;
 			switch (jd.m_bodyBtype)
@@ -595,7 +608,9 @@ bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 			}
 			if (!ok)
 			{
-				warn(where + "'s other side is not an object of the file; it is skipped");
+				warn(where +
+				     "'s other side is not an object of the file (or a cluster other than a body's first, "
+				     "which the format cannot name); it is skipped");
 				continue;
 			}
 			btSoftBody::Cluster* first = psb->m_clusters[0];
