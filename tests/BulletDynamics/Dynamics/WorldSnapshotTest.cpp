@@ -647,7 +647,7 @@ TEST(WorldSnapshot, PolyhedralHullStackContinuesBitIdenticallyFor300Steps)
 	expectRollbackIsExact(buildPolyhedralStack, 120, 300);
 }
 
-TEST(WorldSnapshot, JointChainsContinueBitIdenticallyFor120Steps) { expectRollbackIsExact(buildJoints, 25, 120); }
+TEST(WorldSnapshot, JointChainsContinueBitIdenticallyFor1000Steps) { expectRollbackIsExact(buildJoints, 25, 1000); }
 
 TEST(WorldSnapshot, JointChainsAt120HertzContinueBitIdentically)
 {
@@ -663,7 +663,7 @@ TEST(WorldSnapshot, SleepingBodiesContinueBitIdenticallyFor1000Steps)
 	expectRollbackIsExact(buildSleepers, 150, 10);   // saved with bodies asleep
 }
 
-TEST(WorldSnapshot, CcdBodiesContinueBitIdenticallyFor200Steps) { expectRollbackIsExact(buildCcd, 2, 200); }
+TEST(WorldSnapshot, CcdBodiesContinueBitIdenticallyFor1000Steps) { expectRollbackIsExact(buildCcd, 2, 1000); }
 
 TEST(WorldSnapshot, SimpleBroadphasePileContinuesBitIdenticallyFor150Steps)
 {
