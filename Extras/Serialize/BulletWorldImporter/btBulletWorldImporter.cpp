@@ -13,6 +13,7 @@
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
+#include "detail/DnaChecks.h"
 #include "detail/RestoreExistingObjects.h"
 
 #include <math.h>
@@ -23,20 +24,14 @@
 
 namespace
 {
-// Reads the chunk header the loader kept for each converted block (a protected member of bFile,
-// reached through a pointer to member as the BVH access helpers do; no Caliber member is added).
-struct BlockInfoAccess : bParse::bFile
-{
-	static const btHashMap<btHashPtr, bParse::bChunkInd>& blocks(const bParse::bFile& file)
-	{
-		return file.*(&BlockInfoAccess::m_chunkPtrPtrMap);
-	}
-};
+using caliber::importer::finite;
+using caliber::importer::finiteTransform;
+using caliber::importer::memoryDna;
 
 class Checker
 {
 public:
-	explicit Checker(bParse::btBulletFile& file) : m_file(file), m_blocks(BlockInfoAccess::blocks(file))
+	explicit Checker(bParse::btBulletFile& file) : m_file(file), m_blocks(caliber::importer::blockInfo(file))
 	{
 		for (int i = 0; i < file.m_collisionShapes.size(); ++i)
 			m_shapes.insert(btHashPtr(file.m_collisionShapes[i]), 1);
@@ -222,103 +217,11 @@ public:
 	{
 		const bParse::bChunkInd* info = block ? m_blocks.find(btHashPtr(block)) : 0;
 		if (!info || info->dna_nr < 0) return false;
-		return numbersSaneIn(info->dna_nr, static_cast<const char*>(block), false, 0);
-	}
-
-	template <class V>
-	static bool finite(const V& v)
-	{
-		for (int i = 0; i < 3; ++i)
-			if (!isfinite(v.m_floats[i])) return false;
-		return true;
-	}
-	template <class T>
-	static bool finiteTransform(const T& t)
-	{
-		return finite(t.m_origin) && finite(t.m_basis.m_el[0]) && finite(t.m_basis.m_el[1]) &&
-		       finite(t.m_basis.m_el[2]);
+		return caliber::importer::numbersSane(info->dna_nr, static_cast<const char*>(block), false);
 	}
 
 private:
-	bool numbersSaneIn(int memoryStruct, const char* p, bool mustBeFinite, int depth) const
-	{
-		bParse::bDNA& dna = memoryDna();
-		short* st = dna.getStruct(memoryStruct);
-		if (!st || depth > 8) return false;
-		int offset = 0;
-		for (int f = 0; f < st[1]; ++f)
-		{
-			const short type = st[2 + 2 * f], name = st[3 + 2 * f];
-			const char* fieldName = dna.getName(name);
-			const int size = dna.getElementSize(type, name);
-			const int count = dna.getArraySizeNew(name);
-			if (fieldName[0] != '*' && count > 0)
-			{
-				const char* typeName = dna.getType(type);
-				const int element = size / count;
-				const bool strict = mustBeFinite || strstr(fieldName, "Frame") || strstr(fieldName, "Transform") ||
-				                    strstr(fieldName, "m_pivotIn") || strstr(fieldName, "m_axisIn") ||
-				                    strstr(fieldName, "m_gravity");
-				const int sub = dna.getReverseType(typeName);
-				for (int i = 0; i < count; ++i)
-				{
-					const char* q = p + offset + i * element;
-					double v = 0;
-					if (!strcmp(typeName, "btTransformFloatData") || !strcmp(typeName, "btTransformDoubleData"))
-					{
-						// Frames and transforms must be rotations, not just numbers.
-						bool rotation;
-						if (typeName[11] == 'F')
-						{
-							btTransformFloatData t;
-							memcpy(&t, q, sizeof(t));
-							rotation = finiteTransform(t);
-						}
-						else
-						{
-							btTransformDoubleData t;
-							memcpy(&t, q, sizeof(t));
-							rotation = finiteTransform(t);
-						}
-						if (!rotation) return false;
-						continue;
-					}
-					if (sub >= 0)
-					{
-						if (!numbersSaneIn(sub, q, strict, depth + 1)) return false;
-						continue;
-					}
-					if (!strcmp(typeName, "float"))
-					{
-						float x;
-						memcpy(&x, q, 4);
-						v = x;
-					}
-					else if (!strcmp(typeName, "double"))
-						memcpy(&v, q, 8);
-					else
-						continue;
-					if (v != v || (strict && !isfinite(v))) return false;
-				}
-			}
-			offset += size;
-		}
-		return true;
-	}
-
 	btHashMap<btHashPtr, int> m_verdicts;
-	// The reader's DNA names the struct of every converted block.
-	static bParse::bDNA& memoryDna()
-	{
-		static bParse::bDNA* dna = []
-		{
-			bParse::bDNA* parsed = new bParse::bDNA();  // built once, kept for the process
-			const int length = btDefaultSerializer::getMemoryDnaSizeInBytes();
-			parsed->init(const_cast<char*>(btDefaultSerializer::getMemoryDna()), length, false);
-			return parsed;
-		}();
-		return *dna;
-	}
 	const char* memoryType(int memoryStruct) const
 	{
 		short* s = memoryDna().getStruct(memoryStruct);
@@ -475,9 +378,9 @@ void warn(const std::string& message)
 template <class ObjectData>
 bool objectFinite(const ObjectData& d)
 {
-	return Checker::finiteTransform(d.m_worldTransform) && Checker::finiteTransform(d.m_interpolationWorldTransform) &&
-	       Checker::finite(d.m_interpolationLinearVelocity) && Checker::finite(d.m_interpolationAngularVelocity) &&
-	       Checker::finite(d.m_anisotropicFriction);
+	return finiteTransform(d.m_worldTransform) && finiteTransform(d.m_interpolationWorldTransform) &&
+	       finite(d.m_interpolationLinearVelocity) && finite(d.m_interpolationAngularVelocity) &&
+	       finite(d.m_anisotropicFriction);
 }
 
 // Factors scale the solver's response: btRigidBody accepts none below zero.
@@ -490,10 +393,9 @@ bool nonNegative(const V& v)
 template <class BodyData>
 bool bodyFinite(const BodyData& d)
 {
-	return objectFinite(d.m_collisionObjectData) && Checker::finite(d.m_linearVelocity) &&
-	       Checker::finite(d.m_angularVelocity) && Checker::finite(d.m_gravity_acceleration) &&
-	       Checker::finite(d.m_invInertiaLocal) && Checker::finite(d.m_linearFactor) &&
-	       Checker::finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
+	return objectFinite(d.m_collisionObjectData) && finite(d.m_linearVelocity) && finite(d.m_angularVelocity) &&
+	       finite(d.m_gravity_acceleration) && finite(d.m_invInertiaLocal) && finite(d.m_linearFactor) &&
+	       finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
 	       nonNegative(d.m_invInertiaLocal) && isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
 }
 
