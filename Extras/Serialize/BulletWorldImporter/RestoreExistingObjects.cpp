@@ -37,7 +37,17 @@ ExistingObjects::ExistingObjects(btDynamicsWorld* world, const btHashMap<btHashP
 {
 	if (!world) return;
 	const btCollisionObjectArray& objects = world->getCollisionObjectArray();
-	for (int i = 0; i < objects.size(); ++i) m_objectNamesKnown |= nameOf(names, objects[i]) != 0;
+	for (int i = 0; i < objects.size(); ++i)
+	{
+		if (objects[i]->getBroadphaseHandle()) m_byId.insert(objects[i]->getBroadphaseHandle()->m_uniqueId, objects[i]);
+		const char* name = nameOf(names, objects[i]);
+		if (!name) continue;
+		m_objectNamesKnown = true;
+		const int* known = m_nameCount.find(name);
+		const int count = known ? *known + 1 : 1;
+		m_nameCount.insert(name, count);
+		if (count == 1) m_byName.insert(name, objects[i]);
+	}
 	for (int i = 0; i < world->getNumConstraints(); ++i)
 		m_jointNamesKnown |= nameOf(names, world->getConstraint(i)) != 0;
 }
@@ -47,38 +57,32 @@ btCollisionObject* ExistingObjects::match(const ObjectData& d, const btCollision
                                           const std::string& what)
 {
 	if (!m_world) return 0;
-	const btCollisionObjectArray& objects = m_world->getCollisionObjectArray();
 	btCollisionObject* target = 0;
 	if (m_objectNamesKnown && d.m_name)
 	{
-		int count = 0;
-		for (int i = 0; i < objects.size(); ++i)
-		{
-			const char* name = nameOf(m_names, objects[i]);
-			if (name && !strcmp(name, d.m_name)) target = count++ ? target : objects[i];
-		}
-		if (count == 0)
+		const int* count = m_nameCount.find(d.m_name);
+		if (!count)
 		{
 			warn(what + ": no object of the world has its name; it is not restored");
 			return 0;
 		}
-		if (count > 1)
+		if (*count > 1)
 		{
-			warn(what + ": " + std::to_string(count) + " objects of the world have its name; it is not restored");
+			warn(what + ": " + std::to_string(*count) + " objects of the world have its name; it is not restored");
 			return 0;
 		}
+		target = *m_byName.find(d.m_name);
 	}
 	else
 	{
-		for (int i = 0; i < objects.size() && !target; ++i)
-			if (objects[i]->getBroadphaseHandle() && objects[i]->getBroadphaseHandle()->m_uniqueId == d.m_uniqueId)
-				target = objects[i];
-		if (!target)
+		btCollisionObject** found = m_byId.find(d.m_uniqueId);
+		if (!found)
 		{
 			warn(what + ": no object of the world has its unique id " + std::to_string(d.m_uniqueId) +
 			     "; it is not restored");
 			return 0;
 		}
+		target = *found;
 		const char* name = nameOf(m_names, target);
 		if (name && d.m_name && strcmp(name, d.m_name))
 		{

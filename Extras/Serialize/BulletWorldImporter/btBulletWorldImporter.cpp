@@ -524,7 +524,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		warn("eRESTORE_EXISTING_OBJECTS needs the importer's world, and it was given none; nothing was loaded");
 		return false;
 	}
-	caliber::importer::ExistingObjects existing(m_dynamicsWorld, m_objectNameMap);
+	caliber::importer::ExistingObjects existing(restoring ? m_dynamicsWorld : 0, m_objectNameMap);
 	bool allRestored = true;
 	Checker check(*file);
 	// 1. World settings (the first record).

@@ -65,6 +65,10 @@ private:
 	const btHashMap<btHashPtr, const char*>& m_names;
 	bool m_objectNamesKnown = false;
 	bool m_jointNamesKnown = false;
+	// The world's objects by broadphase unique id, and by name with how many carry each name.
+	btHashMap<btHashInt, btCollisionObject*> m_byId;
+	btHashMap<btHashString, btCollisionObject*> m_byName;
+	btHashMap<btHashString, int> m_nameCount;
 	btHashMap<btHashPtr, int> m_usedObjects;
 	btHashMap<btHashPtr, int> m_usedJoints;
 };
