@@ -647,7 +647,8 @@ TEST(WorldSnapshot, PolyhedralHullStackContinuesBitIdenticallyFor300Steps)
 	expectRollbackIsExact(buildPolyhedralStack, 120, 300);
 }
 
-TEST(WorldSnapshot, JointChainsContinueBitIdenticallyFor1000Steps) { expectRollbackIsExact(buildJoints, 25, 1000); }
+// 120 steps: 1000 take 40 s under ASan; the 1000-frame joint check is BenchmarkDemo ragdolls136 (docs/serialization.md).
+TEST(WorldSnapshot, JointChainsContinueBitIdenticallyFor120Steps) { expectRollbackIsExact(buildJoints, 25, 120); }
 
 TEST(WorldSnapshot, JointChainsAt120HertzContinueBitIdentically)
 {
