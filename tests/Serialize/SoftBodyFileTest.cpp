@@ -554,3 +554,74 @@ TEST(SoftBodyFile, EveryByteOfTheSoftBodyChunksFlippedNeverCrashes)
 	EXPECT_GT(tried, 100);
 	EXPECT_GT(loaded, 0);  // flips of values (not counts) still load
 }
+
+// eRESTORE_EXISTING_OBJECTS writes the rigid part into the world's objects; soft bodies are not written into
+// existing ones (a soft world snapshot does that): they are reported and nothing is added.
+TEST(SoftBodyFile, RestoringExistingObjectsReportsTheSoftBodiesAndAddsNothing)
+{
+	Scene scene;
+	const std::vector<char> file = writeWorld(scene.w.world());
+	const int objects = scene.w.world().getNumCollisionObjects();
+	const btVector3 boxAt = scene.box->getWorldTransform().getOrigin();
+	scene.w.step(10);
+	ASSERT_NE(scene.box->getWorldTransform().getOrigin(), boxAt);  // it fell: the last check can fail
+	caliber_test::WarningLog log;
+	btSoftBulletWorldImporter importer(&scene.w.world());
+	importer.setImporterFlags(eRESTORE_EXISTING_OBJECTS);
+	EXPECT_FALSE(importer.loadFileFromMemory(const_cast<char*>(file.data()), int(file.size())));
+	EXPECT_TRUE(log.contains("the file's 2 soft bodies are not written into the world's")) << log.all();
+	EXPECT_EQ(importer.getNumSoftBodies(), 0);
+	EXPECT_EQ(scene.w.world().getNumCollisionObjects(), objects);
+	EXPECT_EQ(scene.w.world().getSoftBodyArray().size(), 2);
+	// The rigid box the cloth hangs from is back where it was saved.
+	EXPECT_EQ(scene.box->getWorldTransform().getOrigin(), boxAt);
+}
+
+// A joint side names a cluster by its address, and only a body's first cluster has a chunk with its address
+// (the cluster array's): joints between first clusters of two soft bodies come back joining the same two
+// clusters; a joint on any other cluster is reported and skipped, never moved to the first cluster.
+TEST(SoftBodyFile, JointsBetweenFirstClustersOfTwoSoftBodiesComeBackAndOtherClustersAreReported)
+{
+	SoftTestWorld w;
+	btRigidBody* box = w.addRigid(1, btVector3(0, 3, 0), w.shape<btBoxShape>(btVector3(0.3, 0.3, 0.3)));
+	btSoftBody* blocks[2];
+	for (int k = 0; k < 2; ++k)
+	{
+		blocks[k] = w.addSoft(
+		    btSoftBodyHelpers::CreateFromTetGenData(w.info(), Scene::kEle, 0, Scene::kNode, false, true, true));
+		blocks[k]->translate(btVector3(btScalar(3 * k), 1, 0));
+		blocks[k]->setVolumeMass(1);
+		blocks[k]->generateClusters(2);
+		ASSERT_EQ(blocks[k]->m_clusters.size(), 2);
+	}
+	btSoftBody::LJoint::Specs ls;
+	ls.position = btVector3(1.5, 1.5, 0.5);
+	ls.erp = btScalar(0.45);
+	ls.cfm = btScalar(0.2);
+	blocks[0]->appendLinearJoint(ls, blocks[0]->m_clusters[0], btSoftBody::Body(blocks[1]->m_clusters[0]));
+	blocks[0]->appendLinearJoint(ls, blocks[0]->m_clusters[1], btSoftBody::Body(box));
+	blocks[0]->appendLinearJoint(ls, blocks[0]->m_clusters[0], btSoftBody::Body(blocks[1]->m_clusters[1]));
+	w.step(3);
+	const std::vector<char> file = writeWorld(w.world());
+
+	SoftTestWorld other;
+	btSoftBulletWorldImporter importer(&other.world());
+	caliber_test::WarningLog log;
+	std::vector<char> copy = file;
+	ASSERT_TRUE(importer.loadFileFromMemory(copy.data(), int(copy.size())));
+	ASSERT_EQ(importer.getNumSoftBodies(), 2);
+	btSoftBody* first = importer.getSoftBodyByIndex(0);
+	btSoftBody* second = importer.getSoftBodyByIndex(1);
+	ASSERT_EQ(first->m_joints.size(), 1) << log.all();
+	const btSoftBody::Joint& joint = *first->m_joints[0];
+	const btSoftBody::Joint& original = *blocks[0]->m_joints[0];
+	EXPECT_EQ(joint.Type(), btSoftBody::Joint::eType::Linear);
+	EXPECT_EQ(joint.m_bodies[0].m_soft, first->m_clusters[0]);
+	EXPECT_EQ(joint.m_bodies[1].m_soft, second->m_clusters[0]);
+	EXPECT_EQ(f(original.m_erp), joint.m_erp);
+	EXPECT_EQ(f(original.m_cfm), joint.m_cfm);
+	EXPECT_TRUE(log.contains("soft body 0: joint 1 is on a cluster other than its body's first")) << log.all();
+	EXPECT_TRUE(log.contains("soft body 0: joint 2's other side is not an object of the file (or a cluster other"))
+	    << log.all();
+	importer.deleteAllData();
+}

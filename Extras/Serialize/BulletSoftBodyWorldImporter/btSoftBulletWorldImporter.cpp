@@ -11,6 +11,7 @@
 #include "BulletSoftBody/btSoftRigidDynamicsWorld.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
+#include "detail/DnaChecks.h"
 
 #include <math.h>
 #include <string.h>
@@ -24,71 +25,14 @@ void warn(const std::string& message)
 	btReportWarning(("Caliber: btSoftBulletWorldImporter: " + message + "\n").c_str());
 }
 
-// The chunk header the loader kept for each converted block (a protected member of bFile).
-struct BlockAccess : bParse::bFile
-{
-	static const btHashMap<btHashPtr, bParse::bChunkInd>& blocks(const bParse::bFile& file)
-	{
-		return file.*(&BlockAccess::m_chunkPtrPtrMap);
-	}
-};
-
-bParse::bDNA& memoryDna()
-{
-	static bParse::bDNA* dna = []
-	{
-		bParse::bDNA* parsed = new bParse::bDNA();  // built once, kept for the process
-		parsed->init(const_cast<char*>(btDefaultSerializer::getMemoryDna()),
-		             btDefaultSerializer::getMemoryDnaSizeInBytes(), false);
-		return parsed;
-	}();
-	return *dna;
-}
+using caliber::importer::memoryDna;
 
 bool finiteFloat(float x) { return isfinite(x) != 0; }
-
-// Every float of a struct of the reader's DNA (nested structs included) is finite.
-bool allFinite(int memoryStruct, const char* p, int depth = 0)
-{
-	bParse::bDNA& dna = memoryDna();
-	short* st = dna.getStruct(memoryStruct);
-	if (!st || depth > 8) return false;
-	int offset = 0;
-	for (int f = 0; f < st[1]; ++f)
-	{
-		const short type = st[2 + 2 * f], name = st[3 + 2 * f];
-		const char* fieldName = dna.getName(name);
-		const int size = dna.getElementSize(type, name);
-		const int count = dna.getArraySizeNew(name);
-		if (fieldName[0] != '*' && count > 0)
-		{
-			const char* typeName = dna.getType(type);
-			const int element = size / count;
-			const int sub = dna.getReverseType(typeName);
-			for (int i = 0; i < count; ++i)
-			{
-				const char* q = p + offset + i * element;
-				if (sub >= 0)
-				{
-					if (!allFinite(sub, q, depth + 1)) return false;
-				}
-				else if (!strcmp(typeName, "float"))
-				{
-					float x;
-					memcpy(&x, q, 4);
-					if (!finiteFloat(x)) return false;
-				}
-			}
-		}
-		offset += size;
-	}
-	return true;
-}
 
 class SoftChecker
 {
 public:
-	explicit SoftChecker(bParse::btBulletFile& file) : m_blocks(BlockAccess::blocks(file)) {}
+	explicit SoftChecker(bParse::btBulletFile& file) : m_blocks(caliber::importer::blockInfo(file)) {}
 
 	const bParse::bChunkInd* info(const void* p) const { return p ? m_blocks.find(btHashPtr(p)) : 0; }
 	// The block at p holds at least count structs named type (count 0: p may be null).
@@ -121,7 +65,8 @@ public:
 		if (s < 0) return false;
 		const int size = memoryDna().getLength(memoryDna().getStruct(s)[0]);
 		for (int i = 0; i < count; ++i)
-			if (!allFinite(s, static_cast<const char*>(p) + size_t(i) * size_t(size))) return false;
+			if (!caliber::importer::numbersSane(s, static_cast<const char*>(p) + size_t(i) * size_t(size), true))
+				return false;
 		return true;
 	}
 
@@ -303,7 +248,20 @@ void btSoftBulletWorldImporter::deleteAllData()
 
 bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 {
-	if (!btBulletWorldImporter::convertAllObjects(file)) return false;
+	const bool rigidPartOk = btBulletWorldImporter::convertAllObjects(file);
+	if (m_importerFlags & eRESTORE_EXISTING_OBJECTS)
+	{
+		// Writing a file into existing soft bodies is not supported: a soft world snapshot does that exactly.
+		if (file && file->m_softBodies.size() > 0)
+			warn("eRESTORE_EXISTING_OBJECTS: the file's " + std::to_string(file->m_softBodies.size()) +
+			     " soft bodies are not written into the world's (not supported; Caliber/SoftWorldSnapshot.h restores "
+			     "soft bodies); they are skipped");
+		return rigidPartOk && file->m_softBodies.size() == 0;
+	}
+	if (!rigidPartOk) return false;
+	// Keyed by this file's converted blocks (an earlier file's are gone; their addresses may come back).
+	m_softBodyMap.clear();
+	m_clusterBodyMap.clear();
 	SoftChecker check(*file);
 	const bool swapped = (file->getFlags() & bParse::FD_ENDIAN_SWAP) != 0;
 	btSoftBodyWorldInfo& info = m_softRigidWorld ? m_softRigidWorld->getWorldInfo() : m_ownWorldInfo;
@@ -558,6 +516,16 @@ bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 				warn(where + " is not on a cluster of its body; it is skipped");
 				continue;
 			}
+			// A side names a cluster by its address, and only the first cluster's address is a chunk id
+			// (the cluster array's): a joint on another cluster cannot be told where it was, so it is not
+			// moved to the first one silently.
+			if (jd.m_bodyA != static_cast<void*>(d->m_clusters))
+			{
+				warn(where +
+				     " is on a cluster other than its body's first, which the format cannot name (only the "
+				     "first cluster's address is a chunk id); it is skipped");
+				continue;
+			}
 			btSoftBody::Body other;
 			bool ok = true;
 			switch (jd.m_bodyBtype)
@@ -585,7 +553,9 @@ bool btSoftBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 			}
 			if (!ok)
 			{
-				warn(where + "'s other side is not an object of the file; it is skipped");
+				warn(where +
+				     "'s other side is not an object of the file (or a cluster other than a body's first, "
+				     "which the format cannot name); it is skipped");
 				continue;
 			}
 			btSoftBody::Cluster* first = psb->m_clusters[0];

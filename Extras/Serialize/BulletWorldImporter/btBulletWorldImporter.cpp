@@ -13,28 +13,25 @@
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
+#include "detail/DnaChecks.h"
+#include "detail/RestoreExistingObjects.h"
 
 #include <math.h>
 #include <string.h>
 
 #include <string>
+#include <type_traits>
 
 namespace
 {
-// Reads the chunk header the loader kept for each converted block (a protected member of bFile,
-// reached through a pointer to member as the BVH access helpers do; no Caliber member is added).
-struct BlockInfoAccess : bParse::bFile
-{
-	static const btHashMap<btHashPtr, bParse::bChunkInd>& blocks(const bParse::bFile& file)
-	{
-		return file.*(&BlockInfoAccess::m_chunkPtrPtrMap);
-	}
-};
+using caliber::importer::finite;
+using caliber::importer::finiteTransform;
+using caliber::importer::memoryDna;
 
 class Checker
 {
 public:
-	explicit Checker(bParse::btBulletFile& file) : m_file(file), m_blocks(BlockInfoAccess::blocks(file))
+	explicit Checker(bParse::btBulletFile& file) : m_file(file), m_blocks(caliber::importer::blockInfo(file))
 	{
 		for (int i = 0; i < file.m_collisionShapes.size(); ++i)
 			m_shapes.insert(btHashPtr(file.m_collisionShapes[i]), 1);
@@ -220,103 +217,11 @@ public:
 	{
 		const bParse::bChunkInd* info = block ? m_blocks.find(btHashPtr(block)) : 0;
 		if (!info || info->dna_nr < 0) return false;
-		return numbersSaneIn(info->dna_nr, static_cast<const char*>(block), false, 0);
-	}
-
-	template <class V>
-	static bool finite(const V& v)
-	{
-		for (int i = 0; i < 3; ++i)
-			if (!isfinite(v.m_floats[i])) return false;
-		return true;
-	}
-	template <class T>
-	static bool finiteTransform(const T& t)
-	{
-		return finite(t.m_origin) && finite(t.m_basis.m_el[0]) && finite(t.m_basis.m_el[1]) &&
-		       finite(t.m_basis.m_el[2]);
+		return caliber::importer::numbersSane(info->dna_nr, static_cast<const char*>(block), false);
 	}
 
 private:
-	bool numbersSaneIn(int memoryStruct, const char* p, bool mustBeFinite, int depth) const
-	{
-		bParse::bDNA& dna = memoryDna();
-		short* st = dna.getStruct(memoryStruct);
-		if (!st || depth > 8) return false;
-		int offset = 0;
-		for (int f = 0; f < st[1]; ++f)
-		{
-			const short type = st[2 + 2 * f], name = st[3 + 2 * f];
-			const char* fieldName = dna.getName(name);
-			const int size = dna.getElementSize(type, name);
-			const int count = dna.getArraySizeNew(name);
-			if (fieldName[0] != '*' && count > 0)
-			{
-				const char* typeName = dna.getType(type);
-				const int element = size / count;
-				const bool strict = mustBeFinite || strstr(fieldName, "Frame") || strstr(fieldName, "Transform") ||
-				                    strstr(fieldName, "m_pivotIn") || strstr(fieldName, "m_axisIn") ||
-				                    strstr(fieldName, "m_gravity");
-				const int sub = dna.getReverseType(typeName);
-				for (int i = 0; i < count; ++i)
-				{
-					const char* q = p + offset + i * element;
-					double v = 0;
-					if (!strcmp(typeName, "btTransformFloatData") || !strcmp(typeName, "btTransformDoubleData"))
-					{
-						// Frames and transforms must be rotations, not just numbers.
-						bool rotation;
-						if (typeName[11] == 'F')
-						{
-							btTransformFloatData t;
-							memcpy(&t, q, sizeof(t));
-							rotation = finiteTransform(t);
-						}
-						else
-						{
-							btTransformDoubleData t;
-							memcpy(&t, q, sizeof(t));
-							rotation = finiteTransform(t);
-						}
-						if (!rotation) return false;
-						continue;
-					}
-					if (sub >= 0)
-					{
-						if (!numbersSaneIn(sub, q, strict, depth + 1)) return false;
-						continue;
-					}
-					if (!strcmp(typeName, "float"))
-					{
-						float x;
-						memcpy(&x, q, 4);
-						v = x;
-					}
-					else if (!strcmp(typeName, "double"))
-						memcpy(&v, q, 8);
-					else
-						continue;
-					if (v != v || (strict && !isfinite(v))) return false;
-				}
-			}
-			offset += size;
-		}
-		return true;
-	}
-
 	btHashMap<btHashPtr, int> m_verdicts;
-	// The reader's DNA names the struct of every converted block.
-	static bParse::bDNA& memoryDna()
-	{
-		static bParse::bDNA* dna = []
-		{
-			bParse::bDNA* parsed = new bParse::bDNA();  // built once, kept for the process
-			const int length = btDefaultSerializer::getMemoryDnaSizeInBytes();
-			parsed->init(const_cast<char*>(btDefaultSerializer::getMemoryDna()), length, false);
-			return parsed;
-		}();
-		return *dna;
-	}
 	const char* memoryType(int memoryStruct) const
 	{
 		short* s = memoryDna().getStruct(memoryStruct);
@@ -473,9 +378,9 @@ void warn(const std::string& message)
 template <class ObjectData>
 bool objectFinite(const ObjectData& d)
 {
-	return Checker::finiteTransform(d.m_worldTransform) && Checker::finiteTransform(d.m_interpolationWorldTransform) &&
-	       Checker::finite(d.m_interpolationLinearVelocity) && Checker::finite(d.m_interpolationAngularVelocity) &&
-	       Checker::finite(d.m_anisotropicFriction);
+	return finiteTransform(d.m_worldTransform) && finiteTransform(d.m_interpolationWorldTransform) &&
+	       finite(d.m_interpolationLinearVelocity) && finite(d.m_interpolationAngularVelocity) &&
+	       finite(d.m_anisotropicFriction);
 }
 
 // Factors scale the solver's response: btRigidBody accepts none below zero.
@@ -488,10 +393,9 @@ bool nonNegative(const V& v)
 template <class BodyData>
 bool bodyFinite(const BodyData& d)
 {
-	return objectFinite(d.m_collisionObjectData) && Checker::finite(d.m_linearVelocity) &&
-	       Checker::finite(d.m_angularVelocity) && Checker::finite(d.m_gravity_acceleration) &&
-	       Checker::finite(d.m_invInertiaLocal) && Checker::finite(d.m_linearFactor) &&
-	       Checker::finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
+	return objectFinite(d.m_collisionObjectData) && finite(d.m_linearVelocity) && finite(d.m_angularVelocity) &&
+	       finite(d.m_gravity_acceleration) && finite(d.m_invInertiaLocal) && finite(d.m_linearFactor) &&
+	       finite(d.m_angularFactor) && nonNegative(d.m_linearFactor) && nonNegative(d.m_angularFactor) &&
 	       nonNegative(d.m_invInertiaLocal) && isfinite(d.m_inverseMass) && d.m_inverseMass >= 0;
 }
 
@@ -608,6 +512,20 @@ bool btBulletWorldImporter::loadFileFromMemory(bParse::btBulletFile* file)
 bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 {
 	if (!file || !file->ok()) return false;
+	// These maps are keyed by the converted blocks of one file: blocks of an earlier file are gone (and
+	// their addresses may come back), so each load starts them empty.
+	m_shapeMap.clear();
+	m_bodyMap.clear();
+	m_bvhMap.clear();
+	m_timMap.clear();
+	const bool restoring = (m_importerFlags & eRESTORE_EXISTING_OBJECTS) != 0;
+	if (restoring && !m_dynamicsWorld)
+	{
+		warn("eRESTORE_EXISTING_OBJECTS needs the importer's world, and it was given none; nothing was loaded");
+		return false;
+	}
+	caliber::importer::ExistingObjects existing(restoring ? m_dynamicsWorld : 0, m_objectNameMap);
+	bool allRestored = true;
 	Checker check(*file);
 	// 1. World settings (the first record).
 	if (file->m_dynamicsWorldInfo.size() > 0)
@@ -681,7 +599,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 	}
 	// 1b. Stored BVHs and triangle info maps, shared by the meshes that point at them (a tree is kept only
 	// when deSerialize accepted it: a full-box query then finds every leaf the file lists).
-	for (int i = 0; i < file->m_bvhs.size(); ++i)
+	for (int i = 0; i < file->m_bvhs.size() && !restoring; ++i)
 	{
 		void* block = file->m_bvhs[i];
 		if (!check.bvhBlockComplete(block))
@@ -709,7 +627,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 			warn("BVH " + std::to_string(i) + " is not a well-formed tree; meshes using it rebuild their own");
 	}
 	const bool swapped = (file->getFlags() & bParse::FD_ENDIAN_SWAP) != 0;
-	for (int i = 0; i < file->m_triangleInfoMaps.size(); ++i)
+	for (int i = 0; i < file->m_triangleInfoMaps.size() && !restoring; ++i)
 	{
 		void* block = file->m_triangleInfoMaps[i];
 		if (!check.triangleInfoMapComplete(block))
@@ -731,7 +649,7 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		if (map->size() == d->m_numKeys) m_timMap.insert(btHashPtr(block), map);
 	}
 	// 2. Shapes (compound children convert on demand through the shape map).
-	for (int i = 0; i < file->m_collisionShapes.size(); ++i)
+	for (int i = 0; i < file->m_collisionShapes.size() && !restoring; ++i)
 	{
 		btCollisionShapeData* shapeData = reinterpret_cast<btCollisionShapeData*>(file->m_collisionShapes[i]);
 		if (!check.shapeIsValid(shapeData))
@@ -743,28 +661,37 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		btCollisionShape* shape = convertCollisionShape(shapeData);
 		if (shape) m_shapeMap.insert(btHashPtr(shapeData), shape);
 	}
+	// The file's shape of an object, for the type check of a restore (0 when it is not a valid shape).
+	auto fileShape = [&](void* shape) { return check.isShape(shape) ? static_cast<btCollisionShapeData*>(shape) : 0; };
 	// 3. Rigid bodies.
 	for (int i = 0; i < file->m_rigidBodies.size(); ++i)
 	{
+		auto convert = [&](auto* d)
+		{
+			check.fixName(d->m_collisionObjectData.m_name);
+			if (!bodyFinite(*d) || !check.numbersSane(d))
+			{
+				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
+				allRestored = false;
+			}
+			else if (!restoring)
+			{
+				if constexpr (std::is_same<decltype(d), btRigidBodyFloatData*>::value)
+					convertRigidBodyFloat(d);
+				else
+					convertRigidBodyDouble(d);
+			}
+			else if (btCollisionObject* target =
+			             existing.restore(*d, fileShape(d->m_collisionObjectData.m_collisionShape), i))
+				m_bodyMap.insert(btHashPtr(d), target);
+			else
+				allRestored = false;
+		};
 		void* body = file->m_rigidBodies[i];
 		if (check.isA(body, "btRigidBodyFloatData"))
-		{
-			btRigidBodyFloatData* d = static_cast<btRigidBodyFloatData*>(body);
-			check.fixName(d->m_collisionObjectData.m_name);
-			if (bodyFinite(*d) && check.numbersSane(d))
-				convertRigidBodyFloat(d);
-			else
-				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
-		}
+			convert(static_cast<btRigidBodyFloatData*>(body));
 		else if (check.isA(body, "btRigidBodyDoubleData"))
-		{
-			btRigidBodyDoubleData* d = static_cast<btRigidBodyDoubleData*>(body);
-			check.fixName(d->m_collisionObjectData.m_name);
-			if (bodyFinite(*d) && check.numbersSane(d))
-				convertRigidBodyDouble(d);
-			else
-				warn("rigid body " + std::to_string(i) + " has non-finite data; it is skipped");
-		}
+			convert(static_cast<btRigidBodyDoubleData*>(body));
 	}
 	// 4. Plain collision objects.
 	for (int i = 0; i < file->m_collisionObjects.size(); ++i)
@@ -773,6 +700,15 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		auto convert = [&](auto* d)
 		{
 			check.fixName(d->m_name);
+			if (restoring)
+			{
+				btCollisionObject* target = objectFinite(*d) && check.numbersSane(d)
+				                                ? existing.restore(*d, fileShape(d->m_collisionShape), i)
+				                                : 0;
+				if (target) m_bodyMap.insert(btHashPtr(d), target);
+				allRestored &= target != 0;
+				return;
+			}
 			btCollisionShape** shape = m_shapeMap.find(btHashPtr(d->m_collisionShape));
 			if (!shape || !objectFinite(*d) || !check.numbersSane(d))
 			{
@@ -808,11 +744,13 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		if (!type || !isJointStruct(type) || !jointStructMatches(common->m_objectType, type))
 		{
 			warn("joint " + std::to_string(i) + " has a struct that does not match its type; it is skipped");
+			allRestored = false;
 			continue;
 		}
 		if (!check.numbersSane(joint))
 		{
 			warn("joint " + std::to_string(i) + " has NaN or non-finite frames; it is skipped");
+			allRestored = false;
 			continue;
 		}
 		check.fixName(common->m_name);
@@ -825,7 +763,15 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		if ((bodyA && !rbA) || (bodyB && !rbB) || (!rbA && !rbB) || (bodyA && !check.isBody(bodyA)) ||
 		    (bodyB && !check.isBody(bodyB)))
 		{
-			warn("joint " + std::to_string(i) + " refers to a body that is not in the file; it is skipped");
+			warn("joint " + std::to_string(i) +
+			     (restoring ? " refers to a body that was not restored; it is not restored"
+			                : " refers to a body that is not in the file; it is skipped"));
+			allRestored = false;
+			continue;
+		}
+		if (restoring)
+		{
+			allRestored &= existing.restoreJoint(common, type, rbA, rbB, i);
 			continue;
 		}
 		if (isDoubleJoint(type))
@@ -835,5 +781,5 @@ bool btBulletWorldImporter::convertAllObjects(bParse::btBulletFile* file)
 		else
 			convertConstraintFloat(static_cast<btTypedConstraintFloatData*>(joint), rbA, rbB, file->getVersion());
 	}
-	return true;
+	return !restoring || allRestored;
 }

@@ -12,6 +12,7 @@
 #include "BulletDynamics/ConstraintSolver/btGeneric6DofSpring2Constraint.h"
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
+#include "detail/ImporterSettings.h"
 
 #include <string.h>
 
@@ -22,31 +23,9 @@ namespace
 // Deeper compound nesting than this is treated as a cycle.
 const int kMaxCompoundDepth = 64;
 thread_local int g_compoundDepth = 0;
+using caliber::importer::vec;
+using caliber::importer::xform;
 
-btVector3 vec(const btVector3FloatData& d)
-{
-	btVector3 v;
-	v.deSerializeFloat(d);
-	return v;
-}
-btVector3 vec(const btVector3DoubleData& d)
-{
-	btVector3 v;
-	v.deSerializeDouble(d);
-	return v;
-}
-btTransform xform(const btTransformFloatData& d)
-{
-	btTransform t;
-	t.deSerializeFloat(d);
-	return t;
-}
-btTransform xform(const btTransformDoubleData& d)
-{
-	btTransform t;
-	t.deSerializeDouble(d);
-	return t;
-}
 }  // namespace
 
 btWorldImporter::btWorldImporter(btDynamicsWorld* world) : m_dynamicsWorld(world), m_verboseMode(0), m_importerFlags(0)
@@ -370,28 +349,7 @@ btCollisionShape* btWorldImporter::convertCollisionShape(btCollisionShapeData* s
 
 namespace
 {
-template <class ObjectData>
-void applyCollisionObjectData(btCollisionObject* object, const ObjectData& d)
-{
-	object->setInterpolationWorldTransform(xform(d.m_interpolationWorldTransform));
-	object->setInterpolationLinearVelocity(vec(d.m_interpolationLinearVelocity));
-	object->setInterpolationAngularVelocity(vec(d.m_interpolationAngularVelocity));
-	object->setAnisotropicFriction(vec(d.m_anisotropicFriction), d.m_hasAnisotropicFriction);
-	object->setContactProcessingThreshold(btScalar(d.m_contactProcessingThreshold));
-	object->setFriction(btScalar(d.m_friction));
-	object->setRollingFriction(btScalar(d.m_rollingFriction));
-	object->setRestitution(btScalar(d.m_restitution));
-	object->setHitFraction(btScalar(d.m_hitFraction));
-	object->setCcdSweptSphereRadius(btScalar(d.m_ccdSweptSphereRadius));
-	object->setCcdMotionThreshold(btScalar(d.m_ccdMotionThreshold));
-	object->setCollisionFlags(d.m_collisionFlags);
-	if (d.m_collisionFlags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
-		object->setContactStiffnessAndDamping(btScalar(d.m_contactStiffness), btScalar(d.m_contactDamping));
-	// Unknown activation states (a damaged file) become active.
-	const int state = d.m_activationState1;
-	object->forceActivationState(state >= ACTIVE_TAG && state <= DISABLE_SIMULATION ? state : ACTIVE_TAG);
-	object->setDeactivationTime(btScalar(d.m_deactivationTime));
-}
+using caliber::importer::applyCollisionObjectData;
 
 // Re-adds an object with the file's filter when the file recorded one.
 template <class ObjectData>
@@ -427,15 +385,7 @@ btRigidBody* convertBody(btWorldImporter& importer, btHashMap<btHashPtr, btColli
 	                                             *shape, d->m_collisionObjectData.m_name);
 	if (!body) return 0;
 	applyCollisionObjectData(body, d->m_collisionObjectData);
-	// The solver uses the inverse inertia: take it from the file rather than from the shape.
-	body->setInvInertiaDiagLocal(vec(d->m_invInertiaLocal));
-	body->setDamping(btScalar(d->m_linearDamping), btScalar(d->m_angularDamping));
-	body->setSleepingThresholds(btScalar(d->m_linearSleepingThreshold), btScalar(d->m_angularSleepingThreshold));
-	body->setLinearFactor(vec(d->m_linearFactor));
-	body->setAngularFactor(vec(d->m_angularFactor));
-	body->setLinearVelocity(vec(d->m_linearVelocity));
-	body->setAngularVelocity(vec(d->m_angularVelocity));
-	body->updateInertiaTensor();
+	caliber::importer::applyRigidBodyData(body, *d);
 	applyFilter(world, body, d->m_collisionObjectData);
 	// After the world has given the body its gravity: the file's own.
 	body->setGravity(vec(d->m_gravity_acceleration));
@@ -460,43 +410,27 @@ void btWorldImporter::convertRigidBodyDouble(btRigidBodyDoubleData* colObjData)
 namespace
 {
 template <class Common>
-void applyCommon(btWorldImporter& importer, btDynamicsWorld* world, btTypedConstraint* c, const Common& d,
+void applyCommon(btDynamicsWorld* world, btTypedConstraint* c, const Common& d,
                  btHashMap<btHashString, btTypedConstraint*>& names, btHashMap<btHashPtr, const char*>& objectNames,
                  char* name)
 {
-	c->setBreakingImpulseThreshold(btScalar(d.m_breakingImpulseThreshold));
-	c->setEnabled(d.m_isEnabled != 0);
-	c->setOverrideNumSolverIterations(d.m_overrideNumSolverIterations);
-	c->setDbgDrawSize(btScalar(d.m_dbgDrawSize));
-	c->enableFeedback(d.m_needsFeedback != 0);
-	c->setUserConstraintType(d.m_userConstraintType);
-	c->setUserConstraintId(d.m_userConstraintId);
+	caliber::importer::applyJointCommon(*c, d);
 	if (name)
 	{
 		names.insert(btHashString(name), c);
 		objectNames.insert(btHashPtr(c), name);
 	}
-	(void)importer;
 	if (world) world->addConstraint(c, d.m_disableCollisionsBetweenLinkedBodies != 0);
 }
 
-template <class V>
-void setMotorVector(btScalar (&out)[3], const V& in)
-{
-	for (int i = 0; i < 3; ++i) out[i] = btScalar(in.m_floats[i]);
-}
-
-// The joint kinds, one template per data layout family (float and double share field names).
+// The joint kinds, one template per data layout family (float and double share field names): made with
+// their bodies and frames, then given the file's settings (detail/ImporterSettings.h).
 template <class D>
 btTypedConstraint* makeHinge(btWorldImporter& imp, btRigidBody& a, btRigidBody& b, const D& d)
 {
 	btHingeConstraint* hinge =
 	    imp.createHingeConstraint(a, b, xform(d.m_rbAFrame), xform(d.m_rbBFrame), d.m_useReferenceFrameA != 0);
-	hinge->setAngularOnly(d.m_angularOnly != 0);
-	hinge->enableAngularMotor(d.m_enableAngularMotor != 0, btScalar(d.m_motorTargetVelocity),
-	                          btScalar(d.m_maxMotorImpulse));
-	hinge->setLimit(btScalar(d.m_lowerLimit), btScalar(d.m_upperLimit), btScalar(d.m_limitSoftness),
-	                btScalar(d.m_biasFactor), btScalar(d.m_relaxationFactor));
+	caliber::importer::configure(*hinge, d);
 	return hinge;
 }
 
@@ -504,19 +438,8 @@ template <class D>
 btTypedConstraint* makeConeTwist(btWorldImporter& imp, btRigidBody& a, btRigidBody& b, const D& d)
 {
 	btConeTwistConstraint* cone = imp.createConeTwistConstraint(a, b, xform(d.m_rbAFrame), xform(d.m_rbBFrame));
-	cone->setLimit(btScalar(d.m_swingSpan1), btScalar(d.m_swingSpan2), btScalar(d.m_twistSpan),
-	               btScalar(d.m_limitSoftness), btScalar(d.m_biasFactor), btScalar(d.m_relaxationFactor));
-	cone->setDamping(btScalar(d.m_damping));
+	caliber::importer::configure(*cone, d);
 	return cone;
-}
-
-template <class D>
-void set6DofLimits(btGeneric6DofConstraint* dof, const D& d)
-{
-	dof->setLinearLowerLimit(vec(d.m_linearLowerLimit));
-	dof->setLinearUpperLimit(vec(d.m_linearUpperLimit));
-	dof->setAngularLowerLimit(vec(d.m_angularLowerLimit));
-	dof->setAngularUpperLimit(vec(d.m_angularUpperLimit));
 }
 
 template <class D>
@@ -524,7 +447,7 @@ btTypedConstraint* make6Dof(btWorldImporter& imp, btRigidBody& a, btRigidBody& b
 {
 	btGeneric6DofConstraint* dof = imp.createGeneric6DofConstraint(a, b, xform(d.m_rbAFrame), xform(d.m_rbBFrame),
 	                                                               d.m_useLinearReferenceFrameA != 0);
-	set6DofLimits(dof, d);
+	caliber::importer::configure(*dof, d);
 	return dof;
 }
 
@@ -534,14 +457,7 @@ btTypedConstraint* make6DofSpring(btWorldImporter& imp, btRigidBody& a, btRigidB
 	const auto& base = d.m_6dofData;
 	btGeneric6DofSpringConstraint* dof = imp.createGeneric6DofSpringConstraint(
 	    a, b, xform(base.m_rbAFrame), xform(base.m_rbBFrame), base.m_useLinearReferenceFrameA != 0);
-	set6DofLimits(dof, base);
-	for (int i = 0; i < 6; ++i)
-	{
-		dof->setStiffness(i, btScalar(d.m_springStiffness[i]));
-		dof->setEquilibriumPoint(i, btScalar(d.m_equilibriumPoint[i]));
-		dof->setDamping(i, btScalar(d.m_springDamping[i]));
-		dof->enableSpring(i, d.m_springEnabled[i] != 0);
-	}
+	caliber::importer::configureSpring(*dof, d);
 	return dof;
 }
 
@@ -550,47 +466,7 @@ btTypedConstraint* makeSpring2(btWorldImporter& imp, btRigidBody& a, btRigidBody
 {
 	btGeneric6DofSpring2Constraint* dof =
 	    imp.createGeneric6DofSpring2Constraint(a, b, xform(d.m_rbAFrame), xform(d.m_rbBFrame), d.m_rotateOrder);
-	btTranslationalLimitMotor2* lin = dof->getTranslationalLimitMotor();
-	lin->m_lowerLimit = vec(d.m_linearLowerLimit);
-	lin->m_upperLimit = vec(d.m_linearUpperLimit);
-	lin->m_bounce = vec(d.m_linearBounce);
-	lin->m_stopERP = vec(d.m_linearStopERP);
-	lin->m_stopCFM = vec(d.m_linearStopCFM);
-	lin->m_motorERP = vec(d.m_linearMotorERP);
-	lin->m_motorCFM = vec(d.m_linearMotorCFM);
-	lin->m_targetVelocity = vec(d.m_linearTargetVelocity);
-	lin->m_maxMotorForce = vec(d.m_linearMaxMotorForce);
-	lin->m_servoTarget = vec(d.m_linearServoTarget);
-	lin->m_springStiffness = vec(d.m_linearSpringStiffness);
-	lin->m_springDamping = vec(d.m_linearSpringDamping);
-	lin->m_equilibriumPoint = vec(d.m_linearEquilibriumPoint);
-	for (int i = 0; i < 3; ++i)
-	{
-		lin->m_enableMotor[i] = d.m_linearEnableMotor[i] != 0;
-		lin->m_servoMotor[i] = d.m_linearServoMotor[i] != 0;
-		lin->m_enableSpring[i] = d.m_linearEnableSpring[i] != 0;
-		lin->m_springStiffnessLimited[i] = d.m_linearSpringStiffnessLimited[i] != 0;
-		lin->m_springDampingLimited[i] = d.m_linearSpringDampingLimited[i] != 0;
-		btRotationalLimitMotor2* m = dof->getRotationalLimitMotor(i);
-		m->m_loLimit = btScalar(d.m_angularLowerLimit.m_floats[i]);
-		m->m_hiLimit = btScalar(d.m_angularUpperLimit.m_floats[i]);
-		m->m_bounce = btScalar(d.m_angularBounce.m_floats[i]);
-		m->m_stopERP = btScalar(d.m_angularStopERP.m_floats[i]);
-		m->m_stopCFM = btScalar(d.m_angularStopCFM.m_floats[i]);
-		m->m_motorERP = btScalar(d.m_angularMotorERP.m_floats[i]);
-		m->m_motorCFM = btScalar(d.m_angularMotorCFM.m_floats[i]);
-		m->m_targetVelocity = btScalar(d.m_angularTargetVelocity.m_floats[i]);
-		m->m_maxMotorForce = btScalar(d.m_angularMaxMotorForce.m_floats[i]);
-		m->m_servoTarget = btScalar(d.m_angularServoTarget.m_floats[i]);
-		m->m_springStiffness = btScalar(d.m_angularSpringStiffness.m_floats[i]);
-		m->m_springDamping = btScalar(d.m_angularSpringDamping.m_floats[i]);
-		m->m_equilibriumPoint = btScalar(d.m_angularEquilibriumPoint.m_floats[i]);
-		m->m_enableMotor = d.m_angularEnableMotor[i] != 0;
-		m->m_servoMotor = d.m_angularServoMotor[i] != 0;
-		m->m_enableSpring = d.m_angularEnableSpring[i] != 0;
-		m->m_springStiffnessLimited = d.m_angularSpringStiffnessLimited[i] != 0;
-		m->m_springDampingLimited = d.m_angularSpringDampingLimited[i] != 0;
-	}
+	caliber::importer::configure(*dof, d);
 	return dof;
 }
 
@@ -599,11 +475,7 @@ btTypedConstraint* makeSlider(btWorldImporter& imp, btRigidBody& a, btRigidBody&
 {
 	btSliderConstraint* slider =
 	    imp.createSliderConstraint(a, b, xform(d.m_rbAFrame), xform(d.m_rbBFrame), d.m_useLinearReferenceFrameA != 0);
-	slider->setLowerLinLimit(btScalar(d.m_linearLowerLimit));
-	slider->setUpperLinLimit(btScalar(d.m_linearUpperLimit));
-	slider->setLowerAngLimit(btScalar(d.m_angularLowerLimit));
-	slider->setUpperAngLimit(btScalar(d.m_angularUpperLimit));
-	slider->setUseFrameOffset(d.m_useOffsetForConstraintFrame != 0);
+	caliber::importer::configure(*slider, d);
 	return slider;
 }
 
@@ -662,7 +534,7 @@ void btWorldImporter::convertConstraintFloat(btTypedConstraintFloatData* data, b
 			break;
 	}
 	if (!c) return;
-	applyCommon(*this, m_dynamicsWorld, c, *data, m_nameConstraintMap, m_objectNameMap, duplicateName(data->m_name));
+	applyCommon(m_dynamicsWorld, c, *data, m_nameConstraintMap, m_objectNameMap, duplicateName(data->m_name));
 }
 
 void btWorldImporter::convertConstraintDouble(btTypedConstraintDoubleData* data, btRigidBody* rbA, btRigidBody* rbB,
@@ -702,7 +574,7 @@ void btWorldImporter::convertConstraintDouble(btTypedConstraintDoubleData* data,
 			break;
 	}
 	if (!c) return;
-	applyCommon(*this, m_dynamicsWorld, c, *data, m_nameConstraintMap, m_objectNameMap, duplicateName(data->m_name));
+	applyCommon(m_dynamicsWorld, c, *data, m_nameConstraintMap, m_objectNameMap, duplicateName(data->m_name));
 }
 
 void btWorldImporter::convertConstraintBackwardsCompatible281(btTypedConstraintData* data, btRigidBody* rbA,
@@ -725,7 +597,7 @@ void btWorldImporter::convertConstraintBackwardsCompatible281(btTypedConstraintD
 			return;
 	}
 	if (!c) return;
-	applyCommon(*this, m_dynamicsWorld, c, *data, m_nameConstraintMap, m_objectNameMap, duplicateName(data->m_name));
+	applyCommon(m_dynamicsWorld, c, *data, m_nameConstraintMap, m_objectNameMap, duplicateName(data->m_name));
 }
 #undef CALIBER_IMPORT_BODIES
 
@@ -811,7 +683,8 @@ btRigidBody* btWorldImporter::createRigidBody(bool isDynamic, btScalar mass, con
 	if (mass != 0 && shape && shape->isNonMoving())
 	{
 		// Meshes and planes have no inertia (their calculateLocalInertia asserts): such a body is static.
-		btReportWarning("Caliber: btWorldImporter: a body with mass has a static-only shape (mesh, plane); it is made static\n");
+		btReportWarning(
+		    "Caliber: btWorldImporter: a body with mass has a static-only shape (mesh, plane); it is made static\n");
 		mass = 0;
 	}
 	if (!btIsFinite(mass) || mass < 0)

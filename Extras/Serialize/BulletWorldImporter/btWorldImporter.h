@@ -46,8 +46,9 @@ struct btVector3DoubleData;
 /// Importer flags.
 enum btWorldImporterFlags
 {
-	/// Reuse the world's existing bodies of the same name instead of creating new ones (not supported
-	/// yet: new objects are always created; see docs/serialization.md).
+	/// Create nothing: write the file's state and settings into the objects and joints already in the
+	/// importer's world, matched by name (names the importer recorded) or else by broadphase unique id
+	/// (docs/serialization.md, "Restoring into existing objects").
 	eRESTORE_EXISTING_OBJECTS = 1,
 };
 
