@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
@@ -73,6 +74,37 @@ struct BulletDbvtMembers
 	btAlignedObjectArray<btDbvt::sStkNN> m_stkStack;
 };
 
+struct BulletDbvtProxyMembers : public btBroadphaseProxy
+{
+	btDbvtNode* leaf;
+	btDbvtProxy* links[2];
+	int stage;
+};
+
+struct BulletDbvtBroadphaseMembers : public btBroadphaseInterface
+{
+	btDbvt m_sets[2];
+	btDbvtProxy* m_stageRoots[btDbvtBroadphase::STAGECOUNT + 1];
+	btOverlappingPairCache* m_paircache;
+	btScalar m_prediction;
+	int m_stageCurrent;
+	int m_fupdates;
+	int m_dupdates;
+	int m_cupdates;
+	int m_newpairs;
+	int m_fixedleft;
+	unsigned m_updates_call;
+	unsigned m_updates_done;
+	btScalar m_updates_ratio;
+	int m_pid;
+	int m_cid;
+	int m_gid;
+	bool m_releasepaircache;
+	bool m_deferedcollide;
+	bool m_needcleanup;
+	btAlignedObjectArray<btAlignedObjectArray<const btDbvtNode*>> m_rayTestStacks;
+};
+
 struct BulletIslandManagerMembers
 {
 	virtual ~BulletIslandManagerMembers() {}
@@ -87,6 +119,8 @@ TEST(BulletSubclassFacade, DbvtAndIslandManagerDeclareBulletsDataMembersOnly)
 {
 	EXPECT_EQ(sizeof(btDbvt), sizeof(BulletDbvtMembers));
 	EXPECT_EQ(sizeof(btSimulationIslandManager), sizeof(BulletIslandManagerMembers));
+	EXPECT_EQ(sizeof(btDbvtProxy), sizeof(BulletDbvtProxyMembers));
+	EXPECT_EQ(sizeof(btDbvtBroadphase), sizeof(BulletDbvtBroadphaseMembers));
 	// Bullet's public fields, reached by name as Bullet's users do.
 	btDbvt tree;
 	EXPECT_EQ(tree.m_root, nullptr);

@@ -17,18 +17,16 @@ struct btDbvtProxy : public btBroadphaseProxy
 	/// Previous and next proxy in the stage list (see btDbvtBroadphase::m_stageRoots).
 	btDbvtProxy* links[2];
 	/// The stage list holding the proxy: DYNAMIC_SET or FIXED_SET while its pairs must be searched,
-	/// STAGECOUNT once they are up to date.
+	/// STAGECOUNT once they are up to date. (Which tree holds the leaf is the parity of m_uniqueId: even
+	/// for DYNAMIC_SET, odd for FIXED_SET.)
 	int stage;
-	/// Which tree holds the leaf: btDbvtBroadphase::DYNAMIC_SET or FIXED_SET.
-	int set;
 
 	/// A proxy for userPtr with the given AABB and filtering, not yet in a tree.
 	btDbvtProxy(const btVector3& aabbMin, const btVector3& aabbMax, void* userPtr, int collisionFilterGroup,
 	            int collisionFilterMask)
 	    : btBroadphaseProxy(aabbMin, aabbMax, userPtr, collisionFilterGroup, collisionFilterMask),
 	      leaf(0),
-	      stage(0),
-	      set(0)
+	      stage(0)
 	{
 		links[0] = links[1] = 0;
 	}
@@ -59,9 +57,6 @@ struct btDbvtBroadphase : public btBroadphaseInterface
 	/// Heads of the stage lists: [DYNAMIC_SET] and [FIXED_SET] hold proxies of that tree whose box changed
 	/// since the last collide (pair search pending); [STAGECOUNT] holds every other proxy.
 	btDbvtProxy* m_stageRoots[STAGECOUNT + 1];
-	/// Destroyed proxies, kept (linked through links[1], leaf null) for reuse by createProxy: a second
-	/// destroyProxy or a setAabb of a destroyed proxy is then caught instead of touching freed memory.
-	btDbvtProxy* m_freeProxies;
 	/// The pair cache (owned when m_releasepaircache).
 	btOverlappingPairCache* m_paircache;
 	/// How far ahead of its motion a moved box is grown, in units of the last displacement (default 1).
@@ -88,7 +83,8 @@ struct btDbvtBroadphase : public btBroadphaseInterface
 	int m_pid;
 	/// Kept for source compatibility (Bullet's cleanup cursor; always 0).
 	int m_cid;
-	/// Last unique id handed to a proxy.
+	/// Number of proxies made (since the last resetPool); a proxy's unique id is twice its number, plus
+	/// one in the fixed tree.
 	int m_gid;
 	/// True when the broadphase created the cache and deletes it.
 	bool m_releasepaircache;

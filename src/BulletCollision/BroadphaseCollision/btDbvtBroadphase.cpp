@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <new>
 
+#include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "LinearMath/btAabbUtil2.h"
@@ -72,12 +73,13 @@ void unlinkProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
 // Moves the proxy's tree box to `box` and queues its pair search.
 void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
 {
-	broadphase.m_sets[proxy->set].update(proxy->leaf, box);
-	if (proxy->set == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
+	const int tree = caliber::dbvtTreeOf(*proxy);
+	broadphase.m_sets[tree].update(proxy->leaf, box);
+	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
 	if (!isPending(proxy))
 	{
 		unlinkProxy(broadphase, proxy);
-		linkProxy(broadphase, proxy, proxy->set);
+		linkProxy(broadphase, proxy, tree);
 	}
 	broadphase.m_needcleanup = true;
 }
@@ -113,8 +115,12 @@ struct ChunkLists
 	char padding[128];
 };
 
+// The broadphase's state that Bullet's class does not declare (one side-table entry per broadphase).
 struct PairSearchScratch
 {
+	// Destroyed proxies, kept (linked through links[1], leaf null) for reuse by createProxy: a second
+	// destroyProxy or a setAabb of a destroyed proxy is then caught instead of touching freed memory.
+	btDbvtProxy* freeProxies = 0;
 	btAlignedObjectArray<btDbvtProxy*> pending;
 	btAlignedObjectArray<ChunkLists> chunks;
 	btNodeStack serialStack;  // the query stack of the search on the calling thread
@@ -240,7 +246,6 @@ btDbvtBroadphase::btDbvtBroadphase(btOverlappingPairCache* paircache)
 		m_paircache = new (memory) btHashedOverlappingPairCache();
 	}
 	for (int i = 0; i <= STAGECOUNT; ++i) m_stageRoots[i] = 0;
-	m_freeProxies = 0;
 	m_rayTestStacks.resize(1);
 	// A moved leaf is re-inserted from a few levels above its old place: a moving object rarely goes far
 	// in one step, and a search of that subtree costs a fraction of a search from the root (10,000 moving
@@ -264,12 +269,13 @@ btDbvtBroadphase::~btDbvtBroadphase()
 		}
 		m_stageRoots[stage] = 0;
 	}
-	while (m_freeProxies)
+	btDbvtProxy*& freeProxies = caliber::sideTable<PairSearchScratch>().acquire(this).freeProxies;
+	while (freeProxies)
 	{
-		btDbvtProxy* next = m_freeProxies->links[1];
-		m_freeProxies->~btDbvtProxy();
-		btAlignedFree(m_freeProxies);
-		m_freeProxies = next;
+		btDbvtProxy* next = freeProxies->links[1];
+		freeProxies->~btDbvtProxy();
+		btAlignedFree(freeProxies);
+		freeProxies = next;
 	}
 	caliber::sideTable<PairSearchScratch>().release(this);
 	if (m_releasepaircache)
@@ -289,10 +295,11 @@ btBroadphaseProxy* btDbvtBroadphase::createProxy(const btVector3& aabbMin, const
 	btAssert(finite && "btDbvtBroadphase::createProxy: non-finite AABB");
 	if (!finite) return 0;
 	void* memory;
-	if (m_freeProxies)
+	btDbvtProxy*& freeProxies = caliber::sideTable<PairSearchScratch>().acquire(this).freeProxies;
+	if (freeProxies)
 	{
-		btDbvtProxy* recycled = m_freeProxies;
-		m_freeProxies = recycled->links[1];
+		btDbvtProxy* recycled = freeProxies;
+		freeProxies = recycled->links[1];
 		recycled->~btDbvtProxy();
 		memory = recycled;
 	}
@@ -301,17 +308,17 @@ btBroadphaseProxy* btDbvtBroadphase::createProxy(const btVector3& aabbMin, const
 		memory = btAlignedAlloc(sizeof(btDbvtProxy), 16);
 	}
 	btDbvtProxy* proxy = new (memory) btDbvtProxy(aabbMin, aabbMax, userPtr, collisionFilterGroup, collisionFilterMask);
-	proxy->m_uniqueId = ++m_gid;
-	proxy->set = (collisionFilterGroup & btBroadphaseProxy::StaticFilter) ? FIXED_SET : DYNAMIC_SET;
+	const int tree = (collisionFilterGroup & btBroadphaseProxy::StaticFilter) ? FIXED_SET : DYNAMIC_SET;
+	proxy->m_uniqueId = caliber::dbvtProxyId(++m_gid, tree);
 	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
 	// Moving proxies start with the margin (their first small move then costs nothing); static ones get
 	// their exact box, which keeps the fixed tree tight.
-	if (proxy->set == DYNAMIC_SET)
+	if (tree == DYNAMIC_SET)
 		box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
 	else
 		++m_fixedleft;
-	proxy->leaf = m_sets[proxy->set].insert(box, proxy);
-	linkProxy(*this, proxy, proxy->set);
+	proxy->leaf = m_sets[tree].insert(box, proxy);
+	linkProxy(*this, proxy, tree);
 	m_needcleanup = true;
 	return proxy;
 }
@@ -322,13 +329,14 @@ void btDbvtBroadphase::destroyProxy(btBroadphaseProxy* absproxy, btDispatcher* d
 	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
 	btAssert(proxy->leaf && "btDbvtBroadphase::destroyProxy: proxy already destroyed");
 	if (!proxy->leaf) return;
-	m_sets[proxy->set].remove(proxy->leaf);
+	m_sets[caliber::dbvtTreeOf(*proxy)].remove(proxy->leaf);
 	unlinkProxy(*this, proxy);
 	m_paircache->removeOverlappingPairsContainingProxy(proxy, dispatcher);
+	btDbvtProxy*& freeProxies = caliber::sideTable<PairSearchScratch>().acquire(this).freeProxies;
 	proxy->leaf = 0;
 	proxy->links[0] = 0;
-	proxy->links[1] = m_freeProxies;
-	m_freeProxies = proxy;
+	proxy->links[1] = freeProxies;
+	freeProxies = proxy;
 }
 
 void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax,

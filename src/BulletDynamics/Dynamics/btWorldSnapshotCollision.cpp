@@ -12,6 +12,7 @@
 
 #include "BulletCollision/BroadphaseCollision/btAxisSweep3.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/BroadphaseCollision/btSimpleBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btBoxBoxCollisionAlgorithm.h"
@@ -451,7 +452,7 @@ bool saveDbvtState(btDiscreteDynamicsWorld& world, const DbvtView& view, Snapsho
 		if (!proxy) continue;
 		++proxies;
 		plainProxyFields(out, *proxy);
-		out.field("proxy set", proxy->set);
+		out.field("proxy set", caliber::dbvtTreeOf(*proxy));
 	}
 	if (proxies != dbvt->m_sets[0].m_leaves + dbvt->m_sets[1].m_leaves)
 	{
@@ -659,16 +660,20 @@ bool readDbvtState(btDiscreteDynamicsWorld& world, const DbvtView& view, Snapsho
 		const btVector3 aabbMin = in.vector("proxy m_aabbMin");
 		const btVector3 aabbMax = in.vector("proxy m_aabbMax");
 		const int set = in.value<int>("proxy set");
-		// A leaf node belongs to its tree's node blocks: a proxy cannot change trees.
-		if (in.ok() && set != proxy->set)
-			in.fail("object %d: proxy in tree %d, the snapshot's in tree %d", i, proxy->set, set);
+		// A leaf node belongs to its tree's node blocks: a proxy cannot change trees. The tree is the id's
+		// parity, so the saved id must name the saved tree too.
+		const int tree = caliber::dbvtTreeOf(*proxy);
+		if (in.ok() && set != tree)
+			in.fail("object %d: proxy in tree %d, the snapshot's in tree %d", i, tree, set);
+		if (in.ok() && (uniqueId & 1) != set)
+			in.fail("object %d: proxy id %d does not belong to tree %d (odd ids are the fixed tree's)", i, uniqueId,
+			        set);
 		proxySet[i] = set;
 		if (in.ok() && in.applying())
 		{
 			proxy->m_uniqueId = uniqueId;
 			proxy->m_aabbMin = aabbMin;
 			proxy->m_aabbMax = aabbMax;
-			proxy->set = set;
 		}
 	}
 
