@@ -165,19 +165,69 @@ struct ListPairs : public btIParallelForBody
 	}
 };
 
-// Removes pairs with a pending proxy whose boxes separated.
-struct StalePairRemover : public btOverlapCallback
+// A pair is stale when its tree boxes no longer overlap; only pairs with a pending proxy can have become
+// stale since the last collide (onlyPending), unless pairs were added to the cache by hand.
+SIMD_FORCE_INLINE bool isStalePair(const btBroadphasePair& pair, bool onlyPending)
 {
+	const btDbvtProxy* proxy0 = static_cast<const btDbvtProxy*>(pair.m_pProxy0);
+	const btDbvtProxy* proxy1 = static_cast<const btDbvtProxy*>(pair.m_pProxy1);
+	if (onlyPending && !isPending(proxy0) && !isPending(proxy1)) return false;
+	return !Intersect(proxy0->leaf->volume, proxy1->leaf->volume);
+}
+
+// Lists the stale pairs of the cache's array in fixed chunks of pairs, one list per chunk (read in chunk
+// order afterwards, so the list is the array's order whatever the thread count). The loop runs over chunk
+// numbers, so a scheduler may split it anywhere without two threads sharing a chunk.
+const int kPairsPerStaleTask = 1024;
+
+struct ListStalePairs : public btIParallelForBody
+{
+	const btBroadphasePair* pairs;
+	int count;
+	PairSearchScratch* scratch;
 	bool onlyPending;
 
-	bool processOverlap(btBroadphasePair& pair) override
+	void forLoop(int chunkBegin, int chunkEnd) const override
 	{
-		const btDbvtProxy* proxy0 = static_cast<const btDbvtProxy*>(pair.m_pProxy0);
-		const btDbvtProxy* proxy1 = static_cast<const btDbvtProxy*>(pair.m_pProxy1);
-		if (onlyPending && !isPending(proxy0) && !isPending(proxy1)) return false;
-		return !Intersect(proxy0->leaf->volume, proxy1->leaf->volume);
+		for (int c = chunkBegin; c < chunkEnd; ++c)
+		{
+			btAlignedObjectArray<btDbvtProxy*>& found = scratch->chunks[c].found;
+			found.resize(0);
+			const int end = btMin(count, (c + 1) * kPairsPerStaleTask);
+			for (int i = c * kPairsPerStaleTask; i < end; ++i)
+			{
+				if (!isStalePair(pairs[i], onlyPending)) continue;
+				found.push_back(static_cast<btDbvtProxy*>(pairs[i].m_pProxy0));
+				found.push_back(static_cast<btDbvtProxy*>(pairs[i].m_pProxy1));
+			}
+		}
 	}
 };
+
+// Removes the stale pairs: a scan of the cache's array (on the scheduler's threads when it is long) lists
+// them, then they are removed in array order on this thread. The scan only reads the proxies and their
+// leaves; the removals (which move the array's last pair into the hole and release algorithms) stay serial.
+void removeStalePairs(btDbvtBroadphase& broadphase, PairSearchScratch& scratch, bool onlyPending,
+                      btDispatcher* dispatcher)
+{
+	btOverlappingPairCache* cache = broadphase.m_paircache;
+	const btBroadphasePairArray& pairs = cache->getOverlappingPairArray();
+	const int count = pairs.size();
+	if (count == 0) return;
+	const int chunks = (count + kPairsPerStaleTask - 1) / kPairsPerStaleTask;
+	if (scratch.chunks.size() < chunks) scratch.chunks.resize(chunks);
+	ListStalePairs list;
+	list.pairs = &pairs[0];
+	list.count = count;
+	list.scratch = &scratch;
+	list.onlyPending = onlyPending;
+	btParallelFor(0, chunks, 1, list);
+	for (int c = 0; c < chunks; ++c)
+	{
+		const btAlignedObjectArray<btDbvtProxy*>& found = scratch.chunks[c].found;
+		for (int k = 0; k < found.size(); k += 2) cache->removeOverlappingPair(found[k], found[k + 1], dispatcher);
+	}
+}
 
 // aabbTest: the trees prune with the fat boxes; the proxy's own AABB decides.
 struct AabbQueryPolicy
@@ -425,13 +475,8 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 			}
 		}
 		m_newpairs = m_paircache->getNumOverlappingPairs() - pairsBefore;
-		if (pairsBefore > 0)
-		{
-			// Pairs found above overlap by construction; only older pairs of moved proxies can be stale.
-			StalePairRemover remover;
-			remover.onlyPending = true;
-			m_paircache->processAllOverlappingPairs(&remover, dispatcher);
-		}
+		// Pairs found above overlap by construction; only older pairs of moved proxies can be stale.
+		if (pairsBefore > 0) removeStalePairs(*this, search, true, dispatcher);
 		for (int stage = DYNAMIC_SET; stage < STAGECOUNT; ++stage)
 		{
 			while (btDbvtProxy* proxy = m_stageRoots[stage])
@@ -478,9 +523,7 @@ void btDbvtBroadphase::calculateOverlappingPairs(btDispatcher* dispatcher) { col
 void btDbvtBroadphase::performDeferredRemoval(btDispatcher* dispatcher)
 {
 	if (m_paircache->getNumOverlappingPairs() == 0) return;
-	StalePairRemover remover;
-	remover.onlyPending = false;
-	m_paircache->processAllOverlappingPairs(&remover, dispatcher);
+	removeStalePairs(*this, caliber::sideTable<PairSearchScratch>().acquire(this), false, dispatcher);
 }
 
 void btDbvtBroadphase::optimize()
