@@ -1,5 +1,6 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtRefit.h"
 
 #include <algorithm>
 #include <new>
@@ -347,6 +348,24 @@ void reinsertLeaf(btDbvt& tree, btDbvtNode* leaf, int lookahead)
 }
 }  // namespace
 }  // namespace caliber
+
+bool caliber::refitLeafNearSibling(btDbvtNode* leaf, const btDbvtVolume& box)
+{
+	btDbvtNode* parent = leaf->parent;
+	if (!parent) return false;
+	const btDbvtVolume fitted = sanitizedVolume(box);
+	const btDbvtNode* sibling = parent->childs[1 - indexOfChild(leaf)];
+	if (halfArea(merged(fitted, sibling->volume)) >
+	    kDbvtRefitSiblingSlack * (halfArea(fitted) + halfArea(sibling->volume)))
+		return false;
+	leaf->volume = fitted;
+	for (btDbvtNode* node = parent; node; node = node->parent)
+	{
+		if (node->volume.Contain(fitted)) break;
+		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
+	}
+	return true;
+}
 
 btDbvt::btDbvt() : m_root(0), m_free(0), m_lkhd(-1), m_leaves(0), m_opath(0) {}
 

@@ -14,6 +14,7 @@
 #include <new>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtRefit.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "LinearMath/btAabbUtil2.h"
@@ -70,11 +71,13 @@ void unlinkProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
 	proxy->links[0] = proxy->links[1] = 0;
 }
 
-// Moves the proxy's tree box to `box` and queues its pair search.
+// Moves the proxy's tree box to `box` and queues its pair search. A moving leaf still next to its sibling is
+// refitted in place (the common case: most of a pile or a ragdoll moves together), others are re-inserted.
 void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
 {
 	const int tree = caliber::dbvtTreeOf(*proxy);
-	broadphase.m_sets[tree].update(proxy->leaf, box);
+	if (tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box))
+		broadphase.m_sets[tree].update(proxy->leaf, box);
 	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
 	if (!isPending(proxy))
 	{
