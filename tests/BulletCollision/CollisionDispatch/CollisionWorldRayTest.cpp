@@ -423,11 +423,15 @@ TEST(CollisionWorldRayTest, RayStartingInsideAConvexShapeDoesNotHitIt)
 	for (int corner = 0; corner < 8; ++corner)
 		hull.addPoint(btVector3(corner & 1 ? 1.5 : -1, corner & 2 ? 1 : -1.5, corner & 4 ? 1 : -1), false);
 	hull.recalcLocalAabb();
-	btCollisionShape* shapes[] = {&sphere, &box, &capsule, &hull};
-	const char* names[] = {"sphere", "box", "capsule", "hull"};
-	const btScalar surfaceX[] = {2, 1, 1, btScalar(1.5)};  // where +x leaves each shape (at y = 0.2, z = 0)
+	// The same hull with polyhedral features: the ray test's face-plane test decides the deep start.
+	btConvexHullShape hullWithFaces(hull);
+	ASSERT_TRUE(hullWithFaces.initializePolyhedralFeatures());
+	btCollisionShape* shapes[] = {&sphere, &box, &capsule, &hull, &hullWithFaces};
+	const char* names[] = {"sphere", "box", "capsule", "hull", "hull with faces"};
+	// Where +x leaves each shape (at y = 0.2, z = 0).
+	const btScalar surfaceX[] = {2, 1, 1, btScalar(1.5), btScalar(1.5)};
 	const unsigned int flagSets[] = {0u, unsigned(btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest)};
-	for (int k = 0; k < 4; ++k)
+	for (int k = 0; k < 5; ++k)
 	{
 		WorldFixture f;
 		btBoxShape* wallShape = f.own(new btBoxShape(btVector3(0.5, 5, 5)));
