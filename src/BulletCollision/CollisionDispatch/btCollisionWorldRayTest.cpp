@@ -8,15 +8,16 @@
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btCompoundShape.h"
 #include "BulletCollision/CollisionShapes/btConcaveShape.h"
+#include "BulletCollision/CollisionShapes/btConvexPolyhedron.h"
 #include "BulletCollision/CollisionShapes/btConvexShape.h"
 #include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
+#include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
 #include "BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/CollisionShapes/btStaticPlaneShape.h"
-#include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
+#include "BulletCollision/NarrowPhaseCollision/btConvexCastHelpers.h"
 #include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
-#include "BulletCollision/NarrowPhaseCollision/btSubSimplexConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 #include "LinearMath/btQuickprof.h"
 
@@ -164,8 +165,8 @@ void reportConvexHit(const btCollisionObjectWrapper* wrap, const btVector3& norm
 	resultCallback.addSingleResult(rayResult, true);
 }
 
-// Closed-form sphere test. A start inside or on the sphere hits at 0 with the outward radial normal, as
-// the convex casts report shapes that start in contact.
+// Closed-form sphere test. A start inside the sphere is no hit (as in Bullet: rays leave the shapes they
+// start in); a start on its surface that heads in hits at 0.
 void rayTestSphere(const btVector3& from, const btVector3& to, const btSphereShape* sphere,
                    const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
 {
@@ -174,14 +175,7 @@ void rayTestSphere(const btVector3& from, const btVector3& to, const btSphereSha
 	const btVector3 direction = to - from;
 	const btVector3 offset = from - center;
 	const btScalar startGap = offset.dot(offset) - radius * radius;
-	if (startGap <= btScalar(0))
-	{
-		btVector3 normal = offset;
-		if (normal.length2() < SIMD_EPSILON * SIMD_EPSILON) normal = -direction;
-		if (normal.length2() < SIMD_EPSILON * SIMD_EPSILON) normal.setValue(0, 1, 0);
-		reportConvexHit(wrap, normal.normalized(), btScalar(0), resultCallback);
-		return;
-	}
+	if (startGap < btScalar(0)) return;
 	const btScalar a = direction.dot(direction);
 	const btScalar b = offset.dot(direction);
 	if (!(a > btScalar(0)) || b >= btScalar(0)) return;  // no motion, or moving away
@@ -195,7 +189,8 @@ void rayTestSphere(const btVector3& from, const btVector3& to, const btSphereSha
 }
 
 // Closed-form box test (slabs in the box frame) against the box's outer faces, which is the box Bullet's
-// default ray test sees. A start inside or on the box hits at 0 with the normal of the nearest face.
+// default ray test sees. The ray hits where it enters the box: a start inside is no hit (as in Bullet), a
+// start on a face that heads in hits at 0.
 void rayTestBox(const btVector3& from, const btVector3& to, const btBoxShape* box, const btCollisionObjectWrapper* wrap,
                 RayResultCallback& resultCallback)
 {
@@ -217,7 +212,8 @@ void rayTestBox(const btVector3& from, const btVector3& to, const btBoxShape* bo
 		btScalar tNear = (-half - start[axis]) * inverse;
 		btScalar tFar = (half - start[axis]) * inverse;
 		if (tNear > tFar) btSwap(tNear, tFar);
-		if (tNear > enter)
+		// tNear >= 0 once the start is outside this slab or on its entry face.
+		if (tNear > enter || (enterAxis < 0 && tNear >= enter))
 		{
 			enter = tNear;
 			enterAxis = axis;
@@ -225,29 +221,30 @@ void rayTestBox(const btVector3& from, const btVector3& to, const btBoxShape* bo
 		exit = btMin(exit, tFar);
 		if (enter > exit) return;
 	}
+	if (enterAxis < 0) return;  // starts inside: the ray never enters the box
 	btVector3 normalLocal(0, 0, 0);
-	if (enterAxis >= 0)
+	normalLocal[enterAxis] = direction[enterAxis] > btScalar(0) ? btScalar(-1) : btScalar(1);
+	reportConvexHit(wrap, worldTransform.getBasis() * normalLocal, btMax(enter, btScalar(0)), resultCallback);
+}
+
+// A start more than the margin behind every face plane of a hull's polyhedral features
+// (initializePolyhedralFeatures, with or without its margin shift; the features the contact clipping
+// trusts) is inside the shape: the ray cannot hit it (Bullet's rule, see rayTestConvex). A few dot
+// products instead of the cast's loop, which needs a full simplex (four or more support scans) to show
+// that a start is inside. Shapes without features, and starts near the surface, go to the cast.
+bool startsInsidePolyhedron(const btConvexShape* shape, const btVector3& startLocal)
+{
+	if (!shape->isPolyhedral()) return false;
+	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
+	if (!polyhedron || polyhedron->m_faces.size() < 4) return false;
+	const btScalar depth = -shape->getMargin();
+	for (int i = 0; i < polyhedron->m_faces.size(); ++i)
 	{
-		normalLocal[enterAxis] = direction[enterAxis] > btScalar(0) ? btScalar(-1) : btScalar(1);
+		const btScalar* plane = polyhedron->m_faces[i].m_plane;
+		if (!(startLocal.x() * plane[0] + startLocal.y() * plane[1] + startLocal.z() * plane[2] + plane[3] < depth))
+			return false;
 	}
-	else
-	{
-		// Starts inside (or on) the box: the face with the smallest distance from the start is the way out.
-		int nearestAxis = 0;
-		btScalar nearestGap = halfExtents[0] - btFabs(start[0]);
-		for (int axis = 1; axis < 3; axis++)
-		{
-			const btScalar gap = halfExtents[axis] - btFabs(start[axis]);
-			if (gap < nearestGap)
-			{
-				nearestGap = gap;
-				nearestAxis = axis;
-			}
-		}
-		normalLocal[nearestAxis] = start[nearestAxis] < btScalar(0) ? btScalar(-1) : btScalar(1);
-		enter = btScalar(0);
-	}
-	reportConvexHit(wrap, worldTransform.getBasis() * normalLocal, enter, resultCallback);
+	return true;
 }
 
 void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConvexShape* convexShape,
@@ -270,25 +267,23 @@ void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTran
 			return;
 		}
 	}
+	if (startsInsidePolyhedron(convexShape, wrap->getWorldTransform().invXform(rayFromTrans.getOrigin()))) return;
 	// The ray is a point (a sphere of radius 0 and no margin) cast against the shape.
 	btSphereShape point(btScalar(0));
 	point.setMargin(btScalar(0));
 	btVoronoiSimplexSolver simplexSolver;
 	btConvexCast::CastResult castResult;
 	bool hit;
+	// As in Bullet, a ray that starts inside the shape does not hit it (the casts' kMiss), which also spares
+	// the depth query a start-in-contact cast would make for its normal.
+	const btTransform& shapeTransform = wrap->getWorldTransform();
 	if (resultCallback.m_flags & btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest)
-	{
-		btGjkConvexCast cast(&point, convexShape, &simplexSolver);
-		hit = cast.calcTimeOfImpact(rayFromTrans, rayToTrans, wrap->getWorldTransform(), wrap->getWorldTransform(),
-		                            castResult);
-	}
+		hit = caliber::gjkCast(&point, convexShape, &simplexSolver, rayFromTrans, rayToTrans, shapeTransform,
+		                       shapeTransform, castResult, caliber::StartInContact::kMiss);
 	else
-	{
-		btSubsimplexConvexCast cast(&point, convexShape, &simplexSolver);
-		hit = cast.calcTimeOfImpact(rayFromTrans, rayToTrans, wrap->getWorldTransform(), wrap->getWorldTransform(),
-		                            castResult);
-	}
-	// A zero normal means the cast found no direction (degenerate start inside); such a hit is dropped.
+		hit = caliber::subsimplexCast(&point, convexShape, &simplexSolver, rayFromTrans, rayToTrans, shapeTransform,
+		                              shapeTransform, castResult, caliber::StartInContact::kMiss);
+	// A zero normal means the cast found no direction; such a hit is dropped.
 	if (!hit || !(castResult.m_normal.length2() > btScalar(1e-4))) return;
 	if (!(castResult.m_fraction < resultCallback.m_closestHitFraction)) return;
 	LocalRayResult rayResult(wrap->getCollisionObject(), 0, castResult.m_normal.normalized(), castResult.m_fraction);

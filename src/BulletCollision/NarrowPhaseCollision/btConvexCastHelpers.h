@@ -74,6 +74,25 @@ inline btVector3 fallbackNormal(const btVector3& relativeMotionA)
 	return btVector3(btScalar(0), btScalar(0), btScalar(0));
 }
 
+// What a cast does when the shapes already touch or overlap at its start. The casts' calcTimeOfImpact
+// report a hit at fraction 0 with the contact of the start pose (EPA's normal when they overlap). The
+// world's ray test against convex shapes uses kMiss, Bullet's answer: a ray does not hit a shape it starts
+// inside (or within the cast's tolerance of), and costs no depth query.
+enum class StartInContact
+{
+	kReportAtZero,
+	kMiss
+};
+
+// btSubsimplexConvexCast::calcTimeOfImpact and btGjkConvexCast::calcTimeOfImpact with the start-contact
+// rule as a parameter (the classes pass kReportAtZero).
+bool subsimplexCast(const btConvexShape* shapeA, const btConvexShape* shapeB, btSimplexSolverInterface* simplexSolver,
+                    const btTransform& fromA, const btTransform& toA, const btTransform& fromB, const btTransform& toB,
+                    btConvexCast::CastResult& result, StartInContact startInContact);
+bool gjkCast(const btConvexShape* shapeA, const btConvexShape* shapeB, btSimplexSolverInterface* simplexSolver,
+             const btTransform& fromA, const btTransform& toA, const btTransform& fromB, const btTransform& toB,
+             btConvexCast::CastResult& result, StartInContact startInContact);
+
 }  // namespace caliber
 
 #endif  // CALIBER_CONVEX_CAST_HELPERS_H

@@ -19,15 +19,25 @@ btGjkConvexCast::btGjkConvexCast(const btConvexShape* convexA, const btConvexSha
 bool btGjkConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransform& toA, const btTransform& fromB,
                                        const btTransform& toB, CastResult& result)
 {
-	if (!caliber::castInputsValid(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB)) return false;
+	return caliber::gjkCast(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB, result,
+	                        caliber::StartInContact::kReportAtZero);
+}
+
+bool caliber::gjkCast(const btConvexShape* convexA, const btConvexShape* convexB, btSimplexSolverInterface* simplexSolver,
+                      const btTransform& fromA, const btTransform& toA, const btTransform& fromB, const btTransform& toB,
+                      btConvexCast::CastResult& result, StartInContact startInContact)
+{
+	if (!caliber::castInputsValid(convexA, convexB, simplexSolver, fromA, toA, fromB, toB)) return false;
 
 	const btVector3 motionA = toA.getOrigin() - fromA.getOrigin();
 	const btVector3 motionB = toB.getOrigin() - fromB.getOrigin();
 	const btVector3 relativeMotion = motionA - motionB;
 	const btScalar allowedPenetration = btIsFinite(result.m_allowedPenetration) ? result.m_allowedPenetration : 0;
 
-	// Bullet's btGjkConvexCast has no depth solver; EPA here lets overlapping starts report a normal.
+	// Bullet's btGjkConvexCast has no depth solver; EPA here lets overlapping starts report a normal. With
+	// kMiss an overlap at the start is a miss, so no depth is needed (GJK alone reports no overlap).
 	btGjkEpaPenetrationDepthSolver epa;
+	btConvexPenetrationDepthSolver* depthSolver = startInContact == StartInContact::kMiss ? nullptr : &epa;
 	btTransform transA = fromA, transB = fromB;
 	btScalar lambda = btScalar(0);
 	btVector3 lastNormal = caliber::fallbackNormal(relativeMotion);
@@ -35,15 +45,21 @@ bool btGjkConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransfo
 	{
 		btVector3 normal, pointOnB;
 		btScalar distance;
-		if (!caliber::castClosestPoints(m_convexA, m_convexB, transA, transB, m_simplexSolver, &epa, lastNormal, normal,
+		if (!caliber::castClosestPoints(convexA, convexB, transA, transB, simplexSolver, depthSolver, lastNormal, normal,
 		                                pointOnB, distance))
 		{
-			// Only a failed depth solver gets here; the shapes overlap, so this is the contact.
+			// kMiss: cores that overlap at the start are no hit. Otherwise only a failed depth solver, or cores
+			// reached through rounding after an advance, get here: the shapes overlap, so this is the contact.
+			if (!depthSolver && iteration == 0) return false;
 			caliber::writeCastHit(result, lambda, lastNormal, transB.getOrigin(), transA, transB);
 			return true;
 		}
 		lastNormal = normal;
 		const btScalar gap = distance + allowedPenetration;
+		// kMiss: a start inside the shapes (margins included) or one that does not approach is no hit.
+		if (iteration == 0 && startInContact == StartInContact::kMiss && gap <= caliber::kCastDistanceTolerance &&
+		    (distance < btScalar(0) || !(normal.dot(relativeMotion) < btScalar(0))))
+			return false;
 		if (gap <= caliber::kCastDistanceTolerance)
 		{
 			caliber::writeCastHit(result, lambda, normal, pointOnB, transA, transB);

@@ -45,7 +45,16 @@ SupportPair supportC(const btConvexShape* a, const btTransform& ta, btScalar mar
 bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const btTransform& toA,
                                               const btTransform& fromB, const btTransform& toB, CastResult& result)
 {
-	if (!caliber::castInputsValid(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB)) return false;
+	return caliber::subsimplexCast(m_convexA, m_convexB, m_simplexSolver, fromA, toA, fromB, toB, result,
+	                               caliber::StartInContact::kReportAtZero);
+}
+
+bool caliber::subsimplexCast(const btConvexShape* convexA, const btConvexShape* convexB,
+                             btSimplexSolverInterface* simplexSolver, const btTransform& fromA, const btTransform& toA,
+                             const btTransform& fromB, const btTransform& toB, btConvexCast::CastResult& result,
+                             StartInContact startInContact)
+{
+	if (!caliber::castInputsValid(convexA, convexB, simplexSolver, fromA, toA, fromB, toB)) return false;
 
 	// Work relative to the midpoint of the start origins so that far-away pairs keep their precision.
 	const btVector3 offset = (fromA.getOrigin() + fromB.getOrigin()) * btScalar(0.5);
@@ -57,12 +66,12 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 	const btVector3 relativeMotion = motionA - motionB;
 	const btVector3 rayDir = -relativeMotion;
 
-	const btScalar marginA = m_convexA->getMargin();
-	const btScalar marginB = m_convexB->getMargin();
+	const btScalar marginA = convexA->getMargin();
+	const btScalar marginB = convexB->getMargin();
 	const btScalar epsilonSquared = btMax(result.m_subSimplexCastEpsilon, btScalar(0));
 	const int maxIterations = result.m_subSimplexCastMaxIterations;
 
-	btSimplexSolverInterface& simplex = *m_simplexSolver;
+	btSimplexSolverInterface& simplex = *simplexSolver;
 	simplex.reset();
 
 	btScalar lambda = btScalar(0);
@@ -71,7 +80,7 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 	bool advanced = false;
 
 	// Any point of C starts v.
-	const SupportPair start = supportC(m_convexA, transA, marginA, m_convexB, transB, marginB, relativeMotion);
+	const SupportPair start = supportC(convexA, transA, marginA, convexB, transB, marginB, relativeMotion);
 	btVector3 v = x - (start.onA - start.onB);
 	btScalar distanceSquared = v.length2();
 
@@ -86,7 +95,7 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 				break;
 			return false;
 		}
-		const SupportPair s = supportC(m_convexA, transA, marginA, m_convexB, transB, marginB, v);
+		const SupportPair s = supportC(convexA, transA, marginA, convexB, transB, marginB, v);
 		const btVector3 p = s.onA - s.onB;
 		const btVector3 w = x - p;
 		if (!caliber::isFinite(w)) return false;
@@ -122,12 +131,13 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 	btVector3 pointOnB;
 	if (!advanced)
 	{
+		if (startInContact == StartInContact::kMiss) return false;
 		// The shapes touch or overlap at the start: report fraction 0 with the contact of the start pose.
 		btVector3 onA, fallbackPoint = start.onB;
 		if (!simplex.emptySimplex()) simplex.compute_points(onA, fallbackPoint);
 		btGjkEpaPenetrationDepthSolver epa;
 		btScalar distance;
-		if (!caliber::castClosestPoints(m_convexA, m_convexB, transA, transB, m_simplexSolver, &epa,
+		if (!caliber::castClosestPoints(convexA, convexB, transA, transB, simplexSolver, &epa,
 		                                caliber::fallbackNormal(relativeMotion), normal, pointOnB, distance))
 		{
 			normal = caliber::fallbackNormal(relativeMotion);
@@ -149,7 +159,7 @@ bool btSubsimplexConvexCast::calcTimeOfImpact(const btTransform& fromA, const bt
 	queryB.getOrigin() += motionB * lambda;
 	btGjkEpaPenetrationDepthSolver epa;
 	btScalar distance;
-	if (caliber::castClosestPoints(m_convexA, m_convexB, queryA, queryB, m_simplexSolver, &epa, -lastPlaneNormal,
+	if (caliber::castClosestPoints(convexA, convexB, queryA, queryB, simplexSolver, &epa, -lastPlaneNormal,
 	                               normal, pointOnB, distance))
 	{
 		pointOnB += offset;

@@ -9,7 +9,9 @@
 
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
+#include "BulletCollision/CollisionShapes/btCapsuleShape.h"
 #include "BulletCollision/CollisionShapes/btCompoundShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 #include "BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h"
 #include "BulletCollision/CollisionShapes/btScaledBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
@@ -407,7 +409,76 @@ TEST(CollisionWorldRayTest, CompoundReportsTheChildIndex)
 	}
 }
 
-TEST(CollisionWorldRayTest, RayStartingInsideConvexHitsAtZeroWithOutwardNormal)
+// Bullet's semantics for rays that start inside a convex shape (its default btSubsimplexConvexCast reports
+// no hit without an advance, and btGjkConvexCast without a depth solver finds no contact): the shape is
+// not hit, and the ray goes on to what lies beyond it. Each shape here holds the ray's start; a wall at
+// x = 10 (its face at x = 9.5) is the first thing the ray enters, at fraction (9.5 - x0) / (20 - x0).
+TEST(CollisionWorldRayTest, RayStartingInsideAConvexShapeDoesNotHitIt)
+{
+	btSphereShape sphere(2);
+	btBoxShape box(btVector3(1, 2, 3));
+	box.setMargin(0);
+	btCapsuleShape capsule(1, 2);
+	btConvexHullShape hull;
+	for (int corner = 0; corner < 8; ++corner)
+		hull.addPoint(btVector3(corner & 1 ? 1.5 : -1, corner & 2 ? 1 : -1.5, corner & 4 ? 1 : -1), false);
+	hull.recalcLocalAabb();
+	// The same hull with polyhedral features: the ray test's face-plane test decides the deep start.
+	btConvexHullShape hullWithFaces(hull);
+	ASSERT_TRUE(hullWithFaces.initializePolyhedralFeatures());
+	btCollisionShape* shapes[] = {&sphere, &box, &capsule, &hull, &hullWithFaces};
+	const char* names[] = {"sphere", "box", "capsule", "hull", "hull with faces"};
+	// Where +x leaves each shape (at y = 0.2, z = 0).
+	const btScalar surfaceX[] = {2, 1, 1, btScalar(1.5), btScalar(1.5)};
+	const unsigned int flagSets[] = {0u, unsigned(btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest)};
+	for (int k = 0; k < 5; ++k)
+	{
+		WorldFixture f;
+		btBoxShape* wallShape = f.own(new btBoxShape(btVector3(0.5, 5, 5)));
+		wallShape->setMargin(0);
+		const btCollisionObject* wall = f.add(wallShape, at(btVector3(10, 0, 0)));
+		const btCollisionObject* holder = f.add(shapes[k], at(btVector3(0, 0, 0)));
+		for (unsigned int flags : flagSets)
+		{
+			SCOPED_TRACE(std::string(names[k]) + (flags ? " gjk cast" : " default"));
+			// From near the centre, and from 0.3 inside the surface (the margin's depth is 0.04 for the
+			// capsule and hull), along +x out through the shape towards the wall.
+			for (btScalar x0 : {btScalar(0.1), surfaceX[k] - btScalar(0.3)})
+			{
+				const btVector3 from(x0, btScalar(0.2), 0), to(20, btScalar(0.2), 0);
+				btCollisionWorld::ClosestRayResultCallback ray(from, to);
+				ray.m_flags = flags;
+				f.m_world.rayTest(from, to, ray);
+				ASSERT_TRUE(ray.hasHit());
+				EXPECT_EQ(ray.m_collisionObject, wall);
+				// The wall is a box, tested in closed form: exact but for float rounding.
+				EXPECT_NEAR(ray.m_closestHitFraction, (9.5 - x0) / (20 - x0), 1e-5);
+				btCollisionWorld::AllHitsRayResultCallback all(from, to);
+				all.m_flags = flags;
+				f.m_world.rayTest(from, to, all);
+				for (int i = 0; i < all.m_collisionObjects.size(); ++i) EXPECT_NE(all.m_collisionObjects[i], holder);
+			}
+			// Zero-length rays inside hit nothing either.
+			btCollisionWorld::AllHitsRayResultCallback zero(btVector3(0.1, 0.2, 0), btVector3(0.1, 0.2, 0));
+			zero.m_flags = flags;
+			f.m_world.rayTest(zero.m_rayFromWorld, zero.m_rayToWorld, zero);
+			EXPECT_FALSE(zero.hasHit());
+			// The same shape seen from outside is hit where the ray enters it (the wall is behind the start).
+			const btVector3 outside(-6, btScalar(0.2), 0);
+			btCollisionWorld::ClosestRayResultCallback in(outside, btVector3(0, btScalar(0.2), 0));
+			in.m_flags = flags;
+			f.m_world.rayTest(in.m_rayFromWorld, in.m_rayToWorld, in);
+			ASSERT_TRUE(in.hasHit());
+			EXPECT_EQ(in.m_collisionObject, holder);
+			EXPECT_LT(in.m_closestHitFraction, btScalar(1));
+			EXPECT_LT(in.m_hitNormalWorld.x(), btScalar(-0.9));
+		}
+	}
+}
+
+// The closed forms' boundary: a ray that starts on a sphere's or box's surface and heads in hits at 0
+// with the outward normal there; heading out it does not hit.
+TEST(CollisionWorldRayTest, RayStartingOnTheSurfaceHitsAtZeroOnlyWhenHeadingIn)
 {
 	WorldFixture f;
 	btSphereShape* sphere = f.own(new btSphereShape(2));
@@ -416,28 +487,23 @@ TEST(CollisionWorldRayTest, RayStartingInsideConvexHitsAtZeroWithOutwardNormal)
 	f.add(sphere, at(btVector3(0, 0, 0)));
 	f.add(box, at(btVector3(20, 0, 0)));
 
-	btCollisionWorld::ClosestRayResultCallback inSphere(btVector3(0.5, 1, 0), btVector3(10, 1, 0));
+	btCollisionWorld::ClosestRayResultCallback inSphere(btVector3(0, 2, 0), btVector3(0, -5, 0));
 	f.m_world.rayTest(inSphere.m_rayFromWorld, inSphere.m_rayToWorld, inSphere);
 	ASSERT_TRUE(inSphere.hasHit());
 	EXPECT_EQ(inSphere.m_closestHitFraction, btScalar(0));
-	// The way out of the sphere: radially from the centre through the start point.
-	EXPECT_GT(inSphere.m_hitNormalWorld.dot(btVector3(0.5, 1, 0).normalized()), btScalar(0.99));
+	EXPECT_GT(inSphere.m_hitNormalWorld.y(), btScalar(0.9999));
+	btCollisionWorld::ClosestRayResultCallback outSphere(btVector3(0, 2, 0), btVector3(0, 5, 0));
+	f.m_world.rayTest(outSphere.m_rayFromWorld, outSphere.m_rayToWorld, outSphere);
+	EXPECT_FALSE(outSphere.hasHit());
 
-	// Closest face of the box to (19.8, 0, 0) is -x (0.8 away).
-	btCollisionWorld::ClosestRayResultCallback inBox(btVector3(19.8, 0, 0), btVector3(19.8, 10, 0));
+	btCollisionWorld::ClosestRayResultCallback inBox(btVector3(19, 0.5, 0), btVector3(25, 0.5, 0));
 	f.m_world.rayTest(inBox.m_rayFromWorld, inBox.m_rayToWorld, inBox);
 	ASSERT_TRUE(inBox.hasHit());
 	EXPECT_EQ(inBox.m_closestHitFraction, btScalar(0));
-	EXPECT_GT(inBox.m_hitNormalWorld.dot(btVector3(-1, 0, 0)), btScalar(0.99));
-
-	// Zero-length rays: inside a convex shape they hit at 0; outside nothing.
-	btCollisionWorld::ClosestRayResultCallback zeroInside(btVector3(0.5, 0, 0), btVector3(0.5, 0, 0));
-	f.m_world.rayTest(zeroInside.m_rayFromWorld, zeroInside.m_rayToWorld, zeroInside);
-	EXPECT_TRUE(zeroInside.hasHit());
-	EXPECT_EQ(zeroInside.m_closestHitFraction, btScalar(0));
-	btCollisionWorld::ClosestRayResultCallback zeroOutside(btVector3(10, 0, 0), btVector3(10, 0, 0));
-	f.m_world.rayTest(zeroOutside.m_rayFromWorld, zeroOutside.m_rayToWorld, zeroOutside);
-	EXPECT_FALSE(zeroOutside.hasHit());
+	EXPECT_GT(inBox.m_hitNormalWorld.dot(btVector3(-1, 0, 0)), btScalar(0.9999));
+	btCollisionWorld::ClosestRayResultCallback outBox(btVector3(19, 0.5, 0), btVector3(15, 0.5, 0));
+	f.m_world.rayTest(outBox.m_rayFromWorld, outBox.m_rayToWorld, outBox);
+	EXPECT_FALSE(outBox.hasHit());
 }
 
 TEST(CollisionWorldRayTest, MeshesAreSurfacesAndZeroLengthRaysMissThem)
