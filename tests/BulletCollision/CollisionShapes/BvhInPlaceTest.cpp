@@ -161,7 +161,8 @@ TEST(BvhInPlace, InPlaceConstructorTakesTheStateAndViewsTheBlockWithoutCopying)
 		EXPECT_EQ(caliber::bvhAabbMax(*loaded), caliber::bvhAabbMax(grid.bvh));
 		EXPECT_EQ(caliber::bvhQuantization(*loaded), caliber::bvhQuantization(grid.bvh));
 		// Every array the constructor took views the block (ownsMemory false): nodes and subtree headers.
-		const auto inBlock = [&](const void* p) { return p >= data && p < static_cast<const void*>(data + grid.bytes); };
+		const auto inBlock = [&](const void* p)
+		{ return p >= data && p < static_cast<const void*>(data + grid.bytes); };
 		const void* nodes = quantized ? static_cast<const void*>(&loaded->getQuantizedNodeArray()[0])
 		                              : static_cast<const void*>(&caliber::bvhNodeArray(*loaded)[0]);
 		EXPECT_TRUE(inBlock(nodes));
