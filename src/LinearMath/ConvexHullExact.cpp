@@ -14,7 +14,9 @@
 #error "btConvexHullComputer needs a compiler with 128-bit integers (__int128)"
 #endif
 
-namespace caliber_hull
+namespace caliber
+{
+namespace hull
 {
 namespace
 {
@@ -658,4 +660,5 @@ bool computeHullTopology(const double* xyz, int count, HullTopology& topology)
 	return false;
 }
 
-}  // namespace caliber_hull
+}  // namespace hull
+}  // namespace caliber

@@ -9,7 +9,9 @@
 
 #include "LinearMath/btAlignedObjectArray.h"
 
-namespace caliber_hull
+namespace caliber
+{
+namespace hull
 {
 /// The hull of a point set as corners and faces; every index refers to the point list it was
 /// computed from.
@@ -40,6 +42,7 @@ struct HullTopology
 /// empty topology, only if an internal consistency check failed (exact predicates rule that out).
 bool computeHullTopology(const double* xyz, int count, HullTopology& topology);
 
-}  // namespace caliber_hull
+}  // namespace hull
+}  // namespace caliber
 
 #endif  // CALIBER_CONVEX_HULL_INTERNAL_H

@@ -10,7 +10,9 @@
 
 static_assert(sizeof(btConvexHullComputer::Edge) == 3 * sizeof(int), "Edge must stay three ints, as in Bullet");
 
-namespace caliber_hull
+namespace caliber
+{
+namespace hull
 {
 namespace
 {
@@ -252,12 +254,13 @@ void readFinitePoints(const void* coords, int stride, int count, btAlignedObject
 }
 
 }  // namespace
-}  // namespace caliber_hull
+}  // namespace hull
+}  // namespace caliber
 
 btScalar btConvexHullComputer::compute(const void* coords, bool doubleCoords, int stride, int count, btScalar shrink,
                                        btScalar shrinkClamp)
 {
-	using namespace caliber_hull;
+	using namespace caliber::hull;
 	vertices.clear();
 	original_vertex_index.clear();
 	edges.clear();

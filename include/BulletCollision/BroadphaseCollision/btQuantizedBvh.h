@@ -373,6 +373,15 @@ public:
 	virtual void deSerializeFloat(struct btQuantizedBvhFloatData & quantizedBvhFloatData);
 	/// As deSerializeFloat, from a file written in double precision.
 	virtual void deSerializeDouble(struct btQuantizedBvhDoubleData & quantizedBvhDoubleData);
+
+private:
+	/// Bullet's in-place deserialisation constructor (private, as in Bullet: deSerializeInPlace alone
+	/// calls it). The new tree takes other's quantization box, flags, node count and subtree header
+	/// count; with ownsMemory false its contiguous node and subtree header arrays view other's storage
+	/// (nothing copied, other's storage must outlive the tree: the in-place block), with ownsMemory true
+	/// it copies every array. other must be another object (Caliber's loader stages the tree beside the
+	/// block and constructs the block's object from it, never over itself).
+	btQuantizedBvh(btQuantizedBvh & other, bool ownsMemory);
 };
 
 // clang-format off

@@ -115,6 +115,175 @@ void btQuantizedBvh::setQuantizationValues(const btVector3& bvhAabbMin, const bt
 
 void btQuantizedBvh::buildInternal() { caliber::buildQuantizedBvhTree(*this); }
 
+namespace
+{
+// The builder's view of the leaves: boxes and centroids (quantized leaves unquantized), and the
+// permutation of leaf indices that the splits reorder.
+struct LeafSet
+{
+	btAlignedObjectArray<btVector3> min, max, centroid;
+	btAlignedObjectArray<int> order;
+};
+
+void gatherLeaves(const btQuantizedBvh& bvh, const caliber::QuantizedBvhParts& p, int numLeaves, LeafSet& leaves)
+{
+	leaves.min.resize(numLeaves);
+	leaves.max.resize(numLeaves);
+	leaves.centroid.resize(numLeaves);
+	leaves.order.resize(numLeaves);
+	for (int i = 0; i < numLeaves; ++i)
+	{
+		if (p.useQuantization)
+		{
+			leaves.min[i] = bvh.unQuantize(p.quantizedLeafNodes[i].m_quantizedAabbMin);
+			leaves.max[i] = bvh.unQuantize(p.quantizedLeafNodes[i].m_quantizedAabbMax);
+		}
+		else
+		{
+			leaves.min[i] = p.leafNodes[i].m_aabbMinOrg;
+			leaves.max[i] = p.leafNodes[i].m_aabbMaxOrg;
+		}
+		leaves.centroid[i] = btScalar(0.5) * (leaves.min[i] + leaves.max[i]);
+		leaves.order[i] = i;
+	}
+}
+
+// The axis a task's leaves are binned along (the longest of their centroids' box) and the binning
+// scale; binsPerLength is 0 (or not finite) when the centroids do not spread along it.
+struct BinAxis
+{
+	int axis;
+	btScalar origin;
+	btScalar binsPerLength;
+};
+
+BinAxis chooseBinAxis(const LeafSet& leaves, const BuildTask& task)
+{
+	btVector3 cmin = leaves.centroid[leaves.order[task.begin]], cmax = cmin;
+	for (int i = task.begin + 1; i < task.end; ++i)
+	{
+		cmin.setMin(leaves.centroid[leaves.order[i]]);
+		cmax.setMax(leaves.centroid[leaves.order[i]]);
+	}
+	const btVector3 extent = cmax - cmin;
+	BinAxis bins;
+	bins.axis = extent.x() >= extent.y() ? (extent.x() >= extent.z() ? 0 : 2) : (extent.y() >= extent.z() ? 1 : 2);
+	bins.origin = cmin[bins.axis];
+	bins.binsPerLength = extent[bins.axis] > btScalar(0) ? btScalar(kNumBins) / extent[bins.axis] : btScalar(0);
+	return bins;
+}
+
+int binOfLeaf(const LeafSet& leaves, int leaf, const BinAxis& bins)
+{
+	return binOf(leaves.centroid[leaf][bins.axis], bins.origin, bins.binsPerLength);
+}
+
+// The last bin of the left group in the cheapest binned SAH split (child count times half area),
+// or -1 when every split leaves one side empty.
+int cheapestBinSplit(const LeafSet& leaves, const BuildTask& task, const BinAxis& bins)
+{
+	int binCount[kNumBins];
+	btVector3 binMin[kNumBins], binMax[kNumBins];
+	for (int b = 0; b < kNumBins; ++b)
+	{
+		binCount[b] = 0;
+		binMin[b].setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+		binMax[b].setValue(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
+	}
+	for (int i = task.begin; i < task.end; ++i)
+	{
+		const int leaf = leaves.order[i];
+		const int b = binOfLeaf(leaves, leaf, bins);
+		binCount[b]++;
+		binMin[b].setMin(leaves.min[leaf]);
+		binMax[b].setMax(leaves.max[leaf]);
+	}
+	// Sweep from the right to get the cost of every right-hand group, then from the left.
+	btScalar rightCost[kNumBins];
+	int rightCount = 0;
+	btVector3 rMin(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), rMax = -rMin;
+	for (int b = kNumBins - 1; b > 0; --b)
+	{
+		rightCount += binCount[b];
+		rMin.setMin(binMin[b]);
+		rMax.setMax(binMax[b]);
+		rightCost[b] = btScalar(rightCount) * halfArea(rMin, rMax);
+	}
+	const int count = task.end - task.begin;
+	int leftCount = 0, bestSplit = -1;
+	btScalar bestCost = BT_LARGE_FLOAT;
+	btVector3 lMin(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), lMax = -lMin;
+	for (int b = 0; b < kNumBins - 1; ++b)
+	{
+		leftCount += binCount[b];
+		lMin.setMin(binMin[b]);
+		lMax.setMax(binMax[b]);
+		if (leftCount == 0 || leftCount == count) continue;
+		const btScalar cost = btScalar(leftCount) * halfArea(lMin, lMax) + rightCost[b + 1];
+		if (bestSplit < 0 || cost < bestCost)
+		{
+			bestCost = cost;
+			bestSplit = b;
+		}
+	}
+	return bestSplit;
+}
+
+// Reorders the task's leaves so that those in bins <= lastLeftBin come first; returns the first of the rest.
+int partitionAtBin(LeafSet& leaves, const BuildTask& task, const BinAxis& bins, int lastLeftBin)
+{
+	int lo = task.begin, hi = task.end - 1;
+	while (lo <= hi)
+	{
+		if (binOfLeaf(leaves, leaves.order[lo], bins) <= lastLeftBin)
+			++lo;
+		else
+		{
+			btSwap(leaves.order[lo], leaves.order[hi]);
+			--hi;
+		}
+	}
+	return lo;
+}
+
+// Splits a task of two or more leaves: returns the first leaf of the right child (after reordering).
+int splitTask(LeafSet& leaves, const BuildTask& task)
+{
+	const int count = task.end - task.begin;
+	const BinAxis bins = chooseBinAxis(leaves, task);
+	const int equalHalves = task.begin + count / 2;  // fallback: all centroids in one place
+	if (!btIsFinite(bins.binsPerLength) || !(bins.binsPerLength > btScalar(0))) return equalHalves;
+	const int lastLeftBin = cheapestBinSplit(leaves, task, bins);
+	if (lastLeftBin < 0) return equalHalves;
+	const int mid = partitionAtBin(leaves, task, bins, lastLeftBin);
+	return mid > task.begin && mid < task.end ? mid : equalHalves;
+}
+
+// An interior node over count leaves: its escape index skips its 2 count - 1 node subtree.
+void writeInteriorNode(const caliber::QuantizedBvhParts& p, int nodeIndex, int count)
+{
+	if (p.useQuantization)
+		p.quantizedContiguousNodes[nodeIndex].m_escapeIndexOrTriangleIndex = -(2 * count - 1);
+	else
+	{
+		btOptimizedBvhNode& node = p.contiguousNodes[nodeIndex];
+		node.m_escapeIndex = 2 * count - 1;
+		node.m_subPart = -1;
+		node.m_triangleIndex = -1;
+	}
+}
+
+void writeLeafNode(const caliber::QuantizedBvhParts& p, int nodeIndex, int leaf)
+{
+	if (p.useQuantization)
+		p.quantizedContiguousNodes[nodeIndex] = p.quantizedLeafNodes[leaf];
+	else
+		p.contiguousNodes[nodeIndex] = p.leafNodes[leaf];
+}
+}  // namespace
+
+// Binned SAH build, top-down with an explicit stack, written depth-first: a node is followed by its
+// left subtree, then its right. Interior boxes are filled afterwards by the refit.
 void caliber::buildQuantizedBvhTree(btQuantizedBvh& bvh)
 {
 	const QuantizedBvhParts p = QuantizedBvhAccess::parts(bvh);
@@ -126,29 +295,8 @@ void caliber::buildQuantizedBvhTree(btQuantizedBvh& bvh)
 	p.curNodeIndex = 0;
 	if (numLeaves == 0) return;
 
-	// Leaf boxes and centroids drive the split choice (quantized leaves are unquantized for it).
-	btAlignedObjectArray<btVector3> leafMin, leafMax, centroid;
-	btAlignedObjectArray<int> order;
-	leafMin.resize(numLeaves);
-	leafMax.resize(numLeaves);
-	centroid.resize(numLeaves);
-	order.resize(numLeaves);
-	for (int i = 0; i < numLeaves; ++i)
-	{
-		if (p.useQuantization)
-		{
-			leafMin[i] = bvh.unQuantize(p.quantizedLeafNodes[i].m_quantizedAabbMin);
-			leafMax[i] = bvh.unQuantize(p.quantizedLeafNodes[i].m_quantizedAabbMax);
-		}
-		else
-		{
-			leafMin[i] = p.leafNodes[i].m_aabbMinOrg;
-			leafMax[i] = p.leafNodes[i].m_aabbMaxOrg;
-		}
-		centroid[i] = btScalar(0.5) * (leafMin[i] + leafMax[i]);
-		order[i] = i;
-	}
-
+	LeafSet leaves;
+	gatherLeaves(bvh, p, numLeaves, leaves);
 	const int numNodes = 2 * numLeaves - 1;
 	if (p.useQuantization)
 		p.quantizedContiguousNodes.resize(numNodes);
@@ -166,98 +314,13 @@ void caliber::buildQuantizedBvhTree(btQuantizedBvh& bvh)
 		const int count = task.end - task.begin;
 		if (count == 1)
 		{
-			if (p.useQuantization)
-				p.quantizedContiguousNodes[task.node] = p.quantizedLeafNodes[order[task.begin]];
-			else
-				p.contiguousNodes[task.node] = p.leafNodes[order[task.begin]];
+			writeLeafNode(p, task.node, leaves.order[task.begin]);
 			continue;
 		}
-
-		btVector3 cmin = centroid[order[task.begin]], cmax = cmin;
-		for (int i = task.begin + 1; i < task.end; ++i)
-		{
-			cmin.setMin(centroid[order[i]]);
-			cmax.setMax(centroid[order[i]]);
-		}
-		const btVector3 extent = cmax - cmin;
-		const int axis =
-		    extent.x() >= extent.y() ? (extent.x() >= extent.z() ? 0 : 2) : (extent.y() >= extent.z() ? 1 : 2);
-		int mid = task.begin + count / 2;  // fallback: equal halves (all centroids in one place)
-		const btScalar binsPerLength = extent[axis] > btScalar(0) ? btScalar(kNumBins) / extent[axis] : btScalar(0);
-		if (btIsFinite(binsPerLength) && binsPerLength > btScalar(0))
-		{
-			int binCount[kNumBins];
-			btVector3 binMin[kNumBins], binMax[kNumBins];
-			for (int b = 0; b < kNumBins; ++b)
-			{
-				binCount[b] = 0;
-				binMin[b].setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
-				binMax[b].setValue(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT);
-			}
-			for (int i = task.begin; i < task.end; ++i)
-			{
-				const int leaf = order[i];
-				const int b = binOf(centroid[leaf][axis], cmin[axis], binsPerLength);
-				binCount[b]++;
-				binMin[b].setMin(leafMin[leaf]);
-				binMax[b].setMax(leafMax[leaf]);
-			}
-			// Sweep from the right to get the cost of every right-hand group, then from the left.
-			btScalar rightCost[kNumBins];
-			int rightCount = 0;
-			btVector3 rMin(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), rMax = -rMin;
-			for (int b = kNumBins - 1; b > 0; --b)
-			{
-				rightCount += binCount[b];
-				rMin.setMin(binMin[b]);
-				rMax.setMax(binMax[b]);
-				rightCost[b] = btScalar(rightCount) * halfArea(rMin, rMax);
-			}
-			int leftCount = 0, bestSplit = -1;
-			btScalar bestCost = BT_LARGE_FLOAT;
-			btVector3 lMin(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), lMax = -lMin;
-			for (int b = 0; b < kNumBins - 1; ++b)
-			{
-				leftCount += binCount[b];
-				lMin.setMin(binMin[b]);
-				lMax.setMax(binMax[b]);
-				if (leftCount == 0 || leftCount == count) continue;
-				const btScalar cost = btScalar(leftCount) * halfArea(lMin, lMax) + rightCost[b + 1];
-				if (bestSplit < 0 || cost < bestCost)
-				{
-					bestCost = cost;
-					bestSplit = b;
-				}
-			}
-			if (bestSplit >= 0)
-			{
-				// Partition: leaves in bins <= bestSplit first.
-				int lo = task.begin, hi = task.end - 1;
-				while (lo <= hi)
-				{
-					if (binOf(centroid[order[lo]][axis], cmin[axis], binsPerLength) <= bestSplit)
-						++lo;
-					else
-					{
-						btSwap(order[lo], order[hi]);
-						--hi;
-					}
-				}
-				if (lo > task.begin && lo < task.end) mid = lo;
-			}
-		}
-
+		const int mid = splitTask(leaves, task);
+		writeInteriorNode(p, task.node, count);
+		// The left subtree (2 leftLeaves - 1 nodes) follows the node, then the right.
 		const int leftLeaves = mid - task.begin;
-		if (p.useQuantization)
-			p.quantizedContiguousNodes[task.node].m_escapeIndexOrTriangleIndex = -(2 * count - 1);
-		else
-		{
-			btOptimizedBvhNode& node = p.contiguousNodes[task.node];
-			node.m_escapeIndex = 2 * count - 1;
-			node.m_subPart = -1;
-			node.m_triangleIndex = -1;
-		}
-		// Depth-first layout: the left subtree (2 leftLeaves - 1 nodes) follows the node, then the right.
 		BuildTask right = {task.node + 2 * leftLeaves, mid, task.end};
 		BuildTask left = {task.node + 1, task.begin, mid};
 		stack.push_back(right);

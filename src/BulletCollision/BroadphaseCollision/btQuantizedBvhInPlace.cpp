@@ -334,9 +334,50 @@ btQuantizedBvh* btQuantizedBvh::deSerializeInPlace(void* i_alignedDataBuffer, un
 		caliber::warnInPlaceBvh("btQuantizedBvh::deSerializeInPlace", problem);
 		return 0;
 	}
-	btQuantizedBvh* bvh = new (i_alignedDataBuffer) btQuantizedBvh();
-	caliber::adoptInPlaceBvh(*bvh, i_alignedDataBuffer);
-	return bvh;
+	// The tree is staged beside the block (its arrays already viewing the block) and the block's object
+	// is constructed from it, so nothing is read from storage whose lifetime is just beginning.
+	btQuantizedBvh staged;
+	caliber::adoptInPlaceBvh(staged, i_alignedDataBuffer);
+	return new (i_alignedDataBuffer) btQuantizedBvh(staged, false);
+}
+
+namespace
+{
+// Points array at other's elements without copying them (an empty array when other has none).
+template <typename Array>
+void viewStorageOf(Array& array, Array& other)
+{
+	if (other.size() > 0)
+		array.initializeFromBuffer(&other[0], other.size(), other.size());
+	else
+		array.clear();
+}
+}  // namespace
+
+btQuantizedBvh::btQuantizedBvh(btQuantizedBvh& other, bool ownsMemory)
+    : m_bvhAabbMin(other.m_bvhAabbMin),
+      m_bvhAabbMax(other.m_bvhAabbMax),
+      m_bvhQuantization(other.m_bvhQuantization),
+      m_bulletVersion(289),
+      m_curNodeIndex(other.m_curNodeIndex),
+      m_useQuantization(other.m_useQuantization),
+      m_traversalMode(other.m_traversalMode),
+      m_subtreeHeaderCount(other.m_subtreeHeaderCount)
+{
+	btAssert(&other != this && "btQuantizedBvh(other, ownsMemory): other must be another object");
+	if (ownsMemory)
+	{
+		m_leafNodes.copyFromArray(other.m_leafNodes);
+		m_contiguousNodes.copyFromArray(other.m_contiguousNodes);
+		m_quantizedLeafNodes.copyFromArray(other.m_quantizedLeafNodes);
+		m_quantizedContiguousNodes.copyFromArray(other.m_quantizedContiguousNodes);
+		m_SubtreeHeaders.copyFromArray(other.m_SubtreeHeaders);
+		return;
+	}
+	// The leaf arrays are only the builder's input; a viewing tree is a built tree without them.
+	viewStorageOf(m_contiguousNodes, other.m_contiguousNodes);
+	viewStorageOf(m_quantizedContiguousNodes, other.m_quantizedContiguousNodes);
+	viewStorageOf(m_SubtreeHeaders, other.m_SubtreeHeaders);
 }
 
 unsigned int btQuantizedBvh::getAlignmentSerializationPadding() { return 16u; }

@@ -9,7 +9,6 @@
 #include "LinearMath/btWarningHook.h"
 #include "QuantizedBvhTreeCheck.h"
 
-#include <math.h>
 #include <string.h>
 
 #include <string>
@@ -33,14 +32,17 @@ struct PlainNodes
 	long long escape(int i) const { return nodes[i].m_escapeIndex; }
 };
 
-template <class V>
-bool finite3(const V& v)
-{
-	return isfinite(v.m_floats[0]) && isfinite(v.m_floats[1]) && isfinite(v.m_floats[2]);
-}
-
 void readVector(btVector3& out, const btVector3FloatData& in) { out.deSerializeFloat(in); }
 void readVector(btVector3& out, const btVector3DoubleData& in) { out.deSerializeDouble(in); }
+
+// Judged as read: a double too large for a float build is not finite there either.
+template <class V>
+bool finiteAsRead(const V& in)
+{
+	btVector3 v;
+	readVector(v, in);
+	return caliber::isFinite(v);
+}
 
 // The reason data is not a tree this reader can use, or 0.
 template <class Data, class NodeData>
@@ -60,7 +62,7 @@ const char* problemOf(const Data& d)
 	const int numNodes = d.m_curNodeIndex;
 	if (quantized)
 	{
-		if (!finite3(d.m_bvhAabbMin) || !finite3(d.m_bvhAabbMax) || !finite3(d.m_bvhQuantization))
+		if (!finiteAsRead(d.m_bvhAabbMin) || !finiteAsRead(d.m_bvhAabbMax) || !finiteAsRead(d.m_bvhQuantization))
 			return "a non-finite quantization box";
 		for (int a = 0; a < 3; ++a)
 			if (!(d.m_bvhAabbMin.m_floats[a] <= d.m_bvhAabbMax.m_floats[a]) || !(d.m_bvhQuantization.m_floats[a] > 0))
@@ -76,7 +78,7 @@ const char* problemOf(const Data& d)
 		for (int i = 0; i < numNodes; ++i)
 		{
 			const NodeData& node = d.m_contiguousNodesPtr[i];
-			if (!finite3(node.m_aabbMinOrg) || !finite3(node.m_aabbMaxOrg)) return "a non-finite node box";
+			if (!finiteAsRead(node.m_aabbMinOrg) || !finiteAsRead(node.m_aabbMaxOrg)) return "a non-finite node box";
 			if (node.m_escapeIndex < 0 && (node.m_subPart < 0 || node.m_triangleIndex < 0))
 				return "a leaf with a negative part or triangle index";
 		}

@@ -8,8 +8,6 @@
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
 
-#include <math.h>
-
 #include <string>
 
 namespace
@@ -43,10 +41,9 @@ const char* btTriangleInfoMap::serialize(void* dataBuffer, btSerializer* seriali
 	d->m_numKeys = m_keyArray.size();
 	for (char& c : d->m_padding) c = 0;
 
-	d->m_hashTablePtr = d->m_hashTableSize
-	                        ? writeInts(serializer, &m_hashTable[0], d->m_hashTableSize,
-	                                    const_cast<int*>(&m_hashTable[0]))
-	                        : 0;
+	d->m_hashTablePtr = d->m_hashTableSize ? writeInts(serializer, &m_hashTable[0], d->m_hashTableSize,
+	                                                   const_cast<int*>(&m_hashTable[0]))
+	                                       : 0;
 	d->m_nextPtr = d->m_nextSize ? writeInts(serializer, &m_next[0], d->m_nextSize, const_cast<int*>(&m_next[0])) : 0;
 	d->m_keyArrayPtr = 0;
 	if (d->m_numKeys)
@@ -54,8 +51,7 @@ const char* btTriangleInfoMap::serialize(void* dataBuffer, btSerializer* seriali
 		btAlignedObjectArray<int> keys;
 		keys.resize(d->m_numKeys);
 		for (int i = 0; i < d->m_numKeys; ++i) keys[i] = m_keyArray[i].getUid1();
-		d->m_keyArrayPtr =
-		    writeInts(serializer, &keys[0], d->m_numKeys, const_cast<btHashInt*>(&m_keyArray[0]));
+		d->m_keyArrayPtr = writeInts(serializer, &keys[0], d->m_numKeys, const_cast<btHashInt*>(&m_keyArray[0]));
 	}
 	d->m_valueArrayPtr = 0;
 	if (d->m_numValues)
@@ -88,14 +84,14 @@ void btTriangleInfoMap::deSerialize(btTriangleInfoMapData& data)
 		problem = "the key and value counts disagree";
 	else if (data.m_numKeys > 0 && (!data.m_keyArrayPtr || !data.m_valueArrayPtr))
 		problem = "the key or value array is missing";
-	else if (!isfinite(data.m_convexEpsilon) || !isfinite(data.m_planarEpsilon) ||
-	         !isfinite(data.m_equalVertexThreshold) || !isfinite(data.m_edgeDistanceThreshold) ||
-	         !isfinite(data.m_zeroAreaThreshold))
+	else if (!btIsFinite(data.m_convexEpsilon) || !btIsFinite(data.m_planarEpsilon) ||
+	         !btIsFinite(data.m_equalVertexThreshold) || !btIsFinite(data.m_edgeDistanceThreshold) ||
+	         !btIsFinite(data.m_zeroAreaThreshold))
 		problem = "a non-finite tolerance";
 	for (int i = 0; !problem && i < data.m_numValues; ++i)
 	{
 		const btTriangleInfoData& v = data.m_valueArrayPtr[i];
-		if (!isfinite(v.m_edgeV0V1Angle) || !isfinite(v.m_edgeV1V2Angle) || !isfinite(v.m_edgeV2V0Angle))
+		if (!btIsFinite(v.m_edgeV0V1Angle) || !btIsFinite(v.m_edgeV1V2Angle) || !btIsFinite(v.m_edgeV2V0Angle))
 			problem = "a non-finite edge angle";
 	}
 	if (problem)

@@ -11,7 +11,9 @@
 #include "LinearMath/btScalar.h"
 #include "LinearMath/btVector3.h"
 
-namespace caliber_gjk
+namespace caliber
+{
+namespace gjk
 {
 /// Gap between the bounds, relative to the distance, at which GJK has converged: on a curved
 /// Minkowski difference a gap e at distance d leaves the direction of v free by sqrt(2 e / d), so the
@@ -53,6 +55,7 @@ inline bool isDuplicateVertex(const btSimplexSolverInterface& simplex, const btV
 		if (simplex.m_simplexVectorW[i].distance2(w) <= threshold) return true;
 	return w == simplex.m_lastW;
 }
-}  // namespace caliber_gjk
+}  // namespace gjk
+}  // namespace caliber
 
 #endif

@@ -87,9 +87,9 @@ GjkOutcome runGjk(const MinkowskiDifference& diff, const btVector3& guess, btVor
 			return GjkOutcome::Overlapping;
 		w = diff.support(-v, onA, onB);
 		if (!caliber::isFinite(w)) return GjkOutcome::Failed;
-		if (caliber_gjk::boundsMet(distanceSquared, v.dot(w), scale)) return GjkOutcome::Separated;
+		if (caliber::gjk::boundsMet(distanceSquared, v.dot(w), scale)) return GjkOutcome::Separated;
 		// Only a numerical duplicate ends an unconverged search (see btGjkConvergence.h).
-		if (caliber_gjk::isDuplicateVertex(simplex, w)) break;
+		if (caliber::gjk::isDuplicateVertex(simplex, w)) break;
 		simplex.addVertex(w, onA, onB);
 		btVector3 next;
 		if (!simplex.closest(next)) return GjkOutcome::Failed;
@@ -104,7 +104,7 @@ GjkOutcome runGjk(const MinkowskiDifference& diff, const btVector3& guess, btVor
 			// A face through the origin leaves |v| at its rounding, which for a thin triangle exceeds the
 			// touching threshold below (1.7e-15 in double). The support plane did not separate (v.w <= 0)
 			// and |v| is below a repeat's distance: touching, which counts as overlapping.
-			const btScalar touching = caliber_gjk::kDuplicateVertexDistance;
+			const btScalar touching = caliber::gjk::kDuplicateVertexDistance;
 			if (lastVDotW <= btScalar(0) &&
 			    distanceSquared <= touching * touching * (simplex.maxVertex() + btScalar(1)))
 				return GjkOutcome::Overlapping;

@@ -153,14 +153,14 @@ GjkOutcome runGjk(const CentredPair& pair, btSimplexSolverInterface& simplex, co
 			}
 		}
 		if (out.squaredDistance < BT_LARGE_FLOAT &&
-		    caliber_gjk::boundsMet(out.squaredDistance, delta, simplex.maxVertex()))
+		    caliber::gjk::boundsMet(out.squaredDistance, delta, simplex.maxVertex()))
 		{
 			out.stop = delta >= out.squaredDistance ? kLowerBoundPassedUpper : kConverged;
 			return out;
 		}
 		// The bounds have not met, so w is new information even within the solver's equal-vertex
 		// threshold; only a numerical duplicate ends the search (see btGjkConvergence.h).
-		if (caliber_gjk::isDuplicateVertex(simplex, w))
+		if (caliber::gjk::isDuplicateVertex(simplex, w))
 		{
 			out.stop = kRepeatedSupport;
 			return out;

@@ -8,7 +8,6 @@
 #include "LinearMath/btSerializer.h"
 #include "LinearMath/btWarningHook.h"
 
-#include <math.h>
 #include <string.h>
 
 #include <string>
@@ -20,12 +19,6 @@ inline void writeVector(const btVector3& v, btVector3FloatData& out) { v.seriali
 inline void writeVector(const btVector3& v, btVector3DoubleData& out) { v.serializeDouble(out); }
 void readVector(btVector3& v, const btVector3FloatData& in) { v.deSerializeFloat(in); }
 void readVector(btVector3& v, const btVector3DoubleData& in) { v.deSerializeDouble(in); }
-
-template <class V>
-bool finite3(const V& v)
-{
-	return isfinite(v.m_floats[0]) && isfinite(v.m_floats[1]) && isfinite(v.m_floats[2]);
-}
 
 // One list of the point fields, used for writing, reading and checking alike.
 template <class Data, class Op>
@@ -65,18 +58,30 @@ void forEachPointField(Data& d, btManifoldPoint& p, int i, Op op)
 struct Write
 {
 	template <class V>
-	void vec(const btVector3& v, V& out) const { writeVector(v, out); }
+	void vec(const btVector3& v, V& out) const
+	{
+		writeVector(v, out);
+	}
 	template <class S>
-	void num(btScalar v, S& out) const { out = S(v); }
+	void num(btScalar v, S& out) const
+	{
+		out = S(v);
+	}
 	void integer(int v, int& out) const { out = v; }
 };
 
 struct Read
 {
 	template <class V>
-	void vec(btVector3& v, const V& in) const { readVector(v, in); }
+	void vec(btVector3& v, const V& in) const
+	{
+		readVector(v, in);
+	}
 	template <class S>
-	void num(btScalar& v, const S& in) const { v = btScalar(in); }
+	void num(btScalar& v, const S& in) const
+	{
+		v = btScalar(in);
+	}
 	void integer(int& v, int in) const { v = in; }
 };
 
@@ -84,9 +89,18 @@ struct CheckFinite
 {
 	bool* ok;
 	template <class V>
-	void vec(btVector3&, const V& in) const { *ok = *ok && finite3(in); }
+	void vec(btVector3&, const V& in) const
+	{
+		// Judged as read: a double too large for a float build is not finite there either.
+		btVector3 v;
+		readVector(v, in);
+		*ok = *ok && caliber::isFinite(v);
+	}
 	template <class S>
-	void num(btScalar&, const S& in) const { *ok = *ok && isfinite(in); }
+	void num(btScalar&, const S& in) const
+	{
+		*ok = *ok && btIsFinite(btScalar(in));
+	}
 	void integer(int&, int) const {}
 };
 
@@ -100,7 +114,8 @@ void readManifold(btPersistentManifold& m, const Data* d)
 		problem = "no data";
 	else if (d->m_numCachedPoints < 0 || d->m_numCachedPoints > MANIFOLD_CACHE_SIZE)
 		problem = "a point count outside [0, 4]";
-	else if (!isfinite(d->m_contactBreakingThreshold) || !isfinite(d->m_contactProcessingThreshold))
+	else if (!btIsFinite(btScalar(d->m_contactBreakingThreshold)) ||
+	         !btIsFinite(btScalar(d->m_contactProcessingThreshold)))
 		problem = "a non-finite threshold";
 	for (int i = 0; !problem && i < d->m_numCachedPoints; ++i)
 	{

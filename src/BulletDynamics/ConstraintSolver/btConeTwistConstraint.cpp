@@ -7,6 +7,16 @@
 
 namespace
 {
+// A frame with a NaN or infinite number (origin or basis) would give the solver NaN rows: the joint is
+// disabled instead, with one warning.
+void disableIfFramesNotFinite(btConeTwistConstraint& joint)
+{
+	if (caliber::isFinite(joint.getAFrame()) && caliber::isFinite(joint.getBFrame())) return;
+	btAssert(!"btConeTwistConstraint: non-finite frame");
+	btReportWarning("Caliber: btConeTwistConstraint: non-finite frame; the joint is disabled\n", 0);
+	joint.setEnabled(false);
+}
+
 const btScalar kDefaultFixThreshold = btScalar(0.05);
 // A bound no real impulse reaches, yet below the solver's threshold for equality rows.
 const btScalar kUnlimitedRowImpulse = btScalar(1e20);
@@ -85,17 +95,7 @@ void btConeTwistConstraint::init()
 	m_solveTwistLimit = m_solveSwingLimit = false;
 	m_twistLimitSign = 0;
 	setLimit(btScalar(BT_LARGE_FLOAT), btScalar(BT_LARGE_FLOAT), btScalar(BT_LARGE_FLOAT));
-	const btVector3 origins[2] = {m_rbAFrame.getOrigin(), m_rbBFrame.getOrigin()};
-	for (int i = 0; i < 2; ++i)
-	{
-		const btScalar l = origins[i].length2();
-		if (!(l == l) || !(l < SIMD_INFINITY))
-		{
-			btAssert(!"btConeTwistConstraint: non-finite frame");
-			btReportWarning("Caliber: btConeTwistConstraint: non-finite frame; the joint is disabled\n", 0);
-			setEnabled(false);
-		}
-	}
+	disableIfFramesNotFinite(*this);
 }
 
 void btConeTwistConstraint::setLimit(btScalar _swingSpan1, btScalar _swingSpan2, btScalar _twistSpan,
@@ -147,6 +147,7 @@ void btConeTwistConstraint::setFrames(const btTransform& frameA, const btTransfo
 {
 	m_rbAFrame = frameA;
 	m_rbBFrame = frameB;
+	disableIfFramesNotFinite(*this);
 }
 
 void btConeTwistConstraint::calcAngleInfo()

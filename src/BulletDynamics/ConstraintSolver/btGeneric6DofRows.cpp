@@ -271,64 +271,78 @@ void writeSixDofCoordinateRow(const btGeneric6DofConstraint& joint, btTypedConst
 	info->m_constraintError[row * info->rowskip] = targetRate;
 }
 
-int writeSixDofLimitMotorRows(btGeneric6DofConstraint& joint, btTypedConstraint::btConstraintInfo2* info,
-                              const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
-                              const btVector3& angVelB)
+namespace
 {
-	const btScalar fps = info->fps;
-	const btScalar h = btScalar(1) / fps;
-	struct Axis
-	{
-		btScalar lower, upper, stopErp, stopCfm, normalCfm, targetVelocity, maxMotorForce, bounce;
-		bool hasStopCfm, hasNormalCfm;
-	};
-	Axis axes[6];
+// One coordinate's limit and motor settings, with the joint's flags applied (an ERP not set for the
+// axis is the world's).
+struct AxisSettings
+{
+	btScalar lower, upper, stopErp, stopCfm, normalCfm, targetVelocity, maxMotorForce, bounce;
+	bool hasStopCfm, hasNormalCfm;
+};
+
+void readAxisSettings(const btGeneric6DofConstraint& joint, const btTypedConstraint::btConstraintInfo2& info,
+                      AxisSettings axes[6])
+{
 	for (int c = 0; c < 6; ++c)
 	{
-		Axis& a = axes[c];
+		AxisSettings& a = axes[c];
 		if (c < 3)
 		{
 			const btTranslationalLimitMotor& m = linearLimits(joint);
-			a = Axis{m.m_lowerLimit[c],     m.m_upperLimit[c],    m.m_stopERP[c], m.m_stopCFM[c], m.m_normalCFM[c],
-			         m.m_targetVelocity[c], m.m_maxMotorForce[c], btScalar(0),    false,          false};
+			a = AxisSettings{
+			    m.m_lowerLimit[c],     m.m_upperLimit[c],    m.m_stopERP[c], m.m_stopCFM[c], m.m_normalCFM[c],
+			    m.m_targetVelocity[c], m.m_maxMotorForce[c], btScalar(0),    false,          false};
 		}
 		else
 		{
 			const btRotationalLimitMotor& m = angularLimits(joint)[c - 3];
-			a = Axis{m.m_loLimit,        m.m_hiLimit,       m.m_stopERP, m.m_stopCFM, m.m_normalCFM,
-			         m.m_targetVelocity, m.m_maxMotorForce, m.m_bounce,  false,       false};
+			a = AxisSettings{m.m_loLimit,        m.m_hiLimit,       m.m_stopERP, m.m_stopCFM, m.m_normalCFM,
+			                 m.m_targetVelocity, m.m_maxMotorForce, m.m_bounce,  false,       false};
 		}
 		const int shift = c * BT_6DOF_FLAGS_AXIS_SHIFT;
-		if (!(flags(joint) & (BT_6DOF_FLAGS_ERP_STOP << shift))) a.stopErp = info->erp;
+		if (!(flags(joint) & (BT_6DOF_FLAGS_ERP_STOP << shift))) a.stopErp = info.erp;
 		a.hasStopCfm = (flags(joint) & (BT_6DOF_FLAGS_CFM_STOP << shift)) != 0;
 		a.hasNormalCfm = (flags(joint) & (BT_6DOF_FLAGS_CFM_NORM << shift)) != 0;
 	}
+}
 
-	// Hard locked coordinates first: the solver solves the leading rows without bounds or softness as one
-	// exact block. They are kept to project the rows after them against.
+// The locked coordinates' error-reduction targets; softLocked marks those with a stop CFM, which are
+// written after the block as soft rows.
+struct LockedCoordinates
+{
+	bool softLocked[6];
+	btScalar target[6];
+};
+
+// Writes the hard locked rows from row 0 (the solver solves the leading rows without bounds or
+// softness as one exact block) and keeps them in the thread's LockedBlock with the inverse of their
+// J M^-1 J^T, to project the rows after them against. Returns the rows written.
+int writeHardLockedRows(const btGeneric6DofConstraint& joint, btTypedConstraint::btConstraintInfo2& info,
+                        const AxisSettings axes[6], LockedCoordinates& locked)
+{
 	int row = 0;
 	LockedBlock& block = t_lockedBlock;
 	block.joint = &joint;
 	block.count = 0;
-	bool softLocked[6] = {false, false, false, false, false, false};
-	btScalar lockedTarget[6];
 	for (int c = 0; c < 6; ++c)
 	{
+		locked.softLocked[c] = false;
 		if (!sixDofIsLocked(joint, c)) continue;
-		const Axis& a = axes[c];
+		const AxisSettings& a = axes[c];
 		btScalar error = a.lower - sixDofCoordinate(joint, c);
 		if (c >= 3) error = btNormalizeAngle(error);
-		lockedTarget[c] = fps * a.stopErp * error;
+		locked.target[c] = info.fps * a.stopErp * error;
 		if (a.hasStopCfm && a.stopCfm != btScalar(0))
 		{
-			softLocked[c] = true;
+			locked.softLocked[c] = true;
 			continue;
 		}
 		btVector3(&jacobian)[4] = block.jacobian[block.count];
 		sixDofCoordinateJacobian(joint, c, jacobian[0], jacobian[1], jacobian[2], jacobian[3]);
-		block.target[block.count] = lockedTarget[c];
-		writeJacobian(*info, row, blockRow(jacobian));
-		info->m_constraintError[row * info->rowskip] = lockedTarget[c];
+		block.target[block.count] = locked.target[c];
+		writeJacobian(info, row, blockRow(jacobian));
+		info.m_constraintError[row * info.rowskip] = locked.target[c];
 		++block.count;
 		++row;
 	}
@@ -341,41 +355,63 @@ int writeSixDofLimitMotorRows(btGeneric6DofConstraint& joint, btTypedConstraint:
 	}
 	// A singular block (both bodies immovable, or a degenerate frame) leaves the other rows unprojected.
 	if (!invertSmall(k, block.count, block.inverse)) block.count = 0;
+	return row;
+}
 
+// The rate a limit row asks of a limited coordinate, against the nearer limit (lowerSide tells which).
+// Away from it the row lets the coordinate approach by at most the remaining gap this step (so it never
+// passes the limit); past it, the row pushes back with the error reduction; a bouncing limit about to be
+// reached reverses the approach speed times the bounce.
+btScalar limitRowTarget(const AxisSettings& a, btScalar position, btScalar velocity, btScalar fps, btScalar h,
+                        bool& lowerSide)
+{
+	lowerSide = position - a.lower <= a.upper - position;
+	if (lowerSide)
+	{
+		const btScalar gap = position - a.lower;
+		btScalar target = -gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
+		if (a.bounce > btScalar(0) && velocity < btScalar(0) && gap + velocity * h <= btScalar(0))
+			target = btMax(target, -a.bounce * velocity);
+		return target;
+	}
+	const btScalar gap = a.upper - position;
+	btScalar target = gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
+	if (a.bounce > btScalar(0) && velocity > btScalar(0) && gap - velocity * h <= btScalar(0))
+		target = btMin(target, -a.bounce * velocity);
+	return target;
+}
+}  // namespace
+
+int writeSixDofLimitMotorRows(btGeneric6DofConstraint& joint, btTypedConstraint::btConstraintInfo2* info,
+                              const btVector3& linVelA, const btVector3& linVelB, const btVector3& angVelA,
+                              const btVector3& angVelB)
+{
+	const btScalar fps = info->fps;
+	const btScalar h = btScalar(1) / fps;
+	AxisSettings axes[6];
+	readAxisSettings(joint, *info, axes);
+
+	// Locked coordinates first: the hard block, then the soft ones projected against it.
+	LockedCoordinates locked;
+	int row = writeHardLockedRows(joint, *info, axes, locked);
 	for (int c = 0; c < 6; ++c)
 	{
-		if (!softLocked[c]) continue;
-		writeSixDofCoordinateRow(joint, info, row, c, lockedTarget[c]);
+		if (!locked.softLocked[c]) continue;
+		writeSixDofCoordinateRow(joint, info, row, c, locked.target[c]);
 		info->cfm[row * info->rowskip] = axes[c].stopCfm;
 		++row;
 	}
 
-	// Limits: one row per limited coordinate, against the nearer limit. Away from it the row lets the
-	// coordinate approach by at most the remaining gap this step (so it never passes the limit); past it,
-	// the row pushes back with the error reduction.
+	// Limits: one one-sided row per limited coordinate.
 	for (int c = 0; c < 6; ++c)
 	{
 		if (!sixDofIsLimited(joint, c)) continue;
-		const Axis& a = axes[c];
+		const AxisSettings& a = axes[c];
 		btScalar position = sixDofCoordinate(joint, c);
 		if (c >= 3) position = btAdjustAngleToLimits(position, a.lower, a.upper);
 		const btScalar velocity = sixDofCoordinateVelocity(joint, c, linVelA, linVelB, angVelA, angVelB);
-		btScalar target;
-		const bool lowerSide = position - a.lower <= a.upper - position;
-		if (lowerSide)
-		{
-			const btScalar gap = position - a.lower;
-			target = -gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
-			if (a.bounce > btScalar(0) && velocity < btScalar(0) && gap + velocity * h <= btScalar(0))
-				target = btMax(target, -a.bounce * velocity);
-		}
-		else
-		{
-			const btScalar gap = a.upper - position;
-			target = gap * fps * (gap >= btScalar(0) ? btScalar(1) : a.stopErp);
-			if (a.bounce > btScalar(0) && velocity > btScalar(0) && gap - velocity * h <= btScalar(0))
-				target = btMin(target, -a.bounce * velocity);
-		}
+		bool lowerSide;
+		const btScalar target = limitRowTarget(a, position, velocity, fps, h, lowerSide);
 		writeSixDofCoordinateRow(joint, info, row, c, target);
 		caliber::JointRow jointRow(*info, row);
 		if (lowerSide)
@@ -391,7 +427,7 @@ int writeSixDofLimitMotorRows(btGeneric6DofConstraint& joint, btTypedConstraint:
 	for (int c = 0; c < 6; ++c)
 	{
 		if (!sixDofHasMotorRow(joint, c)) continue;
-		const Axis& a = axes[c];
+		const AxisSettings& a = axes[c];
 		btScalar position = sixDofCoordinate(joint, c);
 		if (c >= 3 && a.lower < a.upper) position = btAdjustAngleToLimits(position, a.lower, a.upper);
 		writeSixDofCoordinateRow(joint, info, row, c,

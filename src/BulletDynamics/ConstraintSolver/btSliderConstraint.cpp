@@ -227,6 +227,59 @@ private:
 	btVector3 m_invMassA, m_invMassB;
 	btMatrix3x3 m_invInertiaA, m_invInertiaB;
 };
+
+// The two directions across the slider axis that rows 0-3 act along. They turn with the reference frame,
+// so a row keeps its meaning (and its warm-start impulse) from one step to the next.
+struct CrossDirections
+{
+	btVector3 dir[2];
+	CrossDirections(const btTransform& reference, const btVector3& axis)
+	{
+		const btVector3 referenceY = column(reference, 1);
+		dir[0] = (referenceY - axis * axis.dot(referenceY)).normalized();
+		dir[1] = axis.cross(dir[0]);
+	}
+};
+
+// Rows 0-1: the X axes parallel. The error is the rotation vector taking A's X axis onto B's (angle times
+// unit axis, exact at any angle); the rows turn B back by erp of it per step.
+void writeAxisAlignmentRows(btTypedConstraint::btConstraintInfo2& info, const btTransform& frameA,
+                            const btTransform& frameB, const CrossDirections& cross, btScalar erp, const btScalar* cfm)
+{
+	const btVector3 xA = column(frameA, 0), xB = column(frameB, 0);
+	const btVector3 sinAxis = xA.cross(xB);
+	const btScalar sinAngle = sinAxis.length();
+	const btVector3 swing = sinAngle > btScalar(1e-7) ? sinAxis * (btAtan2(sinAngle, xA.dot(xB)) / sinAngle) : sinAxis;
+	for (int i = 0; i < 2; ++i)
+	{
+		caliber::JointRow row(info, i);
+		row.setAngular(cross.dir[i]);
+		row.error() = info.fps * erp * swing.dot(cross.dir[i]);
+		if (cfm) row.cfm() = *cfm;
+	}
+}
+
+// Rows 2-3: the other frame's origin on the reference axis (offset is pivot B minus pivot A), both bodies
+// measured at that origin (arms from their centres).
+void writeOnAxisRows(btTypedConstraint::btConstraintInfo2& info, const CrossDirections& cross, const btVector3& armA,
+                     const btVector3& armB, const btVector3& offset, btScalar erp, const btScalar* cfm)
+{
+	for (int i = 0; i < 2; ++i)
+	{
+		caliber::JointRow row(info, 2 + i);
+		row.setLinear(cross.dir[i], armA, armB);
+		row.error() = info.fps * erp * offset.dot(cross.dir[i]);
+		if (cfm) row.cfm() = *cfm;
+	}
+}
+
+// A motor row's impulse bounds: the motor's force over one step (a negative force counts as none).
+void boundMotorRow(caliber::JointRow& row, btScalar maxForce, btScalar fps)
+{
+	const btScalar bound = btMax(btScalar(0), maxForce) / fps;
+	row.lower() = -bound;
+	row.upper() = bound;
+}
 }  // namespace
 
 void btSliderConstraint::initParams()
@@ -421,46 +474,19 @@ void btSliderConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTra
 	const RowLayout layout(m_lowerLinLimit, m_upperLinLimit, m_poweredLinMotor, m_lowerAngLimit, m_upperAngLimit,
 	                       m_poweredAngMotor);
 
-	const btTransform& frameA = m_calculatedTransformA;
-	const btTransform& frameB = m_calculatedTransformB;
-	const btTransform& reference = m_useLinearReferenceFrameA ? frameA : frameB;
+	const btTransform& reference = m_useLinearReferenceFrameA ? m_calculatedTransformA : m_calculatedTransformB;
 	const btVector3& axis = m_sliderAxis;
-	// The cross directions turn with the reference frame, so a row keeps its meaning (and its warm-start
-	// impulse) from one step to the next.
-	const btVector3 referenceY = column(reference, 1);
-	const btVector3 p = (referenceY - axis * axis.dot(referenceY)).normalized();
-	const btVector3 q = axis.cross(p);
-	const btVector3 cross[2] = {p, q};
+	const CrossDirections cross(reference, axis);
 	const btScalar fps = info->fps;
-
-	// Rows 0-1: the X axes parallel. The error is the rotation vector taking A's X axis onto B's (angle
-	// times unit axis, exact at any angle); the rows turn B back by ERP of it per step.
-	const btVector3 xA = column(frameA, 0), xB = column(frameB, 0);
-	const btVector3 sinAxis = xA.cross(xB);
-	const btScalar sinAngle = sinAxis.length();
-	const btVector3 swing = sinAngle > btScalar(1e-7) ? sinAxis * (btAtan2(sinAngle, xA.dot(xB)) / sinAngle) : sinAxis;
-	const btScalar erpOrthoAng = rowErp(m_flags, BT_SLIDER_FLAGS_ERP_ORTANG, m_softnessOrthoAng, info->erp);
-	for (int i = 0; i < 2; ++i)
-	{
-		caliber::JointRow row(*info, i);
-		row.setAngular(cross[i]);
-		row.error() = fps * erpOrthoAng * swing.dot(cross[i]);
-		if (m_flags & BT_SLIDER_FLAGS_CFM_ORTANG) row.cfm() = m_cfmOrthoAng;
-	}
-
-	// Rows 2-3: the other frame's origin on the reference axis, both bodies measured at that origin.
+	writeAxisAlignmentRows(*info, m_calculatedTransformA, m_calculatedTransformB, cross,
+	                       rowErp(m_flags, BT_SLIDER_FLAGS_ERP_ORTANG, m_softnessOrthoAng, info->erp),
+	                       (m_flags & BT_SLIDER_FLAGS_CFM_ORTANG) ? &m_cfmOrthoAng : 0);
 	const btVector3 point = m_useLinearReferenceFrameA ? m_realPivotBInW : m_realPivotAInW;
 	const btVector3 armA = point - transA.getOrigin();
 	const btVector3 armB = point - transB.getOrigin();
-	const btVector3 offset = m_realPivotBInW - m_realPivotAInW;
-	const btScalar erpOrthoLin = rowErp(m_flags, BT_SLIDER_FLAGS_ERP_ORTLIN, m_softnessOrthoLin, info->erp);
-	for (int i = 0; i < 2; ++i)
-	{
-		caliber::JointRow row(*info, 2 + i);
-		row.setLinear(cross[i], armA, armB);
-		row.error() = fps * erpOrthoLin * offset.dot(cross[i]);
-		if (m_flags & BT_SLIDER_FLAGS_CFM_ORTLIN) row.cfm() = m_cfmOrthoLin;
-	}
+	writeOnAxisRows(*info, cross, armA, armB, m_realPivotBInW - m_realPivotAInW,
+	                rowErp(m_flags, BT_SLIDER_FLAGS_ERP_ORTLIN, m_softnessOrthoLin, info->erp),
+	                (m_flags & BT_SLIDER_FLAGS_CFM_ORTLIN) ? &m_cfmOrthoLin : 0);
 
 	// The slide direction whose row reads -ds/dt, and the rates the limits' bounce needs.
 	const btVector3 slide = m_useLinearReferenceFrameA ? axis : -axis;
@@ -502,9 +528,7 @@ void btSliderConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTra
 		const btScalar factor =
 		    getMotorFactor(m_linPos, m_lowerLinLimit, m_upperLinLimit, m_targetLinMotorVelocity, fps * erpDirLin);
 		row.error() = -factor * m_targetLinMotorVelocity;
-		const btScalar bound = btMax(btScalar(0), m_maxLinMotorForce) / fps;
-		row.lower() = -bound;
-		row.upper() = bound;
+		boundMotorRow(row, m_maxLinMotorForce, fps);
 		if (m_flags & BT_SLIDER_FLAGS_CFM_DIRLIN) row.cfm() = m_cfmDirLin;
 	}
 	if (layout.angLimit)
@@ -526,9 +550,7 @@ void btSliderConstraint::getInfo2NonVirtual(btConstraintInfo2* info, const btTra
 		const btScalar factor =
 		    getMotorFactor(m_angPos, m_lowerAngLimit, m_upperAngLimit, -m_targetAngMotorVelocity, fps * erpDirAng);
 		row.error() = factor * m_targetAngMotorVelocity;
-		const btScalar bound = btMax(btScalar(0), m_maxAngMotorForce) / fps;
-		row.lower() = -bound;
-		row.upper() = bound;
+		boundMotorRow(row, m_maxAngMotorForce, fps);
 		if (m_flags & BT_SLIDER_FLAGS_CFM_DIRANG) row.cfm() = m_cfmDirAng;
 	}
 	btAssert(next == layout.rows);

@@ -18,6 +18,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "LinearMath/btWarningHook.h"
 
 namespace
 {
@@ -33,8 +34,7 @@ struct GridBox
 
 // The grid box of a live object: its AABB clamped to the world, quantised like the broadphase says it does.
 template <typename Sweep, typename IntType>
-GridBox gridBoxOf(const Sweep& sweep, const SceneObject& object, const btVector3& worldMin,
-                         const btVector3& worldMax)
+GridBox gridBoxOf(const Sweep& sweep, const SceneObject& object, const btVector3& worldMin, const btVector3& worldMax)
 {
 	btVector3 lo = object.aabbMin(), hi = object.aabbMax();
 	lo.setMax(worldMin);
@@ -173,8 +173,7 @@ TEST(AxisSweep3, QuantisationKeepsTouchingBoxesTogetherAndOrderMonotonic)
 	// Boxes that touch on a face overlap on the grid; boxes a grid cell apart or more may or may not, but
 	// boxes 1 unit apart (about 3,300 cells) never do.
 	btBroadphaseProxy* a = sweep.createProxy(btVector3(0, 0, 0), btVector3(1, 1, 1), 0, idToClient(0), 1, -1, 0);
-	btBroadphaseProxy* touching =
-	    sweep.createProxy(btVector3(1, 0, 0), btVector3(2, 1, 1), 0, idToClient(1), 1, -1, 0);
+	btBroadphaseProxy* touching = sweep.createProxy(btVector3(1, 0, 0), btVector3(2, 1, 1), 0, idToClient(1), 1, -1, 0);
 	btBroadphaseProxy* apart = sweep.createProxy(btVector3(2, 0, 0), btVector3(3, 1, 1), 0, idToClient(2), 1, -1, 0);
 	EXPECT_TRUE(sweep.testAabbOverlap(a, touching));
 	EXPECT_FALSE(sweep.testAabbOverlap(a, apart));
@@ -397,4 +396,24 @@ TEST(AxisSweep3, CollisionWorldRunsOnTheSweepAndSurvivesAFullPool)
 	world.removeCollisionObject(&objects[1]);
 	world.removeCollisionObject(&objects[0]);
 	EXPECT_EQ(sweep.getNumHandles(), 0);
+}
+
+// A box beyond the world bounds is clamped onto them (not an error: the object stays in the simulation),
+// and the broadphase says so once, since pairs near the bounds may then be reported without touching.
+TEST(AxisSweep3, ABoxOutsideTheWorldBoundsIsClampedWithOneWarning)
+{
+	int warnings = 0;
+	btSetWarningHook([](const char*, void* count) { ++*static_cast<int*>(count); }, &warnings);
+	btAxisSweep3 sweep(btVector3(-10, -10, -10), btVector3(10, 10, 10), 16, 0, true);
+	btBroadphaseProxy* inside = sweep.createProxy(btVector3(0, 0, 0), btVector3(1, 1, 1), 0, idToClient(0), 1, -1, 0);
+	EXPECT_EQ(warnings, 0) << "a box inside the bounds is not reported";
+	// Both boxes lie beyond x = 10, 5 units apart: clamped, they share the flat box on the boundary.
+	btBroadphaseProxy* a = sweep.createProxy(btVector3(20, 0, 0), btVector3(21, 1, 1), 0, idToClient(1), 1, -1, 0);
+	btBroadphaseProxy* b = sweep.createProxy(btVector3(26, 0, 0), btVector3(27, 1, 1), 0, idToClient(2), 1, -1, 0);
+	ASSERT_NE(a, nullptr);
+	ASSERT_NE(b, nullptr);
+	EXPECT_EQ(warnings, 1) << "one warning per broadphase";
+	EXPECT_TRUE(sweep.testAabbOverlap(a, b)) << "clamped onto the same boundary";
+	EXPECT_FALSE(sweep.testAabbOverlap(a, inside));
+	btSetWarningHook(0, 0);
 }

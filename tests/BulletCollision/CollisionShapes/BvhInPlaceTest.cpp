@@ -20,6 +20,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -136,6 +137,43 @@ TEST(BvhInPlace, QuantizedAndPlainTreesAnswerEveryQueryAsTheOriginal)
 		            nodes < static_cast<const void*>(block.data + grid.bytes));
 		expectSameAnswers(grid.bvh, *loaded, kGrid);
 		loaded->~btOptimizedBvh();  // frees nothing: the block is the caller's
+	}
+}
+
+// Bullet declares the in-place constructor btQuantizedBvh(btQuantizedBvh&, bool ownsMemory) private:
+// code written for Bullet cannot call it, and neither can ours.
+static_assert(!std::is_constructible<btQuantizedBvh, btQuantizedBvh&, bool>::value,
+              "Bullet's in-place constructor is private");
+
+TEST(BvhInPlace, InPlaceConstructorTakesTheStateAndViewsTheBlockWithoutCopying)
+{
+	for (int quantized = 0; quantized < 2; ++quantized)
+	{
+		WrittenGrid grid(kGrid, quantized == 1, false);
+		ASSERT_TRUE(grid.written);
+		unsigned char* data = grid.block->data;
+		btQuantizedBvh* loaded = btQuantizedBvh::deSerializeInPlace(data, grid.bytes, false);
+		ASSERT_NE(loaded, nullptr);
+		EXPECT_EQ(loaded->isQuantized(), quantized == 1);
+		EXPECT_EQ(caliber::bvhNodeCount(*loaded), caliber::bvhNodeCount(grid.bvh));
+		// The quantization box is the original's bit for bit (a quantized corner maps to the same point).
+		EXPECT_EQ(caliber::bvhAabbMin(*loaded), caliber::bvhAabbMin(grid.bvh));
+		EXPECT_EQ(caliber::bvhAabbMax(*loaded), caliber::bvhAabbMax(grid.bvh));
+		EXPECT_EQ(caliber::bvhQuantization(*loaded), caliber::bvhQuantization(grid.bvh));
+		// Every array the constructor took views the block (ownsMemory false): nodes and subtree headers.
+		const auto inBlock = [&](const void* p)
+		{ return p >= data && p < static_cast<const void*>(data + grid.bytes); };
+		const void* nodes = quantized ? static_cast<const void*>(&loaded->getQuantizedNodeArray()[0])
+		                              : static_cast<const void*>(&caliber::bvhNodeArray(*loaded)[0]);
+		EXPECT_TRUE(inBlock(nodes));
+		EXPECT_EQ(loaded->getSubtreeInfoArray().size(), grid.bvh.getSubtreeInfoArray().size());
+		if (quantized)
+		{
+			ASSERT_GT(loaded->getSubtreeInfoArray().size(), 0);
+			EXPECT_TRUE(inBlock(&loaded->getSubtreeInfoArray()[0]));
+		}
+		expectSameAnswers(grid.bvh, *loaded, kGrid);
+		loaded->~btQuantizedBvh();  // frees nothing: the block is the caller's
 	}
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "BulletDynamics/ConstraintSolver/btConeTwistConstraint.h"
 #include "JointTestUtil.h"
@@ -165,4 +166,41 @@ TEST(ConeTwistConstraint, DampingRemovesItsShareOfTheRelativeTurnPerStep)
 	EXPECT_NEAR(h.limb->getAngularVelocity().y(), 1.0, 1e-3);
 	w.run(1);
 	EXPECT_NEAR(h.limb->getAngularVelocity().y(), 0.5, 1e-3);
+}
+
+// A NaN or infinite number anywhere in a frame (origin or basis) would give the solver NaN rows: the
+// joint asserts, or without asserts is disabled with one warning and leaves its body falling freely.
+TEST(ConeTwistConstraint, NonFiniteFrameAssertsOrDisablesTheJointWithAWarning)
+{
+	const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+	const btTransform nanOrigin(btQuaternion::getIdentity(), btVector3(0, nan, 0));
+	btTransform nanBasis = btTransform::getIdentity();
+	nanBasis.getBasis()[1].setZ(std::numeric_limits<btScalar>::infinity());
+	for (const btTransform& bad : {nanOrigin, nanBasis})
+	{
+		TestWorld w(btVector3(0, -kG, 0));
+		btRigidBody* body = w.addBody(w.shape<btSphereShape>(btScalar(0.2)), 1, btVector3(0, 0, 0));
+#if CALIBER_ASSERTS_ENABLED
+		EXPECT_DEATH({ btConeTwistConstraint joint(*body, bad); }, "non-finite frame");
+		EXPECT_DEATH(
+		    {
+			    btConeTwistConstraint joint(*body, btTransform::getIdentity());
+			    joint.setFrames(btTransform::getIdentity(), bad);
+		    },
+		    "non-finite frame");
+#else
+		caliber_test::WarningCounter warnings;
+		btConeTwistConstraint* joint = w.addJoint<btConeTwistConstraint>(false, *body, bad);
+		EXPECT_FALSE(joint->isEnabled());
+		EXPECT_EQ(warnings.count(), 1) << "one warning for the joint";
+		w.run(30);
+		// Inert: the body falls freely (semi-implicit Euler: -g h^2 n (n + 1) / 2 = -1.29 m).
+		EXPECT_NEAR(body->getCenterOfMassPosition().y(), -10.0 / 3600 * 30 * 31 / 2, 1e-4);
+		btConeTwistConstraint* later = w.addJoint<btConeTwistConstraint>(false, *body, btTransform::getIdentity());
+		EXPECT_TRUE(later->isEnabled());
+		later->setFrames(btTransform::getIdentity(), bad);
+		EXPECT_FALSE(later->isEnabled()) << "setFrames is checked too";
+		EXPECT_EQ(warnings.count(), 2);
+#endif
+	}
 }

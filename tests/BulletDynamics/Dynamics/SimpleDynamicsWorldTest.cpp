@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "LinearMath/btWarningHook.h"
 #include "btBulletDynamicsCommon.h"
 
 TEST(SimpleDynamicsWorld, FallsWithSemiImplicitEulerAndRestsOnTheGround)
@@ -43,4 +44,31 @@ TEST(SimpleDynamicsWorld, FallsWithSemiImplicitEulerAndRestsOnTheGround)
 	world.removeRigidBody(&ball);
 	world.removeRigidBody(&ground);
 	EXPECT_EQ(world.getNumCollisionObjects(), 0);
+}
+
+// btSimpleDynamicsWorld has no action stage: addAction says so (a vehicle added there would silently do
+// nothing otherwise) and the action is never run.
+TEST(SimpleDynamicsWorld, AddActionIsReportedAndTheActionNeverRuns)
+{
+	struct CountingAction : btActionInterface
+	{
+		int updates = 0;
+		void updateAction(btCollisionWorld*, btScalar) override { ++updates; }
+		void debugDraw(btIDebugDraw*) override {}
+	};
+	btDefaultCollisionConfiguration configuration;
+	btCollisionDispatcher dispatcher(&configuration);
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btSimpleDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+	int warnings = 0;
+	btSetWarningHook([](const char*, void* count) { ++*static_cast<int*>(count); }, &warnings);
+	CountingAction action;
+	world.addAction(&action);
+	EXPECT_EQ(warnings, 1);
+	for (int i = 0; i < 10; ++i) world.stepSimulation(btScalar(1. / 60.));
+	EXPECT_EQ(action.updates, 0);
+	world.removeAction(&action);
+	EXPECT_EQ(warnings, 1) << "removing it is harmless";
+	btSetWarningHook(0, 0);
 }
