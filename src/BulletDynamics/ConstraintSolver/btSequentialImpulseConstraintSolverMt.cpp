@@ -405,6 +405,150 @@ struct BatchSweep : public btIParallelForBody
 };
 }  // namespace
 
+namespace
+{
+// Greedy colouring in manifold order: each manifold takes the lowest colour neither of its moving bodies
+// has (the fixed entry is shared freely).
+void colourManifolds(MtSolverScratch& mt, const btConstraintArray& contacts, const caliber::SolverScratch& scratch,
+                     int numManifoldsWithRows, int numSolverBodies, int fixedBodyId)
+{
+	caliber::assignScratch(mt.bodyColours, numSolverBodies, 0);
+	caliber::resizeScratch(mt.manifoldColour, numManifoldsWithRows);
+	caliber::assignScratch(mt.colourCount, kColours + 1, 0);
+	caliber::assignScratch(mt.colourRows, kColours + 1, 0);
+	for (int m = 0; m < numManifoldsWithRows; ++m)
+	{
+		const btSolverConstraint& first = contacts[scratch.manifoldFirstRow[m]];
+		const int a = first.m_solverBodyIdA, b = first.m_solverBodyIdB;
+		const uint32_t takenA = a == fixedBodyId ? 0u : mt.bodyColours[a];
+		const uint32_t takenB = b == fixedBodyId ? 0u : mt.bodyColours[b];
+		const int colour = lowestFreeColour(takenA | takenB);
+		if (colour < kColours)
+		{
+			if (a != fixedBodyId) mt.bodyColours[a] |= uint32_t(1) << colour;
+			if (b != fixedBodyId) mt.bodyColours[b] |= uint32_t(1) << colour;
+		}
+		mt.manifoldColour[m] = colour;
+		++mt.colourCount[colour];
+		mt.colourRows[colour] += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+	}
+}
+
+// Manifolds colour by colour, and within a colour by their first moving body (two stable counting sorts):
+// a run of batches then holds the bodies of one region of the island (see the sweep).
+void orderManifoldsByColourAndBody(MtSolverScratch& mt, const btConstraintArray& contacts,
+                                   const caliber::SolverScratch& scratch, int numManifoldsWithRows,
+                                   int numSolverBodies, int fixedBodyId)
+{
+	caliber::assignScratch(mt.bodyOrder, numSolverBodies + 1, 0);
+	for (int m = 0; m < numManifoldsWithRows; ++m)
+		++mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], fixedBodyId) + 1];
+	for (int b = 0; b < numSolverBodies; ++b) mt.bodyOrder[b + 1] += mt.bodyOrder[b];
+	caliber::resizeScratch(mt.byBody, numManifoldsWithRows);
+	for (int m = 0; m < numManifoldsWithRows; ++m)
+		mt.byBody[mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], fixedBodyId)]++] = m;
+	caliber::resizeScratch(mt.colourCursor, kColours + 1);
+	int start = 0;
+	for (int c = 0; c <= kColours; ++c)
+	{
+		mt.colourCursor[c] = start;
+		start += mt.colourCount[c];
+	}
+	caliber::resizeScratch(mt.orderedManifolds, numManifoldsWithRows);
+	for (int k = 0; k < numManifoldsWithRows; ++k)
+	{
+		const int m = mt.byBody[k];
+		mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
+	}
+}
+
+// Batches: whole manifolds, at least minBatchSize rows, and about a sixteenth of the colour, so that every
+// thread finds work; the last colour (the manifolds no colour was left for) is one batch. One phase per
+// colour.
+void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scratch, int minBatchSize,
+                        btBatchedConstraints& batched)
+{
+	int nextManifold = 0;
+	mt.batchManifoldBegin.resize(0);
+	for (int c = 0; c <= kColours; ++c)
+	{
+		if (mt.colourCount[c] == 0) continue;
+		const int phaseBegin = batched.m_batches.size();
+		const int targetRows =
+		    c == kColours ? mt.colourRows[c] : btMax(btMax(1, minBatchSize), (mt.colourRows[c] + 15) / 16);
+		int batchBegin = batched.m_constraintIndices.size();
+		int batchRows = 0;
+		const int colourBegin = nextManifold;
+		int batchFirstManifold = colourBegin;
+		for (int k = 0; k < mt.colourCount[c]; ++k)
+		{
+			const int m = mt.orderedManifolds[nextManifold++];
+			batchRows += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
+			appendBatchRows(&mt.orderedManifolds[batchFirstManifold], nextManifold - batchFirstManifold,
+			                scratch.manifoldFirstRow, scratch.solveCount, batched.m_constraintIndices);
+			mt.batchManifoldBegin.push_back(batchFirstManifold);
+			batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
+			batchBegin = batched.m_constraintIndices.size();
+			batchFirstManifold = nextManifold;
+			batchRows = 0;
+		}
+		batched.m_phaseOrder.push_back(batched.m_phases.size());
+		batched.m_phases.push_back(btBatchedConstraints::Range(phaseBegin, batched.m_batches.size()));
+		batched.m_phaseGrainSize.push_back(1);
+	}
+	mt.batchManifoldBegin.push_back(nextManifold);
+}
+
+// Each batch's rows of the fixed entry are pointed at the batch's own copy of it (see the file comment):
+// contact and friction rows by batch, rolling rows after their contact row.
+void giveBatchesFixedBodyCopies(const btBatchedConstraints& batched, int fixedBodyId, int firstCopy,
+                                int frictionRows, btConstraintArray& contacts, btConstraintArray& friction,
+                                btConstraintArray& rolling)
+{
+	for (int b = 0; b < batched.m_batches.size(); ++b)
+	{
+		const int copy = firstCopy + b;
+		for (int i = batched.m_batches[b].begin; i < batched.m_batches[b].end; ++i)
+		{
+			const int j = batched.m_constraintIndices[i];
+			btSolverConstraint& row = contacts[j];
+			if (row.m_solverBodyIdA == fixedBodyId) row.m_solverBodyIdA = copy;
+			if (row.m_solverBodyIdB == fixedBodyId) row.m_solverBodyIdB = copy;
+			for (int f = 0; f < frictionRows; ++f)
+			{
+				btSolverConstraint& frictionRow = friction[j * frictionRows + f];
+				if (frictionRow.m_solverBodyIdA == fixedBodyId) frictionRow.m_solverBodyIdA = copy;
+				if (frictionRow.m_solverBodyIdB == fixedBodyId) frictionRow.m_solverBodyIdB = copy;
+			}
+		}
+	}
+	for (int r = 0; r < rolling.size(); ++r)
+	{
+		btSolverConstraint& row = rolling[r];
+		const btSolverConstraint& contact = contacts[row.m_frictionIndex];
+		if (row.m_solverBodyIdA == fixedBodyId) row.m_solverBodyIdA = contact.m_solverBodyIdA;
+		if (row.m_solverBodyIdB == fixedBodyId) row.m_solverBodyIdB = contact.m_solverBodyIdB;
+	}
+}
+
+// Rolling rows grouped by their contact row (counting sort).
+void groupRollingRows(MtSolverScratch& mt, int numContacts, const btConstraintArray& rolling)
+{
+	caliber::assignScratch(mt.rollingStart, numContacts + 1, 0);
+	const int numRolling = rolling.size();
+	for (int r = 0; r < numRolling; ++r) ++mt.rollingStart[rolling[r].m_frictionIndex + 1];
+	for (int j = 0; j < numContacts; ++j) mt.rollingStart[j + 1] += mt.rollingStart[j];
+	caliber::resizeScratch(mt.rollingRows, numRolling);
+	caliber::assignScratch(mt.colourCursor, numContacts, 0);
+	for (int r = 0; r < numRolling; ++r)
+	{
+		const int j = rolling[r].m_frictionIndex;
+		mt.rollingRows[mt.rollingStart[j] + mt.colourCursor[j]++] = r;
+	}
+}
+}  // namespace
+
 btSequentialImpulseConstraintSolverMt::btSequentialImpulseConstraintSolverMt() : m_useBatching(false) {}
 
 btSequentialImpulseConstraintSolverMt::~btSequentialImpulseConstraintSolverMt()
@@ -526,83 +670,9 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	MtSolverScratch& mt = mtScratchOf(*this);
 	const btConstraintArray& contacts = m_tmpSolverContactConstraintPool;
 	const int numSolverBodies = m_tmpSolverBodyPool.size();
-	// Greedy colouring in manifold order: each manifold takes the lowest colour neither of its moving
-	// bodies has (the fixed entry is shared freely).
-	caliber::assignScratch(mt.bodyColours, numSolverBodies, 0);
-	caliber::resizeScratch(mt.manifoldColour, numManifoldsWithRows);
-	caliber::assignScratch(mt.colourCount, kColours + 1, 0);
-	caliber::assignScratch(mt.colourRows, kColours + 1, 0);
-	for (int m = 0; m < numManifoldsWithRows; ++m)
-	{
-		const btSolverConstraint& first = contacts[scratch.manifoldFirstRow[m]];
-		const int a = first.m_solverBodyIdA, b = first.m_solverBodyIdB;
-		const uint32_t takenA = a == m_fixedBodyId ? 0u : mt.bodyColours[a];
-		const uint32_t takenB = b == m_fixedBodyId ? 0u : mt.bodyColours[b];
-		const int colour = lowestFreeColour(takenA | takenB);
-		if (colour < kColours)
-		{
-			if (a != m_fixedBodyId) mt.bodyColours[a] |= uint32_t(1) << colour;
-			if (b != m_fixedBodyId) mt.bodyColours[b] |= uint32_t(1) << colour;
-		}
-		mt.manifoldColour[m] = colour;
-		++mt.colourCount[colour];
-		mt.colourRows[colour] += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
-	}
-	// Manifolds colour by colour, and within a colour by their first moving body (two stable counting
-	// sorts): a run of batches then holds the bodies of one region of the island (see the sweep).
-	caliber::assignScratch(mt.bodyOrder, numSolverBodies + 1, 0);
-	for (int m = 0; m < numManifoldsWithRows; ++m)
-		++mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], m_fixedBodyId) + 1];
-	for (int b = 0; b < numSolverBodies; ++b) mt.bodyOrder[b + 1] += mt.bodyOrder[b];
-	caliber::resizeScratch(mt.byBody, numManifoldsWithRows);
-	for (int m = 0; m < numManifoldsWithRows; ++m)
-		mt.byBody[mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], m_fixedBodyId)]++] = m;
-	caliber::resizeScratch(mt.colourCursor, kColours + 1);
-	int start = 0;
-	for (int c = 0; c <= kColours; ++c)
-	{
-		mt.colourCursor[c] = start;
-		start += mt.colourCount[c];
-	}
-	caliber::resizeScratch(mt.orderedManifolds, numManifoldsWithRows);
-	for (int k = 0; k < numManifoldsWithRows; ++k)
-	{
-		const int m = mt.byBody[k];
-		mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
-	}
-
-	// Batches: whole manifolds, at least s_minBatchSize rows, and about a sixteenth of the colour, so that
-	// every thread finds work; the last colour (the manifolds no colour was left for) is one batch.
-	int nextManifold = 0;
-	mt.batchManifoldBegin.resize(0);
-	for (int c = 0; c <= kColours; ++c)
-	{
-		if (mt.colourCount[c] == 0) continue;
-		const int phaseBegin = batched.m_batches.size();
-		const int targetRows =
-		    c == kColours ? mt.colourRows[c] : btMax(btMax(1, s_minBatchSize), (mt.colourRows[c] + 15) / 16);
-		int batchBegin = batched.m_constraintIndices.size();
-		int batchRows = 0;
-		const int colourBegin = nextManifold;
-		int batchFirstManifold = colourBegin;
-		for (int k = 0; k < mt.colourCount[c]; ++k)
-		{
-			const int m = mt.orderedManifolds[nextManifold++];
-			batchRows += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
-			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
-			appendBatchRows(&mt.orderedManifolds[batchFirstManifold], nextManifold - batchFirstManifold,
-			                scratch.manifoldFirstRow, scratch.solveCount, batched.m_constraintIndices);
-			mt.batchManifoldBegin.push_back(batchFirstManifold);
-			batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
-			batchBegin = batched.m_constraintIndices.size();
-			batchFirstManifold = nextManifold;
-			batchRows = 0;
-		}
-		batched.m_phaseOrder.push_back(batched.m_phases.size());
-		batched.m_phases.push_back(btBatchedConstraints::Range(phaseBegin, batched.m_batches.size()));
-		batched.m_phaseGrainSize.push_back(1);
-	}
-	mt.batchManifoldBegin.push_back(nextManifold);
+	colourManifolds(mt, contacts, scratch, numManifoldsWithRows, numSolverBodies, m_fixedBodyId);
+	orderManifoldsByColourAndBody(mt, contacts, scratch, numManifoldsWithRows, numSolverBodies, m_fixedBodyId);
+	buildColourBatches(mt, scratch, s_minBatchSize, batched);
 
 	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
 	// rolling rows; the wide sweep's padding lanes use it too (a zero body when there is no fixed entry).
@@ -622,46 +692,11 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		const btSolverBody fixedBody = m_tmpSolverBodyPool[m_fixedBodyId];
 		m_tmpSolverBodyPool.resize(firstCopy + batched.m_batches.size(), fixedBody);
 		for (int b = 0; b < batched.m_batches.size(); ++b) mt.batchPaddingBody[b] = firstCopy + b;
-		const int frictionRows = caliber::frictionRowsPerContact(infoGlobal);
-		for (int b = 0; b < batched.m_batches.size(); ++b)
-		{
-			const int copy = firstCopy + b;
-			for (int i = batched.m_batches[b].begin; i < batched.m_batches[b].end; ++i)
-			{
-				const int j = batched.m_constraintIndices[i];
-				btSolverConstraint& row = m_tmpSolverContactConstraintPool[j];
-				if (row.m_solverBodyIdA == m_fixedBodyId) row.m_solverBodyIdA = copy;
-				if (row.m_solverBodyIdB == m_fixedBodyId) row.m_solverBodyIdB = copy;
-				for (int f = 0; f < frictionRows; ++f)
-				{
-					btSolverConstraint& frictionRow = m_tmpSolverContactFrictionConstraintPool[j * frictionRows + f];
-					if (frictionRow.m_solverBodyIdA == m_fixedBodyId) frictionRow.m_solverBodyIdA = copy;
-					if (frictionRow.m_solverBodyIdB == m_fixedBodyId) frictionRow.m_solverBodyIdB = copy;
-				}
-			}
-		}
-		for (int r = 0; r < m_tmpSolverContactRollingFrictionConstraintPool.size(); ++r)
-		{
-			btSolverConstraint& row = m_tmpSolverContactRollingFrictionConstraintPool[r];
-			const btSolverConstraint& contact = m_tmpSolverContactConstraintPool[row.m_frictionIndex];
-			if (row.m_solverBodyIdA == m_fixedBodyId) row.m_solverBodyIdA = contact.m_solverBodyIdA;
-			if (row.m_solverBodyIdB == m_fixedBodyId) row.m_solverBodyIdB = contact.m_solverBodyIdB;
-		}
+		giveBatchesFixedBodyCopies(batched, m_fixedBodyId, firstCopy, caliber::frictionRowsPerContact(infoGlobal),
+		                           m_tmpSolverContactConstraintPool, m_tmpSolverContactFrictionConstraintPool,
+		                           m_tmpSolverContactRollingFrictionConstraintPool);
 	}
-
-	// Rolling rows grouped by their contact row (counting sort).
-	const int numContacts = contacts.size();
-	caliber::assignScratch(mt.rollingStart, numContacts + 1, 0);
-	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
-	for (int r = 0; r < numRolling; ++r) ++mt.rollingStart[m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex + 1];
-	for (int j = 0; j < numContacts; ++j) mt.rollingStart[j + 1] += mt.rollingStart[j];
-	caliber::resizeScratch(mt.rollingRows, numRolling);
-	caliber::assignScratch(mt.colourCursor, numContacts, 0);
-	for (int r = 0; r < numRolling; ++r)
-	{
-		const int j = m_tmpSolverContactRollingFrictionConstraintPool[r].m_frictionIndex;
-		mt.rollingRows[mt.rollingStart[j] + mt.colourCursor[j]++] = r;
-	}
+	groupRollingRows(mt, contacts.size(), m_tmpSolverContactRollingFrictionConstraintPool);
 
 	if (mt.wide)
 	{
