@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "BulletDynamics/Dynamics/DynamicsWorldTestUtil.h"  // WarningCounter
 #include "SoftBodyTestUtil.h"
 
 using caliber_test::SoftTestWorld;
