@@ -384,6 +384,7 @@ struct LinkSweep : btIParallelForBody
 	const int* blocks;
 	int linkCount;
 	btScalar idt2;
+	bool fresh;  // the first sweep of a substep: the multipliers start at zero (whatever m_c2 holds)
 	void forLoop(int begin, int end) const override
 	{
 		for (int k = begin; k < end; ++k)
@@ -404,8 +405,9 @@ struct LinkSweep : btIParallelForBody
 				if (len <= SIMD_EPSILON) continue;
 				const btScalar c = len - l.m_rl;
 				const btScalar alpha = compliance * idt2;
-				const btScalar dlambda = (-c - alpha * l.m_c2) / (w + alpha);
-				l.m_c2 += dlambda;
+				const btScalar lambda = fresh ? btScalar(0) : l.m_c2;
+				const btScalar dlambda = (-c - alpha * lambda) / (w + alpha);
+				l.m_c2 = lambda + dlambda;
 				const btVector3 corr = d * (dlambda / len);
 				a.m_x -= corr * a.m_im;
 				b.m_x += corr * b.m_im;
@@ -416,7 +418,7 @@ struct LinkSweep : btIParallelForBody
 
 // One Gauss-Seidel sweep over the links, colour by colour; a colour of several blocks is spread over
 // the task scheduler, a block per task. A body of one block (colours 0) is swept in index order.
-void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours)
+void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours, bool fresh = false)
 {
 	const int links = body.m_links.size();
 	if (links == 0) return;
@@ -424,6 +426,7 @@ void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* c
 	sweep.links = &body.m_links[0];
 	sweep.linkCount = links;
 	sweep.idt2 = btScalar(1) / (dt * dt);
+	sweep.fresh = fresh;
 	if (!colours || links <= caliber::kLinkBlock)
 	{
 		const int onlyBlock = 0;
@@ -748,7 +751,8 @@ void startSubsteps(btSoftBody& body, btScalar dt, const btVector3& gravity, btAl
 	}
 }
 
-// A substep's prediction; it is an XPBD step of its own, so the multipliers start at zero.
+// A substep's prediction; it is an XPBD step of its own, so the multipliers start at zero (the links' in
+// the substep's first sweep, which saves a pass over them).
 void predictSubstep(btSoftBody& body, btScalar h, const btVector3& gravity)
 {
 	for (int i = 0; i < body.m_nodes.size(); ++i)
@@ -759,7 +763,6 @@ void predictSubstep(btSoftBody& body, btScalar h, const btVector3& gravity)
 		n.m_q = n.m_x;
 		n.m_x += n.m_v * h;
 	}
-	for (int i = 0; i < body.m_links.size(); ++i) body.m_links[i].m_c2 = 0;
 	for (int i = 0; i < body.m_tetras.size(); ++i) body.m_tetras[i].m_c2 = 0;
 }
 
@@ -854,7 +857,7 @@ void btSoftBody::solveConstraints()
 			for (int s = 0; s < m_cfg.m_psequence.size(); ++s) switch (m_cfg.m_psequence[s])
 				{
 					case ePSolver::Linear:
-						solveLinks(*this, h, linkColours);
+						solveLinks(*this, h, linkColours, substeps && sweep == 0);
 						if (m_tetras.size() > 0) solveTetras(*this, h);
 						caliber::solveTethers(*this, tethers);
 						if (keepVolume)
