@@ -736,29 +736,27 @@ bool canSubstep(const btSoftBody& body, const caliber::SoftFaceContacts* faceCon
 	return true;
 }
 
-// Back to the step's start: the prediction's move (forces, gravity, pushes by other bodies' contacts) becomes
-// the velocity the substeps take over, gravity then added in each. The start is kept for finishSubsteps.
-void startSubsteps(btSoftBody& body, btScalar dt, const btVector3& gravity, btAlignedObjectArray<btVector3>& start)
+// A substep's prediction. The first substep starts from the step's start (kept in start for finishSubsteps):
+// the prediction's move over the whole step (forces, gravity, pushes by other bodies' contacts) becomes its
+// velocity; a later one takes the last substep's move as its velocity. Gravity is added per substep. Each
+// substep is an XPBD step of its own, so the multipliers start at zero (the links' in the substep's first
+// sweep, which saves a pass over them).
+void predictSubstep(btSoftBody& body, btScalar dt, btScalar h, const btVector3& gravity, bool first,
+                    btAlignedObjectArray<btVector3>& start)
 {
-	start.resize(body.m_nodes.size());
+	if (first) start.resize(body.m_nodes.size());
 	for (int i = 0; i < body.m_nodes.size(); ++i)
 	{
 		btSoftBody::Node& n = body.m_nodes[i];
-		start[i] = n.m_q;
+		if (first) start[i] = n.m_q;
 		if (n.m_im <= 0) continue;
-		n.m_v = (n.m_x - n.m_q) / dt - gravity * dt;
-		n.m_x = n.m_q;
-	}
-}
-
-// A substep's prediction; it is an XPBD step of its own, so the multipliers start at zero (the links' in
-// the substep's first sweep, which saves a pass over them).
-void predictSubstep(btSoftBody& body, btScalar h, const btVector3& gravity)
-{
-	for (int i = 0; i < body.m_nodes.size(); ++i)
-	{
-		btSoftBody::Node& n = body.m_nodes[i];
-		if (n.m_im <= 0) continue;
+		if (first)
+		{
+			n.m_v = (n.m_x - n.m_q) / dt - gravity * dt;
+			n.m_x = n.m_q;
+		}
+		else
+			n.m_v = (n.m_x - n.m_q) / h;
 		n.m_v += gravity * h;
 		n.m_q = n.m_x;
 		n.m_x += n.m_v * h;
@@ -766,23 +764,15 @@ void predictSubstep(btSoftBody& body, btScalar h, const btVector3& gravity)
 	for (int i = 0; i < body.m_tetras.size(); ++i) body.m_tetras[i].m_c2 = 0;
 }
 
-void endSubstep(btSoftBody& body, btScalar h)
-{
-	for (int i = 0; i < body.m_nodes.size(); ++i)
-	{
-		btSoftBody::Node& n = body.m_nodes[i];
-		if (n.m_im > 0) n.m_v = (n.m_x - n.m_q) / h;
-	}
-}
-
-// integrateMotion takes the velocity as (x - q) / dt: the last substep's. A node gone non-finite gets its
+// integrateMotion takes the velocity as (x - q) / dt: the last substep's move over h. A node gone non-finite gets its
 // step's start back as q, where integrateMotion puts it (docs/bad-input.md).
-void finishSubsteps(btSoftBody& body, btScalar dt, const btAlignedObjectArray<btVector3>& start)
+void finishSubsteps(btSoftBody& body, btScalar dt, btScalar h, const btAlignedObjectArray<btVector3>& start)
 {
 	for (int i = 0; i < body.m_nodes.size(); ++i)
 	{
 		btSoftBody::Node& n = body.m_nodes[i];
 		if (n.m_im <= 0) continue;
+		n.m_v = (n.m_x - n.m_q) / h;
 		n.m_q = n.m_x - n.m_v * dt;
 		if (!caliber::isFinite(n.m_q)) n.m_q = start[i];
 	}
@@ -843,14 +833,13 @@ void btSoftBody::solveConstraints()
 	const btScalar h = dt / btScalar(stepCount);
 	const btVector3 gravity = m_worldInfo ? m_worldInfo->m_gravity : btVector3(0, 0, 0);
 	static thread_local btAlignedObjectArray<btVector3> stepStart;
-	if (substeps) startSubsteps(*this, dt, gravity, stepStart);
 	for (int sub = 0; sub < stepCount; ++sub)
 	{
 		// This substep's sweeps: the iterations shared out, the first substeps taking the remainder.
 		const int sweeps = iterations / stepCount + (sub < iterations % stepCount ? 1 : 0);
 		if (substeps)
 		{
-			predictSubstep(*this, h, gravity);
+			predictSubstep(*this, dt, h, gravity, sub == 0, stepStart);
 			volumeLambda = gasLambda = 0;
 		}
 		for (int sweep = 0; sweep < sweeps; ++sweep)
@@ -882,12 +871,11 @@ void btSoftBody::solveConstraints()
 				}
 		if (substeps)
 		{
-			// The substep ends out of the rigid objects; its velocity is its move.
+			// The substep ends out of the rigid objects; its velocity is its move (taken by the next).
 			solveContacts(*this, h, faceContacts);
-			endSubstep(*this, h);
 		}
 	}
-	if (substeps) finishSubsteps(*this, dt, stepStart);
+	if (substeps) finishSubsteps(*this, dt, h, stepStart);
 	if (m_cfg.kMT > 0 && m_pose.m_bframe)
 	{
 		updatePose();
