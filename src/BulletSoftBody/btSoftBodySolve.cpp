@@ -74,6 +74,10 @@ namespace
 {
 // The step at which a link's stiffness m_kLST is defined (see updateLinkConstants).
 const btScalar kReferenceStep = btScalar(1) / btScalar(60);
+// The most substeps a soft body's step is cut into: a substep's move must stay well above the rounding of
+// the positions, or the velocities taken from the moves are lost (200 substeps of 1/60 s move a node
+// g h^2 = 7e-8 m: nothing, at 5 m from the origin in single precision).
+const int kMaxSubsteps = 4;
 
 // Air force on a surface element of area `area` and unit normal n moving at rel against the air.
 // Drag along -rel with coefficient kDG, lift across rel with kLF; projected area |n . rel|.
@@ -380,6 +384,7 @@ struct LinkSweep : btIParallelForBody
 	const int* blocks;
 	int linkCount;
 	btScalar idt2;
+	bool fresh;  // the first sweep of a substep: the multipliers start at zero (whatever m_c2 holds)
 	void forLoop(int begin, int end) const override
 	{
 		for (int k = begin; k < end; ++k)
@@ -400,8 +405,9 @@ struct LinkSweep : btIParallelForBody
 				if (len <= SIMD_EPSILON) continue;
 				const btScalar c = len - l.m_rl;
 				const btScalar alpha = compliance * idt2;
-				const btScalar dlambda = (-c - alpha * l.m_c2) / (w + alpha);
-				l.m_c2 += dlambda;
+				const btScalar lambda = fresh ? btScalar(0) : l.m_c2;
+				const btScalar dlambda = (-c - alpha * lambda) / (w + alpha);
+				l.m_c2 = lambda + dlambda;
 				const btVector3 corr = d * (dlambda / len);
 				a.m_x -= corr * a.m_im;
 				b.m_x += corr * b.m_im;
@@ -412,7 +418,7 @@ struct LinkSweep : btIParallelForBody
 
 // One Gauss-Seidel sweep over the links, colour by colour; a colour of several blocks is spread over
 // the task scheduler, a block per task. A body of one block (colours 0) is swept in index order.
-void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours)
+void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours, bool fresh = false)
 {
 	const int links = body.m_links.size();
 	if (links == 0) return;
@@ -420,6 +426,7 @@ void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* c
 	sweep.links = &body.m_links[0];
 	sweep.linkCount = links;
 	sweep.idt2 = btScalar(1) / (dt * dt);
+	sweep.fresh = fresh;
 	if (!colours || links <= caliber::kLinkBlock)
 	{
 		const int onlyBlock = 0;
@@ -654,7 +661,7 @@ namespace
 // Soft-soft contacts (VF_SS): a node of this body kept on its side of another body's face, at the
 // distance m_margin; the correction is shared by the node and the face's nodes by their inverse masses
 // and barycentric weights, so momentum is conserved; Coulomb friction with the larger kDF.
-void solveSoftContacts(btSoftBody& body)
+void solveSoftContacts(btSoftBody& body, btScalar dt)
 {
 	for (int i = 0; i < body.m_scontacts.size(); ++i)
 	{
@@ -674,7 +681,6 @@ void solveSoftContacts(btSoftBody& body)
 		const btScalar lambda = -gap / w;
 		// As for rigid contacts: velocities change only as far as node and face stop approaching (an
 		// inelastic contact), the rest moves positions alone (the start points move with them).
-		const btScalar dt = body.m_sst.sdt;
 		btVector3 faceMove = (f[0]->m_x - f[0]->m_q) * c.m_weights[0] + (f[1]->m_x - f[1]->m_q) * c.m_weights[1] +
 		                     (f[2]->m_x - f[2]->m_q) * c.m_weights[2];
 		const btScalar approach = (faceMove - (n.m_x - n.m_q)).dot(normal) / dt;
@@ -702,6 +708,73 @@ void solveSoftContacts(btSoftBody& body)
 		const btVector3 dir = slide / slideLength;
 		n.m_x -= dir * (mu * n.m_im);
 		for (int k = 0; k < 3; ++k) f[k]->m_x += dir * (mu * c.m_weights[k] * f[k]->m_im);
+	}
+}
+}  // namespace
+
+namespace
+{
+// Substeps ("small steps", Macklin, Storey, Lu et al. 2019; docs/soft-bodies.md, "Substeps"). Under a steady
+// load a Gauss-Seidel sweep leaves an error that grows with the load's move per step, g h^2, and contacts with
+// friction keep it from step to step; the same sweeps over n substeps cut that move by n^2 (bench_soft's
+// cloth_drape: worst link 1.40 -> 1.21). The stiffness stays the one kLST and piterations define (the
+// compliance is taken over the substep's h^2).
+
+// Bodies with clusters or joints (whose stage runs once per step, after this solve), anchored to or touching a
+// movable rigid body (its pose moves once per step, so the velocity its share of a substep's push gave it would
+// be felt by the next substeps without the body moving), or with soft-soft contacts of their own (they compare
+// the other body's move over the whole step with this body's) keep the single step.
+bool canSubstep(const btSoftBody& body, const caliber::SoftFaceContacts* faceContacts)
+{
+	if (body.m_clusters.size() > 0 || body.m_joints.size() > 0 || body.m_scontacts.size() > 0) return false;
+	for (int i = 0; i < body.m_anchors.size(); ++i)
+		if (isMovable(body.m_anchors[i].m_body)) return false;
+	for (int i = 0; i < body.m_rcontacts.size(); ++i)
+		if (isMovable(btRigidBody::upcast(body.m_rcontacts[i].m_cti.m_colObj))) return false;
+	for (int i = 0; faceContacts && i < faceContacts->contacts.size(); ++i)
+		if (isMovable(btRigidBody::upcast(faceContacts->contacts[i].object))) return false;
+	return true;
+}
+
+// A substep's prediction. The first substep starts from the step's start (kept in start for finishSubsteps):
+// the prediction's move over the whole step (forces, gravity, pushes by other bodies' contacts) becomes its
+// velocity; a later one takes the last substep's move as its velocity. Gravity is added per substep. Each
+// substep is an XPBD step of its own, so the multipliers start at zero (the links' in the substep's first
+// sweep, which saves a pass over them).
+void predictSubstep(btSoftBody& body, btScalar dt, btScalar h, const btVector3& gravity, bool first,
+                    btAlignedObjectArray<btVector3>& start)
+{
+	if (first) start.resize(body.m_nodes.size());
+	for (int i = 0; i < body.m_nodes.size(); ++i)
+	{
+		btSoftBody::Node& n = body.m_nodes[i];
+		if (first) start[i] = n.m_q;
+		if (n.m_im <= 0) continue;
+		if (first)
+		{
+			n.m_v = (n.m_x - n.m_q) / dt - gravity * dt;
+			n.m_x = n.m_q;
+		}
+		else
+			n.m_v = (n.m_x - n.m_q) / h;
+		n.m_v += gravity * h;
+		n.m_q = n.m_x;
+		n.m_x += n.m_v * h;
+	}
+	for (int i = 0; i < body.m_tetras.size(); ++i) body.m_tetras[i].m_c2 = 0;
+}
+
+// integrateMotion takes the velocity as (x - q) / dt: the last substep's move over h. A node gone non-finite gets its
+// step's start back as q, where integrateMotion puts it (docs/bad-input.md).
+void finishSubsteps(btSoftBody& body, btScalar dt, btScalar h, const btAlignedObjectArray<btVector3>& start)
+{
+	for (int i = 0; i < body.m_nodes.size(); ++i)
+	{
+		btSoftBody::Node& n = body.m_nodes[i];
+		if (n.m_im <= 0) continue;
+		n.m_v = (n.m_x - n.m_q) / h;
+		n.m_q = n.m_x - n.m_v * dt;
+		if (!caliber::isFinite(n.m_q)) n.m_q = start[i];
 	}
 }
 }  // namespace
@@ -754,32 +827,55 @@ void btSoftBody::solveConstraints()
 	static thread_local btAlignedObjectArray<btVector3> volumeGradient;
 	caliber::SoftFaceContacts* faceContacts = m_faces.size() > 0 ? &caliber::softFaceContacts(*this) : 0;
 	const int iterations = btMax(m_cfg.piterations, 1);
-	for (int it = 0; it < iterations; ++it)
-		for (int s = 0; s < m_cfg.m_psequence.size(); ++s) switch (m_cfg.m_psequence[s])
-			{
-				case ePSolver::Linear:
-					solveLinks(*this, dt, linkColours);
-					if (m_tetras.size() > 0) solveTetras(*this, dt);
-					caliber::solveTethers(*this, tethers);
-					if (keepVolume)
-						solveVolume(*this, dt, m_pose.m_volume, 1 / m_cfg.kVC, 1 / m_cfg.kVC, volumeLambda,
-						            volumeGradient);
-					if (gasVolume)
-						solveVolume(*this, dt, tethers.restVolume, tethers.restVolume * tethers.restVolume / m_cfg.kPR,
-						            0, gasLambda, volumeGradient);
-					break;
-				case ePSolver::Anchors:
-					solveAnchors(*this, dt);
-					break;
-				case ePSolver::RContacts:
-					solveContacts(*this, dt, faceContacts);
-					break;
-				case ePSolver::SContacts:
-					solveSoftContacts(*this);
-					break;
-				default:
-					break;
-			}
+	// Substeps (docs/soft-bodies.md, "Substeps"): the sweeps run in up to kMaxSubsteps substeps of h / n.
+	const bool substeps = iterations > 1 && canSubstep(*this, faceContacts);
+	const int stepCount = substeps ? btMin(iterations, kMaxSubsteps) : 1;
+	const btScalar h = dt / btScalar(stepCount);
+	const btVector3 gravity = m_worldInfo ? m_worldInfo->m_gravity : btVector3(0, 0, 0);
+	static thread_local btAlignedObjectArray<btVector3> stepStart;
+	for (int sub = 0; sub < stepCount; ++sub)
+	{
+		// This substep's sweeps: the iterations shared out, the first substeps taking the remainder.
+		const int sweeps = iterations / stepCount + (sub < iterations % stepCount ? 1 : 0);
+		if (substeps)
+		{
+			predictSubstep(*this, dt, h, gravity, sub == 0, stepStart);
+			volumeLambda = gasLambda = 0;
+		}
+		for (int sweep = 0; sweep < sweeps; ++sweep)
+			for (int s = 0; s < m_cfg.m_psequence.size(); ++s) switch (m_cfg.m_psequence[s])
+				{
+					case ePSolver::Linear:
+						solveLinks(*this, h, linkColours, substeps && sweep == 0);
+						if (m_tetras.size() > 0) solveTetras(*this, h);
+						caliber::solveTethers(*this, tethers);
+						if (keepVolume)
+							solveVolume(*this, h, m_pose.m_volume, 1 / m_cfg.kVC, 1 / m_cfg.kVC, volumeLambda,
+							            volumeGradient);
+						if (gasVolume)
+							solveVolume(*this, h, tethers.restVolume,
+							            tethers.restVolume * tethers.restVolume / m_cfg.kPR, 0, gasLambda,
+							            volumeGradient);
+						break;
+					case ePSolver::Anchors:
+						solveAnchors(*this, h);
+						break;
+					case ePSolver::RContacts:
+						solveContacts(*this, h, faceContacts);
+						break;
+					case ePSolver::SContacts:
+						solveSoftContacts(*this, h);
+						break;
+					default:
+						break;
+				}
+		if (substeps)
+		{
+			// The substep ends out of the rigid objects; its velocity is its move (taken by the next).
+			solveContacts(*this, h, faceContacts);
+		}
+	}
+	if (substeps) finishSubsteps(*this, dt, h, stepStart);
 	if (m_cfg.kMT > 0 && m_pose.m_bframe)
 	{
 		updatePose();

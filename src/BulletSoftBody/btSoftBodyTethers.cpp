@@ -46,8 +46,7 @@ unsigned fingerprint(const btSoftBody& body)
 		unsigned bits = 0;
 		float rl = float(l.m_rl);
 		std::memcpy(&bits, &rl, sizeof bits);
-		mix(bits);
-		mix(inextensible(l) ? 3u : 4u);
+		mix(bits ^ (inextensible(l) ? 0x80000000u : 0u) ^ 1u);  // one mix a link (this runs every step)
 	}
 	return h;
 }

@@ -6,6 +6,7 @@
 
 #include <limits>
 
+#include "BulletDynamics/Dynamics/DynamicsWorldTestUtil.h"  // WarningCounter
 #include "SoftBodyTestUtil.h"
 
 using caliber_test::SoftTestWorld;

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "BulletDynamics/Dynamics/DynamicsWorldTestUtil.h"  // WarningCounter
 #include "SoftBodyTestUtil.h"
 
 using caliber_test::lowestNodeY;

@@ -310,9 +310,10 @@ TEST(SoftBodyPhysics, VolumeConservationHoldsAHeavyBallUpOnTheGround)
 	const double with = volumeLoss(500), without = volumeLoss(0);
 	std::printf("volume lost under its own weight: %.2f%% with kVC = 500, %.2f%% without\n", 100 * with, 100 * without);
 	// A bottom of at least 1.5 m^2 (the ball is 2 m wide) needs at most 67 Pa, which kVC = 500 Pa per m^3
-	// lost holds with 0.13 m^3: 3.2% of 4.2 m^3.
+	// lost holds with 0.13 m^3: 3.2% of 4.2 m^3. Without kVC only the links resist, and the ball loses
+	// several times that (13.7% with substeps, 20% before them).
 	EXPECT_LT(with, 0.032);
-	EXPECT_GT(without, 0.2);
+	EXPECT_GT(without, 3 * 0.032);
 }
 
 TEST(SoftBodyPhysics, PressurisedBallWithAnInextensibleSkinKeepsItsVolumeOnTheGround)

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <utility>
 #include <vector>
 
-#include "BulletDynamics/Dynamics/DynamicsWorldTestUtil.h"  // WarningCounter
 #include "btBulletSoftBodyCommon.h"
 
 namespace caliber_test

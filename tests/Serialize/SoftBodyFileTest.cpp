@@ -7,6 +7,7 @@
 
 #include <stddef.h>
 
+#include "BulletSoftBody/SoftBodyTestUtil.h"
 #include "BulletSoftBody/btSoftBodyData.h"
 #include "Serialize/SerializeTestUtil.h"
 #include "btBulletFile.h"
@@ -19,63 +20,8 @@ namespace
 {
 using caliber::isFinite;
 
-// A soft-rigid world that owns its parts, shapes, rigid bodies and soft bodies (objects an importer made
-// are the importer's: deleteAllData before the world goes).
-class SoftTestWorld
-{
-public:
-	SoftTestWorld() : m_dispatcher(&m_configuration), m_world(&m_dispatcher, &m_broadphase, &m_solver, &m_configuration)
-	{
-		m_world.setGravity(btVector3(0, -10, 0));
-		m_world.getWorldInfo().m_gravity = btVector3(0, -10, 0);
-	}
-	~SoftTestWorld()
-	{
-		for (auto& s : m_softs) m_world.removeSoftBody(s.get());
-		for (auto& b : m_bodies) m_world.removeRigidBody(b.get());
-	}
-	btSoftRigidDynamicsWorld& world() { return m_world; }
-	btSoftBodyWorldInfo& info() { return m_world.getWorldInfo(); }
-	template <class Shape, class... Args>
-	Shape* shape(Args&&... args)
-	{
-		Shape* s = new Shape(std::forward<Args>(args)...);
-		m_shapes.emplace_back(s);
-		return s;
-	}
-	btRigidBody* addRigid(btScalar mass, const btVector3& pos, btCollisionShape* collisionShape)
-	{
-		btVector3 inertia(0, 0, 0);
-		if (mass > 0) collisionShape->calculateLocalInertia(mass, inertia);
-		btRigidBody::btRigidBodyConstructionInfo ci(mass, 0, collisionShape, inertia);
-		ci.m_startWorldTransform.setIdentity();
-		ci.m_startWorldTransform.setOrigin(pos);
-		m_bodies.emplace_back(new btRigidBody(ci));
-		m_world.addRigidBody(m_bodies.back().get());
-		return m_bodies.back().get();
-	}
-	btRigidBody* addGround() { return addRigid(0, btVector3(0, -5, 0), shape<btBoxShape>(btVector3(50, 5, 50))); }
-	btSoftBody* addSoft(btSoftBody* s)
-	{
-		m_softs.emplace_back(s);
-		m_world.addSoftBody(s);
-		return s;
-	}
-	void step(int frames)
-	{
-		for (int i = 0; i < frames; ++i) m_world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
-	}
-
-private:
-	btSoftBodyRigidBodyCollisionConfiguration m_configuration;
-	btCollisionDispatcher m_dispatcher;
-	btDbvtBroadphase m_broadphase;
-	btSequentialImpulseConstraintSolver m_solver;
-	btSoftRigidDynamicsWorld m_world;
-	std::vector<std::unique_ptr<btCollisionShape>> m_shapes;
-	std::vector<std::unique_ptr<btRigidBody>> m_bodies;
-	std::vector<std::unique_ptr<btSoftBody>> m_softs;
-};
+// SoftTestWorld (tests/BulletSoftBody/SoftBodyTestUtil.h) owns the world's parts, shapes, rigid bodies and
+// soft bodies; objects an importer made are the importer's: deleteAllData before the world goes.
 
 btScalar f(btScalar x) { return btScalar(float(x)); }
 void expectVec(const btVector3& original, const btVector3& read, const char* what)
