@@ -703,59 +703,127 @@ int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& con
 	return numChosen;
 }
 
+// Says early, for a box, that a triangle is out of reach (or far below the box, for GJK) by separating
+// axes in closed form: the triangle's normal, unnormalised and compared squared (no square root or
+// division for the many triangles a mesh query returns out of reach: their latency, not their count, is
+// what they cost), then its three side planes. kTriangleFaceContact means "no verdict, go on".
+TriangleFaceOutcome boxOutOfReachVerdict(const WorldTriangle& world, const btBoxShape& box,
+                                         const btTransform& convexTransform, const btTriangleShape& triangle,
+                                         btScalar reach)
+{
+	const btVector3* corners = world.corners;
+	const btVector3& normal = world.windingNormal;
+	const btScalar normalLength2 = world.normalLength2;
+	const btVector3 local = normal * convexTransform.getBasis();
+	const btVector3 half = box.getHalfExtentsWithMargin();
+	const btScalar centre = normal.dot(convexTransform.getOrigin() - corners[0]);
+	const btScalar clearance =
+	    btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() - btFabs(local.z()) * half.z();
+	// The exact tests of faceContactOn decide the cases near the limits (rounding differs a little here).
+	const btScalar slack = btScalar(1.0001);
+	if (clearance > 0)
+	{
+		const btScalar allowed = reach + triangle.getMargin();
+		if (allowed >= 0 && clearance * clearance > allowed * allowed * normalLength2 * slack)
+			return kTriangleOutOfReach;
+	}
+	else
+	{
+		// Far below the plane (the plane of a neighbour of the triangle the box is on): GJK's, as in
+		// faceContactOn, found without building the face.
+		const btScalar below = kFaceDepthLimit + kDepthSlack - triangle.getMargin();
+		if (below > 0 && clearance * clearance > below * below * normalLength2 * slack) return kTriangleNeedsGjk;
+	}
+	// The triangle's side planes are separating axes too: a triangle beside the box (inside its AABB, which
+	// the mesh query tests, but not under it) is out of reach when the whole box lies beyond one edge's side
+	// plane by more than reach. Without this, such triangles clip to nothing and go to GJK.
+	const btScalar allowed = reach + triangle.getMargin();
+	if (allowed >= 0)
+	{
+		const btVector3 edges[3] = {corners[1] - corners[0], corners[2] - corners[1], corners[0] - corners[2]};
+		for (int k = 0; k < 3; ++k)
+		{
+			const btVector3 side = edges[k].cross(normal);  // outwards, length |edge| |normal|
+			const btVector3 sideLocal = side * convexTransform.getBasis();
+			const btScalar gap = side.dot(convexTransform.getOrigin() - corners[k]) -
+			                     btFabs(sideLocal.x()) * half.x() - btFabs(sideLocal.y()) * half.y() -
+			                     btFabs(sideLocal.z()) * half.z();
+			if (gap > 0 && gap * gap > allowed * allowed * side.length2() * slack) return kTriangleOutOfReach;
+		}
+	}
+	return kTriangleFaceContact;
+}
+
+// Cuts the face by the triangle's prism: a side plane through each edge, containing the normal, facing out
+// (faces inside the prism, a convex over a large triangle, need no cut). Returns the polygon holding the
+// result (face or scratch).
+Polygon* clipFaceToTrianglePrism(Polygon& face, Polygon& scratch, const btVector3* corners,
+                                 const btVector3& windingNormal)
+{
+	Polygon* in = &face;
+	Polygon* clipped = &scratch;
+	for (int edge = 0; edge < 3 && in->count > 0; ++edge)
+	{
+		const btVector3& from = corners[edge];
+		// Outwards whichever face the convex is in front of (no test of the third corner: the sliver test
+		// leaves no triangle whose winding rounding could turn).
+		const btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(windingNormal);
+		// An edge of a hull is a segment (a closed 2-corner polygon would come back with a point twice).
+		if (in->count == 2)
+			clipSegmentBySide(*in, from, side);
+		else if (clipBySide(*in, *clipped, from, side))
+			btSwap(in, clipped);
+	}
+	return in;
+}
+
+// Reports the clipped corners within reach (at most 4 a triangle: choosing here costs less than handing
+// the collector more points), each on the triangle's surface. Returns how many were within reach and the
+// closest distance.
+int reportPointsWithinReach(const Polygon& clipped, const btVector3& normal, btScalar planeOffset, btScalar reach,
+                            btDiscreteCollisionDetectorInterface::Result& out, btScalar& closest)
+{
+	btVector3 points[kMaxClipped];
+	btScalar distances[kMaxClipped];
+	int count = 0;
+	closest = BT_LARGE_FLOAT;
+	for (int i = 0; i < clipped.count; ++i)
+	{
+		const btScalar distance = clipped.corners[i].dot(normal) - planeOffset;
+		if (!(distance <= reach)) continue;
+		points[count] = clipped.corners[i];
+		distances[count] = distance;
+		closest = btMin(closest, distance);
+		++count;
+	}
+	if (count == 0) return 0;
+	int chosen[kMaxClipped];
+	int numChosen = count;
+	if (count > 4)
+		numChosen = chooseManifoldPoints(points, distances, count, normal, chosen);
+	else
+		for (int i = 0; i < count; ++i) chosen[i] = i;
+	for (int i = 0; i < numChosen; ++i)
+	{
+		const int k = chosen[i];
+		out.addContactPoint(normal, points[k] - normal * distances[k], distances[k]);
+	}
+	return count;
+}
+
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
                                   btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut)
 {
 	const btVector3* corners = world.corners;
-	const btVector3 edge1 = corners[1] - corners[0];
-	btVector3 normal = world.windingNormal;
-	const btScalar normalLength2 = world.normalLength2;
 	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
 	{
-		// Most triangles a mesh query returns are out of reach of a box. Its lowest point along the
-		// unnormalised normal tells, compared squared: no square root or division for them (their latency,
-		// not their count, is what they cost).
-		const btBoxShape& box = static_cast<const btBoxShape&>(convex);
-		const btVector3 local = normal * convexTransform.getBasis();
-		const btVector3 half = box.getHalfExtentsWithMargin();
-		const btScalar centre = normal.dot(convexTransform.getOrigin() - corners[0]);
-		const btScalar clearance =
-		    btFabs(centre) - btFabs(local.x()) * half.x() - btFabs(local.y()) * half.y() - btFabs(local.z()) * half.z();
-		// The exact tests below decide the cases near the limits (rounding differs a little from them here).
-		const btScalar slack = btScalar(1.0001);
-		if (clearance > 0)
-		{
-			const btScalar allowed = reach + triangle.getMargin();
-			if (allowed >= 0 && clearance * clearance > allowed * allowed * normalLength2 * slack)
-				return kTriangleOutOfReach;
-		}
-		else
-		{
-			// Far below the plane (the plane of a neighbour of the triangle the box is on): GJK's, as
-			// below, found without building the face.
-			const btScalar below = kFaceDepthLimit + kDepthSlack - triangle.getMargin();
-			if (below > 0 && clearance * clearance > below * below * normalLength2 * slack) return kTriangleNeedsGjk;
-		}
-		// The triangle's side planes are separating axes too: a triangle beside the box (inside its AABB,
-		// which the mesh query tests, but not under it) is out of reach when the whole box lies beyond one
-		// edge's side plane by more than reach. Without this, such triangles clip to nothing and go to GJK.
-		const btScalar allowed = reach + triangle.getMargin();
-		if (allowed >= 0)
-		{
-			const btVector3 edges[3] = {edge1, corners[2] - corners[1], corners[0] - corners[2]};
-			for (int k = 0; k < 3; ++k)
-			{
-				const btVector3 side = edges[k].cross(normal);  // outwards, length |edge| |normal|
-				const btVector3 sideLocal = side * convexTransform.getBasis();
-				const btScalar gap = side.dot(convexTransform.getOrigin() - corners[k]) -
-				                     btFabs(sideLocal.x()) * half.x() - btFabs(sideLocal.y()) * half.y() -
-				                     btFabs(sideLocal.z()) * half.z();
-				if (gap > 0 && gap * gap > allowed * allowed * side.length2() * slack) return kTriangleOutOfReach;
-			}
-		}
+		const TriangleFaceOutcome verdict = boxOutOfReachVerdict(world, static_cast<const btBoxShape&>(convex),
+		                                                         convexTransform, triangle, reach);
+		if (verdict != kTriangleFaceContact) return verdict;
 	}
-	normal /= btSqrt(normalLength2);
+	btVector3 normal = world.windingNormal;
+	normal /= btSqrt(world.normalLength2);
 	// Two-sided: the face the convex's centre is in front of (GJK starts from the same side).
 	// The normal of the corners' own winding: each edge crossed with it points out of the triangle.
 	const btVector3 windingNormal = normal;
@@ -795,49 +863,9 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 	// rocked about GJK's single point and sank further).
 	if ((lowest < -kFaceDepthLimit && !normalIsTheWayOut) || face.count < 2) return kTriangleNeedsGjk;
 
-	// The triangle's prism: a side plane through each edge, containing the normal, facing out. Faces
-	// inside the prism (the convex over a large triangle) need no cut.
-	Polygon* in = &face;
-	Polygon* clipped = &scratch;
-	for (int edge = 0; edge < 3 && in->count > 0; ++edge)
-	{
-		const btVector3& from = corners[edge];
-		// Outwards whichever face the convex is in front of (no test of the third corner: the sliver
-		// test above leaves no triangle whose winding rounding could turn).
-		const btVector3 side = (corners[edge == 2 ? 0 : edge + 1] - from).cross(windingNormal);
-		// An edge of a hull is a segment (a closed 2-corner polygon would come back with a point twice).
-		if (in->count == 2)
-			clipSegmentBySide(*in, from, side);
-		else if (clipBySide(*in, *clipped, from, side))
-			btSwap(in, clipped);
-	}
-	btVector3 points[kMaxClipped];
-	btScalar distances[kMaxClipped];
-	int count = 0;
-	btScalar closest = BT_LARGE_FLOAT;
-	for (int i = 0; i < in->count; ++i)
-	{
-		const btScalar distance = in->corners[i].dot(normal) - planeOffset;
-		if (!(distance <= reach)) continue;
-		points[count] = in->corners[i];
-		distances[count] = distance;
-		closest = btMin(closest, distance);
-		++count;
-	}
-	if (count == 0) return kTriangleNeedsGjk;
-
-	int chosen[kMaxClipped];
-	int numChosen = count;
-	// At most 4 a triangle: choosing here costs less than handing the collector more points.
-	if (count > 4)
-		numChosen = chooseManifoldPoints(points, distances, count, normal, chosen);
-	else
-		for (int i = 0; i < count; ++i) chosen[i] = i;
-	for (int i = 0; i < numChosen; ++i)
-	{
-		const int k = chosen[i];
-		out.addContactPoint(normal, points[k] - normal * distances[k], distances[k]);
-	}
+	const Polygon* clipped = clipFaceToTrianglePrism(face, scratch, corners, windingNormal);
+	btScalar closest;
+	if (reportPointsWithinReach(*clipped, normal, planeOffset, reach, out, closest) == 0) return kTriangleNeedsGjk;
 	// The lowest point over the triangle: the face normal is the closest direction, nothing more to find.
 	// Otherwise the lowest point is beyond an edge, where the nearest feature may be that edge (GJK's).
 	return closest <= lowest + kFaceLevelTolerance ? kTriangleFaceContact : kTriangleFacePointsAndGjk;

@@ -419,6 +419,63 @@ void btGenerateInternalEdgeInfo(btHeightfieldTerrainShape* trimeshShape, btTrian
 	trimeshShape->setTriangleInfoMap(triangleInfoMap);
 }
 
+namespace
+{
+// Clamps the contact normal n (mesh frame) to what the triangle's neighbours allow; true when it changed.
+// Near a vertex whose two edges are both flat or concave from this side, the only normal the neighbours
+// leave is the face normal (when the contact leans outward over either edge); elsewhere each active edge
+// clamps n around itself.
+bool clampNormalToNeighbours(btVector3& n, const btVector3& face, const EdgeConstraint* edges,
+                             const btVector3& meshPoint, const btVector3* v, btScalar nearDistance2)
+{
+	for (int k = 0; k < 3; ++k)
+	{
+		const EdgeConstraint& before = edges[(k + 2) % 3];
+		const EdgeConstraint& after = edges[k];
+		if (!before.m_active || !after.m_active || before.m_upper > btScalar(0) || after.m_upper > btScalar(0))
+			continue;
+		if ((meshPoint - v[k]).length2() > nearDistance2) continue;
+		if (n.dot(before.m_out) > btScalar(0) || n.dot(after.m_out) > btScalar(0))
+		{
+			n = face;
+			return true;
+		}
+	}
+	bool changed = false;
+	for (int k = 0; k < 3; ++k)
+		if (edges[k].m_active && clampAroundEdge(n, face, edges[k])) changed = true;
+	return changed;
+}
+
+// Writes the new normal n (mesh frame) into the point. The other body's point stays; the mesh point moves
+// along the new normal so that point, normal and distance agree (it stays on the triangle's plane or edge
+// line).
+void writeAdjustedNormal(btManifoldPoint& cp, const btTransform& meshTransform, const btCollisionObject* meshObject,
+                         bool meshIsA, const btVector3& n)
+{
+	const btVector3 outWorld = meshTransform.getBasis() * n;
+	const btVector3 meshWorld = meshIsA ? cp.m_positionWorldOnA : cp.m_positionWorldOnB;
+	const btVector3 otherWorld = meshIsA ? cp.m_positionWorldOnB : cp.m_positionWorldOnA;
+	const btScalar distance = (otherWorld - meshWorld).dot(outWorld);
+	const btVector3 newMeshWorld = otherWorld - outWorld * distance;
+	cp.m_distance1 = distance;
+	if (meshIsA)
+	{
+		cp.m_normalWorldOnB = -outWorld;
+		cp.m_positionWorldOnA = newMeshWorld;
+		if (meshObject) cp.m_localPointA = meshObject->getWorldTransform().invXform(newMeshWorld);
+	}
+	else
+	{
+		cp.m_normalWorldOnB = outWorld;
+		cp.m_positionWorldOnB = newMeshWorld;
+		if (meshObject) cp.m_localPointB = meshObject->getWorldTransform().invXform(newMeshWorld);
+	}
+	if (!(cp.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED))
+		btPlaneSpace1(cp.m_normalWorldOnB, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
+}
+}  // namespace
+
 void btAdjustInternalEdgeContacts(btManifoldPoint& cp, const btCollisionObjectWrapper* trimeshColObj0Wrap,
                                   const btCollisionObjectWrapper* otherColObj1Wrap, int partId0, int index0,
                                   int normalAdjustFlags)
@@ -513,47 +570,6 @@ void btAdjustInternalEdgeContacts(btManifoldPoint& cp, const btCollisionObjectWr
 		edge.m_active = true;
 	}
 
-	bool changed = false;
-	// Near a vertex whose two edges are both flat or concave from this side, the only normal the neighbours
-	// leave is the face normal (when the contact leans outward over either edge).
-	for (int k = 0; k < 3 && !changed; ++k)
-	{
-		const EdgeConstraint& before = edges[(k + 2) % 3];
-		const EdgeConstraint& after = edges[k];
-		if (!before.m_active || !after.m_active || before.m_upper > btScalar(0) || after.m_upper > btScalar(0))
-			continue;
-		if ((meshPoint - v[k]).length2() > nearDistance2) continue;
-		if (n.dot(before.m_out) > btScalar(0) || n.dot(after.m_out) > btScalar(0))
-		{
-			n = face;
-			changed = true;
-		}
-	}
-	if (!changed)
-		for (int k = 0; k < 3; ++k)
-			if (edges[k].m_active && clampAroundEdge(n, face, edges[k])) changed = true;
-	if (!changed) return;
-
-	// Keep the other body's point; the mesh point moves along the new normal so that point, normal and
-	// distance agree (the mesh point stays on the triangle's plane or edge line).
-	const btVector3 outWorld = meshTransform.getBasis() * n;
-	const btVector3 meshWorld = meshIsA ? cp.m_positionWorldOnA : cp.m_positionWorldOnB;
-	const btVector3 otherWorld = meshIsA ? cp.m_positionWorldOnB : cp.m_positionWorldOnA;
-	const btScalar distance = (otherWorld - meshWorld).dot(outWorld);
-	const btVector3 newMeshWorld = otherWorld - outWorld * distance;
-	cp.m_distance1 = distance;
-	if (meshIsA)
-	{
-		cp.m_normalWorldOnB = -outWorld;
-		cp.m_positionWorldOnA = newMeshWorld;
-		if (meshObject) cp.m_localPointA = meshObject->getWorldTransform().invXform(newMeshWorld);
-	}
-	else
-	{
-		cp.m_normalWorldOnB = outWorld;
-		cp.m_positionWorldOnB = newMeshWorld;
-		if (meshObject) cp.m_localPointB = meshObject->getWorldTransform().invXform(newMeshWorld);
-	}
-	if (!(cp.m_contactPointFlags & BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED))
-		btPlaneSpace1(cp.m_normalWorldOnB, cp.m_lateralFrictionDir1, cp.m_lateralFrictionDir2);
+	if (!clampNormalToNeighbours(n, face, edges, meshPoint, v, nearDistance2)) return;
+	writeAdjustedNormal(cp, meshTransform, meshObject, meshIsA, n);
 }
