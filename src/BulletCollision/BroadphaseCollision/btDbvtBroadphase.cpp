@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <new>
 
+#include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtRefit.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
@@ -414,6 +415,15 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
 	box.SignedExpand(displacement * m_prediction);
 	moveLeaf(*this, proxy, box);
+}
+
+bool caliber::storeAabbIfInsideFatBox(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax)
+{
+	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	if (!proxy->leaf || !proxy->leaf->volume.Contain(btDbvtVolume::FromMM(aabbMin, aabbMax))) return false;
+	proxy->m_aabbMin = aabbMin;
+	proxy->m_aabbMax = aabbMax;
+	return true;
 }
 
 void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,

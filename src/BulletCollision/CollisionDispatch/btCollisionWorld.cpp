@@ -2,7 +2,9 @@
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 
 #include <mutex>
+#include <typeinfo>
 
+#include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
@@ -256,6 +258,9 @@ struct ComputeAabbs : public btIParallelForBody
 	PendingAabb* pending;
 	bool forceAll;
 	bool useContinuous;
+	// The world's broadphase is exactly btDbvtBroadphase: a box still inside its fat box is stored here
+	// (status 3), as setAabb would store it, and the calling thread only counts it.
+	bool storeFittingBoxes;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
@@ -270,6 +275,10 @@ struct ComputeAabbs : public btIParallelForBody
 			const bool acceptable = finite && (colObj->isStaticOrKinematicObject() ||
 			                                   (box.aabbMax - box.aabbMin).length2() < kMaxAabbExtentSquared);
 			box.status = acceptable ? 1 : 2;
+			btBroadphaseProxy* proxy = objects[i]->getBroadphaseHandle();
+			if (acceptable && storeFittingBoxes && proxy &&
+			    caliber::storeAabbIfInsideFatBox(proxy, box.aabbMin, box.aabbMax))
+				box.status = 3;
 		}
 	}
 };
@@ -299,11 +308,22 @@ void btCollisionWorld::updateAabbs()
 	compute.pending = &scratch.pending[0];
 	compute.forceAll = m_forceUpdateAllAabbs;
 	compute.useContinuous = m_dispatchInfo.m_useContinuous;
+	// A user's subclass may do more in setAabb: only the exact class takes the shortcut.
+	btDbvtBroadphase* dbvt = m_broadphasePairCache && typeid(*m_broadphasePairCache) == typeid(btDbvtBroadphase)
+	                             ? static_cast<btDbvtBroadphase*>(m_broadphasePairCache)
+	                             : 0;
+	compute.storeFittingBoxes = dbvt != 0;
 	btParallelFor(0, numObjects, kObjectsPerTask, compute);
+	unsigned storedOnThreads = 0;
 	for (int i = 0; i < numObjects; i++)
 	{
 		const PendingAabb& box = scratch.pending[i];
 		if (box.status == 0) continue;
+		if (box.status == 3)
+		{
+			++storedOnThreads;
+			continue;
+		}
 		btCollisionObject* colObj = m_collisionObjects[i];
 		if (box.status == 1)
 		{
@@ -313,6 +333,7 @@ void btCollisionWorld::updateAabbs()
 		}
 		updateSingleAabb(colObj);  // the overflow: its warning and quarantine, as without a scheduler
 	}
+	if (dbvt) dbvt->m_updates_call += storedOnThreads;
 }
 
 void btCollisionWorld::computeOverlappingPairs()
