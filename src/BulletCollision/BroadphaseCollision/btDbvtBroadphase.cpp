@@ -145,26 +145,32 @@ struct PairListPolicy
 	}
 };
 
+// Loops over chunk numbers (each chunk a fixed run of kProxiesPerSearchTask pending proxies), so a
+// scheduler may split the loop anywhere without two threads sharing a chunk's list.
 struct ListPairs : public btIParallelForBody
 {
 	const btDbvt* dynamicSet;
 	const btDbvt* fixedSet;
 	PairSearchScratch* scratch;
 
-	void forLoop(int iBegin, int iEnd) const override
+	void forLoop(int chunkBegin, int chunkEnd) const override
 	{
-		const int chunk = iBegin / kProxiesPerSearchTask;
-		btAlignedObjectArray<btDbvtProxy*>& found = scratch->chunks[chunk].found;
-		btNodeStack& stack = scratch->chunks[chunk].stack;
-		found.resize(0);
-		PairListPolicy policy;
-		policy.found = &found;
-		for (int i = iBegin; i < iEnd; ++i)
+		const int numPending = scratch->pending.size();
+		for (int chunk = chunkBegin; chunk < chunkEnd; ++chunk)
 		{
-			policy.proxy = scratch->pending[i];
-			const btDbvtVolume& box = policy.proxy->leaf->volume;
-			dynamicSet->collideTVNoStackAlloc(dynamicSet->m_root, box, stack, policy);
-			fixedSet->collideTVNoStackAlloc(fixedSet->m_root, box, stack, policy);
+			btAlignedObjectArray<btDbvtProxy*>& found = scratch->chunks[chunk].found;
+			btNodeStack& stack = scratch->chunks[chunk].stack;
+			found.resize(0);
+			PairListPolicy policy;
+			policy.found = &found;
+			const int end = btMin(numPending, (chunk + 1) * kProxiesPerSearchTask);
+			for (int i = chunk * kProxiesPerSearchTask; i < end; ++i)
+			{
+				policy.proxy = scratch->pending[i];
+				const btDbvtVolume& box = policy.proxy->leaf->volume;
+				dynamicSet->collideTVNoStackAlloc(dynamicSet->m_root, box, stack, policy);
+				fixedSet->collideTVNoStackAlloc(fixedSet->m_root, box, stack, policy);
+			}
 		}
 	}
 };
@@ -480,7 +486,7 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 			list.dynamicSet = &m_sets[DYNAMIC_SET];
 			list.fixedSet = &m_sets[FIXED_SET];
 			list.scratch = &search;
-			btParallelFor(0, search.pending.size(), kProxiesPerSearchTask, list);
+			btParallelFor(0, chunks, 1, list);
 			for (int c = 0; c < chunks; ++c)
 			{
 				const btAlignedObjectArray<btDbvtProxy*>& found = search.chunks[c].found;

@@ -36,9 +36,10 @@ std::vector<std::pair<int, int> > pairsOf(btOverlappingPairCache* cache)
 
 // 600 boxes in a 12 m cube (hundreds of pairs), moved by up to 0.4 m a step (most leave their fat
 // boxes, so hundreds of proxies are searched each step), for 20 steps; returns the pairs after each step.
-std::vector<std::vector<std::pair<int, int> > > run(int threads)
+std::vector<std::vector<std::pair<int, int> > > run(int threads, btITaskScheduler* userScheduler = 0)
 {
-	caliber_test::ScopedTaskScheduler scheduler(threads);
+	caliber_test::ScopedTaskScheduler scheduler(userScheduler ? 0 : threads);
+	if (userScheduler) btSetTaskScheduler(userScheduler);
 	btDbvtBroadphase broadphase;
 	Lcg random;
 	const int kBoxes = 600;
@@ -64,8 +65,29 @@ std::vector<std::vector<std::pair<int, int> > > run(int threads)
 		history.push_back(pairsOf(broadphase.getOverlappingPairCache()));
 	}
 	for (btBroadphaseProxy* proxy : proxies) broadphase.destroyProxy(proxy, 0);
+	if (userScheduler) btSetTaskScheduler(0);
 	return history;
 }
+
+// A user's scheduler that reports two threads but runs every loop on the calling thread, cut into uneven
+// pieces that ignore the grain (1, 2, 3, ... items): Bullet's interface allows any split.
+class UnevenSplitScheduler : public btITaskScheduler
+{
+public:
+	UnevenSplitScheduler() : btITaskScheduler("UnevenSplit") {}
+	int getMaxNumThreads() const override { return 2; }
+	int getNumThreads() const override { return 2; }
+	void setNumThreads(int) override {}
+	void parallelFor(int iBegin, int iEnd, int, const btIParallelForBody& body) override
+	{
+		int piece = 1;
+		for (int i = iBegin; i < iEnd; i += piece++) body.forLoop(i, btMin(iEnd, i + piece));
+	}
+	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
+	{
+		return body.sumLoop(iBegin, iEnd);
+	}
+};
 }  // namespace
 
 TEST(DbvtBroadphaseParallelSearch, PairsAndTheirOrderAreTheSerialSearchsAtAnyThreadCount)
@@ -80,4 +102,13 @@ TEST(DbvtBroadphaseParallelSearch, PairsAndTheirOrderAreTheSerialSearchsAtAnyThr
 		for (size_t step = 0; step < serial.size(); ++step)
 			EXPECT_EQ(serial[step], threaded[step]) << "step " << step << ", " << threads << " threads";
 	}
+}
+
+TEST(DbvtBroadphaseParallelSearch, AUserSchedulerMaySplitLoopsAnywhere)
+{
+	const std::vector<std::vector<std::pair<int, int> > > serial = run(0);
+	UnevenSplitScheduler uneven;
+	const std::vector<std::vector<std::pair<int, int> > > split = run(0, &uneven);
+	ASSERT_EQ(serial.size(), split.size());
+	for (size_t step = 0; step < serial.size(); ++step) EXPECT_EQ(serial[step], split[step]) << "step " << step;
 }
