@@ -426,7 +426,10 @@ SIMD_FORCE_INLINE void btMatrix3x3::deSerializeDouble(const struct btMatrix3x3Do
 namespace caliber
 {
 /// True when all nine entries are finite.
-SIMD_FORCE_INLINE bool isFinite(const btMatrix3x3& m) { return isFinite(m[0]) && isFinite(m[1]) && isFinite(m[2]); }
+SIMD_FORCE_INLINE bool isFinite(const btMatrix3x3& m)
+{
+	return nonFiniteResidue(m[0]) + nonFiniteResidue(m[1]) + nonFiniteResidue(m[2]) == btScalar(0);
+}
 }  // namespace caliber
 
 #endif  // BT_MATRIX3x3_H

@@ -189,7 +189,13 @@ SIMD_FORCE_INLINE void btTransform::deSerializeDouble(const btTransformDoubleDat
 namespace caliber
 {
 /// True when the basis and the origin are finite.
-SIMD_FORCE_INLINE bool isFinite(const btTransform& t) { return isFinite(t.getBasis()) && isFinite(t.getOrigin()); }
+SIMD_FORCE_INLINE bool isFinite(const btTransform& t)
+{
+	const btMatrix3x3& m = t.getBasis();
+	return nonFiniteResidue(m[0]) + nonFiniteResidue(m[1]) + nonFiniteResidue(m[2]) +
+	           nonFiniteResidue(t.getOrigin()) ==
+	       btScalar(0);
+}
 }  // namespace caliber
 
 #endif  // BT_TRANSFORM_H

@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "LinearMath/btTransform.h"
 #include "MathTestUtil.h"
 
@@ -101,4 +103,50 @@ TEST(Transform, SerializationRoundTrips)
 	back.setIdentity();
 	back.deSerializeFloat(f);
 	EXPECT_TRUE(back == t);
+}
+
+// caliber::isFinite sums x - x over the components (0 when finite, NaN otherwise): each of the twelve
+// entries of a transform, set alone to NaN or an infinity, must make the vector, basis and transform
+// tests fail, while the largest, smallest and denormal finite values, and -0, must pass.
+TEST(Transform, IsFiniteRejectsAnyNonFiniteEntryAndAcceptsEveryFiniteOne)
+{
+	const btScalar nonFinite[] = {std::numeric_limits<btScalar>::quiet_NaN(),
+	                              std::numeric_limits<btScalar>::infinity(),
+	                              -std::numeric_limits<btScalar>::infinity()};
+	const btScalar finite[] = {std::numeric_limits<btScalar>::max(), -std::numeric_limits<btScalar>::max(),
+	                           std::numeric_limits<btScalar>::min(), std::numeric_limits<btScalar>::denorm_min(),
+	                           btScalar(-0.0), btScalar(1)};
+	for (int entry = 0; entry < 12; ++entry)
+	{
+		for (btScalar value : nonFinite)
+		{
+			btTransform t(btMatrix3x3(1, 2, 3, 4, 5, 6, 7, 8, 9), btVector3(10, 11, 12));
+			if (entry < 9)
+				t.getBasis()[entry / 3][entry % 3] = value;
+			else
+				t.getOrigin()[entry - 9] = value;
+			EXPECT_FALSE(caliber::isFinite(t)) << entry << " " << value;
+			const btVector3& row = entry < 9 ? t.getBasis()[entry / 3] : t.getOrigin();
+			EXPECT_FALSE(caliber::isFinite(row)) << entry << " " << value;
+			if (entry < 9)
+			{
+				EXPECT_FALSE(caliber::isFinite(t.getBasis())) << entry << " " << value;
+			}
+		}
+		for (btScalar value : finite)
+		{
+			btTransform t(btMatrix3x3(1, 2, 3, 4, 5, 6, 7, 8, 9), btVector3(10, 11, 12));
+			if (entry < 9)
+				t.getBasis()[entry / 3][entry % 3] = value;
+			else
+				t.getOrigin()[entry - 9] = value;
+			EXPECT_TRUE(caliber::isFinite(t)) << entry << " " << value;
+			EXPECT_TRUE(caliber::isFinite(t.getBasis())) << entry << " " << value;
+			EXPECT_TRUE(caliber::isFinite(t.getOrigin())) << entry << " " << value;
+		}
+	}
+	// The unused fourth lane is not read: a NaN there leaves the vector finite.
+	btVector3 v(1, 2, 3);
+	v.setW(std::numeric_limits<btScalar>::quiet_NaN());
+	EXPECT_TRUE(caliber::isFinite(v));
 }

@@ -23,6 +23,16 @@ btVector3 angularComponent(const btRigidBody& body, const btVector3& axis)
 // Rows whose bounds reach this far are equality rows.
 const btScalar kUnboundedImpulse = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
 
+// The block inverse column by column, zero outside n x n: the sweeps then form K^-1 e as a sum of whole
+// columns, every row of the result in its own SIMD lane, each summed in the order of the row-by-row dot
+// product (the same bits, without the strided reads).
+void storeColumnMajor(const btScalar* rowMajor, int n, btScalar* columnMajor)
+{
+	const int S = caliber::SolverJointBlock::MAX_ROWS;
+	for (int j = 0; j < S; ++j)
+		for (int i = 0; i < S; ++i) columnMajor[j * S + i] = i < n && j < n ? rowMajor[i * S + j] : btScalar(0);
+}
+
 // Makes a joint's later row (a limit or a motor) blind to its equality block: the row's Jacobian loses its
 // component along the block's rows in the bodies' mass metric, J_r - sum_j c_j J_j with c = K^-1 (J_block
 // M^-1 J_r^T), and its target the matching share of theirs. The block holds its rows to their targets, so
@@ -51,7 +61,7 @@ void decoupleFromBlock(const btSolverConstraint* blockRows, const caliber::Solve
 	for (int j = 0; j < n; ++j)
 	{
 		btScalar c = 0;
-		for (int i = 0; i < n; ++i) c += block.m_invK[j * S + i] * coupling[i];
+		for (int i = 0; i < n; ++i) c += block.m_invK[i * S + j] * coupling[i];  // row j of K^-1
 		const btSolverConstraint& b = blockRows[j];
 		row.m_contactNormal1 -= b.m_contactNormal1 * c;
 		row.m_relpos1CrossNormal -= b.m_relpos1CrossNormal * c;
@@ -200,8 +210,10 @@ bool caliber::convertJoint(btAlignedObjectArray<btSolverBody>& bodies, btSolverC
 		row.m_rhs = target * row.m_jacDiagABInv;
 		row.m_rhsPenetration = 0;
 	}
-	if (equalityRows >= 2 && caliber::buildBlockInverse(firstRow, equalityRows, bodyA, bodyB, block.m_invK))
+	btScalar inverse[caliber::SolverJointBlock::MAX_ROWS * caliber::SolverJointBlock::MAX_ROWS];
+	if (equalityRows >= 2 && caliber::buildBlockInverse(firstRow, equalityRows, bodyA, bodyB, inverse))
 	{
+		storeColumnMajor(inverse, equalityRows, block.m_invK);
 		block.m_size = equalityRows;
 		if (numRows <= kMaxDecoupledRows)
 			for (int j = equalityRows; j < numRows; ++j)
@@ -351,10 +363,16 @@ btScalar caliber::solveJoint(const SolverScratch& scratch, btSolverBody* solverB
 		btScalar error[S];
 		for (int i = 0; i < n; ++i)
 			error[i] = block.m_target[i] - caliber::rowDeltaVelocity(bodyA, bodyB, rows[first + i]);
+		// K^-1 error, a column at a time over all S rows (the columns are zero below n).
+		btScalar deltas[S] = {};
+		for (int j = 0; j < n; ++j)
+		{
+			const btScalar* column = &block.m_invK[j * S];
+			for (int i = 0; i < S; ++i) deltas[i] += column[i] * error[j];
+		}
 		for (int i = 0; i < n; ++i)
 		{
-			btScalar delta = 0;
-			for (int j = 0; j < n; ++j) delta += block.m_invK[i * S + j] * error[j];
+			btScalar delta = deltas[i];
 			btSolverConstraint& row = rows[first + i];
 			const btScalar clamped = btMax(row.m_lowerLimit, btMin(row.m_upperLimit, row.m_appliedImpulse + delta));
 			delta = clamped - row.m_appliedImpulse;

@@ -21,7 +21,7 @@ struct SolverJointBlock
 	int m_size;
 	/// Per row: the velocity the row asks for minus J v at the start of the solve.
 	btScalar m_target[MAX_ROWS];
-	/// (J M^-1 J^T)^-1 of the block rows, row-major with stride MAX_ROWS.
+	/// (J M^-1 J^T)^-1 of the block rows, column-major with stride MAX_ROWS, zero outside m_size x m_size.
 	btScalar m_invK[MAX_ROWS * MAX_ROWS];
 };
 }  // namespace caliber

@@ -179,12 +179,36 @@ void btRigidBody::setDamping(btScalar lin_damping, btScalar ang_damping)
 	m_angularDamping = btClamped(ang_damping, btScalar(0), btScalar(1));
 }
 
+namespace
+{
+// (1 - damping)^timeStep, remembered per thread for the last damping and step asked for: the bodies of a
+// scene mostly share their damping, so the power (a library call) runs about once per step and thread
+// instead of once per body. Slot 0 serves linear damping, slot 1 angular.
+btScalar dampingFactor(int slot, btScalar damping, btScalar timeStep)
+{
+	struct Remembered
+	{
+		btScalar damping, timeStep, factor;
+	};
+	thread_local Remembered remembered[2] = {{btScalar(0), btScalar(0), btScalar(1)},
+	                                         {btScalar(0), btScalar(0), btScalar(1)}};
+	Remembered& r = remembered[slot];
+	if (r.damping != damping || r.timeStep != timeStep)
+	{
+		r.damping = damping;
+		r.timeStep = timeStep;
+		r.factor = btPow(btScalar(1) - damping, timeStep);
+	}
+	return r.factor;
+}
+}  // namespace
+
 void btRigidBody::applyDamping(btScalar timeStep)
 {
 	// Exponential decay per second, independent of how a second is cut into steps. Without damping the
-	// factor is exactly 1, and the power (a library call per body and step) is skipped.
-	if (m_linearDamping != btScalar(0)) m_linearVelocity *= btPow(btScalar(1) - m_linearDamping, timeStep);
-	if (m_angularDamping != btScalar(0)) m_angularVelocity *= btPow(btScalar(1) - m_angularDamping, timeStep);
+	// factor is exactly 1, and the power is skipped.
+	if (m_linearDamping != btScalar(0)) m_linearVelocity *= dampingFactor(0, m_linearDamping, timeStep);
+	if (m_angularDamping != btScalar(0)) m_angularVelocity *= dampingFactor(1, m_angularDamping, timeStep);
 	if (!m_additionalDamping) return;
 
 	// Bodies that are nearly at rest get damped hard, so that they settle and can fall asleep.
