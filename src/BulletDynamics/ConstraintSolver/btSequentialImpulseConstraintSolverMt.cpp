@@ -93,8 +93,8 @@ int firstMovingBody(const btSolverConstraint& row, int fixedBodyId)
 // rows of one manifold would each wait for the previous one's body update). As in the serial solver,
 // which point of a manifold comes first changes from solve to solve, so that no point takes more than
 // its share of the impulse step after step.
-void appendBatchRows(const int* manifolds, int numManifolds, const btAlignedObjectArray<int>& manifoldFirstRow,
-                     unsigned int solveCount, btAlignedObjectArray<int>& rows)
+void writeBatchRows(const int* manifolds, int numManifolds, const btAlignedObjectArray<int>& manifoldFirstRow,
+                    unsigned int solveCount, int* rows)
 {
 	const int kInterleave = 8;
 	for (int blockStart = 0; blockStart < numManifolds; blockStart += kInterleave)
@@ -110,7 +110,7 @@ void appendBatchRows(const int* manifolds, int numManifolds, const btAlignedObje
 				const int count = manifoldFirstRow[manifolds[b] + 1] - first;
 				if (p >= count) continue;
 				const int rotated = p + int(solveCount % unsigned(count));
-				rows.push_back(first + (rotated < count ? rotated : rotated - count));
+				*rows++ = first + (rotated < count ? rotated : rotated - count);
 			}
 	}
 }
@@ -465,10 +465,32 @@ void orderManifoldsByColourAndBody(MtSolverScratch& mt, const btConstraintArray&
 // Batches: whole manifolds, at least minBatchSize rows, and about a sixteenth of the colour, so that every
 // thread finds work; the last colour (the manifolds no colour was left for) is one batch. One phase per
 // colour.
+// Writes the row lists of batches [iBegin, iEnd): each batch's place in the list is known beforehand (its
+// rows are its manifolds' rows), so any split of the batches writes the same list.
+struct WriteBatchRows : public btIParallelForBody
+{
+	const MtSolverScratch* mt;
+	const caliber::SolverScratch* scratch;
+	btBatchedConstraints* batched;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int b = iBegin; b < iEnd; ++b)
+		{
+			const int firstManifold = mt->batchManifoldBegin[b];
+			writeBatchRows(&mt->orderedManifolds[firstManifold], mt->batchManifoldBegin[b + 1] - firstManifold,
+			               scratch->manifoldFirstRow, scratch->solveCount,
+			               &batched->m_constraintIndices[batched->m_batches[b].begin]);
+		}
+	}
+};
+
 void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scratch, int minBatchSize,
                         btBatchedConstraints& batched)
 {
+	// First the batches' manifold and row ranges, then their row lists, batch by batch on the threads.
 	int nextManifold = 0;
+	int nextRow = batched.m_constraintIndices.size();
 	mt.batchManifoldBegin.resize(0);
 	for (int c = 0; c <= kColours; ++c)
 	{
@@ -476,20 +498,16 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 		const int phaseBegin = batched.m_batches.size();
 		const int targetRows =
 		    c == kColours ? mt.colourRows[c] : btMax(btMax(1, minBatchSize), (mt.colourRows[c] + 15) / 16);
-		int batchBegin = batched.m_constraintIndices.size();
 		int batchRows = 0;
-		const int colourBegin = nextManifold;
-		int batchFirstManifold = colourBegin;
+		int batchFirstManifold = nextManifold;
 		for (int k = 0; k < mt.colourCount[c]; ++k)
 		{
 			const int m = mt.orderedManifolds[nextManifold++];
 			batchRows += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
 			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
-			appendBatchRows(&mt.orderedManifolds[batchFirstManifold], nextManifold - batchFirstManifold,
-			                scratch.manifoldFirstRow, scratch.solveCount, batched.m_constraintIndices);
 			mt.batchManifoldBegin.push_back(batchFirstManifold);
-			batched.m_batches.push_back(btBatchedConstraints::Range(batchBegin, batched.m_constraintIndices.size()));
-			batchBegin = batched.m_constraintIndices.size();
+			batched.m_batches.push_back(btBatchedConstraints::Range(nextRow, nextRow + batchRows));
+			nextRow += batchRows;
 			batchFirstManifold = nextManifold;
 			batchRows = 0;
 		}
@@ -498,31 +516,58 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 		batched.m_phaseGrainSize.push_back(1);
 	}
 	mt.batchManifoldBegin.push_back(nextManifold);
+	caliber::resizeScratch(batched.m_constraintIndices, nextRow);
+	WriteBatchRows write;
+	write.mt = &mt;
+	write.scratch = &scratch;
+	write.batched = &batched;
+	btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, write);
 }
 
 // Each batch's rows of the fixed entry are pointed at the batch's own copy of it (see the file comment):
-// contact and friction rows by batch, rolling rows after their contact row.
+// contact and friction rows by batch, on the threads (a row belongs to one batch, so any split of the
+// batches writes the same), then rolling rows after their contact row, on the calling thread.
+struct GiveBatchesFixedBodyCopies : public btIParallelForBody
+{
+	const btBatchedConstraints* batched;
+	int fixedBodyId, firstCopy, frictionRows;
+	btConstraintArray* contacts;
+	btConstraintArray* friction;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int b = iBegin; b < iEnd; ++b)
+		{
+			const int copy = firstCopy + b;
+			for (int i = batched->m_batches[b].begin; i < batched->m_batches[b].end; ++i)
+			{
+				const int j = batched->m_constraintIndices[i];
+				btSolverConstraint& row = (*contacts)[j];
+				if (row.m_solverBodyIdA == fixedBodyId) row.m_solverBodyIdA = copy;
+				if (row.m_solverBodyIdB == fixedBodyId) row.m_solverBodyIdB = copy;
+				for (int f = 0; f < frictionRows; ++f)
+				{
+					btSolverConstraint& frictionRow = (*friction)[j * frictionRows + f];
+					if (frictionRow.m_solverBodyIdA == fixedBodyId) frictionRow.m_solverBodyIdA = copy;
+					if (frictionRow.m_solverBodyIdB == fixedBodyId) frictionRow.m_solverBodyIdB = copy;
+				}
+			}
+		}
+	}
+};
+
 void giveBatchesFixedBodyCopies(const btBatchedConstraints& batched, int fixedBodyId, int firstCopy,
                                 int frictionRows, btConstraintArray& contacts, btConstraintArray& friction,
                                 btConstraintArray& rolling)
 {
-	for (int b = 0; b < batched.m_batches.size(); ++b)
-	{
-		const int copy = firstCopy + b;
-		for (int i = batched.m_batches[b].begin; i < batched.m_batches[b].end; ++i)
-		{
-			const int j = batched.m_constraintIndices[i];
-			btSolverConstraint& row = contacts[j];
-			if (row.m_solverBodyIdA == fixedBodyId) row.m_solverBodyIdA = copy;
-			if (row.m_solverBodyIdB == fixedBodyId) row.m_solverBodyIdB = copy;
-			for (int f = 0; f < frictionRows; ++f)
-			{
-				btSolverConstraint& frictionRow = friction[j * frictionRows + f];
-				if (frictionRow.m_solverBodyIdA == fixedBodyId) frictionRow.m_solverBodyIdA = copy;
-				if (frictionRow.m_solverBodyIdB == fixedBodyId) frictionRow.m_solverBodyIdB = copy;
-			}
-		}
-	}
+	GiveBatchesFixedBodyCopies give;
+	give.batched = &batched;
+	give.fixedBodyId = fixedBodyId;
+	give.firstCopy = firstCopy;
+	give.frictionRows = frictionRows;
+	give.contacts = &contacts;
+	give.friction = &friction;
+	btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, give);
 	for (int r = 0; r < rolling.size(); ++r)
 	{
 		btSolverConstraint& row = rolling[r];
