@@ -10,9 +10,11 @@
 
 #include <cstring>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "BulletSoftBody/btSoftBodyClusters.h"
+#include "BulletSoftBody/btSoftBodyNormals.h"
 #include "BulletSoftBody/btSoftBodySolveGroups.h"
 #include "LinearMath/btThreads.h"
 #include "SoftBodyTestUtil.h"
@@ -269,4 +271,68 @@ TEST(SoftBodyThreads, SolveGroupsGiveTheBitsOfOneThreadAtAnyThreadCountAndSplit)
 	btSetTaskScheduler(&uneven);
 	EXPECT_EQ(runGroupScene(), reference) << "uneven splits";
 	btSetTaskScheduler(0);
+}
+
+namespace
+{
+// The node and face normals of a body, hashed.
+uint64_t hashNormals(const btSoftBody& b)
+{
+	uint64_t h = 1469598103934665603ull;
+	for (int i = 0; i < b.m_nodes.size(); ++i) mixBytes(h, &b.m_nodes[i].m_n, sizeof(btVector3));
+	for (int i = 0; i < b.m_faces.size(); ++i) mixBytes(h, &b.m_faces[i].m_normal, sizeof(btVector3));
+	return h;
+}
+
+// updateNormals on the current scheduler, against the same on the calling thread alone.
+void expectSerialNormals(btSoftBody& b, const char* what)
+{
+	b.updateNormals();
+	const uint64_t threaded = hashNormals(b);
+	btITaskScheduler* scheduler = btGetTaskScheduler();
+	btSetTaskScheduler(0);
+	ASSERT_FALSE(caliber::normalsOnThreads(b));
+	b.updateNormals();
+	EXPECT_EQ(threaded, hashNormals(b)) << what;
+	btSetTaskScheduler(scheduler);
+}
+}  // namespace
+
+TEST(SoftBodyThreads, NormalsOnThreadsHaveTheBitsOfOneThread)
+{
+	SoftTestWorld w;
+	btSoftBody* cloth = w.addSoft(btSoftBodyHelpers::CreatePatch(w.info(), btVector3(-2, 1, -2), btVector3(2, 1, -2),
+	                                                             btVector3(-2, 1, 2), btVector3(2, 1, 2), 40, 40, 0, true),
+	                              false);
+	btSoftBody* other = w.addSoft(btSoftBodyHelpers::CreateRope(w.info(), btVector3(5, 1, 0), btVector3(6, 1, 0), 3, 0), false);
+	// A crumpled cloth (3042 faces), so that every node's normal is a sum of different faces' normals.
+	for (int i = 0; i < cloth->m_nodes.size(); ++i)
+		cloth->m_nodes[i].m_x += btVector3(btSin(btScalar(i)), btSin(btScalar(i * 7 + 1)), btSin(btScalar(i * 13 + 2))) * btScalar(0.05);
+	std::vector<std::unique_ptr<btITaskScheduler>> schedulers;
+#if defined(BT_THREADSAFE) && BT_THREADSAFE
+	schedulers.emplace_back(btCreateDefaultTaskScheduler());
+	ASSERT_NE(schedulers.back().get(), nullptr);
+	schedulers.back()->setNumThreads(2);
+#endif
+	schedulers.emplace_back(new UnevenSplitScheduler());
+	for (const auto& scheduler : schedulers)
+	{
+		btSetTaskScheduler(scheduler.get());
+		ASSERT_TRUE(caliber::normalsOnThreads(*cloth)) << scheduler->getName();  // the threaded path runs
+		expectSerialNormals(*cloth, "crumpled");
+		// A face turned over (two nodes swapped) and the nodes moved: the node-to-face lists are rebuilt.
+		std::swap(cloth->m_faces[5].m_n[0], cloth->m_faces[5].m_n[1]);
+		for (int i = 0; i < cloth->m_nodes.size(); ++i) cloth->m_nodes[i].m_x.setY(cloth->m_nodes[i].m_x.y() * btScalar(1.5));
+		expectSerialNormals(*cloth, "a face turned over");
+		// A face added: one more face, and three nodes in one more face each.
+		cloth->appendFace(0, 41, 82);
+		expectSerialNormals(*cloth, "a face added");
+		// A face pointed by hand at another body's node: no lists can be built, the nodes' sums are made as
+		// one thread makes them (the other node's normal included).
+		btSoftBody::Node* kept = cloth->m_faces[7].m_n[2];
+		cloth->m_faces[7].m_n[2] = &other->m_nodes[1];
+		expectSerialNormals(*cloth, "a face on another body's node");
+		cloth->m_faces[7].m_n[2] = kept;
+		btSetTaskScheduler(0);
+	}
 }
