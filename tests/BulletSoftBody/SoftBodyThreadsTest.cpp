@@ -18,9 +18,11 @@
 #include "BulletSoftBody/btSoftBodySolveGroups.h"
 #include "LinearMath/btThreads.h"
 #include "SoftBodyTestUtil.h"
+#include "TestThreadsUtil.h"
 
 using caliber_test::hashNodes;
 using caliber_test::SoftTestWorld;
+using caliber_test::UnevenSplitScheduler;
 
 namespace
 {
@@ -31,27 +33,6 @@ const int kSteps = 10;
 #else
 const int kSteps = 40;
 #endif
-
-// A user's scheduler that reports two threads but runs every loop on the calling thread, cut into uneven
-// pieces that ignore the grain (1, 2, 3, ... items): Bullet's interface allows any split, so no stage may
-// depend on how a loop is cut (as the dbvt broadphase's test, DbvtBroadphaseParallelSearch).
-class UnevenSplitScheduler : public btITaskScheduler
-{
-public:
-	UnevenSplitScheduler() : btITaskScheduler("UnevenSplit") {}
-	int getMaxNumThreads() const override { return 2; }
-	int getNumThreads() const override { return 2; }
-	void setNumThreads(int) override {}
-	void parallelFor(int iBegin, int iEnd, int, const btIParallelForBody& body) override
-	{
-		int piece = 1;
-		for (int i = iBegin; i < iEnd; i += piece++) body.forLoop(i, btMin(iEnd, i + piece));
-	}
-	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
-	{
-		return body.sumLoop(iBegin, iEnd);
-	}
-};
 
 // A scene with a large pinned cloth (2500 nodes: its node loops and contact search are split in chunks of
 // 1024, its 7000 links in blocks of 1024 whose colours hold several; btSoftBodyLinkColours.h), a box
