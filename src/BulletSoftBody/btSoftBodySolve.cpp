@@ -797,6 +797,7 @@ void finishSubsteps(btSoftBody& body, btScalar dt, btScalar h, const btAlignedOb
 	caliber::forEachChunk(body.m_nodes.size(),
 	                      [=](int begin, int end) { finishNodes(nodes, starts, begin, end, dt, h); });
 }
+
 // A step's start for links [begin, end): multiplier zero, this step's compliance into m_c3.x (the material's
 // kLST may have changed).
 void startLinkStep(btSoftBody::Link* links, int begin, int end, int piterations)
