@@ -34,6 +34,27 @@ private:
 	std::unique_ptr<btITaskScheduler> m_pool;
 };
 
+/// A user's scheduler that reports two threads but runs every loop on the calling thread, cut into uneven
+/// pieces that ignore the grain (1, 2, 3, ... items): Bullet's interface allows any split, so no stage may
+/// depend on how a loop is cut.
+class UnevenSplitScheduler : public btITaskScheduler
+{
+public:
+	UnevenSplitScheduler() : btITaskScheduler("UnevenSplit") {}
+	int getMaxNumThreads() const override { return 2; }
+	int getNumThreads() const override { return 2; }
+	void setNumThreads(int) override {}
+	void parallelFor(int iBegin, int iEnd, int, const btIParallelForBody& body) override
+	{
+		int piece = 1;
+		for (int i = iBegin; i < iEnd; i += piece++) body.forLoop(i, btMin(iEnd, i + piece));
+	}
+	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
+	{
+		return body.sumLoop(iBegin, iEnd);
+	}
+};
+
 /// The bits of every body's basis, position and velocities, in order (bodies: pointers or smart pointers
 /// to btRigidBody).
 template <class Bodies>

@@ -5,6 +5,7 @@
 #include "LinearMath/btThreads.h"
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyInternal.h"
+#include "btSoftBodySolveGroups.h"
 
 btDefaultSoftBodySolver::btDefaultSoftBodySolver() : m_updateSolverConstants(true) {}
 
@@ -60,19 +61,19 @@ void runStage(btAlignedObjectArray<btSoftBody*>& bodies, btScalar dt, bool predi
 
 void btDefaultSoftBodySolver::predictMotion(btScalar solverdt) { runStage(m_softBodySet, solverdt, true); }
 
-void btDefaultSoftBodySolver::solveConstraints(btScalar solverdt)
+namespace
 {
-	(void)solverdt;  // each body keeps the step of its predictMotion
-	// Bodies with clusters leave their cluster stage (contacts and joints) to solveClusterStages, which
-	// solves them all together: clusters of different bodies pressed together are solved in one sweep.
+// The position solves of the bodies members[0, count) (indices into bodies, ascending), as one thread runs
+// them: each body's node solve, then the cluster stages of those with clusters or joints together (clusters
+// of different bodies pressed together are solved in one sweep), then their last contact pass.
+void solveBodies(btSoftBody* const* bodies, const int* members, int count)
+{
 	static thread_local btAlignedObjectArray<btSoftBody*> clustered;
 	clustered.resize(0);
-	for (int i = 0; i < m_softBodySet.size(); ++i)
+	for (int i = 0; i < count; ++i)
 	{
-		btSoftBody* body = m_softBodySet[i];
-		if (!body->isActive()) continue;
-		const bool defer = body->m_clusters.size() > 0 || body->m_joints.size() > 0;
-		if (defer)
+		btSoftBody* body = bodies[members[i]];
+		if (body->m_clusters.size() > 0 || body->m_joints.size() > 0)
 		{
 			caliber::clusterState(*body).deferred = true;
 			clustered.push_back(body);
@@ -86,6 +87,53 @@ void btDefaultSoftBodySolver::solveConstraints(btScalar solverdt)
 		caliber::clusterState(*clustered[i]).deferred = false;
 		caliber::finishSoftSolve(*clustered[i]);
 	}
+}
+
+// Groups of bodies that share nothing their solves write (btSoftBodySolveGroups.h), a group per task.
+struct GroupSolve : btIParallelForBody
+{
+	btSoftBody* const* bodies;
+	const caliber::SoftSolveGroups* groups;
+	void forLoop(int begin, int end) const override
+	{
+		for (int k = begin; k < end; ++k)
+			solveBodies(bodies, &groups->members[groups->starts[k]], groups->starts[k + 1] - groups->starts[k]);
+	}
+};
+}  // namespace
+
+void btDefaultSoftBodySolver::solveConstraints(btScalar solverdt)
+{
+	(void)solverdt;  // each body keeps the step of its predictMotion
+	const int count = m_softBodySet.size();
+	if (count == 0) return;
+	static thread_local btAlignedObjectArray<char> solve;
+	static thread_local btAlignedObjectArray<int> members;
+	static thread_local caliber::SoftSolveGroups groups;
+	solve.resize(count);
+	members.resize(0);
+	for (int i = 0; i < count; ++i)
+	{
+		solve[i] = m_softBodySet[i]->isActive() ? 1 : 0;
+		if (solve[i]) members.push_back(i);
+	}
+	if (members.size() == 0) return;
+	// On one thread (or for one body) the bodies are solved in order; with several, the groups run at once
+	// and give the same bits. A single group keeps the calling thread, so that its bodies' own loops (the
+	// link sweeps' colour blocks, the node passes) spread over the threads instead.
+	if (members.size() > 1 && btGetTaskScheduler() && btGetTaskScheduler()->getNumThreads() > 1)
+	{
+		caliber::findSoftSolveGroups(&m_softBodySet[0], &solve[0], count, groups);
+		if (groups.groupCount() > 1)
+		{
+			GroupSolve stage;
+			stage.bodies = &m_softBodySet[0];
+			stage.groups = &groups;
+			btParallelFor(0, groups.groupCount(), 1, stage);
+			return;
+		}
+	}
+	solveBodies(&m_softBodySet[0], &members[0], members.size());
 }
 
 void btDefaultSoftBodySolver::updateSoftBodies() { runStage(m_softBodySet, 0, false); }

@@ -11,6 +11,7 @@
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyLinkColours.h"
+#include "btSoftBodyNormals.h"
 #include "btSoftBodyTethers.h"
 
 namespace caliber
@@ -128,6 +129,7 @@ btSoftBody::~btSoftBody()
 	caliber::releaseSoftLinkColours(*this);
 	caliber::releaseSoftFaceContacts(*this);
 	caliber::releaseNodeContactChunks(*this);
+	caliber::releaseNodeFaces(*this);
 	delete m_collisionShape;
 	m_collisionShape = 0;
 	for (int i = 0; i < m_materials.size(); ++i) btAlignedFree(m_materials[i]);
@@ -987,6 +989,12 @@ btVector3 btSoftBody::evaluateCom() const
 
 void btSoftBody::updateNormals()
 {
+	// A large body with several threads free: the same bits from chunks on the task scheduler.
+	if (caliber::normalsOnThreads(*this))
+	{
+		caliber::updateNormalsOnThreads(*this);
+		return;
+	}
 	for (int i = 0; i < m_nodes.size(); ++i) m_nodes[i].m_n.setValue(0, 0, 0);
 	for (int i = 0; i < m_faces.size(); ++i)
 	{

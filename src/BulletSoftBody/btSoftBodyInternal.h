@@ -58,6 +58,21 @@ inline void forEachNodeChunk(int count, const btIParallelForBody& loop)
 		btParallelFor(0, count, grain, loop);
 }
 
+/// forEachNodeChunk with a callable f(begin, end): for loops over nodes or links whose iterations touch only
+/// their own item.
+template <class F>
+void forEachChunk(int count, const F& f)
+{
+	struct Loop : btIParallelForBody
+	{
+		const F* f;
+		void forLoop(int begin, int end) const override { (*f)(begin, end); }
+	};
+	Loop loop;
+	loop.f = &f;
+	forEachNodeChunk(count, loop);
+}
+
 /// A tetra's signed volume (as tetraVolume: (x1 - x0) . ((x2 - x0) x (x3 - x0)) / 6) and its gradients with
 /// respect to the four nodes, written to t.m_c0 (the tetra volume constraint, btSoftBodySolve.cpp).
 inline btScalar tetraGradients(btSoftBody::Tetra& t)

@@ -741,14 +741,13 @@ bool canSubstep(const btSoftBody& body, const caliber::SoftFaceContacts* faceCon
 // velocity; a later one takes the last substep's move as its velocity. Gravity is added per substep. Each
 // substep is an XPBD step of its own, so the multipliers start at zero (the links' in the substep's first
 // sweep, which saves a pass over them).
-void predictSubstep(btSoftBody& body, btScalar dt, btScalar h, const btVector3& gravity, bool first,
-                    btAlignedObjectArray<btVector3>& start)
+void predictNodes(btSoftBody::Node* nodes, btVector3* starts, int begin, int end, btScalar dt, btScalar h,
+                  btVector3 gravity, bool first)
 {
-	if (first) start.resize(body.m_nodes.size());
-	for (int i = 0; i < body.m_nodes.size(); ++i)
+	for (int i = begin; i < end; ++i)
 	{
-		btSoftBody::Node& n = body.m_nodes[i];
-		if (first) start[i] = n.m_q;
+		btSoftBody::Node& n = nodes[i];
+		if (first) starts[i] = n.m_q;
 		if (n.m_im <= 0) continue;
 		if (first)
 		{
@@ -761,20 +760,74 @@ void predictSubstep(btSoftBody& body, btScalar dt, btScalar h, const btVector3& 
 		n.m_q = n.m_x;
 		n.m_x += n.m_v * h;
 	}
+}
+
+void predictSubstep(btSoftBody& body, btScalar dt, btScalar h, const btVector3& gravity, bool first,
+                    btAlignedObjectArray<btVector3>& start)
+{
+	if (first) start.resize(body.m_nodes.size());
+	btSoftBody::Node* nodes = body.m_nodes.size() > 0 ? &body.m_nodes[0] : 0;
+	btVector3* starts = first && start.size() > 0 ? &start[0] : 0;
+	// Each node on its own: in chunks on the task scheduler for a large body (the work in a function of
+	// plain values, so that the loop keeps them in registers).
+	caliber::forEachChunk(body.m_nodes.size(), [=](int begin, int end) {
+		predictNodes(nodes, starts, begin, end, dt, h, gravity, first);
+	});
 	for (int i = 0; i < body.m_tetras.size(); ++i) body.m_tetras[i].m_c2 = 0;
 }
 
 // integrateMotion takes the velocity as (x - q) / dt: the last substep's move over h. A node gone non-finite gets its
 // step's start back as q, where integrateMotion puts it (docs/bad-input.md).
-void finishSubsteps(btSoftBody& body, btScalar dt, btScalar h, const btAlignedObjectArray<btVector3>& start)
+void finishNodes(btSoftBody::Node* nodes, const btVector3* starts, int begin, int end, btScalar dt, btScalar h)
 {
-	for (int i = 0; i < body.m_nodes.size(); ++i)
+	for (int i = begin; i < end; ++i)
 	{
-		btSoftBody::Node& n = body.m_nodes[i];
+		btSoftBody::Node& n = nodes[i];
 		if (n.m_im <= 0) continue;
 		n.m_v = (n.m_x - n.m_q) / h;
 		n.m_q = n.m_x - n.m_v * dt;
-		if (!caliber::isFinite(n.m_q)) n.m_q = start[i];
+		if (!caliber::isFinite(n.m_q)) n.m_q = starts[i];
+	}
+}
+
+void finishSubsteps(btSoftBody& body, btScalar dt, btScalar h, const btAlignedObjectArray<btVector3>& start)
+{
+	btSoftBody::Node* nodes = body.m_nodes.size() > 0 ? &body.m_nodes[0] : 0;
+	const btVector3* starts = start.size() > 0 ? &start[0] : 0;
+	caliber::forEachChunk(body.m_nodes.size(),
+	                      [=](int begin, int end) { finishNodes(nodes, starts, begin, end, dt, h); });
+}
+
+// A step's start for links [begin, end): multiplier zero, this step's compliance into m_c3.x (the material's
+// kLST may have changed).
+void startLinkStep(btSoftBody::Link* links, int begin, int end, int piterations)
+{
+	const btSoftBody::Material* lastMaterial = links[begin].m_material;
+	btScalar factor = complianceFactor(lastMaterial ? lastMaterial->m_kLST : btScalar(1), piterations);
+	for (int i = begin; i < end; ++i)
+	{
+		btSoftBody::Link& l = links[i];
+		if (l.m_material != lastMaterial)
+		{
+			lastMaterial = l.m_material;
+			factor = complianceFactor(l.m_material ? l.m_material->m_kLST : btScalar(1), piterations);
+		}
+		l.m_c2 = 0;
+		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
+	}
+}
+
+// Pose matching (kMT) for nodes [begin, end): each free node goes k of the way to its place in the rest shape.
+void matchPose(btSoftBody::Node* nodes, const btSoftBody::Pose& pose, int begin, int end, btScalar k)
+{
+	const btVector3 com = pose.m_com;
+	const btMatrix3x3 rot = pose.m_rot;
+	for (int i = begin; i < end; ++i)
+	{
+		btSoftBody::Node& n = nodes[i];
+		if (n.m_im <= 0) continue;
+		const btVector3 goal = com + rot * pose.m_pos[i];
+		n.m_x += (goal - n.m_x) * k;
 	}
 }
 }  // namespace
@@ -796,19 +849,11 @@ void btSoftBody::solveConstraints()
 				m_anchors.pop_back();
 			}
 	// This step's compliance of each link into m_c3.x (its material's kLST may have changed).
-	const Material* lastMaterial = 0;
-	btScalar factor = 0;
-	for (int i = 0; i < m_links.size(); ++i)
-	{
-		Link& l = m_links[i];
-		if (l.m_material != lastMaterial)
-		{
-			lastMaterial = l.m_material;
-			factor = complianceFactor(l.m_material ? l.m_material->m_kLST : btScalar(1), m_cfg.piterations);
-		}
-		l.m_c2 = 0;
-		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
-	}
+	// Each link on its own: in chunks on the task scheduler.
+	Link* links = m_links.size() > 0 ? &m_links[0] : 0;
+	const int piterations = m_cfg.piterations;
+	caliber::forEachChunk(m_links.size(),
+	                      [=](int begin, int end) { startLinkStep(links, begin, end, piterations); });
 	for (int i = 0; i < m_tetras.size(); ++i) m_tetras[i].m_c2 = 0;
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
 	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
@@ -880,13 +925,9 @@ void btSoftBody::solveConstraints()
 	{
 		updatePose();
 		const btScalar k = btClamped(m_cfg.kMT, btScalar(0), btScalar(1));
-		for (int i = 0; i < m_nodes.size(); ++i)
-		{
-			Node& n = m_nodes[i];
-			if (n.m_im <= 0) continue;
-			const btVector3 goal = m_pose.m_com + m_pose.m_rot * m_pose.m_pos[i];
-			n.m_x += (goal - n.m_x) * k;
-		}
+		Node* nodes = m_nodes.size() > 0 ? &m_nodes[0] : 0;
+		const Pose* pose = &m_pose;
+		caliber::forEachChunk(m_nodes.size(), [=](int begin, int end) { matchPose(nodes, *pose, begin, end, k); });
 	}
 	// Clusters: self-collision (found now, as the soft-soft pairs of the collision pass), then the
 	// cluster contacts and joints.

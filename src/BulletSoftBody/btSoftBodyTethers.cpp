@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "LinearMath/btSideTable.h"
+#include "btSoftBodyInternal.h"
 
 namespace
 {
@@ -136,14 +137,21 @@ void caliber::releaseSoftBodyTethers(const btSoftBody& body) { sideTable<SoftBod
 
 void caliber::solveTethers(btSoftBody& body, const SoftBodyTethers& t)
 {
-	for (int i = 0; i < t.tethers.size(); ++i)
-	{
-		const SoftBodyTethers::Tether& tether = t.tethers[i];
-		btSoftBody::Node& node = body.m_nodes[tether.node];
-		const btVector3& anchor = body.m_nodes[tether.anchor].m_x;
-		const btVector3 d = node.m_x - anchor;
-		const btScalar len2 = d.length2();
-		if (len2 <= tether.reach * tether.reach) continue;
-		node.m_x = anchor + d * (tether.reach / btSqrt(len2));
-	}
+	if (t.tethers.size() == 0) return;
+	// Each tether moves its own free node (one tether per node) towards a fixed node (which no tether
+	// moves), so chunks of tethers on the task scheduler give the bits of one thread.
+	btSoftBody::Node* nodes = &body.m_nodes[0];
+	const SoftBodyTethers::Tether* tethers = &t.tethers[0];
+	forEachChunk(t.tethers.size(), [nodes, tethers](int begin, int end) {
+		for (int i = begin; i < end; ++i)
+		{
+			const SoftBodyTethers::Tether& tether = tethers[i];
+			btSoftBody::Node& node = nodes[tether.node];
+			const btVector3& anchor = nodes[tether.anchor].m_x;
+			const btVector3 d = node.m_x - anchor;
+			const btScalar len2 = d.length2();
+			if (len2 <= tether.reach * tether.reach) continue;
+			node.m_x = anchor + d * (tether.reach / btSqrt(len2));
+		}
+	});
 }
