@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
 #include "BulletSoftBody/btSoftBodyClusters.h"
 #include "BulletSoftBody/btSoftBodyNormals.h"
 #include "BulletSoftBody/btSoftBodySolveGroups.h"
@@ -314,6 +315,89 @@ TEST(SoftBodyThreads, NormalsOnThreadsHaveTheBitsOfOneThread)
 		cloth->m_faces[7].m_n[2] = &other->m_nodes[1];
 		expectSerialNormals(*cloth, "a face on another body's node");
 		cloth->m_faces[7].m_n[2] = kept;
+		btSetTaskScheduler(0);
+	}
+}
+
+namespace
+{
+// A cloth dropped on four dynamic boxes that stand on a static ground, with a rope over one of them and a
+// small pile of rigid boxes beside: the soft bodies have pairs with several rigid objects each, among many
+// rigid pairs. Stepped with dispatcherMt (grain of one pair, so the pairs spread over many chunks) or the
+// plain dispatcher; the hashes of every node and rigid state.
+uint64_t runDispatcherScene(bool dispatcherMt)
+{
+	btSoftBodyRigidBodyCollisionConfiguration configuration;
+	std::unique_ptr<btCollisionDispatcher> dispatcher(dispatcherMt ? new btCollisionDispatcherMt(&configuration, 1)
+	                                                                : new btCollisionDispatcher(&configuration));
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btSoftRigidDynamicsWorld world(dispatcher.get(), &broadphase, &solver, &configuration);
+	const btVector3 gravity(0, -10, 0);
+	world.setGravity(gravity);
+	world.getWorldInfo().m_gravity = gravity;
+	btBoxShape ground(btVector3(20, 1, 20));
+	btBoxShape box(btVector3(btScalar(0.4), btScalar(0.4), btScalar(0.4)));
+	std::vector<std::unique_ptr<btRigidBody>> bodies;
+	const auto addBox = [&](btScalar mass, btCollisionShape* shape, const btVector3& at) {
+		btVector3 inertia(0, 0, 0);
+		if (mass > 0) shape->calculateLocalInertia(mass, inertia);
+		btRigidBody::btRigidBodyConstructionInfo info(mass, 0, shape, inertia);
+		info.m_startWorldTransform.setIdentity();
+		info.m_startWorldTransform.setOrigin(at);
+		bodies.emplace_back(new btRigidBody(info));
+		world.addRigidBody(bodies.back().get());
+	};
+	addBox(0, &ground, btVector3(0, -1, 0));
+	for (int i = 0; i < 4; ++i) addBox(1, &box, btVector3(btScalar(i % 2) * 2 - 1, btScalar(0.4), btScalar(i / 2) * 2 - 1));
+	for (int i = 0; i < 8; ++i) addBox(1, &box, btVector3(6 + btScalar(i % 2), btScalar(0.4) + btScalar(i / 2) * btScalar(0.81), 0));
+	btSoftBody* cloth = btSoftBodyHelpers::CreatePatch(world.getWorldInfo(), btVector3(-2, 1.2, -2), btVector3(2, 1.2, -2),
+	                                                   btVector3(-2, 1.2, 2), btVector3(2, 1.2, 2), 17, 17, 0, true);
+	cloth->setTotalMass(1);
+	world.addSoftBody(cloth);
+	btSoftBody* rope = btSoftBodyHelpers::CreateRope(world.getWorldInfo(), btVector3(-2, 1.5, -1), btVector3(2, 1.5, -1), 16, 0);
+	rope->setTotalMass(btScalar(0.2));
+	world.addSoftBody(rope);
+	for (int i = 0; i < 30; ++i) world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+	// The soft bodies met the boxes (the cloth rests on them).
+	EXPECT_GT(cloth->m_rcontacts.size(), 0);
+	uint64_t h = hashNodes(*cloth) ^ (hashNodes(*rope) * 31);
+	for (const auto& body : bodies)
+	{
+		const btTransform& t = body->getWorldTransform();
+		const btVector3 values[] = {t.getOrigin(), t.getBasis()[0], t.getBasis()[1], t.getBasis()[2],
+		                            body->getLinearVelocity(), body->getAngularVelocity()};
+		for (const btVector3& v : values) mixBytes(h, &v.x(), 3 * sizeof(btScalar));
+	}
+	world.removeSoftBody(rope);
+	world.removeSoftBody(cloth);
+	delete rope;
+	delete cloth;
+	for (const auto& body : bodies) world.removeRigidBody(body.get());
+	return h;
+}
+}  // namespace
+
+// btCollisionDispatcherMt runs a soft body's pairs on the calling thread after the other pairs (each writes
+// the body's contact lists): the same bits as the plain dispatcher, at any thread count and split.
+TEST(SoftBodyThreads, DispatcherMtGivesThePlainDispatchersBitsWithSoftBodies)
+{
+	btSetTaskScheduler(0);
+	const uint64_t reference = runDispatcherScene(false);
+	std::vector<std::unique_ptr<btITaskScheduler>> schedulers;
+#if defined(BT_THREADSAFE) && BT_THREADSAFE
+	for (int threads : {2, 4})
+	{
+		schedulers.emplace_back(btCreateDefaultTaskScheduler());
+		ASSERT_NE(schedulers.back().get(), nullptr);
+		schedulers.back()->setNumThreads(threads);
+	}
+#endif
+	schedulers.emplace_back(new UnevenSplitScheduler());
+	for (const auto& scheduler : schedulers)
+	{
+		btSetTaskScheduler(scheduler.get());
+		EXPECT_EQ(runDispatcherScene(true), reference) << scheduler->getName() << " " << scheduler->getNumThreads();
 		btSetTaskScheduler(0);
 	}
 }

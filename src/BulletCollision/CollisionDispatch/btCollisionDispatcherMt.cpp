@@ -11,12 +11,18 @@
 // manifold made and released in one chunk appears twice, and the first entry puts it in the array.
 // Released manifolds are cleared at once (their contact callbacks run on the worker) but destroyed at
 // the replay, so no memory is reused while chunks run.
+//
+// A soft body's pairs are not independent: each writes the body's own contact lists. The chunks skip
+// them, and the calling thread runs them after the replay, in pair order. They make no manifolds and
+// read nothing the other pairs write, so the result is the serial narrowphase's.
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
 
+#include <atomic>
 #include <new>
 
 #include "BulletCollision/BroadphaseCollision/btCollisionAlgorithm.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btManifoldAllocation.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "LinearMath/btAlignedAllocator.h"
@@ -48,12 +54,21 @@ struct ChunkScope
 	const btCollisionDispatcherMt* m_previousDispatcher;
 };
 
+bool isSoftBody(const btBroadphaseProxy* proxy)
+{
+	const btCollisionObject* object = proxy ? static_cast<const btCollisionObject*>(proxy->m_clientObject) : 0;
+	return object && object->getInternalType() == btCollisionObject::CO_SOFT_BODY;
+}
+
+bool involvesSoftBody(const btBroadphasePair& pair) { return isSoftBody(pair.m_pProxy0) || isSoftBody(pair.m_pProxy1); }
+
 struct NarrowphaseChunks : public btIParallelForBody
 {
 	btCollisionDispatcherMt* dispatcher;
 	btBroadphasePair* pairs;
 	const btDispatcherInfo* info;
 	btAlignedObjectArray<ManifoldOpLog>* logs;
+	std::atomic<bool>* softPairsLeft;  ///< set when a chunk skipped a soft body's pair
 	int grainSize;
 
 	void forLoop(int iBegin, int iEnd) const override
@@ -62,7 +77,17 @@ struct NarrowphaseChunks : public btIParallelForBody
 		log.resize(0);
 		ChunkScope scope(&log, dispatcher);
 		btNearCallback nearCallback = dispatcher->getNearCallback();
-		for (int i = iBegin; i < iEnd; ++i) (*nearCallback)(pairs[i], *dispatcher, *info);
+		bool skipped = false;
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			if (involvesSoftBody(pairs[i]))
+			{
+				skipped = true;
+				continue;
+			}
+			(*nearCallback)(pairs[i], *dispatcher, *info);
+		}
+		if (skipped) softPairsLeft->store(true, std::memory_order_relaxed);
 	}
 };
 }  // namespace
@@ -127,6 +152,8 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 	chunks.info = &info;
 	chunks.logs = &m_batchManifoldsPtr;
 	chunks.grainSize = m_grainSize;
+	std::atomic<bool> softPairsLeft(false);
+	chunks.softPairsLeft = &softPairsLeft;
 	m_batchUpdating = true;
 	btParallelFor(0, numPairs, m_grainSize, chunks);
 	m_batchUpdating = false;
@@ -149,4 +176,9 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 			}
 		}
 	}
+	if (!softPairsLeft.load()) return;
+	btBroadphasePair* pairs = pairCache->getOverlappingPairArrayPtr();
+	btNearCallback nearCallback = getNearCallback();
+	for (int i = 0; i < numPairs; ++i)
+		if (involvesSoftBody(pairs[i])) (*nearCallback)(pairs[i], *this, info);
 }
