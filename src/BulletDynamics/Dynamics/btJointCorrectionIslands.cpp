@@ -49,7 +49,11 @@ struct ChunkStep : public btIParallelForBody
 
 	void run(JointCorrectionChunk& chunk) const
 	{
-		if (move && chunk.treeStatus == JointAnchorTree::kPrepared) chunk.tree.move(share, chunk.corrected);
+		if (move && chunk.treeStatus == JointAnchorTree::kPrepared)
+		{
+			chunk.tree.move(share, chunk.corrected);
+			chunk.writtenBack = false;
+		}
 		if (abandon && chunk.treeStatus != JointAnchorTree::kNothingToSolve) chunk.tree.abandon(chunk.leftOver);
 		if (sweep && !chunk.swept) sweepLeftOver(chunk);
 		if (prepare)
@@ -59,10 +63,17 @@ struct ChunkStep : public btIParallelForBody
 			chunk.treeStatus = chunk.tree.prepare(joints + chunk.begin,
 			                                      chunk.end - chunk.begin, kTreeMinJoints, kNegligibleGap, leftOver,
 			                                      chunk.largestTurn);
-			// Nothing any other chunk reports can change this chunk's first iteration now.
-			if (first && chunk.treeStatus == JointAnchorTree::kNothingToSolve) sweepLeftOver(chunk);
+			// Nothing any other chunk reports can change this chunk's first iteration now. Its poses are
+			// written back at once too (iterations after the first read no inertia; should a later one move
+			// the chunk's bodies again, they are written back again, which gives the same bits), so that a
+			// world of short articulations only (ragdolls) needs no second loop.
+			if (first && chunk.treeStatus == JointAnchorTree::kNothingToSolve)
+			{
+				sweepLeftOver(chunk);
+				writeBack(chunk);
+			}
 		}
-		if (finish) writeBack(chunk);
+		if (finish && !chunk.writtenBack) writeBack(chunk);
 	}
 
 	// The serial sweep's order for these islands: the trees' left-over joints, then those without anchors.
@@ -99,6 +110,7 @@ struct ChunkStep : public btIParallelForBody
 			else
 				chunk.fixedBodies.push_back(corrected[i]);
 		}
+		chunk.writtenBack = true;
 	}
 };
 
@@ -168,6 +180,8 @@ bool caliber::joint_correction::correctByIsland(btDiscreteDynamicsWorld& world,
 		chunks[k].corrected.resize(0);
 		chunks[k].leftOver.resize(0);
 		chunks[k].swept = false;
+		chunks[k].writtenBack = false;
+		chunks[k].fixedBodies.resize(0);
 	}
 	ChunkStep step;
 	step.joints = &context.jointCorrectionGrouped[0];
@@ -189,6 +203,8 @@ bool caliber::joint_correction::correctByIsland(btDiscreteDynamicsWorld& world,
 			anyPrepared = true;
 			if (chunks[k].largestTurn > largestTurn) largestTurn = chunks[k].largestTurn;
 		}
+		// Every chunk is done when no tree was prepared in the first iteration.
+		if (iteration == 0 && !anyPrepared && !anySingular) break;
 		const bool treesMove = anyPrepared && !anySingular;
 		const bool last = !treesMove || iteration + 1 >= iterations;
 		step.move = treesMove;
