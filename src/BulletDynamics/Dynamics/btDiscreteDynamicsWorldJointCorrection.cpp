@@ -162,8 +162,9 @@ bool closeAnchors(btRigidBody& a, btRigidBody& b, const btVector3& anchorInA, co
 // One Gauss-Seidel correction of a joint the trees left out: its anchors closed directly, or its
 // equality rows (and the one-sided limits among them) solved as a block at the current positions.
 // Lists the two bodies when it moved them.
-bool caliber::joint_correction::correctLeftOverJoint(btTypedConstraint* constraint, int numIterations, btConstraintArray& rowScratch,
-                          btAlignedObjectArray<btRigidBody*>& correctedBodies)
+bool caliber::joint_correction::correctLeftOverJoint(btTypedConstraint* constraint, int numIterations,
+                                                     btConstraintArray& rowScratch,
+                                                     btAlignedObjectArray<btRigidBody*>& correctedBodies)
 {
 	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	btRigidBody& a = constraint->getRigidBodyA();
@@ -273,7 +274,8 @@ struct CorrectIslands : public btIParallelForBody
 			const int islandEnd = btMin(numIslands, (k + 1) * kIslandsPerCorrectionTask);
 			for (int island = k * kIslandsPerCorrectionTask; island < islandEnd; ++island)
 				for (int j = (*islandStart)[island]; j < (*islandStart)[island + 1]; ++j)
-					if (correctLeftOverJoint((*joints)[j], numIterations, chunk.rows, chunk.corrected)) chunk.moved = true;
+					if (correctLeftOverJoint((*joints)[j], numIterations, chunk.rows, chunk.corrected))
+						chunk.moved = true;
 		}
 	}
 };

@@ -32,8 +32,8 @@ struct ChunkStep : public btIParallelForBody
 {
 	btTypedConstraint** joints;  // grouped by island
 	btAlignedObjectArray<JointCorrectionChunk>* chunks;
-	int numIterations;     // the solver's (the rows' set-up reads it)
-	bool move = false;     // move the prepared trees by share of their step
+	int numIterations;  // the solver's (the rows' set-up reads it)
+	bool move = false;  // move the prepared trees by share of their step
 	btScalar share = 1;
 	bool abandon = false;  // a block was singular somewhere: the prepared trees' joints go to the sweep
 	bool sweep = false;    // sweep the left-over joints, unless done
@@ -60,9 +60,8 @@ struct ChunkStep : public btIParallelForBody
 		{
 			btAlignedObjectArray<btTypedConstraint*>& leftOver = first ? chunk.leftOver : chunk.discarded;
 			leftOver.resize(0);
-			chunk.treeStatus = chunk.tree.prepare(joints + chunk.begin,
-			                                      chunk.end - chunk.begin, kTreeMinJoints, kNegligibleGap, leftOver,
-			                                      chunk.largestTurn);
+			chunk.treeStatus = chunk.tree.prepare(joints + chunk.begin, chunk.end - chunk.begin, kTreeMinJoints,
+			                                      kNegligibleGap, leftOver, chunk.largestTurn);
 			// Nothing any other chunk reports can change this chunk's first iteration now. Its poses are
 			// written back at once too (iterations after the first read no inertia; should a later one move
 			// the chunk's bodies again, they are written back again, which gives the same bits), so that a

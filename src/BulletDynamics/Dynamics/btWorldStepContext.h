@@ -35,8 +35,8 @@ struct JointCorrectionChunk
 	int treeStatus = JointAnchorTree::kNothingToSolve;
 	btScalar largestTurn = 0;
 	bool swept = false;
-	bool writtenBack = false;  // its moved poses written back since they last moved
-	btAlignedObjectArray<btTypedConstraint*> leftOver;  // the first iteration's joints for the sweep
+	bool writtenBack = false;                            // its moved poses written back since they last moved
+	btAlignedObjectArray<btTypedConstraint*> leftOver;   // the first iteration's joints for the sweep
 	btAlignedObjectArray<btTypedConstraint*> discarded;  // later iterations' (not swept)
 	btAlignedObjectArray<btRigidBody*> fixedBodies;      // bodies it listed but may not move
 	char padding[128];  // chunks written by different threads stay on different cache lines

@@ -73,8 +73,8 @@ struct Articulations
 	void addRagdoll(const btVector3& at)
 	{
 		btRigidBody* torso = addBody(2, at);
-		addJoint(new btPoint2PointConstraint(*ceiling, *torso, at + btVector3(0, 1, 0) - ceiling->getCenterOfMassPosition(),
-		                                     btVector3(0, 1, 0)));
+		addJoint(new btPoint2PointConstraint(
+		    *ceiling, *torso, at + btVector3(0, 1, 0) - ceiling->getCenterOfMassPosition(), btVector3(0, 1, 0)));
 		const btVector3 directions[4] = {btVector3(1, 0, 0), btVector3(-1, 0, 0), btVector3(btScalar(0.5), -1, 0),
 		                                 btVector3(btScalar(-0.5), -1, 0)};
 		for (int limb = 0; limb < 4; ++limb)
@@ -212,8 +212,7 @@ TEST(JointCorrectionIslands, ArticulationsEndWithTheSerialBitsAtOneTwoThreeFourA
 	// pivots within 1 cm (a 20-link chain released horizontally keeps its gaps within 4 mm,
 	// docs/constraints.md; a step's worth of a 5 m/s swing, uncorrected, is 8 cm).
 	EXPECT_LT(gap, btScalar(0.01));
-	for (int threads : {1, 2, 3, 4, 8})
-		EXPECT_TRUE(sameBits(serial, run(threads))) << threads << " threads";
+	for (int threads : {1, 2, 3, 4, 8}) EXPECT_TRUE(sameBits(serial, run(threads))) << threads << " threads";
 }
 
 TEST(JointCorrectionIslands, AUserSchedulerThatSplitsLoopsUnevenlyGivesTheSerialBits)
