@@ -18,7 +18,6 @@
 
 namespace
 {
-using caliber::joint_correction::kCorrectedMark;
 using caliber::joint_correction::kNegligibleGap;
 using caliber::joint_correction::kTreeMinJoints;
 using caliber::joint_correction::movable;
@@ -392,16 +391,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 		if (sweepLeftOverJoints(world, leftOver, context, correctedBodies)) anyMoved = true;
 	}
 	if (!anyMoved) return;
-	// The moved poses are the step's result: interpolation starts from them and inertia follows them.
-	// A body is listed once per joint that moved it; the companion id (free outside the solver) marks
-	// the ones done.
-	for (int i = 0; i < correctedBodies.size(); ++i)
-	{
-		btRigidBody* body = correctedBodies[i];
-		if (!movable(*body) || body->getCompanionId() == kCorrectedMark) continue;
-		body->setCompanionId(kCorrectedMark);
-		body->setInterpolationWorldTransform(body->getWorldTransform());
-		body->updateInertiaTensor();
-	}
+	// The moved poses are the step's result. A body is listed once per joint that moved it.
+	for (int i = 0; i < correctedBodies.size(); ++i) caliber::joint_correction::writeBackPose(*correctedBodies[i]);
 	for (int i = 0; i < correctedBodies.size(); ++i) correctedBodies[i]->setCompanionId(-1);
 }

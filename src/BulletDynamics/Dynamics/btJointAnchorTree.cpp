@@ -96,11 +96,6 @@ void JointAnchorTree::abandon(btAlignedObjectArray<btTypedConstraint*>& leftOver
 		if (m_edgeUsed[e]) leftOver.push_back(m_edges[e].joint);
 }
 
-void JointAnchorTree::move(btScalar share, btAlignedObjectArray<btRigidBody*>& movedBodies)
-{
-	moveBodies(share, movedBodies);
-}
-
 btScalar JointAnchorTree::stepShare(btScalar largestTurn)
 {
 	// A linearised step is only trusted for small turns: if some body would turn by more than
@@ -448,7 +443,7 @@ btScalar JointAnchorTree::largestTurn() const
 	return largest;
 }
 
-void JointAnchorTree::moveBodies(btScalar share, btAlignedObjectArray<btRigidBody*>& movedBodies)
+void JointAnchorTree::move(btScalar share, btAlignedObjectArray<btRigidBody*>& movedBodies)
 {
 	const int numNodes = m_nodes.size();
 	// Move the bodies: y holds each body's (dp, dtheta).

@@ -95,8 +95,6 @@ private:
 	void substituteRootsFirst();
 	/// The largest turn in m_y (non-finite ones ignored).
 	btScalar largestTurn() const;
-	/// Moves the bodies by m_y times share.
-	void moveBodies(btScalar share, btAlignedObjectArray<btRigidBody*>& movedBodies);
 };
 }  // namespace caliber
 

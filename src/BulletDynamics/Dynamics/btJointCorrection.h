@@ -32,6 +32,17 @@ const int kMinJointsForParallelCorrection = 64;
 /// Whether the correction may move body (awake, neither static nor kinematic).
 inline bool movable(const btRigidBody& body) { return !body.isStaticOrKinematicObject() && body.isActive(); }
 
+/// Writes a corrected body's pose back once (interpolation starts from it, inertia follows it), marked
+/// through its companion id (free outside the solver; the caller resets it to -1 afterwards). Bodies
+/// that may not move are skipped.
+inline void writeBackPose(btRigidBody& body)
+{
+	if (!movable(body) || body.getCompanionId() == kCorrectedMark) return;
+	body.setCompanionId(kCorrectedMark);
+	body.setInterpolationWorldTransform(body.getWorldTransform());
+	body.updateInertiaTensor();
+}
+
 /// The island whose bodies joint's correction moves; -2 when it moves no body; -1 when that cannot be
 /// told (a moving body outside the islands, or two moving bodies in different islands: a body that does
 /// not merge islands).

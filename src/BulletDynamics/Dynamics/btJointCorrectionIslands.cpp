@@ -93,14 +93,7 @@ struct ChunkStep : public btIParallelForBody
 	static void writeBack(JointCorrectionChunk& chunk)
 	{
 		btAlignedObjectArray<btRigidBody*>& corrected = chunk.corrected;
-		for (int i = 0; i < corrected.size(); ++i)
-		{
-			btRigidBody* body = corrected[i];
-			if (!movable(*body) || body->getCompanionId() == kCorrectedMark) continue;
-			body->setCompanionId(kCorrectedMark);
-			body->setInterpolationWorldTransform(body->getWorldTransform());
-			body->updateInertiaTensor();
-		}
+		for (int i = 0; i < corrected.size(); ++i) writeBackPose(*corrected[i]);
 		chunk.fixedBodies.resize(0);
 		for (int i = 0; i < corrected.size(); ++i)
 		{
