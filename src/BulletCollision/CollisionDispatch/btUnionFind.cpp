@@ -69,9 +69,62 @@ void btUnionFind::unite(int p, int q)
 	m_elements[rootQ].m_sz += m_elements[rootP].m_sz;
 }
 
+namespace
+{
+// The counting sort's scratch, one per thread (btUnionFind declares Bullet's members only), kept from call
+// to call so that a world's step allocates nothing once its largest island count has been seen.
+struct SortScratch
+{
+	btAlignedObjectArray<int> start;         // per island id, where its elements begin
+	btAlignedObjectArray<int> cursor;        // per island id, where its next element goes
+	btAlignedObjectArray<btElement> sorted;  // the sorted elements
+};
+SortScratch& sortScratch()
+{
+	static thread_local SortScratch scratch;
+	return scratch;
+}
+
+// Sorts elements (whose m_id are roots, in [0, count)) by (m_id, m_sz) with a counting sort by m_id, which
+// keeps each island's elements in their order; that is the sort's order when they come in increasing m_sz
+// (the island manager stores the object index there, which grows with the element index). False, having
+// changed nothing, when they do not.
+bool countingSortByIsland(btAlignedObjectArray<btElement>& elements)
+{
+	const int count = elements.size();
+	SortScratch& scratch = sortScratch();
+	btAlignedObjectArray<int>& start = scratch.start;
+	start.resize(0);
+	start.resize(count + 1, 0);
+	for (int i = 0; i < count; ++i)
+	{
+		const int id = elements[i].m_id;
+		if (id < 0 || id >= count) return false;
+		++start[id + 1];
+	}
+	for (int id = 0; id < count; ++id) start[id + 1] += start[id];
+	btAlignedObjectArray<int>& cursor = scratch.cursor;
+	cursor.resizeNoInitialize(count);
+	for (int id = 0; id < count; ++id) cursor[id] = start[id];
+	btAlignedObjectArray<btElement>& sorted = scratch.sorted;
+	sorted.resizeNoInitialize(count);
+	for (int i = 0; i < count; ++i)
+	{
+		const btElement& element = elements[i];
+		const int slot = cursor[element.m_id]++;
+		if (slot > start[element.m_id] && element.m_sz < sorted[slot - 1].m_sz) return false;
+		sorted[slot] = element;
+	}
+	for (int i = 0; i < count; ++i) elements[i] = sorted[i];
+	return true;
+}
+}  // namespace
+
 void btUnionFind::sortIslands()
 {
 	const int count = m_elements.size();
 	for (int i = 0; i < count; ++i) m_elements[i].m_id = find(i);
-	m_elements.quickSort(IslandOrder());
+	// The order is (island id, m_sz), which fixes the result (equal keys are equal elements): the linear
+	// counting sort when the elements allow it, the comparison sort otherwise.
+	if (!countingSortByIsland(m_elements)) m_elements.quickSort(IslandOrder());
 }

@@ -11,21 +11,17 @@
 #include "BulletDynamics/ConstraintSolver/btJointRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
+#include "BulletDynamics/Dynamics/btJointCorrection.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btQuickprof.h"
 #include "LinearMath/btThreads.h"
 
 namespace
 {
+using caliber::joint_correction::kNegligibleGap;
+using caliber::joint_correction::kTreeMinJoints;
+using caliber::joint_correction::movable;
 const btScalar kUnbounded = btScalar(1e30) < SIMD_INFINITY ? btScalar(1e30) : SIMD_INFINITY;
-
-// Articulations with at least this many anchor joints get the exact tree solve; Gauss-Seidel sweeps
-// converge well enough on shorter ones (a ragdoll's 10 joints), at a fraction of the cost.
-const int kTreeMinJoints = 12;
-// Marks a body whose corrected pose has been written back (in its companion id, -1 otherwise).
-const int kCorrectedMark = -2;
-// Anchor gaps below this are left alone (0.1 mm: far below what any test or user can see).
-const btScalar kNegligibleGap = btScalar(1e-4);
 
 // Equality rows, one-sided limit rows, and at most how many rows of one joint take part.
 const int kMaxRows = 8;
@@ -86,8 +82,6 @@ void solvePositionRows(const btSolverConstraint* rows, int n, int m, const btSol
 		solveBlock();
 	}
 }
-
-bool movable(const btRigidBody& body) { return !body.isStaticOrKinematicObject() && body.isActive(); }
 
 // A solver-body stand-in carrying what the block algebra reads of a body: its inverse mass per axis
 // and its angular factor.
@@ -162,11 +156,14 @@ bool closeAnchors(btRigidBody& a, btRigidBody& b, const btVector3& anchorInA, co
 		         b.getInvInertiaTensorWorld() * (armB.cross(-impulse) * b.getAngularFactor()) * b.getAngularFactor());
 	return true;
 }
+}  // namespace
+
 // One Gauss-Seidel correction of a joint the trees left out: its anchors closed directly, or its
 // equality rows (and the one-sided limits among them) solved as a block at the current positions.
 // Lists the two bodies when it moved them.
-bool correctLeftOverJoint(btTypedConstraint* constraint, int numIterations, btConstraintArray& rowScratch,
-                          btAlignedObjectArray<btRigidBody*>& correctedBodies)
+bool caliber::joint_correction::correctLeftOverJoint(btTypedConstraint* constraint, int numIterations,
+                                                     btConstraintArray& rowScratch,
+                                                     btAlignedObjectArray<btRigidBody*>& correctedBodies)
 {
 	const int S = caliber::SolverJointBlock::MAX_ROWS;
 	btRigidBody& a = constraint->getRigidBodyA();
@@ -244,9 +241,13 @@ bool correctLeftOverJoint(btTypedConstraint* constraint, int numIterations, btCo
 	return true;
 }
 
-// Joints per task of the left-over sweep on the threads, and the fewest worth a loop.
+namespace
+{
+using caliber::joint_correction::correctLeftOverJoint;
+using caliber::joint_correction::islandOfJoint;
+using caliber::joint_correction::kMinJointsForParallelCorrection;
+// Islands per chunk of the left-over sweep on the threads.
 const int kIslandsPerCorrectionTask = 8;
-const int kMinJointsForParallelCorrection = 64;
 
 // The left-over joints grouped by island (joints of different islands move different bodies): each
 // island's joints keep their order, so every body sees the corrections of the serial sweep in the same
@@ -259,29 +260,24 @@ struct CorrectIslands : public btIParallelForBody
 	btAlignedObjectArray<caliber::JointCorrectionChunk>* chunks;
 	int numIterations;
 
-	void forLoop(int iBegin, int iEnd) const override
+	int numIslands;
+
+	// Over chunk numbers: a user's scheduler may split the loop anywhere, and each chunk has its scratch.
+	void forLoop(int chunkBegin, int chunkEnd) const override
 	{
-		caliber::JointCorrectionChunk& chunk = (*chunks)[iBegin / kIslandsPerCorrectionTask];
-		chunk.corrected.resize(0);
-		chunk.moved = false;
-		for (int island = iBegin; island < iEnd; ++island)
-			for (int k = (*islandStart)[island]; k < (*islandStart)[island + 1]; ++k)
-				if (correctLeftOverJoint((*joints)[k], numIterations, chunk.rows, chunk.corrected)) chunk.moved = true;
+		for (int k = chunkBegin; k < chunkEnd; ++k)
+		{
+			caliber::JointCorrectionChunk& chunk = (*chunks)[k];
+			chunk.corrected.resize(0);
+			chunk.moved = false;
+			const int islandEnd = btMin(numIslands, (k + 1) * kIslandsPerCorrectionTask);
+			for (int island = k * kIslandsPerCorrectionTask; island < islandEnd; ++island)
+				for (int j = (*islandStart)[island]; j < (*islandStart)[island + 1]; ++j)
+					if (correctLeftOverJoint((*joints)[j], numIterations, chunk.rows, chunk.corrected))
+						chunk.moved = true;
+		}
 	}
 };
-
-// The island a left-over joint's moving bodies belong to, or -1 when it cannot be told (a body outside
-// the islands, or two moving bodies in different islands: a body that does not merge islands).
-int islandOfJoint(const btTypedConstraint& joint, int numObjects)
-{
-	const btRigidBody& a = joint.getRigidBodyA();
-	const btRigidBody& b = joint.getRigidBodyB();
-	const bool moveA = movable(a), moveB = movable(b);
-	const int tag = moveA ? a.getIslandTag() : (moveB ? b.getIslandTag() : -1);
-	if (tag < 0 || tag >= numObjects) return -1;
-	if (moveA && moveB && b.getIslandTag() != tag) return -1;
-	return tag;
-}
 
 // Sweeps the left-over joints once, on the threads when they are many and fall into islands; true when a
 // body moved.
@@ -298,7 +294,9 @@ bool sweepLeftOverJoints(btDiscreteDynamicsWorld& world, const btAlignedObjectAr
 		islandOf.resizeNoInitialize(leftOver.size());
 		for (int c = 0; c < leftOver.size() && parallel; ++c)
 		{
+			// A joint that moves no body is corrected by nobody: any island will do.
 			islandOf[c] = islandOfJoint(*leftOver[c], numObjects);
+			if (islandOf[c] == -2) islandOf[c] = 0;
 			parallel = islandOf[c] >= 0;
 		}
 	}
@@ -335,7 +333,8 @@ bool sweepLeftOverJoints(btDiscreteDynamicsWorld& world, const btAlignedObjectAr
 	correct.islandStart = &islandStart;
 	correct.chunks = &chunks;
 	correct.numIterations = numIterations;
-	btParallelFor(0, numIslands, kIslandsPerCorrectionTask, correct);
+	correct.numIslands = numIslands;
+	btParallelFor(0, numChunks, 1, correct);
 	bool moved = false;
 	for (int k = 0; k < numChunks; ++k)
 	{
@@ -372,6 +371,8 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 		if (constraint->isEnabled() && caliber::correctsPosition(*constraint)) joints.push_back(constraint);
 	}
 	if (joints.size() == 0) return;
+	// With threads, independent articulations are corrected on them, island by island.
+	if (caliber::joint_correction::correctByIsland(world, joints, context)) return;
 	bool treeMoved = true;
 	for (int sweep = 0; sweep < sweeps; ++sweep)
 	{
@@ -390,16 +391,7 @@ void caliber::correctJointPositions(btDiscreteDynamicsWorld& world,
 		if (sweepLeftOverJoints(world, leftOver, context, correctedBodies)) anyMoved = true;
 	}
 	if (!anyMoved) return;
-	// The moved poses are the step's result: interpolation starts from them and inertia follows them.
-	// A body is listed once per joint that moved it; the companion id (free outside the solver) marks
-	// the ones done.
-	for (int i = 0; i < correctedBodies.size(); ++i)
-	{
-		btRigidBody* body = correctedBodies[i];
-		if (!movable(*body) || body->getCompanionId() == kCorrectedMark) continue;
-		body->setCompanionId(kCorrectedMark);
-		body->setInterpolationWorldTransform(body->getWorldTransform());
-		body->updateInertiaTensor();
-	}
+	// The moved poses are the step's result. A body is listed once per joint that moved it.
+	for (int i = 0; i < correctedBodies.size(); ++i) caliber::joint_correction::writeBackPose(*correctedBodies[i]);
 	for (int i = 0; i < correctedBodies.size(); ++i) correctedBodies[i]->setCompanionId(-1);
 }

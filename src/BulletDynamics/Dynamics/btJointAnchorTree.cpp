@@ -61,21 +61,49 @@ bool JointAnchorTree::solve(btTypedConstraint** joints, int numJoints, int minJo
                             btAlignedObjectArray<btTypedConstraint*>& leftOver,
                             btAlignedObjectArray<btRigidBody*>& movedBodies)
 {
-	gatherEdges(joints, numJoints, leftOver);
-	if (m_edges.size() == 0) return false;
-	chooseArticulations(minJoints, minGap);
-	if (!buildSpanningForest(leftOver)) return false;
-	orderNodesFromRoots();
-	assembleBlocks();
-	if (!eliminateLeavesFirst())
+	btScalar largest = 0;
+	const Status status = prepare(joints, numJoints, minJoints, minGap, leftOver, largest);
+	if (status == kNothingToSolve) return false;
+	if (status == kSingular)
 	{
-		for (int e = 0; e < m_edges.size(); ++e)
-			if (m_edgeUsed[e]) leftOver.push_back(m_edges[e].joint);
+		abandon(leftOver);
 		return false;
 	}
-	substituteRootsFirst();
-	moveBodies(movedBodies);
+	move(stepShare(largest), movedBodies);
 	return true;
+}
+
+JointAnchorTree::Status JointAnchorTree::prepare(btTypedConstraint** joints, int numJoints, int minJoints,
+                                                 btScalar minGap, btAlignedObjectArray<btTypedConstraint*>& leftOver,
+                                                 btScalar& largest)
+{
+	largest = 0;
+	gatherEdges(joints, numJoints, leftOver);
+	if (m_edges.size() == 0) return kNothingToSolve;
+	chooseArticulations(minJoints, minGap);
+	if (!buildSpanningForest(leftOver)) return kNothingToSolve;
+	orderNodesFromRoots();
+	assembleBlocks();
+	if (!eliminateLeavesFirst()) return kSingular;
+	substituteRootsFirst();
+	largest = largestTurn();
+	return kPrepared;
+}
+
+void JointAnchorTree::abandon(btAlignedObjectArray<btTypedConstraint*>& leftOver) const
+{
+	for (int e = 0; e < m_edges.size(); ++e)
+		if (m_edgeUsed[e]) leftOver.push_back(m_edges[e].joint);
+}
+
+btScalar JointAnchorTree::stepShare(btScalar largestTurn)
+{
+	// A linearised step is only trusted for small turns: if some body would turn by more than
+	// kMaxTurn, the whole step is shortened (a damped Newton step), the Gauss-Seidel sweeps do the rest.
+	// 0.1 rad: a whipping 20-link chain stays within 7 mm with two iterations (0.2 rad: 9 mm, and a
+	// full step diverges there).
+	const btScalar kMaxTurn = btScalar(0.1);
+	return largestTurn > kMaxTurn ? kMaxTurn / largestTurn : btScalar(1);
 }
 
 void JointAnchorTree::gatherEdges(btTypedConstraint** joints, int numJoints,
@@ -401,20 +429,23 @@ void JointAnchorTree::substituteRootsFirst()
 	}
 }
 
-void JointAnchorTree::moveBodies(btAlignedObjectArray<btRigidBody*>& movedBodies)
+btScalar JointAnchorTree::largestTurn() const
+{
+	// Written as a comparison, not btMax, so that a NaN turn is skipped wherever it comes: the largest
+	// turn of several trees is then the same whatever order they are taken in.
+	btScalar largest = 0;
+	for (int i = 0; i < m_nodes.size(); ++i)
+		if (m_nodes[i].body >= 0)
+		{
+			const btScalar turn = btVector3(m_y[i * S + 3], m_y[i * S + 4], m_y[i * S + 5]).length();
+			if (turn > largest) largest = turn;
+		}
+	return largest;
+}
+
+void JointAnchorTree::move(btScalar share, btAlignedObjectArray<btRigidBody*>& movedBodies)
 {
 	const int numNodes = m_nodes.size();
-	// A linearised step is only trusted for small turns: if some body would turn by more than
-	// kMaxTurn, the whole step is shortened (a damped Newton step), the Gauss-Seidel sweeps do the rest.
-	btScalar largestTurn = 0;
-	for (int i = 0; i < numNodes; ++i)
-		if (m_nodes[i].body >= 0)
-			largestTurn = btMax(largestTurn, btVector3(m_y[i * S + 3], m_y[i * S + 4], m_y[i * S + 5]).length());
-	// 0.1 rad: a whipping 20-link chain stays within 7 mm with two iterations (0.2 rad: 9 mm, and a
-	// full step diverges there).
-	const btScalar kMaxTurn = btScalar(0.1);
-	const btScalar share = largestTurn > kMaxTurn ? kMaxTurn / largestTurn : btScalar(1);
-
 	// Move the bodies: y holds each body's (dp, dtheta).
 	for (int i = 0; i < numNodes; ++i)
 	{

@@ -26,6 +26,27 @@ public:
 	bool solve(btTypedConstraint** joints, int numJoints, int minJoints, btScalar minGap,
 	           btAlignedObjectArray<btTypedConstraint*>& leftOver, btAlignedObjectArray<btRigidBody*>& movedBodies);
 
+	// solve in three parts, for a caller that solves several disjoint sets of joints (independent
+	// articulations) with one tree each, maybe on different threads, and shortens all their steps alike:
+	// prepare each, take the largest turn of all, then move (or, when some tree had a singular block,
+	// abandon) each. solve is prepare, then move by stepShare(largestTurn) or abandon.
+	enum Status
+	{
+		kNothingToSolve,  // no articulation worth the exact solve (nothing to move or abandon)
+		kPrepared,        // the step is computed; move or abandon
+		kSingular         // some block was singular; abandon
+	};
+	/// Everything up to the bodies' moves; leftOver as for solve. largestTurn: the largest turn the step
+	/// gives a body (non-finite turns are ignored, so the largest of several sets is the same in any order).
+	Status prepare(btTypedConstraint** joints, int numJoints, int minJoints, btScalar minGap,
+	               btAlignedObjectArray<btTypedConstraint*>& leftOver, btScalar& largestTurn);
+	/// The share of the computed step to take when the largest turn of all trees is largestTurn.
+	static btScalar stepShare(btScalar largestTurn);
+	/// Moves the bodies of the prepared trees by share of their step.
+	void move(btScalar share, btAlignedObjectArray<btRigidBody*>& movedBodies);
+	/// Appends the prepared trees' joints to leftOver (no body moves).
+	void abandon(btAlignedObjectArray<btTypedConstraint*>& leftOver) const;
+
 private:
 	struct Edge
 	{
@@ -72,8 +93,8 @@ private:
 	bool eliminateLeavesFirst();
 	/// Back substitution, roots first, into m_y.
 	void substituteRootsFirst();
-	/// Moves the bodies by m_y, the whole step shortened if some body would turn too far.
-	void moveBodies(btAlignedObjectArray<btRigidBody*>& movedBodies);
+	/// The largest turn in m_y (non-finite ones ignored).
+	btScalar largestTurn() const;
 };
 }  // namespace caliber
 

@@ -21,13 +21,24 @@ class btTypedConstraint;
 namespace caliber
 {
 /// One world's Caliber-only step state, reused from step to step.
-/// What one task of the joint position correction's parallel sweep found (see
-/// btDiscreteDynamicsWorldJointCorrection.cpp): its row scratch and the bodies it moved.
+/// One chunk of the joint position correction on the threads (btDiscreteDynamicsWorldJointCorrection.cpp:
+/// the sweep of the left-over joints; btJointCorrectionIslands.cpp: the whole pass island by island):
+/// its row scratch and the bodies it moved; for the whole pass, also its joints, its tree solver and
+/// their state. Kept from step to step, so nothing is allocated once the largest chunk has been seen.
 struct JointCorrectionChunk
 {
 	btConstraintArray rows;
 	btAlignedObjectArray<btRigidBody*> corrected;
 	bool moved = false;
+	int begin = 0, end = 0;  // its joints in WorldStepContext::jointCorrectionGrouped
+	JointAnchorTree tree;
+	int treeStatus = JointAnchorTree::kNothingToSolve;
+	btScalar largestTurn = 0;
+	bool swept = false;
+	bool writtenBack = false;                            // its moved poses written back since they last moved
+	btAlignedObjectArray<btTypedConstraint*> leftOver;   // the first iteration's joints for the sweep
+	btAlignedObjectArray<btTypedConstraint*> discarded;  // later iterations' (not swept)
+	btAlignedObjectArray<btRigidBody*> fixedBodies;      // bodies it listed but may not move
 	char padding[128];  // chunks written by different threads stay on different cache lines
 };
 

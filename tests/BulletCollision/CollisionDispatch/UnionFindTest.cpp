@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -136,6 +137,39 @@ TEST(UnionFind, SortIslandsMakesEachSetOneContiguousRun)
 		}
 	}
 	for (int i = 0; i < n; ++i) EXPECT_TRUE(seenVertex[size_t(i)]);
+}
+
+// sortIslands orders the elements by (island id, m_sz), which fixes the result; it takes a linear
+// counting sort when each island's elements come in increasing m_sz (as the island manager stores them)
+// and a comparison sort otherwise. Both must give exactly the reference order.
+TEST(UnionFind, SortIslandsGivesTheOrderByIslandIdThenStoredValueWhateverTheStoredValues)
+{
+	std::mt19937 rng(11u);
+	for (int trial = 0; trial < 40; ++trial)
+	{
+		const int n = 1 + int(rng() % 400);
+		btUnionFind uf;
+		uf.reset(n);
+		for (int e = 0; e < n / 2; ++e) uf.unite(int(rng() % size_t(n)), int(rng() % size_t(n)));
+		std::vector<int> stored(static_cast<size_t>(n));
+		for (int i = 0; i < n; ++i)
+			// Even trials: increasing values (the counting sort); odd: random ones with repeats (the
+			// comparison sort).
+			stored[size_t(i)] = trial % 2 == 0 ? 3 * i : int(rng() % size_t(n));
+		std::vector<std::pair<int, int>> reference;
+		for (int i = 0; i < n; ++i)
+		{
+			reference.push_back(std::make_pair(uf.find(i), stored[size_t(i)]));
+			uf.getElement(i).m_sz = stored[size_t(i)];
+		}
+		std::sort(reference.begin(), reference.end());
+		uf.sortIslands();
+		for (int i = 0; i < n; ++i)
+		{
+			ASSERT_EQ(uf.getElement(i).m_id, reference[size_t(i)].first) << "trial " << trial << " element " << i;
+			ASSERT_EQ(uf.getElement(i).m_sz, reference[size_t(i)].second) << "trial " << trial << " element " << i;
+		}
+	}
 }
 
 TEST(UnionFind, LongChainStaysShallow)
