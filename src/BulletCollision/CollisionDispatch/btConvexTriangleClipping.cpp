@@ -513,6 +513,19 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 	return numChosen;
 }
 
+namespace
+{
+// The points a triangle reports: at most 4 of count (chooseManifoldPoints), else all. Writes their indices
+// to chosen and returns how many.
+int chooseAtMostFour(const btVector3* points, const btScalar* distances, int count, const btVector3& normal,
+                     int chosen[kMaxClipped])
+{
+	if (count > 4) return chooseManifoldPoints(points, distances, count, normal, chosen);
+	for (int i = 0; i < count; ++i) chosen[i] = i;
+	return count;
+}
+}  // namespace
+
 bool worldTriangleOf(const btTriangleShape& triangle, const btTransform& transform, WorldTriangle& world)
 {
 	for (int k = 0; k < 3; ++k) world.corners[k] = transform(triangle.m_vertices1[k]);
@@ -694,11 +707,7 @@ int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& con
 		++count;
 	}
 	int chosen[kMaxClipped];
-	int numChosen = count;
-	if (count > 4)
-		numChosen = chooseManifoldPoints(points, distances, count, contactNormal, chosen);
-	else
-		for (int i = 0; i < count; ++i) chosen[i] = i;
+	const int numChosen = chooseAtMostFour(points, distances, count, contactNormal, chosen);
 	for (int i = 0; i < numChosen; ++i) out.addContactPoint(contactNormal, points[chosen[i]], distances[chosen[i]]);
 	return numChosen;
 }
@@ -798,11 +807,7 @@ int reportPointsWithinReach(const Polygon& clipped, const btVector3& normal, btS
 	}
 	if (count == 0) return 0;
 	int chosen[kMaxClipped];
-	int numChosen = count;
-	if (count > 4)
-		numChosen = chooseManifoldPoints(points, distances, count, normal, chosen);
-	else
-		for (int i = 0; i < count; ++i) chosen[i] = i;
+	const int numChosen = chooseAtMostFour(points, distances, count, normal, chosen);
 	for (int i = 0; i < numChosen; ++i)
 	{
 		const int k = chosen[i];
