@@ -152,7 +152,7 @@ btScalar clippingMargin(const btConvexShape* shape)
 // facePointsReported: the triangle's face points were reported and GJK still runs for its edges.
 bool contactWithoutGjk(const btConvexShape* shapeA, const btTransform& transformA, const btConvexShape* shapeB,
                        const btTransform& transformB, caliber::TriangleClipping clipping, btScalar reach,
-                       btManifoldResult& resultOut, bool& facePointsReported)
+                       btManifoldResult& resultOut, bool& facePointsReported, caliber::TriangleFaceSearch& faceSearch)
 {
 	if (shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE && shapeB->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
 	{
@@ -178,6 +178,16 @@ bool contactWithoutGjk(const btConvexShape* shapeA, const btTransform& transform
 		    *shapeA, transformA, *static_cast<const btTriangleShape*>(shapeB), transformB, reach, resultOut);
 		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact) return true;
 		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+	// A hull against a mesh triangle: the cases GJK is not needed for, decided along the triangle's normal
+	// (beyond reach, or the hull's lowest point over the face: its clipped face is the contact). GJK and the
+	// search along its normal take the rest (the search made here is kept for it).
+	if (clipping == caliber::kClipAfterGjk)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::hullTriangleFaceContactBeforeGjk(
+		    *shapeA, transformA, *static_cast<const btTriangleShape*>(shapeB), transformB, reach, resultOut,
+		    faceSearch);
+		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact) return true;
 	}
 	// A capsule against a mesh triangle in closed form: both ends of a capsule lying on the face, and the
 	// edge's point when an edge is nearer (GJK gave one point per triangle, on which a capsule rolls).
@@ -380,8 +390,9 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const caliber::TriangleClipping clipping =
 	    againstTriangle ? caliber::triangleClippingOf(*shapeA) : caliber::kNoClipping;
 	bool facePointsReported = false;
+	caliber::TriangleFaceSearch faceSearch;
 	if (contactWithoutGjk(shapeA, body0Wrap->getWorldTransform(), shapeB, body1Wrap->getWorldTransform(), clipping,
-	                      reach, *resultOut, facePointsReported))
+	                      reach, *resultOut, facePointsReported, faceSearch))
 	{
 		if (m_ownManifold) resultOut->refreshContactPoints();
 		return;
@@ -422,7 +433,8 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContactAlongGjkNormal(
 		    *shapeA, input.m_transformA, *static_cast<const btTriangleShape*>(shapeB), input.m_transformB, reach,
-		    gjkPoint.m_normalOnSurfaceB, gjkPoint.m_distance, m_manifoldPtr->getContactBreakingThreshold(), *resultOut);
+		    gjkPoint.m_normalOnSurfaceB, gjkPoint.m_distance, m_manifoldPtr->getContactBreakingThreshold(), *resultOut,
+		    &faceSearch);
 		if (outcome == caliber::kTriangleFaceContact || outcome == caliber::kTriangleOutOfReach)
 		{
 			if (m_ownManifold) resultOut->refreshContactPoints();
