@@ -13,6 +13,7 @@
 #include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleShape.h"
+#include "BulletCollision/NarrowPhaseCollision/ClosestPointOnTriangle.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
@@ -412,7 +413,19 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	btVector3 startAxis;
 	const bool triangle = triangleStartAxis(shapeA, input.m_transformA, shapeB, input.m_transformB, startAxis);
 	if (triangle)
+	{
+		// A hull the face search along the triangle's normal left to GJK lies beside the triangle or over an
+		// edge: the way from the triangle's nearest point to the hull's origin separates them sooner.
+		if (faceSearch.done)
+		{
+			const btVector3* corners = faceSearch.world.corners;
+			const btVector3 away =
+			    input.m_transformA.getOrigin() -
+			    caliber::closestPointOnTriangle(input.m_transformA.getOrigin(), corners[0], corners[1], corners[2]);
+			if (away.length2() > SIMD_EPSILON) startAxis = away;
+		}
 		gjk.setCachedSeperatingAxis(startAxis);
+	}
 	else if (m_haveLastSeparatingAxis)
 		gjk.setCachedSeperatingAxis(m_lastSeparatingAxis);
 

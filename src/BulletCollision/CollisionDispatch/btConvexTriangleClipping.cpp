@@ -599,9 +599,8 @@ TriangleFaceOutcome hullTriangleFaceContactBeforeGjk(const btConvexShape& convex
 {
 	search.done = false;
 	search.count = 0;
-	WorldTriangle world;
-	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
-	search.outcome = faceContactOn(world, convex, convexTransform, triangle, reach, search);
+	if (!worldTriangleOf(triangle, triangleTransform, search.world)) return kTriangleNeedsGjk;
+	search.outcome = faceContactOn(search.world, convex, convexTransform, triangle, reach, search);
 	search.done = true;
 	if (search.outcome == kTriangleFaceContact) search.replay(out);
 	return search.outcome == kTriangleFaceContact || search.outcome == kTriangleOutOfReach ? search.outcome
@@ -625,8 +624,10 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	const btScalar normalLength2 = localNormal.length2();
 	// A zero or non-finite normal (GJK gave none) is no face's.
 	if (!(normalLength2 > 0) || !btIsFinite(normalLength2)) return kTriangleNeedsGjk;
-	WorldTriangle world;
-	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
+	WorldTriangle found;
+	const bool searched = before && before->done;
+	if (!searched && !worldTriangleOf(triangle, triangleTransform, found)) return kTriangleNeedsGjk;
+	const WorldTriangle& world = searched ? before->world : found;
 	if (along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2)
 	{
 		// Points found before GJK are this search's too (only a deep face, found nothing then, differs).

@@ -74,7 +74,8 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 /// the search along GJK's normal, which asks the same one when GJK's normal is not the face's.
 struct TriangleFaceSearch : public btDiscreteCollisionDetectorInterface::Result
 {
-	bool done = false;  // outcome and points hold the search
+	bool done = false;  // world, outcome and points hold the search
+	WorldTriangle world;  // the triangle in world space (found once for both searches)
 	TriangleFaceOutcome outcome = kTriangleNeedsGjk;
 	int count = 0;  // at most 4 points a triangle
 	btVector3 normals[4], points[4];
