@@ -25,7 +25,8 @@ enum TriangleClipping
 {
 	kNoClipping,     // GJK's point per triangle (spheres, cones, ...; capsules have their own closed form)
 	kClipBeforeGjk,  // boxes: the lowest point and the face in closed form, before GJK, which most triangles skip
-	kClipAfterGjk    // hulls and polyhedra: clipped when GJK's normal is the triangle's face normal
+	kClipAfterGjk    // hulls and polyhedra: settled before GJK only when the face search along the triangle's
+	                 // normal needs no GJK (hullTriangleFaceContactBeforeGjk), else by GJK's normal
 };
 
 /// The clipping the mesh algorithms give a convex shape: boxes before GJK; btConvexHullShape (its face from
