@@ -145,14 +145,17 @@ QueryGrowth queryGrowth(btScalar collisionMarginTriangle, btScalar breakingThres
 class ReachableTriangles : public btTriangleCallback
 {
 public:
-	ReachableTriangles(btTriangleCallback& next, const btVector3& boxMin, const btVector3& boxMax, btScalar allowed)
+	ReachableTriangles(btConvexTriangleCallback& next, const btVector3& boxMin, const btVector3& boxMax, btScalar allowed)
 	    : m_next(next), m_centre((boxMin + boxMax) * btScalar(0.5)), m_half((boxMax - boxMin) * btScalar(0.5)),
 	      m_allowed2(allowed * allowed)
 	{
 	}
 	void processTriangle(btVector3* triangle, int partId, int triangleIndex) override
 	{
-		if (!beyondReach(triangle)) m_next.processTriangle(triangle, partId, triangleIndex);
+		if (!beyondReach(triangle))
+			m_next.processTriangle(triangle, partId, triangleIndex);
+		else
+			++m_next.m_triangleCount;  // still one the query returned
 	}
 
 private:
@@ -182,7 +185,7 @@ private:
 		return false;
 	}
 
-	btTriangleCallback& m_next;
+	btConvexTriangleCallback& m_next;
 	btVector3 m_centre, m_half;
 	btScalar m_allowed2;
 };
