@@ -336,7 +336,8 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	// face-clipped boxes and hulls, the best 4 of all the triangles' points). Objects with a custom material
 	// callback see every triangle's raw points instead, as in Bullet (their owners fix internal edges
 	// themselves, e.g. with btAdjustInternalEdgeContacts).
-	const bool clips = caliber::clipsAgainstMeshTriangles(*convexBodyWrap->getCollisionShape());
+	const caliber::TriangleClipping clipping = caliber::triangleClippingOf(*convexBodyWrap->getCollisionShape());
+	const bool clips = clipping != caliber::kNoClipping;
 	const bool collect = !((convexBodyWrap->getCollisionObject()->getCollisionFlags() |
 	                        triBodyWrap->getCollisionObject()->getCollisionFlags()) &
 	                       btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
@@ -347,7 +348,7 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	// Boxes and hulls get their whole contact patch each frame (face clipping): last frame's points that
 	// have moved away would crowd the manifold.
 	if (clips) caliber::dropStalePoints(manifold, body0Wrap, body1Wrap);
-	if (caliber::triangleClippingOf(*convexBodyWrap->getCollisionShape()) == caliber::kClipAfterGjk)
+	if (clipping == caliber::kClipAfterGjk)
 	{
 		// Hulls: triangles beyond reach of the hull's own box are skipped before any search.
 		const QueryGrowth growth =

@@ -418,6 +418,19 @@ TEST(ConvexTriangleClipping, DegenerateTriangleOrEmptyHullIsLeftToGjkWithoutPoin
 	EXPECT_EQ(caliber::triangleFaceContact(empty, at, bigFloorTriangle(), btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
+	// Before GJK the same: nothing settled, nothing reported; the degenerate triangle keeps no search (the
+	// search along GJK's normal finds it degenerate again), the empty hull's kept search holds no points.
+	btConvexHullShape cube;
+	addCubeCorners(cube);
+	caliber::TriangleFaceSearch search;
+	EXPECT_EQ(caliber::hullTriangleFaceContactBeforeGjk(cube, at, line, btTransform::getIdentity(), kReach, out, search),
+	          caliber::kTriangleNeedsGjk);
+	EXPECT_FALSE(search.done);
+	EXPECT_EQ(caliber::hullTriangleFaceContactBeforeGjk(empty, at, bigFloorTriangle(), btTransform::getIdentity(),
+	                                                    kReach, out, search),
+	          caliber::kTriangleNeedsGjk);
+	EXPECT_EQ(search.count, 0);
+	EXPECT_TRUE(out.points.empty());
 }
 
 TEST(ConvexTriangleClipping, ChoosingFourOfManyPointsKeepsTheCornersOfTheirSpan)
