@@ -67,6 +67,128 @@ void hullAabb(const btConvexShape& hull, const btTransform& transform, btVector3
 		aabbMin[axis] = offset + directions[axis].dot(supports[axis + 3]) - margin;
 	}
 }
+// How far the mesh query's box reaches beyond the convex's own box (in the concave's frame): by extra all
+// round, and by travel ahead of the motion.
+struct QueryGrowth
+{
+	btScalar extra;
+	btVector3 travel;
+
+	void grow(btVector3& boxMin, btVector3& boxMax) const
+	{
+		for (int axis = 0; axis < 3; ++axis)
+		{
+			if (travel[axis] < 0)
+				boxMin[axis] += travel[axis];
+			else
+				boxMax[axis] += travel[axis];
+		}
+		const btVector3 all(extra, extra, extra);
+		boxMin -= all;
+		boxMax += all;
+	}
+	/// The convex's own box back from the query's (up to rounding, which slack covers).
+	void shrink(btVector3& boxMin, btVector3& boxMax, btScalar slack) const
+	{
+		const btVector3 all(extra - slack, extra - slack, extra - slack);
+		boxMin += all;
+		boxMax -= all;
+		for (int axis = 0; axis < 3; ++axis)
+		{
+			if (travel[axis] < 0)
+				boxMin[axis] -= travel[axis];
+			else
+				boxMax[axis] -= travel[axis];
+		}
+	}
+};
+
+QueryGrowth queryGrowth(btScalar collisionMarginTriangle, btScalar breakingThreshold,
+                        const btDispatcherInfo& dispatchInfo, const btCollisionObjectWrapper* convexBodyWrap,
+                        const btCollisionObjectWrapper* triBodyWrap, const btManifoldResult& resultOut)
+{
+	// Triangles within the breaking threshold must be seen too, or contacts would flicker at rest.
+	QueryGrowth growth;
+	growth.extra = collisionMarginTriangle + breakingThreshold;
+	growth.travel.setValue(0, 0, 0);
+	const btScalar speculative = resultOut.m_closestPointDistanceThreshold;
+	if (speculative > btScalar(0) && dispatchInfo.m_timeStep > btScalar(0))
+	{
+		// The speculative reach (how far the pair can close this step) only matters ahead of the convex:
+		// grow the box along its motion relative to the mesh, and by the turning part all round. Triangles
+		// behind a falling body are not worth a collision query.
+		const btCollisionObject* convex = convexBodyWrap->getCollisionObject();
+		const btCollisionObject* mesh = triBodyWrap->getCollisionObject();
+		const btVector3 relative = convex->getInterpolationLinearVelocity() - mesh->getInterpolationLinearVelocity();
+		const btVector3 travel =
+		    triBodyWrap->getWorldTransform().getBasis().transpose() * relative * dispatchInfo.m_timeStep;
+		const btScalar turning = btMax(btScalar(0), speculative - relative.length() * dispatchInfo.m_timeStep);
+		if (btIsFinite(travel.x()) && btIsFinite(travel.y()) && btIsFinite(travel.z()) && btIsFinite(turning))
+		{
+			growth.extra += turning;
+			growth.travel = travel;
+		}
+		else
+		{
+			growth.extra += speculative;
+		}
+	}
+	return growth;
+}
+
+// Passes on the triangles a hull may reach: a triangle whose plane, or one of whose side planes (through
+// an edge, along the normal), has the hull's own box (in the concave's frame, margin included) beyond it
+// by more than reach is out of reach (a separating axis), and its face search and GJK are skipped. The
+// box is the hull's exact extent along the concave's axes, so against the nearly level triangles of a
+// terrain the plane test is about as sharp as the hull's points. Exact: the triangles skipped are those
+// the face search would find out of reach (up to rounding at the limit).
+class ReachableTriangles : public btTriangleCallback
+{
+public:
+	ReachableTriangles(btConvexTriangleCallback& next, const btVector3& boxMin, const btVector3& boxMax, btScalar allowed)
+	    : m_next(next), m_centre((boxMin + boxMax) * btScalar(0.5)), m_half((boxMax - boxMin) * btScalar(0.5)),
+	      m_allowed2(allowed * allowed)
+	{
+	}
+	void processTriangle(btVector3* triangle, int partId, int triangleIndex) override
+	{
+		if (!beyondReach(triangle))
+			m_next.processTriangle(triangle, partId, triangleIndex);
+		else
+			++m_next.m_triangleCount;  // still one the query returned
+	}
+
+private:
+	// The box's clearance beyond the plane through `from` with (unnormalised) normal `axis`, compared
+	// squared with the allowed distance (no square root for the many triangles out of reach).
+	bool beyondPlane(const btVector3& from, const btVector3& axis, bool twoSided) const
+	{
+		const btScalar centre = axis.dot(m_centre - from);
+		const btScalar extent = btFabs(axis.x()) * m_half.x() + btFabs(axis.y()) * m_half.y() +
+		                        btFabs(axis.z()) * m_half.z();
+		const btScalar clearance = (twoSided ? btFabs(centre) : centre) - extent;
+		return clearance > 0 && clearance * clearance > m_allowed2 * axis.length2();
+	}
+	bool beyondReach(const btVector3* corners) const
+	{
+		const btVector3 edge1 = corners[1] - corners[0];
+		const btVector3 edge2 = corners[2] - corners[0];
+		const btVector3 normal = edge1.cross(edge2);
+		// A sliver's normal is mostly rounding: the full search decides.
+		if (!(normal.length2() > SIMD_EPSILON * edge1.length2() * edge2.length2())) return false;
+		if (beyondPlane(corners[0], normal, true)) return true;
+		for (int k = 0; k < 3; ++k)
+		{
+			const btVector3 side = (corners[k == 2 ? 0 : k + 1] - corners[k]).cross(normal);  // outwards
+			if (beyondPlane(corners[k], side, false)) return true;
+		}
+		return false;
+	}
+
+	btConvexTriangleCallback& m_next;
+	btVector3 m_centre, m_half;
+	btScalar m_allowed2;
+};
 }  // namespace
 
 btConvexTriangleCallback::btConvexTriangleCallback(btDispatcher* dispatcher, const btCollisionObjectWrapper* body0Wrap,
@@ -125,39 +247,9 @@ void btConvexTriangleCallback::setTimeStepAndCounters(btScalar collisionMarginTr
 		hullAabb(*static_cast<const btConvexShape*>(convexShape), convexInTriangleSpace, m_aabbMin, m_aabbMax);
 	else
 		convexShape->getAabb(convexInTriangleSpace, m_aabbMin, m_aabbMax);
-	// Triangles within the breaking threshold must be seen too, or contacts would flicker at rest.
-	btScalar extra = collisionMarginTriangle + m_manifoldPtr->getContactBreakingThreshold();
-	const btScalar speculative = resultOut->m_closestPointDistanceThreshold;
-	if (speculative > btScalar(0) && dispatchInfo.m_timeStep > btScalar(0))
-	{
-		// The speculative reach (how far the pair can close this step) only matters ahead of the convex:
-		// grow the box along its motion relative to the mesh, and by the turning part all round. Triangles
-		// behind a falling body are not worth a collision query.
-		const btCollisionObject* convex = convexBodyWrap->getCollisionObject();
-		const btCollisionObject* mesh = triBodyWrap->getCollisionObject();
-		const btVector3 relative = convex->getInterpolationLinearVelocity() - mesh->getInterpolationLinearVelocity();
-		const btVector3 travel =
-		    triBodyWrap->getWorldTransform().getBasis().transpose() * relative * dispatchInfo.m_timeStep;
-		const btScalar turning = btMax(btScalar(0), speculative - relative.length() * dispatchInfo.m_timeStep);
-		if (btIsFinite(travel.x()) && btIsFinite(travel.y()) && btIsFinite(travel.z()) && btIsFinite(turning))
-		{
-			extra += turning;
-			for (int axis = 0; axis < 3; ++axis)
-			{
-				if (travel[axis] < 0)
-					m_aabbMin[axis] += travel[axis];
-				else
-					m_aabbMax[axis] += travel[axis];
-			}
-		}
-		else
-		{
-			extra += speculative;
-		}
-	}
-	const btVector3 grow(extra, extra, extra);
-	m_aabbMin -= grow;
-	m_aabbMax += grow;
+	const QueryGrowth growth = queryGrowth(collisionMarginTriangle, m_manifoldPtr->getContactBreakingThreshold(),
+	                                       dispatchInfo, convexBodyWrap, triBodyWrap, *resultOut);
+	growth.grow(m_aabbMin, m_aabbMax);
 }
 
 void btConvexTriangleCallback::processTriangle(btVector3* triangle, int partId, int triangleIndex)
@@ -244,7 +336,8 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	// face-clipped boxes and hulls, the best 4 of all the triangles' points). Objects with a custom material
 	// callback see every triangle's raw points instead, as in Bullet (their owners fix internal edges
 	// themselves, e.g. with btAdjustInternalEdgeContacts).
-	const bool clips = caliber::clipsAgainstMeshTriangles(*convexBodyWrap->getCollisionShape());
+	const caliber::TriangleClipping clipping = caliber::triangleClippingOf(*convexBodyWrap->getCollisionShape());
+	const bool clips = clipping != caliber::kNoClipping;
 	const bool collect = !((convexBodyWrap->getCollisionObject()->getCollisionFlags() |
 	                        triBodyWrap->getCollisionObject()->getCollisionFlags()) &
 	                       btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
@@ -255,8 +348,29 @@ void btConvexConcaveCollisionAlgorithm::processCollision(const btCollisionObject
 	// Boxes and hulls get their whole contact patch each frame (face clipping): last frame's points that
 	// have moved away would crowd the manifold.
 	if (clips) caliber::dropStalePoints(manifold, body0Wrap, body1Wrap);
-	concave->processAllTriangles(&m_btConvexTriangleCallback, m_btConvexTriangleCallback.getAabbMin(),
-	                             m_btConvexTriangleCallback.getAabbMax());
+	if (clipping == caliber::kClipAfterGjk)
+	{
+		// Hulls: triangles beyond reach of the hull's own box are skipped before any search.
+		const QueryGrowth growth =
+		    queryGrowth(concave->getMargin(), manifold->getContactBreakingThreshold(), dispatchInfo, convexBodyWrap,
+		                triBodyWrap, collect ? static_cast<btManifoldResult&>(collector) : *resultOut);
+		btVector3 boxMin = m_btConvexTriangleCallback.getAabbMin();
+		btVector3 boxMax = m_btConvexTriangleCallback.getAabbMax();
+		const btScalar size = (boxMax - boxMin).length();
+		growth.shrink(boxMin, boxMax, btScalar(1e-5) * (size + btScalar(1)));
+		const btScalar allowed = manifold->getContactBreakingThreshold() +
+		                         (collect ? collector.m_closestPointDistanceThreshold
+		                                  : resultOut->m_closestPointDistanceThreshold) +
+		                         concave->getMargin();
+		ReachableTriangles reachable(m_btConvexTriangleCallback, boxMin, boxMax, allowed);
+		concave->processAllTriangles(&reachable, m_btConvexTriangleCallback.getAabbMin(),
+		                             m_btConvexTriangleCallback.getAabbMax());
+	}
+	else
+	{
+		concave->processAllTriangles(&m_btConvexTriangleCallback, m_btConvexTriangleCallback.getAabbMin(),
+		                             m_btConvexTriangleCallback.getAabbMax());
+	}
 	if (collect) collector.flush(triBodyWrap);
 	resultOut->refreshContactPoints();
 	m_btConvexTriangleCallback.clearWrapperData();

@@ -13,6 +13,7 @@
 #include "BulletCollision/CollisionShapes/btPolyhedralConvexShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleShape.h"
+#include "BulletCollision/NarrowPhaseCollision/ClosestPointOnTriangle.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h"
 #include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
@@ -152,7 +153,7 @@ btScalar clippingMargin(const btConvexShape* shape)
 // facePointsReported: the triangle's face points were reported and GJK still runs for its edges.
 bool contactWithoutGjk(const btConvexShape* shapeA, const btTransform& transformA, const btConvexShape* shapeB,
                        const btTransform& transformB, caliber::TriangleClipping clipping, btScalar reach,
-                       btManifoldResult& resultOut, bool& facePointsReported)
+                       btManifoldResult& resultOut, bool& facePointsReported, caliber::TriangleFaceSearch& faceSearch)
 {
 	if (shapeA->getShapeType() == CAPSULE_SHAPE_PROXYTYPE && shapeB->getShapeType() == CAPSULE_SHAPE_PROXYTYPE)
 	{
@@ -178,6 +179,16 @@ bool contactWithoutGjk(const btConvexShape* shapeA, const btTransform& transform
 		    *shapeA, transformA, *static_cast<const btTriangleShape*>(shapeB), transformB, reach, resultOut);
 		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact) return true;
 		facePointsReported = outcome == caliber::kTriangleFacePointsAndGjk;
+	}
+	// A hull against a mesh triangle: the cases GJK is not needed for, decided along the triangle's normal
+	// (beyond reach, or the hull's lowest point over the face: its clipped face is the contact). GJK and the
+	// search along its normal take the rest (the search made here is kept for it).
+	if (clipping == caliber::kClipAfterGjk)
+	{
+		const caliber::TriangleFaceOutcome outcome = caliber::hullTriangleFaceContactBeforeGjk(
+		    *shapeA, transformA, *static_cast<const btTriangleShape*>(shapeB), transformB, reach, resultOut,
+		    faceSearch);
+		if (outcome == caliber::kTriangleOutOfReach || outcome == caliber::kTriangleFaceContact) return true;
 	}
 	// A capsule against a mesh triangle in closed form: both ends of a capsule lying on the face, and the
 	// edge's point when an edge is nearer (GJK gave one point per triangle, on which a capsule rolls).
@@ -380,8 +391,9 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	const caliber::TriangleClipping clipping =
 	    againstTriangle ? caliber::triangleClippingOf(*shapeA) : caliber::kNoClipping;
 	bool facePointsReported = false;
+	caliber::TriangleFaceSearch faceSearch;
 	if (contactWithoutGjk(shapeA, body0Wrap->getWorldTransform(), shapeB, body1Wrap->getWorldTransform(), clipping,
-	                      reach, *resultOut, facePointsReported))
+	                      reach, *resultOut, facePointsReported, faceSearch))
 	{
 		if (m_ownManifold) resultOut->refreshContactPoints();
 		return;
@@ -401,7 +413,19 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	btVector3 startAxis;
 	const bool triangle = triangleStartAxis(shapeA, input.m_transformA, shapeB, input.m_transformB, startAxis);
 	if (triangle)
+	{
+		// A hull the face search along the triangle's normal left to GJK lies beside the triangle or over an
+		// edge: the way from the triangle's nearest point to the hull's origin separates them sooner.
+		if (faceSearch.done)
+		{
+			const btVector3* corners = faceSearch.world.corners;
+			const btVector3 away =
+			    input.m_transformA.getOrigin() -
+			    caliber::closestPointOnTriangle(input.m_transformA.getOrigin(), corners[0], corners[1], corners[2]);
+			if (away.length2() > SIMD_EPSILON) startAxis = away;
+		}
 		gjk.setCachedSeperatingAxis(startAxis);
+	}
 	else if (m_haveLastSeparatingAxis)
 		gjk.setCachedSeperatingAxis(m_lastSeparatingAxis);
 
@@ -422,7 +446,8 @@ void btConvexConvexAlgorithm::processCollision(const btCollisionObjectWrapper* b
 	{
 		const caliber::TriangleFaceOutcome outcome = caliber::triangleFaceContactAlongGjkNormal(
 		    *shapeA, input.m_transformA, *static_cast<const btTriangleShape*>(shapeB), input.m_transformB, reach,
-		    gjkPoint.m_normalOnSurfaceB, gjkPoint.m_distance, m_manifoldPtr->getContactBreakingThreshold(), *resultOut);
+		    gjkPoint.m_normalOnSurfaceB, gjkPoint.m_distance, m_manifoldPtr->getContactBreakingThreshold(), *resultOut,
+		    &faceSearch);
 		if (outcome == caliber::kTriangleFaceContact || outcome == caliber::kTriangleOutOfReach)
 		{
 			if (m_ownManifold) resultOut->refreshContactPoints();

@@ -238,13 +238,14 @@ bool wrapToTiltedFace(const btVector3* points, int numPoints, const btVector3& s
 // The points (times scaling) within kHullFaceBand of the convex's extent along the local direction `down`
 // (towards the triangle) below the deepest, one copy of each, in world space moved out by `outwards`:
 // the convex's face there, ordered around its centre; 2 points for an edge (a box or barrel landing on
-// an edge, clipped as a segment); none for a vertex, where GJK's point is the contact.
-void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
+// an edge, clipped as a segment); none for a vertex, where GJK's point is the contact. False, building
+// nothing, when the deepest point's depth is below leastDeepest (the convex is out of reach).
+bool bandFace(const btVector3* points, int numPoints, const btVector3& scaling, const btVector3& down,
               const btTransform& transform, const btVector3& normal, const btVector3& outwards, btScalar reach,
-              Polygon& face)
+              btScalar leastDeepest, Polygon& face)
 {
 	face.count = 0;
-	if (numPoints < 2) return;
+	if (numPoints < 2) return true;
 	const btVector3 direction = down * scaling;  // unscaled points dotted with it give scaled depths
 	btScalar depths[kDepthChunk];
 	btScalar deepest = -BT_LARGE_FLOAT, shallowest = BT_LARGE_FLOAT;
@@ -252,9 +253,11 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 	{
 		dotsOf(points + start, btMin(kDepthChunk, numPoints - start), direction, depths, deepest, shallowest);
 	}
+	// The lowest point is out of reach: no face is built (most triangles a mesh query returns).
+	if (deepest < leastDeepest) return false;
 	const btScalar threshold = deepest - kHullFaceBand * (deepest - shallowest);
 	// Non-finite points (bad input, warned about where they were set) give no face: GJK decides.
-	if (!btIsFinite(threshold)) return;
+	if (!btIsFinite(threshold)) return true;
 	const btVector3* sources[kMaxFaceCorners];
 	// A hull of one chunk still has its depths; larger ones are dotted again, chunk by chunk.
 	for (int start = 0; start < numPoints && face.count < kMaxFaceCorners; start += kDepthChunk)
@@ -303,18 +306,22 @@ void bandFace(const btVector3* points, int numPoints, const btVector3& scaling, 
 		face.count = 0;
 	else if (face.count > 3)  // any order of 2 or 3 points is a polygon already
 		orderAroundCentre(normal, face);
+	return true;
 }
 
 // A btConvexHullShape's face over the triangle from its points (see bandFace), moved out by the margin
-// (the hull's surface is its points' hull grown by it).
-void hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal,
-                    btScalar reach, Polygon& face)
+// (the hull's surface is its points' hull grown by it). False, building nothing, when the hull's lowest
+// point along the normal is above lowestAllowed (world height along the normal).
+bool hullPointsFace(const btConvexHullShape& hull, const btTransform& transform, const btVector3& normal,
+                    btScalar reach, btScalar lowestAllowed, Polygon& face)
 {
 	face.count = 0;
 	const btVector3* points = hull.getUnscaledPoints();
-	if (!points) return;
-	bandFace(points, hull.getNumPoints(), hull.getLocalScaling(), -normal * transform.getBasis(), transform, normal,
-	         -normal * hull.getMargin(), reach, face);
+	if (!points) return true;
+	// A point's height along the normal is origin . normal - margin - its depth along down.
+	const btScalar leastDeepest = transform.getOrigin().dot(normal) - hull.getMargin() - lowestAllowed;
+	return bandFace(points, hull.getNumPoints(), hull.getLocalScaling(), -normal * transform.getBasis(), transform,
+	                normal, -normal * hull.getMargin(), reach, leastDeepest, face);
 }
 
 // A polyhedron's face over the triangle: its face most opposed to the normal when that lies on the
@@ -348,7 +355,7 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 	{
 		if (numVertices > 0)
 			bandFace(&polyhedron.m_vertices[0], numVertices, btVector3(1, 1, 1), -local, transform, normal, outwards,
-			         reach, face);
+			         reach, -BT_LARGE_FLOAT, face);
 		return;
 	}
 	const btAlignedObjectArray<int>& indices = polyhedron.m_faces[best].m_indices;
@@ -361,16 +368,20 @@ void polyhedronFace(const btConvexPolyhedron& polyhedron, btScalar margin, const
 	if (face.count < 3) face.count = 0;
 }
 
-// A hull's face over the triangle: from its polyhedron when it has one, else from its points.
-void convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, btScalar reach,
-                Polygon& face)
+// A hull's face over the triangle: from its polyhedron when it has one, else from its points. False,
+// building nothing, when a hull's points show it out of reach: its lowest point along the normal is above
+// lowestAllowed (BT_LARGE_FLOAT: never; a polyhedron's face is always built, and its corners tell).
+bool convexFace(const btConvexShape& convex, const btTransform& transform, const btVector3& normal, btScalar reach,
+                btScalar lowestAllowed, Polygon& face)
 {
 	face.count = 0;
 	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape&>(convex).getConvexPolyhedron();
 	if (polyhedron)
 		polyhedronFace(*polyhedron, convex.getMargin(), transform, normal, reach, face);
 	else if (convex.getShapeType() == CONVEX_HULL_SHAPE_PROXYTYPE)
-		hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, reach, face);
+		return hullPointsFace(static_cast<const btConvexHullShape&>(convex), transform, normal, reach, lowestAllowed,
+		                      face);
+	return true;
 }
 
 // Sutherland-Hodgman: keeps the part of the closed polygon in on the side (x - origin) . side <= 0.
@@ -513,6 +524,19 @@ int chooseManifoldPoints(const btVector3* points, const btScalar* distances, int
 	return numChosen;
 }
 
+namespace
+{
+// The points a triangle reports: at most 4 of count (chooseManifoldPoints), else all. Writes their indices
+// to chosen and returns how many.
+int chooseAtMostFour(const btVector3* points, const btScalar* distances, int count, const btVector3& normal,
+                     int chosen[kMaxClipped])
+{
+	if (count > 4) return chooseManifoldPoints(points, distances, count, normal, chosen);
+	for (int i = 0; i < count; ++i) chosen[i] = i;
+	return count;
+}
+}  // namespace
+
 bool worldTriangleOf(const btTriangleShape& triangle, const btTransform& transform, WorldTriangle& world)
 {
 	for (int k = 0; k < 3; ++k) world.corners[k] = transform(triangle.m_vertices1[k]);
@@ -544,9 +568,15 @@ TriangleClipping triangleClippingOf(const btCollisionShape& convex)
 
 namespace
 {
+// When faceContactOn is asked, which decides what it may report.
+enum FaceSearch
+{
+	kFaceSearch,             // the face's points within reach, whatever the outcome
+	kFaceNormalIsTheWayOut,  // GJK and the depth solver found the face normal: a deep face holds too
+};
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
-                                  btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut = false);
+                                  btDiscreteCollisionDetectorInterface::Result& out, FaceSearch search = kFaceSearch);
 int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& convex, const btTransform& convexTransform,
                             const btTriangleShape& triangle, const btVector3& gjkNormal, btScalar touching,
                             btDiscreteCollisionDetectorInterface::Result& out);
@@ -561,12 +591,29 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 	return faceContactOn(world, convex, convexTransform, triangle, reach, out);
 }
 
+TriangleFaceOutcome hullTriangleFaceContactBeforeGjk(const btConvexShape& convex, const btTransform& convexTransform,
+                                                     const btTriangleShape& triangle,
+                                                     const btTransform& triangleTransform, btScalar reach,
+                                                     btDiscreteCollisionDetectorInterface::Result& out,
+                                                     TriangleFaceSearch& search)
+{
+	search.done = false;
+	search.count = 0;
+	if (!worldTriangleOf(triangle, triangleTransform, search.world)) return kTriangleNeedsGjk;
+	search.outcome = faceContactOn(search.world, convex, convexTransform, triangle, reach, search);
+	search.done = true;
+	if (search.outcome == kTriangleFaceContact) search.replay(out);
+	return search.outcome == kTriangleFaceContact || search.outcome == kTriangleOutOfReach ? search.outcome
+	                                                                                        : kTriangleNeedsGjk;
+}
+
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
                                                       const btVector3& gjkNormal, btScalar gjkDistance,
                                                       btScalar touching,
-                                                      btDiscreteCollisionDetectorInterface::Result& out)
+                                                      btDiscreteCollisionDetectorInterface::Result& out,
+                                                      const TriangleFaceSearch* before)
 {
 	// The face test in the triangle's frame first: most normals GJK finds against a mesh (edges, vertices)
 	// are not a face's, and the corners need not be moved to world space for them.
@@ -577,10 +624,20 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	const btScalar normalLength2 = localNormal.length2();
 	// A zero or non-finite normal (GJK gave none) is no face's.
 	if (!(normalLength2 > 0) || !btIsFinite(normalLength2)) return kTriangleNeedsGjk;
-	WorldTriangle world;
-	if (!worldTriangleOf(triangle, triangleTransform, world)) return kTriangleNeedsGjk;
+	WorldTriangle found;
+	const bool searched = before && before->done;
+	if (!searched && !worldTriangleOf(triangle, triangleTransform, found)) return kTriangleNeedsGjk;
+	const WorldTriangle& world = searched ? before->world : found;
 	if (along * along >= kFaceNormalCosine * kFaceNormalCosine * face.length2() * normalLength2)
-		return faceContactOn(world, convex, convexTransform, triangle, reach, out, true);
+	{
+		// Points found before GJK are this search's too (only a deep face, found nothing then, differs).
+		if (before && before->done && before->outcome == kTriangleFacePointsAndGjk)
+		{
+			before->replay(out);
+			return before->outcome;
+		}
+		return faceContactOn(world, convex, convexTransform, triangle, reach, out, kFaceNormalIsTheWayOut);
+	}
 	// The convex's face lies on the triangle's edge or vertex (a ridge, a peak): the triangle's part under
 	// the face, along the face's normal, is the whole contact.
 	if (gjkDistance <= touching &&
@@ -595,7 +652,16 @@ TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& conve
 	// (its face's points over the neighbours are what stop it there), or a face resting across a ridge or a
 	// vertex. Those points are reported along the face normal, as a box's are; GJK's point is added too
 	// (the collector drops it when the edge is internal).
-	const TriangleFaceOutcome outcome = faceContactOn(world, convex, convexTransform, triangle, reach, out);
+	TriangleFaceOutcome outcome;
+	if (before && before->done)
+	{
+		outcome = before->outcome;
+		before->replay(out);
+	}
+	else
+	{
+		outcome = faceContactOn(world, convex, convexTransform, triangle, reach, out);
+	}
 	return outcome == kTriangleNeedsGjk || outcome == kTriangleOutOfReach ? kTriangleNeedsGjk
 	                                                                      : kTriangleFacePointsAndGjk;
 }
@@ -619,7 +685,7 @@ int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& con
 	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
 		boxFace(static_cast<const btBoxShape&>(convex), convexTransform, normal * convexTransform.getBasis(), face);
 	else
-		convexFace(convex, convexTransform, normal, 0, face);  // a face across the normal, never a tilted one
+		convexFace(convex, convexTransform, normal, 0, BT_LARGE_FLOAT, face);  // across the normal, never tilted
 	if (face.count < 3) return 0;
 	// The face's own normal (Newell's, robust for any polygon in order), facing the triangle; only a face
 	// across GJK's normal is the contact (a tilted face found by wrapping is not).
@@ -694,11 +760,7 @@ int triangleUnderConvexFace(const WorldTriangle& world, const btConvexShape& con
 		++count;
 	}
 	int chosen[kMaxClipped];
-	int numChosen = count;
-	if (count > 4)
-		numChosen = chooseManifoldPoints(points, distances, count, contactNormal, chosen);
-	else
-		for (int i = 0; i < count; ++i) chosen[i] = i;
+	const int numChosen = chooseAtMostFour(points, distances, count, contactNormal, chosen);
 	for (int i = 0; i < numChosen; ++i) out.addContactPoint(contactNormal, points[chosen[i]], distances[chosen[i]]);
 	return numChosen;
 }
@@ -777,43 +839,47 @@ Polygon* clipFaceToTrianglePrism(Polygon& face, Polygon& scratch, const btVector
 	return in;
 }
 
-// Reports the clipped corners within reach (at most 4 a triangle: choosing here costs less than handing
-// the collector more points), each on the triangle's surface. Returns how many were within reach and the
+// The clipped corners within reach of the triangle's plane and their distances; returns how many and the
 // closest distance.
-int reportPointsWithinReach(const Polygon& clipped, const btVector3& normal, btScalar planeOffset, btScalar reach,
-                            btDiscreteCollisionDetectorInterface::Result& out, btScalar& closest)
+struct PointsWithinReach
 {
 	btVector3 points[kMaxClipped];
 	btScalar distances[kMaxClipped];
 	int count = 0;
-	closest = BT_LARGE_FLOAT;
+	btScalar closest = BT_LARGE_FLOAT;
+};
+
+void pointsWithinReach(const Polygon& clipped, const btVector3& normal, btScalar planeOffset, btScalar reach,
+                       PointsWithinReach& within)
+{
 	for (int i = 0; i < clipped.count; ++i)
 	{
 		const btScalar distance = clipped.corners[i].dot(normal) - planeOffset;
 		if (!(distance <= reach)) continue;
-		points[count] = clipped.corners[i];
-		distances[count] = distance;
-		closest = btMin(closest, distance);
-		++count;
+		within.points[within.count] = clipped.corners[i];
+		within.distances[within.count] = distance;
+		within.closest = btMin(within.closest, distance);
+		++within.count;
 	}
-	if (count == 0) return 0;
+}
+
+// Reports the points (at most 4 a triangle: choosing here costs less than handing the collector more
+// points), each on the triangle's surface.
+void reportPointsWithinReach(const PointsWithinReach& within, const btVector3& normal,
+                             btDiscreteCollisionDetectorInterface::Result& out)
+{
 	int chosen[kMaxClipped];
-	int numChosen = count;
-	if (count > 4)
-		numChosen = chooseManifoldPoints(points, distances, count, normal, chosen);
-	else
-		for (int i = 0; i < count; ++i) chosen[i] = i;
+	const int numChosen = chooseAtMostFour(within.points, within.distances, within.count, normal, chosen);
 	for (int i = 0; i < numChosen; ++i)
 	{
 		const int k = chosen[i];
-		out.addContactPoint(normal, points[k] - normal * distances[k], distances[k]);
+		out.addContactPoint(normal, within.points[k] - normal * within.distances[k], within.distances[k]);
 	}
-	return count;
 }
 
 TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShape& convex,
                                   const btTransform& convexTransform, const btTriangleShape& triangle, btScalar reach,
-                                  btDiscreteCollisionDetectorInterface::Result& out, bool normalIsTheWayOut)
+                                  btDiscreteCollisionDetectorInterface::Result& out, FaceSearch search)
 {
 	const btVector3* corners = world.corners;
 	if (convex.getShapeType() == BOX_SHAPE_PROXYTYPE)
@@ -845,9 +911,9 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 		if (lowestPoint - planeOffset > reach) return kTriangleOutOfReach;
 		boxFace(box, convexTransform, local, face);
 	}
-	else
+	else if (!convexFace(convex, convexTransform, normal, reach, planeOffset + reach, face))
 	{
-		convexFace(convex, convexTransform, normal, reach, face);
+		return kTriangleOutOfReach;
 	}
 	if (face.count == 0) return kTriangleNeedsGjk;
 
@@ -861,14 +927,18 @@ TriangleFaceOutcome faceContactOn(const WorldTriangle& world, const btConvexShap
 	// Unless GJK and the depth solver found the face normal to be the way out: then the whole face holds
 	// the convex as it is pushed out (a hull spun onto its face by a fast landing, found deep a step later,
 	// rocked about GJK's single point and sank further).
-	if ((lowest < -kFaceDepthLimit && !normalIsTheWayOut) || face.count < 2) return kTriangleNeedsGjk;
+	if ((lowest < -kFaceDepthLimit && search != kFaceNormalIsTheWayOut) || face.count < 2) return kTriangleNeedsGjk;
 
 	const Polygon* clipped = clipFaceToTrianglePrism(face, scratch, corners, windingNormal);
-	btScalar closest;
-	if (reportPointsWithinReach(*clipped, normal, planeOffset, reach, out, closest) == 0) return kTriangleNeedsGjk;
+	PointsWithinReach within;
+	pointsWithinReach(*clipped, normal, planeOffset, reach, within);
+	if (within.count == 0) return kTriangleNeedsGjk;
 	// The lowest point over the triangle: the face normal is the closest direction, nothing more to find.
 	// Otherwise the lowest point is beyond an edge, where the nearest feature may be that edge (GJK's).
-	return closest <= lowest + kFaceLevelTolerance ? kTriangleFaceContact : kTriangleFacePointsAndGjk;
+	const TriangleFaceOutcome outcome =
+	    within.closest <= lowest + kFaceLevelTolerance ? kTriangleFaceContact : kTriangleFacePointsAndGjk;
+	reportPointsWithinReach(within, normal, out);
+	return outcome;
 }
 }  // namespace
 }  // namespace caliber

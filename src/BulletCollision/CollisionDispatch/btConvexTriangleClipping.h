@@ -25,7 +25,8 @@ enum TriangleClipping
 {
 	kNoClipping,     // GJK's point per triangle (spheres, cones, ...; capsules have their own closed form)
 	kClipBeforeGjk,  // boxes: the lowest point and the face in closed form, before GJK, which most triangles skip
-	kClipAfterGjk    // hulls and polyhedra: clipped when GJK's normal is the triangle's face normal
+	kClipAfterGjk    // hulls and polyhedra: settled before GJK only when the face search along the triangle's
+	                 // normal needs no GJK (hullTriangleFaceContactBeforeGjk), else by GJK's normal
 };
 
 /// The clipping the mesh algorithms give a convex shape: boxes before GJK; btConvexHullShape (its face from
@@ -70,6 +71,45 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
                                         const btTriangleShape& triangle, const btTransform& triangleTransform,
                                         btScalar reach, btDiscreteCollisionDetectorInterface::Result& out);
 
+/// The face search along a triangle's normal (triangleFaceContact's), done once before GJK and kept for
+/// the search along GJK's normal, which asks the same one when GJK's normal is not the face's.
+struct TriangleFaceSearch : public btDiscreteCollisionDetectorInterface::Result
+{
+	bool done = false;  // world, outcome and points hold the search
+	WorldTriangle world;  // the triangle in world space (found once for both searches)
+	TriangleFaceOutcome outcome = kTriangleNeedsGjk;
+	int count = 0;  // at most 4 points a triangle
+	btVector3 normals[4], points[4];
+	btScalar distances[4];
+
+	void setShapeIdentifiersA(int, int) override {}
+	void setShapeIdentifiersB(int, int) override {}
+	void addContactPoint(const btVector3& normal, const btVector3& point, btScalar distance) override
+	{
+		if (count == 4) return;
+		normals[count] = normal;
+		points[count] = point;
+		distances[count] = distance;
+		++count;
+	}
+	/// Reports the kept points to out.
+	void replay(btDiscreteCollisionDetectorInterface::Result& out) const
+	{
+		for (int i = 0; i < count; ++i) out.addContactPoint(normals[i], points[i], distances[i]);
+	}
+};
+
+/// triangleFaceContact for a hull (kClipAfterGjk) before GJK, deciding only what needs no GJK: the hull's
+/// lowest point along the triangle's normal is out of reach (kTriangleOutOfReach, a separating axis), or it
+/// lies over the triangle's face, where the face normal is the closest direction and the clipped face the
+/// whole contact (its points reported, kTriangleFaceContact). Otherwise kTriangleNeedsGjk, reporting nothing
+/// (the search is kept in `search` for triangleFaceContactAlongGjkNormal): GJK and that decide as before.
+TriangleFaceOutcome hullTriangleFaceContactBeforeGjk(const btConvexShape& convex, const btTransform& convexTransform,
+                                                     const btTriangleShape& triangle,
+                                                     const btTransform& triangleTransform, btScalar reach,
+                                                     btDiscreteCollisionDetectorInterface::Result& out,
+                                                     TriangleFaceSearch& search);
+
 /// triangleFaceContact for a hull after GJK, by gjkNormal (GJK's, from the triangle towards the convex, any
 /// length). When it is the triangle's face normal on either side to within about 2.5 degrees (GJK's
 /// tolerance for a convex resting on a face): triangleFaceContact. When it is instead the normal of one
@@ -79,13 +119,15 @@ TriangleFaceOutcome triangleFaceContact(const btConvexShape& convex, const btTra
 /// (GJK's point is one of them). Otherwise, when the pair closes in (reach beyond twice `touching`): the
 /// convex's face points over the triangle along its face normal (a face overhanging the triangle it landed
 /// on) and kTriangleFacePointsAndGjk, or kTriangleNeedsGjk when there are none; at rest kTriangleNeedsGjk.
-/// A zero or non-finite normal: kTriangleNeedsGjk, reporting nothing.
+/// A zero or non-finite normal: kTriangleNeedsGjk, reporting nothing. `before`, when not null and done,
+/// is the search along the triangle's normal made before GJK with the same reach: it is used, not redone.
 TriangleFaceOutcome triangleFaceContactAlongGjkNormal(const btConvexShape& convex, const btTransform& convexTransform,
                                                       const btTriangleShape& triangle,
                                                       const btTransform& triangleTransform, btScalar reach,
                                                       const btVector3& gjkNormal, btScalar gjkDistance,
                                                       btScalar touching,
-                                                      btDiscreteCollisionDetectorInterface::Result& out);
+                                                      btDiscreteCollisionDetectorInterface::Result& out,
+                                                      const TriangleFaceSearch* before = 0);
 }  // namespace caliber
 
 #endif  // CALIBER_CONVEX_TRIANGLE_CLIPPING_H

@@ -12,6 +12,10 @@
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
 #include "BulletCollision/CollisionShapes/btConvexPointCloudShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h"
+#include "BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h"
+#include "BulletCollision/NarrowPhaseCollision/btPointCollector.h"
+#include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
 
 #include "TriangleContactRecorder.h"
 
@@ -414,6 +418,19 @@ TEST(ConvexTriangleClipping, DegenerateTriangleOrEmptyHullIsLeftToGjkWithoutPoin
 	EXPECT_EQ(caliber::triangleFaceContact(empty, at, bigFloorTriangle(), btTransform::getIdentity(), kReach, out),
 	          caliber::kTriangleNeedsGjk);
 	EXPECT_TRUE(out.points.empty());
+	// Before GJK the same: nothing settled, nothing reported; the degenerate triangle keeps no search (the
+	// search along GJK's normal finds it degenerate again), the empty hull's kept search holds no points.
+	btConvexHullShape cube;
+	addCubeCorners(cube);
+	caliber::TriangleFaceSearch search;
+	EXPECT_EQ(caliber::hullTriangleFaceContactBeforeGjk(cube, at, line, btTransform::getIdentity(), kReach, out, search),
+	          caliber::kTriangleNeedsGjk);
+	EXPECT_FALSE(search.done);
+	EXPECT_EQ(caliber::hullTriangleFaceContactBeforeGjk(empty, at, bigFloorTriangle(), btTransform::getIdentity(),
+	                                                    kReach, out, search),
+	          caliber::kTriangleNeedsGjk);
+	EXPECT_EQ(search.count, 0);
+	EXPECT_TRUE(out.points.empty());
 }
 
 TEST(ConvexTriangleClipping, ChoosingFourOfManyPointsKeepsTheCornersOfTheirSpan)
@@ -437,4 +454,115 @@ TEST(ConvexTriangleClipping, ChoosingFourOfManyPointsKeepsTheCornersOfTheirSpan)
 		cornerMask |= 1 << index;
 	}
 	EXPECT_EQ(cornerMask, (1 << 0) | (1 << 2) | (1 << 6) | (1 << 8));
+}
+
+namespace
+{
+// A barrel-like hull: two octagons of radius 0.5 at y = +-0.6 and one of radius 0.7 at y = 0, each rim
+// listed twice (duplicates, as Bullet's barrel has).
+void addBarrelPoints(btConvexHullShape& hull)
+{
+	const btScalar ys[3] = {btScalar(-0.6), 0, btScalar(0.6)};
+	const btScalar radii[3] = {btScalar(0.5), btScalar(0.7), btScalar(0.5)};
+	for (int ring = 0; ring < 3; ++ring)
+		for (int copy = 0; copy < (ring == 1 ? 1 : 2); ++copy)
+			for (int k = 0; k < 8; ++k)
+			{
+				const btScalar angle = SIMD_PI / 4 * btScalar(k);
+				hull.addPoint(btVector3(radii[ring] * btCos(angle), ys[ring], radii[ring] * btSin(angle)), false);
+			}
+	hull.recalcLocalAabb();
+}
+
+// GJK's distance between the hull and the triangle (margins included), from a detector made for this query;
+// BT_LARGE_FLOAT when it reports none.
+btScalar gjkDistance(const btConvexHullShape& hull, const btTransform& at, const btTriangleShape& triangle)
+{
+	btVoronoiSimplexSolver simplex;
+	btGjkEpaPenetrationDepthSolver epa;
+	btGjkPairDetector gjk(&hull, &triangle, &simplex, &epa);
+	btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+	input.m_transformA = at;
+	input.m_transformB = btTransform::getIdentity();
+	btPointCollector closest;
+	gjk.getClosestPoints(input, closest, 0);
+	return closest.m_hasResult ? closest.m_distance : BT_LARGE_FLOAT;
+}
+
+bool samePoints(const Recorder& a, const Recorder& b)
+{
+	if (a.points.size() != b.points.size()) return false;
+	for (size_t i = 0; i < a.points.size(); ++i)
+		if (!(a.points[i].normal == b.points[i].normal) || !(a.points[i].onTriangle == b.points[i].onTriangle) ||
+		    a.points[i].distance != b.points[i].distance)
+			return false;
+	return true;
+}
+}  // namespace
+
+// The search before GJK (hullTriangleFaceContactBeforeGjk) settles a pair only where GJK has nothing to add:
+// out of reach only when GJK finds the pair farther apart than reach, a face contact only when GJK's distance
+// is the closest reported point's (the face normal is the closest direction); otherwise it reports nothing,
+// and the search it keeps gives the search along GJK's normal exactly the points it finds without it.
+TEST(ConvexTriangleClipping, BeforeGjkAHullIsSettledOnlyWhereGjkAgreesAndItsSearchIsReusedBitForBit)
+{
+	btConvexHullShape hull;
+	addBarrelPoints(hull);
+	btTriangleShape triangle(btVector3(-1, 0, -1), btVector3(-1, 0, 2), btVector3(2, 0, -1));
+	triangle.setMargin(btScalar(0.01));
+	unsigned int seed = 7;
+	auto uniform = [&seed](btScalar low, btScalar high) {
+		seed = seed * 1664525u + 1013904223u;
+		return low + (high - low) * btScalar((seed >> 8) & 0xffff) / btScalar(0xffff);
+	};
+	int settledOut = 0, settledFace = 0, leftToGjk = 0;
+	for (int trial = 0; trial < 1000; ++trial)
+	{
+		const btVector3 axis = btVector3(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
+		const btQuaternion turn = axis.length2() > btScalar(0.01) ? btQuaternion(axis.normalized(), uniform(0, SIMD_PI))
+		                                                          : btQuaternion::getIdentity();
+		const btTransform at(turn, btVector3(uniform(-2, 2), uniform(btScalar(0.4), btScalar(1.2)), uniform(-2, 2)));
+		Recorder before;
+		caliber::TriangleFaceSearch search;
+		const caliber::TriangleFaceOutcome outcome = caliber::hullTriangleFaceContactBeforeGjk(
+		    hull, at, triangle, btTransform::getIdentity(), kReach, before, search);
+		const btScalar distance = gjkDistance(hull, at, triangle);
+		if (outcome == caliber::kTriangleOutOfReach)
+		{
+			++settledOut;
+			EXPECT_TRUE(before.points.empty());
+			// GJK on the cores converges to float rounding of sizes of order 1.
+			EXPECT_GT(distance, kReach - btScalar(1e-4)) << "trial " << trial;
+			continue;
+		}
+		if (outcome == caliber::kTriangleFaceContact)
+		{
+			++settledFace;
+			ASSERT_FALSE(before.points.empty());
+			if (before.closest() >= 0)
+			{
+				EXPECT_NEAR(distance, before.closest(), btScalar(1e-3)) << "trial " << trial;
+			}
+			continue;
+		}
+		++leftToGjk;
+		EXPECT_EQ(outcome, caliber::kTriangleNeedsGjk);
+		EXPECT_TRUE(before.points.empty());
+		// Along the face normal and along a leaning one, with and without the kept search: the same points.
+		const btVector3 leaning(btSin(btScalar(0.3)), btCos(btScalar(0.3)), 0);
+		for (const btVector3& normal : {btVector3(0, 1, 0), leaning})
+		{
+			Recorder reused, fresh;
+			const caliber::TriangleFaceOutcome withSearch = caliber::triangleFaceContactAlongGjkNormal(
+			    hull, at, triangle, btTransform::getIdentity(), kReach, normal, kTouching, kTouching, reused, &search);
+			const caliber::TriangleFaceOutcome without = caliber::triangleFaceContactAlongGjkNormal(
+			    hull, at, triangle, btTransform::getIdentity(), kReach, normal, kTouching, kTouching, fresh);
+			EXPECT_EQ(withSearch, without) << "trial " << trial;
+			EXPECT_TRUE(samePoints(reused, fresh)) << "trial " << trial;
+		}
+	}
+	// The poses cover all three cases.
+	EXPECT_GT(settledOut, 10);
+	EXPECT_GT(settledFace, 10);
+	EXPECT_GT(leftToGjk, 10);
 }
