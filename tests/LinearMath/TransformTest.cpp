@@ -110,6 +110,15 @@ TEST(Transform, SerializationRoundTrips)
 // tests fail, while the largest, smallest and denormal finite values, and -0, must pass.
 TEST(Transform, IsFiniteRejectsAnyNonFiniteEntryAndAcceptsEveryFiniteOne)
 {
+	// A finite transform with entry (0-8: the basis row by row, 9-11: the origin) set to value.
+	const auto withEntry = [](int entry, btScalar value) {
+		btTransform t(btMatrix3x3(1, 2, 3, 4, 5, 6, 7, 8, 9), btVector3(10, 11, 12));
+		if (entry < 9)
+			t.getBasis()[entry / 3][entry % 3] = value;
+		else
+			t.getOrigin()[entry - 9] = value;
+		return t;
+	};
 	const btScalar nonFinite[] = {std::numeric_limits<btScalar>::quiet_NaN(),
 	                              std::numeric_limits<btScalar>::infinity(),
 	                              -std::numeric_limits<btScalar>::infinity()};
@@ -120,11 +129,7 @@ TEST(Transform, IsFiniteRejectsAnyNonFiniteEntryAndAcceptsEveryFiniteOne)
 	{
 		for (btScalar value : nonFinite)
 		{
-			btTransform t(btMatrix3x3(1, 2, 3, 4, 5, 6, 7, 8, 9), btVector3(10, 11, 12));
-			if (entry < 9)
-				t.getBasis()[entry / 3][entry % 3] = value;
-			else
-				t.getOrigin()[entry - 9] = value;
+			const btTransform t = withEntry(entry, value);
 			EXPECT_FALSE(caliber::isFinite(t)) << entry << " " << value;
 			const btVector3& row = entry < 9 ? t.getBasis()[entry / 3] : t.getOrigin();
 			EXPECT_FALSE(caliber::isFinite(row)) << entry << " " << value;
@@ -135,11 +140,7 @@ TEST(Transform, IsFiniteRejectsAnyNonFiniteEntryAndAcceptsEveryFiniteOne)
 		}
 		for (btScalar value : finite)
 		{
-			btTransform t(btMatrix3x3(1, 2, 3, 4, 5, 6, 7, 8, 9), btVector3(10, 11, 12));
-			if (entry < 9)
-				t.getBasis()[entry / 3][entry % 3] = value;
-			else
-				t.getOrigin()[entry - 9] = value;
+			const btTransform t = withEntry(entry, value);
 			EXPECT_TRUE(caliber::isFinite(t)) << entry << " " << value;
 			EXPECT_TRUE(caliber::isFinite(t.getBasis())) << entry << " " << value;
 			EXPECT_TRUE(caliber::isFinite(t.getOrigin())) << entry << " " << value;

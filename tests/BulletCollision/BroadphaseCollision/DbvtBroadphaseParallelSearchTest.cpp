@@ -68,26 +68,6 @@ std::vector<std::vector<std::pair<int, int> > > run(int threads, btITaskSchedule
 	if (userScheduler) btSetTaskScheduler(0);
 	return history;
 }
-
-// A user's scheduler that reports two threads but runs every loop on the calling thread, cut into uneven
-// pieces that ignore the grain (1, 2, 3, ... items): Bullet's interface allows any split.
-class UnevenSplitScheduler : public btITaskScheduler
-{
-public:
-	UnevenSplitScheduler() : btITaskScheduler("UnevenSplit") {}
-	int getMaxNumThreads() const override { return 2; }
-	int getNumThreads() const override { return 2; }
-	void setNumThreads(int) override {}
-	void parallelFor(int iBegin, int iEnd, int, const btIParallelForBody& body) override
-	{
-		int piece = 1;
-		for (int i = iBegin; i < iEnd; i += piece++) body.forLoop(i, btMin(iEnd, i + piece));
-	}
-	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
-	{
-		return body.sumLoop(iBegin, iEnd);
-	}
-};
 }  // namespace
 
 TEST(DbvtBroadphaseParallelSearch, PairsAndTheirOrderAreTheSerialSearchsAtAnyThreadCount)
@@ -107,7 +87,7 @@ TEST(DbvtBroadphaseParallelSearch, PairsAndTheirOrderAreTheSerialSearchsAtAnyThr
 TEST(DbvtBroadphaseParallelSearch, AUserSchedulerMaySplitLoopsAnywhere)
 {
 	const std::vector<std::vector<std::pair<int, int> > > serial = run(0);
-	UnevenSplitScheduler uneven;
+	caliber_test::UnevenSplitScheduler uneven;
 	const std::vector<std::vector<std::pair<int, int> > > split = run(0, &uneven);
 	ASSERT_EQ(serial.size(), split.size());
 	for (size_t step = 0; step < serial.size(); ++step) EXPECT_EQ(serial[step], split[step]) << "step " << step;

@@ -175,25 +175,15 @@ std::vector<btScalar> run(int threads, btScalar* gap = nullptr)
 	return stepAndRead(gap);
 }
 
-// A user's scheduler that claims two threads and calls each loop's body on pieces of growing length (1, 2,
-// 3, ...), which do not follow the loop's grain; it notes whether the island-by-island correction's loop
-// was among them.
-class UnevenSplitScheduler : public btITaskScheduler
+// The uneven-splitting scheduler of TestThreadsUtil.h, noting whether the island-by-island correction's
+// loop was among the loops it ran.
+class UnevenSplitScheduler : public caliber_test::UnevenSplitScheduler
 {
 public:
-	UnevenSplitScheduler() : btITaskScheduler("UnevenSplit") {}
-	int getMaxNumThreads() const override { return 2; }
-	int getNumThreads() const override { return 2; }
-	void setNumThreads(int) override {}
-	void parallelFor(int iBegin, int iEnd, int, const btIParallelForBody& body) override
+	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
 	{
 		if (std::string(typeid(body).name()).find("ChunkStep") != std::string::npos) sawIslandCorrection = true;
-		int piece = 1;
-		for (int i = iBegin; i < iEnd; i += piece++) body.forLoop(i, btMin(iEnd, i + piece));
-	}
-	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
-	{
-		return body.sumLoop(iBegin, iEnd);
+		caliber_test::UnevenSplitScheduler::parallelFor(iBegin, iEnd, grainSize, body);
 	}
 	bool sawIslandCorrection = false;
 };
