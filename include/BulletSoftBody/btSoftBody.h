@@ -230,13 +230,13 @@ public:
 	/// A distance constraint between two nodes.
 	struct Link : Feature
 	{
-		btVector3 m_c3;      ///< Scratch of the solver (x: this step's compliance).
+		btVector3 m_c3;      ///< Bullet's solver scratch (Caliber's solver keeps its own per step, docs/soft-bodies.md).
 		Node* m_n[2];        ///< The two nodes.
 		btScalar m_rl;       ///< Rest length.
 		int m_bbending : 1;  ///< 1 for links made by generateBendingConstraints.
 		btScalar m_c0;       ///< Inverse masses of the two nodes (the compliance is m_c0 times a factor of m_kLST).
 		btScalar m_c1;       ///< Rest length squared.
-		btScalar m_c2;       ///< Scratch of the solver (the accumulated multiplier of the step).
+		btScalar m_c2;       ///< Bullet's solver scratch (Caliber's solver keeps its own per step, docs/soft-bodies.md).
 	};
 	/// A triangle of the surface.
 	struct Face : Feature

@@ -11,6 +11,7 @@
 #include "btSoftBodyClusters.h"
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyLinkColours.h"
+#include "btSoftBodyLinkSweep.h"
 #include "btSoftBodyNormals.h"
 #include "btSoftBodyTethers.h"
 
@@ -127,6 +128,7 @@ btSoftBody::~btSoftBody()
 	caliber::releaseClusterState(*this);
 	caliber::releaseSoftBodyTethers(*this);
 	caliber::releaseSoftLinkColours(*this);
+	caliber::releaseSoftLinkSweep(*this);
 	caliber::releaseSoftFaceContacts(*this);
 	caliber::releaseNodeContactChunks(*this);
 	caliber::releaseNodeFaces(*this);

@@ -39,6 +39,21 @@ private:
 	btVector3 m_scaling;
 };
 
+/// The step at which a link's stiffness m_kLST (a tetra's m_kVST) is defined (see updateLinkConstants).
+const btScalar kReferenceStep = btScalar(1) / btScalar(60);
+
+/// Compliance per unit of a constraint's inverse mass for stiffness kLST (or kVST) and iterations sweeps a
+/// step, as explained in updateLinkConstants; -1 when the stiffness is zero or NaN: the constraint is
+/// skipped (docs/bad-input.md).
+inline btScalar complianceFactor(btScalar kLST, int iterations)
+{
+	if (!(kLST > 0)) return -1;
+	const btScalar k = btMin(kLST, btScalar(1));
+	if (k >= 1) return 0;
+	const btScalar kStep = 1 - btPow(1 - k, btScalar(btMax(iterations, 1)));
+	return (1 - kStep) / kStep * kReferenceStep * kReferenceStep;
+}
+
 /// Reports a soft body bad-input warning (docs/bad-input.md) through btReportWarning.
 void softBodyWarning(const char* message);
 

@@ -5,24 +5,10 @@
 #include <vector>
 
 #include "LinearMath/btSideTable.h"
+#include "btSoftBodyLinkSweep.h"
 
 namespace
 {
-// A fingerprint of the links' nodes (which the colouring depends on), O(links) once per step; a
-// user's randomizeConstraints or a rewritten link changes it. It hashes the node addresses themselves
-// (no index arithmetic: this runs every step over every link); nodes moved to a new array change it too,
-// which only costs a rebuild.
-uint64_t fingerprint(const btSoftBody& body)
-{
-	uint64_t h = 1469598103934665603ull;
-	for (int i = 0; i < body.m_links.size(); ++i)
-	{
-		const btSoftBody::Link& l = body.m_links[i];
-		h = (h ^ (uint64_t(uintptr_t(l.m_n[0])) * 3u + uint64_t(uintptr_t(l.m_n[1])))) * 1099511628211ull;
-	}
-	return h;
-}
-
 // Greedy colouring: each block, in order, takes the lowest colour none of its nodes has yet. At most
 // one colour per block; per node a bit set of the colours of the blocks that touch it.
 void build(const btSoftBody& body, caliber::SoftLinkColours& c)
@@ -79,7 +65,12 @@ caliber::SoftLinkColours& caliber::softLinkColours(btSoftBody& body, bool refres
 {
 	SoftLinkColours& c = sideTable<SoftLinkColours>().acquire(&body);
 	if (!refresh && c.nodeCount == body.m_nodes.size() && c.linkCount == body.m_links.size()) return c;
-	const uint64_t signature = fingerprint(body);
+	return refreshSoftLinkColours(body, packSoftLinks(body, body.m_cfg.piterations).nodeSignature);
+}
+
+caliber::SoftLinkColours& caliber::refreshSoftLinkColours(btSoftBody& body, uint64_t signature)
+{
+	SoftLinkColours& c = sideTable<SoftLinkColours>().acquire(&body);
 	if (c.nodeCount != body.m_nodes.size() || c.linkCount != body.m_links.size() || c.signature != signature)
 	{
 		build(body, c);

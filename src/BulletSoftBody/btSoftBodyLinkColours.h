@@ -31,9 +31,12 @@ struct SoftLinkColours
 	uint64_t signature = 0;
 };
 
-/// The body's link colouring, rebuilt when its links' nodes changed (checked when refresh is set: once
-/// per step, in predictMotion).
+/// The body's link colouring, rebuilt when its links' nodes changed (checked when refresh is set, or when
+/// the counts changed; this packs the links, see btSoftBodyLinkSweep.h).
 SoftLinkColours& softLinkColours(btSoftBody& body, bool refresh = true);
+/// The same check with the fingerprint of the links' node indices given (SoftLinkSweep::nodeSignature of
+/// the step's packing): once per step, in predictMotion.
+SoftLinkColours& refreshSoftLinkColours(btSoftBody& body, uint64_t nodeSignature);
 /// Forgets the body's colouring (its destructor).
 void releaseSoftLinkColours(const btSoftBody& body);
 

@@ -10,6 +10,7 @@
 #include "btSoftBodyFaceContacts.h"
 #include "btSoftBodyInternal.h"
 #include "btSoftBodyLinkColours.h"
+#include "btSoftBodyLinkSweep.h"
 #include "btSoftBodyTethers.h"
 
 namespace caliber
@@ -66,14 +67,14 @@ void turnRigid(btRigidBody* body, const btVector3& l, btScalar dt, btScalar velo
 }
 }  // namespace caliber
 
+using caliber::complianceFactor;
 using caliber::isMovable;
+using caliber::kReferenceStep;
 using caliber::moveRigid;
 using caliber::rigidInverseMass;
 
 namespace
 {
-// The step at which a link's stiffness m_kLST is defined (see updateLinkConstants).
-const btScalar kReferenceStep = btScalar(1) / btScalar(60);
 // The most substeps a soft body's step is cut into: a substep's move must stay well above the rounding of
 // the positions, or the velocities taken from the moves are lost (200 substeps of 1/60 s move a node
 // g h^2 = 7e-8 m: nothing, at 5 m from the origin in single precision).
@@ -107,17 +108,6 @@ btVector3 aeroForce(const btVector3& rel, const btVector3& n, btScalar area, btS
 	return force;
 }
 }  // namespace
-
-// Compliance per unit of the links' inverse mass for stiffness kLST, as explained in updateLinkConstants.
-static btScalar complianceFactor(btScalar kLST, int iterations)
-{
-	// No stiffness (or a NaN one, see docs/bad-input.md): the constraint is skipped.
-	if (!(kLST > 0)) return -1;
-	const btScalar k = btMin(kLST, btScalar(1));
-	if (k >= 1) return 0;
-	const btScalar kStep = 1 - btPow(1 - k, btScalar(btMax(iterations, 1)));
-	return (1 - kStep) / kStep * kReferenceStep * kReferenceStep;
-}
 
 void btSoftBody::updateLinkConstants()
 {
@@ -313,9 +303,11 @@ void btSoftBody::addAeroForceToFace(const btVector3& windVelocity, int faceIndex
 void btSoftBody::predictMotion(btScalar dt)
 {
 	if (m_bUpdateRtCst) updateConstants();
-	// Tethers and the skin's rest volume are (re)built from the shape before this step moves it.
-	caliber::softBodyTethers(*this);
-	if (m_links.size() > caliber::kLinkBlock) caliber::softLinkColours(*this);
+	// The step's one pass over the links packs them for the sweeps and fingerprints them: the tethers and the
+	// skin's rest volume are (re)built from the shape before this step moves it, the colouring with them.
+	const caliber::SoftLinkSweep& packedLinks = caliber::packSoftLinks(*this, m_cfg.piterations);
+	caliber::refreshSoftBodyTethers(*this, packedLinks.tetherSignature);
+	if (m_links.size() > caliber::kLinkBlock) caliber::refreshSoftLinkColours(*this, packedLinks.nodeSignature);
 	m_sst.sdt = dt * m_cfg.timescale;
 	m_sst.isdt = m_sst.sdt > 0 ? btScalar(1) / m_sst.sdt : btScalar(0);
 	m_sst.velmrg = m_sst.sdt * 3;
@@ -376,76 +368,6 @@ void btSoftBody::predictMotion(btScalar dt)
 
 namespace
 {
-// Blocks of links of one colour (no two blocks share a node; btSoftBodyLinkColours.h), blocks[begin, end),
-// each block's links in index order: any split of the blocks over threads gives the bits of one thread.
-struct LinkSweep : btIParallelForBody
-{
-	btSoftBody::Link* links;
-	const int* blocks;
-	int linkCount;
-	btScalar idt2;
-	bool fresh;  // the first sweep of a substep: the multipliers start at zero (whatever m_c2 holds)
-	void forLoop(int begin, int end) const override
-	{
-		for (int k = begin; k < end; ++k)
-		{
-			const int first = blocks[k] * caliber::kLinkBlock;
-			const int last = btMin(first + caliber::kLinkBlock, linkCount);
-			for (int i = first; i < last; ++i)
-			{
-				btSoftBody::Link& l = links[i];
-				const btScalar compliance = l.m_c3.x();
-				if (compliance < 0) continue;
-				btSoftBody::Node& a = *l.m_n[0];
-				btSoftBody::Node& b = *l.m_n[1];
-				const btScalar w = a.m_im + b.m_im;
-				if (w <= 0) continue;
-				const btVector3 d = b.m_x - a.m_x;
-				const btScalar len = d.length();
-				if (len <= SIMD_EPSILON) continue;
-				const btScalar c = len - l.m_rl;
-				const btScalar alpha = compliance * idt2;
-				const btScalar lambda = fresh ? btScalar(0) : l.m_c2;
-				const btScalar dlambda = (-c - alpha * lambda) / (w + alpha);
-				l.m_c2 = lambda + dlambda;
-				const btVector3 corr = d * (dlambda / len);
-				a.m_x -= corr * a.m_im;
-				b.m_x += corr * b.m_im;
-			}
-		}
-	}
-};
-
-// One Gauss-Seidel sweep over the links, colour by colour; a colour of several blocks is spread over
-// the task scheduler, a block per task. A body of one block (colours 0) is swept in index order.
-void solveLinks(btSoftBody& body, btScalar dt, const caliber::SoftLinkColours* colours, bool fresh = false)
-{
-	const int links = body.m_links.size();
-	if (links == 0) return;
-	LinkSweep sweep;
-	sweep.links = &body.m_links[0];
-	sweep.linkCount = links;
-	sweep.idt2 = btScalar(1) / (dt * dt);
-	sweep.fresh = fresh;
-	if (!colours || links <= caliber::kLinkBlock)
-	{
-		const int onlyBlock = 0;
-		sweep.blocks = &onlyBlock;
-		sweep.forLoop(0, 1);
-		return;
-	}
-	if (colours->blocks.size() != (links + caliber::kLinkBlock - 1) / caliber::kLinkBlock) return;
-	sweep.blocks = &colours->blocks[0];
-	for (int c = 0; c + 1 < colours->start.size(); ++c)
-	{
-		const int begin = colours->start[c], end = colours->start[c + 1];
-		if (end - begin > 1)
-			btParallelFor(begin, end, 1, sweep);
-		else
-			sweep.forLoop(begin, end);
-	}
-}
-
 // Tetra volumes (m_kVST): each tetra's signed volume V = V0 (its rest volume m_rv) by XPBD, with the
 // compliance that m_kVST gives through complianceFactor, as links get theirs from m_kLST (W in m_c1,
 // updateLinkConstants); the multiplier accumulates in m_c2 over the step. The signed volume keeps a
@@ -798,25 +720,6 @@ void finishSubsteps(btSoftBody& body, btScalar dt, btScalar h, const btAlignedOb
 	                      [=](int begin, int end) { finishNodes(nodes, starts, begin, end, dt, h); });
 }
 
-// A step's start for links [begin, end): multiplier zero, this step's compliance into m_c3.x (the material's
-// kLST may have changed).
-void startLinkStep(btSoftBody::Link* links, int begin, int end, int piterations)
-{
-	const btSoftBody::Material* lastMaterial = links[begin].m_material;
-	btScalar factor = complianceFactor(lastMaterial ? lastMaterial->m_kLST : btScalar(1), piterations);
-	for (int i = begin; i < end; ++i)
-	{
-		btSoftBody::Link& l = links[i];
-		if (l.m_material != lastMaterial)
-		{
-			lastMaterial = l.m_material;
-			factor = complianceFactor(l.m_material ? l.m_material->m_kLST : btScalar(1), piterations);
-		}
-		l.m_c2 = 0;
-		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
-	}
-}
-
 // Pose matching (kMT) for nodes [begin, end): each free node goes k of the way to its place in the rest shape.
 void matchPose(btSoftBody::Node* nodes, const btSoftBody::Pose& pose, int begin, int end, btScalar k)
 {
@@ -848,12 +751,8 @@ void btSoftBody::solveConstraints()
 				m_anchors.swap(i, m_anchors.size() - 1);
 				m_anchors.pop_back();
 			}
-	// This step's compliance of each link into m_c3.x (its material's kLST may have changed).
-	// Each link on its own: in chunks on the task scheduler.
-	Link* links = m_links.size() > 0 ? &m_links[0] : 0;
-	const int piterations = m_cfg.piterations;
-	caliber::forEachChunk(m_links.size(),
-	                      [=](int begin, int end) { startLinkStep(links, begin, end, piterations); });
+	// This step's links, packed for the sweeps by predictMotion (with the compliance of the materials' kLST).
+	caliber::SoftLinkSweep& packedLinks = caliber::startSoftLinkStep(*this, m_cfg.piterations);
 	for (int i = 0; i < m_tetras.size(); ++i) m_tetras[i].m_c2 = 0;
 	const bool keepVolume = m_cfg.kVC > 0 && m_pose.m_bvolume && m_faces.size() > 0;
 	const caliber::SoftBodyTethers& tethers = caliber::softBodyTethers(*this, false);
@@ -878,6 +777,8 @@ void btSoftBody::solveConstraints()
 	const btScalar h = dt / btScalar(stepCount);
 	const btVector3 gravity = m_worldInfo ? m_worldInfo->m_gravity : btVector3(0, 0, 0);
 	static thread_local btAlignedObjectArray<btVector3> stepStart;
+	int linearPerSweep = 0;
+	for (int s = 0; s < m_cfg.m_psequence.size(); ++s) linearPerSweep += m_cfg.m_psequence[s] == ePSolver::Linear;
 	for (int sub = 0; sub < stepCount; ++sub)
 	{
 		// This substep's sweeps: the iterations shared out, the first substeps taking the remainder.
@@ -887,11 +788,17 @@ void btSoftBody::solveConstraints()
 			predictSubstep(*this, dt, h, gravity, sub == 0, stepStart);
 			volumeLambda = gasLambda = 0;
 		}
+		// The link sweeps of this substep, counted so that the first starts the multipliers at zero and the
+		// last keeps none.
+		const int linkSolves = sweeps * linearPerSweep;
+		int linkSolve = 0;
 		for (int sweep = 0; sweep < sweeps; ++sweep)
 			for (int s = 0; s < m_cfg.m_psequence.size(); ++s) switch (m_cfg.m_psequence[s])
 				{
 					case ePSolver::Linear:
-						solveLinks(*this, h, linkColours, substeps && sweep == 0);
+						caliber::solveSoftLinks(*this, packedLinks, h, linkColours, linkSolve == 0,
+						                        linkSolve + 1 == linkSolves);
+						++linkSolve;
 						if (m_tetras.size() > 0) solveTetras(*this, h);
 						caliber::solveTethers(*this, tethers);
 						if (keepVolume)
@@ -956,16 +863,13 @@ void caliber::finishSoftSolve(btSoftBody& body)
 void btSoftBody::staticSolve(int iterations)
 {
 	if (m_bUpdateRtCst) updateConstants();
-	for (int i = 0; i < m_links.size(); ++i)
-	{
-		Link& l = m_links[i];
-		const btScalar factor = complianceFactor(l.m_material ? l.m_material->m_kLST : btScalar(1), 1);
-		l.m_c2 = 0;
-		l.m_c3.setX(factor < 0 ? btScalar(-1) : factor * l.m_c0);
-	}
+	// Packed with the compliance of one sweep a step; the next solve packs its own.
+	caliber::SoftLinkSweep& packedLinks = caliber::packSoftLinks(*this, 1);
+	packedLinks.unsolved = false;
 	const caliber::SoftLinkColours* colours =
-	    m_links.size() > caliber::kLinkBlock ? &caliber::softLinkColours(*this) : 0;
-	for (int it = 0; it < iterations; ++it) solveLinks(*this, kReferenceStep, colours);
+	    m_links.size() > caliber::kLinkBlock ? &caliber::refreshSoftLinkColours(*this, packedLinks.nodeSignature) : 0;
+	for (int it = 0; it < iterations; ++it)
+		caliber::solveSoftLinks(*this, packedLinks, kReferenceStep, colours, it == 0, it + 1 == iterations);
 }
 
 void btSoftBody::solveCommonConstraints(btSoftBody** bodies, int count, int iterations)

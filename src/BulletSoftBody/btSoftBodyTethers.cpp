@@ -8,12 +8,12 @@
 
 #include "LinearMath/btSideTable.h"
 #include "btSoftBodyInternal.h"
+#include "btSoftBodyLinkSweep.h"
 
 namespace
 {
 // A link counts as inextensible when the body's sweeps close at least 99% of its error in a step
-// (kStep = 1 - (1 - kLST)^piterations, docs/soft-bodies.md): its spring is then too stiff to matter
-// against a tether.
+// (caliber::inextensibleLinks): its spring is then too stiff to matter against a tether.
 // Links of one material are usually stored together: the last answer is kept.
 struct InextensibleTest
 {
@@ -26,29 +26,21 @@ struct InextensibleTest
 		if (l.m_material != material)
 		{
 			material = l.m_material;
-			const btScalar k = material ? btClamped(material->m_kLST, btScalar(0), btScalar(1)) : btScalar(0);
-			answer = 1 - btPow(1 - k, btScalar(btMax(body.m_cfg.piterations, 1))) >= btScalar(0.99);
+			answer = caliber::inextensibleLinks(material ? material->m_kLST : btScalar(0), body.m_cfg.piterations);
 		}
 		return answer;
 	}
 };
 
-// A cheap fingerprint of what the tethers depend on: which nodes are fixed, which links are
-// inextensible, and their rest lengths. Computed once per step (O(nodes + links)).
-unsigned fingerprint(const btSoftBody& body)
+// A cheap fingerprint of what the tethers depend on: which nodes are fixed, and the links' part
+// (SoftLinkSweep::tetherSignature: which links are inextensible, and their rest lengths, taken by the
+// step's one pass over the links). O(nodes) once per step.
+unsigned fingerprint(const btSoftBody& body, unsigned linkSignature)
 {
 	unsigned h = 2166136261u;
-	InextensibleTest inextensible{body};
 	auto mix = [&h](unsigned v) { h = (h ^ v) * 16777619u; };
 	for (int i = 0; i < body.m_nodes.size(); ++i) mix(body.m_nodes[i].m_im > 0 ? 1u : 2u);
-	for (int i = 0; i < body.m_links.size(); ++i)
-	{
-		const btSoftBody::Link& l = body.m_links[i];
-		unsigned bits = 0;
-		float rl = float(l.m_rl);
-		std::memcpy(&bits, &rl, sizeof bits);
-		mix(bits ^ (inextensible(l) ? 0x80000000u : 0u) ^ 1u);  // one mix a link (this runs every step)
-	}
+	mix(linkSignature);
 	return h;
 }
 
@@ -120,9 +112,16 @@ void build(btSoftBody& body, caliber::SoftBodyTethers& t)
 
 caliber::SoftBodyTethers& caliber::softBodyTethers(btSoftBody& body, bool refresh)
 {
+	if (refresh) return refreshSoftBodyTethers(body, packSoftLinks(body, body.m_cfg.piterations).tetherSignature);
 	SoftBodyTethers& t = sideTable<SoftBodyTethers>().acquire(&body);
-	if (!refresh && t.nodeCount == body.m_nodes.size() && t.linkCount == body.m_links.size()) return t;
-	const unsigned signature = fingerprint(body);
+	if (t.nodeCount == body.m_nodes.size() && t.linkCount == body.m_links.size()) return t;
+	return refreshSoftBodyTethers(body, packSoftLinks(body, body.m_cfg.piterations).tetherSignature);
+}
+
+caliber::SoftBodyTethers& caliber::refreshSoftBodyTethers(btSoftBody& body, unsigned linkSignature)
+{
+	SoftBodyTethers& t = sideTable<SoftBodyTethers>().acquire(&body);
+	const unsigned signature = fingerprint(body, linkSignature);
 	if (t.nodeCount != body.m_nodes.size() || t.linkCount != body.m_links.size() || t.signature != signature)
 	{
 		build(body, t);

@@ -33,8 +33,12 @@ struct SoftBodyTethers
 };
 
 /// The body's tethers (and skin state), rebuilt when its nodes, links, fixed nodes, materials or rest
-/// lengths changed (checked when refresh is set: once per step, in predictMotion).
+/// lengths changed (checked when refresh is set, or when the counts changed; this packs the links, see
+/// btSoftBodyLinkSweep.h).
 SoftBodyTethers& softBodyTethers(btSoftBody& body, bool refresh = true);
+/// The same check with the links' part of the fingerprint given (SoftLinkSweep::tetherSignature of the
+/// step's packing): once per step, in predictMotion.
+SoftBodyTethers& refreshSoftBodyTethers(btSoftBody& body, unsigned linkSignature);
 /// Forgets the body's tethers (its destructor).
 void releaseSoftBodyTethers(const btSoftBody& body);
 /// Pulls each tethered node back within its reach of its fixed node.
