@@ -192,9 +192,14 @@ namespace caliber
 SIMD_FORCE_INLINE bool isFinite(const btTransform& t)
 {
 	const btMatrix3x3& m = t.getBasis();
-	return nonFiniteResidue(m[0]) + nonFiniteResidue(m[1]) + nonFiniteResidue(m[2]) +
-	           nonFiniteResidue(t.getOrigin()) ==
+#ifdef BT_USE_SSE
+	// Lane by lane: a NaN residue anywhere makes its lane's sum NaN.
+	return residuesAreZero(_mm_add_ps(_mm_add_ps(nonFiniteResidues(m[0]), nonFiniteResidues(m[1])),
+	                                  _mm_add_ps(nonFiniteResidues(m[2]), nonFiniteResidues(t.getOrigin()))));
+#else
+	return nonFiniteResidue(m[0]) + nonFiniteResidue(m[1]) + nonFiniteResidue(m[2]) + nonFiniteResidue(t.getOrigin()) ==
 	       btScalar(0);
+#endif
 }
 }  // namespace caliber
 

@@ -592,8 +592,24 @@ SIMD_FORCE_INLINE btScalar nonFiniteResidue(const btVector3& v)
 {
 	return (v.x() - v.x()) + (v.y() - v.y()) + (v.z() - v.z());
 }
+#ifdef BT_USE_SSE
+/// The residues v - v of x, y and z side by side: each 0 when finite, NaN when not (w is not read).
+SIMD_FORCE_INLINE __m128 nonFiniteResidues(const btVector3& v) { return _mm_sub_ps(v.get128(), v.get128()); }
+/// True when the x, y and z lanes of residues are all 0.
+SIMD_FORCE_INLINE bool residuesAreZero(__m128 residues)
+{
+	return (_mm_movemask_ps(_mm_cmpeq_ps(residues, _mm_setzero_ps())) & 7) == 7;
+}
+#endif
 /// True when x, y and z are all finite (not NaN, not infinite); the unused fourth lane is not read.
-SIMD_FORCE_INLINE bool isFinite(const btVector3& v) { return nonFiniteResidue(v) == btScalar(0); }
+SIMD_FORCE_INLINE bool isFinite(const btVector3& v)
+{
+#ifdef BT_USE_SSE
+	return residuesAreZero(nonFiniteResidues(v));
+#else
+	return nonFiniteResidue(v) == btScalar(0);
+#endif
+}
 }  // namespace caliber
 
 #endif  // BT_VECTOR3_H

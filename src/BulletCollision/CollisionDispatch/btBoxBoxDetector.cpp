@@ -25,7 +25,13 @@ struct BoxFrame
 	btVector3 half;
 };
 
-// Keeps the part of polygon (in, inCount) with sign * p[coordinate] <= limit; returns the new count.
+// Polygon buffers hold one vertex more than a polygon can have: the clip writes every candidate vertex
+// and keeps it by advancing the count.
+const int kClipBufferSize = kMaxClipVertices + 1;
+
+// Keeps the part of polygon (in, inCount) with sign * p[coordinate] <= limit; returns the new count. Without
+// branches on the vertices' sides: which corners a face keeps varies from pair to pair, and a mispredicted
+// branch costs more than computing a crossing that is then dropped.
 int clipAgainstLine(const btVector3* in, int inCount, int coordinate, btScalar sign, btScalar limit, btVector3* out)
 {
 	int outCount = 0;
@@ -37,10 +43,12 @@ int clipAgainstLine(const btVector3* in, int inCount, int coordinate, btScalar s
 		const btVector3& current = in[i];
 		const btScalar currentDistance = sign * current[coordinate] - limit;
 		const bool previousInside = previousDistance <= 0, currentInside = currentDistance <= 0;
-		// Opposite signs: the denominator is not zero.
-		if (previousInside != currentInside && outCount < kMaxClipVertices)
-			out[outCount++] = previous.lerp(current, previousDistance / (previousDistance - currentDistance));
-		if (currentInside && outCount < kMaxClipVertices) out[outCount++] = current;
+		// Kept only for opposite signs, where the denominator is not zero (otherwise the value is dropped).
+		// btVector3::lerp's operations lane by lane (x, y and z as lerp gives them; w is never read).
+		out[outCount] = previous + (current - previous) * (previousDistance / (previousDistance - currentDistance));
+		outCount += int((previousInside != currentInside) & (outCount < kMaxClipVertices));
+		out[outCount] = current;
+		outCount += int(currentInside & (outCount < kMaxClipVertices));
 		previous = current;
 		previousDistance = currentDistance;
 	}
@@ -126,11 +134,9 @@ void faceContact(const BoxFrame& reference, int referenceAxis, const btVector3& 
 	for (int j = 0; j < 3; ++j)
 	{
 		const btScalar alignment = btFabs(incident.axis[j].dot(referenceNormal));
-		if (alignment > largest)
-		{
-			largest = alignment;
-			incidentAxis = j;
-		}
+		const bool better = alignment > largest;  // selects without a branch
+		largest = better ? alignment : largest;
+		incidentAxis = better ? j : incidentAxis;
 	}
 	const btScalar faceSign = incident.axis[incidentAxis].dot(referenceNormal) > 0 ? btScalar(-1) : btScalar(1);
 	const btVector3 faceCentre =
@@ -140,7 +146,7 @@ void faceContact(const BoxFrame& reference, int referenceAxis, const btVector3& 
 	const btVector3 edgeQ = incident.axis[qAxis] * incident.half[qAxis];
 
 	// Incident corners in the reference face frame: x along u, y along v, z along the outward normal.
-	btVector3 polygon[kMaxClipVertices], scratch[kMaxClipVertices];
+	btVector3 polygon[kClipBufferSize], scratch[kClipBufferSize];
 	const btVector3 corners[4] = {faceCentre + edgeP + edgeQ, faceCentre - edgeP + edgeQ, faceCentre - edgeP - edgeQ,
 	                              faceCentre + edgeP - edgeQ};
 	for (int i = 0; i < 4; ++i)
@@ -162,12 +168,14 @@ void faceContact(const BoxFrame& reference, int referenceAxis, const btVector3& 
 	const btScalar referenceOffset = reference.half[referenceAxis];
 	for (int i = 0; i < count; ++i)
 	{
+		// Written, then kept by advancing kept (kept <= i < count, so the slot exists).
 		const btScalar depth = polygon[i].z() - referenceOffset;
-		if (!(depth <= maxDistance)) continue;
-		if (kept > 0 && (points[kept - 1] - polygon[i]).length2() <= mergeDistance * mergeDistance) continue;
+		const bool withinReach = depth <= maxDistance;
+		const bool merges =
+		    kept > 0 && (points[btMax(kept - 1, 0)] - polygon[i]).length2() <= mergeDistance * mergeDistance;
 		points[kept] = polygon[i];
 		depths[kept] = depth;
-		++kept;
+		kept += int(withinReach & !merges);
 	}
 	if (kept > 1 && (points[kept - 1] - points[0]).length2() <= mergeDistance * mergeDistance) --kept;
 	kept = keepLargestQuad(points, depths, kept);
@@ -271,12 +279,11 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 		const btScalar radiusB = b.half[0] * absR[i][0] + b.half[1] * absR[i][1] + b.half[2] * absR[i][2];
 		const btScalar separation = btFabs(t[i]) - a.half[i] - radiusB;
 		if (separation > maxDistance) return;
-		if (separation > best.separation)
-		{
-			best.kind = 0;
-			best.indexA = best.indexB = i;
-			best.separation = separation;
-		}
+		// The deepest axis is selected without branches: which one wins varies from pair to pair.
+		const bool better = separation > best.separation;
+		best.kind = better ? 0 : best.kind;
+		best.indexA = best.indexB = better ? i : best.indexA;
+		best.separation = better ? separation : best.separation;
 	}
 	// Face axes of B: the same with the roles exchanged (delta . b_j = sum_i t_i R[i][j]).
 	for (int j = 0; j < 3; ++j)
@@ -285,12 +292,10 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 		const btScalar centreDistance = t[0] * R[0][j] + t[1] * R[1][j] + t[2] * R[2][j];
 		const btScalar separation = btFabs(centreDistance) - radiusA - b.half[j];
 		if (separation > maxDistance) return;
-		if (separation > best.separation)
-		{
-			best.kind = 1;
-			best.indexA = best.indexB = j;
-			best.separation = separation;
-		}
+		const bool better = separation > best.separation;
+		best.kind = better ? 1 : best.kind;
+		best.indexA = best.indexB = better ? j : best.indexA;
+		best.separation = better ? separation : best.separation;
 	}
 	if (best.kind >= 0) best.normal = orient(best.kind == 0 ? a.axis[best.indexA] : b.axis[best.indexB]);
 

@@ -137,8 +137,6 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 	if ((flags0 | flags1) & btCollisionObject::CF_HAS_FRICTION_ANCHOR)
 		newPt.m_contactPointFlags |= BT_CONTACT_FLAG_FRICTION_ANCHOR;
 
-	btPlaneSpace1(newPt.m_normalWorldOnB, newPt.m_lateralFrictionDir1, newPt.m_lateralFrictionDir2);
-
 	newPt.m_partId0 = isSwapped ? m_partId1 : m_partId0;
 	newPt.m_partId1 = isSwapped ? m_partId0 : m_partId1;
 	newPt.m_index0 = isSwapped ? m_index1 : m_index0;
@@ -146,9 +144,15 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 
 	int insertIndex = m_manifoldPtr->getCacheEntry(newPt);
 	if (insertIndex >= 0)
+	{
+		// A replaced point keeps its old friction directions (its lateral impulses were solved along them).
 		m_manifoldPtr->replaceContactPoint(newPt, insertIndex);
+	}
 	else
+	{
+		btPlaneSpace1(newPt.m_normalWorldOnB, newPt.m_lateralFrictionDir1, newPt.m_lateralFrictionDir2);
 		insertIndex = m_manifoldPtr->addManifoldPoint(newPt);
+	}
 	if (insertIndex < 0) return;
 
 	if (gContactAddedCallback && ((flags0 | flags1) & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK))

@@ -3,6 +3,7 @@
 
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
 #include "LinearMath/btMinMax.h"
+#include "LinearMath/btSimdBatch.h"
 
 btScalar gContactBreakingThreshold = btScalar(0.02);
 ContactDestroyedCallback gContactDestroyedCallback = 0;
@@ -256,11 +257,13 @@ void btPersistentManifold::refreshContactPoints(const btTransform& trA, const bt
 	btAssert(finite);
 	if (!finite) return;
 
+	// The bases turned into columns once for all points (the same bits as trA(p) and trB(p)).
+	const caliber::ColumnTransform toWorldA(trA), toWorldB(trB);
 	for (int i = 0; i < m_cachedPoints; ++i)
 	{
 		btManifoldPoint& point = m_pointCache[i];
-		point.m_positionWorldOnA = trA(point.m_localPointA);
-		point.m_positionWorldOnB = trB(point.m_localPointB);
+		point.m_positionWorldOnA = toWorldA(point.m_localPointA);
+		point.m_positionWorldOnB = toWorldB(point.m_localPointB);
 		point.m_distance1 = (point.m_positionWorldOnA - point.m_positionWorldOnB).dot(point.m_normalWorldOnB);
 		++point.m_lifeTime;
 	}

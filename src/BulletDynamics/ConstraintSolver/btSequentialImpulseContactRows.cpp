@@ -9,6 +9,7 @@
 #include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
+#include "LinearMath/btSimdBatch.h"
 #include "LinearMath/btThreads.h"
 
 namespace
@@ -19,25 +20,32 @@ const btScalar kUnbounded = btScalar(1e10);
 struct RowBody
 {
 	const btSolverBody* solverBody;
-	const btRigidBody* rigidBody;  // 0 for the shared static entry
+	const btRigidBody* dynamicBody;  // the rigid body when it is dynamic; 0 for static and kinematic ones
+
+	// Decided once per contact point instead of per use: a point's rows use both bodies many times.
+	static RowBody of(const btSolverBody& body)
+	{
+		const btRigidBody* rigid = body.m_originalBody;
+		return {&body, rigid && !rigid->isStaticOrKinematicObject() ? rigid : nullptr};
+	}
 
 	// I^-1 F axis, where F is the angular factor; zero for bodies that do not turn.
 	btVector3 angularComponent(const btVector3& axis) const
 	{
-		if (!rigidBody || rigidBody->isStaticOrKinematicObject()) return btVector3(0, 0, 0);
-		return rigidBody->getInvInertiaTensorWorld() * (axis * rigidBody->getAngularFactor());
+		if (!dynamicBody) return btVector3(0, 0, 0);
+		return dynamicBody->getInvInertiaTensorWorld() * (axis * dynamicBody->getAngularFactor());
 	}
 	// The velocity change the body's accumulated force and torque gave it this step (the world adds them
 	// to the velocities before the solve).
 	btVector3 forceVelocityChange(btScalar timeStep) const
 	{
-		if (!rigidBody || rigidBody->isStaticOrKinematicObject()) return btVector3(0, 0, 0);
-		return rigidBody->getTotalForce() * solverBody->m_invMass * timeStep;
+		if (!dynamicBody) return btVector3(0, 0, 0);
+		return dynamicBody->getTotalForce() * solverBody->m_invMass * timeStep;
 	}
 	btVector3 torqueVelocityChange(btScalar timeStep) const
 	{
-		if (!rigidBody || rigidBody->isStaticOrKinematicObject()) return btVector3(0, 0, 0);
-		return rigidBody->getInvInertiaTensorWorld() * rigidBody->getTotalTorque() * solverBody->m_angularFactor *
+		if (!dynamicBody) return btVector3(0, 0, 0);
+		return dynamicBody->getInvInertiaTensorWorld() * dynamicBody->getTotalTorque() * solverBody->m_angularFactor *
 		       timeStep;
 	}
 	btVector3 angularFactor() const { return solverBody->m_angularFactor; }
@@ -48,8 +56,8 @@ struct RowBody
 
 // Fills the Jacobian half of a row: linear directions n and -n, angular axes r1 x n and -(r2 x n);
 // returns J M^-1 J^T.
-btScalar setupJacobian(btSolverConstraint& row, const RowBody& a, const RowBody& b, const btVector3& normal,
-                       const btVector3& relPos1, const btVector3& relPos2)
+SIMD_FORCE_INLINE btScalar setupJacobian(btSolverConstraint& row, const RowBody& a, const RowBody& b,
+                                         const btVector3& normal, const btVector3& relPos1, const btVector3& relPos2)
 {
 	row.m_contactNormal1 = normal;
 	row.m_contactNormal2 = -normal;
@@ -57,10 +65,11 @@ btScalar setupJacobian(btSolverConstraint& row, const RowBody& a, const RowBody&
 	row.m_relpos2CrossNormal = -relPos2.cross(normal);
 	row.m_angularComponentA = a.angularComponent(row.m_relpos1CrossNormal);
 	row.m_angularComponentB = b.angularComponent(row.m_relpos2CrossNormal);
-	const btScalar linear = normal.dot(normal * a.invMass()) + normal.dot(normal * b.invMass());
-	const btScalar angular = row.m_relpos1CrossNormal.dot(row.m_angularComponentA * a.angularFactor()) +
-	                         row.m_relpos2CrossNormal.dot(row.m_angularComponentB * b.angularFactor());
-	return linear + angular;
+	// (linear A + linear B) + (angular A + angular B), the four dot products side by side.
+	const caliber::Dot4 terms = caliber::dot4(normal, normal * a.invMass(), normal, normal * b.invMass(),
+	                                          row.m_relpos1CrossNormal, row.m_angularComponentA * a.angularFactor(),
+	                                          row.m_relpos2CrossNormal, row.m_angularComponentB * b.angularFactor());
+	return terms.sumOfPairs();
 }
 
 // The same for a purely angular row about axis (rolling and spinning friction).
@@ -79,8 +88,10 @@ btScalar setupAngularJacobian(btSolverConstraint& row, const RowBody& a, const R
 // J v at the start of the solve.
 btScalar rowVelocity(const btSolverConstraint& row, const RowBody& a, const RowBody& b)
 {
-	return row.m_contactNormal1.dot(a.linearVelocity()) + row.m_relpos1CrossNormal.dot(a.angularVelocity()) +
-	       row.m_contactNormal2.dot(b.linearVelocity()) + row.m_relpos2CrossNormal.dot(b.angularVelocity());
+	const caliber::Dot4 terms =
+	    caliber::dot4(row.m_contactNormal1, a.linearVelocity(), row.m_relpos1CrossNormal, a.angularVelocity(),
+	                  row.m_contactNormal2, b.linearVelocity(), row.m_relpos2CrossNormal, b.angularVelocity());
+	return terms.sumInOrder();
 }
 
 // How a bouncing contact leaves the step. Velocities are those of semi-implicit Euler (x1 = x0 + v1 h):
@@ -239,15 +250,11 @@ void scaleByAnisotropicFriction(const btCollisionObject* colObj, btVector3& fric
 }
 
 // Fills a contact's normal row; its warm-start impulse is set but not applied to the bodies.
-void setupContactRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint& row, int solverBodyIdA,
-                     int solverBodyIdB, btManifoldPoint& cp, const btContactSolverInfo& infoGlobal,
-                     btScalar& relaxation, const btVector3& rel_pos1, const btVector3& rel_pos2)
+void setupContactRow(const RowBody& a, const RowBody& b, btSolverConstraint& row, int solverBodyIdA, int solverBodyIdB,
+                     btManifoldPoint& cp, const btContactSolverInfo& infoGlobal, btScalar& relaxation,
+                     const btVector3& rel_pos1, const btVector3& rel_pos2)
 {
 	relaxation = infoGlobal.m_sor;
-	btSolverBody& bodyA = bodies[solverBodyIdA];
-	btSolverBody& bodyB = bodies[solverBodyIdB];
-	const RowBody a = {&bodyA, bodyA.m_originalBody};
-	const RowBody b = {&bodyB, bodyB.m_originalBody};
 	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
 
 	const btScalar denominator = setupJacobian(row, a, b, cp.m_normalWorldOnB, rel_pos1, rel_pos2);
@@ -314,12 +321,10 @@ void setupContactRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstra
 }
 
 // Fills a friction row along normalAxis (its m_frictionIndex set by the caller).
-void setupFrictionRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConstraint& row, const btVector3& normalAxis,
+void setupFrictionRow(const RowBody& a, const RowBody& b, btSolverConstraint& row, const btVector3& normalAxis,
                       int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, const btVector3& rel_pos1,
                       const btVector3& rel_pos2, btScalar desiredVelocity, btScalar cfmSlip)
 {
-	const RowBody a = {&bodies[solverBodyIdA], bodies[solverBodyIdA].m_originalBody};
-	const RowBody b = {&bodies[solverBodyIdB], bodies[solverBodyIdB].m_originalBody};
 	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
 	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, row.m_frictionIndex,
 	                  denominator, cfmSlip + cp.m_frictionCFM, desiredVelocity);
@@ -330,8 +335,8 @@ void setupTorsionalRow(btAlignedObjectArray<btSolverBody>& bodies, btSolverConst
                        int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, btScalar combinedTorsionalFriction,
                        btScalar desiredVelocity, btScalar cfmSlip)
 {
-	const RowBody a = {&bodies[solverBodyIdA], bodies[solverBodyIdA].m_originalBody};
-	const RowBody b = {&bodies[solverBodyIdB], bodies[solverBodyIdB].m_originalBody};
+	const RowBody a = RowBody::of(bodies[solverBodyIdA]);
+	const RowBody b = RowBody::of(bodies[solverBodyIdB]);
 	const btScalar denominator = setupAngularJacobian(row, a, b, normalAxis);
 	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, combinedTorsionalFriction, row.m_frictionIndex,
 	                  denominator, cfmSlip, desiredVelocity);
@@ -344,8 +349,8 @@ void btSequentialImpulseConstraintSolver::setupContactConstraint(btSolverConstra
                                                                  btScalar& relaxation, const btVector3& rel_pos1,
                                                                  const btVector3& rel_pos2)
 {
-	setupContactRow(m_tmpSolverBodyPool, row, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1,
-	                rel_pos2);
+	setupContactRow(RowBody::of(m_tmpSolverBodyPool[solverBodyIdA]), RowBody::of(m_tmpSolverBodyPool[solverBodyIdB]),
+	                row, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1, rel_pos2);
 	applyWarmStart(row, m_tmpSolverBodyPool[solverBodyIdA], m_tmpSolverBodyPool[solverBodyIdB]);
 }
 
@@ -358,8 +363,8 @@ void btSequentialImpulseConstraintSolver::setupFrictionConstraint(
 	(void)colObj1;
 	(void)relaxation;
 	(void)infoGlobal;
-	setupFrictionRow(m_tmpSolverBodyPool, row, normalAxis, solverBodyIdA, solverBodyIdB, cp, rel_pos1, rel_pos2,
-	                 desiredVelocity, cfmSlip);
+	setupFrictionRow(RowBody::of(m_tmpSolverBodyPool[solverBodyIdA]), RowBody::of(m_tmpSolverBodyPool[solverBodyIdB]),
+	                 row, normalAxis, solverBodyIdA, solverBodyIdB, cp, rel_pos1, rel_pos2, desiredVelocity, cfmSlip);
 }
 
 void btSequentialImpulseConstraintSolver::setupTorsionalFrictionConstraint(
@@ -569,16 +574,18 @@ void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPo
 
 	const int frictionIndex = point.contactRow;
 	btSolverConstraint& contactRow = (*pools.contacts)[frictionIndex];
-	btScalar relaxation;
-	setupContactRow(bodies, contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1, rel_pos2);
-
 	const btSolverBody& a = bodies[solverBodyIdA];
 	const btSolverBody& b = bodies[solverBodyIdB];
+	const RowBody rowA = RowBody::of(a), rowB = RowBody::of(b);
+	btScalar relaxation;
+	setupContactRow(rowA, rowB, contactRow, solverBodyIdA, solverBodyIdB, cp, infoGlobal, relaxation, rel_pos1,
+	                rel_pos2);
 	const btVector3& normal = cp.m_normalWorldOnB;
 
 	// Rolling and spinning friction: angular rows about the normal and about two axes across it.
 	int rollingRow = point.firstRollingRow;
-	const auto addTorsional = [&](const btVector3& axis, btScalar friction) {
+	const auto addTorsional = [&](const btVector3& axis, btScalar friction)
+	{
 		btSolverConstraint& row = (*pools.rolling)[rollingRow++];
 		row.m_frictionIndex = frictionIndex;
 		setupTorsionalRow(bodies, row, axis, solverBodyIdA, solverBodyIdB, cp, friction, btScalar(0), btScalar(0));
@@ -649,7 +656,7 @@ void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPo
 	{
 		btSolverConstraint& row = (*pools.friction)[point.firstFrictionRow + f];
 		row.m_frictionIndex = frictionIndex;
-		setupFrictionRow(bodies, row, f == 0 ? direction1 : direction2, solverBodyIdA, solverBodyIdB, cp, rel_pos1,
+		setupFrictionRow(rowA, rowB, row, f == 0 ? direction1 : direction2, solverBodyIdA, solverBodyIdB, cp, rel_pos1,
 		                 rel_pos2, f == 0 ? cp.m_contactMotion1 : cp.m_contactMotion2, btScalar(0));
 		if (infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)
 		{
@@ -691,8 +698,8 @@ bool findBounces(int begin, int end, const btAlignedObjectArray<btSolverBody>& b
 		const btSolverConstraint& row = contacts[r];
 		const btSolverBody& bodyA = bodies[row.m_solverBodyIdA];
 		const btSolverBody& bodyB = bodies[row.m_solverBodyIdB];
-		const RowBody a = {&bodyA, bodyA.m_originalBody};
-		const RowBody b = {&bodyB, bodyB.m_originalBody};
+		const RowBody a = RowBody::of(bodyA);
+		const RowBody b = RowBody::of(bodyB);
 		const btManifoldPoint& cp = *static_cast<const btManifoldPoint*>(row.m_originalContactPoint);
 		caliber::SolverBounceRow bounce;
 		if (rowBounce(row, a, b, cp, infoGlobal, bounce))
