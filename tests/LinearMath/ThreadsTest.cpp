@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "LinearMath/TaskScheduler/btParallelChunks.h"
 #include "LinearMath/TaskScheduler/btThreadSupportInterface.h"
 #include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
@@ -381,6 +383,54 @@ TEST(Threads, MisuseIsReportedAndIgnored)
 	EXPECT_EQ(btGetTaskScheduler(), btGetSequentialTaskScheduler());
 	EXPECT_EQ(warnings.count(), 4);
 	EXPECT_EQ(btParallelSum(0, 10, 1, IndexSum()), btScalar(45));
+}
+
+TEST(Threads, WakeHintBetweenSleepHintsAndLoopsKeepsEveryLoopExact)
+{
+	// caliber::wakeWorkerThreadsHint (which a world gives at the start of its step) wakes the pool's
+	// sleeping workers without a loop. Here it comes while the workers are asleep, while they fall
+	// asleep, twice in a row and right before a loop or the pool's end, at thread counts below, at and
+	// above the machine's: every loop still visits each index once and sums exactly (a woken worker that
+	// took the wake for a post would run a stale job, or miss the next one and hang the caller), and
+	// ThreadSanitizer checks the hand-over in CI's tsan stage. Other schedulers ignore it.
+	Schedulers schedulers;
+	const int kCount = 1000;
+	for (btITaskScheduler* scheduler : schedulers.all)
+		for (int threads : kThreadCounts)
+		{
+			scheduler->setNumThreads(threads);
+			for (int round = 0; round < 12; ++round)
+			{
+				scheduler->sleepWorkerThreadsHint();
+				// Long enough, every few rounds, for the workers' pauses and polls to end and them to sleep.
+				if (round % 4 == 0) std::this_thread::sleep_for(std::chrono::milliseconds(4));
+				caliber::wakeWorkerThreadsHint(scheduler);
+				if (round % 3 == 0) caliber::wakeWorkerThreadsHint(scheduler);
+				if (round % 2 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+				std::vector<std::atomic<int>> visits(kCount);
+				CountVisits body;
+				body.visits = &visits;
+				body.offset = 0;
+				scheduler->parallelFor(0, kCount, 7, body);
+				for (int i = 0; i < kCount; ++i)
+					ASSERT_EQ(visits[i].load(), 1) << scheduler->getName() << " threads " << threads << " index " << i;
+				ASSERT_EQ(scheduler->parallelSum(0, kCount, 13, IndexSum()), btScalar(kCount * (kCount - 1) / 2))
+				    << scheduler->getName() << " threads " << threads;
+			}
+		}
+	caliber::wakeWorkerThreadsHint(btGetSequentialTaskScheduler());
+	caliber::wakeWorkerThreadsHint(0);
+	if (!schedulers.pool) return;
+	// A pool deleted right after a hint, its workers asleep or not, ends (its destructor joins them).
+	for (int round = 0; round < 4; ++round)
+	{
+		std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+		pool->setNumThreads(2);
+		EXPECT_EQ(pool->parallelSum(0, 100, 1, IndexSum()), btScalar(4950));
+		pool->sleepWorkerThreadsHint();
+		if (round % 2) std::this_thread::sleep_for(std::chrono::milliseconds(4));
+		caliber::wakeWorkerThreadsHint(pool.get());
+	}
 }
 
 TEST(Threads, LoopsFromTwoThreadsOnOneSchedulerBothComplete)

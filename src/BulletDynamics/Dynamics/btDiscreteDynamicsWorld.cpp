@@ -12,6 +12,7 @@
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btSpeculativeContactRestitution.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
+#include "LinearMath/TaskScheduler/btParallelChunks.h"
 #include "LinearMath/btAlignedObject.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btMotionState.h"
@@ -163,6 +164,10 @@ int btDiscreteDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, 
 	}
 	else
 	{
+		// The pool's workers slept since the last step (the Mt world's hint, or the time between steps):
+		// woken now, they are awake for the first parallel loop (predictUnconstraintMotion) instead of
+		// joining it late.
+		caliber::wakeWorkerThreadsHint(btGetTaskScheduler());
 		saveKinematicState(plan.substepSeconds * plan.substepsToRun);
 		applyGravity();
 		for (int substep = 0; substep < plan.substepsToRun; ++substep)

@@ -66,6 +66,13 @@ void endThreadsRunning();
 /// (with a warning), so that nothing calls a deleted scheduler.
 void forgetTaskScheduler(btITaskScheduler* scheduler);
 
+/// Wakes the sleeping workers of a thread pool made by btCreateDefaultTaskScheduler without posting a
+/// loop, so that they are polling when the next loop comes (a world calls it at the start of its step,
+/// before the serial stretch that precedes its first parallel loop: a worker woken by that loop's post
+/// comes too late for a short loop). Does nothing for other schedulers, for one thread, and when the
+/// pool has more threads than the machine has processors (its workers then sleep between loops).
+void wakeWorkerThreadsHint(btITaskScheduler* scheduler);
+
 // The backends (btTaskScheduler.cpp, btTaskSchedulerOpenMP.cpp, btTaskSchedulerTBB.cpp); 0 when not built.
 btITaskScheduler* createThreadPoolScheduler();
 btITaskScheduler* openMPScheduler();

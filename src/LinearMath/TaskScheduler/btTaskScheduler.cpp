@@ -121,6 +121,20 @@ public:
 
 	void sleepWorkerThreadsHint() override { m_sleepHint.store(true, std::memory_order_relaxed); }
 
+	// caliber::wakeWorkerThreadsHint: sleeping workers go back to waiting awake (pauses, then polls), as
+	// after a loop. Only when polling workers cannot take the cores from the posting thread.
+	void wakeWorkers()
+	{
+		if (getNumThreads() <= 1 || getNumThreads() > m_hardwareThreads) return;
+		m_sleepHint.store(false, std::memory_order_relaxed);
+		if (m_sleepers.load(std::memory_order_acquire) == 0) return;  // nobody to wake: no lock, no system call
+		{
+			std::lock_guard<std::mutex> lock(m_sleepMutex);
+			m_wakes.fetch_add(1, std::memory_order_relaxed);
+		}
+		m_wake.notify_all();
+	}
+
 private:
 	// True when this call may post a job (the dispatch lock is then held). A loop with one chunk or one
 	// thread, a nested loop, or a loop while another thread's loop runs goes serially instead.
@@ -193,10 +207,25 @@ private:
 	// Waits for a post newer than seen (or for the end); returns it.
 	unsigned long long waitForPost(unsigned long long seen)
 	{
+		for (;;)
+		{
+			unsigned long long posted;
+			if (waitAwhileForPost(seen, posted)) return posted;
+		}
+	}
+
+	// One round of waiting: pauses, polls, then sleep. True with the post (or at the end); false when a
+	// wake hint ended the sleep, and the caller waits awake again.
+	bool waitAwhileForPost(unsigned long long seen, unsigned long long& result)
+	{
 		for (int spin = 0; spin < kSpinsBeforeSleep; ++spin)
 		{
 			const unsigned long long posted = m_posted.load(std::memory_order_acquire);
-			if (posted != seen || m_quit.load(std::memory_order_acquire)) return posted;
+			if (posted != seen || m_quit.load(std::memory_order_acquire))
+			{
+				result = posted;
+				return true;
+			}
 			if (m_sleepHint.load(std::memory_order_relaxed)) break;
 			CALIBER_CPU_PAUSE();
 		}
@@ -206,15 +235,24 @@ private:
 			while (!m_sleepHint.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() < deadline)
 			{
 				const unsigned long long posted = m_posted.load(std::memory_order_acquire);
-				if (posted != seen || m_quit.load(std::memory_order_acquire)) return posted;
+				if (posted != seen || m_quit.load(std::memory_order_acquire))
+				{
+					result = posted;
+					return true;
+				}
 				std::this_thread::yield();
 			}
 		}
 		std::unique_lock<std::mutex> lock(m_sleepMutex);
+		const unsigned wakes = m_wakes.load(std::memory_order_relaxed);
+		m_sleepers.fetch_add(1, std::memory_order_release);
 		m_wake.wait(lock, [&] {
-			return m_posted.load(std::memory_order_acquire) != seen || m_quit.load(std::memory_order_acquire);
+			return m_posted.load(std::memory_order_acquire) != seen || m_quit.load(std::memory_order_acquire) ||
+			       m_wakes.load(std::memory_order_relaxed) != wakes;
 		});
-		return m_posted.load(std::memory_order_acquire);
+		m_sleepers.fetch_sub(1, std::memory_order_relaxed);
+		result = m_posted.load(std::memory_order_acquire);
+		return result != seen || m_quit.load(std::memory_order_acquire);
 	}
 
 	void workerMain(int slot, unsigned long long seen)
@@ -256,6 +294,8 @@ private:
 	alignas(64) std::atomic<unsigned long long> m_posted{0};
 	alignas(64) std::atomic<bool> m_sleepHint{false};
 	std::atomic<bool> m_quit{false};
+	std::atomic<int> m_sleepers{0};    // workers asleep on m_wake (changed under m_sleepMutex)
+	std::atomic<unsigned> m_wakes{0};  // wake hints given (changed under m_sleepMutex)
 	std::mutex m_sleepMutex;
 	std::condition_variable m_wake;
 	std::mutex m_dispatchMutex;  // one loop at a time; held from post to completion
@@ -263,7 +303,13 @@ private:
 }  // namespace
 
 btITaskScheduler* caliber::createThreadPoolScheduler() { return new ThreadPoolScheduler(); }
+
+void caliber::wakeWorkerThreadsHint(btITaskScheduler* scheduler)
+{
+	if (ThreadPoolScheduler* pool = dynamic_cast<ThreadPoolScheduler*>(scheduler)) pool->wakeWorkers();
+}
 #else
 // A library built without CALIBER_THREADSAFE has no thread pool, as Bullet without BT_THREADSAFE.
 btITaskScheduler* caliber::createThreadPoolScheduler() { return 0; }
+void caliber::wakeWorkerThreadsHint(btITaskScheduler*) {}
 #endif
