@@ -166,8 +166,9 @@ int btDiscreteDynamicsWorld::stepSimulation(btScalar timeStep, int maxSubSteps, 
 	{
 		// The pool's workers slept since the last step (the Mt world's hint, or the time between steps):
 		// woken now, they are awake for the first parallel loop (predictUnconstraintMotion) instead of
-		// joining it late.
-		caliber::wakeWorkerThreadsHint(btGetTaskScheduler());
+		// joining it late. A world whose predict runs on the calling thread alone leaves them asleep,
+		// rather than have them poll for nothing.
+		if (m_nonStaticRigidBodies.size() > caliber::kBodiesPerTask) caliber::wakeWorkerThreadsHint(btGetTaskScheduler());
 		saveKinematicState(plan.substepSeconds * plan.substepsToRun);
 		applyGravity();
 		for (int substep = 0; substep < plan.substepsToRun; ++substep)

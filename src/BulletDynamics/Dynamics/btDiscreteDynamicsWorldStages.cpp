@@ -179,9 +179,6 @@ void caliber::quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world,
 
 namespace
 {
-// Bodies per task of the per-body stages: enough work per task to pay for handing it out.
-const int kBodiesPerTask = 64;
-
 // One body's part of predictUnconstraintMotion: it reads and writes only that body, so bodies may be
 // predicted on any threads in any order with the same bits (docs/threading.md).
 void predictBody(btRigidBody* body, btScalar timeStep, const btContactSolverInfo& solverInfo)
@@ -239,7 +236,7 @@ void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
 	loop.bodies = &m_nonStaticRigidBodies[0];
 	loop.timeStep = timeStep;
 	loop.solverInfo = &getSolverInfo();
-	btParallelFor(0, m_nonStaticRigidBodies.size(), kBodiesPerTask, loop);
+	btParallelFor(0, m_nonStaticRigidBodies.size(), caliber::kBodiesPerTask, loop);
 }
 
 void btDiscreteDynamicsWorld::calculateSimulationIslands()
@@ -420,7 +417,7 @@ void btDiscreteDynamicsWorld::integrateTransformsInternal(btRigidBody** bodies, 
 	loop.world = this;
 	loop.bodies = bodies;
 	loop.timeStep = timeStep;
-	btParallelFor(0, numBodies, kBodiesPerTask, loop);
+	btParallelFor(0, numBodies, caliber::kBodiesPerTask, loop);
 }
 
 void btDiscreteDynamicsWorld::integrateTransforms(btScalar timeStep)

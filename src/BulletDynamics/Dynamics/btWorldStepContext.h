@@ -20,6 +20,10 @@ class btTypedConstraint;
 
 namespace caliber
 {
+/// Bodies per task of the per-body stages (predictUnconstraintMotion, integrateTransforms): enough work
+/// per task to pay for handing it out. A world with no more moving bodies runs them on the calling thread.
+const int kBodiesPerTask = 64;
+
 /// One world's Caliber-only step state, reused from step to step.
 /// One chunk of the joint position correction on the threads (btDiscreteDynamicsWorldJointCorrection.cpp:
 /// the sweep of the left-over joints; btJointCorrectionIslands.cpp: the whole pass island by island):
