@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "BulletSoftBody/btSoftBody.h"
+#include "SoftBodyTestUtil.h"
 
 namespace
 {
@@ -16,11 +18,8 @@ const double kGravity = 10;
 // A 1 kg node on a link of 1 m whose top is fixed, one sweep a step (no substeps), damped to rest.
 btSoftBody* hangingLink(btSoftBodyWorldInfo& info)
 {
+	btSoftBody* body = caliber_test::twoNodeLink(info, btVector3(0, 10, 0), btVector3(0, 9, 0), 0, 1).release();
 	info.m_gravity.setValue(0, -btScalar(kGravity), 0);
-	const btVector3 x[2] = {btVector3(0, 10, 0), btVector3(0, 9, 0)};
-	const btScalar m[2] = {0, 1};
-	btSoftBody* body = new btSoftBody(&info, 2, x, m);
-	body->appendLink(0, 1);
 	body->m_cfg.piterations = 1;
 	body->m_cfg.kDP = btScalar(0.05);
 	return body;
@@ -75,11 +74,9 @@ TEST(SoftBodyLinkSweep, SolveWithoutAPredictionPacksTheLinksItself)
 	// Two nodes 2 m apart on a link of rest length 1 m: a solve on its own (no predictMotion, no world) pulls
 	// them together. kLST 1 (zero compliance) closes a lone link's error in one sweep.
 	btSoftBodyWorldInfo info;
-	info.m_gravity.setValue(0, 0, 0);
-	const btVector3 x[2] = {btVector3(0, 0, 0), btVector3(2, 0, 0)};
-	const btScalar m[2] = {1, 1};
-	btSoftBody body(&info, 2, x, m);
-	body.appendLink(0, 1);
+	const std::unique_ptr<btSoftBody> owner =
+	    caliber_test::twoNodeLink(info, btVector3(0, 0, 0), btVector3(2, 0, 0), 1, 1);
+	btSoftBody& body = *owner;
 	body.m_links[0].m_rl = 1;
 	body.m_materials[0]->m_kLST = 1;
 	body.m_cfg.piterations = 1;

@@ -89,11 +89,9 @@ TEST(SoftBodyPhysics, LinkOscillatesAtTheFrequencyItsStiffnessStandsFor)
 	// Two free masses (1 kg and 3 kg) on one link in zero gravity: the documented spring constant
 	// k = kLST / ((1 - kLST) w h^2) gives omega = sqrt(k w) = sqrt(kLST / (1 - kLST)) / h, whatever the masses.
 	btSoftBodyWorldInfo info;
-	info.m_gravity.setValue(0, 0, 0);
-	const btVector3 x[2] = {btVector3(0, 0, 0), btVector3(1, 0, 0)};
-	const btScalar m[2] = {1, 3};
-	btSoftBody body(&info, 2, x, m);
-	body.appendLink(0, 1);
+	const std::unique_ptr<btSoftBody> owner =
+	    caliber_test::twoNodeLink(info, btVector3(0, 0, 0), btVector3(1, 0, 0), 1, 3);
+	btSoftBody& body = *owner;
 	const double kLST = 0.002;
 	body.m_materials[0]->m_kLST = btScalar(kLST);
 	body.m_nodes[1].m_x = body.m_nodes[1].m_q = btVector3(btScalar(1.05), 0, 0);

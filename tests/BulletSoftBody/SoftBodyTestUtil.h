@@ -15,6 +15,18 @@
 
 namespace caliber_test
 {
+/// Two nodes at a and b (masses m0, m1; 0 pins a node) joined by one link, in zero gravity; the caller owns it.
+inline std::unique_ptr<btSoftBody> twoNodeLink(btSoftBodyWorldInfo& info, const btVector3& a, const btVector3& b,
+                                               btScalar m0, btScalar m1)
+{
+	info.m_gravity.setValue(0, 0, 0);
+	const btVector3 x[2] = {a, b};
+	const btScalar m[2] = {m0, m1};
+	std::unique_ptr<btSoftBody> body(new btSoftBody(&info, 2, x, m));
+	body->appendLink(0, 1);
+	return body;
+}
+
 class SoftTestWorld
 {
 public:
