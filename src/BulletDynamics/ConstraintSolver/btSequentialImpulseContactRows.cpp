@@ -693,6 +693,8 @@ bool findBounces(int begin, int end, const btAlignedObjectArray<btSolverBody>& b
                  btAlignedObjectArray<caliber::SolverBounceRow>& bounces)
 {
 	bool massRatio = false;
+	// A manifold's rows share their two bodies: their mass ratio is judged once, at the first of them.
+	int lastA = -1, lastB = -1;
 	for (int r = begin; r < end; ++r)
 	{
 		const btSolverConstraint& row = contacts[r];
@@ -707,9 +709,12 @@ bool findBounces(int begin, int end, const btAlignedObjectArray<btSolverBody>& b
 			bounce.row = r;
 			bounces.push_back(bounce);
 		}
+		if (massRatio || (row.m_solverBodyIdA == lastA && row.m_solverBodyIdB == lastB)) continue;
+		lastA = row.m_solverBodyIdA;
+		lastB = row.m_solverBodyIdB;
 		const btRigidBody* rigidA = bodyA.m_originalBody;
 		const btRigidBody* rigidB = bodyB.m_originalBody;
-		if (!massRatio && rigidA && rigidB && !rigidA->isStaticOrKinematicObject() &&
+		if (rigidA && rigidB && !rigidA->isStaticOrKinematicObject() &&
 		    !rigidB->isStaticOrKinematicObject() && rigidA->getInvMass() > btScalar(0) &&
 		    rigidB->getInvMass() > btScalar(0))
 		{
