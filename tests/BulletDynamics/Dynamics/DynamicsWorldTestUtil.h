@@ -87,19 +87,17 @@ public:
 	btRigidBody* addBody(btCollisionShape* collisionShape, btScalar mass, const btTransform& pose,
 	                     bool withMotionState = true)
 	{
-		btVector3 inertia(0, 0, 0);
-		if (mass > 0) collisionShape->calculateLocalInertia(mass, inertia);
-		btDefaultMotionState* motion = 0;
-		if (withMotionState)
-		{
-			motion = new btDefaultMotionState(pose);
-			m_motionStates.emplace_back(motion);
-		}
-		btRigidBody::btRigidBodyConstructionInfo info(mass, motion, collisionShape, inertia);
-		info.m_startWorldTransform = pose;
-		btRigidBody* body = new btRigidBody(info);
-		m_bodies.push_back(body);
+		btRigidBody* body = makeBody(collisionShape, mass, pose, withMotionState);
 		m_world->addRigidBody(body);
+		return body;
+	}
+
+	/// The same without motion state, in collision group `group` and meeting only the groups in `mask`.
+	btRigidBody* addFilteredBody(btCollisionShape* collisionShape, btScalar mass, const btVector3& origin, int group,
+	                             int mask)
+	{
+		btRigidBody* body = makeBody(collisionShape, mass, btTransform(btQuaternion::getIdentity(), origin), false);
+		m_world->addRigidBody(body, group, mask);
 		return body;
 	}
 
@@ -146,6 +144,24 @@ public:
 	}
 
 private:
+	btRigidBody* makeBody(btCollisionShape* collisionShape, btScalar mass, const btTransform& pose,
+	                      bool withMotionState)
+	{
+		btVector3 inertia(0, 0, 0);
+		if (mass > 0) collisionShape->calculateLocalInertia(mass, inertia);
+		btDefaultMotionState* motion = 0;
+		if (withMotionState)
+		{
+			motion = new btDefaultMotionState(pose);
+			m_motionStates.emplace_back(motion);
+		}
+		btRigidBody::btRigidBodyConstructionInfo info(mass, motion, collisionShape, inertia);
+		info.m_startWorldTransform = pose;
+		btRigidBody* body = new btRigidBody(info);
+		m_bodies.push_back(body);
+		return body;
+	}
+
 	// First, so destroyed last: kept objects may be referred to by the world until it is gone.
 	std::vector<std::shared_ptr<void>> m_kept;
 	std::unique_ptr<btDefaultCollisionConfiguration> m_configuration;

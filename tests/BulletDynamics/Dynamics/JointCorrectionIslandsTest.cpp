@@ -11,11 +11,12 @@
 #include <memory>
 #include <string>
 #include <typeinfo>
+#include <utility>
 #include <vector>
 
+#include "DynamicsWorldTestUtil.h"
 #include "LinearMath/btThreads.h"
 #include "TestThreadsUtil.h"
-#include "btBulletDynamicsCommon.h"
 
 namespace
 {
@@ -28,13 +29,7 @@ struct Articulations
 {
 	Articulations()
 	{
-		config.reset(new btDefaultCollisionConfiguration());
-		dispatcher.reset(new btCollisionDispatcher(config.get()));
-		solver.reset(new btSequentialImpulseConstraintSolver());
-		broadphase.reset(new btDbvtBroadphase());
-		world.reset(new btDiscreteDynamicsWorld(dispatcher.get(), broadphase.get(), solver.get(), config.get()));
-		world->setGravity(btVector3(0, -10, 0));
-		box.reset(new btBoxShape(btVector3(btScalar(0.1), btScalar(0.1), btScalar(0.1))));
+		box = scene.shape<btBoxShape>(btVector3(btScalar(0.1), btScalar(0.1), btScalar(0.1)));
 		// The ceiling: one static body that every articulation hangs from.
 		ceiling = addBody(0, btVector3(0, 20, 0));
 		// Ragdolls between the long chains, so that the chains fall into different chunks of islands (whose
@@ -45,36 +40,25 @@ struct Articulations
 		for (int doll = 6; doll < 12; ++doll) addRagdoll(btVector3(btScalar(doll) * 3, 12, 0));
 		addChain(btVector3(0, 15, 11), 14, false, 7);
 	}
-	~Articulations()
-	{
-		for (auto& joint : joints) world->removeConstraint(joint.get());
-		for (auto& body : bodies) world->removeRigidBody(body.get());
-	}
 
 	btRigidBody* addBody(btScalar mass, const btVector3& at)
 	{
-		btVector3 inertia(0, 0, 0);
-		if (mass > 0) box->calculateLocalInertia(mass, inertia);
-		btRigidBody::btRigidBodyConstructionInfo info(mass, 0, box.get(), inertia);
-		info.m_startWorldTransform.setOrigin(at);
-		bodies.emplace_back(new btRigidBody(info));
-		btRigidBody* body = bodies.back().get();
-		if (mass > 0) body->setActivationState(DISABLE_DEACTIVATION);
 		// The articulations' links overlap their neighbours: collisions between them are not the point.
-		world->addRigidBody(body, 1, 0);
+		btRigidBody* body = scene.addFilteredBody(box, mass, at, 1, 0);
+		if (mass > 0) body->setActivationState(DISABLE_DEACTIVATION);
 		return body;
 	}
-	void addJoint(btTypedConstraint* joint)
+	template <class Joint, class... Args>
+	void addJoint(Args&&... args)
 	{
-		joints.emplace_back(joint);
-		world->addConstraint(joint, true);
+		joints.push_back(scene.addJoint<Joint>(true, std::forward<Args>(args)...));
 	}
 	// A torso with two arms of three boxes and two legs of two, 10 joints, hung from the ceiling.
 	void addRagdoll(const btVector3& at)
 	{
 		btRigidBody* torso = addBody(2, at);
-		addJoint(new btPoint2PointConstraint(
-		    *ceiling, *torso, at + btVector3(0, 1, 0) - ceiling->getCenterOfMassPosition(), btVector3(0, 1, 0)));
+		addJoint<btPoint2PointConstraint>(
+		    *ceiling, *torso, at + btVector3(0, 1, 0) - ceiling->getCenterOfMassPosition(), btVector3(0, 1, 0));
 		const btVector3 directions[4] = {btVector3(1, 0, 0), btVector3(-1, 0, 0), btVector3(btScalar(0.5), -1, 0),
 		                                 btVector3(btScalar(-0.5), -1, 0)};
 		for (int limb = 0; limb < 4; ++limb)
@@ -94,18 +78,19 @@ struct Articulations
 					frameB.setIdentity();
 					frameA.setOrigin(pivotInPrevious);
 					frameB.setOrigin(pivotInBody);
-					btConeTwistConstraint* shoulder = new btConeTwistConstraint(*previous, *body, frameA, frameB);
+					btConeTwistConstraint* shoulder =
+					    scene.addJoint<btConeTwistConstraint>(true, *previous, *body, frameA, frameB);
 					shoulder->setLimit(btScalar(0.8), btScalar(0.8), btScalar(0.5));
-					addJoint(shoulder);
+					joints.push_back(shoulder);
 				}
 				else if (link == 1)
 				{
-					addJoint(new btHingeConstraint(*previous, *body, pivotInPrevious, pivotInBody, btVector3(0, 0, 1),
-					                               btVector3(0, 0, 1)));
+					addJoint<btHingeConstraint>(*previous, *body, pivotInPrevious, pivotInBody, btVector3(0, 0, 1),
+					                            btVector3(0, 0, 1));
 				}
 				else
 				{
-					addJoint(new btPoint2PointConstraint(*previous, *body, pivotInPrevious, pivotInBody));
+					addJoint<btPoint2PointConstraint>(*previous, *body, pivotInPrevious, pivotInBody);
 				}
 				previous = body;
 			}
@@ -123,10 +108,10 @@ struct Articulations
 			if (link == oddLink) body->setAngularFactor(btVector3(0, 1, 0));
 			const btVector3 pivotInBody(btScalar(-0.15), 0, 0);
 			if (hinged)
-				addJoint(new btHingeConstraint(*previous, *body, previousPivot, pivotInBody, btVector3(0, 0, 1),
-				                               btVector3(0, 0, 1)));
+				addJoint<btHingeConstraint>(*previous, *body, previousPivot, pivotInBody, btVector3(0, 0, 1),
+				                            btVector3(0, 0, 1));
 			else
-				addJoint(new btPoint2PointConstraint(*previous, *body, previousPivot, pivotInBody));
+				addJoint<btPoint2PointConstraint>(*previous, *body, previousPivot, pivotInBody);
 			previous = body;
 			previousPivot = btVector3(btScalar(0.15), 0, 0);
 		}
@@ -136,9 +121,9 @@ struct Articulations
 	btScalar largestBallJointGap() const
 	{
 		btScalar largest = 0;
-		for (const auto& joint : joints)
+		for (const btTypedConstraint* joint : joints)
 		{
-			const btPoint2PointConstraint* ball = dynamic_cast<const btPoint2PointConstraint*>(joint.get());
+			const btPoint2PointConstraint* ball = dynamic_cast<const btPoint2PointConstraint*>(joint);
 			if (!ball) continue;
 			const btVector3 a = ball->getRigidBodyA().getWorldTransform() * ball->getPivotInA();
 			const btVector3 b = ball->getRigidBodyB().getWorldTransform() * ball->getPivotInB();
@@ -146,27 +131,22 @@ struct Articulations
 		}
 		return largest;
 	}
-	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(bodies); }
+	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(scene.bodies()); }
 
-	std::unique_ptr<btDefaultCollisionConfiguration> config;
-	std::unique_ptr<btCollisionDispatcher> dispatcher;
-	std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-	std::unique_ptr<btBroadphaseInterface> broadphase;
-	std::unique_ptr<btDiscreteDynamicsWorld> world;
-	std::unique_ptr<btCollisionShape> box;
+	caliber_test::TestWorld scene;
+	btBoxShape* box = nullptr;
 	btRigidBody* ceiling = nullptr;
-	std::vector<std::unique_ptr<btRigidBody>> bodies;
-	std::vector<std::unique_ptr<btTypedConstraint>> joints;
+	std::vector<btTypedConstraint*> joints;
 };
 
 const int kSteps = 60;
 
 std::vector<btScalar> stepAndRead(btScalar* gap = nullptr)
 {
-	Articulations scene;
-	for (int i = 0; i < kSteps; ++i) scene.world->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
-	if (gap) *gap = scene.largestBallJointGap();
-	return scene.state();
+	Articulations articulations;
+	for (int i = 0; i < kSteps; ++i) articulations.scene.world()->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+	if (gap) *gap = articulations.largestBallJointGap();
+	return articulations.state();
 }
 
 std::vector<btScalar> run(int threads, btScalar* gap = nullptr)
@@ -222,7 +202,7 @@ TEST(JointCorrectionIslands, ChangingTheThreadCountBetweenStepsKeepsTheSerialBit
 	const std::vector<btScalar> serial = run(0);
 	std::vector<btScalar> mixed;
 	{
-		Articulations scene;
+		Articulations articulations;
 		std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
 		for (int i = 0; i < kSteps; ++i)
 		{
@@ -231,10 +211,10 @@ TEST(JointCorrectionIslands, ChangingTheThreadCountBetweenStepsKeepsTheSerialBit
 			const int threads = i % 3;
 			btSetTaskScheduler(pool && threads > 0 ? pool.get() : 0);
 			if (pool && threads > 0) pool->setNumThreads(threads + 1);
-			scene.world->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+			articulations.scene.world()->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
 		}
 		btSetTaskScheduler(0);
-		mixed = scene.state();
+		mixed = articulations.state();
 	}
 	EXPECT_TRUE(sameBits(serial, mixed));
 }

@@ -6,12 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <memory>
 #include <vector>
 
+#include "DynamicsWorldTestUtil.h"
 #include "LinearMath/btThreads.h"
 #include "TestThreadsUtil.h"
-#include "btBulletDynamicsCommon.h"
 
 namespace
 {
@@ -21,49 +20,32 @@ struct Chains
 {
 	Chains()
 	{
-		config.reset(new btDefaultCollisionConfiguration());
-		dispatcher.reset(new btCollisionDispatcher(config.get()));
-		solver.reset(new btSequentialImpulseConstraintSolver());
-		broadphase.reset(new btDbvtBroadphase());
-		world.reset(new btDiscreteDynamicsWorld(dispatcher.get(), broadphase.get(), solver.get(), config.get()));
-		world->setGravity(btVector3(0, -10, 0));
-		box.reset(new btBoxShape(btVector3(btScalar(0.2), btScalar(0.2), btScalar(0.2))));
-		btVector3 inertia;
-		box->calculateLocalInertia(1, inertia);
+		btBoxShape* box = scene.shape<btBoxShape>(btVector3(btScalar(0.2), btScalar(0.2), btScalar(0.2)));
 		for (int chain = 0; chain < 24; ++chain)
 		{
 			btRigidBody* previous = 0;
 			for (int link = 0; link < 5; ++link)
 			{
-				btRigidBody::btRigidBodyConstructionInfo info(1, 0, box.get(), inertia);
 				// Links laid out sideways, so the chain swings down under gravity.
-				info.m_startWorldTransform.setOrigin(
-				    btVector3(btScalar(link) * btScalar(0.5), 10, btScalar(chain) * btScalar(2)));
-				bodies.emplace_back(new btRigidBody(info));
-				btRigidBody* body = bodies.back().get();
+				btRigidBody* body = scene.addBody(
+				    box, 1, btVector3(btScalar(link) * btScalar(0.5), 10, btScalar(chain) * btScalar(2)), false);
 				body->setActivationState(DISABLE_DEACTIVATION);
-				world->addRigidBody(body);
 				if (!previous)
-					joints.emplace_back(new btPoint2PointConstraint(*body, btVector3(btScalar(-0.25), 0, 0)));
+					joints.push_back(
+					    scene.addJoint<btPoint2PointConstraint>(true, *body, btVector3(btScalar(-0.25), 0, 0)));
 				else
-					joints.emplace_back(new btPoint2PointConstraint(*previous, *body, btVector3(btScalar(0.25), 0, 0),
-					                                                btVector3(btScalar(-0.25), 0, 0)));
-				world->addConstraint(joints.back().get(), true);
+					joints.push_back(scene.addJoint<btPoint2PointConstraint>(
+					    true, *previous, *body, btVector3(btScalar(0.25), 0, 0), btVector3(btScalar(-0.25), 0, 0)));
 				previous = body;
 			}
 		}
 	}
-	~Chains()
-	{
-		for (auto& joint : joints) world->removeConstraint(joint.get());
-		for (auto& body : bodies) world->removeRigidBody(body.get());
-	}
-	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(bodies); }
+	std::vector<btScalar> state() const { return caliber_test::bodyStateBits(scene.bodies()); }
 	// The largest gap between the pivots of a joint.
 	btScalar largestPivotGap() const
 	{
 		btScalar largest = 0;
-		for (const auto& joint : joints)
+		for (const btPoint2PointConstraint* joint : joints)
 		{
 			const btVector3 a = joint->getRigidBodyA().getWorldTransform() * joint->getPivotInA();
 			const btVector3 b = joint->getRigidBodyB().getWorldTransform() * joint->getPivotInB();
@@ -72,14 +54,8 @@ struct Chains
 		return largest;
 	}
 
-	std::unique_ptr<btDefaultCollisionConfiguration> config;
-	std::unique_ptr<btCollisionDispatcher> dispatcher;
-	std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
-	std::unique_ptr<btBroadphaseInterface> broadphase;
-	std::unique_ptr<btDiscreteDynamicsWorld> world;
-	std::unique_ptr<btCollisionShape> box;
-	std::vector<std::unique_ptr<btRigidBody>> bodies;
-	std::vector<std::unique_ptr<btPoint2PointConstraint>> joints;
+	caliber_test::TestWorld scene;
+	std::vector<btPoint2PointConstraint*> joints;
 };
 
 std::vector<btScalar> run(int threads, btScalar* gap = nullptr)
@@ -88,7 +64,7 @@ std::vector<btScalar> run(int threads, btScalar* gap = nullptr)
 	std::vector<btScalar> bits;
 	{
 		Chains chains;
-		for (int i = 0; i < 60; ++i) chains.world->stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+		chains.scene.run(60);
 		if (gap) *gap = chains.largestPivotGap();
 		bits = chains.state();
 	}
@@ -107,6 +83,7 @@ TEST(JointCorrectionParallel, SwingingChainsEndWithTheOneThreadBitsAtAnyThreadCo
 	{
 		const std::vector<btScalar> threaded = run(threads);
 		ASSERT_EQ(serial.size(), threaded.size());
-		EXPECT_EQ(0, std::memcmp(serial.data(), threaded.data(), serial.size() * sizeof(btScalar))) << threads << " threads";
+		EXPECT_EQ(0, std::memcmp(serial.data(), threaded.data(), serial.size() * sizeof(btScalar)))
+		    << threads << " threads";
 	}
 }
