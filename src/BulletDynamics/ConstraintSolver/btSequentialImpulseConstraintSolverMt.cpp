@@ -589,6 +589,30 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 	btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, write);
 }
 
+// Manifolds per block of the serial solver's contact order (its kInterleave), and blocks per task.
+const int kOrderBlockManifolds = 8;
+const int kOrderBlocksPerTask = 16;
+
+// The serial solver's contact order (btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup),
+// which the split-impulse pass follows: blocks of consecutive manifolds, interleaved as in a batch. A
+// block's rows are its manifolds' rows, so its place in the order is known and any split writes the same.
+struct WriteContactOrder : public btIParallelForBody
+{
+	const caliber::SolverScratch* scratch;
+	int* order;
+	const int* manifolds;  // 0, 1, 2, ...
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const btAlignedObjectArray<int>& manifoldFirstRow = scratch->manifoldFirstRow;
+		const int numManifolds = manifoldFirstRow.size() - 1;
+		const int first = iBegin * kOrderBlockManifolds;
+		const int end = btMin(iEnd * kOrderBlockManifolds, numManifolds);
+		writeBatchRows(manifolds + first, end - first, manifoldFirstRow, scratch->solveCount,
+		               order + manifoldFirstRow[first] - manifoldFirstRow[0]);
+	}
+};
+
 // Each batch's rows of the fixed entry are pointed at the batch's own copy of it (see the file comment):
 // contact and friction rows by batch, on the threads (a row belongs to one batch, so any split of the
 // batches writes the same), then rolling rows after their contact row, on the calling thread.
@@ -775,13 +799,15 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		if (manifoldPtr[i]->getNumContacts() > 0) ++manifoldsWithPoints;
 	MtSolverScratch& mt = mtScratchOf(*this);
 	mt.rowManifolds.resize(0);  // our convertContacts lists them
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	m_useBatching =
 	    manifoldsWithPoints >= s_minimumContactManifoldsForBatching &&
 	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) &&
 	    caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric, m_resolveSingleConstraintRowLowerLimit);
+	scratch.ownContactOrder = m_useBatching;
 	const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	    bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints, infoGlobal, debugDrawer);
-	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	scratch.ownContactOrder = false;
 	const int numManifoldsWithRows = scratch.manifoldFirstRow.size() - 1;
 	m_useBatching = m_useBatching && numManifoldsWithRows > 0;
 	btBatchedConstraints& batched = m_batchedContactConstraints;
@@ -791,6 +817,20 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	batched.m_phaseGrainSize.resize(0);
 	batched.m_phaseOrder.resize(0);
 	if (!m_useBatching) return result;
+
+	// The sweeps below take the batches' order; the split-impulse pass takes the serial solver's.
+	if (infoGlobal.m_splitImpulse)
+	{
+		caliber::resizeScratch(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
+		caliber::resizeScratch(mt.byBody, numManifoldsWithRows);  // scratch here: the manifolds in order
+		for (int m = 0; m < numManifoldsWithRows; ++m) mt.byBody[m] = m;
+		WriteContactOrder write;
+		write.scratch = &scratch;
+		write.order = &m_orderTmpConstraintPool[0];
+		write.manifolds = &mt.byBody[0];
+		btParallelFor(0, (numManifoldsWithRows + kOrderBlockManifolds - 1) / kOrderBlockManifolds, kOrderBlocksPerTask,
+		              write);
+	}
 
 	const btConstraintArray& contacts = m_tmpSolverContactConstraintPool;
 	const int numSolverBodies = m_tmpSolverBodyPool.size();
