@@ -178,6 +178,13 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	caliber::findBouncesAndMassRatios(scratch, m_tmpSolverBodyPool, m_tmpSolverContactConstraintPool, infoGlobal);
 
 	identityOrder(m_orderNonContactConstraintPool, scratch.joints.size());
+	if (scratch.ownContactOrder)
+	{
+		m_orderTmpConstraintPool.resize(0);
+		m_orderFrictionConstraintPool.resize(0);
+		m_orderRollingFrictionConstraintPool.resize(0);
+		return btScalar(0);
+	}
 	identityOrder(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
 	identityOrder(m_orderFrictionConstraintPool, m_tmpSolverContactFrictionConstraintPool.size());
 	identityOrder(m_orderRollingFrictionConstraintPool, m_tmpSolverContactRollingFrictionConstraintPool.size());

@@ -51,22 +51,32 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> bodyOrder;         // counting sort by first moving body
 	btAlignedObjectArray<int> byBody;
 	btAlignedObjectArray<btScalar> batchResidual;
-	btAlignedObjectArray<int> rollingStart;      // per contact row, its first rolling row in rollingRows
-	btAlignedObjectArray<int> rollingRows;       // rolling rows grouped by contact row
+	btAlignedObjectArray<int> rollingStart;                  // per contact row, its first rolling row in rollingRows
+	btAlignedObjectArray<int> rollingRows;                   // rolling rows grouped by contact row
 	btAlignedObjectArray<caliber::ContactPointRows> points;  // the points with rows, in order
-	// Per manifold of the solve: its solver bodies (-1: no rows), and its planned points.
-	btAlignedObjectArray<int> manifoldBodies;                  // two per manifold
-	btAlignedObjectArray<int> plannedCount;                    // per manifold
-	btAlignedObjectArray<int> plannedRolling;                  // per manifold: rolling rows of its points
-	btAlignedObjectArray<int> pointStart;                      // per manifold: its first point in points
-	btAlignedObjectArray<int> manifoldRollingStart;            // per manifold: its first rolling row
+	// Per manifold of the solve: its solver bodies (-1: no rows; kLookUpSerially: see FindManifoldBodies),
+	// and its planned points.
+	btAlignedObjectArray<int> manifoldBodies;                 // two per manifold
+	btAlignedObjectArray<int> plannedCount;                   // per manifold
+	btAlignedObjectArray<int> plannedRolling;                 // per manifold: rolling rows of its points
+	btAlignedObjectArray<int> pointStart;                     // per manifold: its first point in points
+	btAlignedObjectArray<int> manifoldRollingStart;           // per manifold: its first rolling row
 	btAlignedObjectArray<caliber::ContactPointRows> planned;  // MANIFOLD_CACHE_SIZE per manifold
+	// Per manifold with rows, in order: what the colouring, the ordering and the warm starts read, in one
+	// small array instead of each manifold's first row (a cache line apiece, a manifold apart).
+	struct RowManifold
+	{
+		int bodyA, bodyB;  // its solver bodies, as in its rows (before the fixed entry's copies)
+		int firstPoint;    // its first point in points (its rows follow the points)
+		int numPoints;
+	};
+	btAlignedObjectArray<RowManifold> rowManifolds;
 	// Per batch: its first manifold in orderedManifolds (and one past the last batch), and the body its
 	// padding lanes and static contacts use (its own copy of the fixed entry, or a zero body).
 	btAlignedObjectArray<int> batchManifoldBegin;
 	btAlignedObjectArray<int> batchPaddingBody;
-	// The warm starts by body: each moving body's contributions (row << 2 | friction pool << 1 | side B),
-	// in the order the serial setup applies them.
+	// The warm starts by body: each moving body's manifolds (index in rowManifolds << 1 | side B), in the
+	// order the serial setup applies them.
 	btAlignedObjectArray<int> warmStartFirst;  // per solver body, and one past the last
 	btAlignedObjectArray<int> warmStarts;
 	btAlignedObjectArray<int> warmStartCursor;
@@ -79,12 +89,12 @@ MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver
 	return caliber::sideTable<MtSolverScratch>().acquire(&solver);
 }
 
-// The lower solver body of a row that is not the fixed entry (the sort key of its manifold).
-int firstMovingBody(const btSolverConstraint& row, int fixedBodyId)
+// The lower solver body of a manifold that is not the fixed entry (its sort key).
+int firstMovingBody(const MtSolverScratch::RowManifold& manifold, int fixedBodyId)
 {
-	if (row.m_solverBodyIdA == fixedBodyId) return row.m_solverBodyIdB;
-	if (row.m_solverBodyIdB == fixedBodyId) return row.m_solverBodyIdA;
-	return btMin(row.m_solverBodyIdA, row.m_solverBodyIdB);
+	if (manifold.bodyA == fixedBodyId) return manifold.bodyB;
+	if (manifold.bodyB == fixedBodyId) return manifold.bodyA;
+	return btMin(manifold.bodyA, manifold.bodyB);
 }
 
 // The rows of a batch's manifolds, in the order a sweep takes them. The manifolds of a batch share no
@@ -132,6 +142,44 @@ const int kPointsPerTask = 64;
 // Manifolds per task of the parallel planning.
 const int kManifoldsPerTask = 32;
 
+// A manifold end whose object has no solver body yet: convertContacts makes it on the calling thread.
+const int kLookUpSerially = -2;
+
+// The solver body of an object whose companion id already names its entry in the pool, else
+// kLookUpSerially (the test getOrInitSolverBody makes first; reading only, so any thread).
+int solverBodyFromCompanionId(const btCollisionObject& object, const btAlignedObjectArray<btSolverBody>& bodies)
+{
+	const int hint = object.getCompanionId();
+	if (hint >= 0 && hint < bodies.size() && bodies[hint].m_originalBody == &object) return hint;
+	return kLookUpSerially;
+}
+
+// Each manifold's two solver bodies where the pool already holds them (-1 for a manifold without both
+// objects: it gets no rows).
+struct FindManifoldBodies : public btIParallelForBody
+{
+	btPersistentManifold** manifolds;
+	MtSolverScratch* mt;
+	const btAlignedObjectArray<btSolverBody>* bodies;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			const btCollisionObject* object0 = manifolds[i]->getBody0();
+			const btCollisionObject* object1 = manifolds[i]->getBody1();
+			int* ids = &mt->manifoldBodies[2 * i];
+			if (!object0 || !object1)
+			{
+				ids[0] = ids[1] = -1;
+				continue;
+			}
+			ids[0] = solverBodyFromCompanionId(*object0, *bodies);
+			ids[1] = solverBodyFromCompanionId(*object1, *bodies);
+		}
+	}
+};
+
 // Which points of each manifold get rows (each manifold's own points: any order, any thread).
 struct PlanManifolds : public btIParallelForBody
 {
@@ -148,7 +196,7 @@ struct PlanManifolds : public btIParallelForBody
 			int& rolling = mt->plannedRolling[i];
 			count = rolling = 0;
 			const int idA = mt->manifoldBodies[2 * i], idB = mt->manifoldBodies[2 * i + 1];
-			if (idA < 0) continue;
+			if (idA < 0 || !caliber::solverBodiesCanMove(*bodies, idA, idB)) continue;
 			btPersistentManifold* manifold = manifolds[i];
 			btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
 			btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
@@ -156,7 +204,8 @@ struct PlanManifolds : public btIParallelForBody
 			for (int j = 0; j < numContacts; ++j)
 			{
 				caliber::ContactPointRows& point = mt->planned[i * MANIFOLD_CACHE_SIZE + count];
-				if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, idA, idB, *bodies, *info, point)) continue;
+				if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, idA, idB, *bodies, *info, point))
+					continue;
 				rolling += caliber::rollingRowsOf(*point.cp);
 				++count;
 			}
@@ -215,59 +264,77 @@ struct ApplyWarmStarts : public btIParallelForBody
 {
 	const MtSolverScratch* mt;
 	caliber::ContactRowPools pools;
+	int frictionRowsPerContact;
+	int contactBase, frictionBase;  // the rows of point i: contactBase + i, frictionBase + i * frictionRowsPerContact
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
+		const btSolverConstraint* contacts = &(*pools.contacts)[contactBase];
+		const btSolverConstraint* friction = frictionRowsPerContact ? &(*pools.friction)[frictionBase] : 0;
 		for (int b = iBegin; b < iEnd; ++b)
 		{
 			btSolverBody& body = (*pools.bodies)[b];
 			for (int k = mt->warmStartFirst[b]; k < mt->warmStartFirst[b + 1]; ++k)
 			{
 				const int code = mt->warmStarts[k];
-				const btSolverConstraint& row = (code & 2) ? (*pools.friction)[code >> 2] : (*pools.contacts)[code >> 2];
+				const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[code >> 1];
+				// The manifold's rows: its points' normal rows, and their friction rows, follow each other.
+				const btSolverConstraint* row = contacts + manifold.firstPoint;
+				const btSolverConstraint* rowEnd = row + manifold.numPoints;
+				const btSolverConstraint* frictionRow = friction + manifold.firstPoint * frictionRowsPerContact;
 				if (code & 1)
-					body.applyImpulse(row.m_contactNormal2, row.m_angularComponentB, row.m_appliedImpulse);
+					for (; row != rowEnd; ++row)
+					{
+						body.applyImpulse(row->m_contactNormal2, row->m_angularComponentB, row->m_appliedImpulse);
+						for (int f = 0; f < frictionRowsPerContact; ++f, ++frictionRow)
+							body.applyImpulse(frictionRow->m_contactNormal2, frictionRow->m_angularComponentB,
+							                  frictionRow->m_appliedImpulse);
+					}
 				else
-					body.applyImpulse(row.m_contactNormal1, row.m_angularComponentA, row.m_appliedImpulse);
+					for (; row != rowEnd; ++row)
+					{
+						body.applyImpulse(row->m_contactNormal1, row->m_angularComponentA, row->m_appliedImpulse);
+						for (int f = 0; f < frictionRowsPerContact; ++f, ++frictionRow)
+							body.applyImpulse(frictionRow->m_contactNormal1, frictionRow->m_angularComponentA,
+							                  frictionRow->m_appliedImpulse);
+					}
 			}
 		}
 	}
 };
 
-// The warm starts of the planned points (mt.points). The fixed entry takes none: its impulses would
-// add zeros to zeros (it has no mass and no inertia to turn).
+// The warm starts of the planned points (mt.points). A manifold's points all have its two bodies and
+// follow each other in the point list, so a body's points in order are its manifolds' points in order:
+// the lists hold manifolds (a quarter of the entries, from the small rowManifolds array). The fixed entry
+// takes none: its impulses would add zeros to zeros (it has no mass and no inertia to turn).
 void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& pools, int frictionRowsPerContact,
-                           int fixedBodyId)
+                           int contactBase, int frictionBase, int fixedBodyId)
 {
 	const int numBodies = pools.bodies->size();
-	const int rowsPerPoint = 1 + frictionRowsPerContact;
+	const int numRowManifolds = mt.rowManifolds.size();
 	caliber::assignScratch(mt.warmStartFirst, numBodies + 1, 0);
-	for (int i = 0; i < mt.points.size(); ++i)
+	for (int m = 0; m < numRowManifolds; ++m)
 	{
-		const caliber::ContactPointRows& point = mt.points[i];
-		if (point.solverBodyIdA != fixedBodyId) mt.warmStartFirst[point.solverBodyIdA + 1] += rowsPerPoint;
-		if (point.solverBodyIdB != fixedBodyId) mt.warmStartFirst[point.solverBodyIdB + 1] += rowsPerPoint;
+		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
+		if (manifold.bodyA != fixedBodyId) ++mt.warmStartFirst[manifold.bodyA + 1];
+		if (manifold.bodyB != fixedBodyId) ++mt.warmStartFirst[manifold.bodyB + 1];
 	}
 	for (int b = 0; b < numBodies; ++b) mt.warmStartFirst[b + 1] += mt.warmStartFirst[b];
 	caliber::resizeScratch(mt.warmStarts, mt.warmStartFirst[numBodies]);
 	caliber::resizeScratch(mt.warmStartCursor, numBodies);
 	for (int b = 0; b < numBodies; ++b) mt.warmStartCursor[b] = mt.warmStartFirst[b];
-	for (int i = 0; i < mt.points.size(); ++i)
+	for (int m = 0; m < numRowManifolds; ++m)
 	{
-		const caliber::ContactPointRows& point = mt.points[i];
-		for (int side = 0; side < 2; ++side)
-		{
-			const int body = side ? point.solverBodyIdB : point.solverBodyIdA;
-			if (body == fixedBodyId) continue;
-			int& cursor = mt.warmStartCursor[body];
-			mt.warmStarts[cursor++] = point.contactRow << 2 | side;
-			for (int f = 0; f < frictionRowsPerContact; ++f)
-				mt.warmStarts[cursor++] = (point.firstFrictionRow + f) << 2 | 2 | side;
-		}
+		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
+		if (manifold.bodyA != fixedBodyId) mt.warmStarts[mt.warmStartCursor[manifold.bodyA]++] = m << 1;
+		if (manifold.bodyB != fixedBodyId) mt.warmStarts[mt.warmStartCursor[manifold.bodyB]++] = m << 1 | 1;
 	}
 	ApplyWarmStarts apply;
 	apply.mt = &mt;
 	apply.pools = pools;
+	apply.frictionRowsPerContact = frictionRowsPerContact;
+	apply.contactBase = contactBase;
+	apply.frictionBase = frictionBase;
 	btParallelFor(0, numBodies, kBodiesPerWarmStartTask, apply);
 }
 
@@ -328,13 +395,14 @@ struct BatchSweep : public btIParallelForBody
 	int firstBatch;
 	int frictionRowsPerContact;
 	bool reverse;
-	int pass;  // 0: normal rows, 1: friction and rolling rows
+	int pass;                 // 0: normal rows, 1: friction and rolling rows
 	btScalar* batchResidual;  // per batch of the phase
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
 		for (int b = iBegin; b < iEnd; ++b)
-			batchResidual[b] = scratch->wide ? sweepWideBatch(firstBatch + b) : sweepBatch(batched->m_batches[firstBatch + b]);
+			batchResidual[b] =
+			    scratch->wide ? sweepWideBatch(firstBatch + b) : sweepBatch(batched->m_batches[firstBatch + b]);
 	}
 
 	btScalar sweepWideBatch(int batch) const
@@ -396,8 +464,8 @@ struct BatchSweep : public btIParallelForBody
 			{
 				btSolverConstraint& row = (*rolling)[scratch->rollingRows[r]];
 				const btScalar bound = row.m_friction * normalImpulse;
-				residual += caliber::resolveRow(bodies[row.m_solverBodyIdA], bodies[row.m_solverBodyIdB], row, -bound,
-				                                bound);
+				residual +=
+				    caliber::resolveRow(bodies[row.m_solverBodyIdA], bodies[row.m_solverBodyIdB], row, -bound, bound);
 			}
 		}
 		return residual;
@@ -409,17 +477,17 @@ namespace
 {
 // Greedy colouring in manifold order: each manifold takes the lowest colour neither of its moving bodies
 // has (the fixed entry is shared freely).
-void colourManifolds(MtSolverScratch& mt, const btConstraintArray& contacts, const caliber::SolverScratch& scratch,
-                     int numManifoldsWithRows, int numSolverBodies, int fixedBodyId)
+void colourManifolds(MtSolverScratch& mt, int numSolverBodies, int fixedBodyId)
 {
+	const int numRowManifolds = mt.rowManifolds.size();
 	caliber::assignScratch(mt.bodyColours, numSolverBodies, 0);
-	caliber::resizeScratch(mt.manifoldColour, numManifoldsWithRows);
+	caliber::resizeScratch(mt.manifoldColour, numRowManifolds);
 	caliber::assignScratch(mt.colourCount, kColours + 1, 0);
 	caliber::assignScratch(mt.colourRows, kColours + 1, 0);
-	for (int m = 0; m < numManifoldsWithRows; ++m)
+	for (int m = 0; m < numRowManifolds; ++m)
 	{
-		const btSolverConstraint& first = contacts[scratch.manifoldFirstRow[m]];
-		const int a = first.m_solverBodyIdA, b = first.m_solverBodyIdB;
+		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
+		const int a = manifold.bodyA, b = manifold.bodyB;
 		const uint32_t takenA = a == fixedBodyId ? 0u : mt.bodyColours[a];
 		const uint32_t takenB = b == fixedBodyId ? 0u : mt.bodyColours[b];
 		const int colour = lowestFreeColour(takenA | takenB);
@@ -430,23 +498,21 @@ void colourManifolds(MtSolverScratch& mt, const btConstraintArray& contacts, con
 		}
 		mt.manifoldColour[m] = colour;
 		++mt.colourCount[colour];
-		mt.colourRows[colour] += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+		mt.colourRows[colour] += manifold.numPoints;
 	}
 }
 
 // Manifolds colour by colour, and within a colour by their first moving body (two stable counting sorts):
 // a run of batches then holds the bodies of one region of the island (see the sweep).
-void orderManifoldsByColourAndBody(MtSolverScratch& mt, const btConstraintArray& contacts,
-                                   const caliber::SolverScratch& scratch, int numManifoldsWithRows,
-                                   int numSolverBodies, int fixedBodyId)
+void orderManifoldsByColourAndBody(MtSolverScratch& mt, int numSolverBodies, int fixedBodyId)
 {
+	const int numRowManifolds = mt.rowManifolds.size();
 	caliber::assignScratch(mt.bodyOrder, numSolverBodies + 1, 0);
-	for (int m = 0; m < numManifoldsWithRows; ++m)
-		++mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], fixedBodyId) + 1];
+	for (int m = 0; m < numRowManifolds; ++m) ++mt.bodyOrder[firstMovingBody(mt.rowManifolds[m], fixedBodyId) + 1];
 	for (int b = 0; b < numSolverBodies; ++b) mt.bodyOrder[b + 1] += mt.bodyOrder[b];
-	caliber::resizeScratch(mt.byBody, numManifoldsWithRows);
-	for (int m = 0; m < numManifoldsWithRows; ++m)
-		mt.byBody[mt.bodyOrder[firstMovingBody(contacts[scratch.manifoldFirstRow[m]], fixedBodyId)]++] = m;
+	caliber::resizeScratch(mt.byBody, numRowManifolds);
+	for (int m = 0; m < numRowManifolds; ++m)
+		mt.byBody[mt.bodyOrder[firstMovingBody(mt.rowManifolds[m], fixedBodyId)]++] = m;
 	caliber::resizeScratch(mt.colourCursor, kColours + 1);
 	int start = 0;
 	for (int c = 0; c <= kColours; ++c)
@@ -454,8 +520,8 @@ void orderManifoldsByColourAndBody(MtSolverScratch& mt, const btConstraintArray&
 		mt.colourCursor[c] = start;
 		start += mt.colourCount[c];
 	}
-	caliber::resizeScratch(mt.orderedManifolds, numManifoldsWithRows);
-	for (int k = 0; k < numManifoldsWithRows; ++k)
+	caliber::resizeScratch(mt.orderedManifolds, numRowManifolds);
+	for (int k = 0; k < numRowManifolds; ++k)
 	{
 		const int m = mt.byBody[k];
 		mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
@@ -502,8 +568,7 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 		int batchFirstManifold = nextManifold;
 		for (int k = 0; k < mt.colourCount[c]; ++k)
 		{
-			const int m = mt.orderedManifolds[nextManifold++];
-			batchRows += scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+			batchRows += mt.rowManifolds[mt.orderedManifolds[nextManifold++]].numPoints;
 			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
 			mt.batchManifoldBegin.push_back(batchFirstManifold);
 			batched.m_batches.push_back(btBatchedConstraints::Range(nextRow, nextRow + batchRows));
@@ -523,6 +588,30 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 	write.batched = &batched;
 	btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, write);
 }
+
+// Manifolds per block of the serial solver's contact order (its kInterleave), and blocks per task.
+const int kOrderBlockManifolds = 8;
+const int kOrderBlocksPerTask = 16;
+
+// The serial solver's contact order (btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup),
+// which the split-impulse pass follows: blocks of consecutive manifolds, interleaved as in a batch. A
+// block's rows are its manifolds' rows, so its place in the order is known and any split writes the same.
+struct WriteContactOrder : public btIParallelForBody
+{
+	const caliber::SolverScratch* scratch;
+	int* order;
+	const int* manifolds;  // 0, 1, 2, ...
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const btAlignedObjectArray<int>& manifoldFirstRow = scratch->manifoldFirstRow;
+		const int numManifolds = manifoldFirstRow.size() - 1;
+		const int first = iBegin * kOrderBlockManifolds;
+		const int end = btMin(iEnd * kOrderBlockManifolds, numManifolds);
+		writeBatchRows(manifolds + first, end - first, manifoldFirstRow, scratch->solveCount,
+		               order + manifoldFirstRow[first] - manifoldFirstRow[0]);
+	}
+};
 
 // Each batch's rows of the fixed entry are pointed at the batch's own copy of it (see the file comment):
 // contact and friction rows by batch, on the threads (a row belongs to one batch, so any split of the
@@ -556,9 +645,8 @@ struct GiveBatchesFixedBodyCopies : public btIParallelForBody
 	}
 };
 
-void giveBatchesFixedBodyCopies(const btBatchedConstraints& batched, int fixedBodyId, int firstCopy,
-                                int frictionRows, btConstraintArray& contacts, btConstraintArray& friction,
-                                btConstraintArray& rolling)
+void giveBatchesFixedBodyCopies(const btBatchedConstraints& batched, int fixedBodyId, int firstCopy, int frictionRows,
+                                btConstraintArray& contacts, btConstraintArray& friction, btConstraintArray& rolling)
 {
 	GiveBatchesFixedBodyCopies give;
 	give.batched = &batched;
@@ -580,8 +668,10 @@ void giveBatchesFixedBodyCopies(const btBatchedConstraints& batched, int fixedBo
 // Rolling rows grouped by their contact row (counting sort).
 void groupRollingRows(MtSolverScratch& mt, int numContacts, const btConstraintArray& rolling)
 {
-	caliber::assignScratch(mt.rollingStart, numContacts + 1, 0);
+	// Without rolling rows the sweeps never read the groups.
 	const int numRolling = rolling.size();
+	if (numRolling == 0) return;
+	caliber::assignScratch(mt.rollingStart, numContacts + 1, 0);
 	for (int r = 0; r < numRolling; ++r) ++mt.rollingStart[rolling[r].m_frictionIndex + 1];
 	for (int j = 0; j < numContacts; ++j) mt.rollingStart[j + 1] += mt.rollingStart[j];
 	caliber::resizeScratch(mt.rollingRows, numRolling);
@@ -619,20 +709,26 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	caliber::resizeScratch(mt.plannedRolling, numManifolds);
 	caliber::resizeScratch(mt.pointStart, numManifolds);
 	caliber::resizeScratch(mt.manifoldRollingStart, numManifolds);
+	mt.rowManifolds.resize(0);
+	if (numManifolds == 0) return;
+	// The solver bodies of the manifolds' objects: those already in the pool found on the threads; the
+	// others (objects outside the island's body list, such as static ones) made here in manifold order,
+	// as getOrInitSolverBody would make them in a serial loop, so the pool comes out the same.
+	FindManifoldBodies find;
+	find.manifolds = manifoldPtr;
+	find.mt = &mt;
+	find.bodies = &m_tmpSolverBodyPool;
+	btParallelFor(0, numManifolds, kManifoldsPerTask, find);
 	for (int i = 0; i < numManifolds; ++i)
 	{
+		int* ids = &mt.manifoldBodies[2 * i];
+		if (ids[0] != kLookUpSerially && ids[1] != kLookUpSerially) continue;
 		btPersistentManifold* manifold = manifoldPtr[i];
-		btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
-		btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
-		mt.manifoldBodies[2 * i] = mt.manifoldBodies[2 * i + 1] = -1;
-		if (!colObj0 || !colObj1) continue;
-		const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
-		const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
-		if (!caliber::solverBodiesCanMove(m_tmpSolverBodyPool, solverBodyIdA, solverBodyIdB)) continue;
-		mt.manifoldBodies[2 * i] = solverBodyIdA;
-		mt.manifoldBodies[2 * i + 1] = solverBodyIdB;
+		if (ids[0] == kLookUpSerially)
+			ids[0] = getOrInitSolverBody(*const_cast<btCollisionObject*>(manifold->getBody0()), infoGlobal.m_timeStep);
+		if (ids[1] == kLookUpSerially)
+			ids[1] = getOrInitSolverBody(*const_cast<btCollisionObject*>(manifold->getBody1()), infoGlobal.m_timeStep);
 	}
-	if (numManifolds == 0) return;
 	PlanManifolds plan;
 	plan.manifolds = manifoldPtr;
 	plan.mt = &mt;
@@ -653,6 +749,11 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 		const int count = mt.plannedCount[i];
 		if (count == 0) continue;
 		scratch.manifoldFirstRow.push_back(contactBase + numPoints);
+		MtSolverScratch::RowManifold& rowManifold = mt.rowManifolds.expandNonInitializing();
+		rowManifold.bodyA = mt.manifoldBodies[2 * i];
+		rowManifold.bodyB = mt.manifoldBodies[2 * i + 1];
+		rowManifold.firstPoint = numPoints;
+		rowManifold.numPoints = count;
 		numPoints += count;
 		nextRolling += mt.plannedRolling[i];
 	}
@@ -680,9 +781,10 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	// By body on the threads, or point by point on one thread (the same bits either way).
 	btITaskScheduler* scheduler = btGetTaskScheduler();
 	if (scheduler && scheduler->getNumThreads() > 1)
-		applyWarmStartsByBody(mt, fill.pools, frictionRowsPerContact, m_fixedBodyId);
+		applyWarmStartsByBody(mt, fill.pools, frictionRowsPerContact, contactBase, frictionBase, m_fixedBodyId);
 	else
-		for (int i = 0; i < mt.points.size(); ++i) caliber::applyContactPointWarmStarts(fill.pools, mt.points[i], infoGlobal);
+		for (int i = 0; i < mt.points.size(); ++i)
+			caliber::applyContactPointWarmStarts(fill.pools, mt.points[i], infoGlobal);
 }
 
 btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
@@ -695,13 +797,17 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	int manifoldsWithPoints = 0;
 	for (int i = 0; i < numManifolds && manifoldsWithPoints < s_minimumContactManifoldsForBatching; ++i)
 		if (manifoldPtr[i]->getNumContacts() > 0) ++manifoldsWithPoints;
-	m_useBatching = manifoldsWithPoints >= s_minimumContactManifoldsForBatching &&
-	                !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) &&
-	                caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric,
-	                                               m_resolveSingleConstraintRowLowerLimit);
+	MtSolverScratch& mt = mtScratchOf(*this);
+	mt.rowManifolds.resize(0);  // our convertContacts lists them
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	m_useBatching =
+	    manifoldsWithPoints >= s_minimumContactManifoldsForBatching &&
+	    !(infoGlobal.m_solverMode & SOLVER_RANDMIZE_ORDER) &&
+	    caliber::usesCaliberRowSolvers(m_resolveSingleConstraintRowGeneric, m_resolveSingleConstraintRowLowerLimit);
+	scratch.ownContactOrder = m_useBatching;
 	const btScalar result = btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	    bodies, numBodies, manifoldPtr, numManifolds, constraints, numConstraints, infoGlobal, debugDrawer);
-	const caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	scratch.ownContactOrder = false;
 	const int numManifoldsWithRows = scratch.manifoldFirstRow.size() - 1;
 	m_useBatching = m_useBatching && numManifoldsWithRows > 0;
 	btBatchedConstraints& batched = m_batchedContactConstraints;
@@ -712,11 +818,38 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	batched.m_phaseOrder.resize(0);
 	if (!m_useBatching) return result;
 
-	MtSolverScratch& mt = mtScratchOf(*this);
+	// The sweeps below take the batches' order; the split-impulse pass takes the serial solver's.
+	if (infoGlobal.m_splitImpulse)
+	{
+		caliber::resizeScratch(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
+		caliber::resizeScratch(mt.byBody, numManifoldsWithRows);  // scratch here: the manifolds in order
+		for (int m = 0; m < numManifoldsWithRows; ++m) mt.byBody[m] = m;
+		WriteContactOrder write;
+		write.scratch = &scratch;
+		write.order = &m_orderTmpConstraintPool[0];
+		write.manifolds = &mt.byBody[0];
+		btParallelFor(0, (numManifoldsWithRows + kOrderBlockManifolds - 1) / kOrderBlockManifolds, kOrderBlocksPerTask,
+		              write);
+	}
+
 	const btConstraintArray& contacts = m_tmpSolverContactConstraintPool;
 	const int numSolverBodies = m_tmpSolverBodyPool.size();
-	colourManifolds(mt, contacts, scratch, numManifoldsWithRows, numSolverBodies, m_fixedBodyId);
-	orderManifoldsByColourAndBody(mt, contacts, scratch, numManifoldsWithRows, numSolverBodies, m_fixedBodyId);
+	// A subclass's convertContacts that leaves ours out lists no manifolds: they come from their first rows.
+	if (mt.rowManifolds.size() != numManifoldsWithRows)
+	{
+		caliber::resizeScratch(mt.rowManifolds, numManifoldsWithRows);
+		for (int m = 0; m < numManifoldsWithRows; ++m)
+		{
+			const btSolverConstraint& first = contacts[scratch.manifoldFirstRow[m]];
+			MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
+			manifold.bodyA = first.m_solverBodyIdA;
+			manifold.bodyB = first.m_solverBodyIdB;
+			manifold.firstPoint = scratch.manifoldFirstRow[m] - scratch.manifoldFirstRow[0];
+			manifold.numPoints = scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
+		}
+	}
+	colourManifolds(mt, numSolverBodies, m_fixedBodyId);
+	orderManifoldsByColourAndBody(mt, numSolverBodies, m_fixedBodyId);
 	buildColourBatches(mt, scratch, s_minBatchSize, batched);
 
 	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
@@ -763,10 +896,12 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	return result;
 }
 
-btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
-    int iteration, btCollisionObject** bodies, int numBodies, btPersistentManifold** manifoldPtr, int numManifolds,
-    btTypedConstraint** constraints, int numConstraints, const btContactSolverInfo& infoGlobal,
-    btIDebugDraw* debugDrawer)
+btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(int iteration, btCollisionObject** bodies,
+                                                                     int numBodies, btPersistentManifold** manifoldPtr,
+                                                                     int numManifolds, btTypedConstraint** constraints,
+                                                                     int numConstraints,
+                                                                     const btContactSolverInfo& infoGlobal,
+                                                                     btIDebugDraw* debugDrawer)
 {
 	if (!m_useBatching)
 		return btSequentialImpulseConstraintSolver::solveSingleIteration(iteration, bodies, numBodies, manifoldPtr,
@@ -776,8 +911,9 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 	btSolverBody* solverBodies = &m_tmpSolverBodyPool[0];
 	// As the serial solver: every other sweep backwards, joints first (on this thread).
 	const bool reverse = ((unsigned(iteration) + scratch.solveCount) & 1u) != 0;
-	btScalar residual = caliber::sweepJoints(scratch, solverBodies, m_tmpSolverNonContactConstraintPool,
-	                                         m_tmpConstraintSizesPool, m_orderNonContactConstraintPool, iteration, reverse);
+	btScalar residual =
+	    caliber::sweepJoints(scratch, solverBodies, m_tmpSolverNonContactConstraintPool, m_tmpConstraintSizesPool,
+	                         m_orderNonContactConstraintPool, iteration, reverse);
 	if (iteration >= infoGlobal.m_numIterations) return residual;
 
 	const btBatchedConstraints& batched = m_batchedContactConstraints;
@@ -819,7 +955,8 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 	}
 	// After the last sweep of the contacts (the iterations stop at m_numIterations for contacts, or earlier
 	// when the residual is small enough), the wide blocks' impulses go to their rows.
-	if (mt.wide && (iteration + 1 >= infoGlobal.m_numIterations || residual <= infoGlobal.m_leastSquaresResidualThreshold))
+	if (mt.wide &&
+	    (iteration + 1 >= infoGlobal.m_numIterations || residual <= infoGlobal.m_leastSquaresResidualThreshold))
 	{
 		StoreWideImpulses store;
 		store.wide = &mt.wideRows;
@@ -833,7 +970,8 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(
 btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlyFinish(btCollisionObject** bodies, int numBodies,
                                                                               const btContactSolverInfo& infoGlobal)
 {
-	if (!m_useBatching) return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, infoGlobal);
+	if (!m_useBatching)
+		return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyFinish(bodies, numBodies, infoGlobal);
 	// Each contact row into its own manifold point and each solver body into its own body: any order,
 	// any thread, the same bits. Joints (feedback, breaking) on this thread.
 	struct WriteBack : public btIParallelForBody

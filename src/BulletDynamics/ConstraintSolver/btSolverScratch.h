@@ -72,6 +72,10 @@ struct SolverScratch
 	btAlignedObjectArray<int> shockRowOrder;
 	/// Counts solves, so that the in-manifold order also changes from step to step (reset() clears it).
 	unsigned int solveCount = 0;
+	/// Set by the multithreaded solver for a solve whose contact rows it sweeps in its own batches: the
+	/// serial setup then leaves the contact, friction and rolling sweep orders empty (the multithreaded
+	/// solver makes the contact order itself, on the threads, for the split-impulse pass).
+	bool ownContactOrder = false;
 };
 
 /// The world numbers the solves of its steps and tells the solver which one a solveGroup call is, on the

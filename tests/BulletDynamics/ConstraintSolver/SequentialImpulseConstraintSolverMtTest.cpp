@@ -41,7 +41,8 @@ protected:
 				++invalidSolves;
 			if (m_batchedContactConstraints.m_phases.size() > mostColours)
 				mostColours = m_batchedContactConstraints.m_phases.size();
-			rowsMissed += m_tmpSolverContactConstraintPool.size() - m_batchedContactConstraints.m_constraintIndices.size();
+			rowsMissed +=
+			    m_tmpSolverContactConstraintPool.size() - m_batchedContactConstraints.m_constraintIndices.size();
 		}
 		return result;
 	}
@@ -225,4 +226,62 @@ TEST(SequentialImpulseConstraintSolverMt, ParallelContactSetupGivesTheSerialSetu
 	const std::vector<btScalar> a = parallelSetup.state(), b = serialSetup.state();
 	ASSERT_EQ(a.size(), b.size());
 	EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(btScalar)));
+}
+
+namespace
+{
+// The contact order a setup leaves for the split-impulse pass (the serial solver's sweeps use it too).
+template <class Solver>
+class SetupOnly : public Solver
+{
+public:
+	std::vector<int> contactOrder(btDiscreteDynamicsWorld& world, bool* batched = nullptr)
+	{
+		btDispatcher* dispatcher = world.getDispatcher();
+		btCollisionObjectArray& objects = world.getCollisionObjectArray();
+		this->solveGroupCacheFriendlySetup(&objects[0], objects.size(), dispatcher->getInternalManifoldPointer(),
+		                                   dispatcher->getNumManifolds(), nullptr, 0, world.getSolverInfo(), nullptr);
+		if (batched) *batched = batchedSolve();
+		std::vector<int> order;
+		for (int i = 0; i < this->m_orderTmpConstraintPool.size(); ++i)
+			order.push_back(this->m_orderTmpConstraintPool[i]);
+		EXPECT_EQ(int(order.size()), this->m_tmpSolverContactConstraintPool.size());
+		return order;
+	}
+	bool batchedSolve() const;
+};
+template <>
+bool SetupOnly<btSequentialImpulseConstraintSolverMt>::batchedSolve() const
+{
+	return m_useBatching;
+}
+template <>
+bool SetupOnly<btSequentialImpulseConstraintSolver>::batchedSolve() const
+{
+	return false;
+}
+}  // namespace
+
+TEST(SequentialImpulseConstraintSolverMt, BatchedSetupGivesTheSplitImpulsePassTheSerialContactOrder)
+{
+	// A batched solve sweeps its own batches, so its setup skips the serial sweep orders and writes only the
+	// contact order, which the split-impulse pass follows, on the threads: it must be the serial setup's
+	// (the manifolds' points interleaved in blocks, each manifold's first point rotated by the solve count).
+	ColourEverySolve colourAll;
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	btITaskScheduler* scheduler = pool ? pool.get() : btGetSequentialTaskScheduler();
+	btSetTaskScheduler(scheduler);
+	scheduler->setNumThreads(2);
+	Pyramid pyramid(false);
+	pyramid.step(3);
+	ASSERT_TRUE(pyramid.world->getSolverInfo().m_splitImpulse);
+	SetupOnly<btSequentialImpulseConstraintSolverMt> mt;
+	SetupOnly<btSequentialImpulseConstraintSolver> serial;
+	bool batched = false;
+	const std::vector<int> batchedOrder = mt.contactOrder(*pyramid.world, &batched);
+	const std::vector<int> serialOrder = serial.contactOrder(*pyramid.world);
+	btSetTaskScheduler(0);
+	EXPECT_TRUE(batched);
+	ASSERT_GT(serialOrder.size(), size_t(100));  // a few points for each of about 100 manifolds
+	EXPECT_EQ(batchedOrder, serialOrder);
 }
