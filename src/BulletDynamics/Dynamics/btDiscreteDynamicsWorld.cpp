@@ -215,7 +215,6 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	if (m_internalTickCallback) (*m_internalTickCallback)(this, timeStep);
 }
 
-
 void btDiscreteDynamicsWorld::startProfiling(btScalar timeStep)
 {
 	(void)timeStep;
@@ -423,9 +422,13 @@ btTransform interpolatedPose(const btRigidBody& body, bool latencyInterpolation,
 // Bodies per task of the parallel motion-state poses.
 const int kMotionStatesPerTask = 128;
 
+// Each body's motion state to tell (null: none, or the body is asleep, static or kinematic) and its pose.
+// The calling thread then reads only these two arrays and the motion states, not the bodies, which the
+// other threads' caches hold after the step's parallel stages.
 struct InterpolatePoses : public btIParallelForBody
 {
 	btRigidBody* const* bodies;
+	btMotionState** targets;
 	btTransform* poses;
 	bool latencyInterpolation;
 	btScalar localTime;
@@ -434,8 +437,12 @@ struct InterpolatePoses : public btIParallelForBody
 	void forLoop(int iBegin, int iEnd) const override
 	{
 		for (int i = iBegin; i < iEnd; ++i)
-			if (bodies[i]->isActive())
-				poses[i] = interpolatedPose(*bodies[i], latencyInterpolation, localTime, fixedTimeStep);
+		{
+			btRigidBody& body = *bodies[i];
+			btMotionState* target = body.isActive() && !body.isStaticOrKinematicObject() ? body.getMotionState() : 0;
+			targets[i] = target;
+			if (target) poses[i] = interpolatedPose(body, latencyInterpolation, localTime, fixedTimeStep);
+		}
 	}
 };
 }  // namespace
@@ -472,21 +479,21 @@ void btDiscreteDynamicsWorld::synchronizeMotionStates()
 	}
 	// With a scheduler: the interpolated poses on its threads, then the motion states told in body order
 	// on this thread (a user's motion state need not be thread-safe). Same poses, same calls, same order.
-	btAlignedObjectArray<btTransform>& poses = caliber::stepContextOf(*this).motionStatePoses;
+	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
+	btAlignedObjectArray<btTransform>& poses = context.motionStatePoses;
+	btAlignedObjectArray<btMotionState*>& targets = context.motionStateTargets;
 	poses.resizeNoInitialize(numBodies);
+	targets.resizeNoInitialize(numBodies);
 	InterpolatePoses interpolate;
 	interpolate.bodies = &m_nonStaticRigidBodies[0];
+	interpolate.targets = &targets[0];
 	interpolate.poses = &poses[0];
 	interpolate.latencyInterpolation = m_latencyMotionStateInterpolation;
 	interpolate.localTime = m_localTime;
 	interpolate.fixedTimeStep = m_fixedTimeStep;
 	btParallelFor(0, numBodies, kMotionStatesPerTask, interpolate);
 	for (int i = 0; i < numBodies; ++i)
-	{
-		btRigidBody* body = m_nonStaticRigidBodies[i];
-		if (body->isActive() && body->getMotionState() && !body->isStaticOrKinematicObject())
-			body->getMotionState()->setWorldTransform(poses[i]);
-	}
+		if (targets[i]) targets[i]->setWorldTransform(poses[i]);
 }
 
 void btDiscreteDynamicsWorld::debugDrawWorld()

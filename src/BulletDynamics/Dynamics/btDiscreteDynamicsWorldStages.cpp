@@ -132,16 +132,40 @@ bool stateIsFinite(const btRigidBody& body)
 	                      body.getLinearVelocity() * zero + body.getAngularVelocity() * zero;
 	return sum.x() + sum.y() + sum.z() == btScalar(0);
 }
+
+// Whether the quarantine would take this body out of the simulation.
+bool needsQuarantine(const btRigidBody& body)
+{
+	return body.getActivationState() != DISABLE_SIMULATION && !stateIsFinite(body);
+}
+
+// The number of bodies the quarantine would take out: only reads the bodies, so it runs on the threads,
+// and the quarantine itself (which changes the broadphase) runs on the calling thread only when needed.
+struct CountNonFiniteBodies : public btIParallelSumBody
+{
+	btRigidBody* const* bodies;
+
+	btScalar sumLoop(int iBegin, int iEnd) const override
+	{
+		int count = 0;
+		for (int i = iBegin; i < iEnd; ++i) count += needsQuarantine(*bodies[i]) ? 1 : 0;
+		return btScalar(count);
+	}
+};
 }  // namespace
 
 void caliber::quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world,
                                         const btAlignedObjectArray<btRigidBody*>& bodies, WorldStepContext& context)
 {
+	if (bodies.size() == 0) return;
+	CountNonFiniteBodies count;
+	count.bodies = &bodies[0];
+	// Any body at all gives a sum above zero (each adds 0 or 1), whatever the chunks and their order.
+	if (btParallelSum(0, bodies.size(), caliber::kBodiesPerTask, count) == btScalar(0)) return;
 	for (int i = 0; i < bodies.size(); ++i)
 	{
 		btRigidBody* body = bodies[i];
-		if (body->getActivationState() == DISABLE_SIMULATION) continue;
-		if (stateIsFinite(*body)) continue;
+		if (!needsQuarantine(*body)) continue;
 		// A body whose state is no longer a number would hand NaN to everything it touches: it leaves the
 		// broadphase (so it has no pairs) and the simulation, at its last finite pose when there is one.
 		if (!context.reportedNonFiniteBody)
@@ -427,34 +451,55 @@ void btDiscreteDynamicsWorld::integrateTransforms(btScalar timeStep)
 		integrateTransformsInternal(&m_nonStaticRigidBodies[0], m_nonStaticRigidBodies.size(), timeStep);
 }
 
+namespace
+{
+// One body's sleeping bookkeeping: it reads and writes only that body (and reads the global deactivation
+// settings), so bodies may be updated on any threads in any order with the same bits.
+void updateBodyActivation(btRigidBody* body, btScalar timeStep)
+{
+	body->updateDeactivation(timeStep);
+	if (body->wantsSleeping())
+	{
+		if (body->isStaticOrKinematicObject())
+		{
+			body->setActivationState(ISLAND_SLEEPING);
+		}
+		else
+		{
+			// The island decides: the body only says it could sleep; the island manager puts the whole
+			// island to sleep when every body in it agrees.
+			if (body->getActivationState() == ACTIVE_TAG) body->setActivationState(WANTS_DEACTIVATION);
+			if (body->getActivationState() == ISLAND_SLEEPING)
+			{
+				body->setAngularVelocity(btVector3(0, 0, 0));
+				body->setLinearVelocity(btVector3(0, 0, 0));
+			}
+		}
+	}
+	else if (body->getActivationState() != DISABLE_DEACTIVATION)
+	{
+		body->setActivationState(ACTIVE_TAG);
+	}
+}
+
+struct UpdateBodyActivations : public btIParallelForBody
+{
+	btRigidBody* const* bodies;
+	btScalar timeStep;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i) updateBodyActivation(bodies[i], timeStep);
+	}
+};
+}  // namespace
+
 void btDiscreteDynamicsWorld::updateActivationState(btScalar timeStep)
 {
 	BT_PROFILE("updateActivationState");
-	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
-	{
-		btRigidBody* body = m_nonStaticRigidBodies[i];
-		body->updateDeactivation(timeStep);
-		if (body->wantsSleeping())
-		{
-			if (body->isStaticOrKinematicObject())
-			{
-				body->setActivationState(ISLAND_SLEEPING);
-			}
-			else
-			{
-				// The island decides: the body only says it could sleep; the island manager puts the whole
-				// island to sleep when every body in it agrees.
-				if (body->getActivationState() == ACTIVE_TAG) body->setActivationState(WANTS_DEACTIVATION);
-				if (body->getActivationState() == ISLAND_SLEEPING)
-				{
-					body->setAngularVelocity(btVector3(0, 0, 0));
-					body->setLinearVelocity(btVector3(0, 0, 0));
-				}
-			}
-		}
-		else if (body->getActivationState() != DISABLE_DEACTIVATION)
-		{
-			body->setActivationState(ACTIVE_TAG);
-		}
-	}
+	if (m_nonStaticRigidBodies.size() == 0) return;
+	UpdateBodyActivations loop;
+	loop.bodies = &m_nonStaticRigidBodies[0];
+	loop.timeStep = timeStep;
+	btParallelFor(0, m_nonStaticRigidBodies.size(), caliber::kBodiesPerTask, loop);
 }

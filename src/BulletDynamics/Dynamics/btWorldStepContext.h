@@ -15,6 +15,7 @@
 class btCollisionWorld;
 class btConstraintSolver;
 class btDiscreteDynamicsWorld;
+class btMotionState;
 class btRigidBody;
 class btTypedConstraint;
 
@@ -71,8 +72,10 @@ struct WorldStepContext
 	/// Solver batches solved so far (the solve index of caliber::SolveIndexScope: each batch's solve is
 	/// numbered in the world's sequence, whichever solver and thread solves it).
 	unsigned int solveCounter = 0;
-	/// The motion states' poses of a parallel synchronizeMotionStates.
+	/// The motion states' poses of a parallel synchronizeMotionStates, and the motion state each is for
+	/// (null: no motion state to tell).
 	btAlignedObjectArray<btTransform> motionStatePoses;
+	btAlignedObjectArray<btMotionState*> motionStateTargets;
 	/// btDiscreteDynamicsWorldMt's solver for large batches (its constraintSolverMt), or null.
 	btConstraintSolver* largeBatchSolver = nullptr;
 	/// Sweeps of the joint position correction after each substep (0: off); see
