@@ -3,7 +3,10 @@
 // job; the calling thread and the workers take its chunks from a shared counter until none is left.
 // Idle workers spin briefly (loops in a step follow each other closely) and then sleep on a condition
 // variable. Which thread runs a chunk varies from run to run; what a chunk is does not
-// (btParallelChunks.h), and sums are added in chunk order.
+// (btParallelChunks.h), and sums are added in chunk order. The posting thread waits only for the workers
+// that joined the job, not for every helper it was posted to: a worker that wakes after the chunks are
+// all taken finds the job closed and leaves it alone, so a helper descheduled by a busy machine (or
+// still asleep) costs a loop nothing.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -158,11 +161,11 @@ private:
 			m_blocks[t].next.store(int((long long)plan.count * t / m_takers), std::memory_order_relaxed);
 			m_blocks[t].end = int((long long)plan.count * (t + 1) / m_takers);
 		}
-		m_busyWorkers.store(helpers, std::memory_order_relaxed);
 		m_sleepHint.store(false, std::memory_order_relaxed);
 		caliber::beginThreadsRunning();
 		// Generation and helper count in one word: a worker decides from one load whether the job is its.
 		m_post = ((m_post >> 8) + 1) << 8 | (unsigned long long)helpers;
+		m_openJob.store(m_post);
 		{
 			std::lock_guard<std::mutex> lock(m_sleepMutex);
 			m_posted.store(m_post, std::memory_order_release);
@@ -172,7 +175,11 @@ private:
 			caliber::ParallelBodyScope scope;
 			runChunks(0);
 		}
-		for (int spin = 0; m_busyWorkers.load(std::memory_order_acquire) != 0; ++spin)
+		// Every chunk is taken. Closed, the job takes no more workers; those inside finish their chunks.
+		// (Sequentially consistent, with the workers' join: either a worker sees the job closed, or this
+		// thread sees it inside.)
+		m_openJob.store(0);
+		for (int spin = 0; m_joinedWorkers.load() != 0; ++spin)
 		{
 			if (spin < kSpinsBeforeSleep)
 				CALIBER_CPU_PAUSE();
@@ -262,13 +269,17 @@ private:
 		{
 			seen = waitForPost(seen);
 			if (m_quit.load(std::memory_order_acquire)) return;
-			// Not a helper of this job: the caller does not wait for it, and it must not touch the job.
+			// Not a helper of this job: it must not touch the job.
 			if (slot >= int(seen & 0xff)) continue;
+			// Joins only while the job is open (see run): once closed, its chunks are all taken and the
+			// posting thread may be writing the next job.
+			m_joinedWorkers.fetch_add(1);
+			if (m_openJob.load() == seen)
 			{
 				caliber::ParallelBodyScope scope;
 				runChunks(slot + 1);
 			}
-			m_busyWorkers.fetch_sub(1, std::memory_order_release);
+			m_joinedWorkers.fetch_sub(1, std::memory_order_release);
 		}
 	}
 
@@ -290,7 +301,8 @@ private:
 	};
 	ChunkBlock m_blocks[BT_MAX_THREAD_COUNT];
 	int m_takers = 1;
-	alignas(64) std::atomic<int> m_busyWorkers{0};
+	alignas(64) std::atomic<int> m_joinedWorkers{0};  // workers inside a job's chunks
+	std::atomic<unsigned long long> m_openJob{0};      // the post of the job taking workers; 0: none
 	alignas(64) std::atomic<unsigned long long> m_posted{0};
 	alignas(64) std::atomic<bool> m_sleepHint{false};
 	std::atomic<bool> m_quit{false};
