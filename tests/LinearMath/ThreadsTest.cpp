@@ -433,6 +433,39 @@ TEST(Threads, WakeHintBetweenSleepHintsAndLoopsKeepsEveryLoopExact)
 	}
 }
 
+TEST(Threads, BackToBackTinyLoopsWithLateWorkersRunEachIndexOnce)
+{
+	// A loop of two or three chunks is often all taken by the calling thread before a worker arrives; the
+	// pool then closes the job without waiting for that worker, which must find the job closed and leave
+	// it alone: not run a chunk of it again, nor read the next job while the calling thread writes it.
+	// Thousands of such loops back to back, some right after a sleep hint (the workers then wake late)
+	// and at more threads than processors (the workers then sleep after their pauses), each with a body
+	// of its own, must each visit every index once; CI's tsan stage checks the hand-over.
+	Schedulers schedulers;
+	if (!schedulers.pool) return;
+	btITaskScheduler* pool = schedulers.pool.get();
+	for (int threads : {2, 3, 8})
+	{
+		pool->setNumThreads(threads);
+		for (int loop = 0; loop < 3000; ++loop)
+		{
+			if (loop % 97 == 0) pool->sleepWorkerThreadsHint();
+			const int count = 2 + loop % 3;
+			std::vector<std::atomic<int>> visits(count);
+			CountVisits body;
+			body.visits = &visits;
+			body.offset = 0;
+			pool->parallelFor(0, count, 1, body);
+			for (int i = 0; i < count; ++i) ASSERT_EQ(visits[i].load(), 1) << threads << " threads, loop " << loop;
+			if (loop % 5 == 0)
+			{
+				ASSERT_EQ(pool->parallelSum(0, count, 1, IndexSum()), btScalar(count * (count - 1) / 2))
+				    << threads << " threads, loop " << loop;
+			}
+		}
+	}
+}
+
 TEST(Threads, LoopsFromTwoThreadsOnOneSchedulerBothComplete)
 {
 	// Bullet's schedulers take one caller at a time; here the second caller runs its loop serially.
