@@ -12,8 +12,10 @@
 
 #include <cstdio>
 #include <new>
+#include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtRefit.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
@@ -79,13 +81,7 @@ void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& bo
 	const int tree = caliber::dbvtTreeOf(*proxy);
 	if (tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box))
 		broadphase.m_sets[tree].update(proxy->leaf, box);
-	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
-	if (!isPending(proxy))
-	{
-		unlinkProxy(broadphase, proxy);
-		linkProxy(broadphase, proxy, tree);
-	}
-	broadphase.m_needcleanup = true;
+	caliber::queueMovedProxy(broadphase, proxy);
 }
 
 // Adds the pairs of one pending proxy with every proxy whose box overlaps its box (stack: the queries'
@@ -134,12 +130,19 @@ struct PairListPolicy
 {
 	btDbvtProxy* proxy;
 	btAlignedObjectArray<btDbvtProxy*>* found;
+	// Set when the cache is exactly btHashedOverlappingPairCache without a filter callback: adding a pair it
+	// already holds, or one the default group test refuses, changes nothing, so such pairs are left off the
+	// list here (the cache is only read while the lists are made) and the calling thread adds only new ones.
+	btHashedOverlappingPairCache* plainCache;
 
 	void Process(const btDbvtNode* leaf)
 	{
 		btDbvtProxy* other = proxyOfLeaf(leaf);
 		if (other == proxy) return;
 		if (isPending(other) && other->m_uniqueId < proxy->m_uniqueId) return;  // as PairSearchPolicy
+		if (plainCache && (!caliber::groupMaskAccepts(proxy, other) ||
+		                   plainCache->btHashedOverlappingPairCache::findPair(proxy, other) != 0))
+			return;
 		found->push_back(proxy);
 		found->push_back(other);
 	}
@@ -152,6 +155,7 @@ struct ListPairs : public btIParallelForBody
 	const btDbvt* dynamicSet;
 	const btDbvt* fixedSet;
 	PairSearchScratch* scratch;
+	btHashedOverlappingPairCache* plainCache;  // see PairListPolicy
 
 	void forLoop(int chunkBegin, int chunkEnd) const override
 	{
@@ -163,6 +167,7 @@ struct ListPairs : public btIParallelForBody
 			found.resize(0);
 			PairListPolicy policy;
 			policy.found = &found;
+			policy.plainCache = plainCache;
 			const int end = btMin(numPending, (chunk + 1) * kProxiesPerSearchTask);
 			for (int i = chunk * kProxiesPerSearchTask; i < end; ++i)
 			{
@@ -412,15 +417,47 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	btAssert(proxy->leaf && "btDbvtBroadphase::setAabb: proxy was destroyed");
 	if (!proxy->leaf) return;
 	++m_updates_call;
+	btVector3 fatMin, fatMax;
+	if (caliber::storeAabbOrFatBox(*this, proxy, aabbMin, aabbMax, fatMin, fatMax))
+		caliber::moveProxyToFatBox(*this, proxy, fatMin, fatMax);
+}
+
+void caliber::queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* absproxy)
+{
+	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
+	const int tree = caliber::dbvtTreeOf(*proxy);
+	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
+	if (!isPending(proxy))
+	{
+		unlinkProxy(broadphase, proxy);
+		linkProxy(broadphase, proxy, tree);
+	}
+	broadphase.m_needcleanup = true;
+}
+
+bool caliber::storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* absproxy,
+                                const btVector3& aabbMin, const btVector3& aabbMax, btVector3& fatMin,
+                                btVector3& fatMax)
+{
+	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
 	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
 	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
 	proxy->m_aabbMin = aabbMin;
 	proxy->m_aabbMax = aabbMax;
-	if (proxy->leaf->volume.Contain(box)) return;  // still inside its fat box: pairs cannot change
-	++m_updates_done;
+	if (proxy->leaf->volume.Contain(box)) return false;  // still inside its fat box: pairs cannot change
 	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
-	box.SignedExpand(displacement * m_prediction);
-	moveLeaf(*this, proxy, box);
+	box.SignedExpand(displacement * broadphase.m_prediction);
+	fatMin = box.Mins();
+	fatMax = box.Maxs();
+	return true;
+}
+
+void caliber::moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
+                                const btVector3& fatMax)
+{
+	++broadphase.m_updates_done;
+	btDbvtVolume box = btDbvtVolume::FromMM(fatMin, fatMax);
+	moveLeaf(broadphase, static_cast<btDbvtProxy*>(proxy), box);
 }
 
 bool caliber::storeAabbIfInsideFatBox(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax)
@@ -486,6 +523,10 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 			list.dynamicSet = &m_sets[DYNAMIC_SET];
 			list.fixedSet = &m_sets[FIXED_SET];
 			list.scratch = &search;
+			list.plainCache = 0;
+			if (typeid(*m_paircache) == typeid(btHashedOverlappingPairCache) &&
+			    !m_paircache->getOverlapFilterCallback())
+				list.plainCache = static_cast<btHashedOverlappingPairCache*>(m_paircache);
 			btParallelFor(0, chunks, 1, list);
 			for (int c = 0; c < chunks; ++c)
 			{

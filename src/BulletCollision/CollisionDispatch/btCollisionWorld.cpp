@@ -91,7 +91,8 @@ AabbOverflowReports& aabbOverflowReports()
 	static AabbOverflowReports* reports = new AabbOverflowReports;
 	return *reports;
 }
-// One object's new box, computed on any thread (status: 0 no update, 1 box ready, 2 overflow).
+// One object's new box, computed on any thread (status: 0 no update, 1 box ready, 2 overflow, 3 stored in the
+// dbvt proxy, 4 stored and the new tree box in aabbMin / aabbMax).
 struct PendingAabb
 {
 	btVector3 aabbMin, aabbMax;
@@ -102,6 +103,7 @@ struct PendingAabb
 struct CollisionWorldScratch
 {
 	btAlignedObjectArray<PendingAabb> pending;
+	btAlignedObjectArray<caliber::DbvtMove> moves;  // the proxies that left their fat boxes, in object order
 };
 
 }  // namespace
@@ -258,9 +260,11 @@ struct ComputeAabbs : public btIParallelForBody
 	PendingAabb* pending;
 	bool forceAll;
 	bool useContinuous;
-	// The world's broadphase is exactly btDbvtBroadphase: a box still inside its fat box is stored here
-	// (status 3), as setAabb would store it, and the calling thread only counts it.
-	bool storeFittingBoxes;
+	// Set when the world's broadphase is exactly btDbvtBroadphase: a box still inside its fat box is stored
+	// here (status 3), as setAabb would store it, and the calling thread only counts it; a box that left it
+	// is stored too, and its new tree box replaces it in `pending` (status 4): the calling thread only moves
+	// the leaf.
+	const btDbvtBroadphase* dbvt;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
@@ -276,9 +280,11 @@ struct ComputeAabbs : public btIParallelForBody
 			                                   (box.aabbMax - box.aabbMin).length2() < kMaxAabbExtentSquared);
 			box.status = acceptable ? 1 : 2;
 			btBroadphaseProxy* proxy = objects[i]->getBroadphaseHandle();
-			if (acceptable && storeFittingBoxes && proxy &&
-			    caliber::storeAabbIfInsideFatBox(proxy, box.aabbMin, box.aabbMax))
-				box.status = 3;
+			// A destroyed proxy (null leaf) goes to setAabb, which reports it.
+			if (acceptable && dbvt && proxy && static_cast<const btDbvtProxy*>(proxy)->leaf)
+				box.status =
+				    caliber::storeAabbOrFatBox(*dbvt, proxy, box.aabbMin, box.aabbMax, box.aabbMin, box.aabbMax) ? 4
+				                                                                                                 : 3;
 		}
 	}
 };
@@ -303,6 +309,7 @@ void btCollisionWorld::updateAabbs()
 	// in object order on this thread, exactly as updateSingleAabb would make them.
 	CollisionWorldScratch& scratch = caliber::sideTable<CollisionWorldScratch>().acquire(this);
 	scratch.pending.resizeNoInitialize(numObjects);
+	scratch.moves.resize(0);
 	ComputeAabbs compute;
 	compute.objects = &m_collisionObjects[0];
 	compute.pending = &scratch.pending[0];
@@ -312,7 +319,7 @@ void btCollisionWorld::updateAabbs()
 	btDbvtBroadphase* dbvt = m_broadphasePairCache && typeid(*m_broadphasePairCache) == typeid(btDbvtBroadphase)
 	                             ? static_cast<btDbvtBroadphase*>(m_broadphasePairCache)
 	                             : 0;
-	compute.storeFittingBoxes = dbvt != 0;
+	compute.dbvt = dbvt;
 	btParallelFor(0, numObjects, kObjectsPerTask, compute);
 	unsigned storedOnThreads = 0;
 	for (int i = 0; i < numObjects; i++)
@@ -325,6 +332,17 @@ void btCollisionWorld::updateAabbs()
 			continue;
 		}
 		btCollisionObject* colObj = m_collisionObjects[i];
+		if (box.status == 4)
+		{
+			// Moved after the loop, all at once: nothing else in the loop changes the broadphase.
+			++storedOnThreads;
+			caliber::DbvtMove move;
+			move.proxy = colObj->getBroadphaseHandle();
+			move.fatMin = box.aabbMin;
+			move.fatMax = box.aabbMax;
+			scratch.moves.push_back(move);
+			continue;
+		}
 		if (box.status == 1)
 		{
 			if (colObj->getBroadphaseHandle() && m_broadphasePairCache)
@@ -333,7 +351,11 @@ void btCollisionWorld::updateAabbs()
 		}
 		updateSingleAabb(colObj);  // the overflow: its warning and quarantine, as without a scheduler
 	}
-	if (dbvt) dbvt->m_updates_call += storedOnThreads;
+	if (dbvt)
+	{
+		if (scratch.moves.size() > 0) caliber::moveProxiesToFatBoxes(*dbvt, &scratch.moves[0], scratch.moves.size());
+		dbvt->m_updates_call += storedOnThreads;
+	}
 }
 
 void btCollisionWorld::computeOverlappingPairs()
@@ -354,4 +376,3 @@ void btCollisionWorld::performDiscreteCollisionDetection()
 		                                         m_dispatcher1);
 	}
 }
-
