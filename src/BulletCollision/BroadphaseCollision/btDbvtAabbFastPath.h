@@ -6,18 +6,12 @@
 
 namespace caliber
 {
-/// What btDbvtBroadphase::setAabb does for a finite AABB that still fits in the proxy's fat box: stores it
-/// and returns true (the tree and the pairs are untouched). False, with nothing changed, when the box left
-/// the fat box or the proxy was destroyed: the caller then calls setAabb. It touches only this proxy, so
-/// the collision world calls it for many objects at once on the task scheduler's threads, and adds the
-/// calls to m_updates_call afterwards.
-bool storeAabbIfInsideFatBox(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax);
-
 /// The first half of btDbvtBroadphase::setAabb for a finite AABB of a live proxy: stores the AABB and
-/// returns false when it still fits in the fat box; otherwise stores it too, writes the proxy's new tree box
-/// (fat and stretched along the move, as setAabb makes it) to fatMin / fatMax and returns true, and the
-/// caller passes that box to moveProxyToFatBox (fatMin / fatMax may be aabbMin / aabbMax). It reads the broadphase and
-/// writes only this proxy, so the collision world calls it for many objects at once on the task scheduler's threads.
+/// returns false when it still fits in the fat box; otherwise stores it too, writes the proxy's new tree
+/// box (fat and stretched along the move, as setAabb makes it) to fatMin / fatMax (which may be aabbMin /
+/// aabbMax) and returns true, and the caller passes that box to moveProxyToFatBox. It reads the broadphase
+/// and writes only this proxy, so the collision world calls it for many objects at once on the task
+/// scheduler's threads, and adds the calls to m_updates_call afterwards.
 bool storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& aabbMin,
                        const btVector3& aabbMax, btVector3& fatMin, btVector3& fatMax);
 

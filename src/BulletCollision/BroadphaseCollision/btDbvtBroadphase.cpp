@@ -74,6 +74,34 @@ void unlinkProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
 	proxy->links[0] = proxy->links[1] = 0;
 }
 
+// Queues a moved proxy's pair search (and counts a fixed move for the fixed tree's re-optimisation).
+SIMD_FORCE_INLINE void queueProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
+{
+	const int tree = caliber::dbvtTreeOf(*proxy);
+	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
+	if (!isPending(proxy))
+	{
+		unlinkProxy(broadphase, proxy);
+		linkProxy(broadphase, proxy, tree);
+	}
+	broadphase.m_needcleanup = true;
+}
+
+// What setAabb does before the tree: stores the proxy's AABB; false when it still fits in the fat box, else
+// true with the new tree box (fat, and stretched along the move) in box.
+SIMD_FORCE_INLINE bool storeAabbAndFatBox(const btDbvtBroadphase& broadphase, btDbvtProxy* proxy,
+                                          const btVector3& aabbMin, const btVector3& aabbMax, btDbvtVolume& box)
+{
+	box = btDbvtVolume::FromMM(aabbMin, aabbMax);
+	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
+	proxy->m_aabbMin = aabbMin;
+	proxy->m_aabbMax = aabbMax;
+	if (proxy->leaf->volume.Contain(box)) return false;  // still inside its fat box: pairs cannot change
+	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
+	box.SignedExpand(displacement * broadphase.m_prediction);
+	return true;
+}
+
 // Moves the proxy's tree box to `box` and queues its pair search. A moving leaf still next to its sibling is
 // refitted in place (the common case: most of a pile or a ragdoll moves together), others are re-inserted.
 void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
@@ -81,7 +109,7 @@ void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& bo
 	const int tree = caliber::dbvtTreeOf(*proxy);
 	if (tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box))
 		broadphase.m_sets[tree].update(proxy->leaf, box);
-	caliber::queueMovedProxy(broadphase, proxy);
+	queueProxy(broadphase, proxy);
 }
 
 // Adds the pairs of one pending proxy with every proxy whose box overlaps its box (stack: the queries'
@@ -417,36 +445,22 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	btAssert(proxy->leaf && "btDbvtBroadphase::setAabb: proxy was destroyed");
 	if (!proxy->leaf) return;
 	++m_updates_call;
-	btVector3 fatMin, fatMax;
-	if (caliber::storeAabbOrFatBox(*this, proxy, aabbMin, aabbMax, fatMin, fatMax))
-		caliber::moveProxyToFatBox(*this, proxy, fatMin, fatMax);
+	btDbvtVolume box;
+	if (!storeAabbAndFatBox(*this, proxy, aabbMin, aabbMax, box)) return;
+	++m_updates_done;
+	moveLeaf(*this, proxy, box);
 }
 
-void caliber::queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* absproxy)
+void caliber::queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy)
 {
-	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
-	const int tree = caliber::dbvtTreeOf(*proxy);
-	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
-	if (!isPending(proxy))
-	{
-		unlinkProxy(broadphase, proxy);
-		linkProxy(broadphase, proxy, tree);
-	}
-	broadphase.m_needcleanup = true;
+	queueProxy(broadphase, static_cast<btDbvtProxy*>(proxy));
 }
 
-bool caliber::storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* absproxy,
-                                const btVector3& aabbMin, const btVector3& aabbMax, btVector3& fatMin,
-                                btVector3& fatMax)
+bool caliber::storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& aabbMin,
+                                const btVector3& aabbMax, btVector3& fatMin, btVector3& fatMax)
 {
-	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
-	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
-	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
-	proxy->m_aabbMin = aabbMin;
-	proxy->m_aabbMax = aabbMax;
-	if (proxy->leaf->volume.Contain(box)) return false;  // still inside its fat box: pairs cannot change
-	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
-	box.SignedExpand(displacement * broadphase.m_prediction);
+	btDbvtVolume box;
+	if (!storeAabbAndFatBox(broadphase, static_cast<btDbvtProxy*>(proxy), aabbMin, aabbMax, box)) return false;
 	fatMin = box.Mins();
 	fatMax = box.Maxs();
 	return true;
@@ -458,15 +472,6 @@ void caliber::moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy*
 	++broadphase.m_updates_done;
 	btDbvtVolume box = btDbvtVolume::FromMM(fatMin, fatMax);
 	moveLeaf(broadphase, static_cast<btDbvtProxy*>(proxy), box);
-}
-
-bool caliber::storeAabbIfInsideFatBox(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax)
-{
-	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
-	if (!proxy->leaf || !proxy->leaf->volume.Contain(btDbvtVolume::FromMM(aabbMin, aabbMax))) return false;
-	proxy->m_aabbMin = aabbMin;
-	proxy->m_aabbMax = aabbMax;
-	return true;
 }
 
 void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,
