@@ -103,7 +103,6 @@ struct PendingAabb
 struct CollisionWorldScratch
 {
 	btAlignedObjectArray<PendingAabb> pending;
-	btAlignedObjectArray<caliber::DbvtMove> moves;  // the proxies that left their fat boxes, in object order
 };
 
 }  // namespace
@@ -309,7 +308,6 @@ void btCollisionWorld::updateAabbs()
 	// in object order on this thread, exactly as updateSingleAabb would make them.
 	CollisionWorldScratch& scratch = caliber::sideTable<CollisionWorldScratch>().acquire(this);
 	scratch.pending.resizeNoInitialize(numObjects);
-	scratch.moves.resize(0);
 	ComputeAabbs compute;
 	compute.objects = &m_collisionObjects[0];
 	compute.pending = &scratch.pending[0];
@@ -334,13 +332,10 @@ void btCollisionWorld::updateAabbs()
 		btCollisionObject* colObj = m_collisionObjects[i];
 		if (box.status == 4)
 		{
-			// Moved after the loop, all at once: nothing else in the loop changes the broadphase.
+			// The tree moves stay here, in object order. caliber::moveProxiesToFatBoxes would refit the tree on
+			// the threads (same nodes); it measured slower at two threads (docs/threading.md), so it is not used.
 			++storedOnThreads;
-			caliber::DbvtMove move;
-			move.proxy = colObj->getBroadphaseHandle();
-			move.fatMin = box.aabbMin;
-			move.fatMax = box.aabbMax;
-			scratch.moves.push_back(move);
+			caliber::moveProxyToFatBox(*dbvt, colObj->getBroadphaseHandle(), box.aabbMin, box.aabbMax);
 			continue;
 		}
 		if (box.status == 1)
@@ -351,11 +346,7 @@ void btCollisionWorld::updateAabbs()
 		}
 		updateSingleAabb(colObj);  // the overflow: its warning and quarantine, as without a scheduler
 	}
-	if (dbvt)
-	{
-		if (scratch.moves.size() > 0) caliber::moveProxiesToFatBoxes(*dbvt, &scratch.moves[0], scratch.moves.size());
-		dbvt->m_updates_call += storedOnThreads;
-	}
+	if (dbvt) dbvt->m_updates_call += storedOnThreads;
 }
 
 void btCollisionWorld::computeOverlappingPairs()
