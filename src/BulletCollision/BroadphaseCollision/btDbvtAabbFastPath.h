@@ -6,12 +6,37 @@
 
 namespace caliber
 {
-/// What btDbvtBroadphase::setAabb does for a finite AABB that still fits in the proxy's fat box: stores it
-/// and returns true (the tree and the pairs are untouched). False, with nothing changed, when the box left
-/// the fat box or the proxy was destroyed: the caller then calls setAabb. It touches only this proxy, so
-/// the collision world calls it for many objects at once on the task scheduler's threads, and adds the
-/// calls to m_updates_call afterwards.
-bool storeAabbIfInsideFatBox(btBroadphaseProxy* proxy, const btVector3& aabbMin, const btVector3& aabbMax);
+/// The first half of btDbvtBroadphase::setAabb for a finite AABB of a live proxy: stores the AABB and
+/// returns false when it still fits in the fat box; otherwise stores it too, writes the proxy's new tree
+/// box (fat and stretched along the move, as setAabb makes it) to fatMin / fatMax (which may be aabbMin /
+/// aabbMax) and returns true, and the caller passes that box to moveProxyToFatBox. It reads the broadphase
+/// and writes only this proxy, so the collision world calls it for many objects at once on the task
+/// scheduler's threads, and adds the calls to m_updates_call afterwards.
+bool storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& aabbMin,
+                       const btVector3& aabbMax, btVector3& fatMin, btVector3& fatMax);
+
+/// The second half of setAabb for a proxy that left its fat box (storeAabbOrFatBox returned true): moves
+/// its leaf to the new tree box and queues its pair search; counts one update done. The caller calls it on
+/// one thread, in the order the serial setAabb calls would come, and adds the calls to m_updates_call.
+void moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
+                       const btVector3& fatMax);
+
+/// A proxy that left its fat box and its new tree box (from storeAabbOrFatBox).
+struct DbvtMove
+{
+	btBroadphaseProxy* proxy;
+	btVector3 fatMin;
+	btVector3 fatMax;
+};
+
+/// moveProxyToFatBox for each move in order, with the same result node for node; when there are many, the
+/// refits of the dynamic tree run on the task scheduler's threads (btDbvtBatchMove.cpp). Called on one
+/// thread.
+void moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtMove* moves, int count);
+
+/// The bookkeeping of a moved proxy after its leaf moved: queues its pair search (and counts a fixed move
+/// for the fixed tree's re-optimisation).
+void queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy);
 }  // namespace caliber
 
 #endif  // CALIBER_DBVT_AABB_FAST_PATH_H

@@ -12,8 +12,10 @@
 
 #include <cstdio>
 #include <new>
+#include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtRefit.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
@@ -72,13 +74,10 @@ void unlinkProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
 	proxy->links[0] = proxy->links[1] = 0;
 }
 
-// Moves the proxy's tree box to `box` and queues its pair search. A moving leaf still next to its sibling is
-// refitted in place (the common case: most of a pile or a ragdoll moves together), others are re-inserted.
-void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
+// Queues a moved proxy's pair search (and counts a fixed move for the fixed tree's re-optimisation).
+SIMD_FORCE_INLINE void queueProxy(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
 {
 	const int tree = caliber::dbvtTreeOf(*proxy);
-	if (tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box))
-		broadphase.m_sets[tree].update(proxy->leaf, box);
 	if (tree == btDbvtBroadphase::FIXED_SET) ++broadphase.m_fixedleft;
 	if (!isPending(proxy))
 	{
@@ -86,6 +85,31 @@ void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& bo
 		linkProxy(broadphase, proxy, tree);
 	}
 	broadphase.m_needcleanup = true;
+}
+
+// What setAabb does before the tree: stores the proxy's AABB; false when it still fits in the fat box, else
+// true with the new tree box (fat, and stretched along the move) in box.
+SIMD_FORCE_INLINE bool storeAabbAndFatBox(const btDbvtBroadphase& broadphase, btDbvtProxy* proxy,
+                                          const btVector3& aabbMin, const btVector3& aabbMax, btDbvtVolume& box)
+{
+	box = btDbvtVolume::FromMM(aabbMin, aabbMax);
+	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
+	proxy->m_aabbMin = aabbMin;
+	proxy->m_aabbMax = aabbMax;
+	if (proxy->leaf->volume.Contain(box)) return false;  // still inside its fat box: pairs cannot change
+	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
+	box.SignedExpand(displacement * broadphase.m_prediction);
+	return true;
+}
+
+// Moves the proxy's tree box to `box` and queues its pair search. A moving leaf still next to its sibling is
+// refitted in place (the common case: most of a pile or a ragdoll moves together), others are re-inserted.
+void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
+{
+	const int tree = caliber::dbvtTreeOf(*proxy);
+	if (tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box))
+		broadphase.m_sets[tree].update(proxy->leaf, box);
+	queueProxy(broadphase, proxy);
 }
 
 // Adds the pairs of one pending proxy with every proxy whose box overlaps its box (stack: the queries'
@@ -134,12 +158,19 @@ struct PairListPolicy
 {
 	btDbvtProxy* proxy;
 	btAlignedObjectArray<btDbvtProxy*>* found;
+	// Set when the cache is exactly btHashedOverlappingPairCache without a filter callback: adding a pair it
+	// already holds, or one the default group test refuses, changes nothing, so such pairs are left off the
+	// list here (the cache is only read while the lists are made) and the calling thread adds only new ones.
+	btHashedOverlappingPairCache* plainCache;
 
 	void Process(const btDbvtNode* leaf)
 	{
 		btDbvtProxy* other = proxyOfLeaf(leaf);
 		if (other == proxy) return;
 		if (isPending(other) && other->m_uniqueId < proxy->m_uniqueId) return;  // as PairSearchPolicy
+		if (plainCache && (!caliber::groupMaskAccepts(proxy, other) ||
+		                   plainCache->btHashedOverlappingPairCache::findPair(proxy, other) != 0))
+			return;
 		found->push_back(proxy);
 		found->push_back(other);
 	}
@@ -152,6 +183,7 @@ struct ListPairs : public btIParallelForBody
 	const btDbvt* dynamicSet;
 	const btDbvt* fixedSet;
 	PairSearchScratch* scratch;
+	btHashedOverlappingPairCache* plainCache;  // see PairListPolicy
 
 	void forLoop(int chunkBegin, int chunkEnd) const override
 	{
@@ -163,6 +195,7 @@ struct ListPairs : public btIParallelForBody
 			found.resize(0);
 			PairListPolicy policy;
 			policy.found = &found;
+			policy.plainCache = plainCache;
 			const int end = btMin(numPending, (chunk + 1) * kProxiesPerSearchTask);
 			for (int i = chunk * kProxiesPerSearchTask; i < end; ++i)
 			{
@@ -412,24 +445,33 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	btAssert(proxy->leaf && "btDbvtBroadphase::setAabb: proxy was destroyed");
 	if (!proxy->leaf) return;
 	++m_updates_call;
-	btDbvtVolume box = btDbvtVolume::FromMM(aabbMin, aabbMax);
-	const btVector3 displacement = box.Center() - (proxy->m_aabbMin + proxy->m_aabbMax) * btScalar(0.5);
-	proxy->m_aabbMin = aabbMin;
-	proxy->m_aabbMax = aabbMax;
-	if (proxy->leaf->volume.Contain(box)) return;  // still inside its fat box: pairs cannot change
+	btDbvtVolume box;
+	if (!storeAabbAndFatBox(*this, proxy, aabbMin, aabbMax, box)) return;
 	++m_updates_done;
-	box.Expand(btVector3(gDbvtMargin, gDbvtMargin, gDbvtMargin));
-	box.SignedExpand(displacement * m_prediction);
 	moveLeaf(*this, proxy, box);
 }
 
-bool caliber::storeAabbIfInsideFatBox(btBroadphaseProxy* absproxy, const btVector3& aabbMin, const btVector3& aabbMax)
+void caliber::queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy)
 {
-	btDbvtProxy* proxy = static_cast<btDbvtProxy*>(absproxy);
-	if (!proxy->leaf || !proxy->leaf->volume.Contain(btDbvtVolume::FromMM(aabbMin, aabbMax))) return false;
-	proxy->m_aabbMin = aabbMin;
-	proxy->m_aabbMax = aabbMax;
+	queueProxy(broadphase, static_cast<btDbvtProxy*>(proxy));
+}
+
+bool caliber::storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& aabbMin,
+                                const btVector3& aabbMax, btVector3& fatMin, btVector3& fatMax)
+{
+	btDbvtVolume box;
+	if (!storeAabbAndFatBox(broadphase, static_cast<btDbvtProxy*>(proxy), aabbMin, aabbMax, box)) return false;
+	fatMin = box.Mins();
+	fatMax = box.Maxs();
 	return true;
+}
+
+void caliber::moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
+                                const btVector3& fatMax)
+{
+	++broadphase.m_updates_done;
+	btDbvtVolume box = btDbvtVolume::FromMM(fatMin, fatMax);
+	moveLeaf(broadphase, static_cast<btDbvtProxy*>(proxy), box);
 }
 
 void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,
@@ -486,6 +528,10 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 			list.dynamicSet = &m_sets[DYNAMIC_SET];
 			list.fixedSet = &m_sets[FIXED_SET];
 			list.scratch = &search;
+			list.plainCache = 0;
+			if (typeid(*m_paircache) == typeid(btHashedOverlappingPairCache) &&
+			    !m_paircache->getOverlapFilterCallback())
+				list.plainCache = static_cast<btHashedOverlappingPairCache*>(m_paircache);
 			btParallelFor(0, chunks, 1, list);
 			for (int c = 0; c < chunks; ++c)
 			{

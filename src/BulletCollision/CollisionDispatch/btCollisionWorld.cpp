@@ -91,7 +91,8 @@ AabbOverflowReports& aabbOverflowReports()
 	static AabbOverflowReports* reports = new AabbOverflowReports;
 	return *reports;
 }
-// One object's new box, computed on any thread (status: 0 no update, 1 box ready, 2 overflow).
+// One object's new box, computed on any thread (status: 0 no update, 1 box ready, 2 overflow, 3 stored in the
+// dbvt proxy, 4 stored and the new tree box in aabbMin / aabbMax).
 struct PendingAabb
 {
 	btVector3 aabbMin, aabbMax;
@@ -258,9 +259,11 @@ struct ComputeAabbs : public btIParallelForBody
 	PendingAabb* pending;
 	bool forceAll;
 	bool useContinuous;
-	// The world's broadphase is exactly btDbvtBroadphase: a box still inside its fat box is stored here
-	// (status 3), as setAabb would store it, and the calling thread only counts it.
-	bool storeFittingBoxes;
+	// Set when the world's broadphase is exactly btDbvtBroadphase: a box still inside its fat box is stored
+	// here (status 3), as setAabb would store it, and the calling thread only counts it; a box that left it
+	// is stored too, and its new tree box replaces it in `pending` (status 4): the calling thread only moves
+	// the leaf.
+	const btDbvtBroadphase* dbvt;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
@@ -276,9 +279,11 @@ struct ComputeAabbs : public btIParallelForBody
 			                                   (box.aabbMax - box.aabbMin).length2() < kMaxAabbExtentSquared);
 			box.status = acceptable ? 1 : 2;
 			btBroadphaseProxy* proxy = objects[i]->getBroadphaseHandle();
-			if (acceptable && storeFittingBoxes && proxy &&
-			    caliber::storeAabbIfInsideFatBox(proxy, box.aabbMin, box.aabbMax))
-				box.status = 3;
+			// A destroyed proxy (null leaf) goes to setAabb, which reports it.
+			if (acceptable && dbvt && proxy && static_cast<const btDbvtProxy*>(proxy)->leaf)
+				box.status =
+				    caliber::storeAabbOrFatBox(*dbvt, proxy, box.aabbMin, box.aabbMax, box.aabbMin, box.aabbMax) ? 4
+				                                                                                                 : 3;
 		}
 	}
 };
@@ -312,7 +317,7 @@ void btCollisionWorld::updateAabbs()
 	btDbvtBroadphase* dbvt = m_broadphasePairCache && typeid(*m_broadphasePairCache) == typeid(btDbvtBroadphase)
 	                             ? static_cast<btDbvtBroadphase*>(m_broadphasePairCache)
 	                             : 0;
-	compute.storeFittingBoxes = dbvt != 0;
+	compute.dbvt = dbvt;
 	btParallelFor(0, numObjects, kObjectsPerTask, compute);
 	unsigned storedOnThreads = 0;
 	for (int i = 0; i < numObjects; i++)
@@ -325,6 +330,14 @@ void btCollisionWorld::updateAabbs()
 			continue;
 		}
 		btCollisionObject* colObj = m_collisionObjects[i];
+		if (box.status == 4)
+		{
+			// The tree moves stay here, in object order. caliber::moveProxiesToFatBoxes would refit the tree on
+			// the threads (same nodes); it measured slower at two threads (docs/threading.md), so it is not used.
+			++storedOnThreads;
+			caliber::moveProxyToFatBox(*dbvt, colObj->getBroadphaseHandle(), box.aabbMin, box.aabbMax);
+			continue;
+		}
 		if (box.status == 1)
 		{
 			if (colObj->getBroadphaseHandle() && m_broadphasePairCache)
@@ -354,4 +367,3 @@ void btCollisionWorld::performDiscreteCollisionDetection()
 		                                         m_dispatcher1);
 	}
 }
-

@@ -1,12 +1,15 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // With a task scheduler, btCollisionWorld::updateAabbs computes the boxes on the threads and, for the dbvt
 // broadphase itself, also stores there the boxes that still fit in their fat boxes (what setAabb would
-// do). The broadphase must end exactly as with the serial updates: every proxy's AABB, every fat box, the
-// update counters and the pairs; and a user's subclass of the broadphase still gets every setAabb call.
+// do) and the new tree boxes of those that left them (the calling thread then only moves the leaves). The
+// broadphase must end exactly as with the serial updates: every proxy's AABB, every fat box, the dynamic
+// tree node by node, the update counters and the pairs; a user's subclass of the broadphase still gets
+// every setAabb call, and a user's pair filter is still asked about every pair the search finds.
 
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <thread>
 #include <vector>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
@@ -30,33 +33,74 @@ struct CountingDbvtBroadphase : public btDbvtBroadphase
 	}
 };
 
+// Refuses the pairs of two objects whose indices (the user pointers) differ by a multiple of 7, and notes
+// whether it was ever called off the thread that made it (a user's filter need not be thread-safe).
+struct SevenFilter : public btOverlapFilterCallback
+{
+	std::thread::id owner = std::this_thread::get_id();
+	int calls = 0;
+	bool calledOffOwner = false;
+	bool needBroadphaseCollision(btBroadphaseProxy* proxy0, btBroadphaseProxy* proxy1) const override
+	{
+		SevenFilter* self = const_cast<SevenFilter*>(this);
+		++self->calls;
+		if (std::this_thread::get_id() != owner) self->calledOffOwner = true;
+		const btCollisionObject* a = static_cast<const btCollisionObject*>(proxy0->m_clientObject);
+		const btCollisionObject* b = static_cast<const btCollisionObject*>(proxy1->m_clientObject);
+		return (a->getUserIndex() - b->getUserIndex()) % 7 != 0;
+	}
+};
+
 struct Snapshot
 {
 	std::vector<btVector3> boxes;  // per object: AABB min, max, fat box min, max
 	unsigned updatesCall = 0, updatesDone = 0;
-	std::vector<std::pair<int, int> > pairs;
+	std::vector<std::pair<int, int>> pairs;
+	// The dynamic tree depth first: per node its box and, for a leaf, its proxy's id (-1 for inner nodes).
+	std::vector<btVector3> treeBoxes;
+	std::vector<int> treeLeaves;
 	int setAabbCalls = 0;
+	int filterCalls = 0;
+	bool filterCalledOffOwner = false;
 };
+
+void snapshotTree(const btDbvtNode* node, Snapshot& result)
+{
+	if (!node) return;
+	result.treeBoxes.push_back(node->volume.Mins());
+	result.treeBoxes.push_back(node->volume.Maxs());
+	if (node->isleaf())
+	{
+		result.treeLeaves.push_back(static_cast<const btDbvtProxy*>(node->data)->m_uniqueId);
+		return;
+	}
+	result.treeLeaves.push_back(-1);
+	snapshotTree(node->childs[0], result);
+	snapshotTree(node->childs[1], result);
+}
 
 // 400 boxes on a grid (more than the 256 objects that start the threaded path); every step moves all of
 // them, every third one far enough to leave its fat box, the others a millimetre (they stay inside).
-Snapshot run(int threads, bool subclass)
+Snapshot run(int threads, bool subclass, bool filter = false)
 {
 	caliber_test::ScopedTaskScheduler scheduler(threads);
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	std::unique_ptr<btDbvtBroadphase> broadphase(subclass ? new CountingDbvtBroadphase : new btDbvtBroadphase);
 	btCollisionWorld world(&dispatcher, broadphase.get(), &configuration);
+	SevenFilter sevenFilter;
+	if (filter) broadphase->getOverlappingPairCache()->setOverlapFilterCallback(&sevenFilter);
 	btBoxShape shape(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
 	const int kObjects = 400;
-	std::vector<std::unique_ptr<btCollisionObject> > objects;
+	std::vector<std::unique_ptr<btCollisionObject>> objects;
 	for (int i = 0; i < kObjects; ++i)
 	{
 		objects.emplace_back(new btCollisionObject);
 		btCollisionObject& object = *objects.back();
 		object.setCollisionShape(&shape);
-		object.setWorldTransform(btTransform(btQuaternion::getIdentity(),
-		                                     btVector3(btScalar(i % 20) * btScalar(0.9), 0, btScalar(i / 20) * btScalar(0.9))));
+		object.setUserIndex(i);
+		object.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(btScalar(i % 20) * btScalar(0.9), 0,
+		                                                                            btScalar(i / 20) * btScalar(0.9))));
 		world.addCollisionObject(&object);
 	}
 	if (subclass) static_cast<CountingDbvtBroadphase*>(broadphase.get())->calls = 0;
@@ -86,7 +130,10 @@ Snapshot run(int threads, bool subclass)
 	const btBroadphasePairArray& pairs = broadphase->getOverlappingPairCache()->getOverlappingPairArray();
 	for (int i = 0; i < pairs.size(); ++i)
 		result.pairs.push_back(std::make_pair(pairs[i].m_pProxy0->m_uniqueId, pairs[i].m_pProxy1->m_uniqueId));
+	snapshotTree(broadphase->m_sets[btDbvtBroadphase::DYNAMIC_SET].m_root, result);
 	if (subclass) result.setAabbCalls = static_cast<CountingDbvtBroadphase*>(broadphase.get())->calls;
+	result.filterCalls = sevenFilter.calls;
+	result.filterCalledOffOwner = sevenFilter.calledOffOwner;
 	for (const std::unique_ptr<btCollisionObject>& object : objects) world.removeCollisionObject(object.get());
 	return result;
 }
@@ -98,6 +145,8 @@ void expectSame(const Snapshot& serial, const Snapshot& threaded)
 	EXPECT_EQ(serial.updatesCall, threaded.updatesCall);
 	EXPECT_EQ(serial.updatesDone, threaded.updatesDone);
 	EXPECT_TRUE(serial.pairs == threaded.pairs);
+	EXPECT_TRUE(serial.treeLeaves == threaded.treeLeaves);
+	EXPECT_TRUE(serial.treeBoxes == threaded.treeBoxes);
 }
 }  // namespace
 
@@ -120,4 +169,21 @@ TEST(CollisionWorldThreadedAabbs, SubclassOfTheBroadphaseGetsEverySetAabbCall)
 	const Snapshot threaded = run(2, true);
 	EXPECT_EQ(threaded.setAabbCalls, 1200);
 	expectSame(serial, threaded);
+}
+
+// The pair search lists the pairs on the threads and leaves off those the cache already holds; with a
+// user's filter it may not judge them there: the filter still sees every pair the search finds, on the
+// calling thread, and the cache ends as with the serial search.
+TEST(CollisionWorldThreadedAabbs, FilterCallbackSeesEveryFoundPairOnTheCallingThread)
+{
+	const Snapshot serial = run(0, false, true);
+	EXPECT_GT(serial.filterCalls, 0);
+	EXPECT_GT(serial.pairs.size(), 100u);
+	for (int threads : {1, 2})
+	{
+		const Snapshot threaded = run(threads, false, true);
+		expectSame(serial, threaded);
+		EXPECT_EQ(serial.filterCalls, threaded.filterCalls);
+		EXPECT_FALSE(threaded.filterCalledOffOwner);
+	}
 }
