@@ -367,49 +367,6 @@ bool caliber::refitLeafNearSibling(btDbvtNode* leaf, const btDbvtVolume& box)
 	return true;
 }
 
-caliber::DbvtSubtreeRefit caliber::refitLeafInSubtree(btDbvtNode* leaf, const btDbvtVolume& box,
-                                                      const btDbvtNode* subtreeRoot, int move,
-                                                      btAlignedObjectArray<DbvtVolumeChange>& changes,
-                                                      btDbvtVolume& fitted)
-{
-	btDbvtNode* parent = leaf->parent;
-	btAssert(parent && leaf != subtreeRoot && "refitLeafInSubtree: the leaf must be strictly inside the subtree");
-	fitted = sanitizedVolume(box);
-	const btDbvtNode* sibling = parent->childs[1 - indexOfChild(leaf)];
-	if (halfArea(merged(fitted, sibling->volume)) >
-	    kDbvtRefitSiblingSlack * (halfArea(fitted) + halfArea(sibling->volume)))
-		return kDbvtRefitNeedsReinsert;
-	const DbvtVolumeChange leafChange = {leaf, leaf->volume, move};
-	changes.push_back(leafChange);
-	leaf->volume = fitted;
-	for (btDbvtNode* node = parent;; node = node->parent)
-	{
-		if (node->volume.Contain(fitted)) return kDbvtRefitInside;
-		const DbvtVolumeChange change = {node, node->volume, move};
-		changes.push_back(change);
-		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
-		if (node == subtreeRoot) return kDbvtRefitThroughRoot;
-	}
-}
-
-btDbvtNode* caliber::detachLeafForUpdate(btDbvt& tree, btDbvtNode* leaf, const btDbvtVolume& volume)
-{
-	btDbvtNode* start = removeLeaf(tree, leaf);
-	leaf->volume = sanitizedVolume(volume);
-	return reinsertionStart(tree, start, tree.m_lkhd);
-}
-
-void caliber::attachLeafUnder(btDbvt& tree, btDbvtNode* start, btDbvtNode* leaf) { insertLeaf(tree, start, leaf); }
-
-void caliber::refitAncestorsAbove(btDbvtNode* node, const btDbvtVolume& fitted)
-{
-	for (; node; node = node->parent)
-	{
-		if (node->volume.Contain(fitted)) break;
-		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
-	}
-}
-
 btDbvt::btDbvt() : m_root(0), m_free(0), m_lkhd(-1), m_leaves(0), m_opath(0) {}
 
 btDbvt::~btDbvt() { caliber::releaseAllNodes(*this); }

@@ -20,23 +20,6 @@ bool storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* pr
 /// one thread, in the order the serial setAabb calls would come, and adds the calls to m_updates_call.
 void moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
                        const btVector3& fatMax);
-
-/// A proxy that left its fat box and its new tree box (from storeAabbOrFatBox).
-struct DbvtMove
-{
-	btBroadphaseProxy* proxy;
-	btVector3 fatMin;
-	btVector3 fatMax;
-};
-
-/// moveProxyToFatBox for each move in order, with the same result node for node; when there are many, the
-/// refits of the dynamic tree run on the task scheduler's threads (btDbvtBatchMove.cpp). Called on one
-/// thread.
-void moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtMove* moves, int count);
-
-/// The bookkeeping of a moved proxy after its leaf moved: queues its pair search (and counts a fixed move
-/// for the fixed tree's re-optimisation).
-void queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy);
 }  // namespace caliber
 
 #endif  // CALIBER_DBVT_AABB_FAST_PATH_H

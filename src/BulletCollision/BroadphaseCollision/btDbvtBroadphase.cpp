@@ -451,11 +451,6 @@ void btDbvtBroadphase::setAabb(btBroadphaseProxy* absproxy, const btVector3& aab
 	moveLeaf(*this, proxy, box);
 }
 
-void caliber::queueMovedProxy(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy)
-{
-	queueProxy(broadphase, static_cast<btDbvtProxy*>(proxy));
-}
-
 bool caliber::storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& aabbMin,
                                 const btVector3& aabbMax, btVector3& fatMin, btVector3& fatMax)
 {

@@ -332,8 +332,7 @@ void btCollisionWorld::updateAabbs()
 		btCollisionObject* colObj = m_collisionObjects[i];
 		if (box.status == 4)
 		{
-			// The tree moves stay here, in object order. caliber::moveProxiesToFatBoxes would refit the tree on
-			// the threads (same nodes); it measured slower at two threads (docs/threading.md), so it is not used.
+			// The tree moves stay here, in object order: each re-insertion depends on the ones before it.
 			++storedOnThreads;
 			caliber::moveProxyToFatBox(*dbvt, colObj->getBroadphaseHandle(), box.aabbMin, box.aabbMax);
 			continue;
