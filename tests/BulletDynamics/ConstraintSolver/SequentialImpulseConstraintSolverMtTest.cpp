@@ -214,14 +214,10 @@ TEST(SequentialImpulseConstraintSolverMt, ParallelContactSetupGivesTheSerialSetu
 	ColourEverySolve colourAll;
 	// A library built without threads (CALIBER_THREADSAFE=OFF) has no pool: the sequential scheduler
 	// stands in.
-	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
-	btITaskScheduler* scheduler = pool ? pool.get() : btGetSequentialTaskScheduler();
-	btSetTaskScheduler(scheduler);
-	scheduler->setNumThreads(2);
+	caliber_test::ScopedTaskScheduler scheduler(2);
 	Pyramid parallelSetup(true), serialSetup(true, true);
 	parallelSetup.step(40);
 	serialSetup.step(40);
-	btSetTaskScheduler(0);
 	EXPECT_GT(parallelSetup.solverMt->colouredSolves, 0);
 	const std::vector<btScalar> a = parallelSetup.state(), b = serialSetup.state();
 	ASSERT_EQ(a.size(), b.size());
@@ -268,10 +264,7 @@ TEST(SequentialImpulseConstraintSolverMt, BatchedSetupGivesTheSplitImpulsePassTh
 	// contact order, which the split-impulse pass follows, on the threads: it must be the serial setup's
 	// (the manifolds' points interleaved in blocks, each manifold's first point rotated by the solve count).
 	ColourEverySolve colourAll;
-	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
-	btITaskScheduler* scheduler = pool ? pool.get() : btGetSequentialTaskScheduler();
-	btSetTaskScheduler(scheduler);
-	scheduler->setNumThreads(2);
+	caliber_test::ScopedTaskScheduler scheduler(2);
 	Pyramid pyramid(false);
 	pyramid.step(3);
 	ASSERT_TRUE(pyramid.world->getSolverInfo().m_splitImpulse);
@@ -280,7 +273,6 @@ TEST(SequentialImpulseConstraintSolverMt, BatchedSetupGivesTheSplitImpulsePassTh
 	bool batched = false;
 	const std::vector<int> batchedOrder = mt.contactOrder(*pyramid.world, &batched);
 	const std::vector<int> serialOrder = serial.contactOrder(*pyramid.world);
-	btSetTaskScheduler(0);
 	EXPECT_TRUE(batched);
 	ASSERT_GT(serialOrder.size(), size_t(100));  // a few points for each of about 100 manifolds
 	EXPECT_EQ(batchedOrder, serialOrder);
