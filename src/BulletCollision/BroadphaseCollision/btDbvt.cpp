@@ -40,15 +40,20 @@ SIMD_FORCE_INLINE btDbvtVolume merged(const btDbvtVolume& a, const btDbvtVolume&
 /// as nothing and overlaps nothing); infinities assert and are clamped to +-BT_LARGE_FLOAT.
 btDbvtVolume sanitizedVolume(const btDbvtVolume& v)
 {
-	bool hasNaN = false, hasInf = false;
+	// x - x is 0 for a finite x and NaN for an infinity or a NaN, so the sum of the six is 0 exactly when
+	// every bound is finite: one test on the common path (every moved leaf passes here).
+	const btVector3& mins = v.Mins();
+	const btVector3& maxs = v.Maxs();
+	const btScalar finiteTest = ((mins.x() - mins.x()) + (mins.y() - mins.y())) + ((mins.z() - mins.z()) +
+	                            (maxs.x() - maxs.x())) + ((maxs.y() - maxs.y()) + (maxs.z() - maxs.z()));
+	if (btLikely(finiteTest == btScalar(0))) return v;
+	bool hasNaN = false;
 	for (int axis = 0; axis < 3; ++axis)
 	{
 		const btScalar lo = v.Mins()[axis], hi = v.Maxs()[axis];
 		hasNaN |= (lo != lo) || (hi != hi);
-		hasInf |= !btIsFinite(lo) || !btIsFinite(hi);
 	}
-	if (btLikely(!hasInf)) return v;
-	btAssert(!hasInf && "btDbvt: non-finite leaf volume");
+	btAssert(false && "btDbvt: non-finite leaf volume");
 	const btScalar big = btScalar(BT_LARGE_FLOAT);
 	if (hasNaN) return btDbvtVolume::FromMM(btVector3(big, big, big), btVector3(-big, -big, -big));
 	btVector3 lo = v.Mins(), hi = v.Maxs();
@@ -193,8 +198,22 @@ struct SiblingSearch
 	btScalar bestCost;
 };
 
+/// visitCandidate for a leaf: takes it if it is the best so far.
+SIMD_FORCE_INLINE void visitLeaf(SiblingSearch& search, const InsertCandidate& candidate)
+{
+	if (search.leafArea + candidate.inheritedCost >= search.bestCost && candidate.node != search.start) return;
+	const btScalar cost = candidate.mergedArea + candidate.inheritedCost;
+	if (cost < search.bestCost)
+	{
+		search.bestCost = cost;
+		search.best = candidate.node;
+	}
+}
+
 /// One step of the branch and bound: takes candidate if it is the best so far and pushes its children
-/// that could still hold a better sibling (the nearer one last, so that it is searched first).
+/// that could still hold a better sibling (the nearer one last, so that it is searched first). A child
+/// that is a leaf and would be popped next is visited at once instead: the same visits in the same order,
+/// without the stack.
 template <class Push>
 SIMD_FORCE_INLINE void visitCandidate(SiblingSearch& search, const InsertCandidate& candidate, Push push)
 {
@@ -218,8 +237,18 @@ SIMD_FORCE_INLINE void visitCandidate(SiblingSearch& search, const InsertCandida
 		const int nearer = area1 < area0 ? 1 : 0;
 		const InsertCandidate later = {node->childs[1 - nearer], childInherited, nearer ? area0 : area1};
 		const InsertCandidate sooner = {node->childs[nearer], childInherited, nearer ? area1 : area0};
-		push(later);
-		push(sooner);
+		if (!sooner.node->isleaf())
+		{
+			push(later);
+			push(sooner);
+			return;
+		}
+		// sooner would be popped next and, a leaf, push nothing; then later would be popped.
+		visitLeaf(search, sooner);
+		if (later.node->isleaf())
+			visitLeaf(search, later);
+		else
+			push(later);
 	}
 }
 

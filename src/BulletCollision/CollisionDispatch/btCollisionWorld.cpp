@@ -1,7 +1,10 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 
+#include <atomic>
+#include <memory>
 #include <mutex>
+#include <thread>
 #include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
@@ -13,6 +16,10 @@
 #include "LinearMath/btSideTable.h"
 #include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
+
+#if defined(__SSE2__) || defined(__x86_64__)
+#include <emmintrin.h>
+#endif
 
 // The world's bookkeeping: objects, proxies, AABBs and the discrete collision step. The queries live in
 // btCollisionWorldRayTest.cpp, btCollisionWorldConvexSweep.cpp and btCollisionWorldContactTest.cpp, debug
@@ -103,6 +110,9 @@ struct PendingAabb
 struct CollisionWorldScratch
 {
 	btAlignedObjectArray<PendingAabb> pending;
+	// The pipelined box updates' chunk states (see AabbPipeline): 0 free, 1 taken, 2 computed.
+	std::unique_ptr<std::atomic<int>[]> chunkStates;
+	int chunkCapacity = 0;
 };
 
 }  // namespace
@@ -287,6 +297,109 @@ struct ComputeAabbs : public btIParallelForBody
 		}
 	}
 };
+
+// Objects per chunk of the pipelined box updates: small, so that the tree moves start early.
+const int kObjectsPerPipelinedChunk = 32;
+// Pauses (a few microseconds: about what a chunk's boxes take) before a wait for a chunk yields the core.
+const int kSpinsBeforeYield = 256;
+
+#if defined(__SSE2__) || defined(__x86_64__)
+SIMD_FORCE_INLINE void pipelinePause() { _mm_pause(); }
+#else
+SIMD_FORCE_INLINE void pipelinePause() {}
+#endif
+
+// The boxes of the dbvt broadphase's objects and its tree moves, overlapped. Task 0 walks the objects in
+// order and makes their broadphase updates (the tree moves, which depend on the ones before them, so
+// stay in object order on one thread); tasks 1.. compute the boxes and fat boxes of one chunk of objects
+// each. Task 0 takes each chunk it reaches: if no thread has taken it yet, it computes the chunk itself;
+// if one has, it waits for that thread, which is computing it. So the tree moves run while the other
+// threads compute the boxes of the objects after them, whatever the scheduler runs where and in what order
+// (with one thread, task 0 computes every chunk as it goes). A chunk's boxes read only its objects and
+// their own leaves' volumes, which only their own tree moves write: the moves of earlier objects (links
+// and inner nodes of the tree, the proxies' stage lists) touch nothing a box computation reads.
+struct AabbPipeline : public btIParallelForBody
+{
+	ComputeAabbs compute;
+	std::atomic<int>* chunkStates;
+	int numObjects;
+	int numChunks;
+	btDbvtBroadphase* dbvt;
+	// Written by task 0 only, read after the loop: where it stopped (an object it leaves to the calling
+	// thread, or numObjects) and how many boxes it counted as stored.
+	mutable int appliedEnd;
+	mutable unsigned storedOnThreads;
+
+	bool take(int chunk) const
+	{
+		int expected = 0;
+		return chunkStates[chunk].compare_exchange_strong(expected, 1, std::memory_order_acq_rel);
+	}
+
+	void computeChunk(int chunk) const
+	{
+		compute.forLoop(chunk * kObjectsPerPipelinedChunk,
+		                btMin(numObjects, (chunk + 1) * kObjectsPerPipelinedChunk));
+		chunkStates[chunk].store(2, std::memory_order_release);
+	}
+
+	// The chunk is being computed by the thread that took it. On a busy machine that thread may have lost
+	// its core (perhaps to this one): after a short spin, this thread yields.
+	void waitForChunk(int chunk) const
+	{
+		for (int spin = 0; chunkStates[chunk].load(std::memory_order_acquire) != 2; ++spin)
+		{
+			if (spin < kSpinsBeforeYield)
+				pipelinePause();
+			else
+				std::this_thread::yield();
+		}
+	}
+
+	void applyInOrder() const
+	{
+		for (int chunk = 0; chunk < numChunks; ++chunk)
+		{
+			if (take(chunk))
+				computeChunk(chunk);
+			else
+				waitForChunk(chunk);
+			const int end = btMin(numObjects, (chunk + 1) * kObjectsPerPipelinedChunk);
+			for (int i = chunk * kObjectsPerPipelinedChunk; i < end; ++i)
+			{
+				const PendingAabb& box = compute.pending[i];
+				if (box.status == 0) continue;
+				if (box.status == 3)
+				{
+					++storedOnThreads;
+					continue;
+				}
+				if (box.status != 4)
+				{
+					// A destroyed proxy or an overflow: the calling thread goes on from here, as without
+					// the pipeline (its report and quarantine).
+					appliedEnd = i;
+					return;
+				}
+				++storedOnThreads;
+				caliber::moveProxyToFatBox(*dbvt, compute.objects[i]->getBroadphaseHandle(), box.aabbMin,
+				                           box.aabbMax);
+			}
+		}
+		appliedEnd = numObjects;
+	}
+
+	void forLoop(int taskBegin, int taskEnd) const override
+	{
+		for (int task = taskBegin; task < taskEnd; ++task)
+		{
+			if (task == 0)
+				applyInOrder();
+			else if (take(task - 1))
+				computeChunk(task - 1);
+		}
+	}
+};
 }  // namespace
 
 void btCollisionWorld::updateAabbs()
@@ -318,9 +431,35 @@ void btCollisionWorld::updateAabbs()
 	                             ? static_cast<btDbvtBroadphase*>(m_broadphasePairCache)
 	                             : 0;
 	compute.dbvt = dbvt;
-	btParallelFor(0, numObjects, kObjectsPerTask, compute);
 	unsigned storedOnThreads = 0;
-	for (int i = 0; i < numObjects; i++)
+	int applied = 0;
+	if (dbvt)
+	{
+		// The tree moves overlap the box computation of the objects after them (AabbPipeline).
+		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;
+		if (scratch.chunkCapacity < numChunks)
+		{
+			scratch.chunkStates.reset(new std::atomic<int>[numChunks]);
+			scratch.chunkCapacity = numChunks;
+		}
+		for (int c = 0; c < numChunks; ++c) scratch.chunkStates[c].store(0, std::memory_order_relaxed);
+		AabbPipeline pipeline;
+		pipeline.compute = compute;
+		pipeline.chunkStates = scratch.chunkStates.get();
+		pipeline.numObjects = numObjects;
+		pipeline.numChunks = numChunks;
+		pipeline.dbvt = dbvt;
+		pipeline.appliedEnd = 0;
+		pipeline.storedOnThreads = 0;
+		btParallelFor(0, numChunks + 1, 1, pipeline);
+		applied = pipeline.appliedEnd;
+		storedOnThreads = pipeline.storedOnThreads;
+	}
+	else
+	{
+		btParallelFor(0, numObjects, kObjectsPerTask, compute);
+	}
+	for (int i = applied; i < numObjects; i++)
 	{
 		const PendingAabb& box = scratch.pending[i];
 		if (box.status == 0) continue;

@@ -1,7 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // With a task scheduler, btCollisionWorld::updateAabbs computes the boxes on the threads and, for the dbvt
 // broadphase itself, also stores there the boxes that still fit in their fat boxes (what setAabb would
-// do) and the new tree boxes of those that left them (the calling thread then only moves the leaves). The
+// do) and the new tree boxes of those that left them; one task then moves the leaves in object order while
+// the others compute the boxes of the objects after them. The
 // broadphase must end exactly as with the serial updates: every proxy's AABB, every fat box, the dynamic
 // tree node by node, the update counters and the pairs; a user's subclass of the broadphase still gets
 // every setAabb call, and a user's pair filter is still asked about every pair the search finds.
@@ -51,6 +52,28 @@ struct SevenFilter : public btOverlapFilterCallback
 	}
 };
 
+// A user's scheduler that reports two threads and runs a loop's chunks on the calling thread from the last
+// to the first: the box updates may not depend on which chunks run first.
+class ReverseOrderScheduler : public btITaskScheduler
+{
+public:
+	ReverseOrderScheduler() : btITaskScheduler("ReverseOrder") {}
+	int getMaxNumThreads() const override { return 2; }
+	int getNumThreads() const override { return 2; }
+	void setNumThreads(int) override {}
+	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
+	{
+		const int grain = grainSize < 1 ? 1 : grainSize;
+		if (iEnd <= iBegin) return;
+		for (int k = (iEnd - iBegin - 1) / grain; k >= 0; --k)
+			body.forLoop(iBegin + k * grain, btMin(iEnd, iBegin + (k + 1) * grain));
+	}
+	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
+	{
+		return body.sumLoop(iBegin, iEnd);
+	}
+};
+
 struct Snapshot
 {
 	std::vector<btVector3> boxes;  // per object: AABB min, max, fat box min, max
@@ -62,6 +85,7 @@ struct Snapshot
 	int setAabbCalls = 0;
 	int filterCalls = 0;
 	bool filterCalledOffOwner = false;
+	std::vector<int> activationStates;
 };
 
 void snapshotTree(const btDbvtNode* node, Snapshot& result)
@@ -81,9 +105,13 @@ void snapshotTree(const btDbvtNode* node, Snapshot& result)
 
 // 400 boxes on a grid (more than the 256 objects that start the threaded path); every step moves all of
 // them, every third one far enough to leave its fat box, the others a millimetre (they stay inside).
-Snapshot run(int threads, bool subclass, bool filter = false)
+// overflowAt >= 0: that object is a moving one (not static) with a box far too large for a moving object,
+// so each update finds it overflowing. userScheduler: used instead of the thread pool when not null.
+Snapshot run(int threads, bool subclass, bool filter = false, int overflowAt = -1,
+             btITaskScheduler* userScheduler = 0)
 {
-	caliber_test::ScopedTaskScheduler scheduler(threads);
+	caliber_test::ScopedTaskScheduler scheduler(userScheduler ? 0 : threads);
+	if (userScheduler) btSetTaskScheduler(userScheduler);
 	btDefaultCollisionConfiguration configuration;
 	btCollisionDispatcher dispatcher(&configuration);
 	std::unique_ptr<btDbvtBroadphase> broadphase(subclass ? new CountingDbvtBroadphase : new btDbvtBroadphase);
@@ -91,13 +119,15 @@ Snapshot run(int threads, bool subclass, bool filter = false)
 	SevenFilter sevenFilter;
 	if (filter) broadphase->getOverlappingPairCache()->setOverlapFilterCallback(&sevenFilter);
 	btBoxShape shape(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
+	btBoxShape hugeShape(btVector3(btScalar(1e7), btScalar(1e7), btScalar(1e7)));  // extent 2e7 m: overflow
 	const int kObjects = 400;
 	std::vector<std::unique_ptr<btCollisionObject>> objects;
 	for (int i = 0; i < kObjects; ++i)
 	{
 		objects.emplace_back(new btCollisionObject);
 		btCollisionObject& object = *objects.back();
-		object.setCollisionShape(&shape);
+		object.setCollisionShape(i == overflowAt ? static_cast<btCollisionShape*>(&hugeShape) : &shape);
+		if (i == overflowAt) object.setCollisionFlags(0);
 		object.setUserIndex(i);
 		object.setWorldTransform(btTransform(btQuaternion::getIdentity(), btVector3(btScalar(i % 20) * btScalar(0.9), 0,
 		                                                                            btScalar(i / 20) * btScalar(0.9))));
@@ -134,7 +164,10 @@ Snapshot run(int threads, bool subclass, bool filter = false)
 	if (subclass) result.setAabbCalls = static_cast<CountingDbvtBroadphase*>(broadphase.get())->calls;
 	result.filterCalls = sevenFilter.calls;
 	result.filterCalledOffOwner = sevenFilter.calledOffOwner;
+	for (const std::unique_ptr<btCollisionObject>& object : objects)
+		result.activationStates.push_back(object->getActivationState());
 	for (const std::unique_ptr<btCollisionObject>& object : objects) world.removeCollisionObject(object.get());
+	if (userScheduler) btSetTaskScheduler(0);
 	return result;
 }
 
@@ -147,6 +180,7 @@ void expectSame(const Snapshot& serial, const Snapshot& threaded)
 	EXPECT_TRUE(serial.pairs == threaded.pairs);
 	EXPECT_TRUE(serial.treeLeaves == threaded.treeLeaves);
 	EXPECT_TRUE(serial.treeBoxes == threaded.treeBoxes);
+	EXPECT_TRUE(serial.activationStates == threaded.activationStates);
 }
 }  // namespace
 
@@ -186,4 +220,34 @@ TEST(CollisionWorldThreadedAabbs, FilterCallbackSeesEveryFoundPairOnTheCallingTh
 		EXPECT_EQ(serial.filterCalls, threaded.filterCalls);
 		EXPECT_FALSE(threaded.filterCalledOffOwner);
 	}
+}
+
+// The tree moves run in object order on one task while the other tasks compute the boxes of the objects
+// after them; an object whose box overflows stops that task, and the calling thread goes on from it (its
+// quarantine and warning, then the rest in order). The broadphase and the states end as with the serial
+// updates at any thread count, and with chunks run last to first.
+TEST(CollisionWorldThreadedAabbs, ObjectOverflowingMidwayEndsAsWithSerialUpdates)
+{
+	// In the fifth chunk of 32 objects (one moved 1 mm a step): after some tree moves, before others.
+	const int overflowAt = 151;
+	const Snapshot serial = run(0, false, false, overflowAt);
+	ASSERT_EQ(serial.activationStates.size(), 400u);
+	EXPECT_EQ(serial.activationStates[overflowAt], DISABLE_SIMULATION);
+	EXPECT_EQ(serial.activationStates[overflowAt + 1], ACTIVE_TAG);
+	// The 134 objects moved 0.3 m still leave their fat boxes in steps 1 and 3 (see above).
+	EXPECT_EQ(serial.updatesDone, 2u * 134u);
+	for (int threads : {1, 2, 3, 4}) expectSame(serial, run(threads, false, false, overflowAt));
+	ReverseOrderScheduler reverse;
+	expectSame(serial, run(0, false, false, overflowAt, &reverse));
+	caliber_test::UnevenSplitScheduler uneven;
+	expectSame(serial, run(0, false, false, overflowAt, &uneven));
+}
+
+TEST(CollisionWorldThreadedAabbs, ChunksInAnyOrderOrSplitGiveTheSerialBroadphase)
+{
+	const Snapshot serial = run(0, false);
+	ReverseOrderScheduler reverse;
+	expectSame(serial, run(0, false, false, -1, &reverse));
+	caliber_test::UnevenSplitScheduler uneven;
+	expectSame(serial, run(0, false, false, -1, &uneven));
 }
