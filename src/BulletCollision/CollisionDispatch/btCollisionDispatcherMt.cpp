@@ -70,22 +70,30 @@ struct NarrowphaseChunks : public btIParallelForBody
 	btAlignedObjectArray<ManifoldOpLog>* logs;
 	std::atomic<bool>* softPairsLeft;  ///< set when a chunk skipped a soft body's pair
 	int grainSize;
+	int numPairs;
 
-	void forLoop(int iBegin, int iEnd) const override
+	// The loop runs over chunk numbers (chunk c: pairs [c grainSize, (c + 1) grainSize)), so that a
+	// scheduler that cuts loops its own way (Bullet's interface allows any split) never gives two calls
+	// pairs of one chunk, whose log the second would clear.
+	void forLoop(int chunkBegin, int chunkEnd) const override
 	{
-		ManifoldOpLog& log = (*logs)[iBegin / grainSize];
-		log.resize(0);
-		ChunkScope scope(&log, dispatcher);
 		btNearCallback nearCallback = dispatcher->getNearCallback();
 		bool skipped = false;
-		for (int i = iBegin; i < iEnd; ++i)
+		for (int chunk = chunkBegin; chunk < chunkEnd; ++chunk)
 		{
-			if (involvesSoftBody(pairs[i]))
+			ManifoldOpLog& log = (*logs)[chunk];
+			log.resize(0);
+			ChunkScope scope(&log, dispatcher);
+			const int end = btMin(numPairs, (chunk + 1) * grainSize);
+			for (int i = chunk * grainSize; i < end; ++i)
 			{
-				skipped = true;
-				continue;
+				if (involvesSoftBody(pairs[i]))
+				{
+					skipped = true;
+					continue;
+				}
+				(*nearCallback)(pairs[i], *dispatcher, *info);
 			}
-			(*nearCallback)(pairs[i], *dispatcher, *info);
 		}
 		if (skipped) softPairsLeft->store(true, std::memory_order_relaxed);
 	}
@@ -152,10 +160,11 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 	chunks.info = &info;
 	chunks.logs = &m_batchManifoldsPtr;
 	chunks.grainSize = m_grainSize;
+	chunks.numPairs = numPairs;
 	std::atomic<bool> softPairsLeft(false);
 	chunks.softPairsLeft = &softPairsLeft;
 	m_batchUpdating = true;
-	btParallelFor(0, numPairs, m_grainSize, chunks);
+	btParallelFor(0, numChunks, 1, chunks);
 	m_batchUpdating = false;
 
 	// The serial narrowphase's array operations, in its order.

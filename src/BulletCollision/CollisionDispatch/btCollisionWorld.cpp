@@ -324,6 +324,7 @@ struct AabbPipeline : public btIParallelForBody
 	std::atomic<int>* chunkStates;
 	int numObjects;
 	int numChunks;
+	int firstHelperTask;  // in [1, numChunks]
 	btDbvtBroadphase* dbvt;
 	// Written by task 0 only, read after the loop: where it stopped (an object it leaves to the calling
 	// thread, or numObjects) and how many boxes it counted as stored.
@@ -389,14 +390,28 @@ struct AabbPipeline : public btIParallelForBody
 		appliedEnd = numObjects;
 	}
 
+	// The chunk of task (1..numChunks): task firstHelperTask has chunk 0, the tasks after it the next chunks,
+	// and the tasks before it the last ones. Only an order: every chunk belongs to one task. The thread
+	// pool gives its first helper the tasks from about numTasks / threads on (docs/threading.md), so the
+	// helper starts with the objects task 0 needs first, and the calling thread, busy with task 0, holds
+	// the chunks needed last.
+	int chunkOfTask(int task) const
+	{
+		const int chunk = task - firstHelperTask;
+		return chunk >= 0 ? chunk : chunk + numChunks;
+	}
+
 	void forLoop(int taskBegin, int taskEnd) const override
 	{
 		for (int task = taskBegin; task < taskEnd; ++task)
 		{
 			if (task == 0)
+			{
 				applyInOrder();
-			else if (take(task - 1))
-				computeChunk(task - 1);
+				continue;
+			}
+			const int chunk = chunkOfTask(task);
+			if (take(chunk)) computeChunk(chunk);
 		}
 	}
 };
@@ -417,8 +432,9 @@ void btCollisionWorld::updateAabbs()
 		}
 		return;
 	}
-	// With a scheduler: the boxes (the shapes' support work) on its threads, then the broadphase updates
-	// in object order on this thread, exactly as updateSingleAabb would make them.
+	// With a scheduler: the boxes (the shapes' support work) on its threads, and the broadphase updates in
+	// object order, exactly as updateSingleAabb would make them: for the dbvt broadphase itself on one task
+	// overlapping the boxes of the later objects (AabbPipeline), otherwise on this thread after the boxes.
 	CollisionWorldScratch& scratch = caliber::sideTable<CollisionWorldScratch>().acquire(this);
 	scratch.pending.resizeNoInitialize(numObjects);
 	ComputeAabbs compute;
@@ -448,6 +464,8 @@ void btCollisionWorld::updateAabbs()
 		pipeline.chunkStates = scratch.chunkStates.get();
 		pipeline.numObjects = numObjects;
 		pipeline.numChunks = numChunks;
+		const int threads = btMax(2, btGetTaskScheduler()->getNumThreads());
+		pipeline.firstHelperTask = btMax(1, btMin(numChunks, (numChunks + 1) / threads));
 		pipeline.dbvt = dbvt;
 		pipeline.appliedEnd = 0;
 		pipeline.storedOnThreads = 0;

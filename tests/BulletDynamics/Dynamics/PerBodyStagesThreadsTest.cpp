@@ -10,7 +10,9 @@
 #include <memory>
 #include <vector>
 
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "DynamicsWorldTestUtil.h"
+#include "TestThreadsUtil.h"
 #include "LinearMath/btThreads.h"
 
 using caliber_test::TestWorld;
@@ -112,6 +114,57 @@ TEST(PerBodyStagesThreads, SleepingAndMotionStatesAreTheSameAtAnyThreadCount)
 		ASSERT_EQ(run.size(), reference.size());
 		for (size_t i = 0; i < run.size(); ++i)
 			EXPECT_TRUE(run[i] == reference[i]) << "body " << i << " at " << threads << " threads";
+	}
+}
+
+// As the mesh scenes of the benchmark: bodies falling apart from each other, so that most leave their fat
+// boxes every other step and their leaves are re-inserted (the tree moves run on one task while the other
+// threads compute the boxes after them, btCollisionWorld::updateAabbs); three layers, so that the lower
+// ones land and the upper ones land on them. Plain and Mt world, no scheduler, the pool at 1, 2 and 3
+// threads and a scheduler that cuts the loops unevenly: the same bits.
+TEST(PerBodyStagesThreads, FallingBodiesLeavingTheirFatBoxesEndTheSameAtAnyThreadCount)
+{
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	caliber_test::UnevenSplitScheduler uneven;
+	for (bool multithreaded : {false, true})
+	{
+		std::vector<std::vector<BodyRecord>> runs;
+		for (int threads : {0, 1, 2, 3, -1})  // 0: no scheduler; -1: the uneven scheduler
+		{
+			if (threads > 0 && !pool) continue;
+			btITaskScheduler* scheduler = threads > 0 ? pool.get() : (threads < 0 ? &uneven : 0);
+			btSetTaskScheduler(scheduler);
+			if (threads > 0) pool->setNumThreads(threads);
+			std::unique_ptr<TestWorld> w(multithreaded ? new TestWorld(TestWorld::Multithreaded(), BT_MAX_THREAD_COUNT)
+			                                           : new TestWorld());
+			w->addGround();
+			btCollisionShape* shapes[3] = {
+			    w->shape<btBoxShape>(btVector3(btScalar(0.4), btScalar(0.4), btScalar(0.4))),
+			    w->shape<btSphereShape>(btScalar(0.4)), w->shape<btCapsuleShape>(btScalar(0.3), btScalar(0.5))};
+			for (int i = 0; i < 300; ++i)
+			{
+				const int layer = i / 100, k = i % 100;
+				const btVector3 at(btScalar(k % 10) * 3 - 15 + btScalar(0.1) * layer, btScalar(2 + 2 * layer),
+				                   btScalar(k / 10) * 3 - 15);
+				w->addBody(shapes[(i * 7) % 3], 1, at, i % 4 != 0);
+			}
+			unsigned moved = 0;
+			for (int step = 0; step < 90; ++step)
+			{
+				w->run(1);
+				moved += static_cast<btDbvtBroadphase*>(w->world()->getBroadphase())->m_updates_ratio > btScalar(0.3);
+			}
+			EXPECT_GT(moved, 20u) << "the bodies must leave their fat boxes in many steps for the test to check them";
+			runs.push_back(record(*w));
+			w.reset();
+			btSetTaskScheduler(0);
+		}
+		for (size_t r = 1; r < runs.size(); ++r)
+		{
+			ASSERT_EQ(runs[r].size(), runs[0].size());
+			for (size_t i = 0; i < runs[0].size(); ++i)
+				EXPECT_TRUE(runs[r][i] == runs[0][i]) << "body " << i << ", run " << r << ", Mt world " << multithreaded;
+		}
 	}
 }
 
