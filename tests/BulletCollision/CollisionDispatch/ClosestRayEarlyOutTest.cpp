@@ -1,7 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // The early-outs of closest-hit ray tests: btDbvtBroadphase::rayTest's nearest-first walk (reads the
 // callback's shrinking m_lambda_max at every box), the nearest-first walk of a BVH mesh's tree, and the
-// bounding-box reject in front of the convex cast. Each must leave the answer of the exhaustive test
+// box and plane rejects in front of the convex cast. Each must leave the answer of the exhaustive test
 // unchanged, bit for bit: these tests compare against brute force over every proxy, every triangle, or
 // the cast run directly.
 
@@ -282,9 +282,10 @@ TEST(ClosestRayEarlyOut, RaysThroughSharedEdgesAndAlongGridLinesHitAsBruteForce)
 		}
 }
 
-TEST(ClosestRayEarlyOut, ConvexBoxRejectNeverChangesTheCastsAnswer)
+TEST(ClosestRayEarlyOut, ConvexRejectsNeverChangeTheCastsAnswer)
 {
-	// Shapes whose ray test now starts with a box reject; rays aimed at points on and just off their surfaces
+	// Shapes whose ray test now starts with two rejects (the grown local box, then a plane through the ray
+	// that keeps the shape beyond the casts' reach); rays aimed at points on and just off their surfaces
 	// (grazing within the casts' stopping distance), through them, and from inside them. The reference is
 	// the cast the world's ray test runs, called directly with the same inputs.
 	btConvexHullShape hull;
