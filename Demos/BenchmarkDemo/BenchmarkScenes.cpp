@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <cstdarg>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 
 namespace benchmark_demo
@@ -346,6 +348,9 @@ public:
 	};
 	long m_hits = 0, m_rays = 0;
 	double m_lastSum = 0, m_checksum = 0;
+	// FNV-1a over every ray's result (hit object's index, fraction and normal bits): equal hashes mean the
+	// same hits, bit for bit, whatever order the queries visit the objects in.
+	uint64_t m_rayHash = 1469598103934665603ull;
 	btVector3 m_to[NUM_RAYS];
 	// Ray i turns i 4 pi / 500 about y (two full turns: 250 directions, each cast twice), 2500 m out
 	// and down to y = -1000.
@@ -374,16 +379,32 @@ public:
 				++m_hits;
 				sum += double((callback.m_hitPointWorld - from).length());
 			}
+			hashRayResult(callback);
 		}
 		m_lastSum = sum;
 		m_checksum += sum;
+	}
+	void hashRayResult(const btCollisionWorld::ClosestRayResultCallback& callback)
+	{
+		const int object = callback.m_collisionObject ? callback.m_collisionObject->getWorldArrayIndex() : -1;
+		const btScalar values[4] = {callback.m_closestHitFraction, callback.m_hitNormalWorld.x(),
+		                            callback.m_hitNormalWorld.y(), callback.m_hitNormalWorld.z()};
+		unsigned char bytes[sizeof(object) + sizeof(values)];
+		memcpy(bytes, &object, sizeof(object));
+		memcpy(bytes + sizeof(object), values, sizeof(values));
+		for (unsigned char byte : bytes)
+		{
+			m_rayHash ^= byte;
+			m_rayHash *= 1099511628211ull;
+		}
 	}
 	bool report(std::string& line, int frames) const override
 	{
 		std::string base;
 		const bool ok = OnLandscape::report(base, frames);
-		line =
-		    base + format("; rays hit %ld of %ld, last frame's hit distances sum to %.3f", m_hits, m_rays, m_lastSum);
+		line = base + format("; rays hit %ld of %ld, last frame's hit distances sum to %.3f, all frames' to %.3f, "
+		                     "ray hash %016llx",
+		                     m_hits, m_rays, m_lastSum, m_checksum, (unsigned long long)m_rayHash);
 		return ok && m_hits == m_rays;
 	}
 };

@@ -16,6 +16,15 @@ void reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOverlapCallb
                                    const btVector3& raySource, const btVector3& rayTarget, const btVector3& aabbMin,
                                    const btVector3& aabbMax, const btScalar* maxFraction);
 
+// As reportBoxCastOverlappingNodes with a fraction bound (maxFraction not null), walking the tree nearer
+// child first (reportBoxCastOverlappingNodes calls it when given a bound). The nodes reported are those the
+// sweep reaches within the bound as it stands when each is reached; only their order differs from the
+// stackless walk's.
+void reportBoxCastOverlappingNodesNearestFirst(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
+                                               const btVector3& raySource, const btVector3& rayTarget,
+                                               const btVector3& aabbMin, const btVector3& aabbMax,
+                                               const btScalar* maxFraction);
+
 // As reportBoxCastOverlappingNodes over the nodes [startNode, endNode) only (a whole subtree's range, or
 // the whole tree); the range is clamped to the tree.
 void reportBoxCastOverlappingNodesInRange(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,

@@ -17,6 +17,7 @@
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
 #include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtRayWalk.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtRefit.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtQueries.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
@@ -286,25 +287,19 @@ struct AabbQueryPolicy
 	}
 };
 
-// rayTest: as above, with the ray slab test against the proxy's AABB grown by the swept box. The callback's
-// m_lambda_max is read for every proxy, so a closest-hit callback that shortens the ray prunes the rest.
-struct RayQueryPolicy
+// rayTest: the trees prune with the fat boxes (grown by the swept box), nearer boxes first; the proxy's
+// own AABB decides. The callback's m_lambda_max is read for every box and proxy, so a closest-hit callback
+// that shortens the ray prunes the rest.
+struct RayLeafVisitor
 {
-	btVector3 rayFrom;
-	btVector3 sweptMin;
-	btVector3 sweptMax;
+	const caliber::DbvtRay* ray;
 	btBroadphaseRayCallback* callback;
 
-	void Process(const btDbvtNode* leaf)
+	void operator()(const btDbvtNode* leaf) const
 	{
 		const btDbvtProxy* proxy = proxyOfLeaf(leaf);
-		const btVector3 bounds[2] = {proxy->m_aabbMin - sweptMax, proxy->m_aabbMax - sweptMin};
-		btScalar tmin;
-		if (btRayAabb2(rayFrom, callback->m_rayDirectionInverse, callback->m_signs, bounds, tmin, btScalar(0),
-		               callback->m_lambda_max))
-		{
-			callback->process(proxy);
-		}
+		btScalar enter;
+		if (ray->hits(proxy->m_aabbMin, proxy->m_aabbMax, callback->m_lambda_max, enter)) callback->process(proxy);
 	}
 };
 
@@ -595,17 +590,17 @@ void btDbvtBroadphase::optimize()
 void btDbvtBroadphase::rayTest(const btVector3& rayFrom, const btVector3& rayTo, btBroadphaseRayCallback& rayCallback,
                                const btVector3& aabbMin, const btVector3& aabbMax)
 {
-	RayQueryPolicy policy;
-	policy.rayFrom = rayFrom;
-	policy.sweptMin = aabbMin;
-	policy.sweptMax = aabbMax;
-	policy.callback = &rayCallback;
-	btAlignedObjectArray<const btDbvtNode*>& stack = m_rayTestStacks[0];
-	for (int set = DYNAMIC_SET; set <= FIXED_SET; ++set)
-	{
-		m_sets[set].rayTestInternal(m_sets[set].m_root, rayFrom, rayTo, rayCallback.m_rayDirectionInverse,
-		                            rayCallback.m_signs, rayCallback.m_lambda_max, aabbMin, aabbMax, stack, policy);
-	}
+	(void)rayTo;  // the callback carries the direction (m_rayDirectionInverse) and the length (m_lambda_max)
+	caliber::DbvtRay ray;
+	ray.from = rayFrom;
+	ray.directionInverse = rayCallback.m_rayDirectionInverse;
+	for (int axis = 0; axis < 3; ++axis) ray.signs[axis] = rayCallback.m_signs[axis];
+	ray.sweptMin = aabbMin;
+	ray.sweptMax = aabbMax;
+	ray.prepare();
+	RayLeafVisitor visitor = {&ray, &rayCallback};
+	const btDbvtNode* roots[2] = {m_sets[DYNAMIC_SET].m_root, m_sets[FIXED_SET].m_root};
+	caliber::walkDbvtRayNearestFirst(roots, 2, ray, &rayCallback.m_lambda_max, visitor);
 }
 
 void btDbvtBroadphase::aabbTest(const btVector3& aabbMin, const btVector3& aabbMax, btBroadphaseAabbCallback& callback)

@@ -3,6 +3,7 @@
 
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhSweep.h"
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhWalk.h"
 
 #include "LinearMath/btAabbUtil2.h"
@@ -35,44 +36,6 @@ struct BuildTask
 	int end;
 };
 
-// A moving box (or point when boxMin == boxMax == 0) for the ray and box-cast traversals: the segment
-// source + t * dir, t in [0, 1], against node boxes grown by the moving box and by a tolerance.
-struct Sweep
-{
-	btVector3 source;
-	btVector3 dir;
-	btVector3 inv;
-	btVector3 growMin;  // subtracted from node minima: boxMax + tolerance
-	btVector3 growMax;  // added to node maxima: -boxMin + tolerance
-	btVector3 sweepMin;
-	btVector3 sweepMax;
-	const btScalar* maxFraction;
-
-	bool hits(const btVector3& nodeMin, const btVector3& nodeMax) const
-	{
-		btScalar tEnter = 0, tExit = 1;
-		// The tolerance of the boxes also covers rounding of the fraction itself.
-		if (maxFraction && *maxFraction < tExit) tExit = *maxFraction + btScalar(1e-5);
-		for (int a = 0; a < 3; ++a)
-		{
-			const btScalar lo = nodeMin[a] - growMin[a];
-			const btScalar hi = nodeMax[a] + growMax[a];
-			if (dir[a] == btScalar(0))
-			{
-				if (source[a] < lo || source[a] > hi) return false;
-				continue;
-			}
-			btScalar t0 = (lo - source[a]) * inv[a];
-			btScalar t1 = (hi - source[a]) * inv[a];
-			if (inv[a] < 0) btSwap(t0, t1);
-			// Written so that a NaN (0 * inf for a denormal direction on a box face) is ignored.
-			if (t0 > tEnter) tEnter = t0;
-			if (t1 < tExit) tExit = t1;
-			if (tEnter > tExit) return false;
-		}
-		return true;
-	}
-};
 }  // namespace
 
 btQuantizedBvh::btQuantizedBvh()
@@ -464,30 +427,24 @@ void caliber::reportBoxCastOverlappingNodes(const btQuantizedBvh& bvh, btNodeOve
                                             const btVector3& aabbMin, const btVector3& aabbMax,
                                             const btScalar* maxFraction)
 {
-	reportBoxCastOverlappingNodesInRange(bvh, nodeCallback, raySource, rayTarget, aabbMin, aabbMax, maxFraction, 0,
+	if (maxFraction)
+	{
+		reportBoxCastOverlappingNodesNearestFirst(bvh, nodeCallback, raySource, rayTarget, aabbMin, aabbMax,
+		                                          maxFraction);
+		return;
+	}
+	reportBoxCastOverlappingNodesInRange(bvh, nodeCallback, raySource, rayTarget, aabbMin, aabbMax, 0, 0,
 	                                     caliber::bvhNodeCount(bvh));
 }
 
-void caliber::reportBoxCastOverlappingNodesInRange(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
-                                                   const btVector3& raySource, const btVector3& rayTarget,
-                                                   const btVector3& aabbMin, const btVector3& aabbMax,
-                                                   const btScalar* maxFraction, int startNode, int endNode)
+void caliber::setUpBvhSweep(const btQuantizedBvh& bvh, const btVector3& raySource, const btVector3& rayTarget,
+                            const btVector3& aabbMin, const btVector3& aabbMax, const btScalar* maxFraction,
+                            BvhSweep& sweep)
 {
-	btAssert(nodeCallback != 0);
-	const bool finite = caliber::isFinite(raySource) && caliber::isFinite(rayTarget) && caliber::isFinite(aabbMin) &&
-	                    caliber::isFinite(aabbMax);
-	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
-	if (!nodeCallback || !finite || caliber::bvhNodeCount(bvh) == 0) return;
-	const int numNodes = btMin(endNode, caliber::bvhNodeCount(bvh));
-	if (startNode < 0) startNode = 0;
-
-	Sweep sweep;
 	sweep.maxFraction = maxFraction;
 	sweep.source = raySource;
 	sweep.dir = rayTarget - raySource;
 	for (int a = 0; a < 3; ++a) sweep.inv[a] = sweep.dir[a] != btScalar(0) ? btScalar(1) / sweep.dir[a] : btScalar(0);
-	// The tolerance covers the rounding of t and of the node bounds (relative to the coordinates involved),
-	// so a segment exactly on a box face (a flat triangle's box) is not missed.
 	btVector3 rootMin, rootMax;
 	if (bvh.isQuantized())
 	{
@@ -515,6 +472,23 @@ void caliber::reportBoxCastOverlappingNodesInRange(const btQuantizedBvh& bvh, bt
 	sweep.sweepMax.setMax(rayTarget);
 	sweep.sweepMin += aabbMin - tol;
 	sweep.sweepMax += aabbMax + tol;
+}
+
+void caliber::reportBoxCastOverlappingNodesInRange(const btQuantizedBvh& bvh, btNodeOverlapCallback* nodeCallback,
+                                                   const btVector3& raySource, const btVector3& rayTarget,
+                                                   const btVector3& aabbMin, const btVector3& aabbMax,
+                                                   const btScalar* maxFraction, int startNode, int endNode)
+{
+	btAssert(nodeCallback != 0);
+	const bool finite = caliber::isFinite(raySource) && caliber::isFinite(rayTarget) && caliber::isFinite(aabbMin) &&
+	                    caliber::isFinite(aabbMax);
+	btAssert(finite && "reportBoxCastOverlappingNodex: non-finite input");
+	if (!nodeCallback || !finite || caliber::bvhNodeCount(bvh) == 0) return;
+	const int numNodes = btMin(endNode, caliber::bvhNodeCount(bvh));
+	if (startNode < 0) startNode = 0;
+
+	caliber::BvhSweep sweep;
+	caliber::setUpBvhSweep(bvh, raySource, rayTarget, aabbMin, aabbMax, maxFraction, sweep);
 
 	if (bvh.isQuantized())
 	{

@@ -247,6 +247,88 @@ bool startsInsidePolyhedron(const btConvexShape* shape, const btVector3& startLo
 	return true;
 }
 
+// The distance from a convex shape (margin included) within which the ray casts below may report a hit:
+// the subsimplex cast stops once its point is within sqrt(m_subSimplexCastEpsilon) of the shape, the GJK
+// cast once the distance is below kCastDistanceTolerance, and a cast out of iterations accepts
+// kCastExhaustedAcceptDistance. Four times the largest of them leaves room for GJK's own distance error.
+btScalar convexCastReach()
+{
+	const btConvexCast::CastResult defaults;
+	btScalar reach = btSqrt(btMax(defaults.m_subSimplexCastEpsilon, btScalar(0)));
+	reach = btMax(reach, caliber::kCastDistanceTolerance);
+	reach = btMax(reach, caliber::kCastExhaustedAcceptDistance);
+	return btScalar(4) * reach;
+}
+
+// False when the cast of the segment from -> to against the shape cannot report a hit below maxFraction:
+// the segment misses the shape's local AABB grown by convexCastReach() and by the rounding of the
+// coordinates involved, or enters it only at or beyond maxFraction (the cast's point lies within the reach
+// of the shape wherever it hits, so a hit lies inside the grown box), or a plane through the segment's line
+// keeps the whole shape farther than that. A few dozen instructions and one support scan instead of a
+// cast, which needs several support scans to show a miss. Only for shapes whose getAabb is a cheap bound of
+// the shape with its margin (the cached boxes of hulls, point clouds, convex meshes and multi-spheres, and
+// the closed forms of capsules and cylinders); other shapes always go to the cast.
+bool castMayHitConvex(const btConvexShape* shape, const btTransform& shapeTransform, const btVector3& from,
+                      const btVector3& to, btScalar maxFraction)
+{
+	switch (shape->getShapeType())
+	{
+		case CONVEX_HULL_SHAPE_PROXYTYPE:
+		case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE:
+		case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE:
+		case MULTI_SPHERE_SHAPE_PROXYTYPE:
+		case CAPSULE_SHAPE_PROXYTYPE:
+		case CYLINDER_SHAPE_PROXYTYPE:
+			break;
+		default:
+			return true;
+	}
+	static const btScalar reach = convexCastReach();
+	btTransform identity;
+	identity.setIdentity();
+	btVector3 boxMin, boxMax;
+	shape->getAabb(identity, boxMin, boxMax);
+	const btVector3 start = shapeTransform.invXform(from);
+	const btVector3 direction = shapeTransform.invXform(to) - start;
+	btScalar scale = btScalar(0);
+	for (int axis = 0; axis < 3; ++axis)
+		scale = btMax(scale, btMax(btMax(btFabs(start[axis]), btFabs(start[axis] + direction[axis])),
+		                           btMax(btFabs(boxMin[axis]), btFabs(boxMax[axis]))));
+	const btScalar grow = reach + btScalar(64) * SIMD_EPSILON * scale;
+	btScalar enter = btScalar(0), exit = btMin(maxFraction, btScalar(1));
+	for (int axis = 0; axis < 3; ++axis)
+	{
+		const btScalar lo = boxMin[axis] - grow, hi = boxMax[axis] + grow;
+		if (direction[axis] == btScalar(0))
+		{
+			if (start[axis] < lo || start[axis] > hi) return false;
+			continue;
+		}
+		const btScalar inverse = btScalar(1) / direction[axis];
+		btScalar tNear = (lo - start[axis]) * inverse;
+		btScalar tFar = (hi - start[axis]) * inverse;
+		if (tNear > tFar) btSwap(tNear, tFar);
+		enter = btMax(enter, tNear);
+		exit = btMin(exit, tFar);
+		// Not "enter >= exit": a hit at exactly maxFraction would not be reported either, but a box the
+		// segment only touches must not be skipped for rounding's sake.
+		if (enter > exit) return false;
+	}
+	// The plane through the ray's line facing the shape's box centre: when the whole shape (its support
+	// against the plane's normal, margin included, as the casts compute it) lies more than the reach beyond
+	// it, every point of the ray is farther than the reach from the shape. One support scan instead of the
+	// cast's several, for rays that cross the box but pass beside the shape.
+	const btScalar length2 = direction.length2();
+	if (!(length2 > btScalar(0))) return true;
+	const btVector3 toCentre = (boxMin + boxMax) * btScalar(0.5) - start;
+	const btVector3 across = toCentre - direction * (toCentre.dot(direction) / length2);
+	const btScalar across2 = across.length2();
+	if (!(across2 > SIMD_EPSILON * SIMD_EPSILON * scale * scale)) return true;
+	const btVector3 normal = across / btSqrt(across2);
+	const btVector3 nearest = shape->localGetSupportingVertexWithoutMargin(-normal) - normal * shape->getMargin();
+	return !(normal.dot(nearest - start) > grow);
+}
+
 void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConvexShape* convexShape,
                    const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
 {
@@ -267,6 +349,9 @@ void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTran
 			return;
 		}
 	}
+	if (!castMayHitConvex(convexShape, wrap->getWorldTransform(), rayFromTrans.getOrigin(), rayToTrans.getOrigin(),
+	                      resultCallback.m_closestHitFraction))
+		return;
 	if (startsInsidePolyhedron(convexShape, wrap->getWorldTransform().invXform(rayFromTrans.getOrigin()))) return;
 	// The ray is a point (a sphere of radius 0 and no margin) cast against the shape.
 	btSphereShape point(btScalar(0));

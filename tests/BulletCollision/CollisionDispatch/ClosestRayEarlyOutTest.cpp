@@ -1,0 +1,364 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The early-outs of closest-hit ray tests: btDbvtBroadphase::rayTest's nearest-first walk (reads the
+// callback's shrinking m_lambda_max at every box), the nearest-first walk of a BVH mesh's tree, and the
+// box and plane rejects in front of the convex cast. Each must leave the answer of the exhaustive test
+// unchanged, bit for bit: these tests compare against brute force over every proxy, every triangle, or
+// the cast run directly.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
+#include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
+#include "BulletCollision/CollisionShapes/btCapsuleShape.h"
+#include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "BulletCollision/CollisionShapes/btCylinderShape.h"
+#include "BulletCollision/CollisionShapes/btMultiSphereShape.h"
+#include "BulletCollision/CollisionShapes/btSphereShape.h"
+#include "BulletCollision/CollisionShapes/btTriangleMesh.h"
+#include "BulletCollision/NarrowPhaseCollision/btConvexCastHelpers.h"
+#include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
+#include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
+#include "CollisionWorldTestUtil.h"
+
+using namespace caliber_world_test;
+
+namespace
+{
+// A world over the default configuration and a btDbvtBroadphase (the broadphase whose ray walk is tested).
+struct DbvtWorld
+{
+	DbvtWorld() : dispatcher(&config), world(&dispatcher, &broadphase, &config) {}
+	~DbvtWorld()
+	{
+		for (int i = world.getNumCollisionObjects() - 1; i >= 0; i--)
+			world.removeCollisionObject(world.getCollisionObjectArray()[i]);
+	}
+	btCollisionObject* add(btCollisionShape* shape, const btTransform& transform, bool isStatic)
+	{
+		objects.emplace_back(new btCollisionObject());
+		btCollisionObject* object = objects.back().get();
+		object->setCollisionShape(shape);
+		object->setWorldTransform(transform);
+		if (isStatic)
+			world.addCollisionObject(object, btBroadphaseProxy::StaticFilter,
+			                         btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+		else
+			world.addCollisionObject(object);
+		return object;
+	}
+	btDefaultCollisionConfiguration config;
+	btCollisionDispatcher dispatcher;
+	btDbvtBroadphase broadphase;
+	btCollisionWorld world;
+	std::vector<std::unique_ptr<btCollisionObject>> objects;
+};
+
+// Records the proxies the broadphase hands over; with closestBox it shrinks m_lambda_max to the entry of
+// each proxy's box, so the walk may prune everything beyond the nearest box found so far.
+struct ProxyRecorder : btBroadphaseRayCallback
+{
+	ProxyRecorder(const btVector3& from, const btVector3& to, bool closestBox) : m_from(from), m_closestBox(closestBox)
+	{
+		const btVector3 d = to - from;
+		for (int a = 0; a < 3; a++)
+		{
+			m_rayDirectionInverse[a] = d[a] == btScalar(0) ? btScalar(BT_LARGE_FLOAT) : btScalar(1) / d[a];
+			m_signs[a] = m_rayDirectionInverse[a] < btScalar(0);
+		}
+		m_lambda_max = 1;
+	}
+	bool process(const btBroadphaseProxy* proxy) override
+	{
+		m_seen.insert(proxy);
+		if (m_closestBox)
+		{
+			const btVector3 bounds[2] = {proxy->m_aabbMin, proxy->m_aabbMax};
+			btScalar enter;
+			if (btRayAabb2(m_from, m_rayDirectionInverse, m_signs, bounds, enter, 0, m_lambda_max)) m_lambda_max = enter;
+		}
+		return true;
+	}
+	btVector3 m_from;
+	bool m_closestBox;
+	std::set<const btBroadphaseProxy*> m_seen;
+};
+
+// Every triangle of a mesh as the triangle ray test sees it, for brute force.
+struct Triangle
+{
+	btVector3 v[3];
+	int part;
+	int index;
+};
+
+// Runs the library's own triangle ray test over every triangle in index order and keeps the closest hit, as
+// a closest-hit query without any tree would.
+struct BruteForceTriangles : btTriangleRaycastCallback
+{
+	BruteForceTriangles(const btVector3& from, const btVector3& to, unsigned flags)
+	    : btTriangleRaycastCallback(from, to, flags)
+	{
+	}
+	btScalar reportHit(const btVector3& normal, btScalar fraction, int partId, int triangleIndex) override
+	{
+		m_normal = normal;
+		m_part = partId;
+		m_index = triangleIndex;
+		return fraction;
+	}
+	// The hit fraction of one triangle alone (2 when it is not hit).
+	static btScalar fractionOf(const Triangle& t, const btVector3& from, const btVector3& to, unsigned flags)
+	{
+		BruteForceTriangles one(from, to, flags);
+		btVector3 v[3] = {t.v[0], t.v[1], t.v[2]};
+		one.processTriangle(v, t.part, t.index);
+		return one.m_part >= 0 ? one.m_hitFraction : btScalar(2);
+	}
+	btVector3 m_normal;
+	int m_part = -1;
+	int m_index = -1;
+};
+
+// A bumpy grid of n x n quads (two triangles each) over [-size, size]^2 in x/z; with flatQuads some quads
+// are flat and share exact integer coordinates, so that rays can run exactly through shared edges.
+btTriangleMesh* grid(Random& rng, int n, btScalar size, btScalar bump, std::vector<Triangle>& triangles)
+{
+	btTriangleMesh* mesh = new btTriangleMesh();
+	std::vector<btScalar> heights((n + 1) * (n + 1));
+	for (size_t i = 0; i < heights.size(); i++) heights[i] = (i % 3 == 0) ? btScalar(0) : rng.uniform(-bump, bump);
+	auto vertex = [&](int i, int j) {
+		return btVector3(-size + 2 * size * btScalar(i) / btScalar(n), heights[i * (n + 1) + j],
+		                 -size + 2 * size * btScalar(j) / btScalar(n));
+	};
+	for (int i = 0; i < n; i++)
+		for (int j = 0; j < n; j++)
+		{
+			const btVector3 quad[2][3] = {{vertex(i, j), vertex(i, j + 1), vertex(i + 1, j)},
+			                              {vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1)}};
+			for (int k = 0; k < 2; k++)
+			{
+				Triangle t = {{quad[k][0], quad[k][1], quad[k][2]}, 0, int(triangles.size())};
+				triangles.push_back(t);
+				mesh->addTriangle(quad[k][0], quad[k][1], quad[k][2]);
+			}
+		}
+	return mesh;
+}
+
+// Checks one ray through the world against brute force over the triangles (the mesh placed at identity,
+// so that the world's local ray is the ray itself): the same hit or miss, the same fraction bit for bit, a
+// reported triangle that itself hits at that fraction (on exact ties either triangle is right), and that
+// triangle's normal (within the rounding of one more normalisation).
+void expectClosestTriangle(btCollisionWorld& world, const std::vector<Triangle>& triangles, const btVector3& from,
+                           const btVector3& to, unsigned flags, const char* what, int ray)
+{
+	BruteForceTriangles brute(from, to, flags);
+	for (const Triangle& t : triangles)
+	{
+		btVector3 v[3] = {t.v[0], t.v[1], t.v[2]};
+		brute.processTriangle(v, t.part, t.index);
+	}
+	RecordingRayCallback cb;
+	cb.m_flags = flags;
+	world.rayTest(from, to, cb);
+	const bool bruteHit = brute.m_part >= 0;
+	ASSERT_EQ(!cb.m_entries.empty(), bruteHit) << what << " ray " << ray;
+	if (!bruteHit) return;
+	const RecordingRayCallback::Entry& e = cb.m_entries.back();
+	EXPECT_EQ(e.fraction, brute.m_hitFraction) << what << " ray " << ray;
+	ASSERT_GE(e.index, 0);
+	ASSERT_LT(e.index, int(triangles.size()));
+	EXPECT_EQ(BruteForceTriangles::fractionOf(triangles[e.index], from, to, flags), brute.m_hitFraction)
+	    << what << " ray " << ray << " reported triangle " << e.index << " brute " << brute.m_index;
+	// The world normalises the triangle's unit normal once more (and turns it by the identity), which may
+	// move its last bits: the same direction within a few ulps.
+	if (e.index == brute.m_index)
+	{
+		EXPECT_GT(e.normal.dot(brute.m_normal), btScalar(1) - btScalar(8) * SIMD_EPSILON) << what << " ray " << ray;
+	}
+}
+}  // namespace
+
+TEST(ClosestRayEarlyOut, DbvtBroadphaseRayReportsExactlyTheProxiesItsBoxTestAdmits)
+{
+	btDbvtBroadphase broadphase;
+	Random rng(5);
+	std::vector<btBroadphaseProxy*> proxies;
+	for (int i = 0; i < 300; i++)
+	{
+		const btVector3 c = rng.vector(40);
+		const btVector3 h(rng.uniform(0.1, 3), rng.uniform(0.1, 3), rng.uniform(0.1, 3));
+		const bool isStatic = i % 4 == 0;
+		proxies.push_back(broadphase.createProxy(
+		    c - h, c + h, 0, 0, isStatic ? short(btBroadphaseProxy::StaticFilter) : short(btBroadphaseProxy::DefaultFilter),
+		    short(btBroadphaseProxy::AllFilter), 0));
+	}
+	// Move some, so that leaf boxes are fatter than the proxies' own boxes.
+	for (int i = 1; i < 300; i += 3)
+	{
+		const btVector3 d = rng.vector(0.5);
+		broadphase.setAabb(proxies[i], proxies[i]->m_aabbMin + d, proxies[i]->m_aabbMax + d, 0);
+	}
+	for (int k = 0; k < 200; k++)
+	{
+		const btVector3 from = rng.vector(50);
+		btVector3 to = rng.vector(50);
+		if (k % 10 == 0) to.setX(from.x());  // a zero direction component
+		const btVector3 sweep = (k % 5 == 0) ? btVector3(0.5, 0.25, 1) : btVector3(0, 0, 0);
+		ProxyRecorder all(from, to, false);
+		broadphase.rayTest(from, to, all, -sweep, sweep);
+		std::set<const btBroadphaseProxy*> expected;
+		btScalar nearest = 2;
+		for (btBroadphaseProxy* p : proxies)
+		{
+			const btVector3 bounds[2] = {p->m_aabbMin - sweep, p->m_aabbMax + sweep};
+			btScalar enter;
+			if (btRayAabb2(from, all.m_rayDirectionInverse, all.m_signs, bounds, enter, 0, 1))
+			{
+				expected.insert(p);
+				nearest = btMin(nearest, enter);
+			}
+		}
+		EXPECT_EQ(all.m_seen, expected) << "ray " << k;
+		if (sweep.length2() > 0) continue;
+		// With the bound shrinking to the nearest box found so far, the walk still finds the nearest box.
+		ProxyRecorder closest(from, to, true);
+		broadphase.rayTest(from, to, closest);
+		EXPECT_EQ(closest.m_lambda_max, expected.empty() ? btScalar(1) : nearest) << "ray " << k;
+		EXPECT_LE(closest.m_seen.size(), expected.size());
+	}
+	for (btBroadphaseProxy* p : proxies) broadphase.destroyProxy(p, 0);
+}
+
+TEST(ClosestRayEarlyOut, BvhMeshClosestHitEqualsBruteForceOverEveryTriangle)
+{
+	for (int quantized = 0; quantized < 2; quantized++)
+	{
+		Random rng(17 + quantized);
+		std::vector<Triangle> triangles;
+		std::unique_ptr<btTriangleMesh> mesh(grid(rng, 24, 20, 2, triangles));
+		btBvhTriangleMeshShape shape(mesh.get(), quantized != 0);
+		DbvtWorld w;
+		w.add(&shape, btTransform::getIdentity(), true);
+		const unsigned flagSets[3] = {0, btTriangleRaycastCallback::kF_FilterBackfaces,
+		                              btTriangleRaycastCallback::kF_KeepUnflippedNormal};
+		for (int k = 0; k < 400; k++)
+		{
+			btVector3 from = rng.vector(25), to = rng.vector(25);
+			if (k % 4 == 0) to = from + (to - from) * btScalar(40);  // long rays, as a world's rays often are
+			if (k % 7 == 0) to.setZ(from.z());                       // zero direction components
+			if (k % 11 == 0) to.setX(from.x());
+			expectClosestTriangle(w.world, triangles, from, to, flagSets[k % 3], quantized ? "quantized" : "plain", k);
+		}
+	}
+}
+
+TEST(ClosestRayEarlyOut, RaysThroughSharedEdgesAndAlongGridLinesHitAsBruteForce)
+{
+	// A flat grid at y = 0 with integer corners: vertical rays through grid points hit shared edges and
+	// vertices exactly, and rays in the plane x = const run along the grid lines that bound the tree's boxes.
+	Random rng(3);
+	std::vector<Triangle> triangles;
+	std::unique_ptr<btTriangleMesh> mesh(grid(rng, 16, 16, 0, triangles));
+	btBvhTriangleMeshShape shape(mesh.get(), true);
+	DbvtWorld w;
+	w.add(&shape, btTransform::getIdentity(), true);
+	int ray = 0;
+	for (int i = -8; i <= 8; i++)
+		for (int j = -8; j <= 8; j++)
+		{
+			const btVector3 p(btScalar(2 * i), 0, btScalar(2 * j));
+			expectClosestTriangle(w.world, triangles, p + btVector3(0, 5, 0), p - btVector3(0, 5, 0), 0, "vertical",
+			                      ray++);
+			expectClosestTriangle(w.world, triangles, p + btVector3(0, 5, 0), p + btVector3(3, -5, 0), 0,
+			                      "along a grid line", ray++);
+			expectClosestTriangle(w.world, triangles, p + btVector3(-1, 5, 1), p + btVector3(1, -5, -1), 0,
+			                      "through a diagonal", ray++);
+		}
+}
+
+TEST(ClosestRayEarlyOut, ConvexRejectsNeverChangeTheCastsAnswer)
+{
+	// Shapes whose ray test now starts with two rejects (the grown local box, then a plane through the ray
+	// that keeps the shape beyond the casts' reach); rays aimed at points on and just off their surfaces
+	// (grazing within the casts' stopping distance), through them, and from inside them. The reference is
+	// the cast the world's ray test runs, called directly with the same inputs.
+	btConvexHullShape hull;
+	for (int ring = 0; ring < 3; ring++)
+		for (int k = 0; k < 8; k++)
+		{
+			const btScalar angle = btScalar(k) * SIMD_PI / 4;
+			const btScalar radius = ring == 1 ? btScalar(1.8) : btScalar(1.1);
+			hull.addPoint(btVector3(radius * btCos(angle), btScalar(ring - 1) * 2, radius * btSin(angle)));
+		}
+	btCapsuleShape capsule(0.5, 2);
+	btCylinderShape cylinder(btVector3(1, 1.5, 0.7));
+	const btVector3 centres[2] = {btVector3(0, 0, 0), btVector3(0.5, 1, 0)};
+	const btScalar radii[2] = {1, 0.6};
+	btMultiSphereShape multiSphere(centres, radii, 2);
+	btConvexShape* shapes[4] = {&hull, &capsule, &cylinder, &multiSphere};
+	Random rng(29);
+	for (int s = 0; s < 4; s++)
+	{
+		WorldFixture f;
+		const btTransform placement = placed(rng.rotation(), rng.vector(5));
+		f.add(shapes[s], placement);
+		int hits = 0;
+		for (int k = 0; k < 300; k++)
+		{
+			// A point near the surface: the support point along a random direction, moved off by up to 0.02; every
+			// other ray along a local axis, where the shape touches its box, moved off by up to 3 times the casts'
+			// stopping distance (the band the reject's growth is there for).
+			btVector3 dirLocal = rng.unitVector();
+			btScalar offset = rng.uniform(-0.02, 0.02);
+			if (k % 2 == 0)
+			{
+				dirLocal = btVector3(0, 0, 0);
+				dirLocal[rng.integer(0, 2)] = rng.integer(0, 1) ? btScalar(1) : btScalar(-1);
+				offset = rng.uniform(-3e-3, 3e-3);
+			}
+			const btVector3 surface = placement * (shapes[s]->localGetSupportingVertex(dirLocal) + dirLocal * offset);
+			btVector3 from = placement * (rng.unitVector() * btScalar(8));
+			if (k % 10 == 0) from = placement.getOrigin() + rng.vector(0.3);  // from inside
+			btVector3 to = from + (surface - from) * rng.uniform(0.5, 3);
+			if (k % 4 != 1)  // a grazing ray: through the surface point, across the outward direction
+				to = surface + (surface - from).cross(placement.getBasis() * dirLocal) * btScalar(2);
+			const unsigned flags = (k % 5 < 2) ? btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest : 0u;
+			btTransform fromT = btTransform::getIdentity(), toT = btTransform::getIdentity();
+			fromT.setOrigin(from);
+			toT.setOrigin(to);
+			btSphereShape point(0);
+			point.setMargin(0);
+			btVoronoiSimplexSolver simplex;
+			btConvexCast::CastResult result;
+			const bool castHit =
+			    flags ? caliber::gjkCast(&point, shapes[s], &simplex, fromT, toT, placement, placement, result,
+			                             caliber::StartInContact::kMiss)
+			          : caliber::subsimplexCast(&point, shapes[s], &simplex, fromT, toT, placement, placement, result,
+			                                    caliber::StartInContact::kMiss);
+			// Every third ray starts with a bound just beyond the cast's hit (as when a closer object was found
+			// first): within the casts' stopping distance the hit lies before the shape's box, so a box grown
+			// too little would drop it.
+			btScalar bound = 1;
+			if (castHit && k % 3 == 2)
+				bound = btMin(btScalar(1), result.m_fraction + rng.uniform(0.01, 2) * btScalar(1e-3) / (to - from).length());
+			btCollisionWorld::ClosestRayResultCallback cb(from, to);
+			cb.m_flags = flags;
+			cb.m_closestHitFraction = bound;
+			f.m_world.rayTest(from, to, cb);
+			const bool expectHit =
+			    castHit && result.m_normal.length2() > btScalar(1e-4) && result.m_fraction < bound;
+			ASSERT_EQ(cb.hasHit(), expectHit) << "shape " << s << " ray " << k;
+			if (!expectHit) continue;
+			hits++;
+			EXPECT_EQ(cb.m_closestHitFraction, result.m_fraction) << "shape " << s << " ray " << k;
+			EXPECT_EQ(cb.m_hitNormalWorld, result.m_normal.normalized()) << "shape " << s << " ray " << k;
+		}
+		EXPECT_GT(hits, 30) << "shape " << s;
+	}
+}
