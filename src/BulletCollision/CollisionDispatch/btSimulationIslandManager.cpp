@@ -5,6 +5,7 @@
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
+#include "BulletCollision/CollisionDispatch/btLoneIslandSink.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
 namespace
@@ -31,6 +32,9 @@ struct IslandGroupingScratch
 {
 	btAlignedObjectArray<int> bounds;
 	btAlignedObjectArray<btPersistentManifold*> ungrouped;
+	// The run of lone islands not yet handed to a caliber::LoneIslandSink: their bodies and ids.
+	btAlignedObjectArray<btCollisionObject*> loneBodies;
+	btAlignedObjectArray<int> loneIds;
 	bool inUse = false;
 };
 
@@ -172,6 +176,17 @@ void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisi
 		islandEnd = islandStart + 1;
 		while (islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId) ++islandEnd;
 
+		if (islandEnd == islandStart + 1)
+		{
+			// A lone body: the two passes below in one (it sleeps unless it must stay awake).
+			const int objectIndex = m_unionFind.getElement(islandStart).m_sz;
+			if (objectIndex < 0 || objectIndex >= numObjects) continue;
+			btCollisionObject* object = objects[objectIndex];
+			if (object->getIslandTag() != islandId) continue;
+			const int state = object->getActivationState();
+			if (state != ACTIVE_TAG && state != DISABLE_DEACTIVATION) object->setActivationState(ISLAND_SLEEPING);
+			continue;
+		}
 		bool allSleeping = true;
 		for (int e = islandStart; e < islandEnd; ++e)
 		{
@@ -245,10 +260,31 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 	caliber::groupManifoldsByIsland(m_islandmanifold, numElements, scratch);
 	const int* bounds = &scratch.bounds[0];
 
+	// A callback that is also a caliber::LoneIslandSink (the worlds' own) takes the runs of lone islands (one
+	// awake body, no manifold: most of a scene of falling bodies) in one call each; the islands around a run
+	// go to processIsland, so the sink sees every island in the same order as without the runs.
+	caliber::LoneIslandSink* loneSink = dynamic_cast<caliber::LoneIslandSink*>(callback);
+	scratch.loneBodies.resize(0);
+	scratch.loneIds.resize(0);
 	int islandEnd = 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
 	{
 		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		const bool validId = islandId >= 0 && islandId < numElements;
+		const int first = validId ? bounds[islandId] : 0;
+		const int count = validId ? bounds[islandId + 1] - first : 0;
+		if (loneSink && validId && count == 0 &&
+		    (islandStart + 1 == numElements || m_unionFind.getElement(islandStart + 1).m_id != islandId))
+		{
+			islandEnd = islandStart + 1;
+			const int objectIndex = m_unionFind.getElement(islandStart).m_sz;
+			if (objectIndex < 0 || objectIndex >= numObjects) continue;
+			btCollisionObject* object = objects[objectIndex];
+			if (!object->isActive()) continue;
+			scratch.loneBodies.push_back(object);
+			scratch.loneIds.push_back(islandId);
+			continue;
+		}
 		bool islandSleeping = true;
 		m_islandBodies.resize(0);
 		for (islandEnd = islandStart; islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId;
@@ -261,12 +297,19 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 			if (object->isActive()) islandSleeping = false;
 		}
 		if (islandSleeping || m_islandBodies.size() == 0) continue;
-		const bool validId = islandId >= 0 && islandId < numElements;
-		const int first = validId ? bounds[islandId] : 0;
-		const int count = validId ? bounds[islandId + 1] - first : 0;
+		if (scratch.loneBodies.size() > 0)
+		{
+			loneSink->processLoneIslands(&scratch.loneBodies[0], &scratch.loneIds[0], scratch.loneBodies.size());
+			scratch.loneBodies.resize(0);
+			scratch.loneIds.resize(0);
+		}
 		callback->processIsland(&m_islandBodies[0], m_islandBodies.size(), count ? &m_islandmanifold[first] : 0, count,
 		                        islandId);
 	}
+	if (scratch.loneBodies.size() > 0)
+		loneSink->processLoneIslands(&scratch.loneBodies[0], &scratch.loneIds[0], scratch.loneBodies.size());
+	scratch.loneBodies.resize(0);
+	scratch.loneIds.resize(0);
 	scratch.inUse = false;
 	m_islandBodies.resize(0);
 }

@@ -128,8 +128,9 @@ bool stateIsFinite(const btRigidBody& body)
 {
 	const btMatrix3x3& basis = body.getWorldTransform().getBasis();
 	const btVector3 zero(0, 0, 0);
-	const btVector3 sum = basis[0] * zero + basis[1] * zero + basis[2] * zero + body.getWorldTransform().getOrigin() * zero +
-	                      body.getLinearVelocity() * zero + body.getAngularVelocity() * zero;
+	const btVector3 sum = basis[0] * zero + basis[1] * zero + basis[2] * zero +
+	                      body.getWorldTransform().getOrigin() * zero + body.getLinearVelocity() * zero +
+	                      body.getAngularVelocity() * zero;
 	return sum.x() + sum.y() + sum.z() == btScalar(0);
 }
 
@@ -301,8 +302,14 @@ void caliber::sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
 	btAlignedObjectArray<int>& islandStart = context.constraintIslandStart;
 	btAlignedObjectArray<int>& islandFill = context.islandFill;
 	islandStart.resize(0);
-	islandStart.resize(numIslands + 1, 0);
 	sorted.resize(0);
+	if (constraints.size() == 0)
+	{
+		// No joints: a list of no islands, which the island callback reads as "no island has joints".
+		islandStart.resize(1, 0);
+		return;
+	}
+	islandStart.resize(numIslands + 1, 0);
 	const bool splitIslands = world.getSimulationIslandManager()->getSplitIslands();
 	for (int i = 0; i < constraints.size(); ++i)
 	{

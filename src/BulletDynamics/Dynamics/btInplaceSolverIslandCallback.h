@@ -2,10 +2,12 @@
 #ifndef CALIBER_INPLACE_SOLVER_ISLAND_CALLBACK_H
 #define CALIBER_INPLACE_SOLVER_ISLAND_CALLBACK_H
 
+#include "BulletCollision/CollisionDispatch/btLoneIslandSink.h"
 #include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btContactSolverInfo.h"
 #include "LinearMath/btAlignedObjectArray.h"
+#include "LinearMath/btMinMax.h"
 
 class btCollisionObject;
 class btDispatcher;
@@ -23,7 +25,10 @@ class btTypedConstraint;
 // the order they are solved in does not change a bit of the result. Each batch's solve gets the index
 // it has in the step (caliber::SolveIndexScope), so that the solver's step-to-step variation of its row
 // order depends on the batch, never on which solver or thread solves it.
-struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCallback
+//
+// It is also a caliber::LoneIslandSink: the island manager hands it runs of lone islands (one body, no
+// manifold) at once, which it gathers as processIsland would, island by island, into the same batches.
+struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCallback, public caliber::LoneIslandSink
 {
 	struct Batch
 	{
@@ -112,6 +117,45 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 		                     (m_gatheredConstraints.size() - m_open.firstConstraint) >=
 		                 m_solverInfo->m_minimumSolverBatchSize)
 			flush();
+	}
+
+	void processLoneIslands(btCollisionObject** bodies, const int* islandIds, int count) override
+	{
+		const int minimumBatchSize = m_solverInfo->m_minimumSolverBatchSize;
+		if (m_numIslands == 0 && minimumBatchSize > 1)
+		{
+			// No island has joints: each island adds one body, so the open batch takes as many bodies as it
+			// has room for and closes when full, as island-by-island calls would close it.
+			for (int i = 0; i < count;)
+			{
+				const int gathered = (m_bodies.size() - m_open.firstBody) +
+				                     (m_manifolds.size() - m_open.firstManifold) +
+				                     (m_gatheredConstraints.size() - m_open.firstConstraint);
+				const int room = btMax(1, minimumBatchSize - gathered);
+				const int take = btMin(room, count - i);
+				for (int k = 0; k < take; ++k) m_bodies.push_back(bodies[i + k]);
+				i += take;
+				if (take == room) flush();
+			}
+			return;
+		}
+		for (int i = 0; i < count; ++i)
+		{
+			const int islandId = islandIds[i];
+			// An island with joints (to a static body) takes the general path.
+			if (islandId < m_numIslands && m_islandConstraintStart[islandId + 1] != m_islandConstraintStart[islandId])
+			{
+				processIsland(&bodies[i], 1, 0, 0, islandId);
+				continue;
+			}
+			m_bodies.push_back(bodies[i]);
+			// As processIsland: the island adds one body to the open batch, which closes when it is full.
+			if (minimumBatchSize <= 1 || (m_bodies.size() - m_open.firstBody) +
+			                                     (m_manifolds.size() - m_open.firstManifold) +
+			                                     (m_gatheredConstraints.size() - m_open.firstConstraint) >=
+			                                 minimumBatchSize)
+				flush();
+		}
 	}
 
 	/// Closes the batch being gathered (nothing if it is empty).

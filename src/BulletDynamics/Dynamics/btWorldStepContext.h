@@ -94,7 +94,7 @@ bool isSimulatedIn(const btCollisionWorld& world, const btRigidBody& body);
 void quarantineNonFiniteBodies(btDiscreteDynamicsWorld& world, const btAlignedObjectArray<btRigidBody*>& bodies,
                                WorldStepContext& context);
 /// Groups the enabled joints by island into sorted (counting sort, stable), with each island's start in
-/// context.constraintIslandStart.
+/// context.constraintIslandStart (just {0}, as for no islands, when there are no joints).
 void sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
                              const btAlignedObjectArray<btTypedConstraint*>& constraints,
                              btAlignedObjectArray<btTypedConstraint*>& sorted, WorldStepContext& context);

@@ -1,6 +1,7 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <set>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 #include "BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h"
+#include "BulletCollision/CollisionDispatch/btLoneIslandSink.h"
 #include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
 
@@ -329,4 +331,96 @@ TEST(SimulationIslandManager, NullArgumentsAreRejected)
 #else
 	scene.m_islands.processIslands(&scene.m_dispatcher, scene.m_world.get(), 0);
 #endif
+}
+
+namespace
+{
+// An island as a callback receives it: id, bodies in the order given, manifolds in the order given.
+struct OrderedIsland
+{
+	int id;
+	std::vector<const btCollisionObject*> bodies;
+	std::vector<btPersistentManifold*> manifolds;
+	bool operator==(const OrderedIsland& other) const
+	{
+		return id == other.id && bodies == other.bodies && manifolds == other.manifolds;
+	}
+};
+
+struct OrderedRecorder : public btSimulationIslandManager::IslandCallback
+{
+	std::vector<OrderedIsland> islands;
+	void processIsland(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds, int numManifolds,
+	                   int islandId) override
+	{
+		OrderedIsland island;
+		island.id = islandId;
+		island.bodies.assign(bodies, bodies + numBodies);
+		island.manifolds.assign(manifolds, manifolds + numManifolds);
+		islands.push_back(island);
+	}
+};
+
+// The same recorder, also taking runs of lone islands as the worlds' own callback does.
+struct OrderedSinkRecorder : public OrderedRecorder, public caliber::LoneIslandSink
+{
+	int loneIslands = 0;
+	void processLoneIslands(btCollisionObject** bodies, const int* islandIds, int count) override
+	{
+		for (int i = 0; i < count; ++i)
+		{
+			OrderedIsland island;
+			island.id = islandIds[i];
+			island.bodies.push_back(bodies[i]);
+			islands.push_back(island);
+		}
+		loneIslands += count;
+	}
+};
+}  // namespace
+
+// The lone-island runs are an internal shortcut: a callback taking them must see the islands a plain
+// callback sees, in the same order, lone bodies (awake, asleep, resting on the ground with a manifold)
+// mixed with touching stacks.
+TEST(SimulationIslandManager, LoneIslandRunsGiveTheIslandsAndOrderOfOneCallPerIsland)
+{
+	TwoStacks scene;
+	btBoxShape shape(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
+	// Lone boxes before and after the stacks in the object array: in the air (no manifold), one asleep,
+	// and one resting on the ground (a lone body with a manifold, which is not a run's).
+	const btVector3 places[6] = {btVector3(-10, 5, 0), btVector3(-12, 5, 0), btVector3(10, 5, 0),
+	                             btVector3(12, 5, 0),  btVector3(14, 5, 0),  btVector3(-14, btScalar(0.49), 0)};
+	btCollisionObject lone[6];
+	for (int i = 0; i < 6; ++i)
+	{
+		lone[i].setCollisionShape(&shape);
+		lone[i].setCollisionFlags(btCollisionObject::CF_DYNAMIC_OBJECT);
+		TwoStacks::place(lone[i], places[i]);
+	}
+	lone[3].setActivationState(ISLAND_SLEEPING);
+	scene.m_world->removeCollisionObject(&scene.m_stack[1][0]);
+	scene.m_world->removeCollisionObject(&scene.m_stack[1][1]);
+	scene.m_world->removeCollisionObject(&scene.m_stack[1][2]);
+	scene.m_world->addCollisionObject(&lone[0]);
+	scene.m_world->addCollisionObject(&lone[1]);
+	for (int level = 0; level < 3; ++level) scene.m_world->addCollisionObject(&scene.m_stack[1][level]);
+	for (int i = 2; i < 6; ++i) scene.m_world->addCollisionObject(&lone[i]);
+
+	scene.m_world->performDiscreteCollisionDetection();
+	scene.m_islands.updateActivationState(scene.m_world.get(), &scene.m_dispatcher);
+	scene.m_islands.storeIslandActivationState(scene.m_world.get());
+	scene.m_islands.buildIslands(&scene.m_dispatcher, scene.m_world.get());
+	OrderedRecorder plain;
+	scene.m_islands.processIslands(&scene.m_dispatcher, scene.m_world.get(), &plain);
+	OrderedSinkRecorder withRuns;
+	scene.m_islands.processIslands(&scene.m_dispatcher, scene.m_world.get(), &withRuns);
+
+	ASSERT_EQ(plain.islands.size(), 2u + 5u) << "two stacks, five awake lone boxes (the sixth is asleep)";
+	EXPECT_EQ(withRuns.loneIslands, 4) << "the awake boxes in the air; the one on the ground has a manifold";
+	ASSERT_EQ(withRuns.islands.size(), plain.islands.size());
+	for (size_t i = 0; i < plain.islands.size(); ++i) EXPECT_TRUE(withRuns.islands[i] == plain.islands[i]) << i;
+	for (const OrderedIsland& island : plain.islands)
+		EXPECT_EQ(std::find(island.bodies.begin(), island.bodies.end(), &lone[3]), island.bodies.end())
+		    << "the sleeping box is in no island";
+	for (int i = 0; i < 6; ++i) scene.m_world->removeCollisionObject(&lone[i]);
 }

@@ -1,0 +1,149 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The island stage's shortcuts for lone bodies (one body, no manifold): the island manager hands runs of
+// them to the worlds' callback at once, and decides a lone body's sleep in one pass. These tests check
+// that the shortcuts keep the general path's batches and the general path's deactivation timing.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
+#include "DynamicsWorldTestUtil.h"
+#include "btBulletDynamicsCommon.h"
+
+namespace
+{
+// The first step (1-based) after which body is ISLAND_SLEEPING, or 0 if it never is within maxSteps.
+struct SleepSteps
+{
+	int lone = 0, jointed = 0, jointedPartner = 0;
+	bool neverSleepingStayedAwake = true;
+};
+
+SleepSteps stepUntilAsleep(caliber_test::TestWorld& world, int maxSteps)
+{
+	btSphereShape* shape = world.shape<btSphereShape>(btScalar(0.5));
+	// No gravity, no velocity: every body rests, so each sleeps once its resting time passes
+	// gDeactivationTime, whatever island it is in.
+	btRigidBody* lone = world.addBody(shape, 1, btVector3(0, 10, 0));
+	btRigidBody* a = world.addBody(shape, 1, btVector3(10, 10, 0));
+	btRigidBody* b = world.addBody(shape, 1, btVector3(12, 10, 0));
+	world.addJoint<btPoint2PointConstraint>(true, *a, *b, btVector3(1, 0, 0), btVector3(-1, 0, 0));
+	btRigidBody* awake = world.addBody(shape, 1, btVector3(-10, 10, 0));
+	awake->setActivationState(DISABLE_DEACTIVATION);
+	SleepSteps steps;
+	for (int step = 1; step <= maxSteps; ++step)
+	{
+		world.run(1);
+		if (!steps.lone && lone->getActivationState() == ISLAND_SLEEPING) steps.lone = step;
+		if (!steps.jointed && a->getActivationState() == ISLAND_SLEEPING) steps.jointed = step;
+		if (!steps.jointedPartner && b->getActivationState() == ISLAND_SLEEPING) steps.jointedPartner = step;
+		if (awake->getActivationState() != DISABLE_DEACTIVATION) steps.neverSleepingStayedAwake = false;
+	}
+	return steps;
+}
+
+void expectLoneBodySleepsLikeAJointedOne(const SleepSteps& steps)
+{
+	// gDeactivationTime is 2 s: at 60 steps a second a resting body wants to sleep after about 120 steps
+	// and its island sleeps at the next island stage; 110..135 leaves room for the float sum of 1/60.
+	EXPECT_GE(steps.jointed, 110);
+	EXPECT_LE(steps.jointed, 135);
+	EXPECT_EQ(steps.jointedPartner, steps.jointed) << "an island sleeps as a whole";
+	EXPECT_EQ(steps.lone, steps.jointed) << "a lone body (the one-pass decision) sleeps on the general path's step";
+	EXPECT_TRUE(steps.neverSleepingStayedAwake);
+}
+}  // namespace
+
+TEST(IslandStage, LoneBodySleepsOnTheStepOfABodyInAJointedIslandPlainWorld)
+{
+	caliber_test::TestWorld world(btVector3(0, 0, 0));
+	expectLoneBodySleepsLikeAJointedOne(stepUntilAsleep(world, 200));
+}
+
+TEST(IslandStage, LoneBodySleepsOnTheStepOfABodyInAJointedIslandMtWorld)
+{
+	caliber_test::TestWorld world(caliber_test::TestWorld::Multithreaded(), 4, btVector3(0, 0, 0));
+	expectLoneBodySleepsLikeAJointedOne(stepUntilAsleep(world, 200));
+}
+
+// The worlds' callback gathers runs of lone islands into the batches that one processIsland call per island
+// gives: same bodies and joints in the same order, cut at the same places, for several batch sizes, with a
+// lone island that has a joint (to the fixed body) among them.
+TEST(IslandStage, LoneIslandRunsGiveTheBatchesOfOneCallPerIsland)
+{
+	const int numIslands = 8;
+	btSphereShape shape(btScalar(0.5));
+	std::vector<std::unique_ptr<btRigidBody>> bodies;
+	for (int i = 0; i < numIslands; ++i)
+		bodies.emplace_back(
+		    new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(1, 0, &shape, btVector3(1, 1, 1))));
+	btPoint2PointConstraint joint(*bodies[3], btVector3(0, 1, 0));
+	btTypedConstraint* sortedJoints[1] = {&joint};
+	const int jointStart[numIslands + 1] = {0, 0, 0, 0, 1, 1, 1, 1, 1};  // island 3 has the joint
+	btCollisionObject* objects[numIslands];
+	int ids[numIslands];
+	for (int i = 0; i < numIslands; ++i)
+	{
+		objects[i] = bodies[i].get();
+		ids[i] = i;
+	}
+
+	const int noJointStart[1] = {0};
+	for (int batchSize : {1, 3, 5, 128})
+	{
+		for (bool withJoint : {true, false})
+		{
+			btContactSolverInfo info;
+			info.m_minimumSolverBatchSize = batchSize;
+			InplaceSolverIslandCallback perIsland(0, 0), runs(0, 0);
+			for (InplaceSolverIslandCallback* callback : {&perIsland, &runs})
+			{
+				callback->setup(&info, 0);
+				if (withJoint)
+					callback->setConstraints(sortedJoints, 1, jointStart, numIslands);
+				else
+					callback->setConstraints(0, 0, noJointStart, 0);  // as the world passes a step without joints
+			}
+			for (int i = 0; i < numIslands; ++i) perIsland.processIsland(&objects[i], 1, 0, 0, i);
+			runs.processLoneIslands(objects, ids, 4);  // two runs, cut inside a batch
+			runs.processLoneIslands(objects + 4, ids + 4, numIslands - 4);
+			perIsland.flush();
+			runs.flush();
+
+			SCOPED_TRACE(testing::Message() << "batch size " << batchSize << (withJoint ? ", a joint" : ", no joint"));
+			ASSERT_EQ(runs.numBatches(), perIsland.numBatches());
+			for (int b = 0; b < perIsland.numBatches(); ++b)
+			{
+				const InplaceSolverIslandCallback::Batch& x = perIsland.m_batches[b];
+				const InplaceSolverIslandCallback::Batch& y = runs.m_batches[b];
+				EXPECT_EQ(y.firstBody, x.firstBody);
+				EXPECT_EQ(y.numBodies, x.numBodies);
+				EXPECT_EQ(y.firstConstraint, x.firstConstraint);
+				EXPECT_EQ(y.numConstraints, x.numConstraints);
+				EXPECT_EQ(y.numManifolds, 0);
+				EXPECT_EQ(x.numManifolds, 0);
+			}
+			ASSERT_EQ(runs.m_bodies.size(), numIslands);
+			for (int i = 0; i < numIslands; ++i) EXPECT_EQ(runs.m_bodies[i], perIsland.m_bodies[i]);
+			ASSERT_EQ(runs.m_gatheredConstraints.size(), withJoint ? 1 : 0);
+			if (withJoint)
+			{
+				EXPECT_EQ(runs.m_gatheredConstraints[0], &joint);
+			}
+		}
+	}
+	// With batches of 3 items (bodies and joints): {0,1,2}, {3, its joint, 4}, {5,6,7}.
+	btContactSolverInfo info;
+	info.m_minimumSolverBatchSize = 3;
+	InplaceSolverIslandCallback runs(0, 0);
+	runs.setup(&info, 0);
+	runs.setConstraints(sortedJoints, 1, jointStart, numIslands);
+	runs.processLoneIslands(objects, ids, numIslands);
+	runs.flush();
+	ASSERT_EQ(runs.numBatches(), 3);
+	EXPECT_EQ(runs.m_batches[0].numBodies, 3);
+	EXPECT_EQ(runs.m_batches[1].numBodies, 2);
+	EXPECT_EQ(runs.m_batches[1].numConstraints, 1);
+	EXPECT_EQ(runs.m_batches[2].numBodies, 3);
+}
