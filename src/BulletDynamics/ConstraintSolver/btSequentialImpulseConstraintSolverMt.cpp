@@ -12,6 +12,7 @@
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 
 #include <stdint.h>
+#include <string.h>
 
 #include <atomic>
 
@@ -84,7 +85,9 @@ struct MtSolverScratch
 	// order the serial setup applies them.
 	btAlignedObjectArray<int> warmStartFirst;  // per solver body, and one past the last
 	btAlignedObjectArray<int> warmStarts;
-	btAlignedObjectArray<int> warmStartCursor;
+	// Per chunk of the manifolds (kWarmStartChunks) and solver body: its entries in the chunk, then where the
+	// chunk's first entry of that body goes.
+	btAlignedObjectArray<int> warmStartChunkCursor;
 	bool wide;  // the batches are solved by the wide sweep
 	caliber::WideContactRows wideRows;
 	// The split-impulse pass's rows with a push target, listed by chunk of the contact order on the threads.
@@ -363,32 +366,90 @@ struct ApplyWarmStarts : public btIParallelForBody
 	}
 };
 
+// Chunks of the manifolds whose per-body lists are counted and written on the threads. Fixed (not the
+// thread count), so the lists do not depend on the threads.
+const int kWarmStartChunks = 4;
+
+// The manifolds of warm-start chunk c.
+inline void warmStartChunk(int c, int numRowManifolds, int& begin, int& end)
+{
+	begin = int((long long)numRowManifolds * c / kWarmStartChunks);
+	end = int((long long)numRowManifolds * (c + 1) / kWarmStartChunks);
+}
+
+// Each chunk's entries per body (count) and then, from the cursors the calling thread made of them, the
+// entries themselves (write): a chunk touches only its own row of the cursors and its own places.
+struct BuildWarmStartLists : public btIParallelForBody
+{
+	MtSolverScratch* mt;
+	int numBodies;
+	int fixedBodyId;
+	bool write;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const int numRowManifolds = mt->rowManifolds.size();
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			int* cursor = &mt->warmStartChunkCursor[c * numBodies];
+			int begin, end;
+			warmStartChunk(c, numRowManifolds, begin, end);
+			if (!write)
+			{
+				memset(cursor, 0, sizeof(int) * size_t(numBodies));
+				for (int m = begin; m < end; ++m)
+				{
+					const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[m];
+					if (manifold.bodyA != fixedBodyId) ++cursor[manifold.bodyA];
+					if (manifold.bodyB != fixedBodyId) ++cursor[manifold.bodyB];
+				}
+				continue;
+			}
+			int* entries = mt->warmStarts.size() ? &mt->warmStarts[0] : 0;
+			for (int m = begin; m < end; ++m)
+			{
+				const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[m];
+				if (manifold.bodyA != fixedBodyId) entries[cursor[manifold.bodyA]++] = m << 1;
+				if (manifold.bodyB != fixedBodyId) entries[cursor[manifold.bodyB]++] = m << 1 | 1;
+			}
+		}
+	}
+};
+
 // The warm starts of the planned points (mt.points). A manifold's points all have its two bodies and
 // follow each other in the point list, so a body's points in order are its manifolds' points in order:
 // the lists hold manifolds (a quarter of the entries, from the small rowManifolds array). The fixed entry
-// takes none: its impulses would add zeros to zeros (it has no mass and no inertia to turn).
+// takes none: its impulses would add zeros to zeros (it has no mass and no inertia to turn). The lists are
+// a counting sort by body, in chunks of manifolds on the threads: a body's entries from chunk 0 come
+// first, in manifold order, then chunk 1's, ..., so each list is in manifold order.
 void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& pools, int frictionRowsPerContact,
                            int contactBase, int frictionBase, int fixedBodyId)
 {
 	const int numBodies = pools.bodies->size();
-	const int numRowManifolds = mt.rowManifolds.size();
-	caliber::assignScratch(mt.warmStartFirst, numBodies + 1, 0);
-	for (int m = 0; m < numRowManifolds; ++m)
+	caliber::resizeScratch(mt.warmStartFirst, numBodies + 1);
+	caliber::resizeScratch(mt.warmStartChunkCursor, kWarmStartChunks * numBodies);
+	BuildWarmStartLists lists;
+	lists.mt = &mt;
+	lists.numBodies = numBodies;
+	lists.fixedBodyId = fixedBodyId;
+	lists.write = false;
+	btParallelFor(0, kWarmStartChunks, 1, lists);
+	int next = 0;
+	for (int b = 0; b < numBodies; ++b)
 	{
-		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
-		if (manifold.bodyA != fixedBodyId) ++mt.warmStartFirst[manifold.bodyA + 1];
-		if (manifold.bodyB != fixedBodyId) ++mt.warmStartFirst[manifold.bodyB + 1];
+		mt.warmStartFirst[b] = next;
+		for (int c = 0; c < kWarmStartChunks; ++c)
+		{
+			int& cursor = mt.warmStartChunkCursor[c * numBodies + b];
+			const int count = cursor;
+			cursor = next;
+			next += count;
+		}
 	}
-	for (int b = 0; b < numBodies; ++b) mt.warmStartFirst[b + 1] += mt.warmStartFirst[b];
-	caliber::resizeScratch(mt.warmStarts, mt.warmStartFirst[numBodies]);
-	caliber::resizeScratch(mt.warmStartCursor, numBodies);
-	for (int b = 0; b < numBodies; ++b) mt.warmStartCursor[b] = mt.warmStartFirst[b];
-	for (int m = 0; m < numRowManifolds; ++m)
-	{
-		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
-		if (manifold.bodyA != fixedBodyId) mt.warmStarts[mt.warmStartCursor[manifold.bodyA]++] = m << 1;
-		if (manifold.bodyB != fixedBodyId) mt.warmStarts[mt.warmStartCursor[manifold.bodyB]++] = m << 1 | 1;
-	}
+	mt.warmStartFirst[numBodies] = next;
+	caliber::resizeScratch(mt.warmStarts, next);
+	lists.write = true;
+	btParallelFor(0, kWarmStartChunks, 1, lists);
 	ApplyWarmStarts apply;
 	apply.mt = &mt;
 	apply.pools = pools;
