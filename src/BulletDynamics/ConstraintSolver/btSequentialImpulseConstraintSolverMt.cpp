@@ -257,9 +257,10 @@ struct CountPlaces : public btIParallelForBody
 	}
 };
 
-// From each chunk's starts: its manifolds' entries in the lists of manifolds with rows (manifoldFirstRow, rowManifolds), and its planned points in their places in the
-// solve's point list, with their rows' indices. Every value is the serial setup's count at that manifold,
-// and each chunk writes only its own entries, so any split of the chunks writes the same.
+// From each chunk's starts: its manifolds' entries in the lists of manifolds with rows (manifoldFirstRow,
+// rowManifolds), and its planned points in their places in the solve's point list, with their rows'
+// indices. Every value is the serial setup's count at that manifold, and each chunk writes only its own
+// entries, so any split of the chunks writes the same.
 struct PlacePoints : public btIParallelForBody
 {
 	MtSolverScratch* mt;

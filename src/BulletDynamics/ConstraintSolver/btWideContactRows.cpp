@@ -460,7 +460,8 @@ void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batch
 
 template <int W>
 bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
-                const btAlignedObjectArray<int>& batchFirstBlock, int frictionRowsPerContact, int batchBegin, int batchEnd,
+                const btAlignedObjectArray<int>& batchFirstBlock, int frictionRowsPerContact, int batchBegin,
+                int batchEnd,
                 const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
                 const btAlignedObjectArray<int>& manifoldFirstRow, const btAlignedObjectArray<int>& batchPaddingBody,
                 unsigned int solveCount, const btSolverBody* bodies, const btConstraintArray& contacts,
@@ -571,10 +572,12 @@ bool caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
                                     const btConstraintArray& friction)
 {
 	if (lanes == 8)
-		return fillLayout(eight, batchFirstGroup, batchFirstBlock, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
-		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
-	return fillLayout(four, batchFirstGroup, batchFirstBlock, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
-		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
+		return fillLayout(eight, batchFirstGroup, batchFirstBlock, frictionRowsPerContact, batchBegin, batchEnd,
+		                  orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies,
+		                  contacts, friction);
+	return fillLayout(four, batchFirstGroup, batchFirstBlock, frictionRowsPerContact, batchBegin, batchEnd,
+	                  orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies,
+	                  contacts, friction);
 }
 
 btScalar caliber::WideContactRows::sweepNormal(int batch, bool reverse, btSolverBody* bodies,
