@@ -156,6 +156,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup(
 	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	scratch.bounceRows.resize(0);
 	scratch.shockPropagationNeeded = false;
+	scratch.pushRowsListed = false;
 	// Rough upper bound, so the pool grows at most once per new record scene size.
 	m_tmpSolverBodyPool.reserve(numBodies + 1);
 
@@ -368,13 +369,18 @@ void btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySplitImpulseIte
 	BT_PROFILE("solveGroupCacheFriendlySplitImpulseIterations");
 	// A row without a push target starts with no push impulse and is never given one, so only the rows
 	// with a target are visited (in the normal rows' order), instead of every row in every sweep.
+	// The multithreaded solver may have listed them already, on the threads (the same list).
 	const int numContacts = m_tmpSolverContactConstraintPool.size();
-	btAlignedObjectArray<int>& pushRows = caliber::solverScratchOf(*this).pushRows;
-	pushRows.resize(0);
-	for (int j = 0; j < numContacts; ++j)
+	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
+	btAlignedObjectArray<int>& pushRows = scratch.pushRows;
+	if (!scratch.pushRowsListed)
 	{
-		const int index = m_orderTmpConstraintPool[j];
-		if (m_tmpSolverContactConstraintPool[index].m_rhsPenetration != btScalar(0)) pushRows.push_back(index);
+		pushRows.resize(0);
+		for (int j = 0; j < numContacts; ++j)
+		{
+			const int index = m_orderTmpConstraintPool[j];
+			if (m_tmpSolverContactConstraintPool[index].m_rhsPenetration != btScalar(0)) pushRows.push_back(index);
+		}
 	}
 	if (pushRows.size() == 0) return;
 

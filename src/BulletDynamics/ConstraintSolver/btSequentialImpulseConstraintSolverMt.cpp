@@ -12,6 +12,7 @@
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 
 #include <stdint.h>
+#include <string.h>
 
 #include <atomic>
 
@@ -59,9 +60,14 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> manifoldBodies;                 // two per manifold
 	btAlignedObjectArray<int> plannedCount;                   // per manifold
 	btAlignedObjectArray<int> plannedRolling;                 // per manifold: rolling rows of its points
-	btAlignedObjectArray<int> pointStart;                     // per manifold: its first point in points
-	btAlignedObjectArray<int> manifoldRollingStart;           // per manifold: its first rolling row
 	btAlignedObjectArray<caliber::ContactPointRows> planned;  // MANIFOLD_CACHE_SIZE per manifold
+	// Per chunk of kManifoldsPerPlaceTask manifolds (and one past the last): the points, rolling rows and
+	// manifolds with rows before it (counted on the threads, summed in chunk order).
+	struct PlaceChunkStart
+	{
+		int points, rolling, rowManifolds;
+	};
+	btAlignedObjectArray<PlaceChunkStart> placeChunkStart;
 	// Per manifold with rows, in order: what the colouring, the ordering and the warm starts read, in one
 	// small array instead of each manifold's first row (a cache line apiece, a manifold apart).
 	struct RowManifold
@@ -79,9 +85,18 @@ struct MtSolverScratch
 	// order the serial setup applies them.
 	btAlignedObjectArray<int> warmStartFirst;  // per solver body, and one past the last
 	btAlignedObjectArray<int> warmStarts;
-	btAlignedObjectArray<int> warmStartCursor;
+	// Per chunk of the manifolds (kWarmStartChunks) and solver body: its entries in the chunk, then where the
+	// chunk's first entry of that body goes.
+	btAlignedObjectArray<int> warmStartChunkCursor;
 	bool wide;  // the batches are solved by the wide sweep
 	caliber::WideContactRows wideRows;
+	// The split-impulse pass's rows with a push target, listed by chunk of the contact order on the threads.
+	struct PushChunk
+	{
+		btAlignedObjectArray<int> rows;
+		char padding[64];  // two chunks' array headers, written by two threads, on different cache lines
+	};
+	btAlignedObjectArray<PushChunk> pushChunks;
 };
 
 MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
@@ -213,30 +228,79 @@ struct PlanManifolds : public btIParallelForBody
 	}
 };
 
-// Each manifold's planned points into their places in the solve's point list, with their rows' indices
-// (computed from the per-manifold starts, as the serial setup counts them point by point).
+// Manifolds per chunk of the places' count (each index of the two loops below is one chunk).
+const int kManifoldsPerPlaceTask = 256;
+
+// Each chunk's points, rolling rows and manifolds with rows (what the serial setup counts manifold by
+// manifold), into placeChunkStart[chunk + 1]; the calling thread then sums them in chunk order.
+struct CountPlaces : public btIParallelForBody
+{
+	MtSolverScratch* mt;
+	int numManifolds;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int chunk = iBegin; chunk < iEnd; ++chunk)
+		{
+			const int end = btMin((chunk + 1) * kManifoldsPerPlaceTask, numManifolds);
+			MtSolverScratch::PlaceChunkStart sum = {0, 0, 0};
+			for (int i = chunk * kManifoldsPerPlaceTask; i < end; ++i)
+			{
+				const int count = mt->plannedCount[i];
+				if (count == 0) continue;
+				sum.points += count;
+				sum.rolling += mt->plannedRolling[i];
+				++sum.rowManifolds;
+			}
+			mt->placeChunkStart[chunk + 1] = sum;
+		}
+	}
+};
+
+// From each chunk's starts: its manifolds' entries in the lists of manifolds with rows (manifoldFirstRow,
+// rowManifolds), and its planned points in their places in the solve's point list, with their rows'
+// indices. Every value is the serial setup's count at that manifold, and each chunk writes only its own
+// entries, so any split of the chunks writes the same.
 struct PlacePoints : public btIParallelForBody
 {
 	MtSolverScratch* mt;
+	int* manifoldFirstRow;  // the solve's first entry for manifolds with rows
+	int numManifolds;
 	int contactBase;
 	int frictionBase;
+	int rollingBase;
 	int frictionRowsPerContact;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
-		for (int i = iBegin; i < iEnd; ++i)
+		for (int chunk = iBegin; chunk < iEnd; ++chunk)
 		{
-			const int count = mt->plannedCount[i];
-			int rolling = mt->manifoldRollingStart[i];
-			for (int k = 0; k < count; ++k)
+			const MtSolverScratch::PlaceChunkStart& start = mt->placeChunkStart[chunk];
+			int numPoints = start.points, nextRolling = rollingBase + start.rolling, rowManifold = start.rowManifolds;
+			const int end = btMin((chunk + 1) * kManifoldsPerPlaceTask, numManifolds);
+			for (int i = chunk * kManifoldsPerPlaceTask; i < end; ++i)
 			{
-				const int index = mt->pointStart[i] + k;
-				caliber::ContactPointRows& point = mt->points[index];
-				point = mt->planned[i * MANIFOLD_CACHE_SIZE + k];
-				point.contactRow = contactBase + index;
-				point.firstFrictionRow = frictionBase + index * frictionRowsPerContact;
-				point.firstRollingRow = rolling;
-				rolling += caliber::rollingRowsOf(*point.cp);
+				const int count = mt->plannedCount[i];
+				if (count == 0) continue;
+				manifoldFirstRow[rowManifold] = contactBase + numPoints;
+				MtSolverScratch::RowManifold& manifold = mt->rowManifolds[rowManifold++];
+				manifold.bodyA = mt->manifoldBodies[2 * i];
+				manifold.bodyB = mt->manifoldBodies[2 * i + 1];
+				manifold.firstPoint = numPoints;
+				manifold.numPoints = count;
+				int rolling = nextRolling;
+				for (int k = 0; k < count; ++k)
+				{
+					const int index = numPoints + k;
+					caliber::ContactPointRows& point = mt->points[index];
+					point = mt->planned[i * MANIFOLD_CACHE_SIZE + k];
+					point.contactRow = contactBase + index;
+					point.firstFrictionRow = frictionBase + index * frictionRowsPerContact;
+					point.firstRollingRow = rolling;
+					rolling += caliber::rollingRowsOf(*point.cp);
+				}
+				numPoints += count;
+				nextRolling += mt->plannedRolling[i];
 			}
 		}
 	}
@@ -303,32 +367,90 @@ struct ApplyWarmStarts : public btIParallelForBody
 	}
 };
 
+// Chunks of the manifolds whose per-body lists are counted and written on the threads. Fixed (not the
+// thread count), so the lists do not depend on the threads.
+const int kWarmStartChunks = 4;
+
+// The manifolds of warm-start chunk c.
+inline void warmStartChunk(int c, int numRowManifolds, int& begin, int& end)
+{
+	begin = int((long long)numRowManifolds * c / kWarmStartChunks);
+	end = int((long long)numRowManifolds * (c + 1) / kWarmStartChunks);
+}
+
+// Each chunk's entries per body (count) and then, from the cursors the calling thread made of them, the
+// entries themselves (write): a chunk touches only its own row of the cursors and its own places.
+struct BuildWarmStartLists : public btIParallelForBody
+{
+	MtSolverScratch* mt;
+	int numBodies;
+	int fixedBodyId;
+	bool write;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const int numRowManifolds = mt->rowManifolds.size();
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			int* cursor = &mt->warmStartChunkCursor[c * numBodies];
+			int begin, end;
+			warmStartChunk(c, numRowManifolds, begin, end);
+			if (!write)
+			{
+				memset(cursor, 0, sizeof(int) * size_t(numBodies));
+				for (int m = begin; m < end; ++m)
+				{
+					const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[m];
+					if (manifold.bodyA != fixedBodyId) ++cursor[manifold.bodyA];
+					if (manifold.bodyB != fixedBodyId) ++cursor[manifold.bodyB];
+				}
+				continue;
+			}
+			int* entries = mt->warmStarts.size() ? &mt->warmStarts[0] : 0;
+			for (int m = begin; m < end; ++m)
+			{
+				const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[m];
+				if (manifold.bodyA != fixedBodyId) entries[cursor[manifold.bodyA]++] = m << 1;
+				if (manifold.bodyB != fixedBodyId) entries[cursor[manifold.bodyB]++] = m << 1 | 1;
+			}
+		}
+	}
+};
+
 // The warm starts of the planned points (mt.points). A manifold's points all have its two bodies and
 // follow each other in the point list, so a body's points in order are its manifolds' points in order:
 // the lists hold manifolds (a quarter of the entries, from the small rowManifolds array). The fixed entry
-// takes none: its impulses would add zeros to zeros (it has no mass and no inertia to turn).
+// takes none: its impulses would add zeros to zeros (it has no mass and no inertia to turn). The lists are
+// a counting sort by body, in chunks of manifolds on the threads: a body's entries from chunk 0 come
+// first, in manifold order, then chunk 1's, ..., so each list is in manifold order.
 void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& pools, int frictionRowsPerContact,
                            int contactBase, int frictionBase, int fixedBodyId)
 {
 	const int numBodies = pools.bodies->size();
-	const int numRowManifolds = mt.rowManifolds.size();
-	caliber::assignScratch(mt.warmStartFirst, numBodies + 1, 0);
-	for (int m = 0; m < numRowManifolds; ++m)
+	caliber::resizeScratch(mt.warmStartFirst, numBodies + 1);
+	caliber::resizeScratch(mt.warmStartChunkCursor, kWarmStartChunks * numBodies);
+	BuildWarmStartLists lists;
+	lists.mt = &mt;
+	lists.numBodies = numBodies;
+	lists.fixedBodyId = fixedBodyId;
+	lists.write = false;
+	btParallelFor(0, kWarmStartChunks, 1, lists);
+	int next = 0;
+	for (int b = 0; b < numBodies; ++b)
 	{
-		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
-		if (manifold.bodyA != fixedBodyId) ++mt.warmStartFirst[manifold.bodyA + 1];
-		if (manifold.bodyB != fixedBodyId) ++mt.warmStartFirst[manifold.bodyB + 1];
+		mt.warmStartFirst[b] = next;
+		for (int c = 0; c < kWarmStartChunks; ++c)
+		{
+			int& cursor = mt.warmStartChunkCursor[c * numBodies + b];
+			const int count = cursor;
+			cursor = next;
+			next += count;
+		}
 	}
-	for (int b = 0; b < numBodies; ++b) mt.warmStartFirst[b + 1] += mt.warmStartFirst[b];
-	caliber::resizeScratch(mt.warmStarts, mt.warmStartFirst[numBodies]);
-	caliber::resizeScratch(mt.warmStartCursor, numBodies);
-	for (int b = 0; b < numBodies; ++b) mt.warmStartCursor[b] = mt.warmStartFirst[b];
-	for (int m = 0; m < numRowManifolds; ++m)
-	{
-		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
-		if (manifold.bodyA != fixedBodyId) mt.warmStarts[mt.warmStartCursor[manifold.bodyA]++] = m << 1;
-		if (manifold.bodyB != fixedBodyId) mt.warmStarts[mt.warmStartCursor[manifold.bodyB]++] = m << 1 | 1;
-	}
+	mt.warmStartFirst[numBodies] = next;
+	caliber::resizeScratch(mt.warmStarts, next);
+	lists.write = true;
+	btParallelFor(0, kWarmStartChunks, 1, lists);
 	ApplyWarmStarts apply;
 	apply.mt = &mt;
 	apply.pools = pools;
@@ -596,20 +718,33 @@ const int kOrderBlocksPerTask = 16;
 // The serial solver's contact order (btSequentialImpulseConstraintSolver::solveGroupCacheFriendlySetup),
 // which the split-impulse pass follows: blocks of consecutive manifolds, interleaved as in a batch. A
 // block's rows are its manifolds' rows, so its place in the order is known and any split writes the same.
+// Each index of the loop is a chunk of kOrderBlocksPerTask blocks, which also lists its rows with a push
+// target in that order (the scan the push pass would make, chunk by chunk): joined in chunk order, the
+// lists are the push pass's list, whatever the split of the chunks.
 struct WriteContactOrder : public btIParallelForBody
 {
 	const caliber::SolverScratch* scratch;
 	int* order;
 	const int* manifolds;  // 0, 1, 2, ...
+	const btConstraintArray* contacts;
+	MtSolverScratch::PushChunk* pushChunks;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
 		const btAlignedObjectArray<int>& manifoldFirstRow = scratch->manifoldFirstRow;
 		const int numManifolds = manifoldFirstRow.size() - 1;
-		const int first = iBegin * kOrderBlockManifolds;
-		const int end = btMin(iEnd * kOrderBlockManifolds, numManifolds);
-		writeBatchRows(manifolds + first, end - first, manifoldFirstRow, scratch->solveCount,
-		               order + manifoldFirstRow[first] - manifoldFirstRow[0]);
+		for (int chunk = iBegin; chunk < iEnd; ++chunk)
+		{
+			const int first = chunk * kOrderBlocksPerTask * kOrderBlockManifolds;
+			const int end = btMin(first + kOrderBlocksPerTask * kOrderBlockManifolds, numManifolds);
+			int* chunkOrder = order + manifoldFirstRow[first] - manifoldFirstRow[0];
+			writeBatchRows(manifolds + first, end - first, manifoldFirstRow, scratch->solveCount, chunkOrder);
+			btAlignedObjectArray<int>& pushRows = pushChunks[chunk].rows;
+			pushRows.resize(0);
+			const int numRows = manifoldFirstRow[end] - manifoldFirstRow[first];
+			for (int k = 0; k < numRows; ++k)
+				if ((*contacts)[chunkOrder[k]].m_rhsPenetration != btScalar(0)) pushRows.push_back(chunkOrder[k]);
+		}
 	}
 };
 
@@ -707,8 +842,6 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	caliber::resizeScratch(mt.plannedCount, numManifolds);
 	caliber::resizeScratch(mt.planned, numManifolds * MANIFOLD_CACHE_SIZE);
 	caliber::resizeScratch(mt.plannedRolling, numManifolds);
-	caliber::resizeScratch(mt.pointStart, numManifolds);
-	caliber::resizeScratch(mt.manifoldRollingStart, numManifolds);
 	mt.rowManifolds.resize(0);
 	if (numManifolds == 0) return;
 	// The solver bodies of the manifolds' objects: those already in the pool found on the threads; the
@@ -736,38 +869,48 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	plan.info = &infoGlobal;
 	btParallelFor(0, numManifolds, kManifoldsPerTask, plan);
 
-	// Where each manifold's points and rows go: counted in manifold order here, written on the threads.
+	// Where each manifold's points and rows go: counted chunk by chunk on the threads, the chunks summed in
+	// order here, then written chunk by chunk on the threads (the serial setup's counts, manifold by
+	// manifold).
 	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	const int contactBase = m_tmpSolverContactConstraintPool.size();
 	const int frictionBase = m_tmpSolverContactFrictionConstraintPool.size();
-	int numPoints = 0;
-	int nextRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
-	for (int i = 0; i < numManifolds; ++i)
+	const int rollingBase = m_tmpSolverContactRollingFrictionConstraintPool.size();
+	const int numChunks = (numManifolds + kManifoldsPerPlaceTask - 1) / kManifoldsPerPlaceTask;
+	caliber::resizeScratch(mt.placeChunkStart, numChunks + 1);
+	CountPlaces countPlaces;
+	countPlaces.mt = &mt;
+	countPlaces.numManifolds = numManifolds;
+	btParallelFor(0, numChunks, 1, countPlaces);
+	// placeChunkStart[c + 1] holds chunk c's own counts; the running sums make it chunk c + 1's start.
+	MtSolverScratch::PlaceChunkStart total = {0, 0, 0};
+	mt.placeChunkStart[0] = total;
+	for (int c = 1; c <= numChunks; ++c)
 	{
-		mt.pointStart[i] = numPoints;
-		mt.manifoldRollingStart[i] = nextRolling;
-		const int count = mt.plannedCount[i];
-		if (count == 0) continue;
-		scratch.manifoldFirstRow.push_back(contactBase + numPoints);
-		MtSolverScratch::RowManifold& rowManifold = mt.rowManifolds.expandNonInitializing();
-		rowManifold.bodyA = mt.manifoldBodies[2 * i];
-		rowManifold.bodyB = mt.manifoldBodies[2 * i + 1];
-		rowManifold.firstPoint = numPoints;
-		rowManifold.numPoints = count;
-		numPoints += count;
-		nextRolling += mt.plannedRolling[i];
+		MtSolverScratch::PlaceChunkStart& start = mt.placeChunkStart[c];
+		total.points += start.points;
+		total.rolling += start.rolling;
+		total.rowManifolds += start.rowManifolds;
+		start = total;
 	}
+	const int numPoints = total.points;
+	const int firstManifoldRow = scratch.manifoldFirstRow.size();
+	caliber::resizeScratch(scratch.manifoldFirstRow, firstManifoldRow + total.rowManifolds);
+	caliber::resizeScratch(mt.rowManifolds, total.rowManifolds);
 	caliber::resizeScratch(mt.points, numPoints);
 	caliber::resizeScratch(m_tmpSolverContactConstraintPool, contactBase + numPoints);
 	caliber::resizeScratch(m_tmpSolverContactFrictionConstraintPool, frictionBase + numPoints * frictionRowsPerContact);
-	caliber::resizeScratch(m_tmpSolverContactRollingFrictionConstraintPool, nextRolling);
+	caliber::resizeScratch(m_tmpSolverContactRollingFrictionConstraintPool, rollingBase + total.rolling);
 	if (numPoints == 0) return;
 	PlacePoints place;
 	place.mt = &mt;
+	place.manifoldFirstRow = &scratch.manifoldFirstRow[firstManifoldRow];
+	place.numManifolds = numManifolds;
 	place.contactBase = contactBase;
 	place.frictionBase = frictionBase;
+	place.rollingBase = rollingBase;
 	place.frictionRowsPerContact = frictionRowsPerContact;
-	btParallelFor(0, numManifolds, kManifoldsPerTask, place);
+	btParallelFor(0, numChunks, 1, place);
 
 	FillPointRows fill;
 	fill.pools.bodies = &m_tmpSolverBodyPool;
@@ -824,12 +967,24 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		caliber::resizeScratch(m_orderTmpConstraintPool, m_tmpSolverContactConstraintPool.size());
 		caliber::resizeScratch(mt.byBody, numManifoldsWithRows);  // scratch here: the manifolds in order
 		for (int m = 0; m < numManifoldsWithRows; ++m) mt.byBody[m] = m;
+		const int chunkManifolds = kOrderBlocksPerTask * kOrderBlockManifolds;
+		const int numChunks = (numManifoldsWithRows + chunkManifolds - 1) / chunkManifolds;
+		if (mt.pushChunks.size() < numChunks) mt.pushChunks.resize(numChunks);
 		WriteContactOrder write;
 		write.scratch = &scratch;
 		write.order = &m_orderTmpConstraintPool[0];
 		write.manifolds = &mt.byBody[0];
-		btParallelFor(0, (numManifoldsWithRows + kOrderBlockManifolds - 1) / kOrderBlockManifolds, kOrderBlocksPerTask,
-		              write);
+		write.contacts = &m_tmpSolverContactConstraintPool;
+		write.pushChunks = &mt.pushChunks[0];
+		btParallelFor(0, numChunks, 1, write);
+		// The push pass's list, in the contact order (the same list its own scan would make).
+		scratch.pushRows.resize(0);
+		for (int c = 0; c < numChunks; ++c)
+		{
+			const btAlignedObjectArray<int>& rows = mt.pushChunks[c].rows;
+			for (int k = 0; k < rows.size(); ++k) scratch.pushRows.push_back(rows[k]);
+		}
+		scratch.pushRowsListed = true;
 	}
 
 	const btConstraintArray& contacts = m_tmpSolverContactConstraintPool;

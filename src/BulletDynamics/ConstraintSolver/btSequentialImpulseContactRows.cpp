@@ -732,11 +732,18 @@ struct FindBounces : public btIParallelForBody
 	const btConstraintArray* contacts;
 	const btContactSolverInfo* info;
 
+	// Each index is a chunk of kRowsPerBounceTask rows with its own list, so that any split of the loop
+	// (a user's scheduler may ignore the grain) fills every list once.
 	void forLoop(int iBegin, int iEnd) const override
 	{
-		caliber::SolverScratch::BounceChunk& chunk = scratch->bounceChunks[iBegin / kRowsPerBounceTask];
-		chunk.bounces.resize(0);
-		chunk.massRatio = findBounces(iBegin, iEnd, *bodies, *contacts, *info, chunk.bounces);
+		const int numRows = contacts->size();
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			caliber::SolverScratch::BounceChunk& chunk = scratch->bounceChunks[c];
+			chunk.bounces.resize(0);
+			chunk.massRatio = findBounces(c * kRowsPerBounceTask, btMin(numRows, (c + 1) * kRowsPerBounceTask),
+			                              *bodies, *contacts, *info, chunk.bounces);
+		}
 	}
 };
 }  // namespace
@@ -761,7 +768,7 @@ void caliber::findBouncesAndMassRatios(SolverScratch& scratch, btAlignedObjectAr
 	find.bodies = &bodies;
 	find.contacts = &contacts;
 	find.info = &infoGlobal;
-	btParallelFor(0, numRows, kRowsPerBounceTask, find);
+	btParallelFor(0, chunks, 1, find);
 	for (int c = 0; c < chunks; ++c)
 	{
 		const SolverScratch::BounceChunk& chunk = scratch.bounceChunks[c];

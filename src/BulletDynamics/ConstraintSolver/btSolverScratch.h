@@ -51,6 +51,9 @@ struct SolverScratch
 	btAlignedObjectArray<int> manifoldFirstRow;
 	/// Contact rows (in solving order) with a split-impulse target: the only ones the push pass visits.
 	btAlignedObjectArray<int> pushRows;
+	/// Set by the multithreaded solver's setup when it has already listed pushRows (on the threads, in the
+	/// contact order it wrote): the push pass then skips its own scan of every row. Cleared by each setup.
+	bool pushRowsListed = false;
 	/// Contact rows whose restitution applies if they are met this step (in setup order).
 	btAlignedObjectArray<SolverBounceRow> bounceRows;
 	/// findBouncesAndMassRatios on the task scheduler's threads: what each chunk of rows found.

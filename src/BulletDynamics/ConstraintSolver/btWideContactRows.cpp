@@ -11,6 +11,7 @@
 
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "LinearMath/btScratchArray.h"
+#include "LinearMath/btThreads.h"
 
 #if defined(BT_USE_SSE) && (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
 #define CALIBER_WIDE_EIGHT_LANES 1
@@ -383,55 +384,84 @@ bool eightLanesAvailable()
 }
 
 
+// Batches per task of the plan's count of blocks.
+const int kBatchesPerPlanTask = 8;
+
+// The blocks of each group of batches [iBegin, iEnd) (its manifolds' most points), and each batch's total
+// in batchFirstBlock[b + 1] (made a running sum afterwards): a batch reads and writes only its own.
+template <int W>
+struct CountGroupBlocks : public btIParallelForBody
+{
+	caliber::WideLayout<W>* layout;
+	const btAlignedObjectArray<int>* batchFirstGroup;
+	const btAlignedObjectArray<int>* orderedManifolds;
+	const btAlignedObjectArray<int>* batchManifoldBegin;
+	const btAlignedObjectArray<int>* manifoldFirstRow;
+	int* batchBlocks;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const btAlignedObjectArray<int>& firstRow = *manifoldFirstRow;
+		for (int b = iBegin; b < iEnd; ++b)
+		{
+			int g = (*batchFirstGroup)[b], total = 0;
+			const int batchEnd = (*batchManifoldBegin)[b + 1];
+			for (int first = (*batchManifoldBegin)[b]; first < batchEnd; first += W, ++g)
+			{
+				const int last = btMin(first + W, batchEnd);
+				int most = 0;
+				for (int i = first; i < last; ++i)
+				{
+					const int m = (*orderedManifolds)[i];
+					most = btMax(most, firstRow[m + 1] - firstRow[m]);
+				}
+				layout->groups[g].numBlocks = most;
+				total += most;
+			}
+			batchBlocks[b + 1] = total;
+		}
+	}
+};
+
+// A batch's groups follow from its manifold count; their blocks (the most points of their manifolds) are
+// counted batch by batch on the threads, and each batch's first block is their running sum (fill then
+// gives the groups their first blocks, batch by batch on any thread).
 template <int W>
 void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batchFirstGroup,
-                const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
-                const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows)
+                btAlignedObjectArray<int>& batchFirstBlock, const btAlignedObjectArray<int>& orderedManifolds,
+                const btAlignedObjectArray<int>& batchManifoldBegin, const btAlignedObjectArray<int>& manifoldFirstRow,
+                int frictionRows)
 {
 	const int numBatches = batchManifoldBegin.size() - 1;
 	caliber::resizeScratch(batchFirstGroup, numBatches + 1);
-	int numGroups = 0, numBlocks = 0;
+	caliber::resizeScratch(batchFirstBlock, numBatches + 1);
+	int numGroups = 0;
 	for (int b = 0; b < numBatches; ++b)
 	{
 		batchFirstGroup[b] = numGroups;
-		for (int first = batchManifoldBegin[b]; first < batchManifoldBegin[b + 1]; first += W)
-		{
-			const int last = btMin(first + W, batchManifoldBegin[b + 1]);
-			int most = 0;
-			for (int i = first; i < last; ++i)
-			{
-				const int m = orderedManifolds[i];
-				most = btMax(most, manifoldFirstRow[m + 1] - manifoldFirstRow[m]);
-			}
-			++numGroups;
-			numBlocks += most;
-		}
+		numGroups += (batchManifoldBegin[b + 1] - batchManifoldBegin[b] + W - 1) / W;
 	}
 	batchFirstGroup[numBatches] = numGroups;
 	caliber::resizeScratch(layout.groups, numGroups);
+	batchFirstBlock[0] = 0;
+	CountGroupBlocks<W> count;
+	count.layout = &layout;
+	count.batchFirstGroup = &batchFirstGroup;
+	count.orderedManifolds = &orderedManifolds;
+	count.batchManifoldBegin = &batchManifoldBegin;
+	count.manifoldFirstRow = &manifoldFirstRow;
+	count.batchBlocks = &batchFirstBlock[0];
+	btParallelFor(0, numBatches, kBatchesPerPlanTask, count);
+	for (int b = 0; b < numBatches; ++b) batchFirstBlock[b + 1] += batchFirstBlock[b];
+	const int numBlocks = batchFirstBlock[numBatches];
 	caliber::resizeScratch(layout.normalBlocks, numBlocks);
 	caliber::resizeScratch(layout.frictionBlocks, numBlocks * frictionRows);
-	// The groups' first blocks, in order (fill then runs batch by batch on any thread).
-	int nextBlock = 0, g = 0;
-	for (int b = 0; b < numBatches; ++b)
-		for (int first = batchManifoldBegin[b]; first < batchManifoldBegin[b + 1]; first += W, ++g)
-		{
-			const int last = btMin(first + W, batchManifoldBegin[b + 1]);
-			int most = 0;
-			for (int i = first; i < last; ++i)
-			{
-				const int m = orderedManifolds[i];
-				most = btMax(most, manifoldFirstRow[m + 1] - manifoldFirstRow[m]);
-			}
-			layout.groups[g].firstBlock = nextBlock;
-			layout.groups[g].numBlocks = most;
-			nextBlock += most;
-		}
 }
 
 template <int W>
 bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
-                int frictionRowsPerContact, int batchBegin, int batchEnd,
+                const btAlignedObjectArray<int>& batchFirstBlock, int frictionRowsPerContact, int batchBegin,
+                int batchEnd,
                 const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
                 const btAlignedObjectArray<int>& manifoldFirstRow, const btAlignedObjectArray<int>& batchPaddingBody,
                 unsigned int solveCount, const btSolverBody* bodies, const btConstraintArray& contacts,
@@ -441,9 +471,12 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 	for (int b = batchBegin; b < batchEnd; ++b)
 	{
 		int first = batchManifoldBegin[b];
+		int nextBlock = batchFirstBlock[b];
 		for (int g = batchFirstGroup[b]; g < batchFirstGroup[b + 1]; ++g, first += W)
 		{
 			caliber::WideGroupT<W>& group = layout.groups[g];
+			group.firstBlock = nextBlock;
+			nextBlock += group.numBlocks;
 			const int lanes = btMin(W, batchManifoldBegin[b + 1] - first);
 			for (int k = 0; k < W; ++k)
 			{
@@ -524,9 +557,11 @@ void caliber::WideContactRows::plan(const btAlignedObjectArray<int>& orderedMani
 	frictionRowsPerContact = frictionRows;
 	lanes = wideContactLanes();
 	if (lanes == 8)
-		planLayout(eight, batchFirstGroup, orderedManifolds, batchManifoldBegin, manifoldFirstRow, frictionRows);
+		planLayout(eight, batchFirstGroup, batchFirstBlock, orderedManifolds, batchManifoldBegin, manifoldFirstRow,
+		           frictionRows);
 	else
-		planLayout(four, batchFirstGroup, orderedManifolds, batchManifoldBegin, manifoldFirstRow, frictionRows);
+		planLayout(four, batchFirstGroup, batchFirstBlock, orderedManifolds, batchManifoldBegin, manifoldFirstRow,
+		           frictionRows);
 }
 
 bool caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
@@ -537,10 +572,12 @@ bool caliber::WideContactRows::fill(int batchBegin, int batchEnd, const btAligne
                                     const btConstraintArray& friction)
 {
 	if (lanes == 8)
-		return fillLayout(eight, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
-		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
-	return fillLayout(four, batchFirstGroup, frictionRowsPerContact, batchBegin, batchEnd, orderedManifolds,
-		           batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies, contacts, friction);
+		return fillLayout(eight, batchFirstGroup, batchFirstBlock, frictionRowsPerContact, batchBegin, batchEnd,
+		                  orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies,
+		                  contacts, friction);
+	return fillLayout(four, batchFirstGroup, batchFirstBlock, frictionRowsPerContact, batchBegin, batchEnd,
+	                  orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount, bodies,
+	                  contacts, friction);
 }
 
 btScalar caliber::WideContactRows::sweepNormal(int batch, bool reverse, btSolverBody* bodies,

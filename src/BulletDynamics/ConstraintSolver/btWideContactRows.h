@@ -73,19 +73,21 @@ struct WideContactRows
 	WideLayout<4> four;
 	WideLayout<8> eight;
 	btAlignedObjectArray<int> batchFirstGroup;  // per batch, and one past the last
+	btAlignedObjectArray<int> batchFirstBlock;  // per batch, and one past the last: its groups' first block
 	int frictionRowsPerContact = 1;
 
 	/// Chooses the lanes (wideContactLanes) and sizes the arrays for the batches' manifolds:
 	/// batchManifoldBegin[b] .. batchManifoldBegin[b + 1] index orderedManifolds, whose rows are
-	/// manifoldFirstRow[m] .. manifoldFirstRow[m + 1].
+	/// manifoldFirstRow[m] .. manifoldFirstRow[m + 1]. Counts the groups' blocks on the task scheduler's
+	/// threads (batch by batch: the same plan at any thread count).
 	void plan(const btAlignedObjectArray<int>& orderedManifolds, const btAlignedObjectArray<int>& batchManifoldBegin,
 	          const btAlignedObjectArray<int>& manifoldFirstRow, int frictionRows);
 
-	/// Fills the groups and blocks of batches [batchBegin, batchEnd) (any order, any thread): points
-	/// rotated by solveCount as in the scalar sweep, padding lanes on the batch's padding body. False when
-	/// a row's second linear direction is not its first one negated (the blocks keep only the first; every
-	/// row Caliber's set-up makes has it, a subclass's convertContacts may not): the solve must then be
-	/// swept row by row.
+	/// Fills the groups (their first blocks too) and blocks of batches [batchBegin, batchEnd) (any order,
+	/// any thread): points rotated by solveCount as in the scalar sweep, padding lanes on the batch's
+	/// padding body. False when a row's second linear direction is not its first one negated (the blocks
+	/// keep only the first; every row Caliber's set-up makes has it, a subclass's convertContacts may
+	/// not): the solve must then be swept row by row.
 	bool fill(int batchBegin, int batchEnd, const btAlignedObjectArray<int>& orderedManifolds,
 	          const btAlignedObjectArray<int>& batchManifoldBegin, const btAlignedObjectArray<int>& manifoldFirstRow,
 	          const btAlignedObjectArray<int>& batchPaddingBody, unsigned int solveCount, const btSolverBody* bodies,

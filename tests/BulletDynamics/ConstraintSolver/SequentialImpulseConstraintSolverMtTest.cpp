@@ -11,6 +11,7 @@
 
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
+#include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
 #include "TestThreadsUtil.h"
@@ -276,4 +277,236 @@ TEST(SequentialImpulseConstraintSolverMt, BatchedSetupGivesTheSplitImpulsePassTh
 	EXPECT_TRUE(batched);
 	ASSERT_GT(serialOrder.size(), size_t(100));  // a few points for each of about 100 manifolds
 	EXPECT_EQ(batchedOrder, serialOrder);
+}
+
+namespace
+{
+// A slab of 12 x 12 columns of two boxes each, side by side (touching) on a ground box, in the plain world:
+// about 800 manifolds and 3000 contact rows in one solve, so that the batched setup's loops over chunks of
+// manifolds and rows have several chunks. Every other column is sunk 0.1 m into the ground and into
+// itself (deeper than the split-impulse threshold of 0.04 m: those contacts get push rows), the others
+// rest exactly; the boxes bounce (restitution 0.6, falling at 3 m/s after the first step) and every
+// other column's top box is ten times heavier (a heavy-on-light contact).
+struct Slab
+{
+	static const int kSide = 12;
+
+	Slab()
+	    : dispatcher(&config),
+	      world(&dispatcher, &broadphase, &solver, &config),
+	      ground(btVector3(40, 1, 40)),
+	      box(btVector3(kHalf, kHalf, kHalf))
+	{
+		world.setGravity(btVector3(0, -10, 0));
+		add(0, &ground, btVector3(0, -1, 0));
+		for (int i = 0; i < kSide; ++i)
+			for (int j = 0; j < kSide; ++j)
+			{
+				const bool sunk = (i + j) % 2 == 0;
+				const btScalar sink = sunk ? btScalar(0.1) : btScalar(0);
+				add(1, &box, btVector3(btScalar(i), kHalf - sink, btScalar(j)));
+				add(sunk ? 10 : 1, &box, btVector3(btScalar(i), 3 * kHalf - 2 * sink, btScalar(j)));
+			}
+		world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+		for (size_t b = 1; b < bodies.size(); ++b) bodies[b]->setLinearVelocity(btVector3(0, -3, 0));
+	}
+	~Slab()
+	{
+		for (auto& body : bodies) world.removeRigidBody(body.get());
+	}
+	void add(btScalar mass, btCollisionShape* shape, const btVector3& at)
+	{
+		btVector3 inertia(0, 0, 0);
+		if (mass != 0) shape->calculateLocalInertia(mass, inertia);
+		btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+		info.m_startWorldTransform.setOrigin(at);
+		info.m_restitution = btScalar(0.6);
+		bodies.emplace_back(new btRigidBody(info));
+		bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+		world.addRigidBody(bodies.back().get());
+	}
+
+	btDefaultCollisionConfiguration config;
+	btCollisionDispatcher dispatcher;
+	btDbvtBroadphase broadphase;
+	btSequentialImpulseConstraintSolver solver;
+	btDiscreteDynamicsWorld world;
+	btBoxShape ground, box;
+	std::vector<std::unique_ptr<btRigidBody>> bodies;
+};
+
+// Sets up one solve of every manifold of a world and keeps what the split-impulse pass and the
+// restitution pass will read.
+template <class Solver>
+class SetupOf : public Solver
+{
+public:
+	void setup(btDiscreteDynamicsWorld& world)
+	{
+		btDispatcher* dispatcher = world.getDispatcher();
+		btCollisionObjectArray& objects = world.getCollisionObjectArray();
+		this->solveGroupCacheFriendlySetup(&objects[0], objects.size(), dispatcher->getInternalManifoldPointer(),
+		                                   dispatcher->getNumManifolds(), nullptr, 0, world.getSolverInfo(), nullptr);
+	}
+	caliber::SolverScratch& scratch() const { return caliber::solverScratchOf(*this); }
+	const btConstraintArray& contacts() const { return this->m_tmpSolverContactConstraintPool; }
+	const btAlignedObjectArray<int>& contactOrder() const { return this->m_orderTmpConstraintPool; }
+	bool batched() const { return this->m_useBatching; }  // the Mt solver's only
+};
+
+// The bits of the bounce rows a setup listed.
+std::vector<btScalar> bounceBits(const caliber::SolverScratch& scratch)
+{
+	std::vector<btScalar> bits;
+	for (int k = 0; k < scratch.bounceRows.size(); ++k)
+	{
+		const caliber::SolverBounceRow& bounce = scratch.bounceRows[k];
+		bits.push_back(btScalar(bounce.row));
+		bits.push_back(bounce.startVelocity);
+		bits.push_back(bounce.targetVelocity);
+		bits.push_back(bounce.targetPushVelocity);
+	}
+	return bits;
+}
+}  // namespace
+
+TEST(SequentialImpulseConstraintSolverMt, BatchedSetupListsThePushRowsTheSerialScanFinds)
+{
+	// The batched setup lists the split-impulse pass's rows (those with a push target, in the contact
+	// order) chunk by chunk on the threads while it writes the order; the pass then skips its own scan.
+	// The list must be the scan's: the rows of the order whose push target is not zero, in that order.
+	for (int threads : {1, 2, 3})
+	{
+		caliber_test::ScopedTaskScheduler scheduler(threads);
+		Slab slab;
+		ASSERT_TRUE(slab.world.getSolverInfo().m_splitImpulse);
+		SetupOf<btSequentialImpulseConstraintSolverMt> mt;
+		mt.setup(slab.world);
+		ASSERT_TRUE(mt.batched());
+		ASSERT_GT(slab.dispatcher.getNumManifolds(), 3 * 128);  // several chunks of 128 manifolds
+		EXPECT_TRUE(mt.scratch().pushRowsListed);
+		std::vector<int> expected, listed;
+		for (int k = 0; k < mt.contactOrder().size(); ++k)
+		{
+			const int row = mt.contactOrder()[k];
+			if (mt.contacts()[row].m_rhsPenetration != btScalar(0)) expected.push_back(row);
+		}
+		for (int k = 0; k < mt.scratch().pushRows.size(); ++k) listed.push_back(mt.scratch().pushRows[k]);
+		// The sunk columns' contacts have push rows, the resting ones none.
+		EXPECT_GT(expected.size(), size_t(100)) << threads << " threads";
+		EXPECT_LT(expected.size(), size_t(mt.contacts().size())) << threads << " threads";
+		EXPECT_EQ(listed, expected) << threads << " threads";
+	}
+}
+
+TEST(SequentialImpulseConstraintSolverMt, PushPassScansItsRowsWhenTheSetupDidNotListThem)
+{
+	// A serial setup leaves the list to the pass (and clears what a batched setup of the same solver
+	// listed before).
+	caliber_test::ScopedTaskScheduler scheduler(2);
+	Slab slab;
+	SetupOf<btSequentialImpulseConstraintSolver> serial;
+	serial.scratch().pushRowsListed = true;  // as a previous batched solve would have left it
+	serial.setup(slab.world);
+	EXPECT_FALSE(serial.scratch().pushRowsListed);
+}
+
+TEST(SequentialImpulseConstraintSolverMt, SolvesWithSeveralChunksOfManifoldsGiveTheBitsOfOneThreadAnySplit)
+{
+	// The places of the points and rows are counted chunk by chunk (256 manifolds) and the push rows listed
+	// by chunk of the contact order: a world whose one solve has several chunks of each ends with the same
+	// bits with the pool at 1, 2 and 3 threads, with a scheduler that cuts every loop unevenly, and with the
+	// serial contact setup.
+	ColourEverySolve colourAll;
+	auto run = [](int threads, bool uneven, bool serialSetup) {
+		caliber_test::UnevenSplitScheduler unevenScheduler;
+		std::unique_ptr<caliber_test::ScopedTaskScheduler> pool;
+		if (uneven)
+			btSetTaskScheduler(&unevenScheduler);
+		else
+			pool.reset(new caliber_test::ScopedTaskScheduler(threads));
+		std::vector<btScalar> bits;
+		{
+			btDefaultCollisionConfiguration config;
+			// The serial narrowphase: btCollisionDispatcherMt keeps a log per chunk of its grain, which a
+			// scheduler that ignores the grain does not respect (not what this test is about).
+			btCollisionDispatcher dispatcher(&config);
+			btDbvtBroadphase broadphase;
+			btConstraintSolverPoolMt solverPool(BT_MAX_THREAD_COUNT);
+			std::unique_ptr<CheckedMtSolver> solver(serialSetup ? new SerialSetupMtSolver() : new CheckedMtSolver());
+			btDiscreteDynamicsWorldMt world(&dispatcher, &broadphase, &solverPool, solver.get(), &config);
+			world.setGravity(btVector3(0, -10, 0));
+			btBoxShape ground(btVector3(40, 1, 40)), box(btVector3(kHalf, kHalf, kHalf));
+			std::vector<std::unique_ptr<btRigidBody>> bodies;
+			auto add = [&](btScalar mass, btCollisionShape* shape, const btVector3& at) {
+				btVector3 inertia(0, 0, 0);
+				if (mass != 0) shape->calculateLocalInertia(mass, inertia);
+				btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+				info.m_startWorldTransform.setOrigin(at);
+				info.m_restitution = btScalar(0.6);
+				bodies.emplace_back(new btRigidBody(info));
+				bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+				world.addRigidBody(bodies.back().get());
+			};
+			add(0, &ground, btVector3(0, -1, 0));
+			for (int i = 0; i < Slab::kSide; ++i)
+				for (int j = 0; j < Slab::kSide; ++j)
+				{
+					const btScalar sink = (i + j) % 2 == 0 ? btScalar(0.1) : btScalar(0);
+					add(1, &box, btVector3(btScalar(i), kHalf - sink, btScalar(j)));
+					add(1, &box, btVector3(btScalar(i), 3 * kHalf - 2 * sink, btScalar(j)));
+				}
+			for (int step = 0; step < 6; ++step) world.stepSimulation(btScalar(1) / 60, 1, btScalar(1) / 60);
+			EXPECT_GT(solver->colouredSolves, 0);
+			EXPECT_EQ(solver->invalidSolves, 0);
+			bits = caliber_test::bodyStateBits(bodies);
+			for (auto& body : bodies) world.removeRigidBody(body.get());
+		}
+		if (uneven) btSetTaskScheduler(0);
+		return bits;
+	};
+	const std::vector<btScalar> reference = run(1, false, true);
+	const struct
+	{
+		int threads;
+		bool uneven;
+	} cases[] = {{1, false}, {2, false}, {3, false}, {2, true}};
+	for (const auto& c : cases)
+	{
+		const std::vector<btScalar> bits = run(c.threads, c.uneven, false);
+		ASSERT_EQ(bits.size(), reference.size());
+		EXPECT_EQ(0, std::memcmp(bits.data(), reference.data(), bits.size() * sizeof(btScalar)))
+		    << c.threads << " threads" << (c.uneven ? ", uneven split" : "");
+	}
+}
+
+TEST(SequentialImpulseConstraintSolverMt, BounceRowsAreTheSerialPassesForAnySplitOfTheLoop)
+{
+	// findBouncesAndMassRatios lists the bounce rows of chunks of 256 rows on the threads: each loop index is
+	// one chunk, so a scheduler that ignores the grain (Bullet's interface allows it) still fills each
+	// chunk's list once and the joined list is the serial pass's, bit for bit.
+	std::vector<btScalar> serialBits;
+	bool serialShock = false;
+	{
+		Slab slab;  // no scheduler: the serial pass
+		SetupOf<btSequentialImpulseConstraintSolver> serial;
+		serial.setup(slab.world);
+		ASSERT_GT(serial.contacts().size(), 3 * 256);
+		serialBits = bounceBits(serial.scratch());
+		serialShock = serial.scratch().shockPropagationNeeded;
+	}
+	EXPECT_GT(serialBits.size(), size_t(4 * 100));  // the falling boxes bounce
+	EXPECT_TRUE(serialShock);                       // the heavy top boxes
+	caliber_test::UnevenSplitScheduler uneven;
+	btSetTaskScheduler(&uneven);
+	{
+		Slab slab;
+		SetupOf<btSequentialImpulseConstraintSolver> split;
+		split.setup(slab.world);
+		const std::vector<btScalar> bits = bounceBits(split.scratch());
+		ASSERT_EQ(bits.size(), serialBits.size());
+		EXPECT_EQ(0, std::memcmp(bits.data(), serialBits.data(), bits.size() * sizeof(btScalar)));
+		EXPECT_EQ(split.scratch().shockPropagationNeeded, serialShock);
+	}
+	btSetTaskScheduler(0);
 }
