@@ -445,8 +445,9 @@ public:
 		bool ok = c.nonFinite == 0 && c.minY > btScalar(0.9);
 		const std::string verdict = displacedVerdict(displaced, frames, kSettledFrames, ok);
 		line =
-		    format("more than 0.1 m from rest: %d/%d (%s); top at %.3f (rest 29.0), non-finite %d", displaced, c.bodies,
-		           verdict.c_str(), double(dynamicBodies().back()->getCenterOfMassPosition().y()), c.nonFinite);
+		    format("more than 0.1 m from rest: %d/%d (%s); top at %.3f (rest 29.0), max speed %.3f, non-finite %d",
+		           displaced, c.bodies, verdict.c_str(), double(dynamicBodies().back()->getCenterOfMassPosition().y()),
+		           double(c.maxSpeed), c.nonFinite);
 		return ok;
 	}
 };

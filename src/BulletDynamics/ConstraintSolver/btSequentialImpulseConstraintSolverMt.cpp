@@ -11,12 +11,14 @@
 // and it stays zero).
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
 
 #include <atomic>
 
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/ConstraintSolver/btContactColouring.h"
 #include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
@@ -36,17 +38,12 @@ btBatchedConstraints::BatchingMethod btSequentialImpulseConstraintSolverMt::s_jo
 
 namespace
 {
-// Colours a body can take; manifolds that find all of them taken at one of their bodies go to a last,
-// serial phase.
-const int kColours = 32;
-
 // The Mt solver's own per-solve state (beside Bullet's class), reused from solve to solve.
 struct MtSolverScratch
 {
-	btAlignedObjectArray<uint32_t> bodyColours;  // per solver body: the colours its manifolds took
-	btAlignedObjectArray<int> manifoldColour;    // per manifold of the solve
-	btAlignedObjectArray<int> colourCount;       // manifolds per colour (kColours + 1: the serial one)
-	btAlignedObjectArray<int> colourRows;        // contact rows per colour
+	caliber::ContactColouring colouring;    // each manifold's colour
+	btAlignedObjectArray<int> colourCount;  // manifolds per colour
+	btAlignedObjectArray<int> colourRows;   // contact rows per colour
 	btAlignedObjectArray<int> colourCursor;
 	btAlignedObjectArray<int> orderedManifolds;  // manifolds colour by colour
 	btAlignedObjectArray<int> bodyOrder;         // counting sort by first moving body
@@ -138,13 +135,6 @@ void writeBatchRows(const int* manifolds, int numManifolds, const btAlignedObjec
 				*rows++ = first + (rotated < count ? rotated : rotated - count);
 			}
 	}
-}
-
-int lowestFreeColour(uint32_t taken)
-{
-	for (int c = 0; c < kColours; ++c)
-		if (!(taken & (uint32_t(1) << c))) return c;
-	return kColours;
 }
 
 // Rows and bodies per task of the parallel write-back.
@@ -597,30 +587,26 @@ struct BatchSweep : public btIParallelForBody
 
 namespace
 {
-// Greedy colouring in manifold order: each manifold takes the lowest colour neither of its moving bodies
-// has (the fixed entry is shared freely).
-void colourManifolds(MtSolverScratch& mt, int numSolverBodies, int fixedBodyId)
+// The colours, level by level up the stacks (btContactColouring.h; the fixed entry joins any colour),
+// and each colour's manifolds and rows.
+void colourManifolds(MtSolverScratch& mt, const btSolverBody* bodies, int numSolverBodies, int fixedBodyId)
 {
 	const int numRowManifolds = mt.rowManifolds.size();
-	caliber::assignScratch(mt.bodyColours, numSolverBodies, 0);
-	caliber::resizeScratch(mt.manifoldColour, numRowManifolds);
-	caliber::assignScratch(mt.colourCount, kColours + 1, 0);
-	caliber::assignScratch(mt.colourRows, kColours + 1, 0);
+	static_assert(sizeof(MtSolverScratch::RowManifold) % sizeof(int) == 0 &&
+	                  offsetof(MtSolverScratch::RowManifold, bodyB) ==
+	                      offsetof(MtSolverScratch::RowManifold, bodyA) + sizeof(int),
+	              "the colouring reads a manifold's two bodies as consecutive ints");
+	mt.colouring.colour(&mt.rowManifolds[0].bodyA, int(sizeof(MtSolverScratch::RowManifold) / sizeof(int)),
+	                    numRowManifolds, bodies, numSolverBodies, fixedBodyId,
+	                    caliber::solveUpDirection(bodies, numSolverBodies));
+	const int numColours = mt.colouring.numColours();
+	const btAlignedObjectArray<int>& manifoldColour = mt.colouring.manifoldColour();
+	caliber::assignScratch(mt.colourCount, numColours, 0);
+	caliber::assignScratch(mt.colourRows, numColours, 0);
 	for (int m = 0; m < numRowManifolds; ++m)
 	{
-		const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[m];
-		const int a = manifold.bodyA, b = manifold.bodyB;
-		const uint32_t takenA = a == fixedBodyId ? 0u : mt.bodyColours[a];
-		const uint32_t takenB = b == fixedBodyId ? 0u : mt.bodyColours[b];
-		const int colour = lowestFreeColour(takenA | takenB);
-		if (colour < kColours)
-		{
-			if (a != fixedBodyId) mt.bodyColours[a] |= uint32_t(1) << colour;
-			if (b != fixedBodyId) mt.bodyColours[b] |= uint32_t(1) << colour;
-		}
-		mt.manifoldColour[m] = colour;
-		++mt.colourCount[colour];
-		mt.colourRows[colour] += manifold.numPoints;
+		++mt.colourCount[manifoldColour[m]];
+		mt.colourRows[manifoldColour[m]] += mt.rowManifolds[m].numPoints;
 	}
 }
 
@@ -635,24 +621,26 @@ void orderManifoldsByColourAndBody(MtSolverScratch& mt, int numSolverBodies, int
 	caliber::resizeScratch(mt.byBody, numRowManifolds);
 	for (int m = 0; m < numRowManifolds; ++m)
 		mt.byBody[mt.bodyOrder[firstMovingBody(mt.rowManifolds[m], fixedBodyId)]++] = m;
-	caliber::resizeScratch(mt.colourCursor, kColours + 1);
+	const int numColours = mt.colourCount.size();
+	caliber::resizeScratch(mt.colourCursor, numColours);
 	int start = 0;
-	for (int c = 0; c <= kColours; ++c)
+	for (int c = 0; c < numColours; ++c)
 	{
 		mt.colourCursor[c] = start;
 		start += mt.colourCount[c];
 	}
+	const btAlignedObjectArray<int>& manifoldColour = mt.colouring.manifoldColour();
 	caliber::resizeScratch(mt.orderedManifolds, numRowManifolds);
 	for (int k = 0; k < numRowManifolds; ++k)
 	{
 		const int m = mt.byBody[k];
-		mt.orderedManifolds[mt.colourCursor[mt.manifoldColour[m]]++] = m;
+		mt.orderedManifolds[mt.colourCursor[manifoldColour[m]]++] = m;
 	}
 }
 
 // Batches: whole manifolds, at least minBatchSize rows, and about a sixteenth of the colour, so that every
-// thread finds work; the last colour (the manifolds no colour was left for) is one batch. One phase per
-// colour.
+// thread finds work; a colour's batches but its last hold whole groups of the wide sweep (eight manifolds:
+// a group with fewer sweeps padding lanes). One phase per colour.
 // Writes the row lists of batches [iBegin, iEnd): each batch's place in the list is known beforehand (its
 // rows are its manifolds' rows), so any split of the batches writes the same list.
 struct WriteBatchRows : public btIParallelForBody
@@ -673,6 +661,8 @@ struct WriteBatchRows : public btIParallelForBody
 	}
 };
 
+const int kManifoldsPerWideGroup = 8;
+
 void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scratch, int minBatchSize,
                         btBatchedConstraints& batched)
 {
@@ -680,18 +670,18 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 	int nextManifold = 0;
 	int nextRow = batched.m_constraintIndices.size();
 	mt.batchManifoldBegin.resize(0);
-	for (int c = 0; c <= kColours; ++c)
+	for (int c = 0; c < mt.colourCount.size(); ++c)
 	{
 		if (mt.colourCount[c] == 0) continue;
 		const int phaseBegin = batched.m_batches.size();
-		const int targetRows =
-		    c == kColours ? mt.colourRows[c] : btMax(btMax(1, minBatchSize), (mt.colourRows[c] + 15) / 16);
+		const int targetRows = btMax(btMax(1, minBatchSize), (mt.colourRows[c] + 15) / 16);
 		int batchRows = 0;
 		int batchFirstManifold = nextManifold;
 		for (int k = 0; k < mt.colourCount[c]; ++k)
 		{
 			batchRows += mt.rowManifolds[mt.orderedManifolds[nextManifold++]].numPoints;
-			if (batchRows < targetRows && k + 1 < mt.colourCount[c]) continue;
+			const bool wholeGroups = (nextManifold - batchFirstManifold) % kManifoldsPerWideGroup == 0;
+			if ((batchRows < targetRows || !wholeGroups) && k + 1 < mt.colourCount[c]) continue;
 			mt.batchManifoldBegin.push_back(batchFirstManifold);
 			batched.m_batches.push_back(btBatchedConstraints::Range(nextRow, nextRow + batchRows));
 			nextRow += batchRows;
@@ -1003,7 +993,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 			manifold.numPoints = scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
 		}
 	}
-	colourManifolds(mt, numSolverBodies, m_fixedBodyId);
+	colourManifolds(mt, &m_tmpSolverBodyPool[0], numSolverBodies, m_fixedBodyId);
 	orderManifoldsByColourAndBody(mt, numSolverBodies, m_fixedBodyId);
 	buildColourBatches(mt, scratch, s_minBatchSize, batched);
 
