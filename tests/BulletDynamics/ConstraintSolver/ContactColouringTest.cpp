@@ -18,6 +18,7 @@
 #include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
+#include "MtSolverTestUtil.h"
 #include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
@@ -272,12 +273,8 @@ struct Stack
 	std::vector<std::unique_ptr<btRigidBody>> bodies;
 };
 
-struct ColourEverySolve
-{
-	int saved = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
-	ColourEverySolve() { btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1; }
-	~ColourEverySolve() { btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = saved; }
-};
+// Every solve coloured, for the length of a test.
+using ColourEverySolve = caliber_test::ScopedManifoldBatchingThreshold;
 }  // namespace
 
 TEST(ContactColouring, ColumnsOfTwelveBoxesComeToRestWithTheSameBitsAtAnyThreadCount)

@@ -14,6 +14,7 @@
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
+#include "MtSolverTestUtil.h"
 #include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
@@ -146,13 +147,8 @@ struct Pyramid
 	std::vector<std::unique_ptr<btRigidBody>> bodies;
 };
 
-// Sets the threshold for the length of a test (the pyramid has about 100 manifolds).
-struct ColourEverySolve
-{
-	int saved = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
-	ColourEverySolve() { btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1; }
-	~ColourEverySolve() { btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = saved; }
-};
+// Every solve coloured, for the length of a test.
+using ColourEverySolve = caliber_test::ScopedManifoldBatchingThreshold;
 }  // namespace
 
 TEST(SequentialImpulseConstraintSolverMt, ColouringPutsEveryContactRowInOneBatchAndNoMovingBodyInTwoBatchesOfAColour)
@@ -281,6 +277,20 @@ TEST(SequentialImpulseConstraintSolverMt, BatchedSetupGivesTheSplitImpulsePassTh
 
 namespace
 {
+// A body of the slab below: bouncy (restitution 0.6) and never put to sleep.
+void addSlabBody(btDiscreteDynamicsWorld& world, std::vector<std::unique_ptr<btRigidBody>>& bodies, btScalar mass,
+                 btCollisionShape* shape, const btVector3& at)
+{
+	btVector3 inertia(0, 0, 0);
+	if (mass != 0) shape->calculateLocalInertia(mass, inertia);
+	btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
+	info.m_startWorldTransform.setOrigin(at);
+	info.m_restitution = btScalar(0.6);
+	bodies.emplace_back(new btRigidBody(info));
+	bodies.back()->setActivationState(DISABLE_DEACTIVATION);
+	world.addRigidBody(bodies.back().get());
+}
+
 // A slab of 12 x 12 columns of two boxes each, side by side (touching) on a ground box, in the plain world:
 // about 800 manifolds and 3000 contact rows in one solve, so that the batched setup's loops over chunks of
 // manifolds and rows have several chunks. Every other column is sunk 0.1 m into the ground and into
@@ -316,14 +326,7 @@ struct Slab
 	}
 	void add(btScalar mass, btCollisionShape* shape, const btVector3& at)
 	{
-		btVector3 inertia(0, 0, 0);
-		if (mass != 0) shape->calculateLocalInertia(mass, inertia);
-		btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
-		info.m_startWorldTransform.setOrigin(at);
-		info.m_restitution = btScalar(0.6);
-		bodies.emplace_back(new btRigidBody(info));
-		bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-		world.addRigidBody(bodies.back().get());
+		addSlabBody(world, bodies, mass, shape, at);
 	}
 
 	btDefaultCollisionConfiguration config;
@@ -428,9 +431,9 @@ TEST(SequentialImpulseConstraintSolverMt, SolvesWithSeveralChunksOfManifoldsGive
 		std::vector<btScalar> bits;
 		{
 			btDefaultCollisionConfiguration config;
-			// The serial narrowphase: btCollisionDispatcherMt keeps a log per chunk of its grain, which a
-			// scheduler that ignores the grain does not respect (not what this test is about).
-			btCollisionDispatcher dispatcher(&config);
+			// The Mt narrowphase too: its loop runs over chunk numbers, so a scheduler that ignores the grain
+			// gives it the same pairs per chunk.
+			btCollisionDispatcherMt dispatcher(&config, 40);
 			btDbvtBroadphase broadphase;
 			btConstraintSolverPoolMt solverPool(BT_MAX_THREAD_COUNT);
 			std::unique_ptr<CheckedMtSolver> solver(serialSetup ? new SerialSetupMtSolver() : new CheckedMtSolver());
@@ -439,14 +442,7 @@ TEST(SequentialImpulseConstraintSolverMt, SolvesWithSeveralChunksOfManifoldsGive
 			btBoxShape ground(btVector3(40, 1, 40)), box(btVector3(kHalf, kHalf, kHalf));
 			std::vector<std::unique_ptr<btRigidBody>> bodies;
 			auto add = [&](btScalar mass, btCollisionShape* shape, const btVector3& at) {
-				btVector3 inertia(0, 0, 0);
-				if (mass != 0) shape->calculateLocalInertia(mass, inertia);
-				btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, shape, inertia);
-				info.m_startWorldTransform.setOrigin(at);
-				info.m_restitution = btScalar(0.6);
-				bodies.emplace_back(new btRigidBody(info));
-				bodies.back()->setActivationState(DISABLE_DEACTIVATION);
-				world.addRigidBody(bodies.back().get());
+				addSlabBody(world, bodies, mass, shape, at);
 			};
 			add(0, &ground, btVector3(0, -1, 0));
 			for (int i = 0; i < Slab::kSide; ++i)

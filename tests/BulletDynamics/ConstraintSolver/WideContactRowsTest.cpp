@@ -14,6 +14,7 @@
 #include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
+#include "MtSolverTestUtil.h"
 #include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
@@ -122,13 +123,11 @@ struct World
 // as it was found afterwards.
 struct ColourEverySolve
 {
-	int savedThreshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
+	caliber_test::ScopedManifoldBatchingThreshold colourAll;
 	bool savedWide = caliber::wideContactRowsEnabled();
 	int savedLanes = caliber::wideContactLanes() == 4 && caliber::wideContactEightLanesAvailable() ? 4 : 0;
-	ColourEverySolve() { btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1; }
 	~ColourEverySolve()
 	{
-		btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = savedThreshold;
 		caliber::setWideContactRowsEnabled(savedWide);
 		caliber::setWideContactLanes(savedLanes);
 	}

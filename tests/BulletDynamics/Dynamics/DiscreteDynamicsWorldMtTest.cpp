@@ -18,6 +18,7 @@
 #include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
 #include "btBulletDynamicsCommon.h"
+#include "../ConstraintSolver/MtSolverTestUtil.h"
 
 namespace
 {
@@ -264,11 +265,9 @@ TEST(DiscreteDynamicsWorldMt, TheMtSolverColoursOnlyLargeSolvesAndIsThePlainSolv
 	// The scene's pile is one island of more than 250 manifolds: the Mt world's solver colours it (another
 	// Gauss-Seidel order, so other bits than the plain world's), and below the threshold the Mt world is
 	// the plain world, bit for bit.
-	const int threshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
 	EXPECT_NE(singleThreadedHash(WorldSetup::Mt), singleThreadedHash());
-	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 1 << 30;
+	caliber_test::ScopedManifoldBatchingThreshold neverColour(1 << 30);
 	EXPECT_EQ(singleThreadedHash(WorldSetup::Mt), singleThreadedHash());
-	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = threshold;
 }
 
 TEST(DiscreteDynamicsWorldMt, TwoWorldsSteppedAtOnceFromTwoThreadsKeepTheirBits)
