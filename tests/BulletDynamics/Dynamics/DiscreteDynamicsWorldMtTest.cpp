@@ -4,6 +4,7 @@
 // threads, with every scheduler of the build, also when the scheduler changes between steps.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -22,6 +23,33 @@
 
 namespace
 {
+// Saves btSequentialImpulseConstraintSolverMt's static knobs (shared by every test in the process) and
+// puts them back at the end of the scope, also when an ASSERT leaves early.
+class ScopedMtSolverKnobs
+{
+public:
+	ScopedMtSolverKnobs() = default;
+	~ScopedMtSolverKnobs()
+	{
+		btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = m_threshold;
+		btSequentialImpulseConstraintSolverMt::s_minBatchSize = m_minBatch;
+		btSequentialImpulseConstraintSolverMt::s_maxBatchSize = m_maxBatch;
+		btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = m_nested;
+		btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod = m_contactMethod;
+		btSequentialImpulseConstraintSolverMt::s_jointBatchingMethod = m_jointMethod;
+	}
+	ScopedMtSolverKnobs(const ScopedMtSolverKnobs&) = delete;
+	ScopedMtSolverKnobs& operator=(const ScopedMtSolverKnobs&) = delete;
+
+private:
+	int m_threshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
+	int m_minBatch = btSequentialImpulseConstraintSolverMt::s_minBatchSize;
+	int m_maxBatch = btSequentialImpulseConstraintSolverMt::s_maxBatchSize;
+	bool m_nested = btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops;
+	btBatchedConstraints::BatchingMethod m_contactMethod = btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod;
+	btBatchedConstraints::BatchingMethod m_jointMethod = btSequentialImpulseConstraintSolverMt::s_jointBatchingMethod;
+};
+
 enum class WorldSetup
 {
 	Plain,  // btDiscreteDynamicsWorld with btCollisionDispatcher and btSequentialImpulseConstraintSolver
@@ -329,22 +357,21 @@ TEST(DiscreteDynamicsWorldMt, TheMtWorldHasBulletsMtIslandManagerAndSolverPool)
 	EXPECT_EQ(islands->getIslandDispatchFunction(), &btSimulationIslandManagerMt::serialIslandDispatch);
 	islands->setMinimumSolverBatchSize(-4);
 	EXPECT_EQ(islands->getMinimumSolverBatchSize(), 1);
-	// The solver's knobs are accepted; they are put back for the other tests.
-	const int threshold = btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching;
-	const int minBatch = btSequentialImpulseConstraintSolverMt::s_minBatchSize;
-	const int maxBatch = btSequentialImpulseConstraintSolverMt::s_maxBatchSize;
-	const btBatchedConstraints::BatchingMethod method = btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod;
+	// The solver's knobs are accepted (they change how a large island is cut into batches, so the state
+	// may differ from the default knobs' but stays finite); they are put back for the other tests.
+	ScopedMtSolverKnobs knobs;
 	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = 100;
 	btSequentialImpulseConstraintSolverMt::s_minBatchSize = 30;
 	btSequentialImpulseConstraintSolverMt::s_maxBatchSize = 60;
 	btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = true;
 	btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod = btBatchedConstraints::BATCHING_METHOD_SPATIAL_GRID_3D;
 	scene.step(5);
-	btSequentialImpulseConstraintSolverMt::s_minimumContactManifoldsForBatching = threshold;
-	btSequentialImpulseConstraintSolverMt::s_minBatchSize = minBatch;
-	btSequentialImpulseConstraintSolverMt::s_maxBatchSize = maxBatch;
-	btSequentialImpulseConstraintSolverMt::s_contactBatchingMethod = method;
-	btSequentialImpulseConstraintSolverMt::s_allowNestedParallelForLoops = false;
+	const btCollisionObjectArray& objects = scene.world().getCollisionObjectArray();
+	for (int i = 0; i < objects.size(); ++i)
+	{
+		const btVector3& origin = objects[i]->getWorldTransform().getOrigin();
+		EXPECT_TRUE(std::isfinite(origin.x()) && std::isfinite(origin.y()) && std::isfinite(origin.z())) << i;
+	}
 }
 
 namespace
