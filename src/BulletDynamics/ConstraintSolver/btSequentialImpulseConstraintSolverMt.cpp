@@ -16,8 +16,14 @@
 #include <string.h>
 
 #include <atomic>
+#include <thread>
+
+#if defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
 
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/ConstraintSolver/btBatchDependencies.h"
 #include "BulletDynamics/ConstraintSolver/btContactColouring.h"
 #include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
@@ -87,6 +93,33 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> warmStartChunkCursor;
 	bool wide;  // the batches are solved by the wide sweep
 	caliber::WideContactRows wideRows;
+	// The sweep without a wait per colour (see solveSingleIteration): each batch's dependencies, the items
+	// (runs of a colour's batches in one pass) in the order the threads claim them, the claim counter, and
+	// per item (pass, batch) the loop that finished it.
+	bool dependentSweep = false;
+	caliber::BatchDependencies dependencies;
+	struct SweepItem
+	{
+		int pass, batchBegin, batchEnd;
+	};
+	btAlignedObjectArray<SweepItem> sweepItems;
+	struct DoneFlag
+	{
+		std::atomic<unsigned> loop{0};
+		DoneFlag() {}
+		DoneFlag(const DoneFlag& other) : loop(other.loop.load(std::memory_order_relaxed)) {}
+		DoneFlag& operator=(const DoneFlag& other)
+		{
+			loop.store(other.loop.load(std::memory_order_relaxed), std::memory_order_relaxed);
+			return *this;
+		}
+	};
+	btAlignedObjectArray<DoneFlag> itemDone;
+	unsigned sweepLoop = 0;  // loops posted, to tell this loop's finished items from earlier loops'
+	// The claim counter, on a cache line of its own (the threads write it; the flags above are read often).
+	char claimPaddingBefore[64];
+	std::atomic<int> claimNext{0};
+	char claimPaddingAfter[64];
 	// The split-impulse pass's rows with a push target, listed by chunk of the contact order on the threads.
 	struct PushChunk
 	{
@@ -583,6 +616,121 @@ struct BatchSweep : public btIParallelForBody
 		return residual;
 	}
 };
+
+#if defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)
+inline void spinPause() { _mm_pause(); }
+#else
+inline void spinPause() {}
+#endif
+
+// Waits until this loop has finished an item: a few pauses, then yields (the machine may have more threads
+// than cores, and the thread that claimed the item may be waiting for a core).
+void waitUntilDone(const MtSolverScratch::DoneFlag& flag, unsigned loop)
+{
+	for (int attempt = 0; flag.loop.load(std::memory_order_acquire) != loop; ++attempt)
+	{
+		if (attempt < 64)
+			spinPause();
+		else
+			std::this_thread::yield();
+	}
+}
+
+// One iteration's sweep of the batches in one parallel loop: every task claims items (a run of a colour's
+// batches in one pass) in the sweep's order from one counter, and solves each batch of an item once the
+// items it depends on are finished. A claimed item is run by a task that has started, and depends only on
+// items claimed before it, so no task waits for work that no running task will do, whatever the scheduler
+// (one thread running the tasks one after another: the first task claims everything).
+struct DependentSweep : public btIParallelForBody
+{
+	const BatchSweep* passes[2];  // normal rows, friction rows; residuals go to the item's place
+	MtSolverScratch* mt;
+	caliber::BatchDependencies::Sweep sweeps[2];
+	int numBatches;
+	unsigned loop;
+
+	void forLoop(int, int) const override
+	{
+		const MtSolverScratch::SweepItem* items = &mt->sweepItems[0];
+		const int numItems = mt->sweepItems.size();
+		MtSolverScratch::DoneFlag* done = &mt->itemDone[0];
+		for (;;)
+		{
+			const int i = mt->claimNext.fetch_add(1, std::memory_order_relaxed);
+			if (i >= numItems) return;
+			const MtSolverScratch::SweepItem& item = items[i];
+			const caliber::BatchDependencies::Sweep sweep = sweeps[item.pass];
+			for (int b = item.batchBegin; b < item.batchEnd; ++b)
+			{
+				const int* dependencies = mt->dependencies.list(sweep, b);
+				const int count = mt->dependencies.count(sweep, b);
+				for (int d = 0; d < count; ++d) waitUntilDone(done[dependencies[d]], loop);
+				passes[item.pass]->forLoop(b, b + 1);
+				done[item.pass * numBatches + b].loop.store(loop, std::memory_order_release);
+			}
+		}
+	}
+};
+
+// The sweep of one iteration with DependentSweep; adds the batches' residuals to residual as the loop per
+// colour adds them (pass by pass, colour by colour in the sweep's order, batch by batch).
+btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, bool reverse, int numThreads,
+                               btScalar residual)
+{
+	const btBatchedConstraints& batched = *sweep.batched;
+	const int numBatches = batched.m_batches.size();
+	const int numPhases = batched.m_phases.size();
+	// The items: each colour cut into one run of batches per thread, as the loop per colour cut it.
+	mt.sweepItems.resize(0);
+	for (int pass = 0; pass < 2; ++pass)
+		for (int k = 0; k < numPhases; ++k)
+		{
+			const btBatchedConstraints::Range& phase =
+			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+			const int grain = (phase.end - phase.begin + numThreads - 1) / numThreads;
+			for (int b = phase.begin; b < phase.end; b += grain)
+			{
+				MtSolverScratch::SweepItem item;
+				item.pass = pass;
+				item.batchBegin = b;
+				item.batchEnd = btMin(b + grain, phase.end);
+				mt.sweepItems.push_back(item);
+			}
+		}
+	caliber::resizeScratch(mt.batchResidual, 2 * numBatches);
+	BatchSweep normal = sweep, friction = sweep;
+	normal.pass = 0;
+	normal.firstBatch = 0;
+	normal.batchResidual = &mt.batchResidual[0];
+	friction.pass = 1;
+	friction.firstBatch = 0;
+	friction.batchResidual = &mt.batchResidual[numBatches];
+	if (++mt.sweepLoop == 0)
+	{
+		// After 2^32 loops: no flag may hold the new loop's number from long ago.
+		for (int i = 0; i < mt.itemDone.size(); ++i) mt.itemDone[i].loop.store(0, std::memory_order_relaxed);
+		mt.sweepLoop = 1;
+	}
+	mt.claimNext.store(0, std::memory_order_relaxed);
+	DependentSweep body;
+	body.passes[0] = &normal;
+	body.passes[1] = &friction;
+	body.mt = &mt;
+	body.sweeps[0] = reverse ? caliber::BatchDependencies::kBackwardNormal : caliber::BatchDependencies::kForwardNormal;
+	body.sweeps[1] =
+	    reverse ? caliber::BatchDependencies::kBackwardFriction : caliber::BatchDependencies::kForwardFriction;
+	body.numBatches = numBatches;
+	body.loop = mt.sweepLoop;
+	btParallelFor(0, btMin(numThreads, mt.sweepItems.size()), 1, body);
+	for (int pass = 0; pass < 2; ++pass)
+		for (int k = 0; k < numPhases; ++k)
+		{
+			const btBatchedConstraints::Range& phase =
+			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+			for (int b = phase.begin; b < phase.end; ++b) residual += mt.batchResidual[pass * numBatches + b];
+		}
+	return residual;
+}
 }  // namespace
 
 namespace
@@ -996,6 +1144,19 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	colourManifolds(mt, &m_tmpSolverBodyPool[0], numSolverBodies, m_fixedBodyId);
 	orderManifoldsByColourAndBody(mt, numSolverBodies, m_fixedBodyId);
 	buildColourBatches(mt, scratch, s_minBatchSize, batched);
+	// Each batch's dependencies in the four sweeps (before the fixed entry's copies: each batch has its own).
+	mt.dependentSweep = !caliber::colourSweepBarriers();
+	if (mt.dependentSweep)
+	{
+		static_assert(offsetof(MtSolverScratch::RowManifold, bodyB) ==
+		                  offsetof(MtSolverScratch::RowManifold, bodyA) + sizeof(int),
+		              "the dependencies read a manifold's two bodies as consecutive ints");
+		mt.dependencies.build(&mt.batchManifoldBegin[0], batched.m_batches.size(), &mt.orderedManifolds[0],
+		                      &mt.rowManifolds[0].bodyA, int(sizeof(MtSolverScratch::RowManifold) / sizeof(int)),
+		                      numSolverBodies, m_fixedBodyId);
+		const int numItems = 2 * batched.m_batches.size();
+		if (mt.itemDone.size() < numItems) mt.itemDone.resize(numItems);
+	}
 
 	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
 	// rolling rows; the wide sweep's padding lanes use it too (a zero body when there is no fixed entry).
@@ -1083,21 +1244,24 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(int iterati
 	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
 	const int numPhases = batched.m_phases.size();
 	MtSolverScratch& mt = mtScratchOf(*this);
-	for (int pass = 0; pass < 2; ++pass)
-	{
-		sweep.pass = pass;
-		for (int k = 0; k < numPhases; ++k)
+	if (mt.dependentSweep)
+		residual = sweepWithDependencies(mt, sweep, reverse, numThreads, residual);
+	else
+		for (int pass = 0; pass < 2; ++pass)
 		{
-			const btBatchedConstraints::Range& phase =
-			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
-			const int numBatches = phase.end - phase.begin;
-			caliber::resizeScratch(mt.batchResidual, numBatches);
-			sweep.firstBatch = phase.begin;
-			sweep.batchResidual = &mt.batchResidual[0];
-			btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);
-			for (int b = 0; b < numBatches; ++b) residual += mt.batchResidual[b];
+			sweep.pass = pass;
+			for (int k = 0; k < numPhases; ++k)
+			{
+				const btBatchedConstraints::Range& phase =
+				    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+				const int numBatches = phase.end - phase.begin;
+				caliber::resizeScratch(mt.batchResidual, numBatches);
+				sweep.firstBatch = phase.begin;
+				sweep.batchResidual = &mt.batchResidual[0];
+				btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);
+				for (int b = 0; b < numBatches; ++b) residual += mt.batchResidual[b];
+			}
 		}
-	}
 	// After the last sweep of the contacts (the iterations stop at m_numIterations for contacts, or earlier
 	// when the residual is small enough), the wide blocks' impulses go to their rows.
 	if (mt.wide &&
