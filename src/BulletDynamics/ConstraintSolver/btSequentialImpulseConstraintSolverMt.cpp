@@ -101,8 +101,10 @@ struct MtSolverScratch
 	struct SweepItem
 	{
 		int pass, batchBegin, batchEnd;
+		int run;  // the item is its colour's run-th run in this pass
 	};
 	btAlignedObjectArray<SweepItem> sweepItems;
+	btAlignedObjectArray<int> itemOfBatch;  // per (pass, batch): its item
 	struct DoneFlag
 	{
 		std::atomic<unsigned> loop{0};
@@ -114,12 +116,9 @@ struct MtSolverScratch
 			return *this;
 		}
 	};
-	btAlignedObjectArray<DoneFlag> itemDone;
-	unsigned sweepLoop = 0;  // loops posted, to tell this loop's finished items from earlier loops'
-	// The claim counter, on a cache line of its own (the threads write it; the flags above are read often).
-	char claimPaddingBefore[64];
-	std::atomic<int> claimNext{0};
-	char claimPaddingAfter[64];
+	btAlignedObjectArray<DoneFlag> itemDone;     // per (pass, batch)
+	btAlignedObjectArray<DoneFlag> itemClaimed;  // per item: the loop that claimed it
+	unsigned sweepLoop = 0;                      // loops posted, to tell this loop's finished items from earlier loops'
 	// The split-impulse pass's rows with a push target, listed by chunk of the contact order on the threads.
 	struct PushChunk
 	{
@@ -636,11 +635,16 @@ void waitUntilDone(const MtSolverScratch::DoneFlag& flag, unsigned loop)
 	}
 }
 
-// One iteration's sweep of the batches in one parallel loop: every task claims items (a run of a colour's
-// batches in one pass) in the sweep's order from one counter, and solves each batch of an item once the
-// items it depends on are finished. A claimed item is run by a task that has started, and depends only on
-// items claimed before it, so no task waits for work that no running task will do, whatever the scheduler
-// (one thread running the tasks one after another: the first task claims everything).
+// One iteration's sweep of the batches in one parallel loop. The items (a run of a colour's batches in one
+// pass) are listed in the sweep's order; task t runs, in that order, the items that are the t-th run of
+// their colour (the run the loop per colour gave its t-th task), so that from colour to colour a thread
+// meets the same region of the island, in its own cache. Before each batch it waits until the batches it
+// depends on are finished, and when one of them belongs to an item no task has claimed yet, it claims and
+// runs that item itself. Then it runs whatever no task has claimed. Why no task waits forever, whatever the
+// scheduler: a task waits only for an item another task has claimed and runs; the item a task waits in is
+// the earliest of those it is running (it runs a claimed dependency, always an earlier item, inside the
+// item that needs it), and waits for an earlier item still; so the waits go to ever earlier items, and the
+// earliest item being run waits for nothing.
 struct DependentSweep : public btIParallelForBody
 {
 	const BatchSweep* passes[2];  // normal rows, friction rows; residuals go to the item's place
@@ -649,25 +653,44 @@ struct DependentSweep : public btIParallelForBody
 	int numBatches;
 	unsigned loop;
 
-	void forLoop(int, int) const override
+	void forLoop(int iBegin, int iEnd) const override
 	{
-		const MtSolverScratch::SweepItem* items = &mt->sweepItems[0];
 		const int numItems = mt->sweepItems.size();
+		for (int lane = iBegin; lane < iEnd; ++lane)
+			for (int i = 0; i < numItems; ++i)
+				if (mt->sweepItems[i].run == lane && claim(i)) run(i);
+		for (int i = 0; i < numItems; ++i)
+			if (claim(i)) run(i);
+	}
+
+	bool claim(int item) const
+	{
+		std::atomic<unsigned>& claimed = mt->itemClaimed[item].loop;
+		return claimed.load(std::memory_order_relaxed) != loop &&
+		       claimed.exchange(loop, std::memory_order_relaxed) != loop;
+	}
+
+	void run(int i) const
+	{
+		const MtSolverScratch::SweepItem item = mt->sweepItems[i];
+		const caliber::BatchDependencies::Sweep sweep = sweeps[item.pass];
 		MtSolverScratch::DoneFlag* done = &mt->itemDone[0];
-		for (;;)
+		for (int b = item.batchBegin; b < item.batchEnd; ++b)
 		{
-			const int i = mt->claimNext.fetch_add(1, std::memory_order_relaxed);
-			if (i >= numItems) return;
-			const MtSolverScratch::SweepItem& item = items[i];
-			const caliber::BatchDependencies::Sweep sweep = sweeps[item.pass];
-			for (int b = item.batchBegin; b < item.batchEnd; ++b)
+			const int* dependencies = mt->dependencies.list(sweep, b);
+			const int count = mt->dependencies.count(sweep, b);
+			for (int d = 0; d < count; ++d)
 			{
-				const int* dependencies = mt->dependencies.list(sweep, b);
-				const int count = mt->dependencies.count(sweep, b);
-				for (int d = 0; d < count; ++d) waitUntilDone(done[dependencies[d]], loop);
-				passes[item.pass]->forLoop(b, b + 1);
-				done[item.pass * numBatches + b].loop.store(loop, std::memory_order_release);
+				const MtSolverScratch::DoneFlag& flag = done[dependencies[d]];
+				if (flag.loop.load(std::memory_order_acquire) == loop) continue;
+				const int owner = mt->itemOfBatch[dependencies[d]];
+				if (claim(owner))
+					run(owner);  // an earlier item: it finishes the dependency
+				else
+					waitUntilDone(flag, loop);
 			}
+			passes[item.pass]->forLoop(b, b + 1);
+			done[item.pass * numBatches + b].loop.store(loop, std::memory_order_release);
 		}
 	}
 };
@@ -682,6 +705,7 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 	const int numPhases = batched.m_phases.size();
 	// The items: each colour cut into one run of batches per thread, as the loop per colour cut it.
 	mt.sweepItems.resize(0);
+	caliber::resizeScratch(mt.itemOfBatch, 2 * numBatches);
 	for (int pass = 0; pass < 2; ++pass)
 		for (int k = 0; k < numPhases; ++k)
 		{
@@ -694,6 +718,9 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 				item.pass = pass;
 				item.batchBegin = b;
 				item.batchEnd = btMin(b + grain, phase.end);
+				item.run = (b - phase.begin) / grain;
+				for (int batch = b; batch < item.batchEnd; ++batch)
+					mt.itemOfBatch[pass * numBatches + batch] = mt.sweepItems.size();
 				mt.sweepItems.push_back(item);
 			}
 		}
@@ -705,13 +732,14 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 	friction.pass = 1;
 	friction.firstBatch = 0;
 	friction.batchResidual = &mt.batchResidual[numBatches];
+	if (mt.itemClaimed.size() < mt.sweepItems.size()) mt.itemClaimed.resize(mt.sweepItems.size());
 	if (++mt.sweepLoop == 0)
 	{
 		// After 2^32 loops: no flag may hold the new loop's number from long ago.
 		for (int i = 0; i < mt.itemDone.size(); ++i) mt.itemDone[i].loop.store(0, std::memory_order_relaxed);
+		for (int i = 0; i < mt.itemClaimed.size(); ++i) mt.itemClaimed[i].loop.store(0, std::memory_order_relaxed);
 		mt.sweepLoop = 1;
 	}
-	mt.claimNext.store(0, std::memory_order_relaxed);
 	DependentSweep body;
 	body.passes[0] = &normal;
 	body.passes[1] = &friction;
@@ -721,7 +749,7 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 	    reverse ? caliber::BatchDependencies::kBackwardFriction : caliber::BatchDependencies::kForwardFriction;
 	body.numBatches = numBatches;
 	body.loop = mt.sweepLoop;
-	btParallelFor(0, btMin(numThreads, mt.sweepItems.size()), 1, body);
+	btParallelFor(0, numThreads, 1, body);
 	for (int pass = 0; pass < 2; ++pass)
 		for (int k = 0; k < numPhases; ++k)
 		{
