@@ -74,7 +74,7 @@ void caliber::BatchDependencies::build(const int* manifoldBegin, int numBatches,
 	m_bodyStart[0] = 0;
 	for (int s = 0; s < kNumSweeps; ++s) resizeScratch(m_lists[s], 2 * numPlaces);
 	resizeScratch(m_count, kNumSweeps * numBatches);
-	assignScratch(m_marks, kDependencyChunks * 2 * numBatches, -1);
+	assignScratch(m_marks, kDependencyChunks * kNumSweeps * 2 * numBatches, -1);
 	if (numBatches == 0) return;
 	ListDependencies list;
 	list.dependencies = this;
@@ -85,48 +85,57 @@ void caliber::BatchDependencies::build(const int* manifoldBegin, int numBatches,
 void caliber::BatchDependencies::listBatches(int batchBegin, int batchEnd, int chunk)
 {
 	const int numItems = 2 * m_numBatches;
-	int* marks = &m_marks[chunk * numItems];
+	// Per sweep and item: the last batch that listed the item in that sweep (an item is listed once).
+	int* marks = &m_marks[chunk * kNumSweeps * numItems];
+	int* forwardNormalMarks = marks;
+	int* forwardFrictionMarks = marks + numItems;
+	int* backwardNormalMarks = marks + 2 * numItems;
+	int* backwardFrictionMarks = marks + 3 * numItems;
 	for (int b = batchBegin; b < batchEnd; ++b)
 	{
-		int* lists[kNumSweeps];
-		int counts[kNumSweeps] = {0, 0, 0, 0};
-		for (int s = 0; s < kNumSweeps; ++s) lists[s] = &m_lists[s][2 * m_manifoldBegin[b]];
-		// An item is listed once per batch and sweep: its mark holds the last (batch, sweep) that listed it.
-		auto add = [&](int sweep, int item)
-		{
-			const int mark = b * kNumSweeps + sweep;
-			if (marks[item] == mark) return;
-			// A mark from an earlier sweep of this batch is overwritten; the item may then be listed again for
-			// a later sweep, which is right: the sweeps' lists are separate.
-			marks[item] = mark;
-			lists[sweep][counts[sweep]++] = item;
-		};
-		for (int s = 0; s < kNumSweeps; ++s)
-			for (int p = m_manifoldBegin[b]; p < m_manifoldBegin[b + 1]; ++p)
-				for (int side = 0; side < 2; ++side)
+		const int place = 2 * m_manifoldBegin[b];
+		int* forwardNormal = &m_lists[kForwardNormal][place];
+		int* forwardFriction = &m_lists[kForwardFriction][place];
+		int* backwardNormal = &m_lists[kBackwardNormal][place];
+		int* backwardFriction = &m_lists[kBackwardFriction][place];
+		int numForwardNormal = 0, numForwardFriction = 0, numBackwardNormal = 0, numBackwardFriction = 0;
+		for (int p = m_manifoldBegin[b]; p < m_manifoldBegin[b + 1]; ++p)
+			for (int side = 0; side < 2; ++side)
+			{
+				const int entry = m_entry[2 * p + side];
+				if (entry < 0) continue;
+				const int body = m_ends[m_order[p] * m_stride + side];
+				const int first = m_bodyStart[body], last = m_bodyStart[body + 1] - 1;
+				// Forwards: the body's batch before this one, or for the friction pass the body's last batch.
+				int item = entry > first ? m_bodyBatches[entry - 1] : -1;
+				if (item >= 0 && forwardNormalMarks[item] != b)
 				{
-					const int entry = m_entry[2 * p + side];
-					if (entry < 0) continue;
-					const int body = m_ends[m_order[p] * m_stride + side];
-					const int first = m_bodyStart[body], last = m_bodyStart[body + 1] - 1;
-					const int previous = entry > first ? m_bodyBatches[entry - 1] : -1;
-					const int next = entry < last ? m_bodyBatches[entry + 1] : -1;
-					switch (s)
-					{
-						case kForwardNormal:
-							if (previous >= 0) add(s, previous);
-							break;
-						case kForwardFriction:
-							add(s, previous >= 0 ? m_numBatches + previous : m_bodyBatches[last]);
-							break;
-						case kBackwardNormal:
-							if (next >= 0) add(s, next);
-							break;
-						default:
-							add(s, next >= 0 ? m_numBatches + next : m_bodyBatches[first]);
-							break;
-					}
+					forwardNormalMarks[item] = b;
+					forwardNormal[numForwardNormal++] = item;
 				}
-		for (int s = 0; s < kNumSweeps; ++s) m_count[s * m_numBatches + b] = counts[s];
+				item = item >= 0 ? m_numBatches + item : m_bodyBatches[last];
+				if (forwardFrictionMarks[item] != b)
+				{
+					forwardFrictionMarks[item] = b;
+					forwardFriction[numForwardFriction++] = item;
+				}
+				// Backwards: the body's batch after this one, or for the friction pass the body's first batch.
+				item = entry < last ? m_bodyBatches[entry + 1] : -1;
+				if (item >= 0 && backwardNormalMarks[item] != b)
+				{
+					backwardNormalMarks[item] = b;
+					backwardNormal[numBackwardNormal++] = item;
+				}
+				item = item >= 0 ? m_numBatches + item : m_bodyBatches[first];
+				if (backwardFrictionMarks[item] != b)
+				{
+					backwardFrictionMarks[item] = b;
+					backwardFriction[numBackwardFriction++] = item;
+				}
+			}
+		m_count[kForwardNormal * m_numBatches + b] = numForwardNormal;
+		m_count[kForwardFriction * m_numBatches + b] = numForwardFriction;
+		m_count[kBackwardNormal * m_numBatches + b] = numBackwardNormal;
+		m_count[kBackwardFriction * m_numBatches + b] = numBackwardFriction;
 	}
 }

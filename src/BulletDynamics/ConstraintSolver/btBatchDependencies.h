@@ -68,7 +68,7 @@ private:
 	btAlignedObjectArray<int> m_entry;              // per manifold end in order: its place in m_bodyBatches (-1: fixed)
 	btAlignedObjectArray<int> m_lists[kNumSweeps];  // two places per manifold of a batch: at most two bodies each
 	btAlignedObjectArray<int> m_count;              // per sweep and batch
-	btAlignedObjectArray<int> m_marks;              // per chunk and item: the last batch and sweep that listed it
+	btAlignedObjectArray<int> m_marks;              // per chunk, sweep and item: the last batch that listed it
 };
 }  // namespace caliber
 
