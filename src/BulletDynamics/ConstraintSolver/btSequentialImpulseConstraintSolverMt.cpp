@@ -97,6 +97,9 @@ struct MtSolverScratch
 	// (runs of a colour's batches in one pass) in the order the threads claim them, the claim counter, and
 	// per item (pass, batch) the loop that finished it.
 	bool dependentSweep = false;
+	// The dependencies are listed (more than one thread at the set-up). With one thread the loop has one
+	// task, which runs the items in the sweep's order: every dependency is finished before it is needed.
+	bool dependenciesListed = false;
 	caliber::BatchDependencies dependencies;
 	struct SweepItem
 	{
@@ -677,8 +680,8 @@ struct DependentSweep : public btIParallelForBody
 		MtSolverScratch::DoneFlag* done = &mt->itemDone[0];
 		for (int b = item.batchBegin; b < item.batchEnd; ++b)
 		{
-			const int* dependencies = mt->dependencies.list(sweep, b);
-			const int count = mt->dependencies.count(sweep, b);
+			const int* dependencies = mt->dependenciesListed ? mt->dependencies.list(sweep, b) : nullptr;
+			const int count = mt->dependenciesListed ? mt->dependencies.count(sweep, b) : 0;
 			for (int d = 0; d < count; ++d)
 			{
 				const MtSolverScratch::DoneFlag& flag = done[dependencies[d]];
@@ -1174,7 +1177,8 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	buildColourBatches(mt, scratch, s_minBatchSize, batched);
 	// Each batch's dependencies in the four sweeps (before the fixed entry's copies: each batch has its own).
 	mt.dependentSweep = !caliber::colourSweepBarriers();
-	if (mt.dependentSweep)
+	mt.dependenciesListed = mt.dependentSweep && btGetTaskScheduler()->getNumThreads() > 1;
+	if (mt.dependenciesListed)
 	{
 		static_assert(offsetof(MtSolverScratch::RowManifold, bodyB) ==
 		                  offsetof(MtSolverScratch::RowManifold, bodyA) + sizeof(int),
@@ -1182,9 +1186,9 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		mt.dependencies.build(&mt.batchManifoldBegin[0], batched.m_batches.size(), &mt.orderedManifolds[0],
 		                      &mt.rowManifolds[0].bodyA, int(sizeof(MtSolverScratch::RowManifold) / sizeof(int)),
 		                      numSolverBodies, m_fixedBodyId);
-		const int numItems = 2 * batched.m_batches.size();
-		if (mt.itemDone.size() < numItems) mt.itemDone.resize(numItems);
 	}
+	if (mt.dependentSweep && mt.itemDone.size() < 2 * batched.m_batches.size())
+		mt.itemDone.resize(2 * batched.m_batches.size());
 
 	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
 	// rolling rows; the wide sweep's padding lanes use it too (a zero body when there is no fixed entry).
@@ -1272,7 +1276,8 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(int iterati
 	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
 	const int numPhases = batched.m_phases.size();
 	MtSolverScratch& mt = mtScratchOf(*this);
-	if (mt.dependentSweep)
+	// (A thread count raised during the solve, after a set-up with one thread: the loop per colour.)
+	if (mt.dependentSweep && (mt.dependenciesListed || numThreads == 1))
 		residual = sweepWithDependencies(mt, sweep, reverse, numThreads, residual);
 	else
 		for (int pass = 0; pass < 2; ++pass)
