@@ -220,7 +220,7 @@ struct ScopedSweepSettings
 	int m_minBatchSize = btSequentialImpulseConstraintSolverMt::s_minBatchSize;
 };
 
-// A wall of bricks, 4 layers of 8 x 6, each layer offset by half a brick on the last, so that a brick rests
+// A wall of bricks, 3 layers of 6 x 5, each layer offset by half a brick on the last, so that a brick rests
 // on two or four below it: stacks whose colours have several batches that share bodies with the colours
 // before and after. The layers start 1 cm apart and fall together, with friction and rolling contacts.
 std::vector<btScalar> wallBits(bool barriers, btITaskScheduler* scheduler, int steps, int* loops = nullptr)
@@ -253,9 +253,9 @@ std::vector<btScalar> wallBits(bool barriers, btITaskScheduler* scheduler, int s
 			world.addRigidBody(bodies.back().get());
 		};
 		add(0, &ground, btVector3(0, -1, 0));
-		for (int layer = 0; layer < 4; ++layer)
-			for (int i = 0; i < 8; ++i)
-				for (int j = 0; j < 6; ++j)
+		for (int layer = 0; layer < 3; ++layer)
+			for (int i = 0; i < 6; ++i)
+				for (int j = 0; j < 5; ++j)
 				{
 					const btScalar offset = (layer % 2) * btScalar(0.5);
 					add(1, &brick, btVector3(i + offset, btScalar(0.26) + layer * btScalar(0.51), j + offset));
@@ -280,7 +280,7 @@ bool sameBits(const std::vector<btScalar>& a, const std::vector<btScalar>& b)
 
 TEST(ColourSweep, WithoutAWaitPerColourGivesTheBitsOfTheSweepWithOneOnAnyScheduler)
 {
-	const int kSteps = 20;
+	const int kSteps = 12;
 	const std::vector<btScalar> reference = wallBits(true, btGetSequentialTaskScheduler(), kSteps);
 	EXPECT_TRUE(sameBits(wallBits(false, btGetSequentialTaskScheduler(), kSteps), reference)) << "sequential";
 	for (int threads : {1, 2, 3})
