@@ -16,8 +16,14 @@
 #include <string.h>
 
 #include <atomic>
+#include <thread>
+
+#if defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
 
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "BulletDynamics/ConstraintSolver/btBatchDependencies.h"
 #include "BulletDynamics/ConstraintSolver/btContactColouring.h"
 #include "BulletDynamics/ConstraintSolver/btContactRowSetup.h"
 #include "BulletDynamics/ConstraintSolver/btSolverRowKernels.h"
@@ -87,6 +93,35 @@ struct MtSolverScratch
 	btAlignedObjectArray<int> warmStartChunkCursor;
 	bool wide;  // the batches are solved by the wide sweep
 	caliber::WideContactRows wideRows;
+	// The sweep without a wait per colour (see solveSingleIteration): each batch's dependencies, the items
+	// (runs of a colour's batches in one pass) in the order the threads claim them, the claim counter, and
+	// per item (pass, batch) the loop that finished it.
+	bool dependentSweep = false;
+	// The dependencies are listed (more than one thread at the set-up). With one thread the loop has one
+	// task, which runs the items in the sweep's order: every dependency is finished before it is needed.
+	bool dependenciesListed = false;
+	caliber::BatchDependencies dependencies;
+	struct SweepItem
+	{
+		int pass, batchBegin, batchEnd;
+		int run;  // the item is its colour's run-th run in this pass
+	};
+	btAlignedObjectArray<SweepItem> sweepItems;
+	btAlignedObjectArray<int> itemOfBatch;  // per (pass, batch): its item
+	struct DoneFlag
+	{
+		std::atomic<unsigned> loop{0};
+		DoneFlag() {}
+		DoneFlag(const DoneFlag& other) : loop(other.loop.load(std::memory_order_relaxed)) {}
+		DoneFlag& operator=(const DoneFlag& other)
+		{
+			loop.store(other.loop.load(std::memory_order_relaxed), std::memory_order_relaxed);
+			return *this;
+		}
+	};
+	btAlignedObjectArray<DoneFlag> itemDone;     // per (pass, batch)
+	btAlignedObjectArray<DoneFlag> itemClaimed;  // per item: the loop that claimed it
+	unsigned sweepLoop = 0;                      // loops posted, to tell this loop's finished items from earlier loops'
 	// The split-impulse pass's rows with a push target, listed by chunk of the contact order on the threads.
 	struct PushChunk
 	{
@@ -583,6 +618,150 @@ struct BatchSweep : public btIParallelForBody
 		return residual;
 	}
 };
+
+#if defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)
+inline void spinPause() { _mm_pause(); }
+#else
+inline void spinPause() {}
+#endif
+
+// Waits until this loop has finished an item: a few pauses, then yields (the machine may have more threads
+// than cores, and the thread that claimed the item may be waiting for a core).
+void waitUntilDone(const MtSolverScratch::DoneFlag& flag, unsigned loop)
+{
+	for (int attempt = 0; flag.loop.load(std::memory_order_acquire) != loop; ++attempt)
+	{
+		if (attempt < 64)
+			spinPause();
+		else
+			std::this_thread::yield();
+	}
+}
+
+// One iteration's sweep of the batches in one parallel loop. The items (a run of a colour's batches in one
+// pass) are listed in the sweep's order; task t runs, in that order, the items that are the t-th run of
+// their colour (the run the loop per colour gave its t-th task), so that from colour to colour a thread
+// meets the same region of the island, in its own cache. Before each batch it waits until the batches it
+// depends on are finished, and when one of them belongs to an item no task has claimed yet, it claims and
+// runs that item itself. Then it runs whatever no task has claimed. Why no task waits forever, whatever the
+// scheduler: a task waits only for an item another task has claimed and runs; the item a task waits in is
+// the earliest of those it is running (it runs a claimed dependency, always an earlier item, inside the
+// item that needs it), and waits for an earlier item still; so the waits go to ever earlier items, and the
+// earliest item being run waits for nothing.
+struct DependentSweep : public btIParallelForBody
+{
+	const BatchSweep* passes[2];  // normal rows, friction rows; residuals go to the item's place
+	MtSolverScratch* mt;
+	caliber::BatchDependencies::Sweep sweeps[2];
+	int numBatches;
+	unsigned loop;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const int numItems = mt->sweepItems.size();
+		for (int lane = iBegin; lane < iEnd; ++lane)
+			for (int i = 0; i < numItems; ++i)
+				if (mt->sweepItems[i].run == lane && claim(i)) run(i);
+		for (int i = 0; i < numItems; ++i)
+			if (claim(i)) run(i);
+	}
+
+	bool claim(int item) const
+	{
+		std::atomic<unsigned>& claimed = mt->itemClaimed[item].loop;
+		return claimed.load(std::memory_order_relaxed) != loop &&
+		       claimed.exchange(loop, std::memory_order_relaxed) != loop;
+	}
+
+	void run(int i) const
+	{
+		const MtSolverScratch::SweepItem item = mt->sweepItems[i];
+		const caliber::BatchDependencies::Sweep sweep = sweeps[item.pass];
+		MtSolverScratch::DoneFlag* done = &mt->itemDone[0];
+		for (int b = item.batchBegin; b < item.batchEnd; ++b)
+		{
+			const int* dependencies = mt->dependenciesListed ? mt->dependencies.list(sweep, b) : nullptr;
+			const int count = mt->dependenciesListed ? mt->dependencies.count(sweep, b) : 0;
+			for (int d = 0; d < count; ++d)
+			{
+				const MtSolverScratch::DoneFlag& flag = done[dependencies[d]];
+				if (flag.loop.load(std::memory_order_acquire) == loop) continue;
+				const int owner = mt->itemOfBatch[dependencies[d]];
+				if (claim(owner))
+					run(owner);  // an earlier item: it finishes the dependency
+				else
+					waitUntilDone(flag, loop);
+			}
+			passes[item.pass]->forLoop(b, b + 1);
+			done[item.pass * numBatches + b].loop.store(loop, std::memory_order_release);
+		}
+	}
+};
+
+// The sweep of one iteration with DependentSweep; adds the batches' residuals to residual as the loop per
+// colour adds them (pass by pass, colour by colour in the sweep's order, batch by batch).
+btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, bool reverse, int numThreads,
+                               btScalar residual)
+{
+	const btBatchedConstraints& batched = *sweep.batched;
+	const int numBatches = batched.m_batches.size();
+	const int numPhases = batched.m_phases.size();
+	// The items: each colour cut into one run of batches per thread, as the loop per colour cut it.
+	mt.sweepItems.resize(0);
+	caliber::resizeScratch(mt.itemOfBatch, 2 * numBatches);
+	for (int pass = 0; pass < 2; ++pass)
+		for (int k = 0; k < numPhases; ++k)
+		{
+			const btBatchedConstraints::Range& phase =
+			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+			const int grain = (phase.end - phase.begin + numThreads - 1) / numThreads;
+			for (int b = phase.begin; b < phase.end; b += grain)
+			{
+				MtSolverScratch::SweepItem item;
+				item.pass = pass;
+				item.batchBegin = b;
+				item.batchEnd = btMin(b + grain, phase.end);
+				item.run = (b - phase.begin) / grain;
+				for (int batch = b; batch < item.batchEnd; ++batch)
+					mt.itemOfBatch[pass * numBatches + batch] = mt.sweepItems.size();
+				mt.sweepItems.push_back(item);
+			}
+		}
+	caliber::resizeScratch(mt.batchResidual, 2 * numBatches);
+	BatchSweep normal = sweep, friction = sweep;
+	normal.pass = 0;
+	normal.firstBatch = 0;
+	normal.batchResidual = &mt.batchResidual[0];
+	friction.pass = 1;
+	friction.firstBatch = 0;
+	friction.batchResidual = &mt.batchResidual[numBatches];
+	if (mt.itemClaimed.size() < mt.sweepItems.size()) mt.itemClaimed.resize(mt.sweepItems.size());
+	if (++mt.sweepLoop == 0)
+	{
+		// After 2^32 loops: no flag may hold the new loop's number from long ago.
+		for (int i = 0; i < mt.itemDone.size(); ++i) mt.itemDone[i].loop.store(0, std::memory_order_relaxed);
+		for (int i = 0; i < mt.itemClaimed.size(); ++i) mt.itemClaimed[i].loop.store(0, std::memory_order_relaxed);
+		mt.sweepLoop = 1;
+	}
+	DependentSweep body;
+	body.passes[0] = &normal;
+	body.passes[1] = &friction;
+	body.mt = &mt;
+	body.sweeps[0] = reverse ? caliber::BatchDependencies::kBackwardNormal : caliber::BatchDependencies::kForwardNormal;
+	body.sweeps[1] =
+	    reverse ? caliber::BatchDependencies::kBackwardFriction : caliber::BatchDependencies::kForwardFriction;
+	body.numBatches = numBatches;
+	body.loop = mt.sweepLoop;
+	btParallelFor(0, numThreads, 1, body);
+	for (int pass = 0; pass < 2; ++pass)
+		for (int k = 0; k < numPhases; ++k)
+		{
+			const btBatchedConstraints::Range& phase =
+			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+			for (int b = phase.begin; b < phase.end; ++b) residual += mt.batchResidual[pass * numBatches + b];
+		}
+	return residual;
+}
 }  // namespace
 
 namespace
@@ -996,6 +1175,20 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	colourManifolds(mt, &m_tmpSolverBodyPool[0], numSolverBodies, m_fixedBodyId);
 	orderManifoldsByColourAndBody(mt, numSolverBodies, m_fixedBodyId);
 	buildColourBatches(mt, scratch, s_minBatchSize, batched);
+	// Each batch's dependencies in the four sweeps (before the fixed entry's copies: each batch has its own).
+	mt.dependentSweep = !caliber::colourSweepBarriers();
+	mt.dependenciesListed = mt.dependentSweep && btGetTaskScheduler()->getNumThreads() > 1;
+	if (mt.dependenciesListed)
+	{
+		static_assert(offsetof(MtSolverScratch::RowManifold, bodyB) ==
+		                  offsetof(MtSolverScratch::RowManifold, bodyA) + sizeof(int),
+		              "the dependencies read a manifold's two bodies as consecutive ints");
+		mt.dependencies.build(&mt.batchManifoldBegin[0], batched.m_batches.size(), &mt.orderedManifolds[0],
+		                      &mt.rowManifolds[0].bodyA, int(sizeof(MtSolverScratch::RowManifold) / sizeof(int)),
+		                      numSolverBodies, m_fixedBodyId);
+	}
+	if (mt.dependentSweep && mt.itemDone.size() < 2 * batched.m_batches.size())
+		mt.itemDone.resize(2 * batched.m_batches.size());
 
 	// Each batch's own copy of the fixed entry (see the file comment), for its contact, friction and
 	// rolling rows; the wide sweep's padding lanes use it too (a zero body when there is no fixed entry).
@@ -1083,21 +1276,25 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(int iterati
 	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
 	const int numPhases = batched.m_phases.size();
 	MtSolverScratch& mt = mtScratchOf(*this);
-	for (int pass = 0; pass < 2; ++pass)
-	{
-		sweep.pass = pass;
-		for (int k = 0; k < numPhases; ++k)
+	// (A thread count raised during the solve, after a set-up with one thread: the loop per colour.)
+	if (mt.dependentSweep && (mt.dependenciesListed || numThreads == 1))
+		residual = sweepWithDependencies(mt, sweep, reverse, numThreads, residual);
+	else
+		for (int pass = 0; pass < 2; ++pass)
 		{
-			const btBatchedConstraints::Range& phase =
-			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
-			const int numBatches = phase.end - phase.begin;
-			caliber::resizeScratch(mt.batchResidual, numBatches);
-			sweep.firstBatch = phase.begin;
-			sweep.batchResidual = &mt.batchResidual[0];
-			btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);
-			for (int b = 0; b < numBatches; ++b) residual += mt.batchResidual[b];
+			sweep.pass = pass;
+			for (int k = 0; k < numPhases; ++k)
+			{
+				const btBatchedConstraints::Range& phase =
+				    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+				const int numBatches = phase.end - phase.begin;
+				caliber::resizeScratch(mt.batchResidual, numBatches);
+				sweep.firstBatch = phase.begin;
+				sweep.batchResidual = &mt.batchResidual[0];
+				btParallelFor(0, numBatches, (numBatches + numThreads - 1) / numThreads, sweep);
+				for (int b = 0; b < numBatches; ++b) residual += mt.batchResidual[b];
+			}
 		}
-	}
 	// After the last sweep of the contacts (the iterations stop at m_numIterations for contacts, or earlier
 	// when the residual is small enough), the wide blocks' impulses go to their rows.
 	if (mt.wide &&

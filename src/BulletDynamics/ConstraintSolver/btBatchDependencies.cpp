@@ -1,0 +1,141 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// The dependencies of a coloured solve's batches: each body's batches in colour order (a counting sort by
+// body, on the calling thread), then each batch's neighbours in its bodies' lists (on the threads).
+#include "BulletDynamics/ConstraintSolver/btBatchDependencies.h"
+
+#include <atomic>
+
+#include "LinearMath/btScratchArray.h"
+#include "LinearMath/btThreads.h"
+
+namespace
+{
+std::atomic<bool> g_colourSweepBarriers(false);
+
+// Fixed chunks of the batches, each with its own marks (so the lists do not depend on the scheduler's split).
+const int kDependencyChunks = 8;
+
+struct ListDependencies : public btIParallelForBody
+{
+	caliber::BatchDependencies* dependencies;
+	int numBatches;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int chunk = iBegin; chunk < iEnd; ++chunk)
+			dependencies->listBatches(int(static_cast<long long>(numBatches) * chunk / kDependencyChunks),
+			                          int(static_cast<long long>(numBatches) * (chunk + 1) / kDependencyChunks), chunk);
+	}
+};
+}  // namespace
+
+void caliber::setColourSweepBarriers(bool enabled) { g_colourSweepBarriers.store(enabled, std::memory_order_relaxed); }
+bool caliber::colourSweepBarriers() { return g_colourSweepBarriers.load(std::memory_order_relaxed); }
+
+void caliber::BatchDependencies::build(const int* manifoldBegin, int numBatches, const int* order, const int* ends,
+                                       int stride, int numBodies, int fixedBodyId)
+{
+	btAssert(numBatches >= 0 && numBodies >= 0);
+	m_numBatches = numBatches;
+	m_fixedBodyId = fixedBodyId;
+	m_stride = stride;
+	m_order = order;
+	m_ends = ends;
+	resizeScratch(m_manifoldBegin, numBatches + 1);
+	for (int b = 0; b <= numBatches; ++b) m_manifoldBegin[b] = manifoldBegin[b];
+	const int numPlaces = numBatches > 0 ? manifoldBegin[numBatches] : 0;
+	// Each body's batches in batch order: a counting sort of the manifolds' ends, taken in order.
+	assignScratch(m_bodyStart, numBodies + 1, 0);
+	resizeScratch(m_entry, 2 * numPlaces);
+	for (int p = 0; p < numPlaces; ++p)
+		for (int side = 0; side < 2; ++side)
+		{
+			const int body = ends[order[p] * stride + side];
+			btAssert(body >= 0 && body < numBodies);
+			if (body != fixedBodyId) ++m_bodyStart[body + 1];
+		}
+	for (int body = 0; body < numBodies; ++body) m_bodyStart[body + 1] += m_bodyStart[body];
+	resizeScratch(m_bodyBatches, m_bodyStart[numBodies]);
+	for (int b = 0; b < numBatches; ++b)
+		for (int p = manifoldBegin[b]; p < manifoldBegin[b + 1]; ++p)
+			for (int side = 0; side < 2; ++side)
+			{
+				const int body = ends[order[p] * stride + side];
+				if (body == fixedBodyId)
+				{
+					m_entry[2 * p + side] = -1;
+					continue;
+				}
+				// m_bodyStart[body] runs ahead as the body's entries are written; set back below.
+				m_entry[2 * p + side] = m_bodyStart[body];
+				m_bodyBatches[m_bodyStart[body]++] = b;
+			}
+	for (int body = numBodies; body > 0; --body) m_bodyStart[body] = m_bodyStart[body - 1];
+	m_bodyStart[0] = 0;
+	for (int s = 0; s < kNumSweeps; ++s) resizeScratch(m_lists[s], 2 * numPlaces);
+	resizeScratch(m_count, kNumSweeps * numBatches);
+	assignScratch(m_marks, kDependencyChunks * kNumSweeps * 2 * numBatches, -1);
+	if (numBatches == 0) return;
+	ListDependencies list;
+	list.dependencies = this;
+	list.numBatches = numBatches;
+	btParallelFor(0, kDependencyChunks, 1, list);
+}
+
+void caliber::BatchDependencies::listBatches(int batchBegin, int batchEnd, int chunk)
+{
+	const int numItems = 2 * m_numBatches;
+	// Per sweep and item: the last batch that listed the item in that sweep (an item is listed once).
+	int* marks = &m_marks[chunk * kNumSweeps * numItems];
+	int* forwardNormalMarks = marks;
+	int* forwardFrictionMarks = marks + numItems;
+	int* backwardNormalMarks = marks + 2 * numItems;
+	int* backwardFrictionMarks = marks + 3 * numItems;
+	for (int b = batchBegin; b < batchEnd; ++b)
+	{
+		const int place = 2 * m_manifoldBegin[b];
+		int* forwardNormal = &m_lists[kForwardNormal][place];
+		int* forwardFriction = &m_lists[kForwardFriction][place];
+		int* backwardNormal = &m_lists[kBackwardNormal][place];
+		int* backwardFriction = &m_lists[kBackwardFriction][place];
+		int numForwardNormal = 0, numForwardFriction = 0, numBackwardNormal = 0, numBackwardFriction = 0;
+		for (int p = m_manifoldBegin[b]; p < m_manifoldBegin[b + 1]; ++p)
+			for (int side = 0; side < 2; ++side)
+			{
+				const int entry = m_entry[2 * p + side];
+				if (entry < 0) continue;
+				const int body = m_ends[m_order[p] * m_stride + side];
+				const int first = m_bodyStart[body], last = m_bodyStart[body + 1] - 1;
+				// Forwards: the body's batch before this one, or for the friction pass the body's last batch.
+				int item = entry > first ? m_bodyBatches[entry - 1] : -1;
+				if (item >= 0 && forwardNormalMarks[item] != b)
+				{
+					forwardNormalMarks[item] = b;
+					forwardNormal[numForwardNormal++] = item;
+				}
+				item = item >= 0 ? m_numBatches + item : m_bodyBatches[last];
+				if (forwardFrictionMarks[item] != b)
+				{
+					forwardFrictionMarks[item] = b;
+					forwardFriction[numForwardFriction++] = item;
+				}
+				// Backwards: the body's batch after this one, or for the friction pass the body's first batch.
+				item = entry < last ? m_bodyBatches[entry + 1] : -1;
+				if (item >= 0 && backwardNormalMarks[item] != b)
+				{
+					backwardNormalMarks[item] = b;
+					backwardNormal[numBackwardNormal++] = item;
+				}
+				item = item >= 0 ? m_numBatches + item : m_bodyBatches[first];
+				if (backwardFrictionMarks[item] != b)
+				{
+					backwardFrictionMarks[item] = b;
+					backwardFriction[numBackwardFriction++] = item;
+				}
+			}
+		m_count[kForwardNormal * m_numBatches + b] = numForwardNormal;
+		m_count[kForwardFriction * m_numBatches + b] = numForwardFriction;
+		m_count[kBackwardNormal * m_numBatches + b] = numBackwardNormal;
+		m_count[kBackwardFriction * m_numBatches + b] = numBackwardFriction;
+	}
+}
