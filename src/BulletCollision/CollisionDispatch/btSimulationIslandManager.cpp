@@ -183,16 +183,17 @@ void btSimulationIslandManager::storeIslandActivationState(btCollisionWorld* wor
 	if (!world) return;
 	btCollisionObjectArray& objects = world->getCollisionObjectArray();
 	const int numElements = m_unionFind.getNumElements();
+	btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
 	int index = 0;
 	for (int i = 0; i < objects.size(); ++i)
 	{
 		btCollisionObject* object = objects[i];
 		if (!object->isStaticOrKinematicObject() && index < numElements)
 		{
-			object->setIslandTag(m_unionFind.find(index));
+			object->setIslandTag(caliber::findWithHalving(elements, index));
 			// The unions are done, so the set sizes are no longer needed: m_sz now says which object the
 			// element stands for, which survives the sort in sortIslands.
-			m_unionFind.getElement(index).m_sz = i;
+			elements[index].m_sz = i;
 			object->setCompanionId(-1);
 			++index;
 		}

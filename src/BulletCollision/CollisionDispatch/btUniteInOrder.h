@@ -6,6 +6,19 @@
 
 namespace caliber
 {
+/// btUnionFind::find(x) on the union-find's elements (the same path halving), without the call and the
+/// range check: x must be below the element count.
+inline int findWithHalving(btElement* elements, int x)
+{
+	while (elements[x].m_id != x)
+	{
+		const int grandParent = elements[elements[x].m_id].m_id;
+		elements[x].m_id = grandParent;
+		x = grandParent;
+	}
+	return x;
+}
+
 /// btUnionFind::unite(tags[2 i], tags[2 i + 1]) for i = 0 .. count - 1 in that order, skipping the i with
 /// tags[2 i] < 0: the same finds (path halving), the same unions (the smaller set below the larger, the
 /// first below the second on a tie), so the same elements, in one loop without the per-call checks. Every
@@ -20,18 +33,8 @@ inline void uniteInOrder(btUnionFind& unionFind, const int* tags, int count)
 		if (rootP < 0) continue;
 		int rootQ = tags[2 * i + 1];
 		btAssert(rootP < unionFind.getNumElements() && rootQ >= 0 && rootQ < unionFind.getNumElements());
-		while (elements[rootP].m_id != rootP)
-		{
-			const int grandParent = elements[elements[rootP].m_id].m_id;
-			elements[rootP].m_id = grandParent;
-			rootP = grandParent;
-		}
-		while (elements[rootQ].m_id != rootQ)
-		{
-			const int grandParent = elements[elements[rootQ].m_id].m_id;
-			elements[rootQ].m_id = grandParent;
-			rootQ = grandParent;
-		}
+		rootP = findWithHalving(elements, rootP);
+		rootQ = findWithHalving(elements, rootQ);
 		if (rootP == rootQ) continue;
 		if (elements[rootP].m_sz > elements[rootQ].m_sz) btSwap(rootP, rootQ);
 		elements[rootP].m_id = rootQ;
