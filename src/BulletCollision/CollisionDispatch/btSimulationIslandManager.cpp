@@ -6,7 +6,9 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 #include "BulletCollision/CollisionDispatch/btLoneIslandSink.h"
+#include "BulletCollision/CollisionDispatch/btUniteInOrder.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "LinearMath/btThreads.h"
 
 namespace
 {
@@ -25,6 +27,23 @@ namespace caliber
 {
 namespace
 {
+/// The elements findUnions unites for pair (tags[0], tags[1]), or -1 in tags[0] when it unites none.
+void unionTagsOf(const btBroadphasePair& pair, int numElements, int* tags)
+{
+	tags[0] = -1;
+	if (!pair.m_pProxy0 || !pair.m_pProxy1) return;
+	const btCollisionObject* object0 = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
+	const btCollisionObject* object1 = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
+	// Static, kinematic and non-responding objects would chain every body resting on them into one
+	// island; they only touch islands, never join them.
+	if (!object0 || !object1 || !object0->mergesSimulationIslands() || !object1->mergesSimulationIslands()) return;
+	const int tag0 = object0->getIslandTag();
+	const int tag1 = object1->getIslandTag();
+	if (tag0 < 0 || tag0 >= numElements || tag1 < 0 || tag1 >= numElements) return;
+	tags[0] = tag0;
+	tags[1] = tag1;
+}
+
 /// Where each island's manifolds start once grouped, and the grouping's copy of the manifolds: per thread
 /// (so that a step allocates nothing once they have grown), not members of the island manager, which
 /// Bullet declares without them.
@@ -35,6 +54,8 @@ struct IslandGroupingScratch
 	// The run of lone islands not yet handed to a caliber::LoneIslandSink: their bodies and ids.
 	btAlignedObjectArray<btCollisionObject*> loneBodies;
 	btAlignedObjectArray<int> loneIds;
+	// findUnions's list of the elements each pair unites (filled on the threads).
+	btAlignedObjectArray<int> unionTags;
 	bool inUse = false;
 };
 
@@ -68,6 +89,25 @@ void groupManifoldsByIsland(btAlignedObjectArray<btPersistentManifold*>& manifol
 	}
 }
 
+/// Pairs per task of the union pass's filter on the threads, and the fewest pairs worth a loop.
+const int kPairsPerUnionTask = 512;
+
+/// The union pass's filter on the threads: for each pair of the cache, the two elements findUnions unites
+/// (tags[2 i], tags[2 i + 1]), or -1 in tags[2 i] when the pair unites nothing. Each pair writes only its
+/// own two slots, so any split of the loop gives the same list; the unions are then made from it in pair
+/// order on the calling thread, as the serial pass makes them.
+struct UnionTagsOfPairs : public btIParallelForBody
+{
+	const btBroadphasePair* pairs;
+	int numElements;
+	int* tags;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i) unionTagsOf(pairs[i], numElements, tags + 2 * i);
+	}
+};
+
 IslandGroupingScratch& threadIslandGroupingScratch()
 {
 	static thread_local IslandGroupingScratch scratch;
@@ -92,21 +132,29 @@ void btSimulationIslandManager::findUnions(btDispatcher* dispatcher, btCollision
 	if (numPairs == 0) return;
 	const btBroadphasePair* pairs = pairCache->getOverlappingPairArrayPtr();
 	const int numElements = m_unionFind.getNumElements();
-	for (int i = 0; i < numPairs; ++i)
+	const btITaskScheduler* scheduler = btGetTaskScheduler();
+	if (numPairs < 2 * caliber::kPairsPerUnionTask || !scheduler || scheduler->getNumThreads() <= 1 ||
+	    btThreadsAreRunning())
 	{
-		const btBroadphasePair& pair = pairs[i];
-		if (!pair.m_pProxy0 || !pair.m_pProxy1) continue;
-		const btCollisionObject* object0 = static_cast<const btCollisionObject*>(pair.m_pProxy0->m_clientObject);
-		const btCollisionObject* object1 = static_cast<const btCollisionObject*>(pair.m_pProxy1->m_clientObject);
-		// Static, kinematic and non-responding objects would chain every body resting on them into one
-		// island; they only touch islands, never join them.
-		if (!object0 || !object1 || !object0->mergesSimulationIslands() || !object1->mergesSimulationIslands())
-			continue;
-		const int tag0 = object0->getIslandTag();
-		const int tag1 = object1->getIslandTag();
-		if (tag0 < 0 || tag0 >= numElements || tag1 < 0 || tag1 >= numElements) continue;
-		m_unionFind.unite(tag0, tag1);
+		int tags[2];
+		for (int i = 0; i < numPairs; ++i)
+		{
+			caliber::unionTagsOf(pairs[i], numElements, tags);
+			if (tags[0] >= 0) m_unionFind.unite(tags[0], tags[1]);
+		}
+		return;
 	}
+	// The pairs' objects are read on the threads (a cache miss or two per pair); the unions, whose result
+	// depends on their order, are made here in pair order.
+	caliber::IslandGroupingScratch& scratch = caliber::threadIslandGroupingScratch();
+	btAlignedObjectArray<int>& tags = scratch.unionTags;
+	tags.resizeNoInitialize(2 * numPairs);
+	caliber::UnionTagsOfPairs filter;
+	filter.pairs = pairs;
+	filter.numElements = numElements;
+	filter.tags = &tags[0];
+	btParallelFor(0, numPairs, caliber::kPairsPerUnionTask, filter);
+	caliber::uniteInOrder(m_unionFind, &tags[0], numPairs);
 }
 
 void btSimulationIslandManager::updateActivationState(btCollisionWorld* colWorld, btDispatcher* dispatcher)
@@ -135,16 +183,17 @@ void btSimulationIslandManager::storeIslandActivationState(btCollisionWorld* wor
 	if (!world) return;
 	btCollisionObjectArray& objects = world->getCollisionObjectArray();
 	const int numElements = m_unionFind.getNumElements();
+	btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
 	int index = 0;
 	for (int i = 0; i < objects.size(); ++i)
 	{
 		btCollisionObject* object = objects[i];
 		if (!object->isStaticOrKinematicObject() && index < numElements)
 		{
-			object->setIslandTag(m_unionFind.find(index));
+			object->setIslandTag(caliber::findWithHalving(elements, index));
 			// The unions are done, so the set sizes are no longer needed: m_sz now says which object the
 			// element stands for, which survives the sort in sortIslands.
-			m_unionFind.getElement(index).m_sz = i;
+			elements[index].m_sz = i;
 			object->setCompanionId(-1);
 			++index;
 		}

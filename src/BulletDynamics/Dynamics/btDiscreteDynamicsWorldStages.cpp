@@ -4,6 +4,7 @@
 // sleeping. Kinematic state and quarantine of non-finite bodies come first.
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
+#include "BulletCollision/CollisionDispatch/btUniteInOrder.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletDynamics/ConstraintSolver/btConstraintSolver.h"
@@ -264,22 +265,98 @@ void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
 	btParallelFor(0, m_nonStaticRigidBodies.size(), caliber::kBodiesPerTask, loop);
 }
 
+namespace
+{
+// Joints per task of the per-joint passes of the island stage on the threads, and the fewest joints worth
+// a loop (ragdolls136 has 1360).
+const int kJointsPerIslandTask = 256;
+
+bool jointPassesOnThreads(int numJoints)
+{
+	const btITaskScheduler* scheduler = btGetTaskScheduler();
+	return numJoints >= 2 * kJointsPerIslandTask && scheduler && scheduler->getNumThreads() > 1 &&
+	       !btThreadsAreRunning();
+}
+
+// The elements calculateSimulationIslands unites for joint (tags[0], tags[1]), or -1 in tags[0] for none.
+void jointUnionTags(const btCollisionWorld& world, const btTypedConstraint& constraint, int numElements, int* tags)
+{
+	tags[0] = -1;
+	if (!constraint.isEnabled()) return;
+	const btRigidBody& a = constraint.getRigidBodyA();
+	const btRigidBody& b = constraint.getRigidBodyB();
+	if (!caliber::isSimulatedIn(world, a) || !caliber::isSimulatedIn(world, b)) return;
+	const int tagA = a.getIslandTag(), tagB = b.getIslandTag();
+	if (tagA < 0 || tagB < 0 || tagA >= numElements || tagB >= numElements) return;
+	tags[0] = tagA;
+	tags[1] = tagB;
+}
+
+// The island sortConstraintsByIsland files joint under (that of its simulated body, A first), or -1.
+int jointIsland(const btCollisionWorld& world, const btTypedConstraint& constraint, int numIslands)
+{
+	if (!constraint.isEnabled()) return -1;
+	const btRigidBody& a = constraint.getRigidBodyA();
+	const btRigidBody& b = constraint.getRigidBodyB();
+	const int island = caliber::isSimulatedIn(world, a) ? a.getIslandTag()
+	                                                     : (caliber::isSimulatedIn(world, b) ? b.getIslandTag() : -1);
+	return island >= 0 && island < numIslands ? island : -1;
+}
+
+// Both per-joint passes on the threads: each joint writes only its own slots, so any split of the loop
+// gives the same lists, which the calling thread then reads in joint order (the serial passes' order).
+struct JointIslandPass : public btIParallelForBody
+{
+	const btCollisionWorld* world;
+	btTypedConstraint* const* constraints;
+	int numElements;
+	bool unions;  // jointUnionTags into out[2 i], out[2 i + 1]; else jointIsland into out[i]
+	int* out;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			if (unions)
+				jointUnionTags(*world, *constraints[i], numElements, out + 2 * i);
+			else
+				out[i] = jointIsland(*world, *constraints[i], numElements);
+		}
+	}
+};
+}  // namespace
+
 void btDiscreteDynamicsWorld::calculateSimulationIslands()
 {
 	BT_PROFILE("calculateSimulationIslands");
 	getSimulationIslandManager()->updateActivationState(getCollisionWorld(), getCollisionWorld()->getDispatcher());
-	// Jointed bodies share an island: they are solved together, and sleep and wake together.
+	// Jointed bodies share an island: they are solved together, and sleep and wake together. The unions'
+	// result depends on their order: they are made in joint order (the joints' bodies may be read on the
+	// threads first).
 	btUnionFind& unionFind = getSimulationIslandManager()->getUnionFind();
-	for (int i = 0; i < m_constraints.size(); ++i)
+	const int numElements = unionFind.getNumElements();
+	const int numJoints = m_constraints.size();
+	if (jointPassesOnThreads(numJoints))
 	{
-		btTypedConstraint* constraint = m_constraints[i];
-		if (!constraint->isEnabled()) continue;
-		const btRigidBody& a = constraint->getRigidBodyA();
-		const btRigidBody& b = constraint->getRigidBodyB();
-		if (!caliber::isSimulatedIn(*this, a) || !caliber::isSimulatedIn(*this, b)) continue;
-		const int tagA = a.getIslandTag(), tagB = b.getIslandTag();
-		if (tagA >= 0 && tagB >= 0 && tagA < unionFind.getNumElements() && tagB < unionFind.getNumElements())
-			unionFind.unite(tagA, tagB);
+		btAlignedObjectArray<int>& tags = caliber::stepContextOf(*this).jointIslandTags;
+		tags.resizeNoInitialize(2 * numJoints);
+		JointIslandPass pass;
+		pass.world = this;
+		pass.constraints = &m_constraints[0];
+		pass.numElements = numElements;
+		pass.unions = true;
+		pass.out = &tags[0];
+		btParallelFor(0, numJoints, kJointsPerIslandTask, pass);
+		caliber::uniteInOrder(unionFind, &tags[0], numJoints);
+	}
+	else
+	{
+		int tags[2];
+		for (int i = 0; i < numJoints; ++i)
+		{
+			jointUnionTags(*this, *m_constraints[i], numElements, tags);
+			if (tags[0] >= 0) unionFind.unite(tags[0], tags[1]);
+		}
 	}
 	getSimulationIslandManager()->storeIslandActivationState(getCollisionWorld());
 }
@@ -311,38 +388,41 @@ void caliber::sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
 	}
 	islandStart.resize(numIslands + 1, 0);
 	const bool splitIslands = world.getSimulationIslandManager()->getSplitIslands();
-	for (int i = 0; i < constraints.size(); ++i)
+	const int numJoints = constraints.size();
+	// Each joint's island, on the threads when there are many joints (in joint order either way).
+	btAlignedObjectArray<int>& islandOf = context.jointIslandTags;
+	islandOf.resizeNoInitialize(numJoints);
+	if (jointPassesOnThreads(numJoints))
 	{
-		btTypedConstraint* constraint = constraints[i];
-		if (!constraint->isEnabled()) continue;
-		const btRigidBody& a = constraint->getRigidBodyA();
-		const btRigidBody& b = constraint->getRigidBodyB();
-		const int island =
-		    isSimulatedIn(world, a) ? a.getIslandTag() : (isSimulatedIn(world, b) ? b.getIslandTag() : -1);
-		if (island < 0 || island >= numIslands) continue;
-		if (!splitIslands)
-		{
-			sorted.push_back(constraint);
-			continue;
-		}
-		++islandStart[island + 1];
+		JointIslandPass pass;
+		pass.world = &world;
+		pass.constraints = &constraints[0];
+		pass.numElements = numIslands;
+		pass.unions = false;
+		pass.out = &islandOf[0];
+		btParallelFor(0, numJoints, kJointsPerIslandTask, pass);
 	}
-	if (!splitIslands) return;
+	else
+	{
+		for (int i = 0; i < numJoints; ++i) islandOf[i] = jointIsland(world, *constraints[i], numIslands);
+	}
+	if (!splitIslands)
+	{
+		for (int i = 0; i < numJoints; ++i)
+			if (islandOf[i] >= 0) sorted.push_back(constraints[i]);
+		return;
+	}
+	for (int i = 0; i < numJoints; ++i)
+		if (islandOf[i] >= 0) ++islandStart[islandOf[i] + 1];
 	for (int i = 0; i < numIslands; ++i) islandStart[i + 1] += islandStart[i];
 	sorted.resize(islandStart[numIslands]);
 	// Second pass: place each joint after those of its island already placed (stable: insertion order).
 	islandFill.resize(0);
 	islandFill.resize(numIslands, 0);
-	for (int i = 0; i < constraints.size(); ++i)
+	for (int i = 0; i < numJoints; ++i)
 	{
-		btTypedConstraint* constraint = constraints[i];
-		if (!constraint->isEnabled()) continue;
-		const btRigidBody& a = constraint->getRigidBodyA();
-		const btRigidBody& b = constraint->getRigidBodyB();
-		const int island =
-		    isSimulatedIn(world, a) ? a.getIslandTag() : (isSimulatedIn(world, b) ? b.getIslandTag() : -1);
-		if (island < 0 || island >= numIslands) continue;
-		sorted[islandStart[island] + islandFill[island]++] = constraint;
+		const int island = islandOf[i];
+		if (island >= 0) sorted[islandStart[island] + islandFill[island]++] = constraints[i];
 	}
 }
 

@@ -63,6 +63,13 @@ inline int islandOfJoint(const btTypedConstraint& joint, int numObjects)
 bool correctLeftOverJoint(btTypedConstraint* constraint, int numIterations, btConstraintArray& rowScratch,
                           btAlignedObjectArray<btRigidBody*>& correctedBodies);
 
+/// The joints the correction works on (enabled, correcting position) into joints, in their order. When
+/// correctByIsland will run on the threads (enough constraints, more than one thread), the constraints
+/// are judged on the threads, which also tell each selected joint's island (islandOfJoint) into
+/// context.jointCorrectionIslandOf, and context.jointCorrectionIslandsKnown is set.
+void selectJoints(const btDiscreteDynamicsWorld& world, const btAlignedObjectArray<btTypedConstraint*>& constraints,
+                  btAlignedObjectArray<btTypedConstraint*>& joints, WorldStepContext& context);
+
 /// The whole correction of joints (enabled, correcting position) island by island on the task
 /// scheduler's threads, with the bits of the serial pass. False, having done nothing, when it does not
 /// apply (one thread, few joints, a joint whose island cannot be told).

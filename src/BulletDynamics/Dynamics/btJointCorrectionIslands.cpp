@@ -113,11 +113,20 @@ bool groupIntoChunks(const btDiscreteDynamicsWorld& world, const btAlignedObject
 {
 	const int numObjects = world.getNumCollisionObjects();
 	btAlignedObjectArray<int>& islandOf = context.jointCorrectionIslandOf;
-	islandOf.resizeNoInitialize(joints.size());
-	for (int c = 0; c < joints.size(); ++c)
+	if (context.jointCorrectionIslandsKnown)
 	{
-		islandOf[c] = islandOfJoint(*joints[c], numObjects);
-		if (islandOf[c] == -1) return false;
+		// Told on the threads by selectJoints.
+		for (int c = 0; c < joints.size(); ++c)
+			if (islandOf[c] == -1) return false;
+	}
+	else
+	{
+		islandOf.resizeNoInitialize(joints.size());
+		for (int c = 0; c < joints.size(); ++c)
+		{
+			islandOf[c] = islandOfJoint(*joints[c], numObjects);
+			if (islandOf[c] == -1) return false;
+		}
 	}
 	// count[t + 1]: joints of island t; then prefix sums (joints that move no body are dropped: the serial
 	// pass leaves them alone too).
@@ -156,6 +165,75 @@ bool groupIntoChunks(const btDiscreteDynamicsWorld& world, const btAlignedObject
 	return true;
 }
 }  // namespace
+
+namespace
+{
+// Constraints per task of selectJoints's loop.
+const int kConstraintsPerSelectTask = 256;
+
+// Each constraint's island (islandOfJoint) when the correction works on it, else kNotSelected; every
+// constraint writes only its own slot, so any split of the loop gives the same list.
+const int kNotSelected = -3;
+struct SelectJoints : public btIParallelForBody
+{
+	btTypedConstraint* const* constraints;
+	int numObjects;
+	int* selection;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			const btTypedConstraint& constraint = *constraints[c];
+			selection[c] = constraint.isEnabled() && caliber::correctsPosition(constraint)
+			                   ? islandOfJoint(constraint, numObjects)
+			                   : kNotSelected;
+		}
+	}
+};
+}  // namespace
+
+void caliber::joint_correction::selectJoints(const btDiscreteDynamicsWorld& world,
+                                             const btAlignedObjectArray<btTypedConstraint*>& constraints,
+                                             btAlignedObjectArray<btTypedConstraint*>& joints,
+                                             WorldStepContext& context)
+{
+	joints.resize(0);
+	context.jointCorrectionIslandsKnown = false;
+	const int numConstraints = constraints.size();
+	const btITaskScheduler* scheduler = btGetTaskScheduler();
+	if (numConstraints < btMax(kMinJointsForParallelCorrection, 2 * kConstraintsPerSelectTask) || !scheduler ||
+	    scheduler->getNumThreads() <= 1 || btThreadsAreRunning())
+	{
+		for (int c = 0; c < numConstraints; ++c)
+		{
+			btTypedConstraint* constraint = constraints[c];
+			if (constraint->isEnabled() && caliber::correctsPosition(*constraint)) joints.push_back(constraint);
+		}
+		return;
+	}
+	btAlignedObjectArray<int>& selection = context.jointCorrectionSelection;
+	selection.resizeNoInitialize(numConstraints);
+	SelectJoints select;
+	select.constraints = &constraints[0];
+	select.numObjects = world.getNumCollisionObjects();
+	select.selection = &selection[0];
+	btParallelFor(0, numConstraints, kConstraintsPerSelectTask, select);
+	btAlignedObjectArray<int>& islandOf = context.jointCorrectionIslandOf;
+	islandOf.resizeNoInitialize(numConstraints);
+	int numSelected = 0;
+	joints.resizeNoInitialize(numConstraints);
+	for (int c = 0; c < numConstraints; ++c)
+	{
+		if (selection[c] == kNotSelected) continue;
+		joints[numSelected] = constraints[c];
+		islandOf[numSelected] = selection[c];
+		++numSelected;
+	}
+	joints.resize(numSelected);
+	islandOf.resize(numSelected);
+	context.jointCorrectionIslandsKnown = true;
+}
 
 bool caliber::joint_correction::correctByIsland(btDiscreteDynamicsWorld& world,
                                                 const btAlignedObjectArray<btTypedConstraint*>& joints,

@@ -55,6 +55,8 @@ struct WorldStepContext
 	/// the counting sort's fill cursor per island.
 	btAlignedObjectArray<int> constraintIslandStart;
 	btAlignedObjectArray<int> islandFill;
+	/// The island stage's per-joint lists (the elements each joint unites, then each joint's island).
+	btAlignedObjectArray<int> jointIslandTags;
 	/// Scratch of the joint position correction.
 	btConstraintArray jointCorrectionRows;
 	btAlignedObjectArray<btRigidBody*> jointCorrectedBodies;
@@ -63,6 +65,9 @@ struct WorldStepContext
 	/// The parallel sweep of the left-over joints: each joint's island, the islands' starts, the joints
 	/// grouped by island, and one chunk per task.
 	btAlignedObjectArray<int> jointCorrectionIslandOf;
+	/// Set by joint_correction::selectJoints when it told jointCorrectionIslandOf for the selected joints.
+	bool jointCorrectionIslandsKnown = false;
+	btAlignedObjectArray<int> jointCorrectionSelection;
 	btAlignedObjectArray<int> jointCorrectionIslandCount;
 	btAlignedObjectArray<int> jointCorrectionIslandStart;
 	btAlignedObjectArray<btTypedConstraint*> jointCorrectionGrouped;
