@@ -235,13 +235,7 @@ btScalar caliber::solveFrictionRow(btSolverBody* solverBodies, btConstraintArray
                                    int rowIndex)
 {
 	btSolverConstraint& row = friction[rowIndex];
-	const btScalar normalImpulse = contacts[row.m_frictionIndex].m_appliedImpulse;
-	// A contact that carries no normal impulse (a speculative one, say) carries no friction either: skip
-	// it, unless it holds a warm-started friction impulse, which the zero bound then takes back.
-	if (!(normalImpulse > btScalar(0)) && row.m_appliedImpulse == btScalar(0)) return btScalar(0);
-	const btScalar bound = row.m_friction * caliber::btMaxBranchless(btScalar(0), normalImpulse);
-	return caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row, -bound,
-	                           bound);
+	return caliber::resolveFrictionRow(solverBodies, row, contacts[row.m_frictionIndex].m_appliedImpulse);
 }
 
 btScalar caliber::sweepJoints(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,
@@ -331,9 +325,10 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 			const int ahead = reverse ? j - kRowPrefetchDistance : j + kRowPrefetchDistance;
 			prefetchRow(&m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[ahead]]);
 		}
-		residual +=
-		    caliber::solveFrictionRow(solverBodies, m_tmpSolverContactConstraintPool,
-		                              m_tmpSolverContactFrictionConstraintPool, m_orderFrictionConstraintPool[j]);
+		// The kernel inlined (not solveFrictionRow's call): the sweep's pools and residual stay in registers.
+		btSolverConstraint& row = m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[j]];
+		residual += caliber::resolveFrictionRow(
+		    solverBodies, row, m_tmpSolverContactConstraintPool[row.m_frictionIndex].m_appliedImpulse);
 	}
 
 	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();
