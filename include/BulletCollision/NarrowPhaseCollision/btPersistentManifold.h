@@ -101,9 +101,17 @@ public:
 	void setNumContacts(int cachedPoints);
 
 	/// Point at index; out of range asserts, and in release the index is clamped into the cache array.
-	const btManifoldPoint& getContactPoint(int index) const;
+	SIMD_FORCE_INLINE const btManifoldPoint& getContactPoint(int index) const
+	{
+		btAssert(index >= 0 && index < m_cachedPoints);
+		return m_pointCache[index < 0 ? 0 : (index < MANIFOLD_CACHE_SIZE ? index : int(MANIFOLD_CACHE_SIZE) - 1)];
+	}
 	/// Point at index; out of range asserts, and in release the index is clamped into the cache array.
-	btManifoldPoint& getContactPoint(int index);
+	SIMD_FORCE_INLINE btManifoldPoint& getContactPoint(int index)
+	{
+		btAssert(index >= 0 && index < m_cachedPoints);
+		return m_pointCache[index < 0 ? 0 : (index < MANIFOLD_CACHE_SIZE ? index : int(MANIFOLD_CACHE_SIZE) - 1)];
+	}
 
 	/// Distance beyond which points are dropped.
 	btScalar getContactBreakingThreshold() const { return m_contactBreakingThreshold; }

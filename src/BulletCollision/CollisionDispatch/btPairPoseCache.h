@@ -39,7 +39,16 @@ struct PairShapes
 
 	bool operator==(const PairShapes& o) const
 	{
+#if defined(BT_USE_SSE)
+		// btVector3's == on x, y and z of all four at once (the same IEEE comparisons, w ignored): the pair
+		// loop asks this of every cached pair every step.
+		const __m128 equal = _mm_and_ps(
+		    _mm_and_ps(_mm_cmpeq_ps(min0.get128(), o.min0.get128()), _mm_cmpeq_ps(max0.get128(), o.max0.get128())),
+		    _mm_and_ps(_mm_cmpeq_ps(min1.get128(), o.min1.get128()), _mm_cmpeq_ps(max1.get128(), o.max1.get128())));
+		return (_mm_movemask_ps(equal) & 7) == 7;
+#else
 		return min0 == o.min0 && max0 == o.max0 && min1 == o.min1 && max1 == o.max1;
+#endif
 	}
 	/// How far from its origin a point of shape 1 can be.
 	btScalar extent1() const

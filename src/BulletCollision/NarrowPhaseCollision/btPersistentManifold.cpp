@@ -95,18 +95,6 @@ void btPersistentManifold::setNumContacts(int cachedPoints)
 	m_cachedPoints = btMax(0, btMin(cachedPoints, int(MANIFOLD_CACHE_SIZE)));
 }
 
-const btManifoldPoint& btPersistentManifold::getContactPoint(int index) const
-{
-	btAssert(index >= 0 && index < m_cachedPoints);
-	return m_pointCache[btMax(0, btMin(index, int(MANIFOLD_CACHE_SIZE) - 1))];
-}
-
-btManifoldPoint& btPersistentManifold::getContactPoint(int index)
-{
-	btAssert(index >= 0 && index < m_cachedPoints);
-	return m_pointCache[btMax(0, btMin(index, int(MANIFOLD_CACHE_SIZE) - 1))];
-}
-
 void btPersistentManifold::setContactBreakingThreshold(btScalar contactBreakingThreshold)
 {
 	m_contactBreakingThreshold = sanitizedBreakingThreshold(contactBreakingThreshold);

@@ -235,13 +235,7 @@ btScalar caliber::solveFrictionRow(btSolverBody* solverBodies, btConstraintArray
                                    int rowIndex)
 {
 	btSolverConstraint& row = friction[rowIndex];
-	const btScalar normalImpulse = contacts[row.m_frictionIndex].m_appliedImpulse;
-	// A contact that carries no normal impulse (a speculative one, say) carries no friction either: skip
-	// it, unless it holds a warm-started friction impulse, which the zero bound then takes back.
-	if (!(normalImpulse > btScalar(0)) && row.m_appliedImpulse == btScalar(0)) return btScalar(0);
-	const btScalar bound = row.m_friction * caliber::btMaxBranchless(btScalar(0), normalImpulse);
-	return caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row, -bound,
-	                           bound);
+	return caliber::resolveFrictionRow(solverBodies, row, contacts[row.m_frictionIndex].m_appliedImpulse);
 }
 
 btScalar caliber::sweepJoints(const SolverScratch& scratch, btSolverBody* bodies, btConstraintArray& jointRows,
@@ -309,31 +303,49 @@ btScalar btSequentialImpulseConstraintSolver::solveSingleIteration(int iteration
 	// The interleaved order (see solveGroupCacheFriendlySetup) jumps between a few manifolds' rows, which
 	// the hardware prefetcher does not follow: rows are requested a few places ahead.
 	const int kRowPrefetchDistance = 8;
+	// Each pool is swept through its order array from one end, index stepping by +1 or -1; the rows more
+	// than kRowPrefetchDistance from the end are requested that far ahead, the rest are not (the loop
+	// is split there instead of testing every row).
+	const int step = reverse ? -1 : 1;
 	const int numContacts = m_tmpSolverContactConstraintPool.size();
-	for (int k = 0; k < numContacts; ++k)
+	if (numContacts > 0)
 	{
-		const int j = reverse ? numContacts - 1 - k : k;
-		if (k + kRowPrefetchDistance < numContacts)
+		btSolverConstraint* rows = &m_tmpSolverContactConstraintPool[0];
+		const int* order = &m_orderTmpConstraintPool[0];
+		const auto solve = [&](int j)
 		{
-			const int ahead = reverse ? j - kRowPrefetchDistance : j + kRowPrefetchDistance;
-			prefetchRow(&m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[ahead]]);
+			btSolverConstraint& row = rows[order[j]];
+			residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
+			                                row.m_lowerLimit, row.m_upperLimit);
+		};
+		int j = reverse ? numContacts - 1 : 0, k = 0;
+		for (; k < numContacts - kRowPrefetchDistance; ++k, j += step)
+		{
+			prefetchRow(&rows[order[j + step * kRowPrefetchDistance]]);
+			solve(j);
 		}
-		btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[j]];
-		residual += caliber::resolveRow(solverBodies[row.m_solverBodyIdA], solverBodies[row.m_solverBodyIdB], row,
-		                                row.m_lowerLimit, row.m_upperLimit);
+		for (; k < numContacts; ++k, j += step) solve(j);
 	}
 	const int numFriction = m_tmpSolverContactFrictionConstraintPool.size();
-	for (int k = 0; k < numFriction; ++k)
+	if (numFriction > 0)
 	{
-		const int j = reverse ? numFriction - 1 - k : k;
-		if (k + kRowPrefetchDistance < numFriction)
+		btSolverConstraint* rows = &m_tmpSolverContactFrictionConstraintPool[0];
+		btSolverConstraint* contactRows = numContacts ? &m_tmpSolverContactConstraintPool[0] : nullptr;
+		const int* order = &m_orderFrictionConstraintPool[0];
+		// The kernel inlined (not solveFrictionRow's call): the sweep's pools and residual stay in registers.
+		const auto solve = [&](int j)
 		{
-			const int ahead = reverse ? j - kRowPrefetchDistance : j + kRowPrefetchDistance;
-			prefetchRow(&m_tmpSolverContactFrictionConstraintPool[m_orderFrictionConstraintPool[ahead]]);
+			btSolverConstraint& row = rows[order[j]];
+			residual +=
+			    caliber::resolveFrictionRow(solverBodies, row, contactRows[row.m_frictionIndex].m_appliedImpulse);
+		};
+		int j = reverse ? numFriction - 1 : 0, k = 0;
+		for (; k < numFriction - kRowPrefetchDistance; ++k, j += step)
+		{
+			prefetchRow(&rows[order[j + step * kRowPrefetchDistance]]);
+			solve(j);
 		}
-		residual +=
-		    caliber::solveFrictionRow(solverBodies, m_tmpSolverContactConstraintPool,
-		                              m_tmpSolverContactFrictionConstraintPool, m_orderFrictionConstraintPool[j]);
+		for (; k < numFriction; ++k, j += step) solve(j);
 	}
 
 	const int numRolling = m_tmpSolverContactRollingFrictionConstraintPool.size();

@@ -85,8 +85,8 @@ btScalar setupAngularJacobian(btSolverConstraint& row, const RowBody& a, const R
 	       (-axis).dot(row.m_angularComponentB * b.angularFactor());
 }
 
-// J v at the start of the solve.
-btScalar rowVelocity(const btSolverConstraint& row, const RowBody& a, const RowBody& b)
+// J v at the start of the solve. Inlined: a call made the set-up spill and reload its registers around it.
+SIMD_FORCE_INLINE btScalar rowVelocity(const btSolverConstraint& row, const RowBody& a, const RowBody& b)
 {
 	const caliber::Dot4 terms =
 	    caliber::dot4(row.m_contactNormal1, a.linearVelocity(), row.m_relpos1CrossNormal, a.angularVelocity(),
@@ -202,12 +202,10 @@ bool slidesPastWithoutTouching(const btCollisionObject& objectA, const btCollisi
 	return !cast.calcTimeOfImpact(objectA.getWorldTransform(), toA, objectB.getWorldTransform(), toB, result);
 }
 
-// Whether a contact row rebounds if it is met this step, and how (its J v at setup, the target J v and
-// the push velocity of a weak rebound); bounce.row is left to the caller.
-bool rowBounce(const btSolverConstraint& row, const RowBody& a, const RowBody& b, const btManifoldPoint& cp,
-               const btContactSolverInfo& infoGlobal, caliber::SolverBounceRow& bounce)
+// rowBounce for a point with restitution.
+bool restitutionRowBounce(const btSolverConstraint& row, const RowBody& a, const RowBody& b, const btManifoldPoint& cp,
+                          const btContactSolverInfo& infoGlobal, caliber::SolverBounceRow& bounce)
 {
-	if (!(cp.m_combinedRestitution > btScalar(0))) return false;
 	const btScalar relativeVelocity = rowVelocity(row, a, b);
 	const btScalar penetration = cp.getDistance() + infoGlobal.m_linearSlop;
 	// The velocity change this step's forces gave the pair (the world adds them before the solve).
@@ -225,6 +223,17 @@ bool rowBounce(const btSolverConstraint& row, const RowBody& a, const RowBody& b
 	bounce.targetVelocity = target.velocity;
 	bounce.targetPushVelocity = target.pushGap * invTimeStep;
 	return true;
+}
+
+// Whether a contact row rebounds if it is met this step, and how (its J v at setup, the target J v and
+// the push velocity of a weak rebound); bounce.row is left to the caller. Most points have no
+// restitution: that test is inlined, the rest is a call.
+SIMD_FORCE_INLINE bool rowBounce(const btSolverConstraint& row, const RowBody& a, const RowBody& b,
+                                 const btManifoldPoint& cp, const btContactSolverInfo& infoGlobal,
+                                 caliber::SolverBounceRow& bounce)
+{
+	if (!(cp.m_combinedRestitution > btScalar(0))) return false;
+	return restitutionRowBounce(row, a, b, cp, infoGlobal, bounce);
 }
 
 // One test on the sum rather than caliber::isFinite per vector: cheaper per contact, and a sum that
@@ -250,9 +259,9 @@ void scaleByAnisotropicFriction(const btCollisionObject* colObj, btVector3& fric
 }
 
 // Fills a contact's normal row; its warm-start impulse is set but not applied to the bodies.
-void setupContactRow(const RowBody& a, const RowBody& b, btSolverConstraint& row, int solverBodyIdA, int solverBodyIdB,
-                     btManifoldPoint& cp, const btContactSolverInfo& infoGlobal, btScalar& relaxation,
-                     const btVector3& rel_pos1, const btVector3& rel_pos2)
+SIMD_FORCE_INLINE void setupContactRow(const RowBody& a, const RowBody& b, btSolverConstraint& row, int solverBodyIdA,
+                                       int solverBodyIdB, btManifoldPoint& cp, const btContactSolverInfo& infoGlobal,
+                                       btScalar& relaxation, const btVector3& rel_pos1, const btVector3& rel_pos2)
 {
 	relaxation = infoGlobal.m_sor;
 	const btScalar invTimeStep = btScalar(1) / infoGlobal.m_timeStep;
@@ -465,39 +474,6 @@ void btSequentialImpulseConstraintSolver::convertContacts(btPersistentManifold**
 	}
 }
 
-void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* manifold,
-                                                         const btContactSolverInfo& infoGlobal)
-{
-	btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
-	btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
-	if (!colObj0 || !colObj1) return;
-	const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
-	const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
-	if (!caliber::solverBodiesCanMove(m_tmpSolverBodyPool, solverBodyIdA, solverBodyIdB)) return;
-	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
-	const caliber::ContactRowPools pools = {&m_tmpSolverBodyPool, &m_tmpSolverContactConstraintPool,
-	                                        &m_tmpSolverContactFrictionConstraintPool,
-	                                        &m_tmpSolverContactRollingFrictionConstraintPool};
-	caliber::ContactPointRows point;
-	for (int j = 0; j < manifold->getNumContacts(); ++j)
-	{
-		if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, solverBodyIdA, solverBodyIdB,
-		                               m_tmpSolverBodyPool, infoGlobal, point))
-			continue;
-		point.contactRow = m_tmpSolverContactConstraintPool.size();
-		point.firstFrictionRow = m_tmpSolverContactFrictionConstraintPool.size();
-		point.firstRollingRow = m_tmpSolverContactRollingFrictionConstraintPool.size();
-		// One row at a time: expandNonInitializing grows the pools geometrically (resizeNoInitialize would
-		// reallocate them to the exact size for every point).
-		m_tmpSolverContactConstraintPool.expandNonInitializing();
-		for (int f = 0; f < frictionRowsPerContact; ++f) m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
-		for (int r = caliber::rollingRowsOf(*point.cp); r > 0; --r)
-			m_tmpSolverContactRollingFrictionConstraintPool.expandNonInitializing();
-		caliber::fillContactPointRows(pools, point, infoGlobal);
-		caliber::applyContactPointWarmStarts(pools, point, infoGlobal);
-	}
-}
-
 bool caliber::solverBodiesCanMove(const btAlignedObjectArray<btSolverBody>& bodies, int solverBodyIdA,
                                   int solverBodyIdB)
 {
@@ -555,8 +531,11 @@ bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btColl
 	return true;
 }
 
-void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& point,
-                                   const btContactSolverInfo& infoGlobal)
+namespace
+{
+// fillContactPointRows and applyContactPointWarmStarts, inlined into the serial set-up's loop over points.
+SIMD_FORCE_INLINE void fillPointRows(const caliber::ContactRowPools& pools, const caliber::ContactPointRows& point,
+                                     const btContactSolverInfo& infoGlobal)
 {
 	btAlignedObjectArray<btSolverBody>& bodies = *pools.bodies;
 	btManifoldPoint& cp = *point.cp;
@@ -666,8 +645,9 @@ void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPo
 	}
 }
 
-void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
-                                          const btContactSolverInfo& infoGlobal)
+SIMD_FORCE_INLINE void applyPointWarmStarts(const caliber::ContactRowPools& pools,
+                                            const caliber::ContactPointRows& point,
+                                            const btContactSolverInfo& infoGlobal)
 {
 	if (!(infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)) return;
 	btSolverBody& bodyA = (*pools.bodies)[point.solverBodyIdA];
@@ -676,6 +656,54 @@ void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const Co
 	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
 	for (int f = 0; f < frictionRowsPerContact; ++f)
 		applyWarmStart((*pools.friction)[point.firstFrictionRow + f], bodyA, bodyB);
+}
+
+}  // namespace
+
+void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& point,
+                                   const btContactSolverInfo& infoGlobal)
+{
+	fillPointRows(pools, point, infoGlobal);
+}
+
+void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
+                                          const btContactSolverInfo& infoGlobal)
+{
+	applyPointWarmStarts(pools, point, infoGlobal);
+}
+
+void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* manifold,
+                                                         const btContactSolverInfo& infoGlobal)
+{
+	btCollisionObject* colObj0 = const_cast<btCollisionObject*>(manifold->getBody0());
+	btCollisionObject* colObj1 = const_cast<btCollisionObject*>(manifold->getBody1());
+	if (!colObj0 || !colObj1) return;
+	const int solverBodyIdA = getOrInitSolverBody(*colObj0, infoGlobal.m_timeStep);
+	const int solverBodyIdB = getOrInitSolverBody(*colObj1, infoGlobal.m_timeStep);
+	if (!caliber::solverBodiesCanMove(m_tmpSolverBodyPool, solverBodyIdA, solverBodyIdB)) return;
+	const int frictionRowsPerContact = caliber::frictionRowsPerContact(infoGlobal);
+	const caliber::ContactRowPools pools = {&m_tmpSolverBodyPool, &m_tmpSolverContactConstraintPool,
+	                                        &m_tmpSolverContactFrictionConstraintPool,
+	                                        &m_tmpSolverContactRollingFrictionConstraintPool};
+	caliber::ContactPointRows point;
+	for (int j = 0; j < manifold->getNumContacts(); ++j)
+	{
+		if (!caliber::planContactPoint(*manifold, j, colObj0, colObj1, solverBodyIdA, solverBodyIdB,
+		                               m_tmpSolverBodyPool, infoGlobal, point))
+			continue;
+		point.contactRow = m_tmpSolverContactConstraintPool.size();
+		point.firstFrictionRow = m_tmpSolverContactFrictionConstraintPool.size();
+		point.firstRollingRow = m_tmpSolverContactRollingFrictionConstraintPool.size();
+		// One row at a time: expandNonInitializing grows the pools geometrically (resizeNoInitialize would
+		// reallocate them to the exact size for every point).
+		m_tmpSolverContactConstraintPool.expandNonInitializing();
+		for (int f = 0; f < frictionRowsPerContact; ++f)
+			m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
+		for (int r = caliber::rollingRowsOf(*point.cp); r > 0; --r)
+			m_tmpSolverContactRollingFrictionConstraintPool.expandNonInitializing();
+		fillPointRows(pools, point, infoGlobal);
+		applyPointWarmStarts(pools, point, infoGlobal);
+	}
 }
 
 namespace
@@ -700,11 +728,11 @@ bool findBounces(int begin, int end, const btAlignedObjectArray<btSolverBody>& b
 		const btSolverConstraint& row = contacts[r];
 		const btSolverBody& bodyA = bodies[row.m_solverBodyIdA];
 		const btSolverBody& bodyB = bodies[row.m_solverBodyIdB];
-		const RowBody a = RowBody::of(bodyA);
-		const RowBody b = RowBody::of(bodyB);
 		const btManifoldPoint& cp = *static_cast<const btManifoldPoint*>(row.m_originalContactPoint);
 		caliber::SolverBounceRow bounce;
-		if (rowBounce(row, a, b, cp, infoGlobal, bounce))
+		// The bodies' kinds are looked up only for a point with restitution (most have none).
+		if (cp.m_combinedRestitution > btScalar(0) &&
+		    restitutionRowBounce(row, RowBody::of(bodyA), RowBody::of(bodyB), cp, infoGlobal, bounce))
 		{
 			bounce.row = r;
 			bounces.push_back(bounce);

@@ -45,6 +45,16 @@ SIMD_FORCE_INLINE btScalar resolveRow(btSolverBody& bodyA, btSolverBody& bodyB, 
 	return deltaImpulse * deltaImpulse;
 }
 
+// A friction row bounded by its coefficient times its contact row's normal impulse. A contact that carries
+// no normal impulse (a speculative one, say) carries no friction either: the row is skipped, unless it
+// holds a warm-started friction impulse, which the zero bound then takes back.
+SIMD_FORCE_INLINE btScalar resolveFrictionRow(btSolverBody* bodies, btSolverConstraint& row, btScalar normalImpulse)
+{
+	if (!(normalImpulse > btScalar(0)) && row.m_appliedImpulse == btScalar(0)) return btScalar(0);
+	const btScalar bound = row.m_friction * btMaxBranchless(btScalar(0), normalImpulse);
+	return resolveRow(bodies[row.m_solverBodyIdA], bodies[row.m_solverBodyIdB], row, -bound, bound);
+}
+
 // The split-impulse counterpart: works on the push and turn velocities, impulse kept >= 0.
 SIMD_FORCE_INLINE btScalar resolvePushRow(btSolverBody& bodyA, btSolverBody& bodyB, btSolverConstraint& row)
 {

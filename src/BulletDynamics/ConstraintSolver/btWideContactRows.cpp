@@ -98,6 +98,40 @@ bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const*
 	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos2CrossNormal), block.relpos2CrossNormal);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentA), block.angularA);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentB), block.angularB);
+#if defined(BT_USE_SSE)
+	// The row's scalars lie in two aligned 16-byte lines, (push impulse, impulse, friction, 1 / diagonal)
+	// and (rhs, cfm, lower, upper): four rows' lines transposed give four lanes of each at once.
+	static_assert(
+	    sizeof(btSolverConstraint) % 16 == 0 && offsetof(btSolverConstraint, m_appliedPushImpulse) % 16 == 0 &&
+	        offsetof(btSolverConstraint, m_appliedImpulse) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 4 &&
+	        offsetof(btSolverConstraint, m_friction) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 8 &&
+	        offsetof(btSolverConstraint, m_jacDiagABInv) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 12 &&
+	        offsetof(btSolverConstraint, m_rhs) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 16 &&
+	        offsetof(btSolverConstraint, m_cfm) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 20 &&
+	        offsetof(btSolverConstraint, m_lowerLimit) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 24 &&
+	        offsetof(btSolverConstraint, m_upperLimit) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 28,
+	    "btSolverConstraint's scalars moved: copyRows reads them as two 16-byte lines");
+	for (int base = 0; base < W; base += 4)
+	{
+		__m128 l0[4], l1[4];
+		for (int k = 0; k < 4; ++k)
+		{
+			const float* line = &rows[base + k]->m_appliedPushImpulse;
+			l0[k] = _mm_load_ps(line);
+			l1[k] = _mm_load_ps(line + 4);
+		}
+		_MM_TRANSPOSE4_PS(l0[0], l0[1], l0[2], l0[3]);
+		_MM_TRANSPOSE4_PS(l1[0], l1[1], l1[2], l1[3]);
+		_mm_store_ps(block.applied + base, l0[1]);
+		_mm_store_ps(block.friction + base, l0[2]);
+		_mm_store_ps(block.jacDiagABInv + base, l0[3]);
+		_mm_store_ps(block.rhs + base, l1[0]);
+		_mm_store_ps(block.cfm + base, l1[1]);
+		_mm_store_ps(block.lower + base, l1[2]);
+		_mm_store_ps(block.upper + base, l1[3]);
+	}
+	for (int k = 0; k < W; ++k) block.row[k] = rowIndex[k];
+#else
 	for (int k = 0; k < W; ++k)
 	{
 		const btSolverConstraint& row = *rows[k];
@@ -110,6 +144,7 @@ bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const*
 		block.applied[k] = row.m_appliedImpulse;
 		block.row[k] = rowIndex[k];
 	}
+#endif
 	return negated;
 }
 }  // namespace
