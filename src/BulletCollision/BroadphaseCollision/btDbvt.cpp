@@ -153,7 +153,10 @@ SIMD_FORCE_INLINE void freeNode(btDbvt& tree, btDbvtNode* node)
 	tree.m_free = node;
 }
 
-void rotate(btDbvtNode* node)
+/// save(n) is called before each node rotate changes (a no-op for the tree's own operations; the moves within
+/// a subtree keep what they change, see moveLeafWithinSubtree).
+template <class Save>
+SIMD_FORCE_INLINE void rotateSaving(btDbvtNode* node, Save save)
 {
 	// Swapping a child of `node` with a grandchild under its other child keeps node's box and changes the
 	// box of that other child only; take the swap that shrinks it most (Catto, "Dynamic AABB trees", 2019).
@@ -181,11 +184,20 @@ void rotate(btDbvtNode* node)
 	btDbvtNode* down = node->childs[bestChild];
 	btDbvtNode* opened = node->childs[1 - bestChild];
 	btDbvtNode* up = opened->childs[bestGrandChild];
+	save(node);
+	save(up);
+	save(opened);
+	save(down);
 	node->childs[bestChild] = up;
 	up->parent = node;
 	opened->childs[bestGrandChild] = down;
 	down->parent = opened;
 	Merge(opened->childs[0]->volume, opened->childs[1]->volume, opened->volume);
+}
+
+void rotate(btDbvtNode* node)
+{
+	rotateSaving(node, [](btDbvtNode*) {});
 }
 
 /// The state of the search for a new leaf's sibling: the best so far and what bounds the rest.
@@ -378,15 +390,149 @@ void reinsertLeaf(btDbvt& tree, btDbvtNode* leaf, int lookahead)
 }  // namespace
 }  // namespace caliber
 
+namespace
+{
+/// refitLeafNearSibling's test: the leaf, at its new box, is still close enough to its sibling.
+SIMD_FORCE_INLINE bool staysNearSibling(const btDbvtNode* leaf, const btDbvtVolume& fitted)
+{
+	const btDbvtNode* sibling = leaf->parent->childs[1 - indexOfChild(leaf)];
+	return !(halfArea(merged(fitted, sibling->volume)) >
+	         caliber::kDbvtRefitSiblingSlack * (halfArea(fitted) + halfArea(sibling->volume)));
+}
+
+/// A move within one subtree: the tree, the subtree's root, and the log every changed node is saved to.
+struct SubtreeMove
+{
+	btDbvt* tree;
+	const btDbvtNode* subtree;
+	caliber::DbvtUndoLog* log;
+
+	void save(btDbvtNode* node) const
+	{
+		caliber::DbvtSavedNode saved;
+		saved.node = node;
+		saved.contents = *node;
+		log->push_back(saved);
+	}
+};
+
+/// The growth loops of the insertion (with a rotation at each grown node) and of the refit (without),
+/// from node `from` up: false when the serial loop would change a node above the subtree (its parent
+/// does not contain box), which this leaves untouched.
+bool growAncestorsWithin(const SubtreeMove& move, btDbvtNode* from, const btDbvtVolume& box, bool rotateEach)
+{
+	for (btDbvtNode* node = from; node; node = node->parent)
+	{
+		if (node->volume.Contain(box)) return true;
+		move.save(node);
+		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
+		if (rotateEach) caliber::rotateSaving(node, [&move](btDbvtNode* n) { move.save(n); });
+		// The serial loop's next step reads the box of the subtree's parent, which no move within a subtree
+		// changes: it stops there, or it would grow that node.
+		if (node == move.subtree) return node->parent->volume.Contain(box);
+	}
+	return true;
+}
+
+/// btDbvt::update(leaf, box) (removal, then re-insertion from m_lkhd levels above) within the subtree.
+bool updateWithin(const SubtreeMove& move, btDbvtNode* leaf, const btDbvtVolume& box)
+{
+	// The removal (removeLeaf). A leaf whose parent is the subtree's root would replace that root.
+	btDbvtNode* parent = leaf->parent;
+	if (parent == move.subtree) return false;
+	btDbvtNode* sibling = parent->childs[1 - indexOfChild(leaf)];
+	btDbvtNode* grandParent = parent->parent;
+	move.save(leaf);
+	move.save(grandParent);
+	move.save(sibling);
+	move.save(parent);
+	leaf->parent = 0;
+	grandParent->childs[indexOfChild(parent)] = sibling;
+	sibling->parent = grandParent;
+	// The parent would go to the free list and be the next node taken from it, by the insertion below: it
+	// is kept aside instead (the free list is the tree's, shared by every subtree).
+	btDbvtNode* spare = parent;
+	spare->childs[0] = 0;
+	spare->childs[1] = 0;
+	spare->parent = 0;
+	for (btDbvtNode* node = grandParent; node; node = node->parent)
+	{
+		const btDbvtVolume previous = node->volume;
+		move.save(node);
+		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
+		if (!NotEqual(previous, node->volume)) break;
+		// The serial loop would go on with the subtree's parent, whose other children other moves change.
+		if (node == move.subtree) return false;
+	}
+	leaf->volume = sanitizedVolume(box);
+
+	// The start of the re-insertion (reinsertionStart): climbing above the subtree's root leaves it.
+	btDbvtNode* start = grandParent;
+	const int lookahead = move.tree->m_lkhd;
+	if (lookahead < 0) return false;
+	for (int i = 0; i < lookahead && start->parent; ++i)
+	{
+		if (start == move.subtree) return false;
+		start = start->parent;
+	}
+
+	// The insertion (insertLeaf); a sibling that is the subtree's root would put the new parent above it.
+	const btDbvtVolume& leafBox = leaf->volume;
+	btDbvtNode* best = caliber::bestSibling(start, leafBox);
+	if (best == move.subtree) return false;
+	btDbvtNode* oldParent = best->parent;
+	btDbvtNode* newParent = spare;
+	newParent->parent = oldParent;
+	Merge(leafBox, best->volume, newParent->volume);
+	newParent->childs[0] = best;
+	newParent->childs[1] = leaf;
+	move.save(oldParent);
+	move.save(best);
+	oldParent->childs[indexOfChild(best)] = newParent;
+	best->parent = newParent;
+	leaf->parent = newParent;
+	caliber::rotateSaving(newParent, [&move](btDbvtNode* n) { move.save(n); });
+	return growAncestorsWithin(move, oldParent, leafBox, true);
+}
+}  // namespace
+
+bool caliber::moveLeafWithinSubtree(btDbvt& tree, const btDbvtNode* subtree, btDbvtNode* leaf, const btDbvtVolume& box,
+                                    DbvtUndoLog& log)
+{
+	const int mark = log.size();
+	SubtreeMove move;
+	move.tree = &tree;
+	move.subtree = subtree;
+	move.log = &log;
+	bool inside;
+	const btDbvtVolume fitted = sanitizedVolume(box);
+	if (staysNearSibling(leaf, fitted))
+	{
+		// refitLeafNearSibling
+		move.save(leaf);
+		leaf->volume = fitted;
+		inside = growAncestorsWithin(move, leaf->parent, fitted, false);
+	}
+	else
+	{
+		inside = updateWithin(move, leaf, box);
+	}
+	if (!inside) undoDbvtChanges(log, mark);
+	return inside;
+}
+
+void caliber::undoDbvtChanges(DbvtUndoLog& log, int mark)
+{
+	for (int i = log.size() - 1; i >= mark; --i) *log[i].node = log[i].contents;
+	log.resize(mark);
+}
+
 bool caliber::refitLeafNearSibling(btDbvtNode* leaf, const btDbvtVolume& box)
 {
 	btDbvtNode* parent = leaf->parent;
 	if (!parent) return false;
 	const btDbvtVolume fitted = sanitizedVolume(box);
-	const btDbvtNode* sibling = parent->childs[1 - indexOfChild(leaf)];
-	if (halfArea(merged(fitted, sibling->volume)) >
-	    kDbvtRefitSiblingSlack * (halfArea(fitted) + halfArea(sibling->volume)))
-		return false;
+	if (!staysNearSibling(leaf, fitted)) return false;
 	leaf->volume = fitted;
 	for (btDbvtNode* node = parent; node; node = node->parent)
 	{

@@ -20,6 +20,29 @@ bool storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* pr
 /// one thread, in the order the serial setAabb calls would come, and adds the calls to m_updates_call.
 void moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
                        const btVector3& fatMax);
+
+/// A proxy that left its fat box and its new tree box (storeAabbOrFatBox's result).
+struct DbvtProxyMove
+{
+	btVector3 fatMin, fatMax;
+	btBroadphaseProxy* proxy;
+};
+
+/// moveProxyToFatBox for each move, in array order, with the same result (the tree node by node, the stage
+/// lists, the counters). With a task scheduler of several threads and enough moves, the moves whose leaves
+/// lie in different subtrees a few levels below the dynamic tree's root run on different threads, each
+/// subtree's in order; a move that needs a node outside its subtree runs alone, in its place in the order.
+/// Called by one thread, outside parallel loops, while nothing else uses the broadphase. Not yet called by
+/// the collision world (docs/threading.md, "Eleventh session"). stats, when given, receives what happened.
+struct DbvtParallelMoveStats
+{
+	int rounds = 0;          // parallel loops run
+	int movesOnThreads = 0;  // moves kept from those loops
+	int movesUndone = 0;     // moves a task made at or after its round's bound, undone
+	int movesAlone = 0;      // moves made in order on the calling thread
+};
+void moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProxyMove* moves, int count,
+                           DbvtParallelMoveStats* stats = 0);
 }  // namespace caliber
 
 #endif  // CALIBER_DBVT_AABB_FAST_PATH_H

@@ -10,6 +10,7 @@
 
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 
+#include <atomic>
 #include <cstdio>
 #include <new>
 #include <typeinfo>
@@ -25,6 +26,7 @@
 #include "LinearMath/btAlignedAllocator.h"
 #include "LinearMath/btSideTable.h"
 #include "LinearMath/btThreads.h"
+#include "LinearMath/TaskScheduler/btParallelChunks.h"
 
 btScalar gDbvtMargin = btScalar(0.05);
 
@@ -144,6 +146,15 @@ struct ChunkLists
 	char padding[128];
 };
 
+// A task's part of the parallel tree moves (moveProxiesToFatBoxes), padded like ChunkLists.
+struct SubtreeTask
+{
+	caliber::DbvtUndoLog log;
+	btAlignedObjectArray<int> moves;  // the moves it made, in order
+	btAlignedObjectArray<int> marks;  // the log's size before each
+	char padding[128];
+};
+
 // The broadphase's state that Bullet's class does not declare (one side-table entry per broadphase).
 struct PairSearchScratch
 {
@@ -153,6 +164,10 @@ struct PairSearchScratch
 	btAlignedObjectArray<btDbvtProxy*> pending;
 	btAlignedObjectArray<ChunkLists> chunks;
 	btNodeStack serialStack;  // the query stack of the search on the calling thread
+	// moveProxiesToFatBoxes: each move's subtree (-1: it runs alone) and each subtree task's undo log and
+	// the moves it made (with the log's size before each).
+	btAlignedObjectArray<int> moveSubtrees;
+	btAlignedObjectArray<SubtreeTask> subtreeTasks;
 };
 
 struct PairListPolicy
@@ -302,6 +317,101 @@ struct RayLeafVisitor
 		if (ray->hits(proxy->m_aabbMin, proxy->m_aabbMax, callback->m_lambda_max, enter)) callback->process(proxy);
 	}
 };
+
+// The parallel tree moves (moveProxiesToFatBoxes). The dynamic tree's nodes kSubtreeDepth levels below the
+// root head the subtrees; a task per subtree makes the moves of its leaves in order, within it
+// (caliber::moveLeafWithinSubtree), while the other tasks do theirs: they touch different nodes and read
+// none another task changes. A move that needs a node outside its subtree (rare: one in about 250 in the
+// mesh scenes at depth 1, one in 200 at depth 2) lowers the round's bound to its index; the moves at or
+// after the bound that some task made anyway are undone, that move runs alone, and the next round starts
+// after it. No task waits for another, so any scheduler (one that runs the tasks one after the other
+// included) ends with the serial tree.
+const int kSubtreeDepth = 2;
+const int kMaxSubtrees = 1 << kSubtreeDepth;
+// Fewer moves than this run in order on the calling thread (a round costs a parallel loop and a walk from
+// each leaf to its subtree).
+const int kMinMovesPerRound = 32;
+
+// A move made the serial way (moveProxyToFatBox).
+SIMD_FORCE_INLINE void moveInOrder(btDbvtBroadphase& broadphase, const caliber::DbvtProxyMove& move)
+{
+	caliber::moveProxyToFatBox(broadphase, move.proxy, move.fatMin, move.fatMax);
+}
+
+struct MoveWithinSubtrees : public btIParallelForBody
+{
+	btDbvt* tree;
+	const btDbvtNode* const* subtrees;
+	const caliber::DbvtProxyMove* moves;
+	const int* moveSubtrees;
+	int begin;
+	std::atomic<int>* bound;
+	SubtreeTask* tasks;
+
+	void forLoop(int taskBegin, int taskEnd) const override
+	{
+		for (int task = taskBegin; task < taskEnd; ++task)
+		{
+			SubtreeTask& scratch = tasks[task];
+			scratch.log.resize(0);
+			scratch.moves.resize(0);
+			scratch.marks.resize(0);
+			for (int i = begin;; ++i)
+			{
+				// The bound only falls; a move at or after its final value is undone afterwards.
+				if (i >= bound->load(std::memory_order_relaxed)) break;
+				if (moveSubtrees[i] != task) continue;
+				const int mark = scratch.log.size();
+				btDbvtProxy* proxy = static_cast<btDbvtProxy*>(moves[i].proxy);
+				const btDbvtVolume box = btDbvtVolume::FromMM(moves[i].fatMin, moves[i].fatMax);
+				if (!caliber::moveLeafWithinSubtree(*tree, subtrees[task], proxy->leaf, box, scratch.log))
+				{
+					int current = bound->load(std::memory_order_relaxed);
+					while (i < current && !bound->compare_exchange_weak(current, i, std::memory_order_relaxed))
+					{
+					}
+					break;
+				}
+				scratch.moves.push_back(i);
+				scratch.marks.push_back(mark);
+			}
+		}
+	}
+};
+
+// The nodes kSubtreeDepth levels below the root (a leaf at that depth or above heads no subtree: its entry
+// is 0); returns their count.
+int findSubtrees(const btDbvt& tree, const btDbvtNode* subtrees[kMaxSubtrees])
+{
+	int count = 1;
+	subtrees[0] = tree.m_root;
+	for (int level = 0; level < kSubtreeDepth; ++level)
+	{
+		for (int k = count - 1; k >= 0; --k)
+		{
+			const btDbvtNode* node = subtrees[k];
+			subtrees[2 * k] = node && node->isinternal() ? node->childs[0] : 0;
+			subtrees[2 * k + 1] = node && node->isinternal() ? node->childs[1] : 0;
+		}
+		count *= 2;
+	}
+	for (int k = 0; k < count; ++k)
+		if (subtrees[k] && subtrees[k]->isleaf()) subtrees[k] = 0;
+	return count;
+}
+
+// The subtree of a dynamic leaf, -1 when it heads none (too close to the root).
+int subtreeOf(const btDbvtNode* leaf, const btDbvtNode* const subtrees[kMaxSubtrees], int count)
+{
+	int depth = 0;
+	for (const btDbvtNode* node = leaf; node->parent; node = node->parent) ++depth;
+	if (depth <= kSubtreeDepth) return -1;
+	const btDbvtNode* head = leaf;
+	for (int i = depth - kSubtreeDepth; i > 0; --i) head = head->parent;
+	for (int k = 0; k < count; ++k)
+		if (subtrees[k] == head) return k;
+	return -1;
+}
 
 bool finiteAabb(const btVector3& aabbMin, const btVector3& aabbMax)
 {
@@ -462,6 +572,87 @@ void caliber::moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy*
 	++broadphase.m_updates_done;
 	btDbvtVolume box = btDbvtVolume::FromMM(fatMin, fatMax);
 	moveLeaf(broadphase, static_cast<btDbvtProxy*>(proxy), box);
+}
+
+void caliber::moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProxyMove* moves, int count,
+                                    DbvtParallelMoveStats* stats)
+{
+	DbvtParallelMoveStats unused;
+	DbvtParallelMoveStats& counts = stats ? *stats : unused;
+	btITaskScheduler* scheduler = btGetTaskScheduler();
+	btDbvt& tree = broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET];
+	if (count < kMinMovesPerRound || !scheduler || scheduler->getNumThreads() < 2 || tree.m_lkhd < 0 ||
+	    caliber::insideParallelBody())
+	{
+		for (int i = 0; i < count; ++i) moveInOrder(broadphase, moves[i]);
+		counts.movesAlone += count;
+		return;
+	}
+	PairSearchScratch& scratch = caliber::sideTable<PairSearchScratch>().acquire(&broadphase);
+	scratch.moveSubtrees.resizeNoInitialize(count);
+	if (scratch.subtreeTasks.size() < kMaxSubtrees) scratch.subtreeTasks.resize(kMaxSubtrees);
+	int next = 0;
+	while (next < count)
+	{
+		const btDbvtNode* subtrees[kMaxSubtrees];
+		const int numSubtrees = findSubtrees(tree, subtrees);
+		int alone = next;  // the first move that runs alone
+		for (; alone < count; ++alone)
+		{
+			const btDbvtProxy* proxy = static_cast<const btDbvtProxy*>(moves[alone].proxy);
+			const int subtree = caliber::dbvtTreeOf(*proxy) == btDbvtBroadphase::DYNAMIC_SET
+			                        ? subtreeOf(proxy->leaf, subtrees, numSubtrees)
+			                        : -1;
+			if (subtree < 0) break;
+			scratch.moveSubtrees[alone] = subtree;
+		}
+		int end = alone;
+		if (alone - next >= kMinMovesPerRound)
+		{
+			std::atomic<int> bound(alone);
+			MoveWithinSubtrees body;
+			body.tree = &tree;
+			body.subtrees = subtrees;
+			body.moves = moves;
+			body.moveSubtrees = &scratch.moveSubtrees[0];
+			body.begin = next;
+			body.bound = &bound;
+			body.tasks = &scratch.subtreeTasks[0];
+			btParallelFor(0, numSubtrees, 1, body);
+			end = bound.load();
+			// Undo what the tasks did at or after the bound (each task's moves are in order: one undo each).
+			for (int task = 0; task < numSubtrees; ++task)
+			{
+				SubtreeTask& done = scratch.subtreeTasks[task];
+				for (int k = 0; k < done.moves.size(); ++k)
+				{
+					if (done.moves[k] < end) continue;
+					caliber::undoDbvtChanges(done.log, done.marks[k]);
+					counts.movesUndone += done.moves.size() - k;
+					break;
+				}
+			}
+			++counts.rounds;
+			counts.movesOnThreads += end - next;
+			// What moveProxyToFatBox does besides the tree, in order.
+			for (int i = next; i < end; ++i)
+			{
+				++broadphase.m_updates_done;
+				queueProxy(broadphase, static_cast<btDbvtProxy*>(moves[i].proxy));
+			}
+		}
+		else
+		{
+			for (int i = next; i < end; ++i) moveInOrder(broadphase, moves[i]);
+			counts.movesAlone += end - next;
+		}
+		if (end < count)
+		{
+			moveInOrder(broadphase, moves[end]);
+			++counts.movesAlone;
+		}
+		next = end + 1;
+	}
 }
 
 void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,

@@ -1,0 +1,266 @@
+// Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
+// caliber::moveProxiesToFatBoxes makes the dbvt broadphase's tree moves of one step on the task scheduler's
+// threads, one task per subtree a few levels below the root, undoing what a task did past a move that needs
+// a node outside its subtree. The broadphase must end exactly as with the serial moves
+// (caliber::moveProxyToFatBox in order): the dynamic tree node by node (structure, boxes, leaf order), the
+// queue of proxies to search, the update counter, and then the pairs in the cache's order, at any thread
+// count and with schedulers that run a loop's tasks in any order or split it unevenly.
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
+#include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
+#include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
+
+namespace
+{
+struct Lcg
+{
+	unsigned state = 2024u;
+	btScalar next()  // in [0, 1)
+	{
+		state = state * 1664525u + 1013904223u;
+		return btScalar(state >> 8) / btScalar(1 << 24);
+	}
+};
+
+// A user's scheduler that reports two threads and runs a loop's tasks on the calling thread from the last
+// to the first: a task then finishes its moves before an earlier task finds a move that runs alone.
+class LastFirstScheduler : public btITaskScheduler
+{
+public:
+	LastFirstScheduler() : btITaskScheduler("LastFirst") {}
+	int getMaxNumThreads() const override { return 2; }
+	int getNumThreads() const override { return 2; }
+	void setNumThreads(int) override {}
+	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
+	{
+		const int grain = grainSize < 1 ? 1 : grainSize;
+		if (iEnd <= iBegin) return;
+		for (int k = (iEnd - iBegin - 1) / grain; k >= 0; --k)
+			body.forLoop(iBegin + k * grain, btMin(iEnd, iBegin + (k + 1) * grain));
+	}
+	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
+	{
+		return body.sumLoop(iBegin, iEnd);
+	}
+};
+
+enum class Motion
+{
+	None,      // nothing leaves its fat box
+	One,       // one proxy a step
+	All,       // every proxy, a short way
+	Churn,     // most proxies, and proxies destroyed and created between steps
+	Teleport,  // most proxies, some of them across the scene (moves that leave their subtrees)
+};
+
+struct Snapshot
+{
+	std::vector<btVector3> treeBoxes;  // depth first: each node's box
+	std::vector<int> treeLeaves;       // depth first: a leaf's proxy id, -1 for an inner node
+	std::vector<int> queued;           // the dynamic stage list before the pair search
+	std::vector<std::pair<int, int>> pairs;
+	int updatesDone = 0;
+	caliber::DbvtParallelMoveStats stats;
+};
+
+void snapshotTree(const btDbvtNode* node, Snapshot& result)
+{
+	if (!node) return;
+	result.treeBoxes.push_back(node->volume.Mins());
+	result.treeBoxes.push_back(node->volume.Maxs());
+	if (node->isleaf())
+	{
+		result.treeLeaves.push_back(static_cast<const btDbvtProxy*>(node->data)->m_uniqueId);
+		return;
+	}
+	result.treeLeaves.push_back(-1);
+	snapshotTree(node->childs[0], result);
+	snapshotTree(node->childs[1], result);
+}
+
+// 700 unit boxes in a 40 m cube, 8 steps of `motion`; after each step's moves the tree and the queue are
+// recorded, then the pairs are searched and recorded. parallel: the moves go through
+// moveProxiesToFatBoxes (under the scheduler given by threads or userScheduler), else through
+// moveProxyToFatBox one by one.
+std::vector<Snapshot> run(Motion motion, bool parallel, int threads, btITaskScheduler* userScheduler = 0)
+{
+	caliber_test::ScopedTaskScheduler scheduler(userScheduler ? 0 : threads);
+	if (userScheduler) btSetTaskScheduler(userScheduler);
+	btDbvtBroadphase broadphase;
+	Lcg random;
+	const btVector3 half(btScalar(0.5), btScalar(0.5), btScalar(0.5));
+	const int kBoxes = 700;
+	std::vector<btBroadphaseProxy*> proxies;
+	std::vector<btVector3> centres;
+	for (int i = 0; i < kBoxes; ++i)
+	{
+		const btVector3 centre(random.next() * 40, random.next() * 40, random.next() * 40);
+		centres.push_back(centre);
+		proxies.push_back(broadphase.createProxy(centre - half, centre + half, BOX_SHAPE_PROXYTYPE, 0, 1, -1, 0));
+	}
+	broadphase.calculateOverlappingPairs(0);
+	std::vector<Snapshot> history;
+	btAlignedObjectArray<caliber::DbvtProxyMove> moves;
+	for (int step = 0; step < 8; ++step)
+	{
+		if (motion == Motion::Churn && step > 0)
+		{
+			// Every seventh proxy (shifted each step) is destroyed and a new one made elsewhere.
+			for (size_t i = size_t(step) % 7; i < proxies.size(); i += 7)
+			{
+				broadphase.destroyProxy(proxies[i], 0);
+				centres[i] = btVector3(random.next() * 40, random.next() * 40, random.next() * 40);
+				proxies[i] = broadphase.createProxy(centres[i] - half, centres[i] + half, BOX_SHAPE_PROXYTYPE, 0, 1,
+				                                    -1, 0);
+			}
+		}
+		moves.resize(0);
+		Snapshot snapshot;
+		const unsigned doneBefore = broadphase.m_updates_done;
+		for (size_t i = 0; i < proxies.size(); ++i)
+		{
+			btVector3 move(0, 0, 0);
+			switch (motion)
+			{
+				case Motion::None:
+					move = btVector3(step % 2 ? btScalar(-0.01) : btScalar(0.01), 0, 0);  // within the 0.05 m margin
+					break;
+				case Motion::One:
+					if (i == size_t(step) * 37 % proxies.size()) move = btVector3(0, btScalar(-2), 0);
+					break;
+				case Motion::All:
+					move = btVector3(0, btScalar(-0.3), 0);
+					break;
+				case Motion::Churn:
+				case Motion::Teleport:
+					move = btVector3(random.next() - btScalar(0.5), random.next() - btScalar(0.5),
+					                 random.next() - btScalar(0.5));
+					if (motion == Motion::Teleport && i % 23 == 0)
+						move = btVector3(random.next() * 40, random.next() * 40, random.next() * 40) - centres[i];
+					break;
+			}
+			centres[i] += move;
+			caliber::DbvtProxyMove entry;
+			if (!caliber::storeAabbOrFatBox(broadphase, proxies[i], centres[i] - half, centres[i] + half, entry.fatMin,
+			                                entry.fatMax))
+				continue;
+			entry.proxy = proxies[i];
+			moves.push_back(entry);
+		}
+		if (parallel)
+		{
+			caliber::moveProxiesToFatBoxes(broadphase, moves.size() ? &moves[0] : 0, moves.size(), &snapshot.stats);
+		}
+		else
+		{
+			for (int k = 0; k < moves.size(); ++k)
+				caliber::moveProxyToFatBox(broadphase, moves[k].proxy, moves[k].fatMin, moves[k].fatMax);
+		}
+		snapshot.updatesDone = int(broadphase.m_updates_done - doneBefore);
+		snapshotTree(broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET].m_root, snapshot);
+		for (const btDbvtProxy* proxy = broadphase.m_stageRoots[btDbvtBroadphase::DYNAMIC_SET]; proxy;
+		     proxy = proxy->links[1])
+			snapshot.queued.push_back(proxy->m_uniqueId);
+		broadphase.calculateOverlappingPairs(0);
+		const btBroadphasePairArray& pairs = broadphase.getOverlappingPairCache()->getOverlappingPairArray();
+		for (int k = 0; k < pairs.size(); ++k)
+			snapshot.pairs.push_back(std::make_pair(pairs[k].m_pProxy0->m_uniqueId, pairs[k].m_pProxy1->m_uniqueId));
+		history.push_back(snapshot);
+	}
+	for (btBroadphaseProxy* proxy : proxies) broadphase.destroyProxy(proxy, 0);
+	if (userScheduler) btSetTaskScheduler(0);
+	return history;
+}
+
+// Sums a history's statistics.
+caliber::DbvtParallelMoveStats total(const std::vector<Snapshot>& history)
+{
+	caliber::DbvtParallelMoveStats sum;
+	for (const Snapshot& s : history)
+	{
+		sum.rounds += s.stats.rounds;
+		sum.movesOnThreads += s.stats.movesOnThreads;
+		sum.movesUndone += s.stats.movesUndone;
+		sum.movesAlone += s.stats.movesAlone;
+	}
+	return sum;
+}
+
+void expectSame(const std::vector<Snapshot>& serial, const std::vector<Snapshot>& parallel)
+{
+	ASSERT_EQ(serial.size(), parallel.size());
+	for (size_t step = 0; step < serial.size(); ++step)
+	{
+		SCOPED_TRACE(testing::Message() << "step " << step);
+		EXPECT_TRUE(serial[step].treeLeaves == parallel[step].treeLeaves);
+		EXPECT_TRUE(serial[step].treeBoxes == parallel[step].treeBoxes);
+		EXPECT_TRUE(serial[step].queued == parallel[step].queued);
+		EXPECT_TRUE(serial[step].pairs == parallel[step].pairs);
+		EXPECT_EQ(serial[step].updatesDone, parallel[step].updatesDone);
+	}
+}
+
+// The serial moves against moveProxiesToFatBoxes at 1, 2 and 3 threads and under the two user schedulers;
+// returns the statistics of the last-first scheduler's run.
+caliber::DbvtParallelMoveStats checkEveryScheduler(Motion motion)
+{
+	const std::vector<Snapshot> serial = run(motion, false, 0);
+	for (int threads : {1, 2, 3})
+	{
+		SCOPED_TRACE(testing::Message() << threads << " threads");
+		expectSame(serial, run(motion, true, threads));
+	}
+	caliber_test::UnevenSplitScheduler uneven;
+	expectSame(serial, run(motion, true, 0, &uneven));
+	LastFirstScheduler lastFirst;
+	const std::vector<Snapshot> reversed = run(motion, true, 0, &lastFirst);
+	expectSame(serial, reversed);
+	return total(reversed);
+}
+}  // namespace
+
+TEST(DbvtParallelMoves, ManyMovesEndAsTheSerialMovesAtAnyThreadCountAndScheduler)
+{
+	const caliber::DbvtParallelMoveStats stats = checkEveryScheduler(Motion::All);
+	// 700 proxies moved 0.3 m down each step leave their fat boxes (margin 0.05 m) at least every other step.
+	EXPECT_GT(stats.rounds, 0);
+	EXPECT_GT(stats.movesOnThreads, 700);
+}
+
+TEST(DbvtParallelMoves, MovesAcrossTheSceneAreUndoneAndMadeAloneInTheirPlace)
+{
+	const caliber::DbvtParallelMoveStats stats = checkEveryScheduler(Motion::Teleport);
+	// A proxy sent across the 40 m scene lands outside its subtree's box: its move grows nodes above the
+	// subtree, so it runs alone; with the tasks run last to first, the later tasks' moves past it are undone.
+	EXPECT_GT(stats.rounds, 8);
+	EXPECT_GT(stats.movesAlone, 8);
+	EXPECT_GT(stats.movesUndone, 0);
+}
+
+TEST(DbvtParallelMoves, ProxiesDestroyedAndCreatedBetweenStepsEndAsTheSerialMoves)
+{
+	const caliber::DbvtParallelMoveStats stats = checkEveryScheduler(Motion::Churn);
+	EXPECT_GT(stats.movesOnThreads, 0);
+}
+
+TEST(DbvtParallelMoves, NoMoveOrOneMoveAStepIsMadeInOrder)
+{
+	const std::vector<Snapshot> none = run(Motion::None, true, 2);
+	for (const Snapshot& step : none)
+	{
+		EXPECT_EQ(step.updatesDone, 0);
+		EXPECT_TRUE(step.queued.empty());
+	}
+	expectSame(run(Motion::None, false, 0), none);
+	const caliber::DbvtParallelMoveStats one = checkEveryScheduler(Motion::One);
+	// Fewer moves than a round needs (32) run in order on the calling thread.
+	EXPECT_EQ(one.rounds, 0);
+	EXPECT_EQ(one.movesAlone, 8);
+}
