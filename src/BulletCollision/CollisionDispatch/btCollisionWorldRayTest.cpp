@@ -301,6 +301,46 @@ int tetrahedraContainOrigin(const btVector3* y, btScalar clearance, const btVect
 	return -2;
 }
 
+// The distance from the origin to a point of the segment a b (points relative to the ray's start): the point
+// is formed with its weight clamped to [0, 1], so it lies on the segment whatever the rounding, and its
+// length is measured.
+btScalar distanceToSegment(const btVector3& a, const btVector3& b)
+{
+	const btVector3 ab = b - a;
+	const btScalar length2 = ab.length2();
+	const btScalar t = length2 > btScalar(0) ? btMax(btScalar(0), btMin(btScalar(1), -a.dot(ab) / length2)) : btScalar(0);
+	return (a + ab * t).length();
+}
+
+// The distance from the origin to a point of the triangle a b c found as distanceToSegment does: the
+// projection of the origin when its barycentric weights are all at least 0 (the point is then formed from
+// them), else the nearest of the edges.
+btScalar distanceToTriangle(const btVector3& a, const btVector3& b, const btVector3& c)
+{
+	const btVector3 normal = (b - a).cross(c - a);
+	const btScalar normal2 = normal.length2();
+	if (normal2 > btScalar(0))
+	{
+		const btVector3 projection = normal * (normal.dot(a) / normal2);
+		const btScalar wa = (b - projection).cross(c - projection).dot(normal);
+		const btScalar wb = (c - projection).cross(a - projection).dot(normal);
+		const btScalar wc = (a - projection).cross(b - projection).dot(normal);
+		const btScalar sum = wa + wb + wc;
+		if (wa >= btScalar(0) && wb >= btScalar(0) && wc >= btScalar(0) && sum > btScalar(0))
+			return ((a * wa + b * wb + c * wc) / sum).length();
+	}
+	return btMin(distanceToSegment(a, b), btMin(distanceToSegment(b, c), distanceToSegment(c, a)));
+}
+
+// The distance from the origin to a point of the convex hull of y[0 .. count), count 1 to 3 (an upper bound of
+// the distance to the core when the points are core points).
+btScalar distanceToSimplex(const btVector3* y, int count)
+{
+	if (count == 1) return y[0].length();
+	if (count == 2) return distanceToSegment(y[0], y[1]);
+	return distanceToTriangle(y[0], y[1], y[2]);
+}
+
 // The search direction from a simplex of one to three points relative to the start (y[count - 1] the
 // newest) towards the origin, keeping in y only the points of the feature nearest the origin (GJK's
 // containment search, with Voronoi regions judged by the signs of a few products). False when the origin
@@ -351,17 +391,21 @@ bool nextSearchDirection(btVector3* y, int& count, btVector3& direction)
 	return side != btScalar(0);
 }
 
-// A start inside a tetrahedron of the shape's core points (support points without margin) by more than the
-// rounding of the coordinates involved is inside the shape: the ray cannot hit it (Bullet's rule, see
-// rayTestConvex). Every plane the cast's support mapping can give then has the start more than that inside
-// it (by the core's depth there plus the margin), so the cast never advances, and it returns no hit after
-// a full simplex (four or more support scans and as many of the Voronoi simplex solver's closest-point
-// steps). GJK's containment search finds such a tetrahedron in about four support scans and a few cross
-// products; tetrahedraContainOrigin checks it before it counts. For shapes without polyhedral features
-// (startsInsidePolyhedron answers for the others); false (go to the cast) when no certificate is found.
+// True when the start is inside the shape (its core, the support points without margin, grown by the
+// margin) by more than clearance, the rounding of the coordinates involved: then every support plane the
+// cast's support mapping gives has the start more than that inside it, so the cast never advances, and it
+// returns no hit (Bullet's rule, see rayTestConvex) after a full simplex (four or more support scans and as
+// many of the Voronoi simplex solver's closest-point steps). Two certificates, each checked on its own
+// whatever found its points: a tetrahedron of core points (or two sharing a face) with the start inside by
+// clearance (tetrahedraContainOrigin), or a point of a segment or triangle of core points within the margin
+// less clearance of the start (the start in the margin band, or in the core near a face). GJK's containment
+// search finds them in about four support scans and a few cross products. For shapes without polyhedral
+// features (startsInsidePolyhedron answers for the others); false (go to the cast) when none is found.
 bool startsInsideCore(const btConvexShape* shape, const btVector3& startLocal, const btVector3& firstDirection,
                       btScalar clearance)
 {
+	// A core point this close to the start puts the start inside the shape (core and margin) by clearance.
+	const btScalar nearEnough = shape->getMargin() - clearance;
 	btVector3 y[4];
 	int count = 0;
 	btVector3 direction = firstDirection.fuzzyZero() ? btVector3(1, 0, 0) : firstDirection;
@@ -369,7 +413,8 @@ bool startsInsideCore(const btConvexShape* shape, const btVector3& startLocal, c
 	{
 		const btVector3 support = shape->localGetSupportingVertexWithoutMargin(direction) - startLocal;
 		// The core's support plane along direction does not pass the start: not inside (or not by enough).
-		if (!(support.dot(direction) > btScalar(0))) return false;
+		if (!(support.dot(direction) > btScalar(0)))
+			return count > 0 && distanceToSimplex(y, count) <= nearEnough;
 		y[count++] = support;
 		if (count == 4)
 		{
@@ -385,6 +430,7 @@ bool startsInsideCore(const btConvexShape* shape, const btVector3& startLocal, c
 				// cover the rest of the ball. (Outside the face: GJK's next step below.)
 				if (!(outward.dot(-y[c[0]]) > btScalar(0)))
 				{
+					if (distanceToTriangle(y[c[0]], y[c[1]], y[c[2]]) <= nearEnough) return true;
 					const btVector3 beyond = shape->localGetSupportingVertexWithoutMargin(outward) - startLocal;
 					return tetrahedraContainOrigin(y, clearance, &beyond) == -1;
 				}
@@ -410,11 +456,17 @@ bool startsInsideCore(const btConvexShape* shape, const btVector3& startLocal, c
 					break;
 				}
 			}
-			// Inside all faces but too close to several: no certificate from this search.
-			if (!outside) return false;
+			// Inside all faces but too close to several: the nearest of them may still be near enough.
+			if (!outside)
+			{
+				for (const int* f : kTetrahedronFaces)
+					if (distanceToTriangle(y[f[0]], y[f[1]], y[f[2]]) <= nearEnough) return true;
+				return false;
+			}
 			continue;
 		}
-		if (!nextSearchDirection(y, count, direction)) return false;
+		// No direction left: the origin lies on the simplex (up to rounding), which measures that.
+		if (!nextSearchDirection(y, count, direction)) return distanceToSimplex(y, count) <= nearEnough;
 	}
 	return false;
 }
