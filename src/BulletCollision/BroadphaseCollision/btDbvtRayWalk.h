@@ -7,6 +7,7 @@
 // that shortens the ray prunes the subtrees beyond its closest hit so far, and it opens the nearer child
 // first, so that the closest hit tends to be found first and to prune the most.
 
+#include "BulletCollision/BroadphaseCollision/RaySlabTest.h"
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "LinearMath/btAabbUtil2.h"
 
@@ -35,7 +36,7 @@ struct DbvtRay
 	void prepare()
 	{
 #ifdef BT_USE_SSE
-		negativeMask = _mm_castsi128_ps(_mm_setr_epi32(signs[0] ? -1 : 0, signs[1] ? -1 : 0, signs[2] ? -1 : 0, 0));
+		negativeMask = raySlabNegativeMask(signs[0] != 0, signs[1] != 0, signs[2] != 0);
 #endif
 	}
 
@@ -46,21 +47,11 @@ struct DbvtRay
 	                            btScalar& enter) const
 	{
 #ifdef BT_USE_SSE
-		const __m128 low = _mm_sub_ps(boxMin.get128(), sweptMax.get128());
-		const __m128 high = _mm_sub_ps(boxMax.get128(), sweptMin.get128());
-		const __m128 nearPlane = _mm_or_ps(_mm_and_ps(negativeMask, high), _mm_andnot_ps(negativeMask, low));
-		const __m128 farPlane = _mm_or_ps(_mm_and_ps(negativeMask, low), _mm_andnot_ps(negativeMask, high));
+		const __m128 start = from.get128();
 		const __m128 inverse = directionInverse.get128();
-		const __m128 tNear = _mm_mul_ps(_mm_sub_ps(nearPlane, from.get128()), inverse);
-		const __m128 tFar = _mm_mul_ps(_mm_sub_ps(farPlane, from.get128()), inverse);
-		// maxps and minps return their second operand when either is NaN: a NaN plane leaves the bound.
-		const __m128 entries = _mm_max_ps(tNear, _mm_setzero_ps());
-		const __m128 exits = _mm_min_ps(tFar, _mm_set1_ps(lambdaMax));
-		// Over lanes x, y, z (lane w holds no axis).
-		const __m128 enterXYZ = _mm_max_ss(_mm_max_ss(entries, CALIBER_SPLAT(entries, 1)), CALIBER_SPLAT(entries, 2));
-		const __m128 exitXYZ = _mm_min_ss(_mm_min_ss(exits, CALIBER_SPLAT(exits, 1)), CALIBER_SPLAT(exits, 2));
-		enter = _mm_cvtss_f32(enterXYZ);
-		return _mm_comile_ss(enterXYZ, exitXYZ) != 0;
+		const __m128 tLow = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(boxMin.get128(), sweptMax.get128()), start), inverse);
+		const __m128 tHigh = _mm_mul_ps(_mm_sub_ps(_mm_sub_ps(boxMax.get128(), sweptMin.get128()), start), inverse);
+		return raySlabHits(tLow, tHigh, negativeMask, lambdaMax, enter);
 #else
 		const btVector3 bounds[2] = {boxMin - sweptMax, boxMax - sweptMin};
 		return btRayAabb2(from, directionInverse, signs, bounds, enter, btScalar(0), lambdaMax);

@@ -7,6 +7,7 @@
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhAccess.h"
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
 #include "BulletCollision/BroadphaseCollision/QuantizedBvhSweep.h"
+#include "BulletCollision/BroadphaseCollision/RaySlabTest.h"
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "LinearMath/btAabbUtil2.h"
 
@@ -57,7 +58,7 @@ QuantizedSweep quantizeSweep(const btQuantizedBvh& bvh, const caliber::BvhSweep&
 		q.negative[a] = q.inverse[a] < btScalar(0);
 	}
 #ifdef BT_USE_SSE
-	q.negativeMask = _mm_cmplt_ps(q.inverse.get128(), _mm_setzero_ps());
+	q.negativeMask = caliber::raySlabNegativeMask(q.negative[0], q.negative[1], q.negative[2]);
 #endif
 	return q;
 }
@@ -77,18 +78,7 @@ SIMD_FORCE_INLINE bool hitsQuantizedNode(const QuantizedSweep& q, const btQuanti
 	const __m128 inverse = q.inverse.get128();
 	const __m128 tLow = _mm_mul_ps(_mm_sub_ps(low, q.nearStart.get128()), inverse);
 	const __m128 tHigh = _mm_mul_ps(_mm_sub_ps(maxima, q.farStart.get128()), inverse);
-	// The near plane is the low one unless the direction is negative.
-	const __m128 tNear = _mm_or_ps(_mm_and_ps(q.negativeMask, tHigh), _mm_andnot_ps(q.negativeMask, tLow));
-	const __m128 tFar = _mm_or_ps(_mm_and_ps(q.negativeMask, tLow), _mm_andnot_ps(q.negativeMask, tHigh));
-	// Largest entry and smallest exit over lanes x, y, z (lane w holds no axis).
-	const __m128 entries = _mm_max_ps(tNear, _mm_setzero_ps());
-	const __m128 exits = _mm_min_ps(tFar, _mm_set1_ps(exitBound));
-	const __m128 enterXY = _mm_max_ss(entries, CALIBER_SPLAT(entries, 1));
-	const __m128 enterXYZ = _mm_max_ss(enterXY, CALIBER_SPLAT(entries, 2));
-	const __m128 exitXY = _mm_min_ss(exits, CALIBER_SPLAT(exits, 1));
-	const __m128 exitXYZ = _mm_min_ss(exitXY, CALIBER_SPLAT(exits, 2));
-	enter = _mm_cvtss_f32(enterXYZ);
-	return _mm_comile_ss(enterXYZ, exitXYZ) != 0;
+	return caliber::raySlabHits(tLow, tHigh, q.negativeMask, exitBound, enter);
 }
 #else
 SIMD_FORCE_INLINE bool hitsQuantizedNode(const QuantizedSweep& q, const btQuantizedBvhNode& node, btScalar exitBound,

@@ -232,11 +232,17 @@ void rayTestBox(const btVector3& from, const btVector3& to, const btBoxShape* bo
 // trusts) is inside the shape: the ray cannot hit it (Bullet's rule, see rayTestConvex). A few dot
 // products instead of the cast's loop, which needs a full simplex (four or more support scans) to show
 // that a start is inside. Shapes without features, and starts near the surface, go to the cast.
+const btConvexPolyhedron* polyhedralFeatures(const btConvexShape* shape)
+{
+	if (!shape->isPolyhedral()) return 0;
+	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
+	return polyhedron && polyhedron->m_faces.size() >= 4 ? polyhedron : 0;
+}
+
 bool startsInsidePolyhedron(const btConvexShape* shape, const btVector3& startLocal)
 {
-	if (!shape->isPolyhedral()) return false;
-	const btConvexPolyhedron* polyhedron = static_cast<const btPolyhedralConvexShape*>(shape)->getConvexPolyhedron();
-	if (!polyhedron || polyhedron->m_faces.size() < 4) return false;
+	const btConvexPolyhedron* polyhedron = polyhedralFeatures(shape);
+	if (!polyhedron) return false;
 	const btScalar depth = -shape->getMargin();
 	for (int i = 0; i < polyhedron->m_faces.size(); ++i)
 	{
@@ -245,6 +251,224 @@ bool startsInsidePolyhedron(const btConvexShape* shape, const btVector3& startLo
 			return false;
 	}
 	return true;
+}
+
+// True when the origin lies at least clearance inside the plane through p0, p1, p2 on the side of
+// opposite (points relative to the ray's start); false for a flat (or NaN) face.
+bool originInsideFace(const btVector3& p0, const btVector3& p1, const btVector3& p2, const btVector3& opposite,
+                      btScalar clearance)
+{
+	btVector3 normal = (p1 - p0).cross(p2 - p0);
+	const btScalar side = normal.dot(opposite - p0);
+	if (!(side != btScalar(0))) return false;
+	if (side > btScalar(0)) normal = -normal;  // outward
+	// The origin's distance inside: normal . (p0 - 0) / |normal|.
+	return normal.dot(p0) >= clearance * normal.length();
+}
+
+// The faces of a tetrahedron y[0..3]: three corners, then the opposite corner.
+const int kTetrahedronFaces[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
+
+// The certificate of startsInsideCore, checked on its own whatever found the points: the origin is at least
+// clearance inside every face of the tetrahedron y[0..3] (returns -1), or inside all but the one face
+// returned, where extra (when given) is beyond that face and the origin is at least clearance inside the
+// other three faces of the tetrahedron extra makes with it. In the second case a ball of radius clearance
+// about the origin lies in the union of the two tetrahedra (its part on the first's side of the shared face
+// in the first, the rest in the second). Returns -2 when neither holds.
+int tetrahedraContainOrigin(const btVector3* y, btScalar clearance, const btVector3* extra)
+{
+	int failed = -1;
+	for (int f = 0; f < 4; ++f)
+	{
+		const int* c = kTetrahedronFaces[f];
+		if (originInsideFace(y[c[0]], y[c[1]], y[c[2]], y[c[3]], clearance)) continue;
+		if (failed >= 0) return -2;
+		failed = f;
+	}
+	if (failed < 0) return -1;
+	if (!extra) return failed;
+	const int* c = kTetrahedronFaces[failed];
+	const btVector3& e = *extra;
+	// extra beyond the shared face: on the other side of it from the first tetrahedron's fourth corner.
+	btVector3 normal = (y[c[1]] - y[c[0]]).cross(y[c[2]] - y[c[0]]);
+	if (!((normal.dot(e - y[c[0]]) > btScalar(0)) != (normal.dot(y[c[3]] - y[c[0]]) > btScalar(0)) &&
+	      normal.dot(e - y[c[0]]) != btScalar(0)))
+		return -2;
+	if (originInsideFace(e, y[c[0]], y[c[1]], y[c[2]], clearance) &&
+	    originInsideFace(e, y[c[1]], y[c[2]], y[c[0]], clearance) &&
+	    originInsideFace(e, y[c[2]], y[c[0]], y[c[1]], clearance))
+		return -1;
+	return -2;
+}
+
+// The distance from the origin to a point of the segment a b (points relative to the ray's start): the point
+// is formed with its weight clamped to [0, 1], so it lies on the segment whatever the rounding, and its
+// length is measured.
+btScalar distanceToSegment(const btVector3& a, const btVector3& b)
+{
+	const btVector3 ab = b - a;
+	const btScalar length2 = ab.length2();
+	const btScalar t = length2 > btScalar(0) ? btMax(btScalar(0), btMin(btScalar(1), -a.dot(ab) / length2)) : btScalar(0);
+	return (a + ab * t).length();
+}
+
+// The distance from the origin to a point of the triangle a b c found as distanceToSegment does: the
+// projection of the origin when its barycentric weights are all at least 0 (the point is then formed from
+// them), else the nearest of the edges.
+btScalar distanceToTriangle(const btVector3& a, const btVector3& b, const btVector3& c)
+{
+	const btVector3 normal = (b - a).cross(c - a);
+	const btScalar normal2 = normal.length2();
+	if (normal2 > btScalar(0))
+	{
+		const btVector3 projection = normal * (normal.dot(a) / normal2);
+		const btScalar wa = (b - projection).cross(c - projection).dot(normal);
+		const btScalar wb = (c - projection).cross(a - projection).dot(normal);
+		const btScalar wc = (a - projection).cross(b - projection).dot(normal);
+		const btScalar sum = wa + wb + wc;
+		if (wa >= btScalar(0) && wb >= btScalar(0) && wc >= btScalar(0) && sum > btScalar(0))
+			return ((a * wa + b * wb + c * wc) / sum).length();
+	}
+	return btMin(distanceToSegment(a, b), btMin(distanceToSegment(b, c), distanceToSegment(c, a)));
+}
+
+// The distance from the origin to a point of the convex hull of y[0 .. count), count 1 to 3 (an upper bound of
+// the distance to the core when the points are core points).
+btScalar distanceToSimplex(const btVector3* y, int count)
+{
+	if (count == 1) return y[0].length();
+	if (count == 2) return distanceToSegment(y[0], y[1]);
+	return distanceToTriangle(y[0], y[1], y[2]);
+}
+
+// The search direction from a simplex of one to three points relative to the start (y[count - 1] the
+// newest) towards the origin, keeping in y only the points of the feature nearest the origin (GJK's
+// containment search, with Voronoi regions judged by the signs of a few products). False when the origin
+// lies on the simplex's line or plane, where no direction is left.
+bool nextSearchDirection(btVector3* y, int& count, btVector3& direction)
+{
+	const btVector3 a = y[count - 1];
+	const btVector3 toOrigin = -a;
+	if (count == 1)
+	{
+		direction = toOrigin;
+		return true;
+	}
+	if (count == 2)
+	{
+		const btVector3 ab = y[0] - a;
+		if (ab.dot(toOrigin) > btScalar(0))
+			direction = ab.cross(toOrigin).cross(ab);
+		else
+		{
+			y[0] = a;
+			count = 1;
+			direction = toOrigin;
+		}
+		return direction.length2() > btScalar(0);
+	}
+	// A triangle: b = y[1], c = y[0].
+	const btVector3 b = y[1], c = y[0];
+	const btVector3 ab = b - a, ac = c - a;
+	const btVector3 normal = ab.cross(ac);
+	if (normal.cross(ac).dot(toOrigin) > btScalar(0))
+	{
+		// Beyond edge ac.
+		y[1] = a;
+		count = 2;
+		return nextSearchDirection(y, count, direction);
+	}
+	if (ab.cross(normal).dot(toOrigin) > btScalar(0))
+	{
+		// Beyond edge ab.
+		y[0] = b;
+		y[1] = a;
+		count = 2;
+		return nextSearchDirection(y, count, direction);
+	}
+	const btScalar side = normal.dot(toOrigin);
+	direction = side > btScalar(0) ? normal : -normal;
+	return side != btScalar(0);
+}
+
+// True when the start is inside the shape (its core, the support points without margin, grown by the
+// margin) by more than clearance, the rounding of the coordinates involved: then every support plane the
+// cast's support mapping gives has the start more than that inside it, so the cast never advances, and it
+// returns no hit (Bullet's rule, see rayTestConvex) after a full simplex (four or more support scans and as
+// many of the Voronoi simplex solver's closest-point steps). Two certificates, each checked on its own
+// whatever found its points: a tetrahedron of core points (or two sharing a face) with the start inside by
+// clearance (tetrahedraContainOrigin), or a point of a segment or triangle of core points within the margin
+// less clearance of the start (the start in the margin band, or in the core near a face). GJK's containment
+// search finds them in about four support scans and a few cross products. For shapes without polyhedral
+// features (startsInsidePolyhedron answers for the others); false (go to the cast) when none is found.
+bool startsInsideCore(const btConvexShape* shape, const btVector3& startLocal, const btVector3& firstDirection,
+                      btScalar clearance)
+{
+	// A core point this close to the start puts the start inside the shape (core and margin) by clearance.
+	const btScalar nearEnough = shape->getMargin() - clearance;
+	btVector3 y[4];
+	int count = 0;
+	btVector3 direction = firstDirection.fuzzyZero() ? btVector3(1, 0, 0) : firstDirection;
+	for (int step = 0; step < 12; ++step)
+	{
+		const btVector3 support = shape->localGetSupportingVertexWithoutMargin(direction) - startLocal;
+		// The core's support plane along direction does not pass the start: not inside (or not by enough).
+		if (!(support.dot(direction) > btScalar(0)))
+			return count > 0 && distanceToSimplex(y, count) <= nearEnough;
+		y[count++] = support;
+		if (count == 4)
+		{
+			const int face = tetrahedraContainOrigin(y, clearance, 0);
+			if (face == -1) return true;
+			if (face >= 0)
+			{
+				const int* c = kTetrahedronFaces[face];
+				btVector3 outward = (y[c[1]] - y[c[0]]).cross(y[c[2]] - y[c[0]]);
+				if (outward.dot(y[c[3]] - y[c[0]]) > btScalar(0)) outward = -outward;
+				// The origin is inside but too close to this one face (it lies on a plane of symmetry of the
+				// shape, say): the tetrahedron on the face's other side, up to the support point beyond it, may
+				// cover the rest of the ball. (Outside the face: GJK's next step below.)
+				if (!(outward.dot(-y[c[0]]) > btScalar(0)))
+				{
+					if (distanceToTriangle(y[c[0]], y[c[1]], y[c[2]]) <= nearEnough) return true;
+					const btVector3 beyond = shape->localGetSupportingVertexWithoutMargin(outward) - startLocal;
+					return tetrahedraContainOrigin(y, clearance, &beyond) == -1;
+				}
+			}
+			// Keep the face (with the newest point) the origin lies beyond, and search along its normal.
+			const btVector3 a = y[3];
+			const int others[3][2] = {{2, 1}, {1, 0}, {0, 2}};
+			bool outside = false;
+			for (const int* o : others)
+			{
+				const btVector3 b = y[o[0]], c = y[o[1]];
+				const btVector3 d = y[3 - o[0] - o[1]];  // the face's opposite point (indices 0, 1, 2 sum to 3)
+				btVector3 normal = (b - a).cross(c - a);
+				if (normal.dot(d - a) > btScalar(0)) normal = -normal;
+				if (normal.dot(-a) > btScalar(0))
+				{
+					y[0] = c;
+					y[1] = b;
+					y[2] = a;
+					count = 3;
+					direction = normal;
+					outside = true;
+					break;
+				}
+			}
+			// Inside all faces but too close to several: the nearest of them may still be near enough.
+			if (!outside)
+			{
+				for (const int* f : kTetrahedronFaces)
+					if (distanceToTriangle(y[f[0]], y[f[1]], y[f[2]]) <= nearEnough) return true;
+				return false;
+			}
+			continue;
+		}
+		// No direction left: the origin lies on the simplex (up to rounding), which measures that.
+		if (!nextSearchDirection(y, count, direction)) return distanceToSimplex(y, count) <= nearEnough;
+	}
+	return false;
 }
 
 // The distance from a convex shape (margin included) within which the ray casts below may report a hit:
@@ -260,16 +484,10 @@ btScalar convexCastReach()
 	return btScalar(4) * reach;
 }
 
-// False when the cast of the segment from -> to against the shape cannot report a hit below maxFraction:
-// the segment misses the shape's local AABB grown by convexCastReach() and by the rounding of the
-// coordinates involved, or enters it only at or beyond maxFraction (the cast's point lies within the reach
-// of the shape wherever it hits, so a hit lies inside the grown box), or a plane through the segment's line
-// keeps the whole shape farther than that. A few dozen instructions and one support scan instead of a
-// cast, which needs several support scans to show a miss. Only for shapes whose getAabb is a cheap bound of
-// the shape with its margin (the cached boxes of hulls, point clouds, convex meshes and multi-spheres, and
-// the closed forms of capsules and cylinders); other shapes always go to the cast.
-bool castMayHitConvex(const btConvexShape* shape, const btTransform& shapeTransform, const btVector3& from,
-                      const btVector3& to, btScalar maxFraction)
+// The shapes whose getAabb is a cheap bound of the shape with its margin (the cached boxes of hulls, point
+// clouds, convex meshes and multi-spheres, and the closed forms of capsules and cylinders): their ray tests
+// start with the rejects below; other shapes always go to the cast.
+bool hasCheapLocalBox(const btConvexShape* shape)
 {
 	switch (shape->getShapeType())
 	{
@@ -279,21 +497,54 @@ bool castMayHitConvex(const btConvexShape* shape, const btTransform& shapeTransf
 		case MULTI_SPHERE_SHAPE_PROXYTYPE:
 		case CAPSULE_SHAPE_PROXYTYPE:
 		case CYLINDER_SHAPE_PROXYTYPE:
-			break;
-		default:
 			return true;
+		default:
+			return false;
 	}
-	static const btScalar reach = convexCastReach();
+}
+
+// The ray in a shape's frame, with the shape's local box (margin included) and the largest coordinate
+// involved (the rays' ends and the box, in the shape's frame).
+struct LocalConvexRay
+{
+	btVector3 start;
+	btVector3 direction;
+	btVector3 boxMin;
+	btVector3 boxMax;
+	btScalar scale;
+};
+
+LocalConvexRay localConvexRay(const btConvexShape* shape, const btTransform& shapeTransform, const btVector3& from,
+                              const btVector3& to)
+{
+	LocalConvexRay ray;
 	btTransform identity;
 	identity.setIdentity();
-	btVector3 boxMin, boxMax;
-	shape->getAabb(identity, boxMin, boxMax);
-	const btVector3 start = shapeTransform.invXform(from);
-	const btVector3 direction = shapeTransform.invXform(to) - start;
-	btScalar scale = btScalar(0);
+	shape->getAabb(identity, ray.boxMin, ray.boxMax);
+	ray.start = shapeTransform.invXform(from);
+	ray.direction = shapeTransform.invXform(to) - ray.start;
+	ray.scale = btScalar(0);
 	for (int axis = 0; axis < 3; ++axis)
-		scale = btMax(scale, btMax(btMax(btFabs(start[axis]), btFabs(start[axis] + direction[axis])),
-		                           btMax(btFabs(boxMin[axis]), btFabs(boxMax[axis]))));
+		ray.scale = btMax(ray.scale, btMax(btMax(btFabs(ray.start[axis]), btFabs(ray.start[axis] + ray.direction[axis])),
+		                                   btMax(btFabs(ray.boxMin[axis]), btFabs(ray.boxMax[axis]))));
+	return ray;
+}
+
+// False when the cast of the segment from -> to against the shape cannot report a hit below maxFraction:
+// the segment misses the shape's local AABB grown by convexCastReach() and by the rounding of the
+// coordinates involved, or enters it only at or beyond maxFraction (the cast's point lies within the reach
+// of the shape wherever it hits, so a hit lies inside the grown box), or a plane through the segment's line
+// keeps the whole shape farther than that. A few dozen instructions and one support scan instead of a
+// cast, which needs several support scans to show a miss. Only for the shapes
+// hasCheapLocalBox accepts.
+bool castMayHitConvex(const btConvexShape* shape, const LocalConvexRay& ray, btScalar maxFraction)
+{
+	static const btScalar reach = convexCastReach();
+	const btVector3& start = ray.start;
+	const btVector3& direction = ray.direction;
+	const btVector3& boxMin = ray.boxMin;
+	const btVector3& boxMax = ray.boxMax;
+	const btScalar scale = ray.scale;
 	const btScalar grow = reach + btScalar(64) * SIMD_EPSILON * scale;
 	btScalar enter = btScalar(0), exit = btMin(maxFraction, btScalar(1));
 	for (int axis = 0; axis < 3; ++axis)
@@ -329,6 +580,39 @@ bool castMayHitConvex(const btConvexShape* shape, const btTransform& shapeTransf
 	return !(normal.dot(nearest - start) > grow);
 }
 
+// startsInsideCore is tried on the shapes without polyhedral features whose core is a solid (not the
+// segment or points of capsules and multi-spheres, whose margins are their radii), for starts inside their
+// local box, where a start inside the shape can be.
+bool mayCertifyStartInsideCore(const btConvexShape* shape, const LocalConvexRay& ray)
+{
+	switch (shape->getShapeType())
+	{
+		case CONVEX_HULL_SHAPE_PROXYTYPE:
+		case CONVEX_POINT_CLOUD_SHAPE_PROXYTYPE:
+		case CONVEX_TRIANGLEMESH_SHAPE_PROXYTYPE:
+		case CYLINDER_SHAPE_PROXYTYPE:
+			break;
+		default:
+			return false;
+	}
+	for (int axis = 0; axis < 3; ++axis)
+		if (!(ray.start[axis] > ray.boxMin[axis] && ray.start[axis] < ray.boxMax[axis])) return false;
+	return !polyhedralFeatures(shape);
+}
+
+// How far inside the core's tetrahedron the start must be for startsInsideCore: 64 ulps of the largest
+// coordinate the cast's support planes are computed from (the start and the shape's origin in the world,
+// and the start and the box in the shape's frame), far above the few roundings of one support plane. The
+// margin between the core and the surface is more room on top.
+btScalar startInsideClearance(const LocalConvexRay& ray, const btVector3& fromWorld, const btVector3& originWorld)
+{
+	btScalar scale = btScalar(0);
+	for (int axis = 0; axis < 3; ++axis)
+		scale = btMax(scale, btMax(btMax(btFabs(fromWorld[axis]), btFabs(originWorld[axis])),
+		                           btMax(btFabs(ray.start[axis]), btMax(btFabs(ray.boxMin[axis]), btFabs(ray.boxMax[axis])))));
+	return btScalar(64) * SIMD_EPSILON * scale;
+}
+
 void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConvexShape* convexShape,
                    const btCollisionObjectWrapper* wrap, RayResultCallback& resultCallback)
 {
@@ -349,10 +633,20 @@ void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTran
 			return;
 		}
 	}
-	if (!castMayHitConvex(convexShape, wrap->getWorldTransform(), rayFromTrans.getOrigin(), rayToTrans.getOrigin(),
-	                      resultCallback.m_closestHitFraction))
+	const btTransform& shapeTransform = wrap->getWorldTransform();
+	if (hasCheapLocalBox(convexShape))
+	{
+		const LocalConvexRay local =
+		    localConvexRay(convexShape, shapeTransform, rayFromTrans.getOrigin(), rayToTrans.getOrigin());
+		if (!castMayHitConvex(convexShape, local, resultCallback.m_closestHitFraction)) return;
+		if (startsInsidePolyhedron(convexShape, local.start)) return;
+		if (mayCertifyStartInsideCore(convexShape, local) &&
+		    startsInsideCore(convexShape, local.start, local.start - (local.boxMin + local.boxMax) * btScalar(0.5),
+		                     startInsideClearance(local, rayFromTrans.getOrigin(), shapeTransform.getOrigin())))
+			return;
+	}
+	else if (startsInsidePolyhedron(convexShape, shapeTransform.invXform(rayFromTrans.getOrigin())))
 		return;
-	if (startsInsidePolyhedron(convexShape, wrap->getWorldTransform().invXform(rayFromTrans.getOrigin()))) return;
 	// The ray is a point (a sphere of radius 0 and no margin) cast against the shape.
 	btSphereShape point(btScalar(0));
 	point.setMargin(btScalar(0));
@@ -361,7 +655,6 @@ void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTran
 	bool hit;
 	// As in Bullet, a ray that starts inside the shape does not hit it (the casts' kMiss), which also spares
 	// the depth query a start-in-contact cast would make for its normal.
-	const btTransform& shapeTransform = wrap->getWorldTransform();
 	if (resultCallback.m_flags & btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest)
 		hit = caliber::gjkCast(&point, convexShape, &simplexSolver, rayFromTrans, rayToTrans, shapeTransform,
 		                       shapeTransform, castResult, caliber::StartInContact::kMiss);

@@ -16,6 +16,8 @@
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btCapsuleShape.h"
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
+#include "BulletCollision/CollisionShapes/btConvexPointCloudShape.h"
+#include "BulletCollision/CollisionShapes/btConvexTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btCylinderShape.h"
 #include "BulletCollision/CollisionShapes/btMultiSphereShape.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
@@ -361,4 +363,101 @@ TEST(ClosestRayEarlyOut, ConvexRejectsNeverChangeTheCastsAnswer)
 		}
 		EXPECT_GT(hits, 30) << "shape " << s;
 	}
+}
+
+TEST(ClosestRayEarlyOut, StartsInsideTheCoreNeverChangeTheCastsAnswer)
+{
+	// Shapes without polyhedral features whose ray test now skips the cast when GJK's containment search finds
+	// a tetrahedron of core points around the start (a barrel-like hull as in BenchmarkDemo's raycast scene,
+	// the same points as a point cloud and as a convex triangle mesh, and a cylinder), placed near the origin
+	// and at huge coordinates. Rays start inside the shapes, just inside and just outside their surfaces
+	// (within and beyond the margin, heading in or out or along it), at the centre, and some have zero
+	// length or run parallel to the barrel's flat ends or to the cylinder's side. The reference is the cast
+	// the world's ray test runs, called directly: the same hit or miss, fraction and normal, bit for bit.
+	btAlignedObjectArray<btVector3> points;
+	for (int ring = 0; ring < 3; ring++)
+		for (int k = 0; k < 8; k++)
+		{
+			const btScalar angle = btScalar(k) * SIMD_PI / 4;
+			const btScalar radius = ring == 1 ? btScalar(1.8) : btScalar(1.1);
+			points.push_back(btVector3(radius * btCos(angle), btScalar(ring - 1) * 2, radius * btSin(angle)));
+		}
+	btConvexHullShape hull;
+	for (int i = 0; i < points.size(); i++) hull.addPoint(points[i]);
+	btConvexPointCloudShape cloud(&points[0], points.size(), btVector3(1, 1, 1));
+	btTriangleMesh mesh;
+	for (int i = 0; i + 2 < points.size(); i++) mesh.addTriangle(points[i], points[i + 1], points[i + 2]);
+	btConvexTriangleMeshShape convexMesh(&mesh);
+	btCylinderShape cylinder(btVector3(1.2, 1.5, 1.2));
+	btConvexShape* shapes[4] = {&hull, &cloud, &convexMesh, &cylinder};
+	const btScalar origins[3] = {0, 3e3, 2e5};
+	Random rng(41);
+	for (int s = 0; s < 4; s++)
+		for (btScalar far : origins)
+		{
+			WorldFixture f;
+			const btTransform placement = placed(rng.rotation(), rng.vector(3) + btVector3(far, -far, far));
+			f.add(shapes[s], placement);
+			btTransform identity;
+			identity.setIdentity();
+			btVector3 boxMin, boxMax;
+			shapes[s]->getAabb(identity, boxMin, boxMax);
+			int hits = 0, startsInside = 0;
+			for (int k = 0; k < 400; k++)
+			{
+				// The start in the shape's frame: anywhere in its box (inside the shape or in the box's corners
+				// beside it), or near the surface along a random direction, or at the centre.
+				btVector3 startLocal(rng.uniform(boxMin.x(), boxMax.x()), rng.uniform(boxMin.y(), boxMax.y()),
+				                     rng.uniform(boxMin.z(), boxMax.z()));
+				const btVector3 out = rng.unitVector();
+				if (k % 3 == 1)
+					startLocal = shapes[s]->localGetSupportingVertex(out) + out * rng.uniform(-0.1, 0.02);
+				else if (k % 3 == 2)
+					startLocal = shapes[s]->localGetSupportingVertexWithoutMargin(out) + out * rng.uniform(-0.05, 0.05);
+				if (k % 4 == 1)  // just outside the surface: heading in, these hit at about 0
+					startLocal = shapes[s]->localGetSupportingVertex(out) + out * rng.uniform(0.001, 0.05);
+				if (k % 50 == 0) startLocal.setZero();
+				btVector3 directionLocal = rng.unitVector() * rng.uniform(0.5, 6);
+				if (k % 2 == 1) directionLocal = -out * rng.uniform(0.5, 4);  // heading in
+				if (k % 7 == 3) directionLocal = btVector3(rng.uniform(-3, 3), 0, rng.uniform(-3, 3));  // along y's faces
+				if (k % 7 == 5) directionLocal = btVector3(0, rng.uniform(-4, 4), 0);  // along the cylinder's side
+				if (k % 11 == 4) directionLocal.setZero();  // zero length
+				const btVector3 from = placement * startLocal;
+				const btVector3 to = placement * (startLocal + directionLocal);
+				const unsigned flags = (k % 4 == 3) ? btTriangleRaycastCallback::kF_UseGjkConvexCastRaytest : 0u;
+				btTransform fromT = btTransform::getIdentity(), toT = btTransform::getIdentity();
+				fromT.setOrigin(from);
+				toT.setOrigin(to);
+				btSphereShape point(0);
+				point.setMargin(0);
+				btVoronoiSimplexSolver simplex;
+				btConvexCast::CastResult result;
+				const bool castHit =
+				    flags ? caliber::gjkCast(&point, shapes[s], &simplex, fromT, toT, placement, placement, result,
+				                             caliber::StartInContact::kMiss)
+				          : caliber::subsimplexCast(&point, shapes[s], &simplex, fromT, toT, placement, placement,
+				                                    result, caliber::StartInContact::kMiss);
+				btCollisionWorld::ClosestRayResultCallback cb(from, to);
+				cb.m_flags = flags;
+				f.m_world.rayTest(from, to, cb);
+				const bool expectHit = castHit && result.m_normal.length2() > btScalar(1e-4) && result.m_fraction < 1;
+				ASSERT_EQ(cb.hasHit(), expectHit) << "shape " << s << " at " << far << " ray " << k;
+				// A start inside the shape's core by more than a margin (GJK's distance of the start point to
+				// the core, made without the early-out): the case the early-out is for.
+				btVector3 normal, onB;
+				btScalar distance;
+				btVoronoiSimplexSolver distanceSimplex;
+				btSphereShape deepPoint(0);
+				deepPoint.setMargin(shapes[s]->getMargin());
+				if (!caliber::castClosestPoints(&deepPoint, shapes[s], fromT, placement, &distanceSimplex, nullptr,
+				                                btVector3(0, 0, 0), normal, onB, distance))
+					startsInside++;
+				if (!expectHit) continue;
+				hits++;
+				EXPECT_EQ(cb.m_closestHitFraction, result.m_fraction) << "shape " << s << " ray " << k;
+				EXPECT_EQ(cb.m_hitNormalWorld, result.m_normal.normalized()) << "shape " << s << " ray " << k;
+			}
+			EXPECT_GT(hits, 60) << "shape " << s << " at " << far;
+			EXPECT_GT(startsInside, 80) << "shape " << s << " at " << far;
+		}
 }
