@@ -55,6 +55,28 @@ public:
 	}
 };
 
+/// A user's scheduler that reports two threads and runs a loop's grain-sized chunks on the calling thread
+/// from the last to the first: no stage may depend on which chunks of a loop run first.
+class LastFirstScheduler : public btITaskScheduler
+{
+public:
+	LastFirstScheduler() : btITaskScheduler("LastFirst") {}
+	int getMaxNumThreads() const override { return 2; }
+	int getNumThreads() const override { return 2; }
+	void setNumThreads(int) override {}
+	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
+	{
+		const int grain = grainSize < 1 ? 1 : grainSize;
+		if (iEnd <= iBegin) return;
+		for (int k = (iEnd - iBegin - 1) / grain; k >= 0; --k)
+			body.forLoop(iBegin + k * grain, btMin(iEnd, iBegin + (k + 1) * grain));
+	}
+	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
+	{
+		return body.sumLoop(iBegin, iEnd);
+	}
+};
+
 /// The bits of every body's basis, position and velocities, in order (bodies: pointers or smart pointers
 /// to btRigidBody).
 template <class Bodies>

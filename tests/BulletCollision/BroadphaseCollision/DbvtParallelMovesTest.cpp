@@ -29,28 +29,6 @@ struct Lcg
 	}
 };
 
-// A user's scheduler that reports two threads and runs a loop's tasks on the calling thread from the last
-// to the first: a task then finishes its moves before an earlier task finds a move that runs alone.
-class LastFirstScheduler : public btITaskScheduler
-{
-public:
-	LastFirstScheduler() : btITaskScheduler("LastFirst") {}
-	int getMaxNumThreads() const override { return 2; }
-	int getNumThreads() const override { return 2; }
-	void setNumThreads(int) override {}
-	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
-	{
-		const int grain = grainSize < 1 ? 1 : grainSize;
-		if (iEnd <= iBegin) return;
-		for (int k = (iEnd - iBegin - 1) / grain; k >= 0; --k)
-			body.forLoop(iBegin + k * grain, btMin(iEnd, iBegin + (k + 1) * grain));
-	}
-	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
-	{
-		return body.sumLoop(iBegin, iEnd);
-	}
-};
-
 enum class Motion
 {
 	None,      // nothing leaves its fat box
@@ -219,7 +197,7 @@ caliber::DbvtParallelMoveStats checkEveryScheduler(Motion motion)
 	}
 	caliber_test::UnevenSplitScheduler uneven;
 	expectSame(serial, run(motion, true, 0, &uneven));
-	LastFirstScheduler lastFirst;
+	caliber_test::LastFirstScheduler lastFirst;
 	const std::vector<Snapshot> reversed = run(motion, true, 0, &lastFirst);
 	expectSame(serial, reversed);
 	return total(reversed);

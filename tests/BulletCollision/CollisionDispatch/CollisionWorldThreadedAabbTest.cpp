@@ -52,28 +52,6 @@ struct SevenFilter : public btOverlapFilterCallback
 	}
 };
 
-// A user's scheduler that reports two threads and runs a loop's chunks on the calling thread from the last
-// to the first: the box updates may not depend on which chunks run first.
-class ReverseOrderScheduler : public btITaskScheduler
-{
-public:
-	ReverseOrderScheduler() : btITaskScheduler("ReverseOrder") {}
-	int getMaxNumThreads() const override { return 2; }
-	int getNumThreads() const override { return 2; }
-	void setNumThreads(int) override {}
-	void parallelFor(int iBegin, int iEnd, int grainSize, const btIParallelForBody& body) override
-	{
-		const int grain = grainSize < 1 ? 1 : grainSize;
-		if (iEnd <= iBegin) return;
-		for (int k = (iEnd - iBegin - 1) / grain; k >= 0; --k)
-			body.forLoop(iBegin + k * grain, btMin(iEnd, iBegin + (k + 1) * grain));
-	}
-	btScalar parallelSum(int iBegin, int iEnd, int, const btIParallelSumBody& body) override
-	{
-		return body.sumLoop(iBegin, iEnd);
-	}
-};
-
 struct Snapshot
 {
 	std::vector<btVector3> boxes;  // per object: AABB min, max, fat box min, max
@@ -237,7 +215,7 @@ TEST(CollisionWorldThreadedAabbs, ObjectOverflowingMidwayEndsAsWithSerialUpdates
 	// The 134 objects moved 0.3 m still leave their fat boxes in steps 1 and 3 (see above).
 	EXPECT_EQ(serial.updatesDone, 2u * 134u);
 	for (int threads : {1, 2, 3, 4}) expectSame(serial, run(threads, false, false, overflowAt));
-	ReverseOrderScheduler reverse;
+	caliber_test::LastFirstScheduler reverse;
 	expectSame(serial, run(0, false, false, overflowAt, &reverse));
 	caliber_test::UnevenSplitScheduler uneven;
 	expectSame(serial, run(0, false, false, overflowAt, &uneven));
@@ -246,7 +224,7 @@ TEST(CollisionWorldThreadedAabbs, ObjectOverflowingMidwayEndsAsWithSerialUpdates
 TEST(CollisionWorldThreadedAabbs, ChunksInAnyOrderOrSplitGiveTheSerialBroadphase)
 {
 	const Snapshot serial = run(0, false);
-	ReverseOrderScheduler reverse;
+	caliber_test::LastFirstScheduler reverse;
 	expectSame(serial, run(0, false, false, -1, &reverse));
 	caliber_test::UnevenSplitScheduler uneven;
 	expectSame(serial, run(0, false, false, -1, &uneven));
