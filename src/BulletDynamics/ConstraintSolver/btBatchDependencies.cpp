@@ -35,6 +35,13 @@ bool caliber::colourSweepBarriers() { return g_colourSweepBarriers.load(std::mem
 void caliber::BatchDependencies::build(const int* manifoldBegin, int numBatches, const int* order, const int* ends,
                                        int stride, int numBodies, int fixedBodyId)
 {
+	sortBodies(manifoldBegin, numBatches, order, ends, stride, numBodies, fixedBodyId);
+	listAll();
+}
+
+void caliber::BatchDependencies::sortBodies(const int* manifoldBegin, int numBatches, const int* order,
+                                            const int* ends, int stride, int numBodies, int fixedBodyId)
+{
 	btAssert(numBatches >= 0 && numBodies >= 0);
 	m_numBatches = numBatches;
 	m_fixedBodyId = fixedBodyId;
@@ -75,10 +82,14 @@ void caliber::BatchDependencies::build(const int* manifoldBegin, int numBatches,
 	for (int s = 0; s < kNumSweeps; ++s) resizeScratch(m_lists[s], 2 * numPlaces);
 	resizeScratch(m_count, kNumSweeps * numBatches);
 	assignScratch(m_marks, kDependencyChunks * kNumSweeps * 2 * numBatches, -1);
-	if (numBatches == 0) return;
+}
+
+void caliber::BatchDependencies::listAll()
+{
+	if (m_numBatches == 0) return;
 	ListDependencies list;
 	list.dependencies = this;
-	list.numBatches = numBatches;
+	list.numBatches = m_numBatches;
 	btParallelFor(0, kDependencyChunks, 1, list);
 }
 

@@ -45,6 +45,12 @@ public:
 	/// batch has its own copy of, a dependency of none.
 	void build(const int* manifoldBegin, int numBatches, const int* order, const int* ends, int stride, int numBodies,
 	           int fixedBodyId);
+	/// build in two halves: sortBodies, each body's batches in order (serial: may run inside a parallel
+	/// loop's task, beside other work), then listAll, each batch's lists (a parallel loop). The arrays
+	/// sortBodies is given must stay unchanged until listAll has returned.
+	void sortBodies(const int* manifoldBegin, int numBatches, const int* order, const int* ends, int stride,
+	                int numBodies, int fixedBodyId);
+	void listAll();
 
 	/// Batches of the last build.
 	int numBatches() const { return m_numBatches; }

@@ -101,13 +101,18 @@ struct MtSolverScratch
 	// task, which runs the items in the sweep's order: every dependency is finished before it is needed.
 	bool dependenciesListed = false;
 	caliber::BatchDependencies dependencies;
+	// The manifolds with rows that the colours, their order, the batches' ranges and the dependencies'
+	// sort by body were made for, beside the contact rows' fill (see planColourSweep); -1: not made.
+	int plannedManifolds = -1;
 	struct SweepItem
 	{
 		int pass, batchBegin, batchEnd;
 		int run;  // the item is its colour's run-th run in this pass
 	};
-	btAlignedObjectArray<SweepItem> sweepItems;
-	btAlignedObjectArray<int> itemOfBatch;  // per (pass, batch): its item
+	// Per direction (forwards, backwards), listed once per solve for itemThreads threads (0: not listed).
+	btAlignedObjectArray<SweepItem> sweepItems[2];
+	btAlignedObjectArray<int> itemOfBatch[2];  // per (pass, batch): its item
+	int itemThreads[2] = {0, 0};
 	struct DoneFlag
 	{
 		std::atomic<unsigned> loop{0};
@@ -652,16 +657,18 @@ struct DependentSweep : public btIParallelForBody
 {
 	const BatchSweep* passes[2];  // normal rows, friction rows; residuals go to the item's place
 	MtSolverScratch* mt;
+	const btAlignedObjectArray<MtSolverScratch::SweepItem>* items;  // the sweep's direction's
+	const btAlignedObjectArray<int>* itemOfBatch;
 	caliber::BatchDependencies::Sweep sweeps[2];
 	int numBatches;
 	unsigned loop;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
-		const int numItems = mt->sweepItems.size();
+		const int numItems = items->size();
 		for (int lane = iBegin; lane < iEnd; ++lane)
 			for (int i = 0; i < numItems; ++i)
-				if (mt->sweepItems[i].run == lane && claim(i)) run(i);
+				if ((*items)[i].run == lane && claim(i)) run(i);
 		for (int i = 0; i < numItems; ++i)
 			if (claim(i)) run(i);
 	}
@@ -675,7 +682,7 @@ struct DependentSweep : public btIParallelForBody
 
 	void run(int i) const
 	{
-		const MtSolverScratch::SweepItem item = mt->sweepItems[i];
+		const MtSolverScratch::SweepItem item = (*items)[i];
 		const caliber::BatchDependencies::Sweep sweep = sweeps[item.pass];
 		MtSolverScratch::DoneFlag* done = &mt->itemDone[0];
 		for (int b = item.batchBegin; b < item.batchEnd; ++b)
@@ -686,7 +693,7 @@ struct DependentSweep : public btIParallelForBody
 			{
 				const MtSolverScratch::DoneFlag& flag = done[dependencies[d]];
 				if (flag.loop.load(std::memory_order_acquire) == loop) continue;
-				const int owner = mt->itemOfBatch[dependencies[d]];
+				const int owner = (*itemOfBatch)[dependencies[d]];
 				if (claim(owner))
 					run(owner);  // an earlier item: it finishes the dependency
 				else
@@ -698,17 +705,16 @@ struct DependentSweep : public btIParallelForBody
 	}
 };
 
-// The sweep of one iteration with DependentSweep; adds the batches' residuals to residual as the loop per
-// colour adds them (pass by pass, colour by colour in the sweep's order, batch by batch).
-btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, bool reverse, int numThreads,
-                               btScalar residual)
+// The items of the sweep in one direction (the colours backwards when reverse): each colour cut into one run
+// of batches per thread, as the loop per colour cut it.
+void listSweepItems(MtSolverScratch& mt, const btBatchedConstraints& batched, bool reverse, int numThreads)
 {
-	const btBatchedConstraints& batched = *sweep.batched;
 	const int numBatches = batched.m_batches.size();
 	const int numPhases = batched.m_phases.size();
-	// The items: each colour cut into one run of batches per thread, as the loop per colour cut it.
-	mt.sweepItems.resize(0);
-	caliber::resizeScratch(mt.itemOfBatch, 2 * numBatches);
+	btAlignedObjectArray<MtSolverScratch::SweepItem>& items = mt.sweepItems[reverse ? 1 : 0];
+	btAlignedObjectArray<int>& itemOfBatch = mt.itemOfBatch[reverse ? 1 : 0];
+	items.resize(0);
+	caliber::resizeScratch(itemOfBatch, 2 * numBatches);
 	for (int pass = 0; pass < 2; ++pass)
 		for (int k = 0; k < numPhases; ++k)
 		{
@@ -722,11 +728,23 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 				item.batchBegin = b;
 				item.batchEnd = btMin(b + grain, phase.end);
 				item.run = (b - phase.begin) / grain;
-				for (int batch = b; batch < item.batchEnd; ++batch)
-					mt.itemOfBatch[pass * numBatches + batch] = mt.sweepItems.size();
-				mt.sweepItems.push_back(item);
+				for (int batch = b; batch < item.batchEnd; ++batch) itemOfBatch[pass * numBatches + batch] = items.size();
+				items.push_back(item);
 			}
 		}
+	mt.itemThreads[reverse ? 1 : 0] = numThreads;
+}
+
+// The sweep of one iteration with DependentSweep; adds the batches' residuals to residual as the loop per
+// colour adds them (pass by pass, colour by colour in the sweep's order, batch by batch).
+btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, bool reverse, int numThreads,
+                               btScalar residual)
+{
+	const btBatchedConstraints& batched = *sweep.batched;
+	const int numBatches = batched.m_batches.size();
+	const int numPhases = batched.m_phases.size();
+	if (mt.itemThreads[reverse ? 1 : 0] != numThreads) listSweepItems(mt, batched, reverse, numThreads);
+	const btAlignedObjectArray<MtSolverScratch::SweepItem>& items = mt.sweepItems[reverse ? 1 : 0];
 	caliber::resizeScratch(mt.batchResidual, 2 * numBatches);
 	BatchSweep normal = sweep, friction = sweep;
 	normal.pass = 0;
@@ -735,7 +753,7 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 	friction.pass = 1;
 	friction.firstBatch = 0;
 	friction.batchResidual = &mt.batchResidual[numBatches];
-	if (mt.itemClaimed.size() < mt.sweepItems.size()) mt.itemClaimed.resize(mt.sweepItems.size());
+	if (mt.itemClaimed.size() < items.size()) mt.itemClaimed.resize(items.size());
 	if (++mt.sweepLoop == 0)
 	{
 		// After 2^32 loops: no flag may hold the new loop's number from long ago.
@@ -747,6 +765,8 @@ btScalar sweepWithDependencies(MtSolverScratch& mt, const BatchSweep& sweep, boo
 	body.passes[0] = &normal;
 	body.passes[1] = &friction;
 	body.mt = &mt;
+	body.items = &items;
+	body.itemOfBatch = &mt.itemOfBatch[reverse ? 1 : 0];
 	body.sweeps[0] = reverse ? caliber::BatchDependencies::kBackwardNormal : caliber::BatchDependencies::kForwardNormal;
 	body.sweeps[1] =
 	    reverse ? caliber::BatchDependencies::kBackwardFriction : caliber::BatchDependencies::kForwardFriction;
@@ -842,13 +862,18 @@ struct WriteBatchRows : public btIParallelForBody
 
 const int kManifoldsPerWideGroup = 8;
 
-void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scratch, int minBatchSize,
-                        btBatchedConstraints& batched)
+// The batches' manifold and row ranges (their row lists: writeColourBatchRows).
+void planColourBatches(MtSolverScratch& mt, int minBatchSize, btBatchedConstraints& batched)
 {
-	// First the batches' manifold and row ranges, then their row lists, batch by batch on the threads.
+	batched.m_constraintIndices.resize(0);
+	batched.m_batches.resize(0);
+	batched.m_phases.resize(0);
+	batched.m_phaseGrainSize.resize(0);
+	batched.m_phaseOrder.resize(0);
 	int nextManifold = 0;
-	int nextRow = batched.m_constraintIndices.size();
+	int nextRow = 0;
 	mt.batchManifoldBegin.resize(0);
+	mt.itemThreads[0] = mt.itemThreads[1] = 0;  // new batches: the sweep's items are listed again
 	for (int c = 0; c < mt.colourCount.size(); ++c)
 	{
 		if (mt.colourCount[c] == 0) continue;
@@ -873,6 +898,11 @@ void buildColourBatches(MtSolverScratch& mt, const caliber::SolverScratch& scrat
 	}
 	mt.batchManifoldBegin.push_back(nextManifold);
 	caliber::resizeScratch(batched.m_constraintIndices, nextRow);
+}
+
+// The batches' row lists, batch by batch on the threads.
+void writeColourBatchRows(MtSolverScratch& mt, const caliber::SolverScratch& scratch, btBatchedConstraints& batched)
+{
 	WriteBatchRows write;
 	write.mt = &mt;
 	write.scratch = &scratch;
@@ -968,6 +998,63 @@ void giveBatchesFixedBodyCopies(const btBatchedConstraints& batched, int fixedBo
 		if (row.m_solverBodyIdB == fixedBodyId) row.m_solverBodyIdB = contact.m_solverBodyIdB;
 	}
 }
+
+// What the coloured sweep needs of the manifolds alone, all serial: the colours, the manifolds in colour and
+// body order, the batches' ranges, the sweep's items in both directions for numThreads threads and, for the sweep without a wait per colour at more than one thread, each
+// body's batches in order (the lists themselves are made on the threads later). convertContacts runs it as
+// the first chunk of the contact rows' fill, so that one thread makes it while the others fill rows instead
+// of the calling thread making it alone after the fill: it reads the manifolds' bodies and point counts and
+// the solver bodies' poses and gravity, which the fill only reads, and writes only this scratch and the
+// batches, which the fill does not touch. The same plan as made after the fill (nothing it reads changes).
+void planColourSweep(MtSolverScratch& mt, const btSolverBody* bodies, int numSolverBodies, int fixedBodyId,
+                     int minBatchSize, int numThreads, btBatchedConstraints& batched)
+{
+	colourManifolds(mt, bodies, numSolverBodies, fixedBodyId);
+	orderManifoldsByColourAndBody(mt, numSolverBodies, fixedBodyId);
+	planColourBatches(mt, minBatchSize, batched);
+	if (mt.dependentSweep)
+		for (int direction = 0; direction < 2; ++direction)
+			listSweepItems(mt, batched, direction == 1, numThreads);
+	if (mt.dependenciesListed)
+	{
+		static_assert(offsetof(MtSolverScratch::RowManifold, bodyB) ==
+		                  offsetof(MtSolverScratch::RowManifold, bodyA) + sizeof(int),
+		              "the dependencies read a manifold's two bodies as consecutive ints");
+		mt.dependencies.sortBodies(&mt.batchManifoldBegin[0], batched.m_batches.size(), &mt.orderedManifolds[0],
+		                           &mt.rowManifolds[0].bodyA, int(sizeof(MtSolverScratch::RowManifold) / sizeof(int)),
+		                           numSolverBodies, fixedBodyId);
+	}
+	mt.plannedManifolds = mt.rowManifolds.size();
+}
+
+// The contact rows' fill, kPointsPerTask points per chunk after a first chunk that is planColourSweep.
+// Nothing waits, so any scheduler and any split of the chunks give the same rows and the same plan.
+struct FillPointRowsBesidePlan : public btIParallelForBody
+{
+	FillPointRows fill;
+	int numPoints;
+	MtSolverScratch* mt;
+	const btSolverBody* bodies;
+	int numSolverBodies;
+	int fixedBodyId;
+	int minBatchSize;
+	int numThreads;
+	btBatchedConstraints* batched;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int chunk = iBegin; chunk < iEnd; ++chunk)
+		{
+			if (chunk == 0)
+			{
+				planColourSweep(*mt, bodies, numSolverBodies, fixedBodyId, minBatchSize, numThreads, *batched);
+				continue;
+			}
+			const int first = (chunk - 1) * kPointsPerTask;
+			fill.forLoop(first, btMin(first + kPointsPerTask, numPoints));
+		}
+	}
+};
 
 // Rolling rows grouped by their contact row (counting sort).
 void groupRollingRows(MtSolverScratch& mt, int numContacts, const btConstraintArray& rolling)
@@ -1081,14 +1168,28 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	place.frictionRowsPerContact = frictionRowsPerContact;
 	btParallelFor(0, numChunks, 1, place);
 
-	FillPointRows fill;
+	// The rows, and beside them the coloured sweep's plan (decided here for the set-up; the solver bodies
+	// are all made, and the manifolds with rows are listed).
+	FillPointRowsBesidePlan planAndFill;
+	FillPointRows& fill = planAndFill.fill;
 	fill.pools.bodies = &m_tmpSolverBodyPool;
 	fill.pools.contacts = &m_tmpSolverContactConstraintPool;
 	fill.pools.friction = &m_tmpSolverContactFrictionConstraintPool;
 	fill.pools.rolling = &m_tmpSolverContactRollingFrictionConstraintPool;
 	fill.points = &mt.points[0];
 	fill.info = &infoGlobal;
-	btParallelFor(0, mt.points.size(), kPointsPerTask, fill);
+	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
+	mt.dependentSweep = !caliber::colourSweepBarriers();
+	mt.dependenciesListed = mt.dependentSweep && numThreads > 1;
+	planAndFill.numPoints = numPoints;
+	planAndFill.numThreads = numThreads;
+	planAndFill.mt = &mt;
+	planAndFill.bodies = &m_tmpSolverBodyPool[0];
+	planAndFill.numSolverBodies = m_tmpSolverBodyPool.size();
+	planAndFill.fixedBodyId = m_fixedBodyId;
+	planAndFill.minBatchSize = s_minBatchSize;
+	planAndFill.batched = &m_batchedContactConstraints;
+	btParallelFor(0, 1 + (numPoints + kPointsPerTask - 1) / kPointsPerTask, 1, planAndFill);
 	if (!(infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)) return;
 	// By body on the threads, or point by point on one thread (the same bits either way).
 	btITaskScheduler* scheduler = btGetTaskScheduler();
@@ -1111,6 +1212,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 		if (manifoldPtr[i]->getNumContacts() > 0) ++manifoldsWithPoints;
 	MtSolverScratch& mt = mtScratchOf(*this);
 	mt.rowManifolds.resize(0);  // our convertContacts lists them
+	mt.plannedManifolds = -1;   // and plans the sweep
 	caliber::SolverScratch& scratch = caliber::solverScratchOf(*this);
 	m_useBatching =
 	    manifoldsWithPoints >= s_minimumContactManifoldsForBatching &&
@@ -1123,12 +1225,15 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	const int numManifoldsWithRows = scratch.manifoldFirstRow.size() - 1;
 	m_useBatching = m_useBatching && numManifoldsWithRows > 0;
 	btBatchedConstraints& batched = m_batchedContactConstraints;
-	batched.m_constraintIndices.resize(0);
-	batched.m_batches.resize(0);
-	batched.m_phases.resize(0);
-	batched.m_phaseGrainSize.resize(0);
-	batched.m_phaseOrder.resize(0);
-	if (!m_useBatching) return result;
+	if (!m_useBatching)
+	{
+		batched.m_constraintIndices.resize(0);
+		batched.m_batches.resize(0);
+		batched.m_phases.resize(0);
+		batched.m_phaseGrainSize.resize(0);
+		batched.m_phaseOrder.resize(0);
+		return result;
+	}
 
 	// The sweeps below take the batches' order; the split-impulse pass takes the serial solver's.
 	if (infoGlobal.m_splitImpulse)
@@ -1172,21 +1277,19 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 			manifold.numPoints = scratch.manifoldFirstRow[m + 1] - scratch.manifoldFirstRow[m];
 		}
 	}
-	colourManifolds(mt, &m_tmpSolverBodyPool[0], numSolverBodies, m_fixedBodyId);
-	orderManifoldsByColourAndBody(mt, numSolverBodies, m_fixedBodyId);
-	buildColourBatches(mt, scratch, s_minBatchSize, batched);
-	// Each batch's dependencies in the four sweeps (before the fixed entry's copies: each batch has its own).
-	mt.dependentSweep = !caliber::colourSweepBarriers();
-	mt.dependenciesListed = mt.dependentSweep && btGetTaskScheduler()->getNumThreads() > 1;
-	if (mt.dependenciesListed)
+	// The plan, unless our convertContacts made it beside the rows for these manifolds (a subclass's
+	// convertContacts may leave ours out, or add rows of its own).
+	if (mt.plannedManifolds != numManifoldsWithRows)
 	{
-		static_assert(offsetof(MtSolverScratch::RowManifold, bodyB) ==
-		                  offsetof(MtSolverScratch::RowManifold, bodyA) + sizeof(int),
-		              "the dependencies read a manifold's two bodies as consecutive ints");
-		mt.dependencies.build(&mt.batchManifoldBegin[0], batched.m_batches.size(), &mt.orderedManifolds[0],
-		                      &mt.rowManifolds[0].bodyA, int(sizeof(MtSolverScratch::RowManifold) / sizeof(int)),
-		                      numSolverBodies, m_fixedBodyId);
+		const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
+		mt.dependentSweep = !caliber::colourSweepBarriers();
+		mt.dependenciesListed = mt.dependentSweep && numThreads > 1;
+		planColourSweep(mt, &m_tmpSolverBodyPool[0], numSolverBodies, m_fixedBodyId, s_minBatchSize, numThreads,
+		                batched);
 	}
+	writeColourBatchRows(mt, scratch, batched);
+	// Each batch's dependencies in the four sweeps (before the fixed entry's copies: each batch has its own).
+	if (mt.dependenciesListed) mt.dependencies.listAll();
 	if (mt.dependentSweep && mt.itemDone.size() < 2 * batched.m_batches.size())
 		mt.itemDone.resize(2 * batched.m_batches.size());
 

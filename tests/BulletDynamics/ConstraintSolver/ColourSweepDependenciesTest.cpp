@@ -185,8 +185,19 @@ class CountingMtSolver : public btSequentialImpulseConstraintSolverMt
 public:
 	int colouredSolves = 0;
 	int coloursOfSeveralBatches = 0;
+	// The plain solver's contact rows (the same rows, made on this thread): the Mt set-up then plans the
+	// sweep itself after the rows, instead of beside their fill.
+	bool plainRows = false;
 
 protected:
+	void convertContacts(btPersistentManifold** manifolds, int numManifolds, const btContactSolverInfo& info) override
+	{
+		if (plainRows)
+			btSequentialImpulseConstraintSolver::convertContacts(manifolds, numManifolds, info);
+		else
+			btSequentialImpulseConstraintSolverMt::convertContacts(manifolds, numManifolds, info);
+	}
+
 	btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int numBodies, btPersistentManifold** manifolds,
 	                                      int numManifolds, btTypedConstraint** constraints, int numConstraints,
 	                                      const btContactSolverInfo& info, btIDebugDraw* debugDrawer) override
@@ -223,7 +234,8 @@ struct ScopedSweepSettings
 // A wall of bricks, 3 layers of 6 x 5, each layer offset by half a brick on the last, so that a brick rests
 // on two or four below it: stacks whose colours have several batches that share bodies with the colours
 // before and after. The layers start 1 cm apart and fall together, with friction and rolling contacts.
-std::vector<btScalar> wallBits(bool barriers, btITaskScheduler* scheduler, int steps, int* loops = nullptr)
+std::vector<btScalar> wallBits(bool barriers, btITaskScheduler* scheduler, int steps, int* loops = nullptr,
+                               bool plainRows = false)
 {
 	caliber_test::ScopedManifoldBatchingThreshold colourAll;
 	ScopedSweepSettings settings(barriers, 4);  // batches of a few rows: many per colour
@@ -235,6 +247,7 @@ std::vector<btScalar> wallBits(bool barriers, btITaskScheduler* scheduler, int s
 		btDbvtBroadphase broadphase;
 		btConstraintSolverPoolMt pool(BT_MAX_THREAD_COUNT);
 		CountingMtSolver solver;
+		solver.plainRows = plainRows;
 		btDiscreteDynamicsWorldMt world(&dispatcher, &broadphase, &pool, &solver, &config);
 		world.setGravity(btVector3(0, -10, 0));
 		world.getSolverInfo().m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
@@ -317,4 +330,32 @@ TEST(ColourSweep, PostsOneLoopPerIterationInsteadOfTwoPerColour)
 	// At least two colours per solve: at least 2 * 2 * iterations loops per step before, iterations + 1 now
 	// (the dependencies are listed in one more loop per solve).
 	EXPECT_GE(loopsWithBarriers - loopsWithout, kSteps * (4 * iterations - iterations - 1));
+}
+
+TEST(ColourSweep, ThePlanMadeBesideTheContactRowsIsThePlanMadeAfterThemOnAnyScheduler)
+{
+	// The Mt solver colours the manifolds, orders them, cuts the batches and sorts the dependencies by body
+	// in the first task of the contact rows' fill. With the plain solver's rows (a subclass's convertContacts)
+	// the set-up makes that plan itself after the rows, on the calling thread: the worlds must agree bit for
+	// bit, with the pool, with the sequential scheduler, and with a scheduler that runs the fill's tasks last
+	// first or in one call (the plan then runs after, or before, every row).
+	const int kSteps = 12;
+	const std::vector<btScalar> reference = wallBits(false, btGetSequentialTaskScheduler(), kSteps, nullptr, true);
+	EXPECT_TRUE(sameBits(wallBits(false, btGetSequentialTaskScheduler(), kSteps), reference)) << "sequential";
+	for (int threads : {2, 3})
+	{
+		std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+		if (!pool) break;  // a library without threads
+		pool->setNumThreads(threads);
+		EXPECT_TRUE(sameBits(wallBits(false, pool.get(), kSteps), reference)) << threads << " threads";
+		EXPECT_TRUE(sameBits(wallBits(false, pool.get(), kSteps, nullptr, true), reference))
+		    << threads << " threads, plain rows";
+		EXPECT_TRUE(sameBits(wallBits(true, pool.get(), kSteps), reference)) << threads << " threads, barriers";
+	}
+	for (bool oneCall : {false, true})
+	{
+		OneThreadScheduler oneThread(3, oneCall);
+		EXPECT_TRUE(sameBits(wallBits(false, &oneThread, kSteps), reference))
+		    << (oneCall ? "one call" : "tasks backwards");
+	}
 }
