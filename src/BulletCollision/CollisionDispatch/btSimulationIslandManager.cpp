@@ -313,25 +313,32 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 	// awake body, no manifold: most of a scene of falling bodies) in one call each; the islands around a run
 	// go to processIsland, so the sink sees every island in the same order as without the runs.
 	caliber::LoneIslandSink* loneSink = dynamic_cast<caliber::LoneIslandSink*>(callback);
-	scratch.loneBodies.resize(0);
-	scratch.loneIds.resize(0);
+	// The run of lone islands is written by index into arrays sized for every element (numLone of them
+	// in use), without a push's capacity check each.
+	scratch.loneBodies.resizeNoInitialize(loneSink ? numElements : 0);
+	scratch.loneIds.resizeNoInitialize(loneSink ? numElements : 0);
+	btCollisionObject** loneBodies = loneSink && numElements ? &scratch.loneBodies[0] : 0;
+	int* loneIds = loneSink && numElements ? &scratch.loneIds[0] : 0;
+	int numLone = 0;
+	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
 	int islandEnd = 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
 	{
-		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		const int islandId = elements[islandStart].m_id;
 		const bool validId = islandId >= 0 && islandId < numElements;
 		const int first = validId ? bounds[islandId] : 0;
 		const int count = validId ? bounds[islandId + 1] - first : 0;
 		if (loneSink && validId && count == 0 &&
-		    (islandStart + 1 == numElements || m_unionFind.getElement(islandStart + 1).m_id != islandId))
+		    (islandStart + 1 == numElements || elements[islandStart + 1].m_id != islandId))
 		{
 			islandEnd = islandStart + 1;
-			const int objectIndex = m_unionFind.getElement(islandStart).m_sz;
+			const int objectIndex = elements[islandStart].m_sz;
 			if (objectIndex < 0 || objectIndex >= numObjects) continue;
 			btCollisionObject* object = objects[objectIndex];
 			if (!object->isActive()) continue;
-			scratch.loneBodies.push_back(object);
-			scratch.loneIds.push_back(islandId);
+			loneBodies[numLone] = object;
+			loneIds[numLone] = islandId;
+			++numLone;
 			continue;
 		}
 		bool islandSleeping = true;
@@ -346,17 +353,15 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 			if (object->isActive()) islandSleeping = false;
 		}
 		if (islandSleeping || m_islandBodies.size() == 0) continue;
-		if (scratch.loneBodies.size() > 0)
+		if (numLone > 0)
 		{
-			loneSink->processLoneIslands(&scratch.loneBodies[0], &scratch.loneIds[0], scratch.loneBodies.size());
-			scratch.loneBodies.resize(0);
-			scratch.loneIds.resize(0);
+			loneSink->processLoneIslands(loneBodies, loneIds, numLone);
+			numLone = 0;
 		}
 		callback->processIsland(&m_islandBodies[0], m_islandBodies.size(), count ? &m_islandmanifold[first] : 0, count,
 		                        islandId);
 	}
-	if (scratch.loneBodies.size() > 0)
-		loneSink->processLoneIslands(&scratch.loneBodies[0], &scratch.loneIds[0], scratch.loneBodies.size());
+	if (numLone > 0) loneSink->processLoneIslands(loneBodies, loneIds, numLone);
 	scratch.loneBodies.resize(0);
 	scratch.loneIds.resize(0);
 	scratch.inUse = false;
