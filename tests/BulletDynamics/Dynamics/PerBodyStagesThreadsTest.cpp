@@ -401,3 +401,76 @@ TEST(PerBodyStagesThreads, GravityAndClearedForcesAreTheSameAtAnyThreadCount)
 		btSetTaskScheduler(0);
 	}
 }
+
+namespace
+{
+// A kinematic body's motion state that moves it along x by a fixed distance each step.
+class SlidingMotionState : public btMotionState
+{
+public:
+	explicit SlidingMotionState(const btTransform& pose) : m_pose(pose) {}
+	void getWorldTransform(btTransform& pose) const override { pose = m_pose; }
+	void setWorldTransform(const btTransform&) override {}
+	void slide(btScalar dx) { m_pose.getOrigin().setX(m_pose.getOrigin().x() + dx); }
+
+private:
+	btTransform m_pose;
+};
+}  // namespace
+
+// saveKinematicState looks for awake kinematic bodies on the threads when the world has at least 512
+// objects, and saves them (reading their motion states, user code) on the calling thread: a kinematic
+// paddle among 600 boxes gets the velocity of its move and pushes the same boxes, with the same bits,
+// with no scheduler, the pool at 1, 2 and 3 threads and a last-first user scheduler.
+TEST(PerBodyStagesThreads, KinematicBodiesAreSavedTheSameAmongManyObjectsAtAnyThreadCount)
+{
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	caliber_test::LastFirstScheduler lastFirst;
+	std::vector<std::vector<BodyRecord>> runs;
+	const btScalar h = btScalar(1. / 60.);
+	const btScalar dx = btScalar(0.05);  // 3 m/s
+	for (int variant = 0; variant < 5; ++variant)
+	{
+		if (variant >= 1 && variant <= 3 && !pool) continue;
+		btITaskScheduler* scheduler = variant == 0 ? 0 : (variant == 4 ? static_cast<btITaskScheduler*>(&lastFirst) : pool.get());
+		btSetTaskScheduler(scheduler);
+		if (variant >= 1 && variant <= 3) pool->setNumThreads(variant);
+		{
+			TestWorld w;
+			w.addGround();
+			btCollisionShape* box = w.shape<btBoxShape>(btVector3(btScalar(0.4), btScalar(0.4), btScalar(0.4)));
+			for (int i = 0; i < 600; ++i)
+				w.addBody(box, 1, btVector3(btScalar(i % 30) - 15, btScalar(0.4), btScalar(i / 30) * 2 - 20));
+			const btTransform start(btQuaternion::getIdentity(), btVector3(-17, btScalar(0.5), 0));
+			SlidingMotionState paddleState(start);
+			btRigidBody* paddle = w.addBody(w.shape<btBoxShape>(btVector3(btScalar(0.5), btScalar(0.5), btScalar(3))), 0,
+			                                start, false);
+			paddle->setCollisionFlags(paddle->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+			paddle->setActivationState(DISABLE_DEACTIVATION);
+			paddle->setMotionState(&paddleState);
+			for (int step = 0; step < 60; ++step)
+			{
+				paddleState.slide(dx);
+				w.run(1, h);
+			}
+			// The velocity saveKinematicState derived from the last move, dx per step along x: the difference
+			// of two float positions near 15 m (a few 1e-6 m off) over 1/60 s, so within 1e-3 m/s. The
+			// position: 60 float additions of dx, each off by at most half an ulp near 17 m (1e-6 m).
+			EXPECT_NEAR(paddle->getLinearVelocity().x(), dx / h, btScalar(1e-3)) << "variant " << variant;
+			EXPECT_NEAR(paddle->getWorldTransform().getOrigin().x(), btScalar(-17) + 60 * dx, btScalar(1e-3));
+			// It pushed the first boxes in its path (centres at x = -15, z = -2, 0, 2; w.bodies()[0] is the
+			// ground) ahead of its front face, now at x = -13.5.
+			for (int i : {270, 300, 330})
+				EXPECT_GT(w.bodies()[size_t(1 + i)]->getWorldTransform().getOrigin().x(), btScalar(-13.5)) << "box " << i;
+			runs.push_back(record(w));
+			paddle->setMotionState(0);
+		}
+		btSetTaskScheduler(0);
+	}
+	ASSERT_GT(runs.size(), 1u);
+	for (size_t r = 1; r < runs.size(); ++r)
+	{
+		ASSERT_EQ(runs[r].size(), runs[0].size());
+		for (size_t i = 0; i < runs[0].size(); ++i) EXPECT_TRUE(runs[r][i] == runs[0][i]) << "body " << i << ", run " << r;
+	}
+}
