@@ -108,6 +108,34 @@ struct UnionTagsOfPairs : public btIParallelForBody
 	}
 };
 
+/// From element start of the sorted union-find, the run of lone islands (one element and no manifold):
+/// appends each awake one's object and island id to loneBodies / loneIds (numLone of them so far) and
+/// returns the element after the run (start itself when element start is not a lone island). In a loop
+/// of its own, so that the walk over thousands of lone bodies keeps its few values in registers.
+int gatherLoneRun(const btElement* elements, int start, int numElements, const int* bounds,
+                  btCollisionObject* const* objects, int numObjects, btCollisionObject** loneBodies, int* loneIds,
+                  int& numLone)
+{
+	int n = numLone;
+	int i = start;
+	while (i < numElements)
+	{
+		const int islandId = elements[i].m_id;
+		if (islandId < 0 || islandId >= numElements || bounds[islandId + 1] != bounds[islandId]) break;
+		if (i + 1 < numElements && elements[i + 1].m_id == islandId) break;
+		const int objectIndex = elements[i].m_sz;
+		++i;
+		if (objectIndex < 0 || objectIndex >= numObjects) continue;
+		btCollisionObject* object = objects[objectIndex];
+		if (!object->isActive()) continue;
+		loneBodies[n] = object;
+		loneIds[n] = islandId;
+		++n;
+	}
+	numLone = n;
+	return i;
+}
+
 IslandGroupingScratch& threadIslandGroupingScratch()
 {
 	static thread_local IslandGroupingScratch scratch;
@@ -322,25 +350,19 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 	int numLone = 0;
 	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
 	int islandEnd = 0;
+	btCollisionObject* const* objectArray = numObjects ? &objects[0] : 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
 	{
+		if (loneSink)
+		{
+			islandEnd = caliber::gatherLoneRun(elements, islandStart, numElements, bounds, objectArray, numObjects,
+			                                   loneBodies, loneIds, numLone);
+			if (islandEnd != islandStart) continue;
+		}
 		const int islandId = elements[islandStart].m_id;
 		const bool validId = islandId >= 0 && islandId < numElements;
 		const int first = validId ? bounds[islandId] : 0;
 		const int count = validId ? bounds[islandId + 1] - first : 0;
-		if (loneSink && validId && count == 0 &&
-		    (islandStart + 1 == numElements || elements[islandStart + 1].m_id != islandId))
-		{
-			islandEnd = islandStart + 1;
-			const int objectIndex = elements[islandStart].m_sz;
-			if (objectIndex < 0 || objectIndex >= numObjects) continue;
-			btCollisionObject* object = objects[objectIndex];
-			if (!object->isActive()) continue;
-			loneBodies[numLone] = object;
-			loneIds[numLone] = islandId;
-			++numLone;
-			continue;
-		}
 		bool islandSleeping = true;
 		m_islandBodies.resize(0);
 		for (islandEnd = islandStart; islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId;
