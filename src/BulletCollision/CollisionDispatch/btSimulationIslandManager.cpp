@@ -136,6 +136,28 @@ int gatherLoneRun(const btElement* elements, int start, int numElements, const i
 	return i;
 }
 
+/// buildIslands' sleeping pass over the run of lone islands (one element each) from element start of the
+/// sorted union-find: each body sleeps unless it must stay awake. Returns the element after the run (start
+/// itself when element start's island has more elements). A loop of its own, as gatherLoneRun.
+int sleepLoneRun(const btElement* elements, int start, int numElements, btCollisionObject* const* objects,
+                 int numObjects)
+{
+	int i = start;
+	while (i < numElements)
+	{
+		const int islandId = elements[i].m_id;
+		if (i + 1 < numElements && elements[i + 1].m_id == islandId) break;
+		const int objectIndex = elements[i].m_sz;
+		++i;
+		if (objectIndex < 0 || objectIndex >= numObjects) continue;
+		btCollisionObject* object = objects[objectIndex];
+		if (object->getIslandTag() != islandId) continue;
+		const int state = object->getActivationState();
+		if (state != ACTIVE_TAG && state != DISABLE_DEACTIVATION) object->setActivationState(ISLAND_SLEEPING);
+	}
+	return i;
+}
+
 IslandGroupingScratch& threadIslandGroupingScratch()
 {
 	static thread_local IslandGroupingScratch scratch;
@@ -246,24 +268,18 @@ void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisi
 
 	// Sleeping is all-or-nothing per island: one object that must stay awake keeps the whole island awake,
 	// because its contacts would otherwise push bodies that no longer integrate.
+	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
+	btCollisionObject* const* objectArray = numObjects ? &objects[0] : 0;
 	int islandEnd = 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
 	{
-		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		// Lone bodies (most of a scene of falling bodies): the two passes below in one, run by run (each
+		// sleeps unless it must stay awake).
+		islandEnd = caliber::sleepLoneRun(elements, islandStart, numElements, objectArray, numObjects);
+		if (islandEnd != islandStart) continue;
+		const int islandId = elements[islandStart].m_id;
 		islandEnd = islandStart + 1;
-		while (islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId) ++islandEnd;
-
-		if (islandEnd == islandStart + 1)
-		{
-			// A lone body: the two passes below in one (it sleeps unless it must stay awake).
-			const int objectIndex = m_unionFind.getElement(islandStart).m_sz;
-			if (objectIndex < 0 || objectIndex >= numObjects) continue;
-			btCollisionObject* object = objects[objectIndex];
-			if (object->getIslandTag() != islandId) continue;
-			const int state = object->getActivationState();
-			if (state != ACTIVE_TAG && state != DISABLE_DEACTIVATION) object->setActivationState(ISLAND_SLEEPING);
-			continue;
-		}
+		while (islandEnd < numElements && elements[islandEnd].m_id == islandId) ++islandEnd;
 		bool allSleeping = true;
 		for (int e = islandStart; e < islandEnd; ++e)
 		{
