@@ -108,6 +108,56 @@ struct UnionTagsOfPairs : public btIParallelForBody
 	}
 };
 
+/// From element start of the sorted union-find, the run of lone islands (one element and no manifold):
+/// appends each awake one's object and island id to loneBodies / loneIds (numLone of them so far) and
+/// returns the element after the run (start itself when element start is not a lone island). In a loop
+/// of its own, so that the walk over thousands of lone bodies keeps its few values in registers.
+int gatherLoneRun(const btElement* elements, int start, int numElements, const int* bounds,
+                  btCollisionObject* const* objects, int numObjects, btCollisionObject** loneBodies, int* loneIds,
+                  int& numLone)
+{
+	int n = numLone;
+	int i = start;
+	while (i < numElements)
+	{
+		const int islandId = elements[i].m_id;
+		if (islandId < 0 || islandId >= numElements || bounds[islandId + 1] != bounds[islandId]) break;
+		if (i + 1 < numElements && elements[i + 1].m_id == islandId) break;
+		const int objectIndex = elements[i].m_sz;
+		++i;
+		if (objectIndex < 0 || objectIndex >= numObjects) continue;
+		btCollisionObject* object = objects[objectIndex];
+		if (!object->isActive()) continue;
+		loneBodies[n] = object;
+		loneIds[n] = islandId;
+		++n;
+	}
+	numLone = n;
+	return i;
+}
+
+/// buildIslands' sleeping pass over the run of lone islands (one element each) from element start of the
+/// sorted union-find: each body sleeps unless it must stay awake. Returns the element after the run (start
+/// itself when element start's island has more elements). A loop of its own, as gatherLoneRun.
+int sleepLoneRun(const btElement* elements, int start, int numElements, btCollisionObject* const* objects,
+                 int numObjects)
+{
+	int i = start;
+	while (i < numElements)
+	{
+		const int islandId = elements[i].m_id;
+		if (i + 1 < numElements && elements[i + 1].m_id == islandId) break;
+		const int objectIndex = elements[i].m_sz;
+		++i;
+		if (objectIndex < 0 || objectIndex >= numObjects) continue;
+		btCollisionObject* object = objects[objectIndex];
+		if (object->getIslandTag() != islandId) continue;
+		const int state = object->getActivationState();
+		if (state != ACTIVE_TAG && state != DISABLE_DEACTIVATION) object->setActivationState(ISLAND_SLEEPING);
+	}
+	return i;
+}
+
 IslandGroupingScratch& threadIslandGroupingScratch()
 {
 	static thread_local IslandGroupingScratch scratch;
@@ -218,24 +268,18 @@ void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisi
 
 	// Sleeping is all-or-nothing per island: one object that must stay awake keeps the whole island awake,
 	// because its contacts would otherwise push bodies that no longer integrate.
+	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
+	btCollisionObject* const* objectArray = numObjects ? &objects[0] : 0;
 	int islandEnd = 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
 	{
-		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		// Lone bodies (most of a scene of falling bodies): the two passes below in one, run by run (each
+		// sleeps unless it must stay awake).
+		islandEnd = caliber::sleepLoneRun(elements, islandStart, numElements, objectArray, numObjects);
+		if (islandEnd != islandStart) continue;
+		const int islandId = elements[islandStart].m_id;
 		islandEnd = islandStart + 1;
-		while (islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId) ++islandEnd;
-
-		if (islandEnd == islandStart + 1)
-		{
-			// A lone body: the two passes below in one (it sleeps unless it must stay awake).
-			const int objectIndex = m_unionFind.getElement(islandStart).m_sz;
-			if (objectIndex < 0 || objectIndex >= numObjects) continue;
-			btCollisionObject* object = objects[objectIndex];
-			if (object->getIslandTag() != islandId) continue;
-			const int state = object->getActivationState();
-			if (state != ACTIVE_TAG && state != DISABLE_DEACTIVATION) object->setActivationState(ISLAND_SLEEPING);
-			continue;
-		}
+		while (islandEnd < numElements && elements[islandEnd].m_id == islandId) ++islandEnd;
 		bool allSleeping = true;
 		for (int e = islandStart; e < islandEnd; ++e)
 		{
@@ -313,27 +357,28 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 	// awake body, no manifold: most of a scene of falling bodies) in one call each; the islands around a run
 	// go to processIsland, so the sink sees every island in the same order as without the runs.
 	caliber::LoneIslandSink* loneSink = dynamic_cast<caliber::LoneIslandSink*>(callback);
-	scratch.loneBodies.resize(0);
-	scratch.loneIds.resize(0);
+	// The run of lone islands is written by index into arrays sized for every element (numLone of them
+	// in use), without a push's capacity check each.
+	scratch.loneBodies.resizeNoInitialize(loneSink ? numElements : 0);
+	scratch.loneIds.resizeNoInitialize(loneSink ? numElements : 0);
+	btCollisionObject** loneBodies = loneSink && numElements ? &scratch.loneBodies[0] : 0;
+	int* loneIds = loneSink && numElements ? &scratch.loneIds[0] : 0;
+	int numLone = 0;
+	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
 	int islandEnd = 0;
+	btCollisionObject* const* objectArray = numObjects ? &objects[0] : 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
 	{
-		const int islandId = m_unionFind.getElement(islandStart).m_id;
+		if (loneSink)
+		{
+			islandEnd = caliber::gatherLoneRun(elements, islandStart, numElements, bounds, objectArray, numObjects,
+			                                   loneBodies, loneIds, numLone);
+			if (islandEnd != islandStart) continue;
+		}
+		const int islandId = elements[islandStart].m_id;
 		const bool validId = islandId >= 0 && islandId < numElements;
 		const int first = validId ? bounds[islandId] : 0;
 		const int count = validId ? bounds[islandId + 1] - first : 0;
-		if (loneSink && validId && count == 0 &&
-		    (islandStart + 1 == numElements || m_unionFind.getElement(islandStart + 1).m_id != islandId))
-		{
-			islandEnd = islandStart + 1;
-			const int objectIndex = m_unionFind.getElement(islandStart).m_sz;
-			if (objectIndex < 0 || objectIndex >= numObjects) continue;
-			btCollisionObject* object = objects[objectIndex];
-			if (!object->isActive()) continue;
-			scratch.loneBodies.push_back(object);
-			scratch.loneIds.push_back(islandId);
-			continue;
-		}
 		bool islandSleeping = true;
 		m_islandBodies.resize(0);
 		for (islandEnd = islandStart; islandEnd < numElements && m_unionFind.getElement(islandEnd).m_id == islandId;
@@ -346,17 +391,15 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 			if (object->isActive()) islandSleeping = false;
 		}
 		if (islandSleeping || m_islandBodies.size() == 0) continue;
-		if (scratch.loneBodies.size() > 0)
+		if (numLone > 0)
 		{
-			loneSink->processLoneIslands(&scratch.loneBodies[0], &scratch.loneIds[0], scratch.loneBodies.size());
-			scratch.loneBodies.resize(0);
-			scratch.loneIds.resize(0);
+			loneSink->processLoneIslands(loneBodies, loneIds, numLone);
+			numLone = 0;
 		}
 		callback->processIsland(&m_islandBodies[0], m_islandBodies.size(), count ? &m_islandmanifold[first] : 0, count,
 		                        islandId);
 	}
-	if (scratch.loneBodies.size() > 0)
-		loneSink->processLoneIslands(&scratch.loneBodies[0], &scratch.loneIds[0], scratch.loneBodies.size());
+	if (numLone > 0) loneSink->processLoneIslands(loneBodies, loneIds, numLone);
 	scratch.loneBodies.resize(0);
 	scratch.loneIds.resize(0);
 	scratch.inUse = false;

@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btUnionFind.h"
 
+#include <cstring>
+
 namespace
 {
 // Groups elements by island; the stored m_sz (an object index for the island manager) breaks ties so
@@ -124,8 +126,16 @@ void btUnionFind::sortIslands()
 {
 	const int count = m_elements.size();
 	if (count == 0) return;
-	// find(i) for every element in order (the same path halving), without a call and range check each.
+	// find(i) for every element in order (the same path halving), without a call and range check each;
+	// in the same pass, the counting sort's count of each island (two places up: see below) and whether
+	// m_sz grows with the element index (the island manager's object indices do).
 	btElement* elements = &m_elements[0];
+	SortScratch& scratch = sortScratch();
+	btAlignedObjectArray<int>& start = scratch.start;
+	start.resize(0);
+	start.resize(count + 2, 0);
+	int* counts = &start[0];
+	bool increasing = true;
 	for (int i = 0; i < count; ++i)
 	{
 		int x = i;
@@ -136,8 +146,24 @@ void btUnionFind::sortIslands()
 			x = grandParent;
 		}
 		elements[i].m_id = x;
+		++counts[x + 2];
+		if (i > 0 && elements[i].m_sz <= elements[i - 1].m_sz) increasing = false;
 	}
-	// The order is (island id, m_sz), which fixes the result (equal keys are equal elements): the linear
-	// counting sort when the elements allow it, the comparison sort otherwise.
+	// The order is (island id, m_sz), which fixes the result (equal keys are equal elements).
+	if (increasing)
+	{
+		// A stable counting sort by island id keeps each island's elements in element order, which is
+		// m_sz order. After the prefix sum counts[id + 1] is island id's first slot; the placement
+		// advances it.
+		for (int id = 2; id < count + 2; ++id) counts[id] += counts[id - 1];
+		btAlignedObjectArray<btElement>& sorted = scratch.sorted;
+		sorted.resizeNoInitialize(count);
+		btElement* out = &sorted[0];
+		for (int i = 0; i < count; ++i) out[counts[elements[i].m_id + 1]++] = elements[i];
+		std::memcpy(elements, out, sizeof(btElement) * size_t(count));
+		return;
+	}
+	// Otherwise the counting sort when each island's elements come in m_sz order, the comparison sort
+	// when they do not.
 	if (!countingSortByIsland(m_elements)) m_elements.quickSort(IslandOrder());
 }

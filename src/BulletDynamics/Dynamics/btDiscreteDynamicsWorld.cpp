@@ -4,6 +4,9 @@
 // btDiscreteDynamicsWorldStages.cpp.
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorld.h"
 
+#include <cstring>
+#include <typeinfo>
+
 #include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolver.h"
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
@@ -14,6 +17,7 @@
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/TaskScheduler/btParallelChunks.h"
 #include "LinearMath/btAlignedObject.h"
+#include "LinearMath/btDefaultMotionState.h"
 #include "LinearMath/btIDebugDraw.h"
 #include "LinearMath/btMotionState.h"
 #include "LinearMath/btQuickprof.h"
@@ -388,18 +392,45 @@ void btDiscreteDynamicsWorld::setConstraintSolver(btConstraintSolver* solver)
 
 btConstraintSolver* btDiscreteDynamicsWorld::getConstraintSolver() { return m_constraintSolver; }
 
+namespace
+{
+// clearForces and applyGravity on the scheduler's threads: each body changes only its own forces, so any
+// split of the loop gives the same bits, and the calling thread need not walk every body alone.
+struct ForcesLoop : public btIParallelForBody
+{
+	btRigidBody* const* bodies;
+	bool gravity;  // applyGravity to the awake bodies; else clearForces on every body
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			btRigidBody* body = bodies[i];
+			if (!gravity)
+				body->clearForces();
+			else if (body->isActive())
+				body->applyGravity();
+		}
+	}
+};
+}  // namespace
+
 void btDiscreteDynamicsWorld::clearForces()
 {
-	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i) m_nonStaticRigidBodies[i]->clearForces();
+	if (m_nonStaticRigidBodies.size() == 0) return;
+	ForcesLoop loop;
+	loop.bodies = &m_nonStaticRigidBodies[0];
+	loop.gravity = false;
+	btParallelFor(0, m_nonStaticRigidBodies.size(), caliber::kBodiesPerTask, loop);
 }
 
 void btDiscreteDynamicsWorld::applyGravity()
 {
-	for (int i = 0; i < m_nonStaticRigidBodies.size(); ++i)
-	{
-		btRigidBody* body = m_nonStaticRigidBodies[i];
-		if (body->isActive()) body->applyGravity();
-	}
+	if (m_nonStaticRigidBodies.size() == 0) return;
+	ForcesLoop loop;
+	loop.bodies = &m_nonStaticRigidBodies[0];
+	loop.gravity = true;
+	btParallelFor(0, m_nonStaticRigidBodies.size(), caliber::kBodiesPerTask, loop);
 }
 
 namespace
@@ -422,13 +453,21 @@ btTransform interpolatedPose(const btRigidBody& body, bool latencyInterpolation,
 // Bodies per task of the parallel motion-state poses.
 const int kMotionStatesPerTask = 128;
 
-// Each body's motion state to tell (null: none, or the body is asleep, static or kinematic) and its pose.
-// The calling thread then reads only these two arrays and the motion states, not the bodies, which the
-// other threads' caches hold after the step's parallel stages.
+// A motion state the world may tell from the scheduler's threads: a btDefaultMotionState itself (not a
+// subclass, which may override setWorldTransform), whose setWorldTransform stores the pose in the motion
+// state's own members and touches nothing else.
+bool mayBeToldOnThreads(const btMotionState& state) { return typeid(state) == typeid(btDefaultMotionState); }
+
+// Each body's motion state (states[i], told or not), the motion state to tell (targets[i]; null: none, or
+// the body is asleep, static or kinematic), whether that one may be told on the threads, and its pose. The
+// calling thread then reads only these arrays and the motion states, not the bodies, which the other
+// threads' caches hold after the step's parallel stages.
 struct InterpolatePoses : public btIParallelForBody
 {
 	btRigidBody* const* bodies;
+	btMotionState** states;
 	btMotionState** targets;
+	unsigned char* onThreads;
 	btTransform* poses;
 	bool latencyInterpolation;
 	btScalar localTime;
@@ -439,12 +478,58 @@ struct InterpolatePoses : public btIParallelForBody
 		for (int i = iBegin; i < iEnd; ++i)
 		{
 			btRigidBody& body = *bodies[i];
-			btMotionState* target = body.isActive() && !body.isStaticOrKinematicObject() ? body.getMotionState() : 0;
+			btMotionState* state = body.getMotionState();
+			btMotionState* target = state && body.isActive() && !body.isStaticOrKinematicObject() ? state : 0;
+			states[i] = state;
 			targets[i] = target;
+			onThreads[i] = target && mayBeToldOnThreads(*target) ? 1 : 0;
 			if (target) poses[i] = interpolatedPose(body, latencyInterpolation, localTime, fixedTimeStep);
 		}
 	}
 };
+
+// The btDefaultMotionStates' setWorldTransform on the threads. Only used when no two bodies share a motion
+// state: then each call writes a motion state no other call touches, so the split does not matter.
+struct TellDefaultMotionStates : public btIParallelForBody
+{
+	btMotionState* const* targets;
+	const unsigned char* onThreads;
+	const btTransform* poses;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i)
+			if (onThreads[i]) targets[i]->setWorldTransform(poses[i]);
+	}
+};
+
+// True when no two of the world's moving bodies share a motion state. Checked again (sorting a copy of
+// the pointers) only when some body's motion state changed since the last check; otherwise one pass over
+// an array the threads wrote.
+bool motionStatesDistinct(caliber::WorldStepContext& context, const btAlignedObjectArray<btMotionState*>& states)
+{
+	btAlignedObjectArray<btMotionState*>& checked = context.motionStatesChecked;
+	const int count = states.size();
+	if (checked.size() == count &&
+	    (count == 0 || std::memcmp(&checked[0], &states[0], sizeof(btMotionState*) * size_t(count)) == 0))
+		return context.motionStatesDistinct;
+	checked.copyFromArray(states);
+	btAlignedObjectArray<btMotionState*>& sorted = context.motionStatesSorted;
+	sorted.copyFromArray(states);
+	struct ByAddress
+	{
+		bool operator()(const btMotionState* a, const btMotionState* b) const
+		{
+			return reinterpret_cast<size_t>(a) < reinterpret_cast<size_t>(b);
+		}
+	};
+	sorted.quickSort(ByAddress());
+	bool distinct = true;
+	for (int i = 1; i < count && distinct; ++i)
+		if (sorted[i] && sorted[i] == sorted[i - 1]) distinct = false;
+	context.motionStatesDistinct = distinct;
+	return distinct;
+}
 }  // namespace
 
 void btDiscreteDynamicsWorld::synchronizeSingleMotionState(btRigidBody* body)
@@ -477,23 +562,43 @@ void btDiscreteDynamicsWorld::synchronizeMotionStates()
 		}
 		return;
 	}
-	// With a scheduler: the interpolated poses on its threads, then the motion states told in body order
-	// on this thread (a user's motion state need not be thread-safe). Same poses, same calls, same order.
+	// With a scheduler: the interpolated poses on its threads. Then, when no two bodies share a motion
+	// state, the btDefaultMotionStates (whose setWorldTransform only stores the pose in itself) are told
+	// on the threads, and every other motion state (a user's, which need not be thread-safe) in body order
+	// on this thread; else all of them in body order on this thread. Same poses, same calls, and every
+	// motion state ends with the same pose as in the serial loop above (docs/threading.md).
 	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
 	btAlignedObjectArray<btTransform>& poses = context.motionStatePoses;
 	btAlignedObjectArray<btMotionState*>& targets = context.motionStateTargets;
+	btAlignedObjectArray<btMotionState*>& states = context.motionStatesNow;
+	btAlignedObjectArray<unsigned char>& onThreads = context.motionStateOnThreads;
 	poses.resizeNoInitialize(numBodies);
 	targets.resizeNoInitialize(numBodies);
+	states.resizeNoInitialize(numBodies);
+	onThreads.resizeNoInitialize(numBodies);
 	InterpolatePoses interpolate;
 	interpolate.bodies = &m_nonStaticRigidBodies[0];
+	interpolate.states = &states[0];
 	interpolate.targets = &targets[0];
+	interpolate.onThreads = &onThreads[0];
 	interpolate.poses = &poses[0];
 	interpolate.latencyInterpolation = m_latencyMotionStateInterpolation;
 	interpolate.localTime = m_localTime;
 	interpolate.fixedTimeStep = m_fixedTimeStep;
 	btParallelFor(0, numBodies, kMotionStatesPerTask, interpolate);
+	if (!motionStatesDistinct(context, states))
+	{
+		for (int i = 0; i < numBodies; ++i)
+			if (targets[i]) targets[i]->setWorldTransform(poses[i]);
+		return;
+	}
+	TellDefaultMotionStates tell;
+	tell.targets = &targets[0];
+	tell.onThreads = &onThreads[0];
+	tell.poses = &poses[0];
+	btParallelFor(0, numBodies, kMotionStatesPerTask, tell);
 	for (int i = 0; i < numBodies; ++i)
-		if (targets[i]) targets[i]->setWorldTransform(poses[i]);
+		if (targets[i] && !onThreads[i]) targets[i]->setWorldTransform(poses[i]);
 }
 
 void btDiscreteDynamicsWorld::debugDrawWorld()

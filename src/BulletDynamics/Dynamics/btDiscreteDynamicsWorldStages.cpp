@@ -108,17 +108,50 @@ void btDiscreteDynamicsWorld::createPredictiveContacts(btScalar timeStep)
 		createPredictiveContactsInternal(&m_nonStaticRigidBodies[0], m_nonStaticRigidBodies.size(), timeStep);
 }
 
+namespace
+{
+// The bodies saveKinematicState saves: awake kinematic rigid bodies.
+btRigidBody* awakeKinematicBody(btCollisionObject* object)
+{
+	btRigidBody* body = btRigidBody::upcast(object);
+	return body && body->getActivationState() != ISLAND_SLEEPING && body->isKinematicObject() ? body : 0;
+}
+
+// How many objects saveKinematicState would save: only reads the objects, so it runs on the threads, and
+// the calling thread walks the objects (and calls the kinematic bodies' motion states, user code) only
+// when there is one.
+struct CountAwakeKinematicBodies : public btIParallelSumBody
+{
+	btCollisionObject* const* objects;
+
+	btScalar sumLoop(int iBegin, int iEnd) const override
+	{
+		int count = 0;
+		for (int i = iBegin; i < iEnd; ++i) count += awakeKinematicBody(objects[i]) ? 1 : 0;
+		return btScalar(count);
+	}
+};
+
+// Objects per task of that count.
+const int kObjectsPerKinematicTask = 256;
+}  // namespace
+
 void btDiscreteDynamicsWorld::saveKinematicState(btScalar timeStep)
 {
 	BT_PROFILE("saveKinematicState");
 	// All objects, not only the non-static list: a kinematic body made with mass 0 also carries
 	// CF_STATIC_OBJECT, as in Bullet.
-	for (int i = 0; i < m_collisionObjects.size(); ++i)
+	const int numObjects = m_collisionObjects.size();
+	if (numObjects == 0) return;
+	if (numObjects >= 2 * kObjectsPerKinematicTask)
 	{
-		btRigidBody* body = btRigidBody::upcast(m_collisionObjects[i]);
-		if (body && body->getActivationState() != ISLAND_SLEEPING && body->isKinematicObject())
-			body->saveKinematicState(timeStep);
+		CountAwakeKinematicBodies count;
+		count.objects = &m_collisionObjects[0];
+		// Any such body gives a sum above zero (each adds 0 or 1), whatever the chunks and their order.
+		if (btParallelSum(0, numObjects, kObjectsPerKinematicTask, count) == btScalar(0)) return;
 	}
+	for (int i = 0; i < numObjects; ++i)
+		if (btRigidBody* body = awakeKinematicBody(m_collisionObjects[i])) body->saveKinematicState(timeStep);
 }
 
 namespace

@@ -133,7 +133,13 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 				                     (m_gatheredConstraints.size() - m_open.firstConstraint);
 				const int room = btMax(1, minimumBatchSize - gathered);
 				const int take = btMin(room, count - i);
-				for (int k = 0; k < take; ++k) m_bodies.push_back(bodies[i + k]);
+				// Appended in one resize (the array grows as pushes would make it grow: to at least twice its
+				// size), then copied without a capacity check each.
+				const int oldSize = m_bodies.size();
+				if (oldSize + take > m_bodies.capacity()) m_bodies.reserve(btMax(oldSize + take, 2 * oldSize));
+				m_bodies.resizeNoInitialize(oldSize + take);
+				btCollisionObject** out = &m_bodies[oldSize];
+				for (int k = 0; k < take; ++k) out[k] = bodies[i + k];
 				i += take;
 				if (take == room) flush();
 			}

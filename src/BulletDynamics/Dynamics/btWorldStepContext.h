@@ -81,6 +81,15 @@ struct WorldStepContext
 	/// (null: no motion state to tell).
 	btAlignedObjectArray<btTransform> motionStatePoses;
 	btAlignedObjectArray<btMotionState*> motionStateTargets;
+	/// Per body of that synchronizeMotionStates: its motion state (told or not), and whether the one told
+	/// is a btDefaultMotionState (told on the threads when no two bodies share a motion state).
+	btAlignedObjectArray<btMotionState*> motionStatesNow;
+	btAlignedObjectArray<unsigned char> motionStateOnThreads;
+	/// The bodies' motion states when last checked for sharing, whether they were distinct then, and the
+	/// check's sorted copy.
+	btAlignedObjectArray<btMotionState*> motionStatesChecked;
+	btAlignedObjectArray<btMotionState*> motionStatesSorted;
+	bool motionStatesDistinct = false;
 	/// btDiscreteDynamicsWorldMt's solver for large batches (its constraintSolverMt), or null.
 	btConstraintSolver* largeBatchSolver = nullptr;
 	/// Sweeps of the joint position correction after each substep (0: off); see

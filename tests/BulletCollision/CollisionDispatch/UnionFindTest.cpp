@@ -140,22 +140,30 @@ TEST(UnionFind, SortIslandsMakesEachSetOneContiguousRun)
 }
 
 // sortIslands orders the elements by (island id, m_sz), which fixes the result; it takes a linear
-// counting sort when each island's elements come in increasing m_sz (as the island manager stores them)
-// and a comparison sort otherwise. Both must give exactly the reference order.
+// counting sort when m_sz grows with the element index (as the island manager stores it), another when
+// only each island's elements come in increasing m_sz, and a comparison sort otherwise. All must give
+// exactly the reference order.
 TEST(UnionFind, SortIslandsGivesTheOrderByIslandIdThenStoredValueWhateverTheStoredValues)
 {
 	std::mt19937 rng(11u);
-	for (int trial = 0; trial < 40; ++trial)
+	for (int trial = 0; trial < 80; ++trial)
 	{
-		const int n = 1 + int(rng() % 400);
+		// Every fourth trial is as large as the benchmark's 3000 falling boxes, and has no unions at all
+		// (every island one element) or only a few.
+		const int n = trial % 4 == 3 ? 3000 : 1 + int(rng() % 400);
 		btUnionFind uf;
 		uf.reset(n);
-		for (int e = 0; e < n / 2; ++e) uf.unite(int(rng() % size_t(n)), int(rng() % size_t(n)));
+		const int unions = trial % 4 == 3 ? (trial % 8 == 3 ? 0 : 20) : n / 2;
+		for (int e = 0; e < unions; ++e) uf.unite(int(rng() % size_t(n)), int(rng() % size_t(n)));
 		std::vector<int> stored(static_cast<size_t>(n));
 		for (int i = 0; i < n; ++i)
-			// Even trials: increasing values (the counting sort); odd: random ones with repeats (the
-			// comparison sort).
-			stored[size_t(i)] = trial % 2 == 0 ? 3 * i : int(rng() % size_t(n));
+		{
+			// Trials 0 and 3 (mod 4): values growing with the index (the first counting sort); 1: random
+			// ones with repeats (the comparison sort); 2: growing within each island but not from one island
+			// to the next (the second counting sort).
+			const int mode = trial % 4;
+			stored[size_t(i)] = mode == 1 ? int(rng() % size_t(n)) : (mode == 2 ? 3 * i - 4 * n * (uf.find(i) % 3) : 3 * i);
+		}
 		std::vector<std::pair<int, int>> reference;
 		for (int i = 0; i < n; ++i)
 		{
