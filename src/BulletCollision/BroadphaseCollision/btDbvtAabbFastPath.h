@@ -31,7 +31,8 @@ struct DbvtProxyMove
 /// moveProxyToFatBox for each move, in array order, with the same result (the tree node by node, the stage
 /// lists, the counters). With a task scheduler of several threads and enough moves, the moves whose leaves
 /// lie in different subtrees a few levels below the dynamic tree's root run on different threads, each
-/// subtree's in order; a move that needs a node outside its subtree runs alone, in its place in the order.
+/// subtree's in order, and their steps on the nodes above the subtrees are replayed in move order on the
+/// calling thread; a move that needs a node inside another subtree runs alone, in its place in the order.
 /// Called by one thread, outside parallel loops, while nothing else uses the broadphase. Not yet called by
 /// the collision world (docs/threading.md, "Eleventh session"). stats, when given, receives what happened.
 struct DbvtParallelMoveStats
@@ -40,6 +41,7 @@ struct DbvtParallelMoveStats
 	int movesOnThreads = 0;  // moves kept from those loops
 	int movesUndone = 0;     // moves a task made at or after its round's bound, undone
 	int movesAlone = 0;      // moves made in order on the calling thread
+	int topStops = 0;        // rounds ended by a move whose steps above the subtrees could not be replayed
 };
 void moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProxyMove* moves, int count,
                            DbvtParallelMoveStats* stats = 0);
