@@ -406,6 +406,7 @@ struct SubtreeMove
 	btDbvt* tree;
 	const btDbvtNode* subtree;
 	caliber::DbvtUndoLog* log;
+	caliber::DbvtTopStep* top;  // null: a step above the subtree is a reason to stop; else it is recorded
 
 	void save(btDbvtNode* node) const
 	{
@@ -428,8 +429,15 @@ bool growAncestorsWithin(const SubtreeMove& move, btDbvtNode* from, const btDbvt
 		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
 		if (rotateEach) caliber::rotateSaving(node, [&move](btDbvtNode* n) { move.save(n); });
 		// The serial loop's next step reads the box of the subtree's parent, which no move within a subtree
-		// changes: it stops there, or it would grow that node.
-		if (node == move.subtree) return node->parent->volume.Contain(box);
+		// changes: it stops there, or it would grow that node (with top: the growth goes on there later).
+		if (node == move.subtree)
+		{
+			if (!move.top) return node->parent->volume.Contain(box);
+			move.top->grows = true;
+			move.top->grownBox = box;
+			move.top->rotates = rotateEach;
+			return true;
+		}
 	}
 	return true;
 }
@@ -461,8 +469,15 @@ bool updateWithin(const SubtreeMove& move, btDbvtNode* leaf, const btDbvtVolume&
 		move.save(node);
 		Merge(node->childs[0]->volume, node->childs[1]->volume, node->volume);
 		if (!NotEqual(previous, node->volume)) break;
-		// The serial loop would go on with the subtree's parent, whose other children other moves change.
-		if (node == move.subtree) return false;
+		// The serial loop would go on with the subtree's parent, whose other children other moves change
+		// (with top: it goes on there later).
+		if (node == move.subtree)
+		{
+			if (!move.top) return false;
+			move.top->shrinks = true;
+			move.top->shrunk = node->volume;
+			break;
+		}
 	}
 	leaf->volume = sanitizedVolume(box);
 
@@ -496,14 +511,23 @@ bool updateWithin(const SubtreeMove& move, btDbvtNode* leaf, const btDbvtVolume&
 }
 }  // namespace
 
-bool caliber::moveLeafWithinSubtree(btDbvt& tree, const btDbvtNode* subtree, btDbvtNode* leaf, const btDbvtVolume& box,
-                                    DbvtUndoLog& log)
+namespace
+{
+bool moveWithin(btDbvt& tree, const btDbvtNode* subtree, btDbvtNode* leaf, const btDbvtVolume& box,
+                caliber::DbvtUndoLog& log, caliber::DbvtTopStep* top)
 {
 	const int mark = log.size();
 	SubtreeMove move;
 	move.tree = &tree;
 	move.subtree = subtree;
 	move.log = &log;
+	move.top = top;
+	if (top)
+	{
+		top->shrinks = false;
+		top->grows = false;
+		top->rotates = false;
+	}
 	bool inside;
 	const btDbvtVolume fitted = sanitizedVolume(box);
 	if (staysNearSibling(leaf, fitted))
@@ -517,8 +541,160 @@ bool caliber::moveLeafWithinSubtree(btDbvt& tree, const btDbvtNode* subtree, btD
 	{
 		inside = updateWithin(move, leaf, box);
 	}
-	if (!inside) undoDbvtChanges(log, mark);
-	return inside;
+	if (!inside)
+	{
+		caliber::undoDbvtChanges(log, mark);
+		return false;
+	}
+	if (top)
+	{
+		top->after = subtree->volume;
+		top->childs[0] = subtree->childs[0]->volume;
+		top->childs[1] = subtree->childs[1]->volume;
+	}
+	return true;
+}
+}  // namespace
+
+bool caliber::moveLeafWithinSubtree(btDbvt& tree, const btDbvtNode* subtree, btDbvtNode* leaf, const btDbvtVolume& box,
+                                    DbvtUndoLog& log)
+{
+	return moveWithin(tree, subtree, leaf, box, log, 0);
+}
+
+bool caliber::moveLeafWithinSubtreeDeferringTop(btDbvt& tree, const btDbvtNode* subtree, btDbvtNode* leaf,
+                                                const btDbvtVolume& box, DbvtUndoLog& log, DbvtTopStep& top)
+{
+	return moveWithin(tree, subtree, leaf, box, log, &top);
+}
+
+void caliber::DbvtTopView::start(const btDbvtNode* const* subtreeRoots, int numSubtrees)
+{
+	btAssert(numSubtrees <= kMaxSubtrees);
+	count = numSubtrees;
+	for (int k = 0; k < numSubtrees; ++k)
+	{
+		roots[k] = subtreeRoots[k];
+		if (!roots[k]) continue;
+		boxes[k] = roots[k]->volume;
+		childs[k][0] = roots[k]->childs[0]->volume;
+		childs[k][1] = roots[k]->childs[1]->volume;
+	}
+}
+
+namespace
+{
+/// The replay of a move's steps above the subtrees (replayDbvtTopStep): the serial loops of removeLeaf,
+/// insertLeaf (with rotateSaving) and refitLeafNearSibling above the subtree's root, each subtree root's
+/// box and its children's taken from the view (the live ones are the round's last).
+struct TopReplay
+{
+	caliber::DbvtTopView* view;
+	caliber::DbvtUndoLog* log;
+
+	int subtreeIndex(const btDbvtNode* node) const
+	{
+		for (int k = 0; k < view->count; ++k)
+			if (view->roots[k] == node) return k;
+		return -1;
+	}
+
+	const btDbvtVolume& volumeOf(const btDbvtNode* node) const
+	{
+		const int k = subtreeIndex(node);
+		return k < 0 ? node->volume : view->boxes[k];
+	}
+
+	const btDbvtVolume& childVolume(const btDbvtNode* node, int child) const
+	{
+		const int k = subtreeIndex(node);
+		return k < 0 ? volumeOf(node->childs[child]) : view->childs[k][child];
+	}
+
+	void save(btDbvtNode* node) const
+	{
+		caliber::DbvtSavedNode saved;
+		saved.node = node;
+		saved.contents = *node;
+		log->push_back(saved);
+	}
+
+	void refit(btDbvtNode* node) const
+	{
+		save(node);
+		Merge(volumeOf(node->childs[0]), volumeOf(node->childs[1]), node->volume);
+	}
+
+	/// rotateSaving at a node above the subtrees; false when its swap would take a node out of a subtree.
+	bool rotate(btDbvtNode* node) const
+	{
+		btScalar bestGain = 0;
+		int bestChild = -1, bestGrandChild = -1;
+		for (int c = 0; c < 2; ++c)
+		{
+			const btDbvtNode* stay = node->childs[c];
+			const btDbvtNode* opened = node->childs[1 - c];
+			if (opened->isleaf()) continue;
+			const btScalar openedArea = halfArea(volumeOf(opened));
+			for (int g = 0; g < 2; ++g)
+			{
+				const btScalar gain = openedArea - halfArea(merged(volumeOf(stay), childVolume(opened, 1 - g)));
+				if (gain > bestGain)
+				{
+					bestGain = gain;
+					bestChild = c;
+					bestGrandChild = g;
+				}
+			}
+		}
+		if (bestChild < 0) return true;
+		btDbvtNode* down = node->childs[bestChild];
+		btDbvtNode* opened = node->childs[1 - bestChild];
+		if (subtreeIndex(opened) >= 0) return false;
+		btDbvtNode* up = opened->childs[bestGrandChild];
+		save(node);
+		save(up);
+		save(opened);
+		save(down);
+		node->childs[bestChild] = up;
+		up->parent = node;
+		opened->childs[bestGrandChild] = down;
+		down->parent = opened;
+		Merge(volumeOf(opened->childs[0]), volumeOf(opened->childs[1]), opened->volume);
+		return true;
+	}
+};
+}  // namespace
+
+bool caliber::replayDbvtTopStep(DbvtTopView& view, int index, const DbvtTopStep& top, DbvtUndoLog& topLog)
+{
+	TopReplay replay;
+	replay.view = &view;
+	replay.log = &topLog;
+	btDbvtNode* above = view.roots[index]->parent;
+	if (top.shrinks)
+	{
+		view.boxes[index] = top.shrunk;
+		for (btDbvtNode* node = above; node; node = node->parent)
+		{
+			const btDbvtVolume previous = node->volume;
+			replay.refit(node);
+			if (!NotEqual(previous, node->volume)) break;
+		}
+	}
+	view.boxes[index] = top.after;
+	view.childs[index][0] = top.childs[0];
+	view.childs[index][1] = top.childs[1];
+	if (top.grows)
+	{
+		for (btDbvtNode* node = above; node; node = node->parent)
+		{
+			if (node->volume.Contain(top.grownBox)) break;
+			replay.refit(node);
+			if (top.rotates && !replay.rotate(node)) return false;
+		}
+	}
+	return true;
 }
 
 void caliber::undoDbvtChanges(DbvtUndoLog& log, int mark)

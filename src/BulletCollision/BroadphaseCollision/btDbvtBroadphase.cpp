@@ -152,6 +152,8 @@ struct SubtreeTask
 	caliber::DbvtUndoLog log;
 	btAlignedObjectArray<int> moves;  // the moves it made, in order
 	btAlignedObjectArray<int> marks;  // the log's size before each
+	btAlignedObjectArray<caliber::DbvtTopStep> tops;  // what each leaves to the nodes above the subtrees
+	btAlignedObjectArray<btDbvtProxy*> proxies;       // DbvtMoveRound: each move's proxy
 	char padding[128];
 };
 
@@ -168,6 +170,8 @@ struct PairSearchScratch
 	// the moves it made (with the log's size before each).
 	btAlignedObjectArray<int> moveSubtrees;
 	btAlignedObjectArray<SubtreeTask> subtreeTasks;
+	caliber::DbvtUndoLog topLog;  // the replayed steps above the subtrees of the current move
+	caliber::DbvtTopView roundView;  // DbvtMoveRound's
 };
 
 struct PairListPolicy
@@ -320,14 +324,23 @@ struct RayLeafVisitor
 
 // The parallel tree moves (moveProxiesToFatBoxes). The dynamic tree's nodes kSubtreeDepth levels below the
 // root head the subtrees; a task per subtree makes the moves of its leaves in order, within it
-// (caliber::moveLeafWithinSubtree), while the other tasks do theirs: they touch different nodes and read
-// none another task changes. A move that needs a node outside its subtree (rare: one in about 250 in the
-// mesh scenes at depth 1, one in 200 at depth 2) lowers the round's bound to its index; the moves at or
-// after the bound that some task made anyway are undone, that move runs alone, and the next round starts
-// after it. No task waits for another, so any scheduler (one that runs the tasks one after the other
-// included) ends with the serial tree.
+// (caliber::moveLeafWithinSubtreeDeferringTop), while the other tasks do theirs: they touch different nodes
+// and read none another task changes. What a move would do above its subtree's root (the removal's shrink
+// going on up, the growth going past it) is recorded, and the calling thread replays those steps on the
+// few nodes above the subtrees in move order after the loop (caliber::replayDbvtTopStep). A move that
+// needs a node outside its subtree otherwise (its removal or insertion replaces the subtree's root, its
+// re-insertion starts above it) lowers the round's bound to its index, as does, in the replay, a move whose
+// rotation above the subtrees would swap a node out of a subtree; the moves at or after the bound that some
+// task made anyway are undone, that move runs alone, and the next round starts after it. No task waits for
+// another, so any scheduler (one that runs the tasks one after the other included) ends with the serial
+// tree.
 const int kSubtreeDepth = 2;
 const int kMaxSubtrees = 1 << kSubtreeDepth;
+// The depth of DbvtMoveRound's subtrees: more subtrees than two threads, so that a thread done with its
+// subtrees takes another's.
+const int kRoundSubtreeDepth = 2;
+static_assert((1 << kRoundSubtreeDepth) <= caliber::DbvtMoveRound::kMaxSubtrees, "DbvtMoveRound's arrays");
+static_assert((1 << kRoundSubtreeDepth) <= caliber::DbvtTopView::kMaxSubtrees, "DbvtTopView's arrays");
 // Fewer moves than this run in order on the calling thread (a round costs a parallel loop and a walk from
 // each leaf to its subtree).
 const int kMinMovesPerRound = 32;
@@ -356,6 +369,7 @@ struct MoveWithinSubtrees : public btIParallelForBody
 			scratch.log.resize(0);
 			scratch.moves.resize(0);
 			scratch.marks.resize(0);
+			scratch.tops.resize(0);
 			for (int i = begin;; ++i)
 			{
 				// The bound only falls; a move at or after its final value is undone afterwards.
@@ -364,7 +378,9 @@ struct MoveWithinSubtrees : public btIParallelForBody
 				const int mark = scratch.log.size();
 				btDbvtProxy* proxy = static_cast<btDbvtProxy*>(moves[i].proxy);
 				const btDbvtVolume box = btDbvtVolume::FromMM(moves[i].fatMin, moves[i].fatMax);
-				if (!caliber::moveLeafWithinSubtree(*tree, subtrees[task], proxy->leaf, box, scratch.log))
+				caliber::DbvtTopStep top;
+				if (!caliber::moveLeafWithinSubtreeDeferringTop(*tree, subtrees[task], proxy->leaf, box, scratch.log,
+				                                                top))
 				{
 					int current = bound->load(std::memory_order_relaxed);
 					while (i < current && !bound->compare_exchange_weak(current, i, std::memory_order_relaxed))
@@ -374,6 +390,7 @@ struct MoveWithinSubtrees : public btIParallelForBody
 				}
 				scratch.moves.push_back(i);
 				scratch.marks.push_back(mark);
+				scratch.tops.push_back(top);
 			}
 		}
 	}
@@ -381,15 +398,18 @@ struct MoveWithinSubtrees : public btIParallelForBody
 
 // The nodes kSubtreeDepth levels below the root (a leaf at that depth or above heads no subtree: its entry
 // is 0); returns their count.
-int findSubtrees(const btDbvt& tree, const btDbvtNode* subtrees[kMaxSubtrees])
+int findSubtrees(const btDbvt& tree, const btDbvtNode** subtrees, btDbvtNode** topNodes, int& numTopNodes,
+                 int depth = kSubtreeDepth)
 {
 	int count = 1;
+	numTopNodes = 0;
 	subtrees[0] = tree.m_root;
-	for (int level = 0; level < kSubtreeDepth; ++level)
+	for (int level = 0; level < depth; ++level)
 	{
 		for (int k = count - 1; k >= 0; --k)
 		{
 			const btDbvtNode* node = subtrees[k];
+			if (node && node->isinternal()) topNodes[numTopNodes++] = const_cast<btDbvtNode*>(node);
 			subtrees[2 * k] = node && node->isinternal() ? node->childs[0] : 0;
 			subtrees[2 * k + 1] = node && node->isinternal() ? node->childs[1] : 0;
 		}
@@ -595,7 +615,9 @@ void caliber::moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProx
 	while (next < count)
 	{
 		const btDbvtNode* subtrees[kMaxSubtrees];
-		const int numSubtrees = findSubtrees(tree, subtrees);
+		btDbvtNode* topNodes[kMaxSubtrees];
+		int numTopNodes;
+		const int numSubtrees = findSubtrees(tree, subtrees, topNodes, numTopNodes);
 		int alone = next;  // the first move that runs alone
 		for (; alone < count; ++alone)
 		{
@@ -618,8 +640,29 @@ void caliber::moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProx
 			body.begin = next;
 			body.bound = &bound;
 			body.tasks = &scratch.subtreeTasks[0];
+			caliber::DbvtTopView view;
+			view.start(subtrees, numSubtrees);
 			btParallelFor(0, numSubtrees, 1, body);
 			end = bound.load();
+			// The steps above the subtrees, in move order (a move whose step cannot be replayed ends the round
+			// there: its top changes are undone here, its subtree changes with the others' below).
+			int made[kMaxSubtrees] = {0};
+			scratch.topLog.resize(0);
+			for (int i = next; i < end; ++i)
+			{
+				const int task = scratch.moveSubtrees[i];
+				SubtreeTask& done = scratch.subtreeTasks[task];
+				btAssert(done.moves[made[task]] == i);
+				if (!caliber::replayDbvtTopStep(view, task, done.tops[made[task]], scratch.topLog))
+				{
+					caliber::undoDbvtChanges(scratch.topLog, 0);
+					++counts.topStops;
+					end = i;
+					break;
+				}
+				scratch.topLog.resize(0);
+				++made[task];
+			}
 			// Undo what the tasks did at or after the bound (each task's moves are in order: one undo each).
 			for (int task = 0; task < numSubtrees; ++task)
 			{
@@ -631,6 +674,13 @@ void caliber::moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProx
 					counts.movesUndone += done.moves.size() - k;
 					break;
 				}
+			}
+			// An undone subtree root gets back the parent it had when the round began; the replayed
+			// rotations above the subtrees may have given it another.
+			for (int k = 0; k < numTopNodes; ++k)
+			{
+				topNodes[k]->childs[0]->parent = topNodes[k];
+				topNodes[k]->childs[1]->parent = topNodes[k];
 			}
 			++counts.rounds;
 			counts.movesOnThreads += end - next;
@@ -653,6 +703,122 @@ void caliber::moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProx
 		}
 		next = end + 1;
 	}
+}
+
+namespace
+{
+std::atomic<bool> gSubtreeMovesInWorld(false);
+}  // namespace
+
+bool caliber::subtreeMovesInWorld() { return gSubtreeMovesInWorld.load(std::memory_order_relaxed); }
+
+void caliber::setSubtreeMovesInWorld(bool on) { gSubtreeMovesInWorld.store(on, std::memory_order_relaxed); }
+
+bool caliber::DbvtMoveRound::begin(btDbvtBroadphase& broadphase)
+{
+	m_broadphase = &broadphase;
+	m_numSubtrees = 0;
+	btDbvt& tree = broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET];
+	if (tree.m_lkhd < 0 || !tree.m_root) return false;
+	PairSearchScratch& scratch = caliber::sideTable<PairSearchScratch>().acquire(&broadphase);
+	m_scratch = &scratch;
+	const int count = findSubtrees(tree, m_subtrees, m_topNodes, m_numTopNodes, kRoundSubtreeDepth);
+	bool any = false;
+	for (int k = 0; k < count; ++k) any |= m_subtrees[k] != 0;
+	if (!any) return false;
+	m_numSubtrees = count;
+	if (scratch.subtreeTasks.size() < count) scratch.subtreeTasks.resize(count);
+	for (int k = 0; k < count; ++k)
+	{
+		SubtreeTask& task = scratch.subtreeTasks[k];
+		task.log.resize(0);
+		task.moves.resize(0);
+		task.marks.resize(0);
+		task.tops.resize(0);
+		task.proxies.resize(0);
+	}
+	scratch.roundView.start(m_subtrees, count);
+	return true;
+}
+
+bool caliber::DbvtMoveRound::moveWithin(int subtree, int slot, btBroadphaseProxy* proxy, const btVector3& fatMin,
+                                        const btVector3& fatMax) const
+{
+	btAssert(subtree >= 0 && subtree < m_numSubtrees && m_subtrees[subtree]);
+	SubtreeTask& task = static_cast<PairSearchScratch*>(m_scratch)->subtreeTasks[subtree];
+	btAssert(task.moves.size() == 0 || task.moves[task.moves.size() - 1] < slot);
+	const int mark = task.log.size();
+	caliber::DbvtTopStep top;
+	const btDbvtVolume box = btDbvtVolume::FromMM(fatMin, fatMax);
+	if (!caliber::moveLeafWithinSubtreeDeferringTop(m_broadphase->m_sets[btDbvtBroadphase::DYNAMIC_SET],
+	                                                m_subtrees[subtree], static_cast<btDbvtProxy*>(proxy)->leaf, box,
+	                                                task.log, top))
+		return false;
+	task.moves.push_back(slot);
+	task.marks.push_back(mark);
+	task.tops.push_back(top);
+	task.proxies.push_back(static_cast<btDbvtProxy*>(proxy));
+	return true;
+}
+
+int caliber::DbvtMoveRound::finish(int end, DbvtParallelMoveStats* stats)
+{
+	if (m_numSubtrees == 0) return end;
+	PairSearchScratch& scratch = *static_cast<PairSearchScratch*>(m_scratch);
+	DbvtTopView& view = scratch.roundView;
+	// The kept moves in slot order (a merge of the tasks' lists), each with its steps above the subtrees.
+	int made[kMaxSubtrees] = {0};
+	scratch.topLog.resize(0);
+	for (;;)
+	{
+		int next = -1;
+		for (int k = 0; k < m_numSubtrees; ++k)
+		{
+			const SubtreeTask& task = scratch.subtreeTasks[k];
+			if (made[k] < task.moves.size() && task.moves[made[k]] < end &&
+			    (next < 0 || task.moves[made[k]] < scratch.subtreeTasks[next].moves[made[next]]))
+				next = k;
+		}
+		if (next < 0) break;
+		SubtreeTask& task = scratch.subtreeTasks[next];
+		if (!caliber::replayDbvtTopStep(view, next, task.tops[made[next]], scratch.topLog))
+		{
+			caliber::undoDbvtChanges(scratch.topLog, 0);
+			if (stats) ++stats->topStops;
+			end = task.moves[made[next]];
+			break;
+		}
+		scratch.topLog.resize(0);
+		// What moveProxyToFatBox does besides the tree.
+		++m_broadphase->m_updates_done;
+		queueProxy(*m_broadphase, task.proxies[made[next]]);
+		++made[next];
+	}
+	// Undo what the tasks did at or after end (each task's moves are in order: one undo each), then give
+	// the subtree roots back the parents the replayed rotations chose.
+	int kept = 0;
+	for (int k = 0; k < m_numSubtrees; ++k)
+	{
+		SubtreeTask& task = scratch.subtreeTasks[k];
+		kept += made[k];
+		if (made[k] < task.moves.size())
+		{
+			caliber::undoDbvtChanges(task.log, task.marks[made[k]]);
+			if (stats) stats->movesUndone += task.moves.size() - made[k];
+		}
+	}
+	for (int k = 0; k < m_numTopNodes; ++k)
+	{
+		m_topNodes[k]->childs[0]->parent = m_topNodes[k];
+		m_topNodes[k]->childs[1]->parent = m_topNodes[k];
+	}
+	if (stats)
+	{
+		++stats->rounds;
+		stats->movesOnThreads += kept;
+	}
+	m_numSubtrees = 0;
+	return end;
 }
 
 void btDbvtBroadphase::setAabbForceUpdate(btBroadphaseProxy* absproxy, const btVector3& aabbMin,

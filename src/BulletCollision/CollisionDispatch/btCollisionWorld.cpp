@@ -113,6 +113,10 @@ struct CollisionWorldScratch
 	// The pipelined box updates' chunk states (see AabbPipeline): 0 free, 1 taken, 2 computed.
 	std::unique_ptr<std::atomic<int>[]> chunkStates;
 	int chunkCapacity = 0;
+	// The subtree of each object's leaf in the parallel tree moves (BoxesAndSubtreeMoves), -1 for none.
+	btAlignedObjectArray<int> subtreeOfObject;
+	btAlignedObjectArray<const btDbvtNode*> walkStack;
+	caliber::DbvtMoveRound moveRound;
 };
 
 }  // namespace
@@ -415,6 +419,101 @@ struct AabbPipeline : public btIParallelForBody
 		}
 	}
 };
+// The boxes and the tree moves in one loop, the moves on several threads (caliber::DbvtMoveRound). Task k
+// walks the objects in order as AabbPipeline's task 0 does, taking each chunk of objects it reaches (its
+// boxes computed by this task if no task has taken it yet, else waited for), and makes the moves of the
+// objects whose leaves lie in subtree k of the dynamic tree; so the first task to reach a chunk computes
+// it, and the moves of different subtrees run at once. The first object that must be updated in order (an
+// overflow, a destroyed proxy, a leaf in no subtree, a move that needs a node outside its subtree) lowers
+// the bound: no task moves an object at or after it, and the calling thread goes on from it in order after
+// the loop. A task waits only for a chunk another task is computing, so any scheduler finishes the loop.
+struct BoxesAndSubtreeMoves : public btIParallelForBody
+{
+	AabbPipeline chunks;  // its chunk states and box computation (take, computeChunk, waitForChunk)
+	const caliber::DbvtMoveRound* round;
+	const int* subtreeOfObject;
+	std::atomic<int>* bound;
+
+	void lowerBound(int i) const
+	{
+		int current = bound->load(std::memory_order_relaxed);
+		while (i < current && !bound->compare_exchange_weak(current, i, std::memory_order_relaxed))
+		{
+		}
+	}
+
+	void walk(int subtree) const
+	{
+		const ComputeAabbs& compute = chunks.compute;
+		for (int chunk = 0; chunk < chunks.numChunks; ++chunk)
+		{
+			const int begin = chunk * kObjectsPerPipelinedChunk;
+			if (begin >= bound->load(std::memory_order_relaxed)) return;
+			if (chunks.take(chunk))
+				chunks.computeChunk(chunk);
+			else
+				chunks.waitForChunk(chunk);
+			const int end = btMin(chunks.numObjects, begin + kObjectsPerPipelinedChunk);
+			for (int i = begin; i < end; ++i)
+			{
+				const PendingAabb& box = compute.pending[i];
+				if (box.status == 0 || box.status == 3) continue;
+				if (box.status != 4 || subtreeOfObject[i] < 0)
+				{
+					lowerBound(i);
+					return;
+				}
+				if (subtreeOfObject[i] != subtree) continue;
+				if (i >= bound->load(std::memory_order_relaxed)) return;
+				if (!round->moveWithin(subtree, i, compute.objects[i]->getBroadphaseHandle(), box.aabbMin,
+				                       box.aabbMax))
+				{
+					lowerBound(i);
+					return;
+				}
+			}
+		}
+	}
+
+	void forLoop(int taskBegin, int taskEnd) const override
+	{
+		for (int task = taskBegin; task < taskEnd; ++task)
+			if (round->subtreeRoot(task)) walk(task);
+	}
+};
+
+// Writes, for each object whose proxy's leaf lies under one of the round's subtrees, that subtree's number
+// (the others get -1).
+void findSubtreesOfObjects(const caliber::DbvtMoveRound& round, btCollisionObject* const* objects, int numObjects,
+                           CollisionWorldScratch& scratch)
+{
+	scratch.subtreeOfObject.resizeNoInitialize(numObjects);
+	for (int i = 0; i < numObjects; ++i) scratch.subtreeOfObject[i] = -1;
+	btAlignedObjectArray<const btDbvtNode*>& stack = scratch.walkStack;
+	for (int k = 0; k < round.numSubtrees(); ++k)
+	{
+		if (!round.subtreeRoot(k)) continue;
+		stack.resize(0);
+		stack.push_back(round.subtreeRoot(k));
+		while (stack.size())
+		{
+			const btDbvtNode* node = stack[stack.size() - 1];
+			stack.pop_back();
+			if (node->isinternal())
+			{
+				stack.push_back(node->childs[0]);
+				stack.push_back(node->childs[1]);
+				continue;
+			}
+			const btBroadphaseProxy* proxy = static_cast<const btBroadphaseProxy*>(node->data);
+			const btCollisionObject* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+			const int index = object ? object->getWorldArrayIndex() : -1;
+			// A proxy of another world sharing the broadphase is not this world's to move.
+			if (index >= 0 && index < numObjects && objects[index] == object && object->getBroadphaseHandle() == proxy)
+				scratch.subtreeOfObject[index] = k;
+		}
+	}
+}
 }  // namespace
 
 void btCollisionWorld::updateAabbs()
@@ -434,7 +533,8 @@ void btCollisionWorld::updateAabbs()
 	}
 	// With a scheduler: the boxes (the shapes' support work) on its threads, and the broadphase updates in
 	// object order, exactly as updateSingleAabb would make them: for the dbvt broadphase itself on one task
-	// overlapping the boxes of the later objects (AabbPipeline), otherwise on this thread after the boxes.
+	// overlapping the boxes of the later objects (AabbPipeline), or with caliber::subtreeMovesInWorld() on a
+	// task per subtree of its dynamic tree (BoxesAndSubtreeMoves), otherwise on this thread after the boxes.
 	CollisionWorldScratch& scratch = caliber::sideTable<CollisionWorldScratch>().acquire(this);
 	scratch.pending.resizeNoInitialize(numObjects);
 	ComputeAabbs compute;
@@ -449,7 +549,35 @@ void btCollisionWorld::updateAabbs()
 	compute.dbvt = dbvt;
 	unsigned storedOnThreads = 0;
 	int applied = 0;
-	if (dbvt)
+	const bool subtreeMoves = dbvt && caliber::subtreeMovesInWorld() && scratch.moveRound.begin(*dbvt);
+	if (subtreeMoves)
+	{
+		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;
+		if (scratch.chunkCapacity < numChunks)
+		{
+			scratch.chunkStates.reset(new std::atomic<int>[numChunks]);
+			scratch.chunkCapacity = numChunks;
+		}
+		for (int c = 0; c < numChunks; ++c) scratch.chunkStates[c].store(0, std::memory_order_relaxed);
+		findSubtreesOfObjects(scratch.moveRound, &m_collisionObjects[0], numObjects, scratch);
+		std::atomic<int> bound(numObjects);
+		BoxesAndSubtreeMoves loop;
+		loop.chunks.compute = compute;
+		loop.chunks.chunkStates = scratch.chunkStates.get();
+		loop.chunks.numObjects = numObjects;
+		loop.chunks.numChunks = numChunks;
+		loop.round = &scratch.moveRound;
+		loop.subtreeOfObject = &scratch.subtreeOfObject[0];
+		loop.bound = &bound;
+		btParallelFor(0, scratch.moveRound.numSubtrees(), 1, loop);
+		// The chunks past the bound that no task reached.
+		for (int c = 0; c < numChunks; ++c)
+			if (scratch.chunkStates[c].load(std::memory_order_acquire) == 0) loop.chunks.computeChunk(c);
+		applied = scratch.moveRound.finish(bound.load());
+		for (int i = 0; i < applied; ++i)
+			if (scratch.pending[i].status >= 3) ++storedOnThreads;
+	}
+	else if (dbvt)
 	{
 		// The tree moves overlap the box computation of the objects after them (AabbPipeline).
 		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;

@@ -2,7 +2,9 @@
 // With a task scheduler, btCollisionWorld::updateAabbs computes the boxes on the threads and, for the dbvt
 // broadphase itself, also stores there the boxes that still fit in their fat boxes (what setAabb would
 // do) and the new tree boxes of those that left them; one task then moves the leaves in object order while
-// the others compute the boxes of the objects after them. The
+// the others compute the boxes of the objects after them (or, with caliber::setSubtreeMovesInWorld(true),
+// each task moves the leaves of one subtree of the dynamic tree in object order, computing the boxes of the
+// objects as it reaches them). The
 // broadphase must end exactly as with the serial updates: every proxy's AABB, every fat box, the dynamic
 // tree node by node, the update counters and the pairs; a user's subclass of the broadphase still gets
 // every setAabb call, and a user's pair filter is still asked about every pair the search finds.
@@ -13,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
@@ -85,8 +88,11 @@ void snapshotTree(const btDbvtNode* node, Snapshot& result)
 // them, every third one far enough to leave its fat box, the others a millimetre (they stay inside).
 // overflowAt >= 0: that object is a moving one (not static) with a box far too large for a moving object,
 // so each update finds it overflowing. userScheduler: used instead of the thread pool when not null.
+// jumps: every 37th object also jumps 12 m along x each step (across the grid: moves that leave their
+// subtrees of the tree). rootInsertions: the dynamic tree re-inserts moved leaves from its root (m_lkhd -1),
+// which no subtree can do alone.
 Snapshot run(int threads, bool subclass, bool filter = false, int overflowAt = -1,
-             btITaskScheduler* userScheduler = 0)
+             btITaskScheduler* userScheduler = 0, bool jumps = false, bool rootInsertions = false)
 {
 	caliber_test::ScopedTaskScheduler scheduler(userScheduler ? 0 : threads);
 	if (userScheduler) btSetTaskScheduler(userScheduler);
@@ -112,6 +118,7 @@ Snapshot run(int threads, bool subclass, bool filter = false, int overflowAt = -
 		world.addCollisionObject(&object);
 	}
 	if (subclass) static_cast<CountingDbvtBroadphase*>(broadphase.get())->calls = 0;
+	if (rootInsertions) broadphase->m_sets[btDbvtBroadphase::DYNAMIC_SET].m_lkhd = -1;
 	Snapshot result;
 	for (int step = 1; step <= 3; ++step)
 	{
@@ -119,7 +126,7 @@ Snapshot run(int threads, bool subclass, bool filter = false, int overflowAt = -
 		{
 			const btScalar move = i % 3 == 0 ? btScalar(0.3) : btScalar(0.001);
 			btTransform transform = objects[size_t(i)]->getWorldTransform();
-			transform.getOrigin() += btVector3(0, move, 0);
+			transform.getOrigin() += btVector3(jumps && i % 37 == 0 ? btScalar(12) : btScalar(0), move, 0);
 			objects[size_t(i)]->setWorldTransform(transform);
 		}
 		world.updateAabbs();
@@ -219,6 +226,12 @@ TEST(CollisionWorldThreadedAabbs, ObjectOverflowingMidwayEndsAsWithSerialUpdates
 	expectSame(serial, run(0, false, false, overflowAt, &reverse));
 	caliber_test::UnevenSplitScheduler uneven;
 	expectSame(serial, run(0, false, false, overflowAt, &uneven));
+	// The same with the tree moves of each subtree on its own task (caliber::DbvtMoveRound).
+	caliber::setSubtreeMovesInWorld(true);
+	for (int threads : {2, 3}) expectSame(serial, run(threads, false, false, overflowAt));
+	expectSame(serial, run(0, false, false, overflowAt, &reverse));
+	expectSame(serial, run(0, false, false, overflowAt, &uneven));
+	caliber::setSubtreeMovesInWorld(false);
 }
 
 TEST(CollisionWorldThreadedAabbs, ChunksInAnyOrderOrSplitGiveTheSerialBroadphase)
@@ -228,4 +241,31 @@ TEST(CollisionWorldThreadedAabbs, ChunksInAnyOrderOrSplitGiveTheSerialBroadphase
 	expectSame(serial, run(0, false, false, -1, &reverse));
 	caliber_test::UnevenSplitScheduler uneven;
 	expectSame(serial, run(0, false, false, -1, &uneven));
+}
+
+// With caliber::setSubtreeMovesInWorld(true) and several threads, the tree moves of the leaves in different
+// subtrees of the dynamic tree run on different tasks (caliber::DbvtMoveRound); a move that leaves its
+// subtree, or a tree that re-inserts from its root, sends the rest to the calling thread in order. Every thread count and
+// the two odd schedulers end with the serial broadphase.
+TEST(CollisionWorldThreadedAabbs, TreeMovesOfDifferentSubtreesOnTheThreadsGiveTheSerialBroadphase)
+{
+	struct SubtreeMovesOn
+	{
+		SubtreeMovesOn() { caliber::setSubtreeMovesInWorld(true); }
+		~SubtreeMovesOn() { caliber::setSubtreeMovesInWorld(false); }
+	} on;
+	for (bool rootInsertions : {false, true})
+	{
+		SCOPED_TRACE(rootInsertions ? "re-insertion from the root" : "re-insertion from a few levels up");
+		const Snapshot serial = run(0, false, false, -1, 0, true, rootInsertions);
+		// The 134 objects moved 0.3 m leave their fat boxes in steps 1 and 3 (see above), and so do the 11
+		// jumping objects (the fat box made in step 1 reaches one more jump ahead); 4 of them (0, 111, 222,
+		// 333) are among the 134.
+		EXPECT_EQ(serial.updatesDone, 2u * 134u + 2u * 11u - 2u * 4u);
+		for (int threads : {1, 2, 3}) expectSame(serial, run(threads, false, false, -1, 0, true, rootInsertions));
+		caliber_test::LastFirstScheduler reverse;
+		expectSame(serial, run(0, false, false, -1, &reverse, true, rootInsertions));
+		caliber_test::UnevenSplitScheduler uneven;
+		expectSame(serial, run(0, false, false, -1, &uneven, true, rootInsertions));
+	}
 }
