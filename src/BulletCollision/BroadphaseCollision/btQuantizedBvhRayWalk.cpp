@@ -29,6 +29,8 @@ struct QuantizedSweep
 	// and never 0 * inf = NaN.
 	btVector3 inverse;
 	bool negative[3];
+	// nearStart >= farStart on every axis (a ray, or a cast box with min <= max): hitsQuantizedNode applies.
+	bool ordered;
 #ifdef BT_USE_SSE
 	__m128 negativeMask;
 #endif
@@ -57,6 +59,8 @@ QuantizedSweep quantizeSweep(const btQuantizedBvh& bvh, const caliber::BvhSweep&
 		}
 		q.negative[a] = q.inverse[a] < btScalar(0);
 	}
+	q.ordered = q.nearStart.x() >= q.farStart.x() && q.nearStart.y() >= q.farStart.y() &&
+	            q.nearStart.z() >= q.farStart.z();
 #ifdef BT_USE_SSE
 	q.negativeMask = caliber::raySlabNegativeMask(q.negative[0], q.negative[1], q.negative[2]);
 #endif
@@ -65,18 +69,78 @@ QuantizedSweep quantizeSweep(const btQuantizedBvh& bvh, const caliber::BvhSweep&
 
 // The slab test of one quantized node against the sweep with t in [0, exitBound]; enter is the entry t.
 #ifdef BT_USE_SSE
+// Lanes x, y, z (lane w is not used): entries, the entry t of each axis's slab, at least 0, and exits, the exit
+// t, at most bound (exitBound in every lane).
+SIMD_FORCE_INLINE void quantizedNodeSlabs(const QuantizedSweep& q, const btQuantizedBvhNode& node, __m128 bound,
+                                          __m128& entries, __m128& exits)
+{
+	// The node's 16 bytes: min x, y, z, max x, y, z (unsigned 16-bit) and the escape or triangle index. The
+	// maxima are read from the bytes shifted down by three 16-bit lanes, so each lands in its axis's lane.
+	const __m128i raw = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&node));
+	const __m128i zero = _mm_setzero_si128();
+	const __m128 minima = _mm_cvtepi32_ps(_mm_unpacklo_epi16(raw, zero));                      // x, y, z, max x
+	const __m128 maxima = _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_srli_si128(raw, 6), zero));  // x, y, z, index
+	const __m128 inverse = q.inverse.get128();
+	const __m128 tLow = _mm_mul_ps(_mm_sub_ps(minima, q.nearStart.get128()), inverse);
+	const __m128 tHigh = _mm_mul_ps(_mm_sub_ps(maxima, q.farStart.get128()), inverse);
+	// Neither is NaN (the inverse is finite and not 0, the differences are finite), and with nearStart >=
+	// farStart (quantizeSweep checks it, else the general test is used) and min <= max the exact difference
+	// on the low plane is at most that on the high plane; rounding and then multiplying keep that order
+	// (reversed for a negative inverse), so the smaller is the near plane's t and the larger the far plane's:
+	// the values the direction's sign would pick (two equal values are the same bits: a difference of 0 is
+	// +0 in both).
+	entries = _mm_max_ps(_mm_min_ps(tLow, tHigh), _mm_setzero_ps());
+	exits = _mm_min_ps(_mm_max_ps(tLow, tHigh), bound);
+}
+
 SIMD_FORCE_INLINE bool hitsQuantizedNode(const QuantizedSweep& q, const btQuantizedBvhNode& node, btScalar exitBound,
                                          btScalar& enter)
 {
-	// The node's 16 bytes: min x, y, z, max x, y, z (unsigned 16-bit) and the escape or triangle index.
+	__m128 entries, exits;
+	quantizedNodeSlabs(q, node, _mm_set1_ps(exitBound), entries, exits);
+	const __m128 enterXYZ = _mm_max_ss(_mm_max_ss(entries, CALIBER_SPLAT(entries, 1)), CALIBER_SPLAT(entries, 2));
+	const __m128 exitXYZ = _mm_min_ss(_mm_min_ss(exits, CALIBER_SPLAT(exits, 1)), CALIBER_SPLAT(exits, 2));
+	enter = _mm_cvtss_f32(enterXYZ);
+	return _mm_comile_ss(enterXYZ, exitXYZ) != 0;
+}
+
+// hitsQuantizedNode of two nodes at once, the three-axis reductions of both done side by side. The entries
+// are never NaN nor -0 (max with +0 returns +0 for -0), so their maximum does not depend on the order the axes
+// are taken in; the exits are never NaN, and their minimum may differ only in the sign of a zero, which the
+// comparison does not see.
+SIMD_FORCE_INLINE void hitsQuantizedNodes(const QuantizedSweep& q, const btQuantizedBvhNode& a,
+                                          const btQuantizedBvhNode& b, btScalar exitBound, btScalar& enterA,
+                                          btScalar& enterB, bool& hitA, bool& hitB)
+{
+	const __m128 bound = _mm_set1_ps(exitBound);
+	__m128 entriesA, exitsA, entriesB, exitsB;
+	quantizedNodeSlabs(q, a, bound, entriesA, exitsA);
+	quantizedNodeSlabs(q, b, bound, entriesB, exitsB);
+	// Lanes a.x, b.x, a.y, b.y and a.z, b.z, a.w, b.w: lanes 0 and 1 of the result reduce x, z, then y.
+	const __m128 entriesXY = _mm_unpacklo_ps(entriesA, entriesB);
+	const __m128 entriesZW = _mm_unpackhi_ps(entriesA, entriesB);
+	const __m128 exitsXY = _mm_unpacklo_ps(exitsA, exitsB);
+	const __m128 exitsZW = _mm_unpackhi_ps(exitsA, exitsB);
+	const __m128 enter = _mm_max_ps(_mm_max_ps(entriesXY, entriesZW), _mm_movehl_ps(entriesXY, entriesXY));
+	const __m128 exit = _mm_min_ps(_mm_min_ps(exitsXY, exitsZW), _mm_movehl_ps(exitsXY, exitsXY));
+	const int hits = _mm_movemask_ps(_mm_cmple_ps(enter, exit));
+	enterA = _mm_cvtss_f32(enter);
+	enterB = _mm_cvtss_f32(CALIBER_SPLAT(enter, 1));
+	hitA = (hits & 1) != 0;
+	hitB = (hits & 2) != 0;
+}
+
+// The general test (the near and far planes picked by the direction's signs), for a sweep whose grown box
+// is inverted (nearStart below farStart on some axis: a cast box with a minimum above its maximum).
+SIMD_FORCE_INLINE bool hitsQuantizedNodeBySign(const QuantizedSweep& q, const btQuantizedBvhNode& node,
+                                               btScalar exitBound, btScalar& enter)
+{
 	const __m128i raw = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&node));
 	const __m128i zero = _mm_setzero_si128();
-	const __m128 low = _mm_cvtepi32_ps(_mm_unpacklo_epi16(raw, zero));   // min x, y, z, max x
-	const __m128 high = _mm_cvtepi32_ps(_mm_unpackhi_epi16(raw, zero));  // max y, z, index bits
-	const __m128 maxXXYZ = _mm_shuffle_ps(low, high, CALIBER_SHUFFLE(3, 3, 0, 1));
-	const __m128 maxima = _mm_shuffle_ps(maxXXYZ, maxXXYZ, CALIBER_SHUFFLE(0, 2, 3, 3));
+	const __m128 minima = _mm_cvtepi32_ps(_mm_unpacklo_epi16(raw, zero));
+	const __m128 maxima = _mm_cvtepi32_ps(_mm_unpacklo_epi16(_mm_srli_si128(raw, 6), zero));
 	const __m128 inverse = q.inverse.get128();
-	const __m128 tLow = _mm_mul_ps(_mm_sub_ps(low, q.nearStart.get128()), inverse);
+	const __m128 tLow = _mm_mul_ps(_mm_sub_ps(minima, q.nearStart.get128()), inverse);
 	const __m128 tHigh = _mm_mul_ps(_mm_sub_ps(maxima, q.farStart.get128()), inverse);
 	return caliber::raySlabHits(tLow, tHigh, q.negativeMask, exitBound, enter);
 }
@@ -97,6 +161,20 @@ SIMD_FORCE_INLINE bool hitsQuantizedNode(const QuantizedSweep& q, const btQuanti
 	enter = tEnter;
 	return tEnter <= tExit;
 }
+
+SIMD_FORCE_INLINE bool hitsQuantizedNodeBySign(const QuantizedSweep& q, const btQuantizedBvhNode& node,
+                                               btScalar exitBound, btScalar& enter)
+{
+	return hitsQuantizedNode(q, node, exitBound, enter);
+}
+
+SIMD_FORCE_INLINE void hitsQuantizedNodes(const QuantizedSweep& q, const btQuantizedBvhNode& a,
+                                          const btQuantizedBvhNode& b, btScalar exitBound, btScalar& enterA,
+                                          btScalar& enterB, bool& hitA, bool& hitB)
+{
+	hitA = hitsQuantizedNode(q, a, exitBound, enterA);
+	hitB = hitsQuantizedNode(q, b, exitBound, enterB);
+}
 #endif
 
 struct NodeEntry
@@ -105,51 +183,75 @@ struct NodeEntry
 	btScalar enter;
 };
 
-// Walks the tree from its root, nearer child first. Tree: isLeaf(i), subtreeSize(i) (1 for a leaf), and
-// hits(i, exitBound, enter); report(i) hands a leaf to the callback.
+// Walks the tree from its root, nearer child first. Tree: isLeaf(i), subtreeSize(i) (1 for a leaf),
+// hits(i, exitBound, enter) and hitsBoth(i, j, ...) (hits of both); report(i) hands a leaf to the callback. Of
+// two children that are hit the farther is pushed and the nearer opened at once (the order of a stack that
+// pushed both and popped the nearer).
 template <class Tree>
 void walkNearestFirst(const Tree& tree, const caliber::BvhSweep& sweep)
 {
 	caliber::DbvtLocalStack<NodeEntry, 64> stack;
-	NodeEntry root = {0, btScalar(0)};
-	if (!tree.hits(0, sweep.exitBound(), root.enter)) return;
-	stack.push(root);
-	while (!stack.empty())
+	// Only report() can lower the bound (through the callback's fraction): it is read again after each.
+	btScalar exitBound = sweep.exitBound();
+	NodeEntry entry = {0, btScalar(0)};
+	if (!tree.hits(0, exitBound, entry.enter)) return;
+	for (;;)
 	{
-		const NodeEntry entry = stack.pop();
-		const btScalar exitBound = sweep.exitBound();
-		if (entry.enter > exitBound) continue;  // the bound shrank below this box since it was pushed
-		if (tree.isLeaf(entry.node))
+		// Skipped when the bound shrank below this box since it was pushed.
+		if (!(entry.enter > exitBound))
 		{
-			tree.report(entry.node);
-			continue;
-		}
-		const int left = entry.node + 1;
-		const int right = left + tree.subtreeSize(left);
-		NodeEntry l = {left, btScalar(0)}, r = {right, btScalar(0)};
-		const bool hitLeft = tree.hits(left, exitBound, l.enter);
-		const bool hitRight = right < tree.count && tree.hits(right, exitBound, r.enter);
-		// The farther is pushed first; on a tie the left child is opened first, as in Bullet's walk.
-		if (hitLeft && hitRight)
-		{
-			if (r.enter < l.enter)
+			if (tree.isLeaf(entry.node))
 			{
-				stack.push(l);
-				stack.push(r);
+				tree.report(entry.node);
+				exitBound = sweep.exitBound();
 			}
 			else
 			{
-				stack.push(r);
-				stack.push(l);
+				const int left = entry.node + 1;
+				const int right = left + tree.subtreeSize(left);
+				NodeEntry l = {left, btScalar(0)}, r = {right, btScalar(0)};
+				bool hitLeft, hitRight;
+				if (right < tree.count)
+					tree.hitsBoth(left, right, exitBound, l.enter, r.enter, hitLeft, hitRight);
+				else
+				{
+					hitLeft = tree.hits(left, exitBound, l.enter);
+					hitRight = false;
+				}
+				// On a tie the left child is opened first, as in Bullet's walk.
+				if (hitLeft && hitRight)
+				{
+					if (r.enter < l.enter)
+					{
+						stack.push(l);
+						entry = r;
+					}
+					else
+					{
+						stack.push(r);
+						entry = l;
+					}
+					continue;
+				}
+				if (hitLeft)
+				{
+					entry = l;
+					continue;
+				}
+				if (hitRight)
+				{
+					entry = r;
+					continue;
+				}
 			}
 		}
-		else if (hitLeft)
-			stack.push(l);
-		else if (hitRight)
-			stack.push(r);
+		if (stack.empty()) return;
+		entry = stack.pop();
 	}
 }
 
+// BySign: the general node test (for an inverted cast box), else the one that needs nearStart >= farStart.
+template <bool BySign>
 struct QuantizedTree
 {
 	const btQuantizedBvhNode* nodes;
@@ -161,7 +263,18 @@ struct QuantizedTree
 	int subtreeSize(int i) const { return nodes[i].isLeafNode() ? 1 : nodes[i].getEscapeIndex(); }
 	bool hits(int i, btScalar exitBound, btScalar& enter) const
 	{
-		return hitsQuantizedNode(sweep, nodes[i], exitBound, enter);
+		return BySign ? hitsQuantizedNodeBySign(sweep, nodes[i], exitBound, enter)
+		              : hitsQuantizedNode(sweep, nodes[i], exitBound, enter);
+	}
+	void hitsBoth(int i, int j, btScalar exitBound, btScalar& enterI, btScalar& enterJ, bool& hitI, bool& hitJ) const
+	{
+		if (BySign)
+		{
+			hitI = hitsQuantizedNodeBySign(sweep, nodes[i], exitBound, enterI);
+			hitJ = hitsQuantizedNodeBySign(sweep, nodes[j], exitBound, enterJ);
+		}
+		else
+			hitsQuantizedNodes(sweep, nodes[i], nodes[j], exitBound, enterI, enterJ, hitI, hitJ);
 	}
 	void report(int i) const { callback->processNode(nodes[i].getPartId(), nodes[i].getTriangleIndex()); }
 };
@@ -193,6 +306,11 @@ struct PlainTree
 		}
 		return true;
 	}
+	void hitsBoth(int i, int j, btScalar exitBound, btScalar& enterI, btScalar& enterJ, bool& hitI, bool& hitJ) const
+	{
+		hitI = hits(i, exitBound, enterI);
+		hitJ = hits(j, exitBound, enterJ);
+	}
 	void report(int i) const { callback->processNode(nodes[i].m_subPart, nodes[i].m_triangleIndex); }
 };
 }  // namespace
@@ -216,13 +334,19 @@ void caliber::reportBoxCastOverlappingNodesNearestFirst(const btQuantizedBvh& bv
 		// not be trusted).
 		if (!TestAabbAgainstAabb2(sweep.sweepMin, sweep.sweepMax, caliber::bvhAabbMin(bvh), caliber::bvhAabbMax(bvh)))
 			return;
-		QuantizedTree tree;
 		// Bullet declares only a non-const accessor of the quantized nodes; they are only read here.
-		tree.nodes = &const_cast<btQuantizedBvh&>(bvh).getQuantizedNodeArray()[0];
-		tree.count = count;
-		tree.sweep = quantizeSweep(bvh, sweep);
-		tree.callback = nodeCallback;
-		walkNearestFirst(tree, sweep);
+		const btQuantizedBvhNode* nodes = &const_cast<btQuantizedBvh&>(bvh).getQuantizedNodeArray()[0];
+		const QuantizedSweep quantized = quantizeSweep(bvh, sweep);
+		if (quantized.ordered)
+		{
+			const QuantizedTree<false> tree = {nodes, count, quantized, nodeCallback};
+			walkNearestFirst(tree, sweep);
+		}
+		else
+		{
+			const QuantizedTree<true> tree = {nodes, count, quantized, nodeCallback};
+			walkNearestFirst(tree, sweep);
+		}
 		return;
 	}
 	PlainTree tree;

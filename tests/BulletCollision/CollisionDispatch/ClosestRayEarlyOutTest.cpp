@@ -8,11 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <set>
 #include <vector>
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
+#include "BulletCollision/CollisionShapes/btOptimizedBvh.h"
 #include "BulletCollision/CollisionShapes/btBvhTriangleMeshShape.h"
 #include "BulletCollision/CollisionShapes/btCapsuleShape.h"
 #include "BulletCollision/CollisionShapes/btConvexHullShape.h"
@@ -460,4 +463,246 @@ TEST(ClosestRayEarlyOut, StartsInsideTheCoreNeverChangeTheCastsAnswer)
 			EXPECT_GT(hits, 60) << "shape " << s << " at " << far;
 			EXPECT_GT(startsInside, 80) << "shape " << s << " at " << far;
 		}
+}
+
+namespace
+{
+// The node callback of the tree walk tests: runs the library's triangle ray test on each reported triangle.
+// closest: the walk's bound is the triangle test's own fraction, lowered by each closer hit (as the world's
+// closest-hit query does); else the bound stays 1 and every triangle hit is recorded.
+struct WalkTriangles : btNodeOverlapCallback
+{
+	WalkTriangles(const std::vector<Triangle>& triangles, const btVector3& from, const btVector3& to, bool closest)
+	    : m_triangles(triangles), m_test(from, to, 0), m_closest(closest)
+	{
+	}
+	void processNode(int part, int index) override
+	{
+		EXPECT_EQ(part, 0);
+		ASSERT_GE(index, 0);
+		ASSERT_LT(index, int(m_triangles.size()));
+		m_reported.push_back(index);
+		const Triangle& t = m_triangles[index];
+		btVector3 v[3] = {t.v[0], t.v[1], t.v[2]};
+		if (!m_closest) m_test.m_hitFraction = 1;  // each triangle on its own
+		const int before = m_test.m_index;
+		m_test.m_index = -1;
+		m_test.processTriangle(v, part, index);
+		if (m_test.m_index >= 0)
+			m_hits.insert(index);
+		else
+			m_test.m_index = before;
+	}
+	const btScalar* bound() const { return m_closest ? &m_test.m_hitFraction : &m_one; }
+
+	const std::vector<Triangle>& m_triangles;
+	BruteForceTriangles m_test;
+	bool m_closest;
+	const btScalar m_one = 1;
+	std::vector<int> m_reported;
+	std::set<int> m_hits;
+};
+
+// Every triangle the triangle ray test hits on its own (brute force over the whole mesh).
+std::set<int> bruteForceHits(const std::vector<Triangle>& triangles, const btVector3& from, const btVector3& to)
+{
+	std::set<int> hits;
+	for (const Triangle& t : triangles)
+		if (BruteForceTriangles::fractionOf(t, from, to, 0) < btScalar(2)) hits.insert(t.index);
+	return hits;
+}
+
+// The tree's nearest-first walk (the closest-hit ray's walk) against brute force over every triangle: with the
+// bound fixed at 1 it reaches every triangle the ray hits, and each at most once; with the bound lowered by
+// each hit it finds the closest fraction bit for bit, on a triangle that itself hits there (on an exact tie
+// of two triangles either is right), and it never reports more triangles than with the fixed bound.
+void expectWalkEqualsBruteForce(const btQuantizedBvh& bvh, const std::vector<Triangle>& triangles,
+                                const btVector3& from, const btVector3& to, const char* what, int ray)
+{
+	const btVector3 zero(0, 0, 0);
+	WalkTriangles all(triangles, from, to, false);
+	caliber::reportBoxCastOverlappingNodesNearestFirst(bvh, &all, from, to, zero, zero, all.bound());
+	const std::set<int> expected = bruteForceHits(triangles, from, to);
+	EXPECT_EQ(all.m_hits, expected) << what << " ray " << ray;
+	EXPECT_EQ(std::set<int>(all.m_reported.begin(), all.m_reported.end()).size(), all.m_reported.size())
+	    << what << " ray " << ray << ": a triangle reported twice";
+
+	WalkTriangles closest(triangles, from, to, true);
+	caliber::reportBoxCastOverlappingNodesNearestFirst(bvh, &closest, from, to, zero, zero, closest.bound());
+	BruteForceTriangles brute(from, to, 0);
+	for (const Triangle& t : triangles)
+	{
+		btVector3 v[3] = {t.v[0], t.v[1], t.v[2]};
+		brute.processTriangle(v, t.part, t.index);
+	}
+	ASSERT_EQ(closest.m_test.m_index >= 0, brute.m_index >= 0) << what << " ray " << ray;
+	EXPECT_LE(closest.m_reported.size(), all.m_reported.size()) << what << " ray " << ray;
+	if (brute.m_index < 0) return;
+	EXPECT_EQ(closest.m_test.m_hitFraction, brute.m_hitFraction) << what << " ray " << ray;
+	EXPECT_EQ(BruteForceTriangles::fractionOf(triangles[closest.m_test.m_index], from, to, 0), brute.m_hitFraction)
+	    << what << " ray " << ray;
+}
+}  // namespace
+
+TEST(ClosestRayEarlyOut, TreeWalkReportsTheClosestAndAllHitsOfBruteForce)
+{
+	for (int quantized = 0; quantized < 2; quantized++)
+	{
+		const char* what = quantized ? "quantized" : "plain";
+		// A bumpy grid with random rays, then a flat grid (y = 0, corners on even integers) for the exact cases.
+		Random rng(41 + quantized);
+		std::vector<Triangle> bumpy;
+		std::unique_ptr<btTriangleMesh> bumpyMesh(grid(rng, 20, 20, 2, bumpy));
+		btBvhTriangleMeshShape bumpyShape(bumpyMesh.get(), quantized != 0);
+		const btQuantizedBvh& bumpyBvh = *bumpyShape.getOptimizedBvh();
+		int ray = 0;
+		for (int k = 0; k < 150; k++)
+		{
+			btVector3 from = rng.vector(25), to = rng.vector(25);
+			if (k % 3 == 0) to = from + (to - from) * btScalar(30);  // long rays
+			expectWalkEqualsBruteForce(bumpyBvh, bumpy, from, to, what, ray++);
+		}
+		// Starting inside the tree's boxes (between the bumps) and ending there or far away.
+		for (int k = 0; k < 60; k++)
+		{
+			const btVector3 from(rng.uniform(-19, 19), rng.uniform(-2, 2), rng.uniform(-19, 19));
+			const btVector3 to = k % 2 ? from + rng.vector(3) : from + rng.vector(60);
+			expectWalkEqualsBruteForce(bumpyBvh, bumpy, from, to, what, ray++);
+		}
+
+		std::vector<Triangle> flat;
+		std::unique_ptr<btTriangleMesh> flatMesh(grid(rng, 16, 16, 0, flat));
+		btBvhTriangleMeshShape flatShape(flatMesh.get(), quantized != 0);
+		const btQuantizedBvh& flatBvh = *flatShape.getOptimizedBvh();
+		for (int i = -8; i <= 8; i++)
+			for (int j = -8; j <= 8; j += 2)
+			{
+				const btVector3 p(btScalar(2 * i), 0, btScalar(2 * j));
+				const btVector3 up(0, 5, 0);
+				// Along the y axis through a vertex, down and up (the up ray hits back faces).
+				expectWalkEqualsBruteForce(flatBvh, flat, p + up, p - up, what, ray++);
+				expectWalkEqualsBruteForce(flatBvh, flat, p - up, p + up, what, ray++);
+				// Through the middle of an edge (shared by two triangles) and of a diagonal.
+				expectWalkEqualsBruteForce(flatBvh, flat, p + btVector3(1, 5, 0), p + btVector3(1, -5, 0), what,
+				                           ray++);
+				expectWalkEqualsBruteForce(flatBvh, flat, p + btVector3(1, 5, 1), p + btVector3(1, -5, 1), what,
+				                           ray++);
+				// Along the x and z axes, in the plane of the faces and just above it (parallel to them).
+				expectWalkEqualsBruteForce(flatBvh, flat, p + btVector3(-40, 0, 0), p + btVector3(40, 0, 0), what,
+				                           ray++);
+				expectWalkEqualsBruteForce(flatBvh, flat, p + btVector3(0, btScalar(0.01), -40),
+				                           p + btVector3(0, btScalar(0.01), 40), what, ray++);
+				// Of zero length: on a face and above it (nothing to hit).
+				expectWalkEqualsBruteForce(flatBvh, flat, p + btVector3(1, 0, 1), p + btVector3(1, 0, 1), what,
+				                           ray++);
+				expectWalkEqualsBruteForce(flatBvh, flat, p + up, p + up, what, ray++);
+			}
+	}
+}
+
+TEST(ClosestRayEarlyOut, TreeWalkOfAnInvertedCastBoxShrinksTheBoxes)
+{
+	// A cast box with its minimum above its maximum shrinks every node box by the inversion: one inverted by
+	// more than the leaves' size reaches no leaf, one inverted by far less than a triangle reaches a subset of
+	// what the ray alone reaches (the walk's general slab test; the ray's own test needs a box that is not
+	// inverted).
+	for (int quantized = 0; quantized < 2; quantized++)
+	{
+		Random rng(7 + quantized);
+		std::vector<Triangle> triangles;
+		std::unique_ptr<btTriangleMesh> mesh(grid(rng, 12, 12, 1, triangles));
+		btBvhTriangleMeshShape shape(mesh.get(), quantized != 0);
+		const btQuantizedBvh& bvh = *shape.getOptimizedBvh();
+		const btVector3 zero(0, 0, 0);
+		for (int k = 0; k < 60; k++)
+		{
+			const btVector3 from(rng.uniform(-10, 10), 5, rng.uniform(-10, 10));
+			const btVector3 to(rng.uniform(-10, 10), -5, rng.uniform(-10, 10));
+			WalkTriangles ray(triangles, from, to, false);
+			caliber::reportBoxCastOverlappingNodesNearestFirst(bvh, &ray, from, to, zero, zero, ray.bound());
+			EXPECT_FALSE(ray.m_reported.empty()) << "ray " << k;
+			const btVector3 big(3, 3, 3), small(btScalar(0.001), btScalar(0.001), btScalar(0.001));
+			WalkTriangles inverted(triangles, from, to, false);
+			caliber::reportBoxCastOverlappingNodesNearestFirst(bvh, &inverted, from, to, big, -big, inverted.bound());
+			EXPECT_TRUE(inverted.m_reported.empty()) << "ray " << k;
+			WalkTriangles slightly(triangles, from, to, false);
+			caliber::reportBoxCastOverlappingNodesNearestFirst(bvh, &slightly, from, to, small, -small,
+			                                                   slightly.bound());
+			const std::set<int> rayReported(ray.m_reported.begin(), ray.m_reported.end());
+			for (int index : slightly.m_reported) EXPECT_EQ(rayReported.count(index), 1u) << "ray " << k;
+			EXPECT_FALSE(slightly.m_reported.empty()) << "ray " << k;
+		}
+	}
+}
+
+TEST(ClosestRayEarlyOut, TreeWalkOfANonFiniteRayAssertsOrReportsNothing)
+{
+	Random rng(9);
+	std::vector<Triangle> triangles;
+	std::unique_ptr<btTriangleMesh> mesh(grid(rng, 8, 8, 1, triangles));
+	btBvhTriangleMeshShape shape(mesh.get(), true);
+	const btVector3 zero(0, 0, 0);
+	const btScalar nan = std::numeric_limits<btScalar>::quiet_NaN();
+	const btVector3 from(0, 5, nan), to(0, -5, 0);
+	WalkTriangles walk(triangles, btVector3(0, 5, 0), to, true);
+#if CALIBER_ASSERTS_ENABLED
+	EXPECT_DEATH(caliber::reportBoxCastOverlappingNodesNearestFirst(*shape.getOptimizedBvh(), &walk, from, to, zero,
+	                                                                zero, walk.bound()),
+	             "assertion failed");
+#else
+	caliber::reportBoxCastOverlappingNodesNearestFirst(*shape.getOptimizedBvh(), &walk, from, to, zero, zero,
+	                                                   walk.bound());
+	EXPECT_TRUE(walk.m_reported.empty());
+#endif
+}
+
+TEST(ClosestRayEarlyOut, DbvtBroadphaseRayWithAZeroSweptBoxOfEitherSignReportsAsBruteForce)
+{
+	// The walk skips growing the tree's boxes when the swept box is a point; with boxes and ray starts on the
+	// planes x, y, z = 0 (some written -0) and rays along the axes, the proxies handed over must still be
+	// exactly those btRayAabb2 admits, for a swept box of +0, of -0 and for a real one.
+	btDbvtBroadphase broadphase;
+	std::vector<btBroadphaseProxy*> proxies;
+	const btScalar negativeZero = -btScalar(0);
+	for (int i = -3; i <= 3; i++)
+		for (int j = -3; j <= 3; j++)
+		{
+			const btScalar x = btScalar(2 * i), z = btScalar(2 * j);
+			// Boxes touching the planes through the origin from either side, with a -0 face where they touch.
+			const btVector3 lo(i == 0 ? negativeZero : x, i % 2 == 0 ? negativeZero : btScalar(-1), z);
+			const btVector3 hi(x + 1, btScalar(1), j == 0 ? negativeZero : z + 1);
+			proxies.push_back(broadphase.createProxy(lo, hi, 0, 0, short(btBroadphaseProxy::DefaultFilter),
+			                                         short(btBroadphaseProxy::AllFilter), 0));
+		}
+	const btVector3 sweeps[3] = {btVector3(0, 0, 0), btVector3(negativeZero, negativeZero, negativeZero),
+	                             btVector3(btScalar(0.25), 0, btScalar(0.5))};
+	int ray = 0, nonEmpty = 0;
+	for (int a = 0; a < 3; a++)
+		for (int s = -1; s <= 1; s += 2)
+			for (int k = -3; k <= 3; k++)
+			{
+				btVector3 from(0, 0, 0);
+				from[(a + 1) % 3] = btScalar(k);
+				if (k == 0) from[(a + 2) % 3] = negativeZero;
+				btVector3 to = from;
+				to[a] = btScalar(20 * s);
+				for (const btVector3& sweep : sweeps)
+				{
+					ProxyRecorder all(from, to, false);
+					broadphase.rayTest(from, to, all, -sweep, sweep);
+					std::set<const btBroadphaseProxy*> expected;
+					for (btBroadphaseProxy* p : proxies)
+					{
+						const btVector3 bounds[2] = {p->m_aabbMin - sweep, p->m_aabbMax - (-sweep)};
+						btScalar enter;
+						if (btRayAabb2(from, all.m_rayDirectionInverse, all.m_signs, bounds, enter, 0, 1))
+							expected.insert(p);
+					}
+					EXPECT_EQ(all.m_seen, expected) << "ray " << ray;
+					if (!expected.empty()) nonEmpty++;
+					ray++;
+				}
+			}
+	EXPECT_GT(nonEmpty, ray / 2);  // most rays cross boxes: the comparisons are not all of empty sets
+	for (btBroadphaseProxy* p : proxies) broadphase.destroyProxy(p, 0);
 }
