@@ -420,6 +420,21 @@ SIMD_FORCE_INLINE void copyRowField(const btSolverConstraint* const* rows, size_
 	loadRowLines(rows, offset, r);
 	for (int c = 0; c < 3; ++c) _mm256_storeu_ps(to[c], r[c]);
 }
+// copyGroupBodies for eight lanes, by the sweep's gathers.
+void copyGroupBodies(caliber::WideGroupT<kLanes>& group, const btSolverBody* bodies)
+{
+	Lanes xyz[3];
+	btScalar w[kLanes];
+	gatherVectors(bodies, group.bodyA, offsetof(btSolverBody, m_invMass), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.invMassA[c], xyz[c]);
+	gatherVectors(bodies, group.bodyA, offsetof(btSolverBody, m_angularFactor), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.angularFactorA[c], xyz[c]);
+	gatherVectors(bodies, group.bodyB, offsetof(btSolverBody, m_invMass), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.invMassB[c], xyz[c]);
+	gatherVectors(bodies, group.bodyB, offsetof(btSolverBody, m_angularFactor), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.angularFactorB[c], xyz[c]);
+}
+
 // copyRows<8> with 8-lane transposes (a copy: the same bits).
 bool copyRows(caliber::WideRowBlockT<kLanes>& block, const btSolverConstraint* const* rows)
 {
@@ -549,6 +564,35 @@ SIMD_FORCE_INLINE bool copyBlockRows(caliber::WideRowBlockT<8>& block, const btS
 	return copyRows<8>(block, rows);
 }
 
+// The constants of a group's bodies (their indices set) into its lanes.
+template <int W>
+SIMD_FORCE_INLINE void copyGroupBodiesScalar(caliber::WideGroupT<W>& group, const btSolverBody* bodies)
+{
+	for (int k = 0; k < W; ++k)
+		for (int c = 0; c < 3; ++c)
+		{
+			group.invMassA[c][k] = bodies[group.bodyA[k]].m_invMass[c];
+			group.angularFactorA[c][k] = bodies[group.bodyA[k]].m_angularFactor[c];
+			group.invMassB[c][k] = bodies[group.bodyB[k]].m_invMass[c];
+			group.angularFactorB[c][k] = bodies[group.bodyB[k]].m_angularFactor[c];
+		}
+}
+SIMD_FORCE_INLINE void copyGroupBodies(caliber::WideGroupT<4>& group, const btSolverBody* bodies)
+{
+	copyGroupBodiesScalar(group, bodies);
+}
+SIMD_FORCE_INLINE void copyGroupBodies(caliber::WideGroupT<8>& group, const btSolverBody* bodies)
+{
+#if CALIBER_WIDE_EIGHT_LANES
+	if (eightLanesAvailable())
+	{
+		lanes8::copyGroupBodies(group, bodies);
+		return;
+	}
+#endif
+	copyGroupBodiesScalar(group, bodies);
+}
+
 template <int W>
 bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
                 const btAlignedObjectArray<int>& batchFirstBlock, int frictionRowsPerContact, int batchBegin,
@@ -559,6 +603,11 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
                 const btConstraintArray& friction)
 {
 	bool fits = true;
+	// Plain pointers: the loops below store through others, which the arrays' accessors would make the
+	// compiler read again at every lane.
+	const btSolverConstraint* const contactRows = contacts.size() ? &contacts[0] : nullptr;
+	const btSolverConstraint* const frictionRows = friction.size() ? &friction[0] : nullptr;
+	const btSolverConstraint* const padding = &zeroRow();
 	for (int b = batchBegin; b < batchEnd; ++b)
 	{
 		int first = batchManifoldBegin[b];
@@ -580,14 +629,8 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 				}
 				group.bodyA[k] = bodyA;
 				group.bodyB[k] = bodyB;
-				for (int c = 0; c < 3; ++c)
-				{
-					group.invMassA[c][k] = bodies[bodyA].m_invMass[c];
-					group.angularFactorA[c][k] = bodies[bodyA].m_angularFactor[c];
-					group.invMassB[c][k] = bodies[bodyB].m_invMass[c];
-					group.angularFactorB[c][k] = bodies[bodyB].m_angularFactor[c];
-				}
 			}
+			copyGroupBodies(group, bodies);
 			// Each lane's manifold: its first row, its point count and the rotation of the row-by-row sweep
 			// (appendBatchRows); lanes past the batch's manifolds have no points.
 			int laneFirstRow[W], laneCount[W], laneRotation[W];
@@ -617,7 +660,7 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 						row = laneFirstRow[k] + (rotated < laneCount[k] ? rotated : rotated - laneCount[k]);
 					}
 					normalBlock.row[k] = row;
-					normalSource[k] = row >= 0 ? &contacts[row] : &zeroRow();
+					normalSource[k] = row >= 0 ? contactRows + row : padding;
 				}
 				if (!copyBlockRows(normalBlock, normalSource)) fits = false;
 				for (int f = 0; f < frictionRowsPerContact; ++f)
@@ -630,7 +673,7 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 						const int normalRow = normalBlock.row[k];
 						const int row = normalRow >= 0 ? normalRow * frictionRowsPerContact + f : -1;
 						frictionBlock.row[k] = row;
-						frictionSource[k] = row >= 0 ? &friction[row] : &zeroRow();
+						frictionSource[k] = row >= 0 ? frictionRows + row : padding;
 					}
 					if (!copyBlockRows(frictionBlock, frictionSource)) fits = false;
 				}
