@@ -96,15 +96,15 @@ SIMD_FORCE_INLINE bool secondNormalsAreNegated(const btSolverConstraint* const* 
 #if defined(BT_USE_SSE)
 // The row's scalars lie in two aligned 16-byte lines, (push impulse, impulse, friction, 1 / diagonal) and
 // (rhs, cfm, lower, upper): rows' lines transposed give lanes of each at once.
+#define CALIBER_ROW_SCALAR_AT(field, bytes) \
+	(offsetof(btSolverConstraint, field) == offsetof(btSolverConstraint, m_appliedPushImpulse) + (bytes))
 static_assert(sizeof(btSolverConstraint) % 16 == 0 && offsetof(btSolverConstraint, m_appliedPushImpulse) % 16 == 0 &&
-                  offsetof(btSolverConstraint, m_appliedImpulse) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 4 &&
-                  offsetof(btSolverConstraint, m_friction) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 8 &&
-                  offsetof(btSolverConstraint, m_jacDiagABInv) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 12 &&
-                  offsetof(btSolverConstraint, m_rhs) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 16 &&
-                  offsetof(btSolverConstraint, m_cfm) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 20 &&
-                  offsetof(btSolverConstraint, m_lowerLimit) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 24 &&
-                  offsetof(btSolverConstraint, m_upperLimit) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 28,
+                  CALIBER_ROW_SCALAR_AT(m_appliedImpulse, 4) && CALIBER_ROW_SCALAR_AT(m_friction, 8) &&
+                  CALIBER_ROW_SCALAR_AT(m_jacDiagABInv, 12) && CALIBER_ROW_SCALAR_AT(m_rhs, 16) &&
+                  CALIBER_ROW_SCALAR_AT(m_cfm, 20) && CALIBER_ROW_SCALAR_AT(m_lowerLimit, 24) &&
+                  CALIBER_ROW_SCALAR_AT(m_upperLimit, 28),
               "btSolverConstraint's scalars moved: copyRows reads them as two 16-byte lines");
+#undef CALIBER_ROW_SCALAR_AT
 #endif
 
 // W rows (padding lanes point at zeroRow) into a block, all but its row indices; false when a row's second
@@ -408,10 +408,10 @@ SIMD_FORCE_INLINE void scatterVectors(btSolverBody* bodies, const int* index, si
 // The 16-byte line at offset of eight rows, transposed: lane k of r[c] is component c of row k's line.
 SIMD_FORCE_INLINE void loadRowLines(const btSolverConstraint* const* rows, size_t offset, __m256 (&r)[4])
 {
+	const auto line = [offset](const btSolverConstraint* row)
+	{ return _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(row) + offset)); };
 	for (int k = 0; k < 4; ++k)
-		r[k] = _mm256_insertf128_ps(
-		    _mm256_castps128_ps256(_mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[k]) + offset))),
-		    _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(rows[k + 4]) + offset)), 1);
+		r[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(line(rows[k])), line(rows[k + 4]), 1);
 	transposeHalves(r[0], r[1], r[2], r[3]);
 }
 SIMD_FORCE_INLINE void copyRowField(const btSolverConstraint* const* rows, size_t offset, btScalar (&to)[3][kLanes])

@@ -309,7 +309,8 @@ void expectBlocksHoldTheRows(caliber::WideContactRows& wide, const caliber::Wide
 		for (int r = manifoldFirstRow[m]; r < manifoldFirstRow[m + 1]; ++r)
 		{
 			contacts.push_back(numberedRow(r, 2 * m, 2 * m + 1));
-			for (int f = 0; f < frictionRows; ++f) friction.push_back(numberedRow(1000 + frictionRows * r + f, 2 * m, 2 * m + 1));
+			for (int f = 0; f < frictionRows; ++f)
+				friction.push_back(numberedRow(1000 + frictionRows * r + f, 2 * m, 2 * m + 1));
 		}
 	ASSERT_EQ(contacts.size(), numRows);
 
