@@ -110,6 +110,47 @@ struct BestAxis
 	btScalar edgeLength2;  // edge axes: |edge A x edge B|^2
 };
 
+// The edge axes a_i x b_j, of length sqrt(1 - R[i][j]^2). With (i, i1, i2) and (j, j1, j2) cyclic:
+// a_i1 . (a_i x b_j) = -R[i2][j], a_i2 . (a_i x b_j) = R[i1][j], and b_j1, b_j2 likewise, so the radii and
+// the centre distance along the axis come from R and t alone.
+struct EdgeAxes
+{
+	const btScalar (&R)[3][3];
+	const btScalar (&absR)[3][3];
+	const btScalar (&t)[3];
+	const btVector3& halfA;
+	const btVector3& halfB;
+	btScalar maxDistance;
+	btScalar edgeBias;
+
+	/// Axis a_i x b_j: true when it separates the boxes by more than maxDistance, else best is updated.
+	template <int i, int j>
+	SIMD_FORCE_INLINE bool test(BestAxis& best) const
+	{
+		const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+		const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+		// |a_i x b_j|^2 from its two components in A's frame (b_j there is column j of R). 1 - R[i][j]^2
+		// would lose every digit to cancellation for near-parallel edges, exactly where the cut-off and the
+		// face-axis bias must decide.
+		const btScalar length2 = R[i1][j] * R[i1][j] + R[i2][j] * R[i2][j];
+		if (!(length2 > kParallelCross2)) return false;
+		const btScalar radiusA = halfA[i1] * absR[i2][j] + halfA[i2] * absR[i1][j];
+		const btScalar radiusB = halfB[j1] * absR[i][j2] + halfB[j2] * absR[i][j1];
+		const btScalar centreDistance = t[i2] * R[i1][j] - t[i1] * R[i2][j];
+		const btScalar separation = (btFabs(centreDistance) - radiusA - radiusB) / btSqrt(length2);
+		if (separation > maxDistance) return true;
+		if (separation > best.separation + edgeBias)
+		{
+			best.kind = 2;
+			best.indexA = i;
+			best.indexB = j;
+			best.separation = separation;
+			best.edgeLength2 = length2;
+		}
+		return false;
+	}
+};
+
 void report(btDiscreteCollisionDetectorInterface::Result& output, bool swapResults, const btVector3& normal,
             const btVector3& pointOnB, btScalar depth)
 {
@@ -303,32 +344,13 @@ void btBoxBoxDetector::getClosestPoints(const ClosestPointInput& input, Result& 
 	// a_i1 . (a_i x b_j) = -R[i2][j], a_i2 . (a_i x b_j) = R[i1][j], and b_j1, b_j2 likewise, so the
 	// radii and the centre distance along the axis come from R and t alone.
 	const btScalar edgeBias = kEdgeAxisBias * size;
-	for (int i = 0; i < 3; ++i)
-	{
-		const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-		for (int j = 0; j < 3; ++j)
-		{
-			const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-			// |a_i x b_j|^2 from its two components in A's frame (b_j there is column j of R). 1 - R[i][j]^2
-			// would lose every digit to cancellation for near-parallel edges, exactly where the cut-off
-			// and the face-axis bias must decide.
-			const btScalar length2 = R[i1][j] * R[i1][j] + R[i2][j] * R[i2][j];
-			if (!(length2 > kParallelCross2)) continue;
-			const btScalar radiusA = a.half[i1] * absR[i2][j] + a.half[i2] * absR[i1][j];
-			const btScalar radiusB = b.half[j1] * absR[i][j2] + b.half[j2] * absR[i][j1];
-			const btScalar centreDistance = t[i2] * R[i1][j] - t[i1] * R[i2][j];
-			const btScalar separation = (btFabs(centreDistance) - radiusA - radiusB) / btSqrt(length2);
-			if (separation > maxDistance) return;
-			if (separation > best.separation + edgeBias)
-			{
-				best.kind = 2;
-				best.indexA = i;
-				best.indexB = j;
-				best.separation = separation;
-				best.edgeLength2 = length2;
-			}
-		}
-	}
+	const EdgeAxes edges = {R, absR, t, a.half, b.half, maxDistance, edgeBias};
+	// In the order i = 0, 1, 2, and j = 0, 1, 2 for each i, with constant indices (a loop kept them in
+	// memory and computed the cyclic ones at run time).
+	if (edges.test<0, 0>(best) || edges.test<0, 1>(best) || edges.test<0, 2>(best) || edges.test<1, 0>(best) ||
+	    edges.test<1, 1>(best) || edges.test<1, 2>(best) || edges.test<2, 0>(best) || edges.test<2, 1>(best) ||
+	    edges.test<2, 2>(best))
+		return;
 	if (best.kind == 2) best.normal = orient(a.axis[best.indexA].cross(b.axis[best.indexB]).normalized());
 
 	const btScalar mergeDistance = kMergeDistance * size + SIMD_EPSILON;

@@ -136,9 +136,10 @@ bool bounceTarget(btScalar startVelocity, btScalar acceleration, btScalar gap, b
 // What every friction-like row (sliding, rolling, spinning) shares once its Jacobian is set: its bodies,
 // its coefficient (the bound is the coefficient times the normal impulse, set per sweep), its softness,
 // and the target velocity as a right-hand side.
-void finishFrictionRow(btSolverConstraint& row, const RowBody& a, const RowBody& b, int solverBodyIdA,
-                       int solverBodyIdB, btManifoldPoint& cp, btScalar friction, int frictionIndex,
-                       btScalar denominator, btScalar cfm, btScalar desiredVelocity)
+SIMD_FORCE_INLINE void finishFrictionRow(btSolverConstraint& row, const RowBody& a, const RowBody& b,
+                                         int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, btScalar friction,
+                                         int frictionIndex, btScalar denominator, btScalar cfm,
+                                         btScalar desiredVelocity)
 {
 	row.m_jacDiagABInv = denominator + cfm > SIMD_EPSILON ? btScalar(1) / (denominator + cfm) : btScalar(0);
 	row.m_cfm = cfm * row.m_jacDiagABInv;
@@ -330,9 +331,10 @@ SIMD_FORCE_INLINE void setupContactRow(const RowBody& a, const RowBody& b, btSol
 }
 
 // Fills a friction row along normalAxis (its m_frictionIndex set by the caller).
-void setupFrictionRow(const RowBody& a, const RowBody& b, btSolverConstraint& row, const btVector3& normalAxis,
-                      int solverBodyIdA, int solverBodyIdB, btManifoldPoint& cp, const btVector3& rel_pos1,
-                      const btVector3& rel_pos2, btScalar desiredVelocity, btScalar cfmSlip)
+SIMD_FORCE_INLINE void setupFrictionRow(const RowBody& a, const RowBody& b, btSolverConstraint& row,
+                                        const btVector3& normalAxis, int solverBodyIdA, int solverBodyIdB,
+                                        btManifoldPoint& cp, const btVector3& rel_pos1, const btVector3& rel_pos2,
+                                        btScalar desiredVelocity, btScalar cfmSlip)
 {
 	const btScalar denominator = setupJacobian(row, a, b, normalAxis, rel_pos1, rel_pos2);
 	finishFrictionRow(row, a, b, solverBodyIdA, solverBodyIdB, cp, cp.m_combinedFriction, row.m_frictionIndex,

@@ -25,12 +25,14 @@ namespace
 std::atomic<bool> g_wideEnabled{true};
 std::atomic<int> g_wideLanes{0};  // 0: automatic
 
-// The source of a padding lane: a row of zeros.
+// The source of a padding lane: a row of zeros, whose second linear direction is its first one negated
+// (-0) so that the negation test needs no exception for padding (the blocks do not keep that direction).
 const btSolverConstraint& zeroRow()
 {
 	static const btSolverConstraint row = [] {
 		btSolverConstraint r;
 		memset(static_cast<void*>(&r), 0, sizeof(r));
+		r.m_contactNormal2.setValue(-btScalar(0), -btScalar(0), -btScalar(0));
 		return r;
 	}();
 	return row;
@@ -66,51 +68,57 @@ SIMD_FORCE_INLINE void copyField(const btSolverConstraint* const* rows, size_t o
 	for (int base = 0; base < W; base += 4) copyField4(rows + base, offset, &to[0][base], &to[1][base], &to[2][base]);
 }
 
-// Whether a row's second linear direction is its first one negated, bit for bit (as every contact and
-// friction row Caliber makes has it): the blocks keep only the first.
-SIMD_FORCE_INLINE bool secondNormalIsNegated(const btSolverConstraint& row)
+// Whether the second linear direction of each of n rows is its first one negated, bit for bit (as every
+// contact and friction row Caliber makes has it, and zeroRow): the blocks keep only the first.
+SIMD_FORCE_INLINE bool secondNormalsAreNegated(const btSolverConstraint* const* rows, int n)
 {
 #if defined(BT_USE_SSE)
-	const __m128 negated = _mm_xor_ps(_mm_load_ps(row.m_contactNormal1.m_floats), _mm_set1_ps(-0.0f));
-	const __m128i same =
-	    _mm_cmpeq_epi32(_mm_castps_si128(negated), _mm_castps_si128(_mm_load_ps(row.m_contactNormal2.m_floats)));
+	const __m128 sign = _mm_set1_ps(-0.0f);
+	__m128i same = _mm_set1_epi32(-1);
+	for (int k = 0; k < n; ++k)
+	{
+		const __m128 negated = _mm_xor_ps(_mm_load_ps(rows[k]->m_contactNormal1.m_floats), sign);
+		same = _mm_and_si128(same, _mm_cmpeq_epi32(_mm_castps_si128(negated),
+		                                           _mm_castps_si128(_mm_load_ps(rows[k]->m_contactNormal2.m_floats))));
+	}
 	return (_mm_movemask_ps(_mm_castsi128_ps(same)) & 7) == 7;  // x, y and z; w is not a direction
 #else
-	for (int c = 0; c < 3; ++c)
-	{
-		const btScalar negated = -row.m_contactNormal1[c];
-		if (memcmp(&negated, &row.m_contactNormal2[c], sizeof(btScalar)) != 0) return false;
-	}
+	for (int k = 0; k < n; ++k)
+		for (int c = 0; c < 3; ++c)
+		{
+			const btScalar negated = -rows[k]->m_contactNormal1[c];
+			if (memcmp(&negated, &rows[k]->m_contactNormal2[c], sizeof(btScalar)) != 0) return false;
+		}
 	return true;
 #endif
 }
 
-// W rows (padding lanes point at zeroRow) into a block; false when a row's second linear direction is
-// not its first one negated (the block cannot hold it).
+#if defined(BT_USE_SSE)
+// The row's scalars lie in two aligned 16-byte lines, (push impulse, impulse, friction, 1 / diagonal) and
+// (rhs, cfm, lower, upper): rows' lines transposed give lanes of each at once.
+#define CALIBER_ROW_SCALAR_AT(field, bytes) \
+	(offsetof(btSolverConstraint, field) == offsetof(btSolverConstraint, m_appliedPushImpulse) + (bytes))
+static_assert(sizeof(btSolverConstraint) % 16 == 0 && offsetof(btSolverConstraint, m_appliedPushImpulse) % 16 == 0 &&
+                  CALIBER_ROW_SCALAR_AT(m_appliedImpulse, 4) && CALIBER_ROW_SCALAR_AT(m_friction, 8) &&
+                  CALIBER_ROW_SCALAR_AT(m_jacDiagABInv, 12) && CALIBER_ROW_SCALAR_AT(m_rhs, 16) &&
+                  CALIBER_ROW_SCALAR_AT(m_cfm, 20) && CALIBER_ROW_SCALAR_AT(m_lowerLimit, 24) &&
+                  CALIBER_ROW_SCALAR_AT(m_upperLimit, 28),
+              "btSolverConstraint's scalars moved: copyRows reads them as two 16-byte lines");
+#undef CALIBER_ROW_SCALAR_AT
+#endif
+
+// W rows (padding lanes point at zeroRow) into a block, all but its row indices; false when a row's second
+// linear direction is not its first one negated (the block cannot hold it).
 template <int W>
-bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const* rows, const int* rowIndex)
+bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const* rows)
 {
-	bool negated = true;
-	for (int k = 0; k < W; ++k)
-		if (rowIndex[k] >= 0 && !secondNormalIsNegated(*rows[k])) negated = false;
+	const bool negated = secondNormalsAreNegated(rows, W);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_contactNormal1), block.normal1);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos1CrossNormal), block.relpos1CrossNormal);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_relpos2CrossNormal), block.relpos2CrossNormal);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentA), block.angularA);
 	copyField<W>(rows, offsetof(btSolverConstraint, m_angularComponentB), block.angularB);
 #if defined(BT_USE_SSE)
-	// The row's scalars lie in two aligned 16-byte lines, (push impulse, impulse, friction, 1 / diagonal)
-	// and (rhs, cfm, lower, upper): four rows' lines transposed give four lanes of each at once.
-	static_assert(
-	    sizeof(btSolverConstraint) % 16 == 0 && offsetof(btSolverConstraint, m_appliedPushImpulse) % 16 == 0 &&
-	        offsetof(btSolverConstraint, m_appliedImpulse) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 4 &&
-	        offsetof(btSolverConstraint, m_friction) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 8 &&
-	        offsetof(btSolverConstraint, m_jacDiagABInv) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 12 &&
-	        offsetof(btSolverConstraint, m_rhs) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 16 &&
-	        offsetof(btSolverConstraint, m_cfm) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 20 &&
-	        offsetof(btSolverConstraint, m_lowerLimit) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 24 &&
-	        offsetof(btSolverConstraint, m_upperLimit) == offsetof(btSolverConstraint, m_appliedPushImpulse) + 28,
-	    "btSolverConstraint's scalars moved: copyRows reads them as two 16-byte lines");
 	for (int base = 0; base < W; base += 4)
 	{
 		__m128 l0[4], l1[4];
@@ -130,7 +138,6 @@ bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const*
 		_mm_store_ps(block.lower + base, l1[2]);
 		_mm_store_ps(block.upper + base, l1[3]);
 	}
-	for (int k = 0; k < W; ++k) block.row[k] = rowIndex[k];
 #else
 	for (int k = 0; k < W; ++k)
 	{
@@ -142,7 +149,6 @@ bool copyRows(caliber::WideRowBlockT<W>& block, const btSolverConstraint* const*
 		block.upper[k] = row.m_upperLimit;
 		block.friction[k] = row.m_friction;
 		block.applied[k] = row.m_appliedImpulse;
-		block.row[k] = rowIndex[k];
 	}
 #endif
 	return negated;
@@ -399,6 +405,58 @@ SIMD_FORCE_INLINE void scatterVectors(btSolverBody* bodies, const int* index, si
 	}
 }
 
+// The 16-byte line at offset of eight rows, transposed: lane k of r[c] is component c of row k's line.
+SIMD_FORCE_INLINE void loadRowLines(const btSolverConstraint* const* rows, size_t offset, __m256 (&r)[4])
+{
+	const auto line = [offset](const btSolverConstraint* row)
+	{ return _mm_load_ps(reinterpret_cast<const float*>(reinterpret_cast<const char*>(row) + offset)); };
+	for (int k = 0; k < 4; ++k)
+		r[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(line(rows[k])), line(rows[k + 4]), 1);
+	transposeHalves(r[0], r[1], r[2], r[3]);
+}
+SIMD_FORCE_INLINE void copyRowField(const btSolverConstraint* const* rows, size_t offset, btScalar (&to)[3][kLanes])
+{
+	__m256 r[4];
+	loadRowLines(rows, offset, r);
+	for (int c = 0; c < 3; ++c) _mm256_storeu_ps(to[c], r[c]);
+}
+// copyGroupBodies for eight lanes, by the sweep's gathers.
+void copyGroupBodies(caliber::WideGroupT<kLanes>& group, const btSolverBody* bodies)
+{
+	Lanes xyz[3];
+	btScalar w[kLanes];
+	gatherVectors(bodies, group.bodyA, offsetof(btSolverBody, m_invMass), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.invMassA[c], xyz[c]);
+	gatherVectors(bodies, group.bodyA, offsetof(btSolverBody, m_angularFactor), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.angularFactorA[c], xyz[c]);
+	gatherVectors(bodies, group.bodyB, offsetof(btSolverBody, m_invMass), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.invMassB[c], xyz[c]);
+	gatherVectors(bodies, group.bodyB, offsetof(btSolverBody, m_angularFactor), xyz, w);
+	for (int c = 0; c < 3; ++c) store(group.angularFactorB[c], xyz[c]);
+}
+
+// copyRows<8> with 8-lane transposes (a copy: the same bits).
+bool copyRows(caliber::WideRowBlockT<kLanes>& block, const btSolverConstraint* const* rows)
+{
+	const bool negated = secondNormalsAreNegated(rows, kLanes);
+	copyRowField(rows, offsetof(btSolverConstraint, m_contactNormal1), block.normal1);
+	copyRowField(rows, offsetof(btSolverConstraint, m_relpos1CrossNormal), block.relpos1CrossNormal);
+	copyRowField(rows, offsetof(btSolverConstraint, m_relpos2CrossNormal), block.relpos2CrossNormal);
+	copyRowField(rows, offsetof(btSolverConstraint, m_angularComponentA), block.angularA);
+	copyRowField(rows, offsetof(btSolverConstraint, m_angularComponentB), block.angularB);
+	__m256 l[4];
+	loadRowLines(rows, offsetof(btSolverConstraint, m_appliedPushImpulse), l);
+	_mm256_storeu_ps(block.applied, l[1]);
+	_mm256_storeu_ps(block.friction, l[2]);
+	_mm256_storeu_ps(block.jacDiagABInv, l[3]);
+	loadRowLines(rows, offsetof(btSolverConstraint, m_rhs), l);
+	_mm256_storeu_ps(block.rhs, l[0]);
+	_mm256_storeu_ps(block.cfm, l[1]);
+	_mm256_storeu_ps(block.lower, l[2]);
+	_mm256_storeu_ps(block.upper, l[3]);
+	return negated;
+}
+
 #include "BulletDynamics/ConstraintSolver/btWideContactSweep.h"
 }  // namespace lanes8
 }  // namespace
@@ -493,6 +551,48 @@ void planLayout(caliber::WideLayout<W>& layout, btAlignedObjectArray<int>& batch
 	caliber::resizeScratch(layout.frictionBlocks, numBlocks * frictionRows);
 }
 
+// A block's rows copied by the widest transposes this build has.
+SIMD_FORCE_INLINE bool copyBlockRows(caliber::WideRowBlockT<4>& block, const btSolverConstraint* const* rows)
+{
+	return copyRows<4>(block, rows);
+}
+SIMD_FORCE_INLINE bool copyBlockRows(caliber::WideRowBlockT<8>& block, const btSolverConstraint* const* rows)
+{
+#if CALIBER_WIDE_EIGHT_LANES
+	if (eightLanesAvailable()) return lanes8::copyRows(block, rows);
+#endif
+	return copyRows<8>(block, rows);
+}
+
+// The constants of a group's bodies (their indices set) into its lanes.
+template <int W>
+SIMD_FORCE_INLINE void copyGroupBodiesScalar(caliber::WideGroupT<W>& group, const btSolverBody* bodies)
+{
+	for (int k = 0; k < W; ++k)
+		for (int c = 0; c < 3; ++c)
+		{
+			group.invMassA[c][k] = bodies[group.bodyA[k]].m_invMass[c];
+			group.angularFactorA[c][k] = bodies[group.bodyA[k]].m_angularFactor[c];
+			group.invMassB[c][k] = bodies[group.bodyB[k]].m_invMass[c];
+			group.angularFactorB[c][k] = bodies[group.bodyB[k]].m_angularFactor[c];
+		}
+}
+SIMD_FORCE_INLINE void copyGroupBodies(caliber::WideGroupT<4>& group, const btSolverBody* bodies)
+{
+	copyGroupBodiesScalar(group, bodies);
+}
+SIMD_FORCE_INLINE void copyGroupBodies(caliber::WideGroupT<8>& group, const btSolverBody* bodies)
+{
+#if CALIBER_WIDE_EIGHT_LANES
+	if (eightLanesAvailable())
+	{
+		lanes8::copyGroupBodies(group, bodies);
+		return;
+	}
+#endif
+	copyGroupBodiesScalar(group, bodies);
+}
+
 template <int W>
 bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>& batchFirstGroup,
                 const btAlignedObjectArray<int>& batchFirstBlock, int frictionRowsPerContact, int batchBegin,
@@ -503,6 +603,11 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
                 const btConstraintArray& friction)
 {
 	bool fits = true;
+	// Plain pointers: the loops below store through others, which the arrays' accessors would make the
+	// compiler read again at every lane.
+	const btSolverConstraint* const contactRows = contacts.size() ? &contacts[0] : nullptr;
+	const btSolverConstraint* const frictionRows = friction.size() ? &friction[0] : nullptr;
+	const btSolverConstraint* const padding = &zeroRow();
 	for (int b = batchBegin; b < batchEnd; ++b)
 	{
 		int first = batchManifoldBegin[b];
@@ -524,47 +629,53 @@ bool fillLayout(caliber::WideLayout<W>& layout, const btAlignedObjectArray<int>&
 				}
 				group.bodyA[k] = bodyA;
 				group.bodyB[k] = bodyB;
-				for (int c = 0; c < 3; ++c)
+			}
+			copyGroupBodies(group, bodies);
+			// Each lane's manifold: its first row, its point count and the rotation of the row-by-row sweep
+			// (appendBatchRows); lanes past the batch's manifolds have no points.
+			int laneFirstRow[W], laneCount[W], laneRotation[W];
+			for (int k = 0; k < W; ++k)
+			{
+				laneFirstRow[k] = 0;
+				laneCount[k] = 0;
+				laneRotation[k] = 0;
+				if (k < lanes)
 				{
-					group.invMassA[c][k] = bodies[bodyA].m_invMass[c];
-					group.angularFactorA[c][k] = bodies[bodyA].m_angularFactor[c];
-					group.invMassB[c][k] = bodies[bodyB].m_invMass[c];
-					group.angularFactorB[c][k] = bodies[bodyB].m_angularFactor[c];
+					const int m = orderedManifolds[first + k];
+					laneFirstRow[k] = manifoldFirstRow[m];
+					laneCount[k] = manifoldFirstRow[m + 1] - laneFirstRow[k];
+					if (laneCount[k] > 0) laneRotation[k] = int(solveCount % unsigned(laneCount[k]));
 				}
 			}
 			for (int s = 0; s < group.numBlocks; ++s)
 			{
-				int normalRow[W];
+				caliber::WideRowBlockT<W>& normalBlock = layout.normalBlocks[group.firstBlock + s];
 				const btSolverConstraint* normalSource[W];
 				for (int k = 0; k < W; ++k)
 				{
-					normalRow[k] = -1;
-					if (k < lanes)
+					int row = -1;
+					if (s < laneCount[k])
 					{
-						const int m = orderedManifolds[first + k];
-						const int count = manifoldFirstRow[m + 1] - manifoldFirstRow[m];
-						if (s < count)
-						{
-							// The rotation of the row-by-row sweep (appendBatchRows).
-							const int rotated = s + int(solveCount % unsigned(count));
-							normalRow[k] = manifoldFirstRow[m] + (rotated < count ? rotated : rotated - count);
-						}
+						const int rotated = s + laneRotation[k];
+						row = laneFirstRow[k] + (rotated < laneCount[k] ? rotated : rotated - laneCount[k]);
 					}
-					normalSource[k] = normalRow[k] >= 0 ? &contacts[normalRow[k]] : &zeroRow();
+					normalBlock.row[k] = row;
+					normalSource[k] = row >= 0 ? contactRows + row : padding;
 				}
-				if (!copyRows<W>(layout.normalBlocks[group.firstBlock + s], normalSource, normalRow)) fits = false;
+				if (!copyBlockRows(normalBlock, normalSource)) fits = false;
 				for (int f = 0; f < frictionRowsPerContact; ++f)
 				{
-					int frictionRow[W];
+					caliber::WideRowBlockT<W>& frictionBlock =
+					    layout.frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f];
 					const btSolverConstraint* frictionSource[W];
 					for (int k = 0; k < W; ++k)
 					{
-						frictionRow[k] = normalRow[k] >= 0 ? normalRow[k] * frictionRowsPerContact + f : -1;
-						frictionSource[k] = frictionRow[k] >= 0 ? &friction[frictionRow[k]] : &zeroRow();
+						const int normalRow = normalBlock.row[k];
+						const int row = normalRow >= 0 ? normalRow * frictionRowsPerContact + f : -1;
+						frictionBlock.row[k] = row;
+						frictionSource[k] = row >= 0 ? frictionRows + row : padding;
 					}
-					if (!copyRows<W>(layout.frictionBlocks[(group.firstBlock + s) * frictionRowsPerContact + f],
-					                 frictionSource, frictionRow))
-						fits = false;
+					if (!copyBlockRows(frictionBlock, frictionSource)) fits = false;
 				}
 			}
 		}

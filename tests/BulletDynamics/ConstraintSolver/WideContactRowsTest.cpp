@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -247,4 +248,180 @@ TEST(WideContactRows, RowsTheBlocksCannotHoldAreSweptRowByRow)
 	const std::vector<btScalar> a = wide.state(), b = rowByRow.state();
 	ASSERT_EQ(a.size(), b.size());
 	EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(btScalar)));
+}
+
+namespace
+{
+// Rows whose every field the blocks keep has a value of its own (row i, field f: i + f / 64, exact in
+// float and double), their second linear direction the first negated.
+btSolverConstraint numberedRow(int i, int bodyA, int bodyB)
+{
+	btSolverConstraint row;
+	std::memset(static_cast<void*>(&row), 0, sizeof(row));
+	const auto v = [i](int f) { return btScalar(i) + btScalar(f) / btScalar(64); };
+	row.m_contactNormal1.setValue(v(0), v(1), v(2));
+	row.m_contactNormal2 = -row.m_contactNormal1;
+	row.m_relpos1CrossNormal.setValue(v(3), v(4), v(5));
+	row.m_relpos2CrossNormal.setValue(v(6), v(7), v(8));
+	row.m_angularComponentA.setValue(v(9), v(10), v(11));
+	row.m_angularComponentB.setValue(v(12), v(13), v(14));
+	row.m_rhs = v(15);
+	row.m_cfm = v(16);
+	row.m_jacDiagABInv = v(17);
+	row.m_lowerLimit = v(18);
+	row.m_upperLimit = v(19);
+	row.m_friction = v(20);
+	row.m_appliedImpulse = v(21);
+	row.m_appliedPushImpulse = v(22);  // not kept
+	row.m_solverBodyIdA = bodyA;
+	row.m_solverBodyIdB = bodyB;
+	return row;
+}
+
+// Manifolds with 1 to 4 points in two batches, filled with a rotation: every lane of every block holds the
+// row the row-by-row sweep would solve there (with all its fields), padding lanes hold zeros and row -1.
+template <int W>
+void expectBlocksHoldTheRows(caliber::WideContactRows& wide, const caliber::WideLayout<W>& layout)
+{
+	const int frictionRows = 2;
+	const int pointCounts[] = {3, 1, 4, 2, 4, 1, 1, 3, 2, 4, 4, 1, 2};  // 13 manifolds
+	const int numManifolds = 13;
+	btAlignedObjectArray<int> manifoldFirstRow, orderedManifolds, batchManifoldBegin, batchPaddingBody;
+	manifoldFirstRow.push_back(0);
+	for (int m = 0; m < numManifolds; ++m) manifoldFirstRow.push_back(manifoldFirstRow[m] + pointCounts[m]);
+	// Batch 0: manifolds 12, 0, 5, 7, 3, 9, 1, 10, 2 (more than eight: two groups at eight lanes);
+	// batch 1: 4, 8, 11, 6.
+	for (int m : {12, 0, 5, 7, 3, 9, 1, 10, 2, 4, 8, 11, 6}) orderedManifolds.push_back(m);
+	for (int b : {0, 9, 13}) batchManifoldBegin.push_back(b);
+	const int numBodies = 2 * numManifolds + 2;
+	for (int b : {numBodies - 2, numBodies - 1}) batchPaddingBody.push_back(b);
+	btAlignedObjectArray<btSolverBody> bodies;
+	bodies.resize(numBodies);
+	for (int i = 0; i < numBodies; ++i)
+	{
+		std::memset(static_cast<void*>(&bodies[i]), 0, sizeof(btSolverBody));
+		bodies[i].m_invMass.setValue(btScalar(i), btScalar(i) + btScalar(0.25), btScalar(i) + btScalar(0.5));
+		bodies[i].m_angularFactor.setValue(-btScalar(i), btScalar(0.125), btScalar(i) * 2);
+	}
+	btConstraintArray contacts, friction;
+	const int numRows = manifoldFirstRow[numManifolds];
+	for (int m = 0; m < numManifolds; ++m)
+		for (int r = manifoldFirstRow[m]; r < manifoldFirstRow[m + 1]; ++r)
+		{
+			contacts.push_back(numberedRow(r, 2 * m, 2 * m + 1));
+			for (int f = 0; f < frictionRows; ++f)
+				friction.push_back(numberedRow(1000 + frictionRows * r + f, 2 * m, 2 * m + 1));
+		}
+	ASSERT_EQ(contacts.size(), numRows);
+
+	const unsigned int solveCount = 7;
+	wide.plan(orderedManifolds, batchManifoldBegin, manifoldFirstRow, frictionRows);
+	ASSERT_EQ(wide.lanes, W);
+	ASSERT_TRUE(wide.fill(0, 2, orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount,
+	                      &bodies[0], contacts, friction));
+
+	const auto expectLane = [](const caliber::WideRowBlockT<W>& block, int k, const btSolverConstraint* row, int index)
+	{
+		SCOPED_TRACE(testing::Message() << "lane " << k << " row " << index);
+		EXPECT_EQ(block.row[k], index);
+		const btSolverConstraint zero = [] {
+			btSolverConstraint z;
+			std::memset(static_cast<void*>(&z), 0, sizeof(z));
+			return z;
+		}();
+		const btSolverConstraint& r = row ? *row : zero;
+		for (int c = 0; c < 3; ++c)
+		{
+			EXPECT_EQ(block.normal1[c][k], r.m_contactNormal1[c]);
+			EXPECT_EQ(block.relpos1CrossNormal[c][k], r.m_relpos1CrossNormal[c]);
+			EXPECT_EQ(block.relpos2CrossNormal[c][k], r.m_relpos2CrossNormal[c]);
+			EXPECT_EQ(block.angularA[c][k], r.m_angularComponentA[c]);
+			EXPECT_EQ(block.angularB[c][k], r.m_angularComponentB[c]);
+		}
+		EXPECT_EQ(block.rhs[k], r.m_rhs);
+		EXPECT_EQ(block.cfm[k], r.m_cfm);
+		EXPECT_EQ(block.jacDiagABInv[k], r.m_jacDiagABInv);
+		EXPECT_EQ(block.lower[k], r.m_lowerLimit);
+		EXPECT_EQ(block.upper[k], r.m_upperLimit);
+		EXPECT_EQ(block.friction[k], r.m_friction);
+		EXPECT_EQ(block.applied[k], r.m_appliedImpulse);
+	};
+	int checkedRows = 0;
+	for (int b = 0; b < 2; ++b)
+	{
+		ASSERT_EQ(wide.batchFirstGroup[b + 1] - wide.batchFirstGroup[b],
+		          (batchManifoldBegin[b + 1] - batchManifoldBegin[b] + W - 1) / W);
+		for (int g = wide.batchFirstGroup[b]; g < wide.batchFirstGroup[b + 1]; ++g)
+		{
+			const caliber::WideGroupT<W>& group = layout.groups[g];
+			const int first = batchManifoldBegin[b] + (g - wide.batchFirstGroup[b]) * W;
+			int most = 0;
+			for (int k = 0; k < W; ++k)
+			{
+				const bool real = first + k < batchManifoldBegin[b + 1];
+				const int m = real ? orderedManifolds[first + k] : -1;
+				EXPECT_EQ(group.bodyA[k], real ? 2 * m : batchPaddingBody[b]);
+				EXPECT_EQ(group.bodyB[k], real ? 2 * m + 1 : batchPaddingBody[b]);
+				for (int c = 0; c < 3; ++c)
+				{
+					EXPECT_EQ(group.invMassA[c][k], bodies[group.bodyA[k]].m_invMass[c]);
+					EXPECT_EQ(group.angularFactorB[c][k], bodies[group.bodyB[k]].m_angularFactor[c]);
+				}
+				if (real) most = std::max(most, pointCounts[m]);
+			}
+			ASSERT_EQ(group.numBlocks, most);
+			for (int s = 0; s < group.numBlocks; ++s)
+				for (int k = 0; k < W; ++k)
+				{
+					const bool real = first + k < batchManifoldBegin[b + 1];
+					const int m = real ? orderedManifolds[first + k] : -1;
+					const bool has = real && s < pointCounts[m];
+					// The row-by-row sweep starts each manifold at point solveCount % count.
+					const int row = has ? manifoldFirstRow[m] + int((s + solveCount) % unsigned(pointCounts[m])) : -1;
+					checkedRows += has ? 1 : 0;
+					expectLane(layout.normalBlocks[group.firstBlock + s], k, has ? &contacts[row] : nullptr, row);
+					for (int f = 0; f < frictionRows; ++f)
+					{
+						const int frictionRow = has ? row * frictionRows + f : -1;
+						expectLane(layout.frictionBlocks[(group.firstBlock + s) * frictionRows + f], k,
+						           has ? &friction[frictionRow] : nullptr, frictionRow);
+					}
+				}
+		}
+	}
+	EXPECT_EQ(checkedRows, numRows);
+
+	// One row whose second direction is not its first negated, anywhere in a block: the blocks cannot hold
+	// the solve. Padding lanes do not count.
+	for (int r : {0, numRows - 1})
+	{
+		btConstraintArray& pool = r == 0 ? contacts : friction;
+		const int index = r == 0 ? 0 : friction.size() - 1;
+		const btVector3 kept = pool[index].m_contactNormal2;
+		pool[index].m_contactNormal2[1] = pool[index].m_contactNormal2[1] * btScalar(1.5);
+		EXPECT_FALSE(wide.fill(0, 2, orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody,
+		                       solveCount, &bodies[0], contacts, friction))
+		    << r;
+		pool[index].m_contactNormal2 = kept;
+	}
+	EXPECT_TRUE(wide.fill(0, 2, orderedManifolds, batchManifoldBegin, manifoldFirstRow, batchPaddingBody, solveCount,
+	                      &bodies[0], contacts, friction));
+}
+}  // namespace
+
+TEST(WideContactRows, BlocksHoldTheRowsOfTheRowByRowSweepAtFourLanes)
+{
+	ColourEverySolve restore;
+	caliber::setWideContactLanes(4);
+	caliber::WideContactRows wide;
+	expectBlocksHoldTheRows<4>(wide, wide.four);
+}
+
+TEST(WideContactRows, BlocksHoldTheRowsOfTheRowByRowSweepAtEightLanes)
+{
+	if (!caliber::wideContactEightLanesAvailable()) GTEST_SKIP() << "no eight lanes on this processor or build";
+	ColourEverySolve restore;
+	caliber::setWideContactLanes(8);
+	caliber::WideContactRows wide;
+	expectBlocksHoldTheRows<8>(wide, wide.eight);
 }
