@@ -35,6 +35,26 @@ SIMD_FORCE_INLINE bool raySlabHits(__m128 tLow, __m128 tHigh, __m128 negativeMas
 	return _mm_comile_ss(enterXYZ, exitXYZ) != 0;
 }
 
+/// The three-axis reductions of two boxes' slab entries and exits, side by side: box A's entry is the
+/// maximum of entriesA's x, y and z lanes and its exit the minimum of exitsA's, likewise for B, and a box is
+/// hit when its entry is at most its exit. The w lanes are not read.
+SIMD_FORCE_INLINE void reduceSlabsOfTwoBoxes(__m128 entriesA, __m128 exitsA, __m128 entriesB, __m128 exitsB,
+                                             btScalar& enterA, btScalar& enterB, bool& hitA, bool& hitB)
+{
+	// Lanes A.x, B.x, A.y, B.y and A.z, B.z, A.w, B.w: lanes 0 and 1 of the result reduce x, z, then y.
+	const __m128 entriesXY = _mm_unpacklo_ps(entriesA, entriesB);
+	const __m128 entriesZW = _mm_unpackhi_ps(entriesA, entriesB);
+	const __m128 exitsXY = _mm_unpacklo_ps(exitsA, exitsB);
+	const __m128 exitsZW = _mm_unpackhi_ps(exitsA, exitsB);
+	const __m128 enter = _mm_max_ps(_mm_max_ps(entriesXY, entriesZW), _mm_movehl_ps(entriesXY, entriesXY));
+	const __m128 exit = _mm_min_ps(_mm_min_ps(exitsXY, exitsZW), _mm_movehl_ps(exitsXY, exitsXY));
+	const int hits = _mm_movemask_ps(_mm_cmple_ps(enter, exit));
+	enterA = _mm_cvtss_f32(enter);
+	enterB = _mm_cvtss_f32(CALIBER_SPLAT(enter, 1));
+	hitA = (hits & 1) != 0;
+	hitB = (hits & 2) != 0;
+}
+
 /// raySlabHits of two boxes A and B at once, the three-axis reductions done side by side. The entries are
 /// never NaN nor -0 (maxps with +0 as its second operand returns +0 for both), so their maximum does not depend
 /// on the order the axes are taken in; the exits are NaN only when exitBound is (then in every lane, and
@@ -49,20 +69,8 @@ SIMD_FORCE_INLINE void raySlabHitsBoth(__m128 tLowA, __m128 tHighA, __m128 tLowB
 	const __m128 farA = _mm_or_ps(_mm_and_ps(negativeMask, tLowA), _mm_andnot_ps(negativeMask, tHighA));
 	const __m128 nearB = _mm_or_ps(_mm_and_ps(negativeMask, tHighB), _mm_andnot_ps(negativeMask, tLowB));
 	const __m128 farB = _mm_or_ps(_mm_and_ps(negativeMask, tLowB), _mm_andnot_ps(negativeMask, tHighB));
-	const __m128 entriesA = _mm_max_ps(nearA, zero), entriesB = _mm_max_ps(nearB, zero);
-	const __m128 exitsA = _mm_min_ps(farA, bound), exitsB = _mm_min_ps(farB, bound);
-	// Lanes A.x, B.x, A.y, B.y and A.z, B.z, A.w, B.w: lanes 0 and 1 of the result reduce x, z, then y.
-	const __m128 entriesXY = _mm_unpacklo_ps(entriesA, entriesB);
-	const __m128 entriesZW = _mm_unpackhi_ps(entriesA, entriesB);
-	const __m128 exitsXY = _mm_unpacklo_ps(exitsA, exitsB);
-	const __m128 exitsZW = _mm_unpackhi_ps(exitsA, exitsB);
-	const __m128 enter = _mm_max_ps(_mm_max_ps(entriesXY, entriesZW), _mm_movehl_ps(entriesXY, entriesXY));
-	const __m128 exit = _mm_min_ps(_mm_min_ps(exitsXY, exitsZW), _mm_movehl_ps(exitsXY, exitsXY));
-	const int hits = _mm_movemask_ps(_mm_cmple_ps(enter, exit));
-	enterA = _mm_cvtss_f32(enter);
-	enterB = _mm_cvtss_f32(CALIBER_SPLAT(enter, 1));
-	hitA = (hits & 1) != 0;
-	hitB = (hits & 2) != 0;
+	reduceSlabsOfTwoBoxes(_mm_max_ps(nearA, zero), _mm_min_ps(farA, bound), _mm_max_ps(nearB, zero),
+	                      _mm_min_ps(farB, bound), enterA, enterB, hitA, hitB);
 }
 }  // namespace caliber
 #endif  // BT_USE_SSE

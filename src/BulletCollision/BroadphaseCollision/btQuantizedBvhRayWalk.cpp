@@ -116,18 +116,7 @@ SIMD_FORCE_INLINE void hitsQuantizedNodes(const QuantizedSweep& q, const btQuant
 	__m128 entriesA, exitsA, entriesB, exitsB;
 	quantizedNodeSlabs(q, a, bound, entriesA, exitsA);
 	quantizedNodeSlabs(q, b, bound, entriesB, exitsB);
-	// Lanes a.x, b.x, a.y, b.y and a.z, b.z, a.w, b.w: lanes 0 and 1 of the result reduce x, z, then y.
-	const __m128 entriesXY = _mm_unpacklo_ps(entriesA, entriesB);
-	const __m128 entriesZW = _mm_unpackhi_ps(entriesA, entriesB);
-	const __m128 exitsXY = _mm_unpacklo_ps(exitsA, exitsB);
-	const __m128 exitsZW = _mm_unpackhi_ps(exitsA, exitsB);
-	const __m128 enter = _mm_max_ps(_mm_max_ps(entriesXY, entriesZW), _mm_movehl_ps(entriesXY, entriesXY));
-	const __m128 exit = _mm_min_ps(_mm_min_ps(exitsXY, exitsZW), _mm_movehl_ps(exitsXY, exitsXY));
-	const int hits = _mm_movemask_ps(_mm_cmple_ps(enter, exit));
-	enterA = _mm_cvtss_f32(enter);
-	enterB = _mm_cvtss_f32(CALIBER_SPLAT(enter, 1));
-	hitA = (hits & 1) != 0;
-	hitB = (hits & 2) != 0;
+	caliber::reduceSlabsOfTwoBoxes(entriesA, exitsA, entriesB, exitsB, enterA, enterB, hitA, hitB);
 }
 
 // The general test (the near and far planes picked by the direction's signs), for a sweep whose grown box
