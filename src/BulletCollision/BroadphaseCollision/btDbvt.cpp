@@ -153,10 +153,12 @@ SIMD_FORCE_INLINE void freeNode(btDbvt& tree, btDbvtNode* node)
 	tree.m_free = node;
 }
 
-/// save(n) is called before each node rotate changes (a no-op for the tree's own operations; the moves within
-/// a subtree keep what they change, see moveLeafWithinSubtree).
-template <class Save>
-SIMD_FORCE_INLINE void rotateSaving(btDbvtNode* node, Save save)
+/// The rotation of rotateSaving with the boxes read through volumeOf(node) and childVolume(node, child), and a
+/// veto: when mayOpen(opened) is false for the child the best swap would open, nothing changes and the answer
+/// is false (the replay of moves above the subtrees, whose boxes of subtree roots live in a view).
+template <class Save, class VolumeOf, class ChildVolume, class MayOpen>
+SIMD_FORCE_INLINE bool rotateThrough(btDbvtNode* node, Save save, VolumeOf volumeOf, ChildVolume childVolume,
+                                     MayOpen mayOpen)
 {
 	// Swapping a child of `node` with a grandchild under its other child keeps node's box and changes the
 	// box of that other child only; take the swap that shrinks it most (Catto, "Dynamic AABB trees", 2019).
@@ -167,11 +169,11 @@ SIMD_FORCE_INLINE void rotateSaving(btDbvtNode* node, Save save)
 		const btDbvtNode* stay = node->childs[c];  // the child moved down
 		const btDbvtNode* opened = node->childs[1 - c];
 		if (opened->isleaf()) continue;
-		const btScalar openedArea = halfArea(opened->volume);
+		const btScalar openedArea = halfArea(volumeOf(opened));
 		for (int g = 0; g < 2; ++g)
 		{
 			// stay swaps with opened->childs[g]; opened then holds stay and opened->childs[1 - g].
-			const btScalar gain = openedArea - halfArea(merged(stay->volume, opened->childs[1 - g]->volume));
+			const btScalar gain = openedArea - halfArea(merged(volumeOf(stay), childVolume(opened, 1 - g)));
 			if (gain > bestGain)
 			{
 				bestGain = gain;
@@ -180,9 +182,10 @@ SIMD_FORCE_INLINE void rotateSaving(btDbvtNode* node, Save save)
 			}
 		}
 	}
-	if (bestChild < 0) return;
+	if (bestChild < 0) return true;
 	btDbvtNode* down = node->childs[bestChild];
 	btDbvtNode* opened = node->childs[1 - bestChild];
+	if (!mayOpen(opened)) return false;
 	btDbvtNode* up = opened->childs[bestGrandChild];
 	save(node);
 	save(up);
@@ -192,7 +195,19 @@ SIMD_FORCE_INLINE void rotateSaving(btDbvtNode* node, Save save)
 	up->parent = node;
 	opened->childs[bestGrandChild] = down;
 	down->parent = opened;
-	Merge(opened->childs[0]->volume, opened->childs[1]->volume, opened->volume);
+	Merge(volumeOf(opened->childs[0]), volumeOf(opened->childs[1]), opened->volume);
+	return true;
+}
+
+/// save(n) is called before each node rotate changes (a no-op for the tree's own operations; the moves within
+/// a subtree keep what they change, see moveLeafWithinSubtree).
+template <class Save>
+SIMD_FORCE_INLINE void rotateSaving(btDbvtNode* node, Save save)
+{
+	rotateThrough(
+	    node, save, [](const btDbvtNode* n) -> const btDbvtVolume& { return n->volume; },
+	    [](const btDbvtNode* n, int child) -> const btDbvtVolume& { return n->childs[child]->volume; },
+	    [](const btDbvtNode*) { return true; });
 }
 
 void rotate(btDbvtNode* node)
@@ -628,40 +643,11 @@ struct TopReplay
 	/// rotateSaving at a node above the subtrees; false when its swap would take a node out of a subtree.
 	bool rotate(btDbvtNode* node) const
 	{
-		btScalar bestGain = 0;
-		int bestChild = -1, bestGrandChild = -1;
-		for (int c = 0; c < 2; ++c)
-		{
-			const btDbvtNode* stay = node->childs[c];
-			const btDbvtNode* opened = node->childs[1 - c];
-			if (opened->isleaf()) continue;
-			const btScalar openedArea = halfArea(volumeOf(opened));
-			for (int g = 0; g < 2; ++g)
-			{
-				const btScalar gain = openedArea - halfArea(merged(volumeOf(stay), childVolume(opened, 1 - g)));
-				if (gain > bestGain)
-				{
-					bestGain = gain;
-					bestChild = c;
-					bestGrandChild = g;
-				}
-			}
-		}
-		if (bestChild < 0) return true;
-		btDbvtNode* down = node->childs[bestChild];
-		btDbvtNode* opened = node->childs[1 - bestChild];
-		if (subtreeIndex(opened) >= 0) return false;
-		btDbvtNode* up = opened->childs[bestGrandChild];
-		save(node);
-		save(up);
-		save(opened);
-		save(down);
-		node->childs[bestChild] = up;
-		up->parent = node;
-		opened->childs[bestGrandChild] = down;
-		down->parent = opened;
-		Merge(volumeOf(opened->childs[0]), volumeOf(opened->childs[1]), opened->volume);
-		return true;
+		return caliber::rotateThrough(
+		    node, [this](btDbvtNode* n) { save(n); },
+		    [this](const btDbvtNode* n) -> const btDbvtVolume& { return volumeOf(n); },
+		    [this](const btDbvtNode* n, int child) -> const btDbvtVolume& { return childVolume(n, child); },
+		    [this](const btDbvtNode* opened) { return subtreeIndex(opened) < 0; });
 	}
 };
 }  // namespace
