@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/BroadphaseCollision/DbvtTreeSnapshot.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "LinearMath/btThreads.h"
@@ -50,21 +51,6 @@ struct Snapshot
 	int updatesDone = 0;
 	caliber::DbvtParallelMoveStats stats;
 };
-
-void snapshotTree(const btDbvtNode* node, Snapshot& result)
-{
-	if (!node) return;
-	result.treeBoxes.push_back(node->volume.Mins());
-	result.treeBoxes.push_back(node->volume.Maxs());
-	if (node->isleaf())
-	{
-		result.treeLeaves.push_back(static_cast<const btDbvtProxy*>(node->data)->m_uniqueId);
-		return;
-	}
-	result.treeLeaves.push_back(-1);
-	snapshotTree(node->childs[0], result);
-	snapshotTree(node->childs[1], result);
-}
 
 // 700 unit boxes in a 40 m cube, 8 steps of `motion`; after each step's moves the tree and the queue are
 // recorded, then the pairs are searched and recorded. parallel: the moves go through
@@ -231,7 +217,8 @@ std::vector<Snapshot> run(Motion motion, bool parallel, int threads, btITaskSche
 				caliber::moveProxyToFatBox(broadphase, moves[k].proxy, moves[k].fatMin, moves[k].fatMax);
 		}
 		snapshot.updatesDone = int(broadphase.m_updates_done - doneBefore);
-		snapshotTree(broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET].m_root, snapshot);
+		dbvt_test::snapshotTree(broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET].m_root, snapshot.treeBoxes,
+		                        snapshot.treeLeaves);
 		for (const btDbvtProxy* proxy = broadphase.m_stageRoots[btDbvtBroadphase::DYNAMIC_SET]; proxy;
 		     proxy = proxy->links[1])
 			snapshot.queued.push_back(proxy->m_uniqueId);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/BroadphaseCollision/DbvtTreeSnapshot.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtBroadphase.h"
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
@@ -68,21 +69,6 @@ struct Snapshot
 	bool filterCalledOffOwner = false;
 	std::vector<int> activationStates;
 };
-
-void snapshotTree(const btDbvtNode* node, Snapshot& result)
-{
-	if (!node) return;
-	result.treeBoxes.push_back(node->volume.Mins());
-	result.treeBoxes.push_back(node->volume.Maxs());
-	if (node->isleaf())
-	{
-		result.treeLeaves.push_back(static_cast<const btDbvtProxy*>(node->data)->m_uniqueId);
-		return;
-	}
-	result.treeLeaves.push_back(-1);
-	snapshotTree(node->childs[0], result);
-	snapshotTree(node->childs[1], result);
-}
 
 // 400 boxes on a grid (more than the 256 objects that start the threaded path); every step moves all of
 // them, every third one far enough to leave its fat box, the others a millimetre (they stay inside).
@@ -145,7 +131,8 @@ Snapshot run(int threads, bool subclass, bool filter = false, int overflowAt = -
 	const btBroadphasePairArray& pairs = broadphase->getOverlappingPairCache()->getOverlappingPairArray();
 	for (int i = 0; i < pairs.size(); ++i)
 		result.pairs.push_back(std::make_pair(pairs[i].m_pProxy0->m_uniqueId, pairs[i].m_pProxy1->m_uniqueId));
-	snapshotTree(broadphase->m_sets[btDbvtBroadphase::DYNAMIC_SET].m_root, result);
+	dbvt_test::snapshotTree(broadphase->m_sets[btDbvtBroadphase::DYNAMIC_SET].m_root, result.treeBoxes,
+	                        result.treeLeaves);
 	if (subclass) result.setAabbCalls = static_cast<CountingDbvtBroadphase*>(broadphase.get())->calls;
 	result.filterCalls = sevenFilter.calls;
 	result.filterCalledOffOwner = sevenFilter.calledOffOwner;
