@@ -113,9 +113,13 @@ struct MtSolverScratch
 	btAlignedObjectArray<SweepItem> sweepItems[2];
 	btAlignedObjectArray<int> itemOfBatch[2];  // per (pass, batch): its item
 	int itemThreads[2] = {0, 0};
+	// Each flag fills a cache line of its own: the threads set and read the flags of neighbouring batches
+	// and items all through a sweep, and with sixteen flags to a line a store by one thread takes the line
+	// from the other's cache even when the two touch different flags (false sharing).
 	struct DoneFlag
 	{
 		std::atomic<unsigned> loop{0};
+		char padding[64 - sizeof(std::atomic<unsigned>)];
 		DoneFlag() {}
 		DoneFlag(const DoneFlag& other) : loop(other.loop.load(std::memory_order_relaxed)) {}
 		DoneFlag& operator=(const DoneFlag& other)
@@ -124,6 +128,7 @@ struct MtSolverScratch
 			return *this;
 		}
 	};
+	static_assert(sizeof(DoneFlag) == 64, "a flag per cache line");
 	btAlignedObjectArray<DoneFlag> itemDone;     // per (pass, batch)
 	btAlignedObjectArray<DoneFlag> itemClaimed;  // per item: the loop that claimed it
 	unsigned sweepLoop = 0;                      // loops posted, to tell this loop's finished items from earlier loops'
