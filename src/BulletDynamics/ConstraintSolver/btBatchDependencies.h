@@ -9,8 +9,28 @@
 
 #include "LinearMath/btAlignedObjectArray.h"
 
+class btBatchedConstraints;
+
 namespace caliber
 {
+/// One work item of the Mt solver's sweep without a wait per colour: a run of consecutive batches of one
+/// colour in one pass (0: normal rows, 1: friction and rolling rows), for one task of the loop.
+struct SweepItem
+{
+	int pass, batchBegin, batchEnd;
+	int run;  // the task that runs it first (another takes it only when it needs it or is idle)
+};
+
+/// The items of a sweep over batched's colours (its phases in m_phaseOrder, backwards when reverse), normal
+/// pass then friction pass, for numThreads tasks (clamped to [1, BT_MAX_THREAD_COUNT]), balanced by rows
+/// (a batch's rows: its range). Each colour's batches are cut into at most one run per task, in task order,
+/// each task taking batches while their middle row lies below the share every task would have after the
+/// colour; a colour of fewer batches than tasks gives each batch to the task with the fewest rows so far
+/// (the lowest on a tie). itemOfBatch[pass * numBatches + batch] is the batch's item. The items depend only
+/// on the batches and numThreads.
+void listSweepItems(const btBatchedConstraints& batched, bool reverse, int numThreads,
+                    btAlignedObjectArray<SweepItem>& items, btAlignedObjectArray<int>& itemOfBatch);
+
 /// Whether the Mt solver's coloured sweep posts one parallel loop per colour and pass, each with its wait
 /// at the end (the sweep until 28 Nov), instead of one loop per iteration whose batches wait only for the
 /// batches they depend on. The same bits either way; for tests and measurements. Default off.

@@ -104,11 +104,7 @@ struct MtSolverScratch
 	// The manifolds with rows that the colours, their order, the batches' ranges and the dependencies'
 	// sort by body were made for, beside the contact rows' fill (see planColourSweep); -1: not made.
 	int plannedManifolds = -1;
-	struct SweepItem
-	{
-		int pass, batchBegin, batchEnd;
-		int run;  // the item is its colour's run-th run in this pass
-	};
+	using SweepItem = caliber::SweepItem;
 	// Per direction (forwards, backwards), listed once per solve for itemThreads threads (0: not listed).
 	btAlignedObjectArray<SweepItem> sweepItems[2];
 	btAlignedObjectArray<int> itemOfBatch[2];  // per (pass, batch): its item
@@ -649,9 +645,9 @@ void waitUntilDone(const MtSolverScratch::DoneFlag& flag, unsigned loop)
 }
 
 // One iteration's sweep of the batches in one parallel loop. The items (a run of a colour's batches in one
-// pass) are listed in the sweep's order; task t runs, in that order, the items that are the t-th run of
-// their colour (the run the loop per colour gave its t-th task), so that from colour to colour a thread
-// meets the same region of the island, in its own cache. Before each batch it waits until the batches it
+// pass) are listed in the sweep's order; task t runs, in that order, the items given to it
+// (caliber::listSweepItems: each colour cut into runs in task order, balanced by rows), so that from colour
+// to colour a thread mostly meets the same region of the island, in its own cache. Before each batch it waits until the batches it
 // depends on are finished, and when one of them belongs to an item no task has claimed yet, it claims and
 // runs that item itself. Then it runs whatever no task has claimed. Why no task waits forever, whatever the
 // scheduler: a task waits only for an item another task has claimed and runs; the item a task waits in is
@@ -710,33 +706,10 @@ struct DependentSweep : public btIParallelForBody
 	}
 };
 
-// The items of the sweep in one direction (the colours backwards when reverse): each colour cut into one run
-// of batches per thread, as the loop per colour cut it.
+// The items of the sweep in one direction, balanced by rows (caliber::listSweepItems).
 void listSweepItems(MtSolverScratch& mt, const btBatchedConstraints& batched, bool reverse, int numThreads)
 {
-	const int numBatches = batched.m_batches.size();
-	const int numPhases = batched.m_phases.size();
-	btAlignedObjectArray<MtSolverScratch::SweepItem>& items = mt.sweepItems[reverse ? 1 : 0];
-	btAlignedObjectArray<int>& itemOfBatch = mt.itemOfBatch[reverse ? 1 : 0];
-	items.resize(0);
-	caliber::resizeScratch(itemOfBatch, 2 * numBatches);
-	for (int pass = 0; pass < 2; ++pass)
-		for (int k = 0; k < numPhases; ++k)
-		{
-			const btBatchedConstraints::Range& phase =
-			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
-			const int grain = (phase.end - phase.begin + numThreads - 1) / numThreads;
-			for (int b = phase.begin; b < phase.end; b += grain)
-			{
-				MtSolverScratch::SweepItem item;
-				item.pass = pass;
-				item.batchBegin = b;
-				item.batchEnd = btMin(b + grain, phase.end);
-				item.run = (b - phase.begin) / grain;
-				for (int batch = b; batch < item.batchEnd; ++batch) itemOfBatch[pass * numBatches + batch] = items.size();
-				items.push_back(item);
-			}
-		}
+	caliber::listSweepItems(batched, reverse, numThreads, mt.sweepItems[reverse ? 1 : 0], mt.itemOfBatch[reverse ? 1 : 0]);
 	mt.itemThreads[reverse ? 1 : 0] = numThreads;
 }
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <random>
@@ -14,6 +15,7 @@
 
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcherMt.h"
 #include "BulletDynamics/ConstraintSolver/btBatchDependencies.h"
+#include "BulletDynamics/ConstraintSolver/btBatchedConstraints.h"
 #include "BulletDynamics/ConstraintSolver/btSequentialImpulseConstraintSolverMt.h"
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "LinearMath/btThreads.h"
@@ -358,4 +360,171 @@ TEST(ColourSweep, ThePlanMadeBesideTheContactRowsIsThePlanMadeAfterThemOnAnySche
 		EXPECT_TRUE(sameBits(wallBits(false, &oneThread, kSteps), reference))
 		    << (oneCall ? "one call" : "tasks backwards");
 	}
+}
+
+namespace
+{
+// Colours of the given batch sizes (rows), in order, as the Mt solver's plan lays them out.
+btBatchedConstraints batchesOf(const std::vector<std::vector<int>>& colours)
+{
+	btBatchedConstraints batched;
+	int row = 0;
+	for (const std::vector<int>& colour : colours)
+	{
+		const int first = batched.m_batches.size();
+		for (int rows : colour)
+		{
+			batched.m_batches.push_back(btBatchedConstraints::Range(row, row + rows));
+			row += rows;
+		}
+		batched.m_phaseOrder.push_back(batched.m_phases.size());
+		batched.m_phases.push_back(btBatchedConstraints::Range(first, batched.m_batches.size()));
+	}
+	return batched;
+}
+
+std::vector<long long> rowsPerTask(const btBatchedConstraints& batched, const btAlignedObjectArray<caliber::SweepItem>& items,
+                                   int tasks)
+{
+	std::vector<long long> rows(tasks, 0);
+	for (int i = 0; i < items.size(); ++i)
+		for (int b = items[i].batchBegin; b < items[i].batchEnd; ++b)
+			rows[items[i].run] += batched.m_batches[b].end - batched.m_batches[b].begin;
+	return rows;
+}
+
+// Random colours: 1 to 12 batches of 4 to 64 rows each.
+std::vector<std::vector<int>> randomColours(unsigned seed, int numColours)
+{
+	std::mt19937 random(seed);
+	std::vector<std::vector<int>> colours(numColours);
+	for (std::vector<int>& colour : colours)
+	{
+		colour.resize(1 + random() % 12);
+		for (int& rows : colour) rows = 4 + int(random() % 61);
+	}
+	return colours;
+}
+}  // namespace
+
+TEST(SweepItems, EveryBatchIsInOneItemOfItsColourInTheSweepsOrderWithTheTasksInOrderWithinAColour)
+{
+	for (unsigned seed = 1; seed <= 20; ++seed)
+		for (int tasks : {1, 2, 3, 5})
+			for (bool reverse : {false, true})
+			{
+				const btBatchedConstraints batched = batchesOf(randomColours(seed, 30));
+				const int numBatches = batched.m_batches.size(), numPhases = batched.m_phases.size();
+				btAlignedObjectArray<caliber::SweepItem> items;
+				btAlignedObjectArray<int> itemOfBatch;
+				caliber::listSweepItems(batched, reverse, tasks, items, itemOfBatch);
+				ASSERT_EQ(itemOfBatch.size(), 2 * numBatches);
+				// The items, read in order, walk pass by pass and colour by colour in the sweep's order, each
+				// colour's batches once, in runs whose tasks rise (a task keeps one end of the bodies' order).
+				int i = 0;
+				for (int pass = 0; pass < 2; ++pass)
+					for (int k = 0; k < numPhases; ++k)
+					{
+						const btBatchedConstraints::Range& phase =
+						    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
+						int next = phase.begin, lastTask = -1;
+						const bool fewerThanTasks = phase.end - phase.begin < tasks;
+						while (next < phase.end)
+						{
+							ASSERT_LT(i, items.size());
+							const caliber::SweepItem& item = items[i];
+							EXPECT_EQ(item.pass, pass);
+							EXPECT_EQ(item.batchBegin, next);
+							EXPECT_GT(item.batchEnd, item.batchBegin);
+							EXPECT_GE(item.run, 0);
+							EXPECT_LT(item.run, tasks);
+							if (!fewerThanTasks)
+							{
+								EXPECT_GT(item.run, lastTask) << "seed " << seed;
+							}
+							lastTask = item.run;
+							for (int b = item.batchBegin; b < item.batchEnd; ++b) EXPECT_EQ(itemOfBatch[pass * numBatches + b], i);
+							next = item.batchEnd;
+							++i;
+						}
+						EXPECT_EQ(next, phase.end);
+					}
+				EXPECT_EQ(i, items.size());
+			}
+}
+
+TEST(SweepItems, EachTaskGetsAnEvenShareOfTheRowsWhereCuttingByCountGaveTheFirstTwoThirds)
+{
+	// Colours of three equal batches: cut by count, the first of two tasks took two batches of each.
+	{
+		const btBatchedConstraints batched = batchesOf(std::vector<std::vector<int>>(20, std::vector<int>{10, 10, 10}));
+		btAlignedObjectArray<caliber::SweepItem> items;
+		btAlignedObjectArray<int> itemOfBatch;
+		caliber::listSweepItems(batched, false, 2, items, itemOfBatch);
+		const std::vector<long long> rows = rowsPerTask(batched, items, 2);
+		// 600 rows in each pass: within one batch of 600 each over the two passes.
+		EXPECT_LE(std::llabs(rows[0] - 600), 10);
+		EXPECT_LE(std::llabs(rows[1] - 600), 10);
+	}
+	// Random colours: no task more than one batch per task away from the even share (the greedy cut leaves
+	// each task but the last within half a batch of its share after every colour).
+	for (unsigned seed = 1; seed <= 20; ++seed)
+		for (int tasks : {2, 3, 4})
+		{
+			const btBatchedConstraints batched = batchesOf(randomColours(seed, 40));
+			btAlignedObjectArray<caliber::SweepItem> items;
+			btAlignedObjectArray<int> itemOfBatch;
+			caliber::listSweepItems(batched, seed % 2 == 1, tasks, items, itemOfBatch);
+			const std::vector<long long> rows = rowsPerTask(batched, items, tasks);
+			long long total = 0;
+			for (long long r : rows) total += r;
+			for (int t = 0; t < tasks; ++t)
+				EXPECT_LE(std::llabs(rows[t] * tasks - total), static_cast<long long>(tasks) * tasks * 64)
+				    << "seed " << seed << ", " << tasks << " tasks, task " << t;
+		}
+}
+
+TEST(SweepItems, ABatchOfAColourOfFewerBatchesThanTasksGoesToTheTaskWithTheFewestRows)
+{
+	// A colour of five batches, then colours of one batch each: the second task holds fewer rows after the
+	// first colour's cut (30 of 50 to the first: 10 + 20 lie below the share of 25 by their middles), and
+	// takes the single batches until it has caught up.
+	const btBatchedConstraints batched = batchesOf({{10, 20, 5, 10, 5}, {8}, {8}, {8}});
+	btAlignedObjectArray<caliber::SweepItem> items;
+	btAlignedObjectArray<int> itemOfBatch;
+	caliber::listSweepItems(batched, false, 2, items, itemOfBatch);
+	ASSERT_EQ(items.size(), 2 * 5);
+	EXPECT_EQ(items[0].run, 0);
+	EXPECT_EQ(items[0].batchEnd, 2);  // 10 + 20 rows
+	EXPECT_EQ(items[1].run, 1);       // 20 rows
+	EXPECT_EQ(items[2].run, 1);       // 28
+	EXPECT_EQ(items[3].run, 1);       // 36 (ties go to the first task; 28 < 30 still)
+	EXPECT_EQ(items[4].run, 0);       // 30 < 36: the first task
+}
+
+TEST(SweepItems, AThreadCountOutOfRangeIsClampedAndNoBatchesGiveNoItems)
+{
+	const btBatchedConstraints batched = batchesOf(randomColours(7, 10));
+	btAlignedObjectArray<caliber::SweepItem> one, zero, negative, many, most;
+	btAlignedObjectArray<int> itemOfBatch;
+	caliber::listSweepItems(batched, false, 1, one, itemOfBatch);
+	caliber::listSweepItems(batched, false, 0, zero, itemOfBatch);
+	caliber::listSweepItems(batched, false, -3, negative, itemOfBatch);
+	for (const btAlignedObjectArray<caliber::SweepItem>* items : {&zero, &negative})
+	{
+		ASSERT_EQ(items->size(), one.size());
+		for (int i = 0; i < one.size(); ++i)
+		{
+			EXPECT_EQ((*items)[i].batchBegin, one[i].batchBegin);
+			EXPECT_EQ((*items)[i].run, 0);
+		}
+	}
+	caliber::listSweepItems(batched, false, 100000, many, itemOfBatch);
+	caliber::listSweepItems(batched, false, BT_MAX_THREAD_COUNT, most, itemOfBatch);
+	ASSERT_EQ(many.size(), most.size());
+	for (int i = 0; i < many.size(); ++i) EXPECT_EQ(many[i].run, most[i].run);
+	btAlignedObjectArray<caliber::SweepItem> none;
+	caliber::listSweepItems(btBatchedConstraints(), true, 2, none, itemOfBatch);
+	EXPECT_EQ(none.size(), 0);
+	EXPECT_EQ(itemOfBatch.size(), 0);
 }
