@@ -10,6 +10,8 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "LinearMath/btThreads.h"
 
+#include <atomic>
+
 namespace
 {
 // The island of a manifold: the tag of whichever body belongs to an island (static ones have -1).
@@ -56,6 +58,13 @@ struct IslandGroupingScratch
 	btAlignedObjectArray<int> loneIds;
 	// findUnions's list of the elements each pair unites (filled on the threads).
 	btAlignedObjectArray<int> unionTags;
+	// Per element of the sorted union-find, whether its object is awake (isActive) after buildIslands, as the
+	// sleeping pass on the threads found it; trusted by processIslands only when awakeOwner's
+	// buildAndProcessIslands made it and nothing woke an object after the pass (awakeFresh).
+	btAlignedObjectArray<unsigned char> awake;
+	const btSimulationIslandManager* awakeOwner = nullptr;
+	bool awakeFresh = false;
+	bool buildingForProcess = false;  // inside buildAndProcessIslands, between its two calls
 	bool inUse = false;
 };
 
@@ -109,12 +118,13 @@ struct UnionTagsOfPairs : public btIParallelForBody
 };
 
 /// From element start of the sorted union-find, the run of lone islands (one element and no manifold):
-/// appends each awake one's object and island id to loneBodies / loneIds (numLone of them so far) and
+/// appends each awake one's object and island id to loneBodies / loneIds (numLone of them so far; awake, when
+/// not null, says per element whether its object is awake, without reading the object) and
 /// returns the element after the run (start itself when element start is not a lone island). In a loop
 /// of its own, so that the walk over thousands of lone bodies keeps its few values in registers.
 int gatherLoneRun(const btElement* elements, int start, int numElements, const int* bounds,
-                  btCollisionObject* const* objects, int numObjects, btCollisionObject** loneBodies, int* loneIds,
-                  int& numLone)
+                  btCollisionObject* const* objects, int numObjects, const unsigned char* awake,
+                  btCollisionObject** loneBodies, int* loneIds, int& numLone)
 {
 	int n = numLone;
 	int i = start;
@@ -127,7 +137,7 @@ int gatherLoneRun(const btElement* elements, int start, int numElements, const i
 		++i;
 		if (objectIndex < 0 || objectIndex >= numObjects) continue;
 		btCollisionObject* object = objects[objectIndex];
-		if (!object->isActive()) continue;
+		if (awake ? !awake[i - 1] : !object->isActive()) continue;
 		loneBodies[n] = object;
 		loneIds[n] = islandId;
 		++n;
@@ -137,13 +147,14 @@ int gatherLoneRun(const btElement* elements, int start, int numElements, const i
 }
 
 /// buildIslands' sleeping pass over the run of lone islands (one element each) from element start of the
-/// sorted union-find: each body sleeps unless it must stay awake. Returns the element after the run (start
-/// itself when element start's island has more elements). A loop of its own, as gatherLoneRun.
-int sleepLoneRun(const btElement* elements, int start, int numElements, btCollisionObject* const* objects,
+/// sorted union-find, up to element stop at most: each body sleeps unless it must stay awake. Returns the
+/// element after the run (start itself when element start's island has more elements). A loop of its own, as
+/// gatherLoneRun.
+int sleepLoneRun(const btElement* elements, int start, int stop, int numElements, btCollisionObject* const* objects,
                  int numObjects)
 {
 	int i = start;
-	while (i < numElements)
+	while (i < stop)
 	{
 		const int islandId = elements[i].m_id;
 		if (i + 1 < numElements && elements[i + 1].m_id == islandId) break;
@@ -163,6 +174,209 @@ IslandGroupingScratch& threadIslandGroupingScratch()
 	static thread_local IslandGroupingScratch scratch;
 	return scratch;
 }
+
+/// Objects per task of the island stage's per-object passes on the threads (the tags of
+/// updateActivationState and storeIslandActivationState, buildIslands' sleeping pass), and the fewest
+/// objects worth the loops (4 chunks). boxes3000 has 3001 objects, ragdolls136 about 3000.
+const int kObjectsPerIslandTask = 256;
+
+bool objectPassesOnThreads(int numObjects)
+{
+	const btITaskScheduler* scheduler = btGetTaskScheduler();
+	return numObjects >= 4 * kObjectsPerIslandTask && scheduler && scheduler->getNumThreads() > 1 &&
+	       !btThreadsAreRunning();
+}
+
+/// Where each chunk of kObjectsPerIslandTask objects starts numbering its simulated objects (those that are
+/// neither static nor kinematic: the serial passes' running index), chunkStart[c] for chunk c and the total
+/// at the end. Kept from step to step (the objects seldom change), and checked by every chunk that uses it.
+struct ObjectChunkStarts
+{
+	btAlignedObjectArray<int> chunkStart;
+};
+
+ObjectChunkStarts& threadObjectChunkStarts()
+{
+	static thread_local ObjectChunkStarts starts;
+	return starts;
+}
+
+int numObjectChunks(int numObjects) { return (numObjects + kObjectsPerIslandTask - 1) / kObjectsPerIslandTask; }
+
+/// Counts chunk c's simulated objects into counts[c + 1].
+struct CountSimulatedObjects : public btIParallelForBody
+{
+	btCollisionObject* const* objects;
+	int numObjects;
+	int* counts;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			const int end = btMin(numObjects, (c + 1) * kObjectsPerIslandTask);
+			int count = 0;
+			for (int i = c * kObjectsPerIslandTask; i < end; ++i) count += objects[i]->isStaticOrKinematicObject() ? 0 : 1;
+			counts[c + 1] = count;
+		}
+	}
+};
+
+/// updateActivationState's pass over the objects, chunk by chunk: each simulated object's tag is its index
+/// among the simulated objects (chunkStart[c] plus those before it in its chunk), every other object's -1.
+/// A chunk whose count of simulated objects is not the one chunkStart says sets wrongStarts (and the
+/// calling thread then makes the serial pass); every chunk writes only its own objects.
+struct NumberSimulatedObjects : public btIParallelForBody
+{
+	btCollisionObject* const* objects;
+	int numObjects;
+	const int* chunkStart;
+	std::atomic<int>* wrongStarts;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			const int end = btMin(numObjects, (c + 1) * kObjectsPerIslandTask);
+			int index = chunkStart[c];
+			for (int i = c * kObjectsPerIslandTask; i < end; ++i)
+			{
+				btCollisionObject* object = objects[i];
+				object->setIslandTag(object->isStaticOrKinematicObject() ? -1 : index++);
+				object->setCompanionId(-1);
+				object->setHitFraction(btScalar(1));
+			}
+			if (index != chunkStart[c + 1]) wrongStarts->store(1, std::memory_order_relaxed);
+		}
+	}
+};
+
+/// The root of element x without changing the union-find (the serial pass's finds halve the paths; the
+/// roots are the same, and sortIslands, which flattens every path, leaves the same elements either way).
+int rootOf(const btElement* elements, int x)
+{
+	while (elements[x].m_id != x) x = elements[x].m_id;
+	return x;
+}
+
+/// storeIslandActivationState's pass over the objects, chunk by chunk: each simulated object's tag becomes
+/// its island (the root of its element) and its element's m_sz the object's index. Each chunk writes only its
+/// own objects and their elements' m_sz, and reads the elements' m_id, which nothing writes here. A chunk
+/// whose count disagrees with chunkStart sets wrongStarts, as above.
+struct StoreIslandTags : public btIParallelForBody
+{
+	btCollisionObject* const* objects;
+	int numObjects;
+	btElement* elements;
+	int numElements;
+	const int* chunkStart;
+	std::atomic<int>* wrongStarts;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			const int end = btMin(numObjects, (c + 1) * kObjectsPerIslandTask);
+			int index = chunkStart[c];
+			for (int i = c * kObjectsPerIslandTask; i < end; ++i)
+			{
+				btCollisionObject* object = objects[i];
+				if (!object->isStaticOrKinematicObject() && index < numElements)
+				{
+					object->setIslandTag(rootOf(elements, index));
+					elements[index].m_sz = i;
+					object->setCompanionId(-1);
+					++index;
+				}
+				else
+				{
+					if (!object->isStaticOrKinematicObject()) ++index;
+					object->setIslandTag(-1);
+					object->setCompanionId(-2);
+				}
+			}
+			if (index != chunkStart[c + 1]) wrongStarts->store(1, std::memory_order_relaxed);
+		}
+	}
+};
+
+/// buildIslands' sleeping decision for the island of elements [start, end) of the sorted union-find: the
+/// whole island sleeps when none of its objects must stay awake; otherwise its sleeping objects want to
+/// sleep again (and their timers restart).
+void settleIsland(const btElement* elements, int start, int end, btCollisionObject* const* objects, int numObjects)
+{
+	const int islandId = elements[start].m_id;
+	bool allSleeping = true;
+	for (int e = start; e < end; ++e)
+	{
+		const int objectIndex = elements[e].m_sz;
+		if (objectIndex < 0 || objectIndex >= numObjects) continue;
+		const btCollisionObject* object = objects[objectIndex];
+		if (object->getIslandTag() != islandId) continue;
+		const int state = object->getActivationState();
+		if (state == ACTIVE_TAG || state == DISABLE_DEACTIVATION) allSleeping = false;
+	}
+	for (int e = start; e < end; ++e)
+	{
+		const int objectIndex = elements[e].m_sz;
+		if (objectIndex < 0 || objectIndex >= numObjects) continue;
+		btCollisionObject* object = objects[objectIndex];
+		if (object->getIslandTag() != islandId) continue;
+		if (allSleeping)
+		{
+			object->setActivationState(ISLAND_SLEEPING);
+		}
+		else if (object->getActivationState() == ISLAND_SLEEPING)
+		{
+			object->setActivationState(WANTS_DEACTIVATION);
+			object->setDeactivationTime(btScalar(0));
+		}
+	}
+}
+
+/// buildIslands' sleeping pass on the threads: chunk c of kObjectsPerIslandTask elements settles every island
+/// that starts in it (running past the chunk's end to the island's end). An island's objects are its own, so
+/// the islands may be settled in any order with the serial pass's states.
+struct SettleIslands : public btIParallelForBody
+{
+	const btElement* elements;
+	int numElements;
+	btCollisionObject* const* objects;
+	int numObjects;
+	unsigned char* awake;  // per element: whether its object is awake after the pass
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			const int chunkEnd = btMin(numElements, (c + 1) * kObjectsPerIslandTask);
+			int start = c * kObjectsPerIslandTask;
+			// The island under way at the chunk's start belongs to the chunk it started in.
+			while (start > 0 && start < chunkEnd && elements[start].m_id == elements[start - 1].m_id) ++start;
+			const int first = start;
+			while (start < chunkEnd)
+			{
+				// Runs of lone islands (most of a scene of falling bodies) in sleepLoneRun's loop.
+				int end = sleepLoneRun(elements, start, chunkEnd, numElements, objects, numObjects);
+				if (end != start)
+				{
+					start = end;
+					continue;
+				}
+				end = start + 1;
+				while (end < numElements && elements[end].m_id == elements[start].m_id) ++end;
+				settleIsland(elements, start, end, objects, numObjects);
+				start = end;
+			}
+			// The chunk's islands' elements (start is now past the last one), their objects just read.
+			for (int e = first; e < start; ++e)
+			{
+				const int objectIndex = elements[e].m_sz;
+				awake[e] = objectIndex >= 0 && objectIndex < numObjects && objects[objectIndex]->isActive() ? 1 : 0;
+			}
+		}
+	}
+};
 }  // namespace
 }  // namespace caliber
 
@@ -212,16 +426,54 @@ void btSimulationIslandManager::updateActivationState(btCollisionWorld* colWorld
 	btAssert(colWorld);
 	if (!colWorld) return;
 	btCollisionObjectArray& objects = colWorld->getCollisionObjectArray();
+	const int numObjects = objects.size();
 	int index = 0;
-	for (int i = 0; i < objects.size(); ++i)
+	if (caliber::objectPassesOnThreads(numObjects))
 	{
-		btCollisionObject* object = objects[i];
-		if (!object->isStaticOrKinematicObject())
-			object->setIslandTag(index++);
-		else
-			object->setIslandTag(-1);
-		object->setCompanionId(-1);
-		object->setHitFraction(btScalar(1));
+		// On the threads, chunk by chunk, each chunk numbering from where the last step's count says it starts;
+		// when a chunk finds another count (objects added, removed or made static), the chunks are counted
+		// first and numbered again.
+		btAlignedObjectArray<int>& chunkStart = caliber::threadObjectChunkStarts().chunkStart;
+		const int numChunks = caliber::numObjectChunks(numObjects);
+		std::atomic<int> wrongStarts(chunkStart.size() == numChunks + 1 ? 0 : 1);
+		caliber::NumberSimulatedObjects number;
+		number.objects = &objects[0];
+		number.numObjects = numObjects;
+		number.wrongStarts = &wrongStarts;
+		if (!wrongStarts.load())
+		{
+			number.chunkStart = &chunkStart[0];
+			btParallelFor(0, numChunks, 1, number);
+		}
+		if (wrongStarts.load())
+		{
+			chunkStart.resize(numChunks + 1);
+			chunkStart[0] = 0;
+			caliber::CountSimulatedObjects count;
+			count.objects = &objects[0];
+			count.numObjects = numObjects;
+			count.counts = &chunkStart[0];
+			btParallelFor(0, numChunks, 1, count);
+			for (int c = 0; c < numChunks; ++c) chunkStart[c + 1] += chunkStart[c];
+			wrongStarts.store(0);
+			number.chunkStart = &chunkStart[0];
+			btParallelFor(0, numChunks, 1, number);
+			btAssert(!wrongStarts.load());
+		}
+		index = chunkStart[numChunks];
+	}
+	else
+	{
+		for (int i = 0; i < numObjects; ++i)
+		{
+			btCollisionObject* object = objects[i];
+			if (!object->isStaticOrKinematicObject())
+				object->setIslandTag(index++);
+			else
+				object->setIslandTag(-1);
+			object->setCompanionId(-1);
+			object->setHitFraction(btScalar(1));
+		}
 	}
 	initUnionFind(index);
 	findUnions(dispatcher, colWorld);
@@ -232,10 +484,31 @@ void btSimulationIslandManager::storeIslandActivationState(btCollisionWorld* wor
 	btAssert(world);
 	if (!world) return;
 	btCollisionObjectArray& objects = world->getCollisionObjectArray();
+	const int numObjects = objects.size();
 	const int numElements = m_unionFind.getNumElements();
 	btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
+	if (numElements && caliber::objectPassesOnThreads(numObjects))
+	{
+		// On the threads with the chunks' starts updateActivationState counted (checked by each chunk; the
+		// serial pass below when a chunk disagrees, which rewrites every object and element it wrote).
+		const btAlignedObjectArray<int>& chunkStart = caliber::threadObjectChunkStarts().chunkStart;
+		const int numChunks = caliber::numObjectChunks(numObjects);
+		if (chunkStart.size() == numChunks + 1)
+		{
+			std::atomic<int> wrongStarts(0);
+			caliber::StoreIslandTags store;
+			store.objects = &objects[0];
+			store.numObjects = numObjects;
+			store.elements = elements;
+			store.numElements = numElements;
+			store.chunkStart = &chunkStart[0];
+			store.wrongStarts = &wrongStarts;
+			btParallelFor(0, numChunks, 1, store);
+			if (!wrongStarts.load()) return;
+		}
+	}
 	int index = 0;
-	for (int i = 0; i < objects.size(); ++i)
+	for (int i = 0; i < numObjects; ++i)
 	{
 		btCollisionObject* object = objects[i];
 		if (!object->isStaticOrKinematicObject() && index < numElements)
@@ -270,12 +543,40 @@ void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisi
 	// because its contacts would otherwise push bodies that no longer integrate.
 	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
 	btCollisionObject* const* objectArray = numObjects ? &objects[0] : 0;
-	int islandEnd = 0;
-	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
+	int islandEnd = numElements;
+	// A manager working inside another's island callback on this thread leaves that one's flags alone (and
+	// settles its islands on this thread).
+	caliber::IslandGroupingScratch& scratch = caliber::threadIslandGroupingScratch();
+	const bool ownScratch = !scratch.inUse;
+	if (ownScratch)
+	{
+		scratch.awakeOwner = nullptr;
+		scratch.awakeFresh = false;
+	}
+	if (ownScratch && caliber::objectPassesOnThreads(numElements))
+	{
+		// Island by island on the threads (each island's objects are its own); the tasks also note which
+		// objects are awake after it, for processIslands.
+		scratch.awake.resizeNoInitialize(numElements);
+		caliber::SettleIslands settle;
+		settle.elements = elements;
+		settle.numElements = numElements;
+		settle.objects = objectArray;
+		settle.numObjects = numObjects;
+		settle.awake = &scratch.awake[0];
+		btParallelFor(0, caliber::numObjectChunks(numElements), 1, settle);
+		scratch.awakeOwner = this;
+		scratch.awakeFresh = scratch.buildingForProcess;
+	}
+	else
+	{
+		islandEnd = 0;
+	}
+	for (int islandStart = islandEnd; islandStart < numElements; islandStart = islandEnd)
 	{
 		// Lone bodies (most of a scene of falling bodies): the two passes below in one, run by run (each
 		// sleeps unless it must stay awake).
-		islandEnd = caliber::sleepLoneRun(elements, islandStart, numElements, objectArray, numObjects);
+		islandEnd = caliber::sleepLoneRun(elements, islandStart, numElements, numElements, objectArray, numObjects);
 		if (islandEnd != islandStart) continue;
 		const int islandId = elements[islandStart].m_id;
 		islandEnd = islandStart + 1;
@@ -321,9 +622,18 @@ void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisi
 		const bool awake0 = body0->getActivationState() != ISLAND_SLEEPING;
 		const bool awake1 = body1->getActivationState() != ISLAND_SLEEPING;
 		if (!awake0 && !awake1) continue;
-		// A moving kinematic object belongs to no island but must wake what it pushes.
-		if (body0->isKinematicObject() && awake0 && body0->hasContactResponse()) body1->activate();
-		if (body1->isKinematicObject() && awake1 && body1->hasContactResponse()) body0->activate();
+		// A moving kinematic object belongs to no island but must wake what it pushes (and the flags of the
+		// sleeping pass are then stale).
+		if (body0->isKinematicObject() && awake0 && body0->hasContactResponse())
+		{
+			body1->activate();
+			if (ownScratch) scratch.awakeFresh = false;
+		}
+		if (body1->isKinematicObject() && awake1 && body1->hasContactResponse())
+		{
+			body0->activate();
+			if (ownScratch) scratch.awakeFresh = false;
+		}
 		if (m_splitIslands && dispatcher->needsResponse(body0, body1)) m_islandmanifold.push_back(manifold);
 	}
 }
@@ -365,6 +675,13 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 	int* loneIds = loneSink && numElements ? &scratch.loneIds[0] : 0;
 	int numLone = 0;
 	const btElement* elements = numElements ? &m_unionFind.getElement(0) : 0;
+	// Whether each element's object is awake, as buildIslands' pass on the threads left it (when this call is
+	// buildAndProcessIslands' and nothing woke an object since): the walk then reads no object.
+	const unsigned char* awake = &scratch == &threadScratch && threadScratch.awakeFresh &&
+	                                     threadScratch.awakeOwner == this && threadScratch.awake.size() == numElements
+	                                 ? &threadScratch.awake[0]
+	                                 : 0;
+	if (&scratch == &threadScratch) threadScratch.awakeFresh = false;
 	int islandEnd = 0;
 	btCollisionObject* const* objectArray = numObjects ? &objects[0] : 0;
 	for (int islandStart = 0; islandStart < numElements; islandStart = islandEnd)
@@ -372,7 +689,7 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 		if (loneSink)
 		{
 			islandEnd = caliber::gatherLoneRun(elements, islandStart, numElements, bounds, objectArray, numObjects,
-			                                   loneBodies, loneIds, numLone);
+			                                   awake, loneBodies, loneIds, numLone);
 			if (islandEnd != islandStart) continue;
 		}
 		const int islandId = elements[islandStart].m_id;
@@ -388,7 +705,7 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 			if (objectIndex < 0 || objectIndex >= numObjects) continue;
 			btCollisionObject* object = objects[objectIndex];
 			m_islandBodies.push_back(object);
-			if (object->isActive()) islandSleeping = false;
+			if (awake ? awake[islandEnd] != 0 : object->isActive()) islandSleeping = false;
 		}
 		if (islandSleeping || m_islandBodies.size() == 0) continue;
 		if (numLone > 0)
@@ -409,6 +726,12 @@ void btSimulationIslandManager::processIslands(btDispatcher* dispatcher, btColli
 void btSimulationIslandManager::buildAndProcessIslands(btDispatcher* dispatcher, btCollisionWorld* collisionWorld,
                                                        IslandCallback* callback)
 {
+	// buildIslands' pass on the threads may tell processIslands which objects are awake, only here (a caller of
+	// the two could change the objects between them).
+	caliber::IslandGroupingScratch& scratch = caliber::threadIslandGroupingScratch();
+	const bool ownScratch = !scratch.inUse;
+	if (ownScratch) scratch.buildingForProcess = true;
 	buildIslands(dispatcher, collisionWorld);
+	if (ownScratch) scratch.buildingForProcess = false;
 	processIslands(dispatcher, collisionWorld, callback);
 }

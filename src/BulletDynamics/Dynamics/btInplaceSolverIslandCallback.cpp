@@ -20,6 +20,21 @@ struct SolveBatches : public btIParallelForBody
 		for (int i = iBegin; i < iEnd; ++i) callback->solveBatchAt(batches[i], firstSolveIndex);
 	}
 };
+
+// Whether each batch touches a kinematic body, on the threads: a batch reads only its own manifolds, joints
+// and bodies (a cache miss or two each) and writes only its own flag.
+struct FindKinematicBatches : public btIParallelForBody
+{
+	InplaceSolverIslandCallback* callback;
+
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		for (int i = iBegin; i < iEnd; ++i) callback->noteKinematic(i);
+	}
+};
+
+// Batches per task of that loop.
+const int kBatchesPerKinematicTask = 4;
 }  // namespace
 
 void InplaceSolverIslandCallback::flush()
@@ -28,7 +43,8 @@ void InplaceSolverIslandCallback::flush()
 	m_open.numManifolds = m_manifolds.size() - m_open.firstManifold;
 	m_open.numConstraints = m_gatheredConstraints.size() - m_open.firstConstraint;
 	if (m_open.numBodies == 0 && m_open.numManifolds == 0 && m_open.numConstraints == 0) return;
-	m_open.touchesKinematic = touchesKinematic(m_open);
+	// Only the parallel solve needs it: solveBatches finds it then, on the threads.
+	m_open.touchesKinematic = false;
 	m_open.large = m_largeBatchSolver && m_open.numManifolds >= m_largeBatchManifolds;
 	m_batches.push_back(m_open);
 	openBatch();
@@ -73,6 +89,9 @@ void InplaceSolverIslandCallback::solveBatches(bool parallel, unsigned int first
 	}
 	// Large batches (whose solver is parallel inside) and batches with a kinematic body one after another
 	// here, the rest on the scheduler's threads.
+	FindKinematicBatches findKinematic;
+	findKinematic.callback = this;
+	btParallelFor(0, numBatches, kBatchesPerKinematicTask, findKinematic);
 	m_parallelBatches.resize(0);
 	for (int i = 0; i < numBatches; ++i)
 	{

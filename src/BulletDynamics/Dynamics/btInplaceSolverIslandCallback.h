@@ -36,7 +36,8 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 		int firstManifold, numManifolds;
 		int firstConstraint, numConstraints;
 		// A kinematic body gets a solver entry in every batch that touches it (its companion id is
-		// written), so such batches are never solved at the same time.
+		// written), so such batches are never solved at the same time. Found by solveBatches when it solves
+		// in parallel (false until then).
 		bool touchesKinematic;
 		bool large;  // for m_largeBatchSolver
 	};
@@ -108,9 +109,9 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 			numConstraints = known ? m_islandConstraintStart[islandId + 1] - m_islandConstraintStart[islandId] : 0;
 		}
 		// The island manager reuses its island arrays, so the island is copied.
-		for (int i = 0; i < numBodies; ++i) m_bodies.push_back(bodies[i]);
-		for (int i = 0; i < numManifolds; ++i) m_manifolds.push_back(manifolds[i]);
-		for (int i = 0; i < numConstraints; ++i) m_gatheredConstraints.push_back(constraints[i]);
+		append(m_bodies, bodies, numBodies);
+		append(m_manifolds, manifolds, numManifolds);
+		append(m_gatheredConstraints, constraints, numConstraints);
 		// Everything at once (islands not split) or batching switched off: the island is a batch.
 		const bool alone = islandId < 0 || m_solverInfo->m_minimumSolverBatchSize <= 1;
 		if (alone || (m_bodies.size() - m_open.firstBody) + (m_manifolds.size() - m_open.firstManifold) +
@@ -175,8 +176,23 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 	void solveBatchAt(int index, unsigned int firstSolveIndex);
 	/// Batches gathered since setup.
 	int numBatches() const { return m_batches.size(); }
+	/// Sets batch index's touchesKinematic (solveBatches's loop body, before the batches are solved in parallel).
+	void noteKinematic(int index) { m_batches[index].touchesKinematic = touchesKinematic(m_batches[index]); }
 
 private:
+	/// Appends items[0 .. count) to array in one resize (the array grows as pushes would make it grow: to at
+	/// least twice its size), then copies them without a capacity check each.
+	template <class T>
+	static void append(btAlignedObjectArray<T*>& array, T* const* items, int count)
+	{
+		if (count <= 0) return;
+		const int oldSize = array.size();
+		if (oldSize + count > array.capacity()) array.reserve(btMax(oldSize + count, 2 * oldSize));
+		array.resizeNoInitialize(oldSize + count);
+		T** out = &array[oldSize];
+		for (int i = 0; i < count; ++i) out[i] = items[i];
+	}
+
 	void openBatch()
 	{
 		m_open.firstBody = m_bodies.size();

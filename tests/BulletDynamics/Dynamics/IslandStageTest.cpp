@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <mutex>
+#include <utility>
 #include <vector>
 
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "DynamicsWorldTestUtil.h"
+#include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
 namespace
@@ -146,4 +149,76 @@ TEST(IslandStage, LoneIslandRunsGiveTheBatchesOfOneCallPerIsland)
 	EXPECT_EQ(runs.m_batches[1].numBodies, 2);
 	EXPECT_EQ(runs.m_batches[1].numConstraints, 1);
 	EXPECT_EQ(runs.m_batches[2].numBodies, 3);
+}
+
+namespace
+{
+// Records, per solveGroup call, its first body and whether it ran inside a parallel loop on several threads.
+struct RecordingSolver : public btConstraintSolver
+{
+	std::mutex mutex;
+	std::vector<std::pair<const btCollisionObject*, bool>> calls;
+	btScalar solveGroup(btCollisionObject** bodies, int numBodies, btPersistentManifold**, int, btTypedConstraint**, int,
+	                    const btContactSolverInfo&, btIDebugDraw*, btDispatcher*) override
+	{
+		std::lock_guard<std::mutex> lock(mutex);
+		calls.push_back(std::make_pair(numBodies ? bodies[0] : nullptr, btThreadsAreRunning()));
+		return 0;
+	}
+	void reset() override {}
+	btConstraintSolverType getSolverType() const override { return BT_SEQUENTIAL_IMPULSE_SOLVER; }
+};
+}  // namespace
+
+// The batches that touch a kinematic body (through a joint, a manifold or as one of their bodies) are found on
+// the threads when the batches are solved in parallel, and solved one after another on the calling thread,
+// outside the parallel loop; every batch is solved once.
+TEST(IslandStage, BatchesTouchingAKinematicBodyAreFoundOnTheThreadsAndSolvedAlone)
+{
+	caliber_test::ScopedTaskScheduler threads(2);
+	btSphereShape shape(btScalar(0.5));
+	const int numBodies = 40;
+	std::vector<std::unique_ptr<btRigidBody>> bodies;
+	for (int i = 0; i < numBodies; ++i)
+		bodies.emplace_back(new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(1, 0, &shape, btVector3(1, 1, 1))));
+	btRigidBody kinematic(btRigidBody::btRigidBodyConstructionInfo(0, 0, &shape));
+	kinematic.setCollisionFlags(kinematic.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+	// Island 5: a joint to the kinematic body; island 17: a manifold with it (as body 0); island 30: the
+	// kinematic body among the island's bodies (as a caller that hands every object at once would).
+	btPoint2PointConstraint joint(*bodies[5], kinematic, btVector3(0, 1, 0), btVector3(0, -1, 0));
+	btTypedConstraint* sortedJoints[1] = {&joint};
+	std::vector<int> jointStart(numBodies + 1, 0);
+	for (int i = 6; i <= numBodies; ++i) jointStart[i] = 1;
+	btPersistentManifold manifold(&kinematic, bodies[17].get(), 0, btScalar(0.02), btScalar(0.02));
+	btPersistentManifold* manifolds[1] = {&manifold};
+
+	RecordingSolver solver;
+	btContactSolverInfo info;
+	info.m_minimumSolverBatchSize = 1;  // every island a batch
+	InplaceSolverIslandCallback callback(&solver, 0);
+	callback.setup(&info, 0);
+	callback.setConstraints(sortedJoints, 1, &jointStart[0], numBodies);
+	for (int i = 0; i < numBodies; ++i)
+	{
+		btCollisionObject* island[2] = {bodies[i].get(), &kinematic};
+		callback.processIsland(island, i == 30 ? 2 : 1, i == 17 ? manifolds : 0, i == 17 ? 1 : 0, i);
+	}
+	callback.solveBatches(true, 1);
+	ASSERT_EQ(callback.numBatches(), numBodies);
+	ASSERT_EQ(solver.calls.size(), size_t(numBodies));
+	for (int b = 0; b < numBodies; ++b)
+		EXPECT_EQ(callback.m_batches[b].touchesKinematic, b == 5 || b == 17 || b == 30) << "batch " << b;
+	std::vector<int> solved(numBodies, 0);
+	for (const std::pair<const btCollisionObject*, bool>& call : solver.calls)
+	{
+		int b = 0;
+		while (b < numBodies && bodies[b].get() != call.first) ++b;
+		ASSERT_LT(b, numBodies);
+		++solved[b];
+		if (b == 5 || b == 17 || b == 30)
+		{
+			EXPECT_FALSE(call.second) << "batch " << b << " solved beside others";
+		}
+	}
+	for (int b = 0; b < numBodies; ++b) EXPECT_EQ(solved[b], 1) << "batch " << b;
 }
