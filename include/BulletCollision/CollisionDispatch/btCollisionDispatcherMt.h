@@ -5,14 +5,16 @@
 #include "BulletCollision/CollisionDispatch/btCollisionDispatcher.h"
 #include "LinearMath/btThreads.h"
 
-/// Bullet 2.89's multithreaded dispatcher: the narrowphase over pairs runs in chunks of grainSize pairs on
-/// the task scheduler's threads, with the same results, bit for bit, as btCollisionDispatcher's serial
+/// Bullet 2.89's multithreaded dispatcher: the narrowphase over pairs runs in chunks of at most grainSize pairs
+/// on the task scheduler's threads (fewer pairs a chunk when that gives each thread 8 chunks of 4 pairs or
+/// more, for balance), with the same results, bit for bit, as btCollisionDispatcher's serial
 /// narrowphase (docs/threading.md). Near callbacks and contact callbacks are then called from those
 /// threads, as in Bullet.
 class btCollisionDispatcherMt : public btCollisionDispatcher
 {
 public:
-	/// grainSize: pairs per task (below 1 counts as 1).
+	/// grainSize: the most pairs per task (below 1 counts as 1); with at most grainSize pairs the narrowphase
+	/// runs on the calling thread.
 	btCollisionDispatcherMt(btCollisionConfiguration* config, int grainSize = 40);
 
 	/// A new manifold for the pair, as btCollisionDispatcher's.

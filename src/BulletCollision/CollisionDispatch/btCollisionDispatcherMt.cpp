@@ -32,6 +32,10 @@ namespace
 {
 typedef btAlignedObjectArray<btPersistentManifold*> ManifoldOpLog;
 
+// The narrowphase's cut into chunks (dispatchAllCollisionPairs).
+const int kChunksPerThread = 8;
+const int kMinPairsPerChunk = 4;
+
 // The log of the chunk this thread is running, and the dispatcher it belongs to (a worker never runs
 // two dispatchers' chunks at once: nested loops run serially on their caller).
 thread_local ManifoldOpLog* t_chunkLog = 0;
@@ -69,7 +73,7 @@ struct NarrowphaseChunks : public btIParallelForBody
 	const btDispatcherInfo* info;
 	btAlignedObjectArray<ManifoldOpLog>* logs;
 	std::atomic<bool>* softPairsLeft;  ///< set when a chunk skipped a soft body's pair
-	int grainSize;
+	int grainSize;  // pairs per chunk
 	int numPairs;
 
 	// The loop runs over chunk numbers (chunk c: pairs [c grainSize, (c + 1) grainSize)), so that a
@@ -150,8 +154,16 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 		return;
 	}
 	if (info.m_deterministicOverlappingPairs) pairCache->sortOverlappingPairs(this);
+	// Chunks of at most grainSize pairs, and at least kChunksPerThread per thread when the pairs allow
+	// (kMinPairsPerChunk pairs or more each): a step with a few hundred pairs, some of them against a mesh
+	// (several times the cost of the others), cut into chunks of 40 gave each thread two or three chunks, and
+	// one thread's last chunk decided the end. The cut changes nothing else: each pair runs once, and the
+	// chunks' logs are replayed in pair order whatever the cut.
+	const int threads = btGetTaskScheduler()->getNumThreads();
+	const int wanted = (numPairs + kChunksPerThread * threads - 1) / (kChunksPerThread * threads);
+	const int chunkPairs = btMin(m_grainSize, btMax(kMinPairsPerChunk, wanted));
 	// Chunk logs keep their capacity from step to step, so the steady state allocates nothing.
-	const int numChunks = (numPairs + m_grainSize - 1) / m_grainSize;
+	const int numChunks = (numPairs + chunkPairs - 1) / chunkPairs;
 	if (m_batchManifoldsPtr.size() < numChunks) m_batchManifoldsPtr.resize(numChunks);
 
 	NarrowphaseChunks chunks;
@@ -159,7 +171,7 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 	chunks.pairs = pairCache->getOverlappingPairArrayPtr();
 	chunks.info = &info;
 	chunks.logs = &m_batchManifoldsPtr;
-	chunks.grainSize = m_grainSize;
+	chunks.grainSize = chunkPairs;
 	chunks.numPairs = numPairs;
 	std::atomic<bool> softPairsLeft(false);
 	chunks.softPairsLeft = &softPairsLeft;
