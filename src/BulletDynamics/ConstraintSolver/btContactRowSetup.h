@@ -65,10 +65,16 @@ void fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& 
 /// Whether fillContactPointRows (and the serial set-up) run their AVX2 build on this processor: the same
 /// operations in the same order (no FMA), so the same bits as the SSE build.
 bool contactPointRowsUseAvx2();
-/// For tests: fillContactPointRows (then applyContactPointWarmStarts when warmStarts, as the serial set-up
-/// does) in the AVX2 build when avx2 and the processor has it, otherwise in the library's baseline build.
+/// For tests: fillContactPointRows in the AVX2 build when avx2 and the processor has it, otherwise in the
+/// library's baseline build; then the warm starts when warmStarts is 1 (fused with the fill, as the serial
+/// set-up does) or 2 (applyContactPointWarmStarts's own build, as the Mt set-up does).
 void fillContactPointRowsIn(const ContactRowPools& pools, const ContactPointRows& point,
-                            const btContactSolverInfo& infoGlobal, bool avx2, bool warmStarts);
+                            const btContactSolverInfo& infoGlobal, bool avx2, int warmStarts);
+/// For tests: planContactPoint in the AVX2 build when avx2 and the processor has it, otherwise the baseline's.
+bool planContactPointIn(btPersistentManifold& manifold, int index, btCollisionObject* object0,
+                        btCollisionObject* object1, int solverBodyIdA, int solverBodyIdB,
+                        const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
+                        ContactPointRows& point, bool avx2);
 /// Applies the point's warm-start impulses to its bodies: the normal row's, then the friction rows'.
 void applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
                                  const btContactSolverInfo& infoGlobal);

@@ -12,12 +12,9 @@
 #include "LinearMath/btSimdBatch.h"
 #include "LinearMath/btThreads.h"
 
-#if defined(BT_USE_SSE) && !defined(BT_USE_DOUBLE_PRECISION) && (defined(__GNUC__) || defined(__clang__)) && \
-    (defined(__x86_64__) || defined(__i386__))
-#define CALIBER_CONTACT_ROWS_AVX2 1
-#else
-#define CALIBER_CONTACT_ROWS_AVX2 0
-#endif
+#include "LinearMath/btCpuFeatures.h"
+
+#define CALIBER_CONTACT_ROWS_AVX2 CALIBER_AVX2_BUILDS
 
 namespace
 {
@@ -494,10 +491,13 @@ bool caliber::solverBodiesCanMove(const btAlignedObjectArray<btSolverBody>& bodi
 	return aMoves || bMoves;
 }
 
-bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
-                               btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
-                               const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
-                               ContactPointRows& point)
+namespace
+{
+// caliber::planContactPoint, built twice as the fill below.
+SIMD_FORCE_INLINE bool planPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
+                                 btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
+                                 const btAlignedObjectArray<btSolverBody>& bodies,
+                                 const btContactSolverInfo& infoGlobal, caliber::ContactPointRows& point)
 {
 	btManifoldPoint& cp = manifold.getContactPoint(index);
 	if (cp.getDistance() > manifold.getContactProcessingThreshold()) return false;
@@ -540,8 +540,6 @@ bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btColl
 	return true;
 }
 
-namespace
-{
 // fillContactPointRows and applyContactPointWarmStarts, inlined into the serial set-up's loop over points.
 SIMD_FORCE_INLINE void fillPointRows(const caliber::ContactRowPools& pools, const caliber::ContactPointRows& point,
                                      const btContactSolverInfo& infoGlobal)
@@ -681,6 +679,23 @@ __attribute__((target("avx2"))) void fillPointRowsAvx2(const caliber::ContactRow
 	fillPointRows(pools, point, infoGlobal);
 }
 
+__attribute__((target("avx2"))) void applyPointWarmStartsAvx2(const caliber::ContactRowPools& pools,
+                                                              const caliber::ContactPointRows& point,
+                                                              const btContactSolverInfo& infoGlobal)
+{
+	applyPointWarmStarts(pools, point, infoGlobal);
+}
+
+__attribute__((target("avx2"))) bool planPointAvx2(btPersistentManifold& manifold, int index,
+                                                   btCollisionObject* colObj0, btCollisionObject* colObj1,
+                                                   int solverBodyIdA, int solverBodyIdB,
+                                                   const btAlignedObjectArray<btSolverBody>& bodies,
+                                                   const btContactSolverInfo& infoGlobal,
+                                                   caliber::ContactPointRows& point)
+{
+	return planPoint(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal, point);
+}
+
 __attribute__((target("avx2"))) void fillPointRowsAndWarmStartsAvx2(const caliber::ContactRowPools& pools,
                                                                      const caliber::ContactPointRows& point,
                                                                      const btContactSolverInfo& infoGlobal)
@@ -699,16 +714,28 @@ __attribute__((noinline)) void fillPointRowsBaseline(const caliber::ContactRowPo
 	fillPointRows(pools, point, infoGlobal);
 }
 
+__attribute__((noinline)) void applyPointWarmStartsBaseline(const caliber::ContactRowPools& pools,
+                                                            const caliber::ContactPointRows& point,
+                                                            const btContactSolverInfo& infoGlobal)
+{
+	applyPointWarmStarts(pools, point, infoGlobal);
+}
+
+__attribute__((noinline)) bool planPointBaseline(btPersistentManifold& manifold, int index,
+                                                 btCollisionObject* colObj0, btCollisionObject* colObj1,
+                                                 int solverBodyIdA, int solverBodyIdB,
+                                                 const btAlignedObjectArray<btSolverBody>& bodies,
+                                                 const btContactSolverInfo& infoGlobal,
+                                                 caliber::ContactPointRows& point)
+{
+	return planPoint(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal, point);
+}
+
 // Whether this processor runs the AVX2 set-up, decided when the library is loaded (a plain load per point;
 // a function-local static's guard made the choice cost a stack frame). Before that, during other static
 // initialisation, the flag is still false and the baseline runs: the same bits either way.
 #if CALIBER_CONTACT_ROWS_AVX2
-bool detectAvx2()
-{
-	__builtin_cpu_init();  // needed when asked from a static initialiser
-	return __builtin_cpu_supports("avx2") != 0;
-}
-const bool g_avx2Rows = detectAvx2();
+const bool g_avx2Rows = caliber::detectAvx2();
 #endif
 
 bool avx2RowsAvailable()
@@ -737,28 +764,68 @@ void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPo
 bool caliber::contactPointRowsUseAvx2() { return avx2RowsAvailable(); }
 
 void caliber::fillContactPointRowsIn(const ContactRowPools& pools, const ContactPointRows& point,
-                                     const btContactSolverInfo& infoGlobal, bool avx2, bool warmStarts)
+                                     const btContactSolverInfo& infoGlobal, bool avx2, int warmStarts)
 {
 #if CALIBER_CONTACT_ROWS_AVX2
 	if (avx2 && avx2RowsAvailable())
 	{
-		if (warmStarts)
+		if (warmStarts == 1)
+		{
 			fillPointRowsAndWarmStartsAvx2(pools, point, infoGlobal);
-		else
-			fillPointRowsAvx2(pools, point, infoGlobal);
+			return;
+		}
+		fillPointRowsAvx2(pools, point, infoGlobal);
+		if (warmStarts == 2) applyPointWarmStartsAvx2(pools, point, infoGlobal);
 		return;
 	}
 #else
 	(void)avx2;
 #endif
 	fillPointRows(pools, point, infoGlobal);
-	if (warmStarts) applyPointWarmStarts(pools, point, infoGlobal);
+	if (warmStarts != 0) applyPointWarmStarts(pools, point, infoGlobal);
 }
 
 void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
                                           const btContactSolverInfo& infoGlobal)
 {
-	applyPointWarmStarts(pools, point, infoGlobal);
+#if CALIBER_CONTACT_ROWS_AVX2
+	if (avx2RowsAvailable())
+	{
+		applyPointWarmStartsAvx2(pools, point, infoGlobal);
+		return;
+	}
+#endif
+	applyPointWarmStartsBaseline(pools, point, infoGlobal);
+}
+
+bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
+                               btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
+                               const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
+                               ContactPointRows& point)
+{
+#if CALIBER_CONTACT_ROWS_AVX2
+	if (avx2RowsAvailable())
+		return planPointAvx2(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
+		                     point);
+#endif
+	return planPointBaseline(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
+	                         point);
+}
+
+bool caliber::planContactPointIn(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
+                                 btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
+                                 const btAlignedObjectArray<btSolverBody>& bodies,
+                                 const btContactSolverInfo& infoGlobal, ContactPointRows& point, bool avx2)
+{
+#if CALIBER_CONTACT_ROWS_AVX2
+	if (avx2 && avx2RowsAvailable())
+		return planPointAvx2(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
+		                     point);
+#else
+	(void)avx2;
+#endif
+	return planPointBaseline(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
+	                         point);
 }
 
 void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* manifold,

@@ -165,9 +165,10 @@ struct Plan
 	btVector3 relPos1, relPos2;
 };
 
-// Fills every point's rows (with the serial set-up's warm starts when warmStarts) in the chosen build.
+// Fills every point's rows in the chosen build, with the warm starts as fillContactPointRowsIn's warmStarts
+// says (0 none, 1 the serial set-up's, 2 the Mt set-up's).
 void fillAll(Fill& fill, const std::vector<Plan>& plans, const Bodies& bodies, const btContactSolverInfo& info,
-             bool avx2, bool warmStarts)
+             bool avx2, int warmStarts)
 {
 	const caliber::ContactRowPools pools = {&fill.bodies, &fill.contacts, &fill.friction, &fill.rolling};
 	for (size_t i = 0; i < plans.size(); ++i)
@@ -209,7 +210,7 @@ bool sameRow(const btSolverConstraint& a, const Fill& fillA, const btSolverConst
 }
 
 // Fills 600 points between every pair of the bodies both ways under info and compares the results.
-void expectSameRowsBothWays(const btContactSolverInfo& info, uint32_t seed, bool warmStarts)
+void expectSameRowsBothWays(const btContactSolverInfo& info, uint32_t seed, int warmStarts)
 {
 	Random random;
 	random.state = seed;
@@ -299,8 +300,9 @@ TEST(ContactPointRowFill, Avx2BuildGivesTheBaselineBitsUnderTheDefaultSolverMode
 {
 	if (!haveAvx2Build()) GTEST_SKIP() << "no AVX2 build of the set-up on this processor or build";
 	const btContactSolverInfo info = infoWith(btContactSolverInfo().m_solverMode);
-	expectSameRowsBothWays(info, 0x12345678u, false);
-	expectSameRowsBothWays(info, 0x0badf00du, true);
+	expectSameRowsBothWays(info, 0x12345678u, 0);
+	expectSameRowsBothWays(info, 0x0badf00du, 1);
+	expectSameRowsBothWays(info, 0x600dcafeu, 2);
 }
 
 TEST(ContactPointRowFill, Avx2BuildGivesTheBaselineBitsUnderOtherSolverModes)
@@ -318,11 +320,11 @@ TEST(ContactPointRowFill, Avx2BuildGivesTheBaselineBitsUnderOtherSolverModes)
 	{
 		SCOPED_TRACE(testing::Message() << "solver mode " << mode);
 		btContactSolverInfo info = infoWith(mode);
-		expectSameRowsBothWays(info, seed++, true);
+		expectSameRowsBothWays(info, seed++, 1);
 		info.m_splitImpulse = 0;  // Baumgarte in every row's target
 		info.m_globalCfm = btScalar(1e-3);
 		info.m_warmstartingFactor = btScalar(0.7);
-		expectSameRowsBothWays(info, seed++, true);
+		expectSameRowsBothWays(info, seed++, 2);
 	}
 }
 
@@ -341,7 +343,7 @@ TEST(ContactPointRowFill, BaselineRowsAreTheRowsOfTheSolverSetup)
 		copy.bodies = bodies.solver;
 		copy.points.push_back(cp);
 		preparePools(copy, 1, caliber::frictionRowsPerContact(info), caliber::rollingRowsOf(cp));
-		fillAll(copy, {plan}, bodies, info, avx2, true);
+		fillAll(copy, {plan}, bodies, info, avx2, 1);
 		const btSolverConstraint& row = copy.contacts[0];
 		EXPECT_EQ(row.m_contactNormal1, cp.m_normalWorldOnB);
 		EXPECT_EQ(row.m_lowerLimit, btScalar(0));
@@ -351,4 +353,59 @@ TEST(ContactPointRowFill, BaselineRowsAreTheRowsOfTheSolverSetup)
 		// Float rounding of a unit direction's dot product with the unit normal: a few ulps of 1.
 		EXPECT_NEAR(copy.friction[0].m_contactNormal1.dot(cp.m_normalWorldOnB), 0, 1e-6);
 	}
+}
+
+TEST(ContactPointRowFill, Avx2BuildPlansThePointsAsTheBaseline)
+{
+	if (!haveAvx2Build()) GTEST_SKIP() << "no AVX2 build of the set-up on this processor or build";
+	// Manifolds of four points between pairs of the bodies: touching, penetrating and speculative points (some
+	// that their bodies can close this step, some not, some sliding past), beyond the processing threshold.
+	Random random;
+	random.state = 0x13579bdu;
+	Bodies bodies(random);
+	btContactSolverInfo info = infoWith(btContactSolverInfo().m_solverMode);
+	int planned = 0, refused = 0;
+	for (int m = 0; m < 300; ++m)
+	{
+		const int idA = int(random.next() % 6u);
+		const int idB = (idA + 1 + int(random.next() % 5u)) % 6;
+		btRigidBody* rigidA = bodies.rigid[idA].get();
+		btRigidBody* rigidB = bodies.rigid[idB].get();
+		btPersistentManifold manifold(rigidA, rigidB, 0, btScalar(0.02), m % 10 == 0 ? btScalar(0.005) : BT_LARGE_FLOAT);
+		for (int k = 0; k < 4; ++k)
+		{
+			btManifoldPoint cp = makePoint(random, bodies.solver[idA], bodies.solver[idB], m * 4 + k);
+			if (k == 3) cp.m_distance1 = random.uniform(btScalar(0.001), btScalar(0.3));  // speculative, maybe wide
+			cp.m_positionWorldOnA = cp.m_positionWorldOnB + cp.m_normalWorldOnB * cp.m_distance1;
+			manifold.addManifoldPoint(cp);
+		}
+		btPersistentManifold copy = manifold;
+		for (int k = 0; k < manifold.getNumContacts(); ++k)
+		{
+			SCOPED_TRACE(testing::Message() << "manifold " << m << " point " << k);
+			caliber::ContactPointRows a, b;
+			std::memset(static_cast<void*>(&a), 0, sizeof(a));
+			std::memset(static_cast<void*>(&b), 0, sizeof(b));
+			const bool rowsA = caliber::planContactPointIn(manifold, k, rigidA, rigidB, idA, idB, bodies.solver, info, a, false);
+			const bool rowsB = caliber::planContactPointIn(copy, k, rigidA, rigidB, idA, idB, bodies.solver, info, b, true);
+			ASSERT_EQ(rowsA, rowsB);
+			(rowsA ? planned : refused) += 1;
+			EXPECT_TRUE(sameBytes(&a.relPos1, &b.relPos1, sizeof(btVector3)));
+			EXPECT_TRUE(sameBytes(&a.relPos2, &b.relPos2, sizeof(btVector3)));
+			if (rowsA)
+			{
+				EXPECT_EQ(a.cp - &manifold.getContactPoint(0), b.cp - &copy.getContactPoint(0));
+				EXPECT_EQ(a.solverBodyIdA, b.solverBodyIdA);
+				EXPECT_EQ(a.solverBodyIdB, b.solverBodyIdB);
+			}
+			// A refused speculative point has its impulses cleared: the same in both.
+			EXPECT_TRUE(sameBytes(&manifold.getContactPoint(k).m_appliedImpulse, &copy.getContactPoint(k).m_appliedImpulse,
+			                      sizeof(btScalar)));
+			EXPECT_TRUE(sameBytes(&manifold.getContactPoint(k).m_appliedImpulseLateral1,
+			                      &copy.getContactPoint(k).m_appliedImpulseLateral1, sizeof(btScalar)));
+		}
+	}
+	// Both outcomes were exercised.
+	EXPECT_GT(planned, 100);
+	EXPECT_GT(refused, 20);
 }
