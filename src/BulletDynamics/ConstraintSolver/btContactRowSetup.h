@@ -67,14 +67,9 @@ void fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& 
 bool contactPointRowsUseAvx2();
 /// For tests: fillContactPointRows in the AVX2 build when avx2 and the processor has it, otherwise in the
 /// library's baseline build; then the warm starts when warmStarts is 1 (fused with the fill, as the serial
-/// set-up does) or 2 (applyContactPointWarmStarts's own build, as the Mt set-up does).
+/// set-up does) or 2 (applyContactPointWarmStarts after the fill, as the Mt set-up does).
 void fillContactPointRowsIn(const ContactRowPools& pools, const ContactPointRows& point,
                             const btContactSolverInfo& infoGlobal, bool avx2, int warmStarts);
-/// For tests: planContactPoint in the AVX2 build when avx2 and the processor has it, otherwise the baseline's.
-bool planContactPointIn(btPersistentManifold& manifold, int index, btCollisionObject* object0,
-                        btCollisionObject* object1, int solverBodyIdA, int solverBodyIdB,
-                        const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
-                        ContactPointRows& point, bool avx2);
 /// Applies the point's warm-start impulses to its bodies: the normal row's, then the friction rows'.
 void applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
                                  const btContactSolverInfo& infoGlobal);

@@ -491,13 +491,10 @@ bool caliber::solverBodiesCanMove(const btAlignedObjectArray<btSolverBody>& bodi
 	return aMoves || bMoves;
 }
 
-namespace
-{
-// caliber::planContactPoint, built twice as the fill below.
-SIMD_FORCE_INLINE bool planPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
-                                 btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
-                                 const btAlignedObjectArray<btSolverBody>& bodies,
-                                 const btContactSolverInfo& infoGlobal, caliber::ContactPointRows& point)
+bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
+                               btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
+                               const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
+                               ContactPointRows& point)
 {
 	btManifoldPoint& cp = manifold.getContactPoint(index);
 	if (cp.getDistance() > manifold.getContactProcessingThreshold()) return false;
@@ -540,6 +537,8 @@ SIMD_FORCE_INLINE bool planPoint(btPersistentManifold& manifold, int index, btCo
 	return true;
 }
 
+namespace
+{
 // fillContactPointRows and applyContactPointWarmStarts, inlined into the serial set-up's loop over points.
 SIMD_FORCE_INLINE void fillPointRows(const caliber::ContactRowPools& pools, const caliber::ContactPointRows& point,
                                      const btContactSolverInfo& infoGlobal)
@@ -679,23 +678,6 @@ __attribute__((target("avx2"))) void fillPointRowsAvx2(const caliber::ContactRow
 	fillPointRows(pools, point, infoGlobal);
 }
 
-__attribute__((target("avx2"))) void applyPointWarmStartsAvx2(const caliber::ContactRowPools& pools,
-                                                              const caliber::ContactPointRows& point,
-                                                              const btContactSolverInfo& infoGlobal)
-{
-	applyPointWarmStarts(pools, point, infoGlobal);
-}
-
-__attribute__((target("avx2"))) bool planPointAvx2(btPersistentManifold& manifold, int index,
-                                                   btCollisionObject* colObj0, btCollisionObject* colObj1,
-                                                   int solverBodyIdA, int solverBodyIdB,
-                                                   const btAlignedObjectArray<btSolverBody>& bodies,
-                                                   const btContactSolverInfo& infoGlobal,
-                                                   caliber::ContactPointRows& point)
-{
-	return planPoint(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal, point);
-}
-
 __attribute__((target("avx2"))) void fillPointRowsAndWarmStartsAvx2(const caliber::ContactRowPools& pools,
                                                                      const caliber::ContactPointRows& point,
                                                                      const btContactSolverInfo& infoGlobal)
@@ -712,23 +694,6 @@ __attribute__((noinline)) void fillPointRowsBaseline(const caliber::ContactRowPo
                                                      const btContactSolverInfo& infoGlobal)
 {
 	fillPointRows(pools, point, infoGlobal);
-}
-
-__attribute__((noinline)) void applyPointWarmStartsBaseline(const caliber::ContactRowPools& pools,
-                                                            const caliber::ContactPointRows& point,
-                                                            const btContactSolverInfo& infoGlobal)
-{
-	applyPointWarmStarts(pools, point, infoGlobal);
-}
-
-__attribute__((noinline)) bool planPointBaseline(btPersistentManifold& manifold, int index,
-                                                 btCollisionObject* colObj0, btCollisionObject* colObj1,
-                                                 int solverBodyIdA, int solverBodyIdB,
-                                                 const btAlignedObjectArray<btSolverBody>& bodies,
-                                                 const btContactSolverInfo& infoGlobal,
-                                                 caliber::ContactPointRows& point)
-{
-	return planPoint(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal, point);
 }
 
 // Whether this processor runs the AVX2 set-up, decided when the library is loaded (a plain load per point;
@@ -775,7 +740,7 @@ void caliber::fillContactPointRowsIn(const ContactRowPools& pools, const Contact
 			return;
 		}
 		fillPointRowsAvx2(pools, point, infoGlobal);
-		if (warmStarts == 2) applyPointWarmStartsAvx2(pools, point, infoGlobal);
+		if (warmStarts == 2) applyPointWarmStarts(pools, point, infoGlobal);
 		return;
 	}
 #else
@@ -788,44 +753,8 @@ void caliber::fillContactPointRowsIn(const ContactRowPools& pools, const Contact
 void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
                                           const btContactSolverInfo& infoGlobal)
 {
-#if CALIBER_CONTACT_ROWS_AVX2
-	if (avx2RowsAvailable())
-	{
-		applyPointWarmStartsAvx2(pools, point, infoGlobal);
-		return;
-	}
-#endif
-	applyPointWarmStartsBaseline(pools, point, infoGlobal);
-}
-
-bool caliber::planContactPoint(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
-                               btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
-                               const btAlignedObjectArray<btSolverBody>& bodies, const btContactSolverInfo& infoGlobal,
-                               ContactPointRows& point)
-{
-#if CALIBER_CONTACT_ROWS_AVX2
-	if (avx2RowsAvailable())
-		return planPointAvx2(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
-		                     point);
-#endif
-	return planPointBaseline(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
-	                         point);
-}
-
-bool caliber::planContactPointIn(btPersistentManifold& manifold, int index, btCollisionObject* colObj0,
-                                 btCollisionObject* colObj1, int solverBodyIdA, int solverBodyIdB,
-                                 const btAlignedObjectArray<btSolverBody>& bodies,
-                                 const btContactSolverInfo& infoGlobal, ContactPointRows& point, bool avx2)
-{
-#if CALIBER_CONTACT_ROWS_AVX2
-	if (avx2 && avx2RowsAvailable())
-		return planPointAvx2(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
-		                     point);
-#else
-	(void)avx2;
-#endif
-	return planPointBaseline(manifold, index, colObj0, colObj1, solverBodyIdA, solverBodyIdB, bodies, infoGlobal,
-	                         point);
+	// Not built for AVX2: loads, products and sums without register copies, the same count either way.
+	applyPointWarmStarts(pools, point, infoGlobal);
 }
 
 void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* manifold,
