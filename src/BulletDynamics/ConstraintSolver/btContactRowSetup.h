@@ -62,6 +62,14 @@ bool planContactPoint(btPersistentManifold& manifold, int index, btCollisionObje
 /// in the rows, not applied. Writes the point's friction directions.
 void fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& point,
                           const btContactSolverInfo& infoGlobal);
+/// Whether fillContactPointRows (and the serial set-up) run their AVX2 build on this processor: the same
+/// operations in the same order (no FMA), so the same bits as the SSE build.
+bool contactPointRowsUseAvx2();
+/// For tests: fillContactPointRows in the AVX2 build when avx2 and the processor has it, otherwise in the
+/// library's baseline build; then the warm starts when warmStarts is 1 (fused with the fill, as the serial
+/// set-up does) or 2 (applyContactPointWarmStarts after the fill, as the Mt set-up does).
+void fillContactPointRowsIn(const ContactRowPools& pools, const ContactPointRows& point,
+                            const btContactSolverInfo& infoGlobal, bool avx2, int warmStarts);
 /// Applies the point's warm-start impulses to its bodies: the normal row's, then the friction rows'.
 void applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
                                  const btContactSolverInfo& infoGlobal);

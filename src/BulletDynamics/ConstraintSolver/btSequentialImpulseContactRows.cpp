@@ -12,6 +12,10 @@
 #include "LinearMath/btSimdBatch.h"
 #include "LinearMath/btThreads.h"
 
+#include "LinearMath/btCpuFeatures.h"
+
+#define CALIBER_CONTACT_ROWS_AVX2 CALIBER_AVX2_BUILDS
+
 namespace
 {
 const btScalar kUnbounded = btScalar(1e10);
@@ -574,7 +578,8 @@ SIMD_FORCE_INLINE void fillPointRows(const caliber::ContactRowPools& pools, cons
 	if (cp.m_combinedSpinningFriction > btScalar(0)) addTorsional(normal, cp.m_combinedSpinningFriction);
 	if (cp.m_combinedRollingFriction > btScalar(0))
 	{
-		btVector3 axis0, axis1;
+		// Zeroed first: btPlaneSpace1 sets x, y and z only, and the rows' w lanes should not be stack garbage.
+		btVector3 axis0(0, 0, 0), axis1(0, 0, 0);
 		btPlaneSpace1(normal, axis0, axis1);
 		const btVector3 relativeSpin = a.m_angularVelocity - b.m_angularVelocity;
 		btVector3 rolling = relativeSpin - normal * normal.dot(relativeSpin);
@@ -660,17 +665,95 @@ SIMD_FORCE_INLINE void applyPointWarmStarts(const caliber::ContactRowPools& pool
 		applyWarmStart((*pools.friction)[point.firstFrictionRow + f], bodyA, bodyB);
 }
 
+// The same two functions compiled a second time for AVX2 (VEX encoding), chosen at run time. The set-up
+// is SSE arithmetic with a register copy before most operations in the two-operand SSE encoding (about 60
+// of a point's 615 instructions in stack1000), which the three-operand encoding does without. Only AVX2 is
+// enabled, not FMA: every operation rounds as in the SSE build, in the same order, so the rows have the
+// same bits (ContactPointRowFill tests compare the two on varied points).
+#if CALIBER_CONTACT_ROWS_AVX2
+__attribute__((target("avx2"))) void fillPointRowsAvx2(const caliber::ContactRowPools& pools,
+                                                        const caliber::ContactPointRows& point,
+                                                        const btContactSolverInfo& infoGlobal)
+{
+	fillPointRows(pools, point, infoGlobal);
+}
+
+__attribute__((target("avx2"))) void fillPointRowsAndWarmStartsAvx2(const caliber::ContactRowPools& pools,
+                                                                     const caliber::ContactPointRows& point,
+                                                                     const btContactSolverInfo& infoGlobal)
+{
+	fillPointRows(pools, point, infoGlobal);
+	applyPointWarmStarts(pools, point, infoGlobal);
+}
+#endif
+
+// The baseline build as a call of its own, so that fillContactPointRows is a test and a jump to either build
+// (with the baseline inlined into it, the choice paid for the baseline's register saves and stack frame).
+__attribute__((noinline)) void fillPointRowsBaseline(const caliber::ContactRowPools& pools,
+                                                     const caliber::ContactPointRows& point,
+                                                     const btContactSolverInfo& infoGlobal)
+{
+	fillPointRows(pools, point, infoGlobal);
+}
+
+// Whether this processor runs the AVX2 set-up, decided when the library is loaded (a plain load per point;
+// a function-local static's guard made the choice cost a stack frame). Before that, during other static
+// initialisation, the flag is still false and the baseline runs: the same bits either way.
+#if CALIBER_CONTACT_ROWS_AVX2
+const bool g_avx2Rows = caliber::detectAvx2();
+#endif
+
+bool avx2RowsAvailable()
+{
+#if CALIBER_CONTACT_ROWS_AVX2
+	return g_avx2Rows;
+#else
+	return false;
+#endif
+}
 }  // namespace
 
 void caliber::fillContactPointRows(const ContactRowPools& pools, const ContactPointRows& point,
                                    const btContactSolverInfo& infoGlobal)
 {
+#if CALIBER_CONTACT_ROWS_AVX2
+	if (avx2RowsAvailable())
+	{
+		fillPointRowsAvx2(pools, point, infoGlobal);
+		return;
+	}
+#endif
+	fillPointRowsBaseline(pools, point, infoGlobal);
+}
+
+bool caliber::contactPointRowsUseAvx2() { return avx2RowsAvailable(); }
+
+void caliber::fillContactPointRowsIn(const ContactRowPools& pools, const ContactPointRows& point,
+                                     const btContactSolverInfo& infoGlobal, bool avx2, int warmStarts)
+{
+#if CALIBER_CONTACT_ROWS_AVX2
+	if (avx2 && avx2RowsAvailable())
+	{
+		if (warmStarts == 1)
+		{
+			fillPointRowsAndWarmStartsAvx2(pools, point, infoGlobal);
+			return;
+		}
+		fillPointRowsAvx2(pools, point, infoGlobal);
+		if (warmStarts == 2) applyPointWarmStarts(pools, point, infoGlobal);
+		return;
+	}
+#else
+	(void)avx2;
+#endif
 	fillPointRows(pools, point, infoGlobal);
+	if (warmStarts != 0) applyPointWarmStarts(pools, point, infoGlobal);
 }
 
 void caliber::applyContactPointWarmStarts(const ContactRowPools& pools, const ContactPointRows& point,
                                           const btContactSolverInfo& infoGlobal)
 {
+	// Not built for AVX2: loads, products and sums without register copies, the same count either way.
 	applyPointWarmStarts(pools, point, infoGlobal);
 }
 
@@ -703,6 +786,13 @@ void btSequentialImpulseConstraintSolver::convertContact(btPersistentManifold* m
 			m_tmpSolverContactFrictionConstraintPool.expandNonInitializing();
 		for (int r = caliber::rollingRowsOf(*point.cp); r > 0; --r)
 			m_tmpSolverContactRollingFrictionConstraintPool.expandNonInitializing();
+#if CALIBER_CONTACT_ROWS_AVX2
+		if (avx2RowsAvailable())
+		{
+			fillPointRowsAndWarmStartsAvx2(pools, point, infoGlobal);
+			continue;
+		}
+#endif
 		fillPointRows(pools, point, infoGlobal);
 		applyPointWarmStarts(pools, point, infoGlobal);
 	}
