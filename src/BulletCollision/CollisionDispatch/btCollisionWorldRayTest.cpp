@@ -20,6 +20,7 @@
 #include "BulletCollision/CollisionShapes/btStaticPlaneShape.h"
 #include "BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h"
 #include "BulletCollision/CollisionShapes/btMeshTriangleAccess.h"
+#include "BulletCollision/NarrowPhaseCollision/TriangleRayTest.h"
 #include "BulletCollision/NarrowPhaseCollision/btConvexCastHelpers.h"
 #include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
@@ -689,6 +690,7 @@ public:
 	                          : 0),
 	      m_scaling(mesh.getScaling()),
 	      m_callback(callback),
+	      m_rayFinite(caliber::isFinite(callback.m_from) && caliber::isFinite(callback.m_to)),
 	      m_selectedPart(-1),
 	      m_direct(0)
 	{
@@ -705,7 +707,13 @@ public:
 			read = readDirect<unsigned short>(triangleIndex, triangle);
 		else
 			read = readDirect<unsigned int>(triangleIndex, triangle);
-		if (read) m_callback.btTriangleRaycastCallback::processTriangle(triangle, partId, triangleIndex);
+		if (!read) return;
+		// Both reads check the vertices; with the ray checked once per walk, the triangle test skips its own
+		// checks (the same test processTriangle runs after them).
+		if (m_rayFinite)
+			caliber::testRayAgainstFiniteTriangle(m_callback, triangle, partId, triangleIndex);
+		else
+			m_callback.btTriangleRaycastCallback::processTriangle(triangle, partId, triangleIndex);
 	}
 
 private:
@@ -774,6 +782,7 @@ private:
 	const IndexedMeshArray* m_indexedMeshes;  // the parts, when the interface is a btTriangleIndexVertexArray
 	const btVector3 m_scaling;
 	BridgeTriangleRaycastCallback& m_callback;
+	const bool m_rayFinite;         // the callback's m_from and m_to are finite
 	int m_selectedPart;             // the part selectPart last chose, or -1
 	const btIndexedMesh* m_direct;  // that part when it is read directly, else null (m_part holds it)
 	caliber::ReadOnlyMeshPart m_part;

@@ -2,8 +2,9 @@
 // The world's ray test reads a btTriangleIndexVertexArray's parts straight from their arrays (32- and 16-bit
 // indices, btScalar vertices) and every other interface or layout through the locked read. Both must give
 // the same hits, bit for bit, and the hits must be the triangles' own (Moller-Trumbore in double), for
-// random, grazing, in-plane, zero-length and surface-start rays; bad indices and NaN rays keep their
-// documented behaviour.
+// random, grazing, in-plane, zero-length and surface-start rays, and the closest fraction must be the checked
+// triangle test's (btTriangleRaycastCallback::processTriangle over performRaycast's triangles), bit for bit;
+// bad indices and NaN rays keep their documented behaviour.
 
 #include <gtest/gtest.h>
 
@@ -156,6 +157,35 @@ void expectSameHits(btCollisionWorld& direct, btCollisionWorld& locked, const bt
 	}
 }
 
+// Every hit of btTriangleRaycastCallback::processTriangle (the checked triangle test) on the triangles
+// btBvhTriangleMeshShape::performRaycast reports; the bound stays 1.
+struct AllTriangleHits : public btTriangleRaycastCallback
+{
+	AllTriangleHits(const btVector3& from, const btVector3& to) : btTriangleRaycastCallback(from, to) {}
+	btScalar reportHit(const btVector3&, btScalar hitFraction, int, int) override
+	{
+		fractions.push_back(hitFraction);
+		return m_hitFraction;
+	}
+	std::vector<btScalar> fractions;
+};
+
+// The world's closest fraction is the smallest fraction processTriangle finds, bit for bit (the world's
+// walk runs the same triangle test without its input checks).
+void expectClosestMatchesProcessTriangle(btCollisionWorld& world, btBvhTriangleMeshShape& shape, const btVector3& from,
+                                         const btVector3& to)
+{
+	AllTriangleHits all(from, to);
+	shape.performRaycast(&all, from, to);
+	btCollisionWorld::ClosestRayResultCallback out(from, to);
+	world.rayTest(from, to, out);
+	ASSERT_EQ(out.hasHit(), !all.fractions.empty());
+	if (all.fractions.empty()) return;
+	btScalar smallest = all.fractions[0];
+	for (btScalar f : all.fractions) smallest = btMin(smallest, f);
+	EXPECT_TRUE(sameBits(out.m_closestHitFraction, smallest)) << out.m_closestHitFraction << " vs " << smallest;
+}
+
 // The closest hit of the world against the brute-force Moller-Trumbore reference over every triangle. A
 // segment starting in a triangle's plane is no hit on it (the ray test needs a strict sign change). Rays
 // through a shared edge or corner hit several triangles at the same fraction: the normal must be one of theirs.
@@ -252,6 +282,7 @@ TEST(RayMeshRead, DirectAndLockedReadsGiveTheSameHitsAsTheTriangles)
 		{
 			expectSameHits(worlds.direct.m_world, worlds.locked.m_world, ray.first, ray.second);
 			expectClosestMatchesTriangles(worlds.direct.m_world, worlds.triangles, ray.first, ray.second);
+			expectClosestMatchesProcessTriangle(worlds.direct.m_world, *worlds.directShape, ray.first, ray.second);
 		}
 		// The in-plane ray (it stays over the flat band, in its faces' plane) and the zero-length rays hit nothing.
 		btCollisionWorld::ClosestRayResultCallback inPlane(rays[rays.size() - 4].first, rays[rays.size() - 4].second);
