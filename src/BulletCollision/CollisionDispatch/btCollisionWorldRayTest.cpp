@@ -1,6 +1,8 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <cstring>
+#include <typeinfo>
 
+#include "BulletCollision/BroadphaseCollision/QuantizedBvhCast.h"
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
 #include "BulletCollision/CollisionDispatch/btCollisionWorld.h"
 #include "BulletCollision/CollisionShapes/btBoxShape.h"
@@ -16,6 +18,9 @@
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "BulletCollision/CollisionShapes/btSphereShape.h"
 #include "BulletCollision/CollisionShapes/btStaticPlaneShape.h"
+#include "BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h"
+#include "BulletCollision/CollisionShapes/btMeshTriangleAccess.h"
+#include "BulletCollision/NarrowPhaseCollision/TriangleRayTest.h"
 #include "BulletCollision/NarrowPhaseCollision/btConvexCastHelpers.h"
 #include "BulletCollision/NarrowPhaseCollision/btRaycastCallback.h"
 #include "BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h"
@@ -668,13 +673,146 @@ void rayTestConvex(const btTransform& rayFromTrans, const btTransform& rayToTran
 	resultCallback.addSingleResult(rayResult, true);
 }
 
+// The leaves the ray's tree walk reaches, read into triangles for the triangle ray test. A
+// btTriangleIndexVertexArray itself (not a subclass, which may lock) is read straight from its
+// btIndexedMesh parts when a part has 32- or 16-bit indices and btScalar vertices: no virtual lock and unlock
+// per walk and no type switch per vertex. Other interfaces and layouts go through caliber::ReadOnlyMeshPart
+// (locked while consecutive leaves use the part). Either way the triangles are the same values (vertex times
+// the interface's scaling) with the same checks: an index out of range or a vertex that is not finite
+// asserts and skips the triangle.
+class RayMeshNodeCallback : public btNodeOverlapCallback
+{
+public:
+	RayMeshNodeCallback(const btStridingMeshInterface& mesh, BridgeTriangleRaycastCallback& callback)
+	    : m_mesh(mesh),
+	      m_indexedMeshes(typeid(mesh) == typeid(btTriangleIndexVertexArray)
+	                          ? &static_cast<const btTriangleIndexVertexArray&>(mesh).getIndexedMeshArray()
+	                          : 0),
+	      m_scaling(mesh.getScaling()),
+	      m_callback(callback),
+	      m_rayFinite(caliber::isFinite(callback.m_from) && caliber::isFinite(callback.m_to)),
+	      m_selectedPart(-1),
+	      m_direct(0)
+	{
+	}
+
+	void processNode(int partId, int triangleIndex) override
+	{
+		btVector3 triangle[3];
+		if (partId != m_selectedPart) selectPart(partId);
+		bool read;
+		if (!m_direct)
+			read = m_part.readTriangle(triangleIndex, m_scaling, triangle);
+		else if (m_direct->m_indexType == PHY_SHORT)
+			read = readDirect<unsigned short>(triangleIndex, triangle);
+		else
+			read = readDirect<unsigned int>(triangleIndex, triangle);
+		if (!read) return;
+		// Both reads check the vertices; with the ray checked once per walk, the triangle test skips its own
+		// checks (the same test processTriangle runs after them).
+		if (m_rayFinite)
+			caliber::testRayAgainstFiniteTriangle(m_callback, triangle, partId, triangleIndex);
+		else
+			m_callback.btTriangleRaycastCallback::processTriangle(triangle, partId, triangleIndex);
+	}
+
+private:
+	// A part is read directly when it has this layout and is readable as ReadOnlyMeshPart::acquire judges it.
+	static bool directLayout(const btIndexedMesh& part)
+	{
+#ifdef BT_USE_DOUBLE_PRECISION
+		const PHY_ScalarType scalarType = PHY_DOUBLE;
+#else
+		const PHY_ScalarType scalarType = PHY_FLOAT;
+#endif
+		const int indexSize = part.m_indexType == PHY_INTEGER ? int(sizeof(unsigned int))
+		                      : part.m_indexType == PHY_SHORT ? int(sizeof(unsigned short))
+		                                                      : 0;
+		return part.m_vertexType == scalarType && indexSize > 0 && part.m_numTriangles > 0 && part.m_vertexBase != 0 &&
+		       part.m_triangleIndexBase != 0 && part.m_numVertices >= 0 &&
+		       part.m_vertexStride >= int(3 * sizeof(btScalar)) && part.m_triangleIndexStride >= 3 * indexSize;
+	}
+
+	void selectPart(int partId)
+	{
+		m_selectedPart = partId;
+		m_direct = 0;
+		if (m_indexedMeshes && partId >= 0 && partId < m_indexedMeshes->size() &&
+		    directLayout((*m_indexedMeshes)[partId]))
+		{
+			m_direct = &(*m_indexedMeshes)[partId];
+			m_part.release();
+			return;
+		}
+		if (m_part.part() != partId) m_part.acquire(&m_mesh, partId);
+	}
+
+	template <class Index>
+	bool readDirect(int triangleIndex, btVector3* out) const
+	{
+		const btIndexedMesh& part = *m_direct;
+		if (triangleIndex < 0 || triangleIndex >= part.m_numTriangles)
+		{
+			btAssert(triangleIndex >= 0 && triangleIndex < part.m_numTriangles && "mesh triangle out of range");
+			return false;
+		}
+		Index indices[3];
+		std::memcpy(indices, part.m_triangleIndexBase + size_t(triangleIndex) * size_t(part.m_triangleIndexStride),
+		            sizeof(indices));
+		for (int k = 0; k < 3; ++k)
+		{
+			if (indices[k] >= unsigned(part.m_numVertices))
+			{
+				btAssert(indices[k] < unsigned(part.m_numVertices) && "mesh index out of range");
+				return false;
+			}
+			btScalar v[3];
+			std::memcpy(v, part.m_vertexBase + size_t(indices[k]) * size_t(part.m_vertexStride), sizeof(v));
+			out[k] = btVector3(v[0], v[1], v[2]) * m_scaling;
+			if (!caliber::isFinite(out[k]))
+			{
+				btAssert(caliber::isFinite(out[k]) && "mesh vertex not finite");
+				return false;
+			}
+		}
+		return true;
+	}
+
+	const btStridingMeshInterface& m_mesh;
+	const IndexedMeshArray* m_indexedMeshes;  // the parts, when the interface is a btTriangleIndexVertexArray
+	const btVector3 m_scaling;
+	BridgeTriangleRaycastCallback& m_callback;
+	const bool m_rayFinite;         // the callback's m_from and m_to are finite
+	int m_selectedPart;             // the part selectPart last chose, or -1
+	const btIndexedMesh* m_direct;  // that part when it is read directly, else null (m_part holds it)
+	caliber::ReadOnlyMeshPart m_part;
+};
+
 // A ray against a BVH mesh: the tree walk skips boxes beyond the closest hit so far (the callback's
-// m_hitFraction, which its reportHit lowers), which leaves the hits found unchanged.
-void castRayAgainstBvhMesh(btBvhTriangleMeshShape& mesh, btTriangleRaycastCallback& callback, const btVector3& from,
+// m_hitFraction, which its reportHit lowers), which leaves the hits found unchanged. The walk of
+// caliber::castAgainstBvhMesh, with the leaves read by RayMeshNodeCallback.
+void castRayAgainstBvhMesh(btBvhTriangleMeshShape& mesh, BridgeTriangleRaycastCallback& callback, const btVector3& from,
                            const btVector3& to)
 {
+	const btStridingMeshInterface* meshInterface = mesh.getMeshInterface();
+	const btOptimizedBvh* bvh = mesh.getOptimizedBvh();
 	const btVector3 zero(0, 0, 0);
-	caliber::castAgainstBvhMesh(mesh, &callback, from, to, zero, zero, &callback.m_hitFraction);
+	if (!meshInterface || !bvh)
+	{
+		caliber::castAgainstBvhMesh(mesh, &callback, from, to, zero, zero, &callback.m_hitFraction);
+		return;
+	}
+	RayMeshNodeCallback nodes(*meshInterface, callback);
+	caliber::reportBoxCastOverlappingNodes(*bvh, &nodes, from, to, zero, zero, &callback.m_hitFraction);
+}
+
+// Whether a triangle-mesh shape's getName() is btBvhTriangleMeshShape's. The linker merges equal string
+// literals, so the name's pointer usually settles it without comparing the characters; the comparison is the
+// fallback (a build that does not merge them, or a user subclass that returns its own copy).
+bool namedBvhTriangleMesh(const char* name)
+{
+	static const char* const kBvhMeshName = "BVHTRIANGLEMESH";
+	return name == kBvhMeshName || (name && std::strcmp(name, kBvhMeshName) == 0);
 }
 
 void rayTestConcave(const btTransform& rayFromTrans, const btTransform& rayToTrans, const btConcaveShape* concave,
@@ -694,7 +832,7 @@ void rayTestConcave(const btTransform& rayFromTrans, const btTransform& rayToTra
 	}
 	// Only btBvhTriangleMeshShape and its multimaterial subclass are known to have performRaycast
 	// (btTriangleMeshShape shares the type).
-	if ((shapeType == TRIANGLE_MESH_SHAPE_PROXYTYPE && std::strcmp(concave->getName(), "BVHTRIANGLEMESH") == 0) ||
+	if ((shapeType == TRIANGLE_MESH_SHAPE_PROXYTYPE && namedBvhTriangleMesh(concave->getName())) ||
 	    shapeType == MULTIMATERIAL_TRIANGLE_MESH_PROXYTYPE)
 	{
 		btBvhTriangleMeshShape* mesh =
