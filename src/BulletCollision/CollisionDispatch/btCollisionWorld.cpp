@@ -8,7 +8,6 @@
 #include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
-#include "BulletCollision/CollisionDispatch/btAabbChunkPrologue.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
@@ -265,41 +264,6 @@ void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
 
 namespace
 {
-// The prologue set for the next updateAabbs on this thread (caliber::setAabbChunkPrologue), and whether an
-// updateAabbs took it.
-thread_local const btCollisionWorld* t_prologueWorld = 0;
-thread_local const caliber::AabbChunkPrologue* t_prologue = 0;
-thread_local bool t_prologueTaken = false;
-
-// The prologue set for world, now taken (null when none was set for it).
-const caliber::AabbChunkPrologue* takePrologue(const btCollisionWorld* world)
-{
-	if (!t_prologue || t_prologueWorld != world) return 0;
-	const caliber::AabbChunkPrologue* prologue = t_prologue;
-	t_prologue = 0;
-	t_prologueTaken = true;
-	return prologue;
-}
-}  // namespace
-
-void caliber::setAabbChunkPrologue(const btCollisionWorld* world, const AabbChunkPrologue* prologue)
-{
-	t_prologueWorld = prologue ? world : 0;
-	t_prologue = prologue;
-	t_prologueTaken = false;
-}
-
-bool caliber::takeAabbChunkPrologueDone(const btCollisionWorld* world)
-{
-	const bool taken = t_prologueTaken && t_prologueWorld == world;
-	t_prologueWorld = 0;
-	t_prologue = 0;
-	t_prologueTaken = false;
-	return taken;
-}
-
-namespace
-{
 // Objects per task of the parallel box computation.
 const int kObjectsPerTask = 128;
 
@@ -366,8 +330,6 @@ struct AabbPipeline : public btIParallelForBody
 	int numChunks;
 	int firstHelperTask;  // in [1, numChunks]
 	btDbvtBroadphase* dbvt;
-	// The work each chunk's objects need before their boxes (caliber::setAabbChunkPrologue), or null.
-	const caliber::AabbChunkPrologue* prologue;
 	// Written by task 0 only, read after the loop: where it stopped (an object it leaves to the calling
 	// thread, or numObjects) and how many boxes it counted as stored.
 	mutable int appliedEnd;
@@ -381,10 +343,8 @@ struct AabbPipeline : public btIParallelForBody
 
 	void computeChunk(int chunk) const
 	{
-		const int begin = chunk * kObjectsPerPipelinedChunk;
-		const int end = btMin(numObjects, (chunk + 1) * kObjectsPerPipelinedChunk);
-		if (prologue) prologue->prepareObjects(begin, end);
-		compute.forLoop(begin, end);
+		compute.forLoop(chunk * kObjectsPerPipelinedChunk,
+		                btMin(numObjects, (chunk + 1) * kObjectsPerPipelinedChunk));
 		chunkStates[chunk].store(2, std::memory_order_release);
 	}
 
@@ -560,11 +520,8 @@ void btCollisionWorld::updateAabbs()
 {
 	BT_PROFILE("updateAabbs");
 	const int numObjects = m_collisionObjects.size();
-	// A prologue is done chunk by chunk in the tree moves' pipeline only; every other path does it first.
-	const caliber::AabbChunkPrologue* prologue = takePrologue(this);
 	if (btGetTaskScheduler()->getNumThreads() < 2 || numObjects < 2 * kObjectsPerTask)
 	{
-		if (prologue) prologue->prepareAll();
 		for (int i = 0; i < numObjects; i++)
 		{
 			btCollisionObject* colObj = m_collisionObjects[i];
@@ -593,8 +550,6 @@ void btCollisionWorld::updateAabbs()
 	unsigned storedOnThreads = 0;
 	int applied = 0;
 	const bool subtreeMoves = dbvt && caliber::subtreeMovesInWorld() && scratch.moveRound.begin(*dbvt);
-	const bool pipelined = dbvt && !subtreeMoves;
-	if (prologue && !pipelined) prologue->prepareAll();
 	if (subtreeMoves)
 	{
 		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;
@@ -611,7 +566,6 @@ void btCollisionWorld::updateAabbs()
 		loop.chunks.chunkStates = scratch.chunkStates.get();
 		loop.chunks.numObjects = numObjects;
 		loop.chunks.numChunks = numChunks;
-		loop.chunks.prologue = 0;
 		loop.round = &scratch.moveRound;
 		loop.subtreeOfObject = &scratch.subtreeOfObject[0];
 		loop.bound = &bound;
@@ -623,7 +577,7 @@ void btCollisionWorld::updateAabbs()
 		for (int i = 0; i < applied; ++i)
 			if (scratch.pending[i].status >= 3) ++storedOnThreads;
 	}
-	else if (pipelined)
+	else if (dbvt)
 	{
 		// The tree moves overlap the box computation of the objects after them (AabbPipeline).
 		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;
@@ -641,7 +595,6 @@ void btCollisionWorld::updateAabbs()
 		const int threads = btMax(2, btGetTaskScheduler()->getNumThreads());
 		pipeline.firstHelperTask = btMax(1, btMin(numChunks, (numChunks + 1) / threads));
 		pipeline.dbvt = dbvt;
-		pipeline.prologue = prologue;
 		pipeline.appliedEnd = 0;
 		pipeline.storedOnThreads = 0;
 		btParallelFor(0, numChunks + 1, 1, pipeline);
