@@ -23,16 +23,17 @@ void CachedBoxBoxAlgorithm::processCollision(const btCollisionObjectWrapper* bod
                                              const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
 	btPersistentManifold* manifold = this->*memberOf(BoxBoxManifold{});
+	const btScalar cacheDistance = contactCacheDistance();
 	if (manifold && resultOut && body0Wrap && body1Wrap &&
-	    pairMayUseContactCache(this->*memberOf(BoxBoxOwnsManifold{}), body0Wrap, body1Wrap) &&
-	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold))
+	    pairMayUseContactCache(this->*memberOf(BoxBoxOwnsManifold{}), body0Wrap, body1Wrap, cacheDistance) &&
+	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold, cacheDistance))
 	{
 		const btVector3 half0 =
 		    static_cast<const btBoxShape*>(body0Wrap->getCollisionShape())->getHalfExtentsWithMargin();
 		const btVector3 half1 =
 		    static_cast<const btBoxShape*>(body1Wrap->getCollisionShape())->getHalfExtentsWithMargin();
 		const PairShapes shapes = {-half0, half0, -half1, half1};
-		if (keepCachedContacts(m_poseCache, manifold, shapes, body0Wrap, body1Wrap, resultOut)) return;
+		if (keepCachedContacts(m_poseCache, manifold, shapes, body0Wrap, body1Wrap, resultOut, cacheDistance)) return;
 		const btTransform& t0 = body0Wrap->getWorldTransform();
 		const btTransform& t1 = body1Wrap->getWorldTransform();
 		const btScalar reach = resultOut->m_closestPointDistanceThreshold;

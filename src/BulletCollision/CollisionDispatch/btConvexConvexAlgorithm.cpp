@@ -309,9 +309,10 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
                                                    const btCollisionObjectWrapper* body1Wrap,
                                                    const btDispatcherInfo& dispatchInfo, btManifoldResult* resultOut)
 {
+	const btScalar cacheDistance = contactCacheDistance();
 	if (resultOut && body0Wrap && body1Wrap && body0Wrap->getCollisionShape() && body1Wrap->getCollisionShape() &&
-	    pairMayUseContactCache(this->*memberOf(ConvexPairOwnsManifold{}), body0Wrap, body1Wrap) &&
-	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold))
+	    pairMayUseContactCache(this->*memberOf(ConvexPairOwnsManifold{}), body0Wrap, body1Wrap, cacheDistance) &&
+	    slowEnoughForContactCache(resultOut->m_closestPointDistanceThreshold, cacheDistance))
 	{
 		const btConvexShape* shape0 = static_cast<const btConvexShape*>(body0Wrap->getCollisionShape());
 		const btConvexShape* shape1 = static_cast<const btConvexShape*>(body1Wrap->getCollisionShape());
@@ -323,7 +324,7 @@ void CachedConvexConvexAlgorithm::processCollision(const btCollisionObjectWrappe
 			shape0->getAabb(btTransform::getIdentity(), shapes.min0, shapes.max0);
 			shape1->getAabb(btTransform::getIdentity(), shapes.min1, shapes.max1);
 			if (keepCachedContacts(m_poseCache, this->*memberOf(ConvexPairManifold{}), shapes, body0Wrap, body1Wrap,
-			                       resultOut))
+			                       resultOut, cacheDistance))
 				return;
 			const btTransform& t0 = body0Wrap->getWorldTransform();
 			const btTransform& t1 = body1Wrap->getWorldTransform();

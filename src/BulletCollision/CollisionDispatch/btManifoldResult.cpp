@@ -23,30 +23,76 @@ namespace
 const btScalar kMaxCombinedFriction = btScalar(10);
 
 btScalar clampFriction(btScalar value) { return btClamped(value, -kMaxCombinedFriction, kMaxCombinedFriction); }
+
+// The combined value of a callback: the default's body inlined when the callback is the default (most
+// programs never change them, and a call through the pointer cost a point about 40 instructions), the
+// callback itself otherwise. The same operations either way, so the same bits.
+#define CALIBER_COMBINED(callback, function, body0, body1) \
+	((callback) == &btManifoldResult::function ? combined::function(body0, body1) : (callback)(body0, body1))
+
+// The defaults' bodies, visible here so that the calls above inline (btManifoldResult's static functions
+// are the same expressions).
+namespace combined
+{
+inline btScalar calculateCombinedRestitution(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+	return body0->getRestitution() * body1->getRestitution();
+}
+inline btScalar calculateCombinedFriction(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+	return clampFriction(body0->getFriction() * body1->getFriction());
+}
+inline btScalar calculateCombinedRollingFriction(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+	return clampFriction(body0->getRollingFriction() * body1->getFriction() +
+	                     body0->getFriction() * body1->getRollingFriction());
+}
+inline btScalar calculateCombinedSpinningFriction(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+	return clampFriction(body0->getSpinningFriction() * body1->getFriction() +
+	                     body0->getFriction() * body1->getSpinningFriction());
+}
+}  // namespace combined
+
+// The four material values every point gets, in the order addContactPoint has always asked for them.
+struct PointMaterial
+{
+	btScalar friction, restitution, rolling, spinning;
+
+	PointMaterial(const btCollisionObject* body0, const btCollisionObject* body1)
+	    : friction(CALIBER_COMBINED(gCalculateCombinedFrictionCallback, calculateCombinedFriction, body0, body1)),
+	      restitution(
+	          CALIBER_COMBINED(gCalculateCombinedRestitutionCallback, calculateCombinedRestitution, body0, body1)),
+	      rolling(CALIBER_COMBINED(gCalculateCombinedRollingFrictionCallback, calculateCombinedRollingFriction, body0,
+	                               body1)),
+	      spinning(CALIBER_COMBINED(gCalculateCombinedSpinningFrictionCallback, calculateCombinedSpinningFriction,
+	                                body0, body1))
+	{
+	}
+};
+#undef CALIBER_COMBINED
 }  // namespace
 
 btScalar btManifoldResult::calculateCombinedRestitution(const btCollisionObject* body0, const btCollisionObject* body1)
 {
-	return body0->getRestitution() * body1->getRestitution();
+	return combined::calculateCombinedRestitution(body0, body1);
 }
 
 btScalar btManifoldResult::calculateCombinedFriction(const btCollisionObject* body0, const btCollisionObject* body1)
 {
-	return clampFriction(body0->getFriction() * body1->getFriction());
+	return combined::calculateCombinedFriction(body0, body1);
 }
 
 btScalar btManifoldResult::calculateCombinedRollingFriction(const btCollisionObject* body0,
                                                             const btCollisionObject* body1)
 {
-	return clampFriction(body0->getRollingFriction() * body1->getFriction() +
-	                     body0->getFriction() * body1->getRollingFriction());
+	return combined::calculateCombinedRollingFriction(body0, body1);
 }
 
 btScalar btManifoldResult::calculateCombinedSpinningFriction(const btCollisionObject* body0,
                                                              const btCollisionObject* body1)
 {
-	return clampFriction(body0->getSpinningFriction() * body1->getFriction() +
-	                     body0->getFriction() * body1->getSpinningFriction());
+	return combined::calculateCombinedSpinningFriction(body0, body1);
 }
 
 btScalar btManifoldResult::calculateCombinedContactDamping(const btCollisionObject* body0,
@@ -102,12 +148,13 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 	btAssert(finiteInput && "btManifoldResult::addContactPoint: non-finite contact");
 	if (!finiteInput) return;
 
-	if (depth > m_manifoldPtr->getContactBreakingThreshold() + m_closestPointDistanceThreshold) return;
+	btPersistentManifold& manifold = *m_manifoldPtr;
+	if (depth > manifold.getContactBreakingThreshold() + m_closestPointDistanceThreshold) return;
 
 	// Points are stored in the manifold's body order; the algorithm reports in its own (body0Wrap first)
 	// order, which differs when the manifold was created for the swapped pair.
-	const bool isSwapped = m_manifoldPtr->getBody0() != m_body0Wrap->getCollisionObject();
-	const bool isNewCollision = m_manifoldPtr->getNumContacts() == 0;
+	const bool isSwapped = manifold.getBody0() != m_body0Wrap->getCollisionObject();
+	const bool isNewCollision = manifold.getNumContacts() == 0;
 	const btCollisionObjectWrapper* wrapA = isSwapped ? m_body1Wrap : m_body0Wrap;
 	const btCollisionObjectWrapper* wrapB = isSwapped ? m_body0Wrap : m_body1Wrap;
 
@@ -115,49 +162,100 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 	const btVector3 localA = wrapA->getCollisionObject()->getWorldTransform().invXform(pointA);
 	const btVector3 localB = wrapB->getCollisionObject()->getWorldTransform().invXform(pointInWorld);
 
-	btManifoldPoint newPt(localA, localB, normalOnBInWorld, depth);
-	newPt.m_positionWorldOnA = pointA;
-	newPt.m_positionWorldOnB = pointInWorld;
-
 	const btCollisionObject* body0 = m_body0Wrap->getCollisionObject();
 	const btCollisionObject* body1 = m_body1Wrap->getCollisionObject();
-	newPt.m_combinedFriction = gCalculateCombinedFrictionCallback(body0, body1);
-	newPt.m_combinedRestitution = gCalculateCombinedRestitutionCallback(body0, body1);
-	newPt.m_combinedRollingFriction = gCalculateCombinedRollingFrictionCallback(body0, body1);
-	newPt.m_combinedSpinningFriction = gCalculateCombinedSpinningFrictionCallback(body0, body1);
-
+	const PointMaterial material(body0, body1);
 	const int flags0 = body0->getCollisionFlags();
 	const int flags1 = body1->getCollisionFlags();
-	if ((flags0 | flags1) & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
+	const bool stiffness = ((flags0 | flags1) & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) != 0;
+	const btScalar damping = stiffness ? gCalculateCombinedContactDampingCallback(body0, body1) : btScalar(0);
+	const btScalar stiffnessValue =
+	    stiffness ? gCalculateCombinedContactStiffnessCallback(body0, body1) : btScalar(0);
+	int pointFlags = stiffness ? int(BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) : 0;
+	if ((flags0 | flags1) & btCollisionObject::CF_HAS_FRICTION_ANCHOR) pointFlags |= BT_CONTACT_FLAG_FRICTION_ANCHOR;
+	const int partId0 = isSwapped ? m_partId1 : m_partId0;
+	const int partId1 = isSwapped ? m_partId0 : m_partId1;
+	const int index0 = isSwapped ? m_index1 : m_index0;
+	const int index1 = isSwapped ? m_index0 : m_index1;
+
+	// getCacheEntry's search (the stored point whose local point A is closest, strictly within the
+	// breaking threshold), on localA alone.
+	int insertIndex = -1;
 	{
-		newPt.m_combinedContactDamping1 = gCalculateCombinedContactDampingCallback(body0, body1);
-		newPt.m_combinedContactStiffness1 = gCalculateCombinedContactStiffnessCallback(body0, body1);
-		newPt.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+		btScalar closestDistance2 = manifold.getContactBreakingThreshold() * manifold.getContactBreakingThreshold();
+		const int points = manifold.getNumContacts();
+		// The points are one array: indexed from the first, without getContactPoint's clamp per point.
+		const btManifoldPoint* stored = points > 0 ? &manifold.getContactPoint(0) : nullptr;
+		for (int i = 0; i < points; ++i)
+		{
+			const btScalar distance2 = (stored[i].m_localPointA - localA).length2();
+			if (distance2 < closestDistance2)
+			{
+				closestDistance2 = distance2;
+				insertIndex = i;
+			}
+		}
 	}
-	if ((flags0 | flags1) & btCollisionObject::CF_HAS_FRICTION_ANCHOR)
-		newPt.m_contactPointFlags |= BT_CONTACT_FLAG_FRICTION_ANCHOR;
-
-	newPt.m_partId0 = isSwapped ? m_partId1 : m_partId0;
-	newPt.m_partId1 = isSwapped ? m_partId0 : m_partId1;
-	newPt.m_index0 = isSwapped ? m_index1 : m_index0;
-	newPt.m_index1 = isSwapped ? m_index0 : m_index1;
-
-	int insertIndex = m_manifoldPtr->getCacheEntry(newPt);
 	if (insertIndex >= 0)
 	{
-		// A replaced point keeps its old friction directions (its lateral impulses were solved along them).
-		m_manifoldPtr->replaceContactPoint(newPt, insertIndex);
+		// replaceContactPoint with the new point written in place: what a new point sets is overwritten,
+		// the impulses, previous RHS, lifetime, user data and friction directions are kept (the lateral
+		// impulses were solved along those directions; a new point never has
+		// BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED), and what a new point leaves at zero is zeroed.
+		// Building the point and copying it in cost about a hundred instructions a point.
+		const bool finite = caliber::isFinite(localA) && caliber::isFinite(localB) && caliber::isFinite(pointA);
+		btAssert(finite);
+		if (finite)
+		{
+			btManifoldPoint& point = manifold.getContactPoint(insertIndex);
+			point.m_localPointA = localA;
+			point.m_localPointB = localB;
+			point.m_positionWorldOnB = pointInWorld;
+			point.m_positionWorldOnA = pointA;
+			point.m_normalWorldOnB = normalOnBInWorld;
+			point.m_distance1 = depth;
+			point.m_combinedFriction = material.friction;
+			point.m_combinedRollingFriction = material.rolling;
+			point.m_combinedSpinningFriction = material.spinning;
+			point.m_combinedRestitution = material.restitution;
+			point.m_partId0 = partId0;
+			point.m_partId1 = partId1;
+			point.m_index0 = index0;
+			point.m_index1 = index1;
+			point.m_contactPointFlags = pointFlags;
+			point.m_contactMotion1 = btScalar(0);
+			point.m_contactMotion2 = btScalar(0);
+			point.m_contactCFM = btScalar(0);
+			point.m_combinedContactStiffness1 = stiffnessValue;
+			point.m_contactERP = btScalar(0);
+			point.m_combinedContactDamping1 = damping;
+			point.m_frictionCFM = btScalar(0);
+		}
 	}
 	else
 	{
+		btManifoldPoint newPt(localA, localB, normalOnBInWorld, depth);
+		newPt.m_positionWorldOnA = pointA;
+		newPt.m_positionWorldOnB = pointInWorld;
+		newPt.m_combinedFriction = material.friction;
+		newPt.m_combinedRestitution = material.restitution;
+		newPt.m_combinedRollingFriction = material.rolling;
+		newPt.m_combinedSpinningFriction = material.spinning;
+		newPt.m_combinedContactDamping1 = damping;
+		newPt.m_combinedContactStiffness1 = stiffnessValue;
+		newPt.m_contactPointFlags = pointFlags;
+		newPt.m_partId0 = partId0;
+		newPt.m_partId1 = partId1;
+		newPt.m_index0 = index0;
+		newPt.m_index1 = index1;
 		btPlaneSpace1(newPt.m_normalWorldOnB, newPt.m_lateralFrictionDir1, newPt.m_lateralFrictionDir2);
-		insertIndex = m_manifoldPtr->addManifoldPoint(newPt);
+		insertIndex = manifold.addManifoldPoint(newPt);
 	}
 	if (insertIndex < 0) return;
 
 	if (gContactAddedCallback && ((flags0 | flags1) & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK))
 	{
-		btManifoldPoint& stored = m_manifoldPtr->getContactPoint(insertIndex);
+		btManifoldPoint& stored = manifold.getContactPoint(insertIndex);
 		(*gContactAddedCallback)(stored, wrapA, stored.m_partId0, stored.m_index0, wrapB, stored.m_partId1,
 		                         stored.m_index1);
 	}
@@ -170,10 +268,9 @@ void caliber::refreshPointMaterials(btPersistentManifold& manifold, const btColl
 	const int points = manifold.getNumContacts();
 	if (points == 0) return;
 	// The same values and flags addContactPoint gives a new point (replaceContactPoint keeps them).
-	const btScalar friction = gCalculateCombinedFrictionCallback(object0, object1);
-	const btScalar restitution = gCalculateCombinedRestitutionCallback(object0, object1);
-	const btScalar rolling = gCalculateCombinedRollingFrictionCallback(object0, object1);
-	const btScalar spinning = gCalculateCombinedSpinningFrictionCallback(object0, object1);
+	const PointMaterial material(object0, object1);
+	const btScalar friction = material.friction, restitution = material.restitution;
+	const btScalar rolling = material.rolling, spinning = material.spinning;
 	const int flags = object0->getCollisionFlags() | object1->getCollisionFlags();
 	const bool stiffness = (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) != 0;
 	const btScalar damping = stiffness ? gCalculateCombinedContactDampingCallback(object0, object1) : btScalar(0);

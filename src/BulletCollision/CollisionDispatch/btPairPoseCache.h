@@ -76,11 +76,11 @@ struct PairPoseCache
 	/// distance (a pair closing faster than that gets a full detection, which may add speculative points).
 	/// A manifold that lost or gained points since (a refresh dropped one that drifted apart, the program
 	/// cleared it) is detected again too.
+	/// distance is contactCacheDistance(), read once by the caller.
 	bool covers(const btTransform& t0, const btTransform& t1, btScalar queryReach, const PairShapes& shapesNow,
-	            int pointsNow) const
+	            int pointsNow, btScalar distance) const
 	{
 		if (!valid || pointsNow != points || !(shapesNow == shapes)) return false;
-		const btScalar distance = contactCacheDistance();
 		if (!(queryReach <= btMax(reach, distance))) return false;
 		const btMatrix3x3& r0 = t0.getBasis();
 		const btMatrix3x3& r1 = t1.getBasis();
@@ -108,14 +108,16 @@ struct PairPoseCache
 
 /// The cached step of an algorithm that owns manifold: when cache covers the pair (poses of the query's
 /// wrappers, its reach, the shapes, the manifold's point count), gives the points their current materials,
-/// refreshes them and returns true; otherwise returns false, and the caller detects and stores.
+/// refreshes them and returns true; otherwise returns false, and the caller detects and stores. distance is
+/// contactCacheDistance(), read once per query by the caller (each read was a call and spilled the caller's registers).
 inline bool keepCachedContacts(const PairPoseCache& cache, btPersistentManifold* manifold, const PairShapes& shapes,
                                const btCollisionObjectWrapper* body0Wrap, const btCollisionObjectWrapper* body1Wrap,
-                               btManifoldResult* resultOut)
+                               btManifoldResult* resultOut, btScalar distance)
 {
 	// A non-finite pose never passes the test: the full path reports it.
 	if (!manifold || !cache.covers(body0Wrap->getWorldTransform(), body1Wrap->getWorldTransform(),
-	                               resultOut->m_closestPointDistanceThreshold, shapes, manifold->getNumContacts()))
+	                               resultOut->m_closestPointDistanceThreshold, shapes, manifold->getNumContacts(),
+	                               distance))
 		return false;
 	resultOut->setPersistentManifold(manifold);
 	refreshPointMaterials(*manifold, body0Wrap->getCollisionObject(), body1Wrap->getCollisionObject());
@@ -127,15 +129,15 @@ inline bool keepCachedContacts(const PairPoseCache& cache, btPersistentManifold*
 /// pair that may close more than four cache distances moves too fast for its contacts to hold at the next
 /// step, so it is detected and not remembered (a pair in free fall pays nothing for the cache). Pairs a
 /// little faster than the distance are remembered: the solver often stops them within the step.
-inline bool slowEnoughForContactCache(btScalar reach) { return reach <= btScalar(4) * contactCacheDistance(); }
+inline bool slowEnoughForContactCache(btScalar reach, btScalar distance) { return reach <= btScalar(4) * distance; }
 
 /// Whether a pair may use the cache at all: the cache is on, the algorithm owns its manifold (a shared
 /// one collects other queries' points too), and no contact-added callback asks to see every point of
 /// every step (CF_CUSTOM_MATERIAL_CALLBACK).
 inline bool pairMayUseContactCache(bool ownsManifold, const btCollisionObjectWrapper* body0Wrap,
-                                   const btCollisionObjectWrapper* body1Wrap)
+                                   const btCollisionObjectWrapper* body1Wrap, btScalar distance)
 {
-	if (!ownsManifold || !(contactCacheDistance() > btScalar(0))) return false;
+	if (!ownsManifold || !(distance > btScalar(0))) return false;
 	const int flags =
 	    body0Wrap->getCollisionObject()->getCollisionFlags() | body1Wrap->getCollisionObject()->getCollisionFlags();
 	return !(flags & btCollisionObject::CF_CUSTOM_MATERIAL_CALLBACK);
