@@ -2,6 +2,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
+#include "LinearMath/btCpuFeatures.h"
 #include "LinearMath/btMinMax.h"
 #include "LinearMath/btSimdBatch.h"
 
@@ -37,6 +38,47 @@ btScalar sanitizedBreakingThreshold(btScalar threshold)
 	btAssert(threshold >= btScalar(0));
 	return threshold >= btScalar(0) ? threshold : btScalar(0);
 }
+
+// refreshContactPoints' first pass: when both transforms are finite, every point's world positions, distance
+// and age, and which points stay (bit i set when point i is within the breaking threshold along the normal
+// and has not slid across it further than the threshold); -1 when a transform is not finite. Inlined into
+// the two builds below.
+SIMD_FORCE_INLINE int refreshWorldPoints(btManifoldPoint* points, int count, const btTransform& trA,
+                                         const btTransform& trB, btScalar threshold)
+{
+	const bool finite = caliber::isFinite(trA) && caliber::isFinite(trB);
+	btAssert(finite);
+	if (!finite) return -1;
+
+	// The bases turned into columns once for all points (the same bits as trA(p) and trB(p)).
+	const caliber::ColumnTransform toWorldA(trA), toWorldB(trB);
+	const btScalar threshold2 = threshold * threshold;
+	int kept = 0;
+	for (int i = 0; i < count; ++i)
+	{
+		btManifoldPoint& point = points[i];
+		point.m_positionWorldOnA = toWorldA(point.m_localPointA);
+		point.m_positionWorldOnB = toWorldB(point.m_localPointB);
+		point.m_distance1 = (point.m_positionWorldOnA - point.m_positionWorldOnB).dot(point.m_normalWorldOnB);
+		++point.m_lifeTime;
+		const btVector3 projectedOnB = point.m_positionWorldOnA - point.m_normalWorldOnB * point.m_distance1;
+		const btScalar drift2 = (point.m_positionWorldOnB - projectedOnB).length2();
+		if (point.m_distance1 <= threshold && !(drift2 > threshold2)) kept |= 1 << i;
+	}
+	return kept;
+}
+
+// The first pass compiled a second time for AVX2 (VEX encoding, three operands: no register copy before
+// each two-operand SSE operation), chosen at load. Only AVX2, never FMA: every operation rounds as in the
+// baseline, in the same order, so the points get the same bits (see LinearMath/btCpuFeatures.h).
+#if CALIBER_AVX2_BUILDS
+__attribute__((target("avx2"))) int refreshWorldPointsAvx2(btManifoldPoint* points, int count, const btTransform& trA,
+                                                            const btTransform& trB, btScalar threshold)
+{
+	return refreshWorldPoints(points, count, trA, trB, threshold);
+}
+const bool g_avx2Refresh = caliber::detectAvx2();
+#endif
 
 btScalar sanitizedProcessingThreshold(btScalar threshold)
 {
@@ -241,22 +283,26 @@ void btPersistentManifold::replaceContactPoint(const btManifoldPoint& newPoint, 
 
 void btPersistentManifold::refreshContactPoints(const btTransform& trA, const btTransform& trB)
 {
-	const bool finite = caliber::isFinite(trA) && caliber::isFinite(trB);
-	btAssert(finite);
-	if (!finite) return;
+#if CALIBER_AVX2_BUILDS
+	const int kept = g_avx2Refresh
+	                     ? refreshWorldPointsAvx2(m_pointCache, m_cachedPoints, trA, trB, m_contactBreakingThreshold)
+	                     : refreshWorldPoints(m_pointCache, m_cachedPoints, trA, trB, m_contactBreakingThreshold);
+#else
+	const int kept = refreshWorldPoints(m_pointCache, m_cachedPoints, trA, trB, m_contactBreakingThreshold);
+#endif
+	if (kept < 0) return;
 
-	// The bases turned into columns once for all points (the same bits as trA(p) and trB(p)).
-	const caliber::ColumnTransform toWorldA(trA), toWorldB(trB);
-	for (int i = 0; i < m_cachedPoints; ++i)
+	// Backwards, so that the point moved into a removed slot has already been examined: the point at index
+	// i is still the first pass's point i, and its verdict stands. With no callback to run, that is all.
+	if (!gContactProcessedCallback && !gContactDestroyedCallback && !gContactEndedCallback)
 	{
-		btManifoldPoint& point = m_pointCache[i];
-		point.m_positionWorldOnA = toWorldA(point.m_localPointA);
-		point.m_positionWorldOnB = toWorldB(point.m_localPointB);
-		point.m_distance1 = (point.m_positionWorldOnA - point.m_positionWorldOnB).dot(point.m_normalWorldOnB);
-		++point.m_lifeTime;
+		if (kept == (1 << m_cachedPoints) - 1) return;
+		for (int i = m_cachedPoints - 1; i >= 0; --i)
+			if (!(kept & (1 << i))) removeContactPoint(i);
+		return;
 	}
-
-	// Backwards, so that the point moved into a removed slot has already been examined.
+	// With callbacks, each point is judged again when its turn comes, after the callbacks before it ran
+	// (which may change the manifold), as always.
 	const btScalar threshold2 = m_contactBreakingThreshold * m_contactBreakingThreshold;
 	for (int i = m_cachedPoints - 1; i >= 0; --i)
 	{

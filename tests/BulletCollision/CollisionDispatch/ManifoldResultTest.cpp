@@ -1,7 +1,9 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <limits>
+#include <random>
 
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
@@ -164,6 +166,178 @@ TEST_F(ManifoldResultFixture, NonFiniteContactIsIgnored)
 	result.addContactPoint(btVector3(0, 1, 0), btVector3(0, 0, 0), nan);
 	EXPECT_EQ(manifold.getNumContacts(), 0);
 #endif
+}
+
+namespace
+{
+bool sameBits(btScalar a, btScalar b) { return std::memcmp(&a, &b, sizeof(btScalar)) == 0; }
+bool sameBits(const btVector3& a, const btVector3& b)
+{
+	return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
+}
+
+// Every field of two points, bit for bit (w lanes and padding aside).
+void expectSamePoint(const btManifoldPoint& a, const btManifoldPoint& b, int trial)
+{
+	SCOPED_TRACE(trial);
+	EXPECT_TRUE(sameBits(a.m_localPointA, b.m_localPointA));
+	EXPECT_TRUE(sameBits(a.m_localPointB, b.m_localPointB));
+	EXPECT_TRUE(sameBits(a.m_positionWorldOnB, b.m_positionWorldOnB));
+	EXPECT_TRUE(sameBits(a.m_positionWorldOnA, b.m_positionWorldOnA));
+	EXPECT_TRUE(sameBits(a.m_normalWorldOnB, b.m_normalWorldOnB));
+	EXPECT_TRUE(sameBits(a.m_distance1, b.m_distance1));
+	EXPECT_TRUE(sameBits(a.m_combinedFriction, b.m_combinedFriction));
+	EXPECT_TRUE(sameBits(a.m_combinedRollingFriction, b.m_combinedRollingFriction));
+	EXPECT_TRUE(sameBits(a.m_combinedSpinningFriction, b.m_combinedSpinningFriction));
+	EXPECT_TRUE(sameBits(a.m_combinedRestitution, b.m_combinedRestitution));
+	EXPECT_EQ(a.m_partId0, b.m_partId0);
+	EXPECT_EQ(a.m_partId1, b.m_partId1);
+	EXPECT_EQ(a.m_index0, b.m_index0);
+	EXPECT_EQ(a.m_index1, b.m_index1);
+	EXPECT_EQ(a.m_userPersistentData, b.m_userPersistentData);
+	EXPECT_EQ(a.m_contactPointFlags, b.m_contactPointFlags);
+	EXPECT_TRUE(sameBits(a.m_appliedImpulse, b.m_appliedImpulse));
+	EXPECT_TRUE(sameBits(a.m_prevRHS, b.m_prevRHS));
+	EXPECT_TRUE(sameBits(a.m_appliedImpulseLateral1, b.m_appliedImpulseLateral1));
+	EXPECT_TRUE(sameBits(a.m_appliedImpulseLateral2, b.m_appliedImpulseLateral2));
+	EXPECT_TRUE(sameBits(a.m_contactMotion1, b.m_contactMotion1));
+	EXPECT_TRUE(sameBits(a.m_contactMotion2, b.m_contactMotion2));
+	EXPECT_TRUE(sameBits(a.m_contactCFM, b.m_contactCFM));
+	EXPECT_TRUE(sameBits(a.m_combinedContactStiffness1, b.m_combinedContactStiffness1));
+	EXPECT_TRUE(sameBits(a.m_contactERP, b.m_contactERP));
+	EXPECT_TRUE(sameBits(a.m_combinedContactDamping1, b.m_combinedContactDamping1));
+	EXPECT_TRUE(sameBits(a.m_frictionCFM, b.m_frictionCFM));
+	EXPECT_EQ(a.m_lifeTime, b.m_lifeTime);
+	EXPECT_TRUE(sameBits(a.m_lateralFrictionDir1, b.m_lateralFrictionDir1));
+	EXPECT_TRUE(sameBits(a.m_lateralFrictionDir2, b.m_lateralFrictionDir2));
+}
+
+btScalar halfFriction(const btCollisionObject* body0, const btCollisionObject* body1)
+{
+	return btScalar(0.5) * body0->getFriction() + body1->getFriction();
+}
+}  // namespace
+
+// addContactPoint must leave the manifold as Bullet's documented sequence does: build the point (local
+// points from the bodies' transforms, world points, the four combined materials through the global
+// callbacks, stiffness and damping when flagged, the friction anchor flag, part and index ids in the
+// manifold's body order), then getCacheEntry, and replaceContactPoint for a match or addManifoldPoint with
+// btPlaneSpace1's directions otherwise. The stored points start with every field set (impulses, CFM, ERP,
+// motion, user data, friction directions, flags), so a field that the replacement forgot to keep or to
+// reset shows. Varied: body order, materials, flags, a custom friction callback, matches and misses.
+TEST_F(ManifoldResultFixture, AddContactPointStoresWhatReplaceOrAddManifoldPointWould)
+{
+	std::mt19937 random(1128);
+	std::uniform_real_distribution<float> unit(-1, 1);
+	const CalculateCombinedCallback savedFriction = gCalculateCombinedFrictionCallback;
+	int replaced = 0, added = 0;
+	for (int trial = 0; trial < 3000; ++trial)
+	{
+		object0.setFriction(btScalar(0.5) + btScalar(0.5) * unit(random));
+		object1.setFriction(btScalar(0.5) + btScalar(0.5) * unit(random));
+		object0.setRestitution(btScalar(0.5) + btScalar(0.5) * unit(random));
+		object1.setRestitution(btScalar(0.5) + btScalar(0.5) * unit(random));
+		object0.setRollingFriction(btScalar(0.05) * (btScalar(1) + unit(random)));
+		object1.setSpinningFriction(btScalar(0.05) * (btScalar(1) + unit(random)));
+		object0.setCollisionFlags(0);
+		object1.setCollisionFlags(0);
+		if (trial % 3 == 0) object0.setContactStiffnessAndDamping(btScalar(1000), btScalar(0.2));
+		if (trial % 5 == 0)
+			object1.setCollisionFlags(object1.getCollisionFlags() | btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+		gCalculateCombinedFrictionCallback = trial % 7 == 0 ? halfFriction : savedFriction;
+		const bool swapped = trial % 2 == 1;
+		const btCollisionObject* bodyA = swapped ? &object1 : &object0;
+		const btCollisionObject* bodyB = swapped ? &object0 : &object1;
+
+		const btScalar threshold(0.05);
+		btPersistentManifold manifold(bodyA, bodyB, 0, threshold, btScalar(BT_LARGE_FLOAT));
+		const int stored = 1 + trial % 4;
+		for (int i = 0; i < stored; ++i)
+		{
+			btManifoldPoint point(btVector3(unit(random), unit(random), unit(random)) * btScalar(0.5),
+			                      btVector3(unit(random), unit(random), unit(random)), btVector3(0, 1, 0),
+			                      btScalar(-0.01));
+			point.m_appliedImpulse = btScalar(1 + i);
+			point.m_prevRHS = btScalar(2 + i);
+			point.m_appliedImpulseLateral1 = btScalar(3 + i);
+			point.m_appliedImpulseLateral2 = btScalar(4 + i);
+			point.m_contactMotion1 = btScalar(0.5);
+			point.m_contactMotion2 = btScalar(0.25);
+			point.m_contactCFM = btScalar(0.125);
+			point.m_contactERP = btScalar(0.75);
+			point.m_frictionCFM = btScalar(0.0625);
+			point.m_combinedContactStiffness1 = btScalar(9);
+			point.m_combinedContactDamping1 = btScalar(8);
+			point.m_contactPointFlags = BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED | BT_CONTACT_FLAG_HAS_CONTACT_CFM;
+			point.m_lifeTime = 10 + i;
+			point.m_userPersistentData = &point;  // only compared, never dereferenced
+			point.m_lateralFrictionDir1 = btVector3(1, 0, 0);
+			point.m_lateralFrictionDir2 = btVector3(0, 0, 1);
+			manifold.addManifoldPoint(point);
+		}
+		btPersistentManifold reference = manifold;
+
+		// A contact near a stored point (a match) or anywhere (usually a miss).
+		const btVector3 normal = btVector3(unit(random), btScalar(1), unit(random)).normalized();
+		const btScalar depth = btScalar(0.02) * unit(random);
+		btVector3 pointOnB = btVector3(unit(random), unit(random), unit(random));
+		if (trial % 4 != 3)
+		{
+			const btManifoldPoint& near = manifold.getContactPoint(trial % stored);
+			const btVector3 pointOnA = bodyA->getWorldTransform()(near.m_localPointA) +
+			                           btVector3(unit(random), unit(random), unit(random)) * btScalar(0.01);
+			pointOnB = pointOnA - normal * depth;
+		}
+
+		btCollisionObjectWrapper w0(0, &shape, &object0, object0.getWorldTransform(), 3, 7);
+		btCollisionObjectWrapper w1(0, &shape, &object1, object1.getWorldTransform(), 5, 9);
+		btManifoldResult result(&w0, &w1);
+		result.setPersistentManifold(&manifold);
+		result.addContactPoint(normal, pointOnB, depth);
+
+		// The reference, step by step through the manifold's own API.
+		const btVector3 pointOnA = pointOnB + normal * depth;
+		btManifoldPoint expected(bodyA->getWorldTransform().invXform(pointOnA),
+		                         bodyB->getWorldTransform().invXform(pointOnB), normal, depth);
+		expected.m_positionWorldOnA = pointOnA;
+		expected.m_positionWorldOnB = pointOnB;
+		expected.m_combinedFriction = gCalculateCombinedFrictionCallback(&object0, &object1);
+		expected.m_combinedRestitution = gCalculateCombinedRestitutionCallback(&object0, &object1);
+		expected.m_combinedRollingFriction = gCalculateCombinedRollingFrictionCallback(&object0, &object1);
+		expected.m_combinedSpinningFriction = gCalculateCombinedSpinningFrictionCallback(&object0, &object1);
+		const int flags = object0.getCollisionFlags() | object1.getCollisionFlags();
+		if (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING)
+		{
+			expected.m_combinedContactDamping1 = gCalculateCombinedContactDampingCallback(&object0, &object1);
+			expected.m_combinedContactStiffness1 = gCalculateCombinedContactStiffnessCallback(&object0, &object1);
+			expected.m_contactPointFlags |= BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING;
+		}
+		if (flags & btCollisionObject::CF_HAS_FRICTION_ANCHOR)
+			expected.m_contactPointFlags |= BT_CONTACT_FLAG_FRICTION_ANCHOR;
+		expected.m_partId0 = swapped ? 5 : 3;
+		expected.m_partId1 = swapped ? 3 : 5;
+		expected.m_index0 = swapped ? 9 : 7;
+		expected.m_index1 = swapped ? 7 : 9;
+		const int match = reference.getCacheEntry(expected);
+		if (match >= 0)
+		{
+			reference.replaceContactPoint(expected, match);
+			++replaced;
+		}
+		else
+		{
+			btPlaneSpace1(expected.m_normalWorldOnB, expected.m_lateralFrictionDir1, expected.m_lateralFrictionDir2);
+			reference.addManifoldPoint(expected);
+			++added;
+		}
+		ASSERT_EQ(manifold.getNumContacts(), reference.getNumContacts()) << trial;
+		for (int i = 0; i < manifold.getNumContacts(); ++i)
+			expectSamePoint(manifold.getContactPoint(i), reference.getContactPoint(i), trial);
+	}
+	gCalculateCombinedFrictionCallback = savedFriction;
+	// Both ways were taken many times (not a test that cannot fail).
+	EXPECT_GT(replaced, 1000);
+	EXPECT_GT(added, 300);
 }
 
 TEST(CollisionObjectWrapper, ReferencesItsTransformsAndKeepsIdentifiers)

@@ -1,11 +1,13 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
 
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "LinearMath/btQuaternion.h"
 
 namespace
 {
@@ -473,4 +475,80 @@ TEST_F(PersistentManifoldTest, NanTransformLeavesManifoldUnchanged)
 	EXPECT_EQ(manifold.getContactPoint(0).getDistance(), btScalar(-0.01));
 	EXPECT_EQ(manifold.getContactPoint(0).getLifeTime(), 0);
 #endif
+}
+
+namespace
+{
+// Every field of two points, compared bit for bit (w lanes and padding aside).
+void expectSamePoint(const btManifoldPoint& a, const btManifoldPoint& b)
+{
+	const auto same = [](btScalar x, btScalar y) { return std::memcmp(&x, &y, sizeof(btScalar)) == 0; };
+	const auto sameVector = [&](const btVector3& x, const btVector3& y)
+	{ return same(x.x(), y.x()) && same(x.y(), y.y()) && same(x.z(), y.z()); };
+	EXPECT_TRUE(sameVector(a.m_localPointA, b.m_localPointA));
+	EXPECT_TRUE(sameVector(a.m_localPointB, b.m_localPointB));
+	EXPECT_TRUE(sameVector(a.m_positionWorldOnA, b.m_positionWorldOnA));
+	EXPECT_TRUE(sameVector(a.m_positionWorldOnB, b.m_positionWorldOnB));
+	EXPECT_TRUE(sameVector(a.m_normalWorldOnB, b.m_normalWorldOnB));
+	EXPECT_TRUE(same(a.m_distance1, b.m_distance1));
+	EXPECT_EQ(a.m_lifeTime, b.m_lifeTime);
+	EXPECT_TRUE(same(a.m_appliedImpulse, b.m_appliedImpulse));
+	EXPECT_EQ(a.m_userPersistentData, b.m_userPersistentData);
+}
+
+// A manifold of four points with varied local points, normals and distances, some of which a refresh
+// under the given poses keeps and some it drops (along the normal or sideways).
+btPersistentManifold variedManifold(std::mt19937& random, btScalar threshold)
+{
+	std::uniform_real_distribution<float> unit(-1, 1);
+	btPersistentManifold manifold(fakeBody0(), fakeBody1(), 0, threshold, 0);
+	for (int i = 0; i < 4; ++i)
+	{
+		const btVector3 normal = btVector3(unit(random), unit(random), unit(random) + btScalar(2)).normalized();
+		const btVector3 localA(unit(random), unit(random), unit(random));
+		// Within half a threshold of the point A on even points, two on odd ones: some kept, some too far along
+		// or across the normal.
+		const btScalar spread = (i % 2 == 0 ? btScalar(0.5) : btScalar(2)) * threshold;
+		const btVector3 localB = localA + btVector3(unit(random), unit(random), unit(random)) * spread;
+		btManifoldPoint point(localA, localB, normal, btScalar(0));
+		point.m_appliedImpulse = btScalar(i + 1);
+		point.m_lifeTime = i;
+		manifold.addManifoldPoint(point);
+	}
+	return manifold;
+}
+}  // namespace
+
+// Without callbacks the refresh decides every point in its first pass (the point at an index, walked
+// backwards, is still that pass's point); with a processed callback each point is judged again in its
+// turn. Both must drop the same points and leave the same manifold.
+TEST_F(PersistentManifoldTest, RefreshDropsTheSamePointsWithAndWithoutAProcessedCallback)
+{
+	std::mt19937 random(20261128);
+	std::uniform_real_distribution<float> unit(-1, 1);
+	int dropped = 0, kept = 0;
+	for (int trial = 0; trial < 2000; ++trial)
+	{
+		const btScalar threshold = trial % 10 == 0 ? btScalar(0) : btScalar(0.02);
+		btPersistentManifold plain = variedManifold(random, threshold);
+		btPersistentManifold reported = plain;
+		const btTransform trA(btQuaternion(btVector3(unit(random), unit(random), 1), btScalar(0.005) * unit(random)),
+		                      btVector3(unit(random), unit(random), unit(random)) * btScalar(0.005));
+		const btTransform trB(btQuaternion(btVector3(1, unit(random), unit(random)), btScalar(0.005) * unit(random)),
+		                      btVector3(unit(random), unit(random), unit(random)) * btScalar(0.005));
+		gContactProcessedCallback = 0;
+		plain.refreshContactPoints(trA, trB);
+		gContactProcessedCallback = onProcessed;
+		gProcessedCount = 0;
+		reported.refreshContactPoints(trA, trB);
+		gContactProcessedCallback = 0;
+		ASSERT_EQ(plain.getNumContacts(), reported.getNumContacts()) << "trial " << trial;
+		EXPECT_EQ(gProcessedCount, reported.getNumContacts());
+		for (int i = 0; i < plain.getNumContacts(); ++i) expectSamePoint(plain.getContactPoint(i), reported.getContactPoint(i));
+		dropped += 4 - plain.getNumContacts();
+		kept += plain.getNumContacts();
+	}
+	// The trials exercise both verdicts (not a test that cannot fail).
+	EXPECT_GT(dropped, 1000);
+	EXPECT_GT(kept, 1000);
 }
