@@ -3,7 +3,14 @@
 #include "BulletCollision/CollisionDispatch/btPairPoseCache.h"
 
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
+#include "LinearMath/btCpuFeatures.h"
+#include "LinearMath/btMemberAccess.h"
 #include "LinearMath/btMinMax.h"
+
+CALIBER_MEMBER_ACCESS(ResultPartId0, btManifoldResult, int, m_partId0)
+CALIBER_MEMBER_ACCESS(ResultPartId1, btManifoldResult, int, m_partId1)
+CALIBER_MEMBER_ACCESS(ResultIndex0, btManifoldResult, int, m_index0)
+CALIBER_MEMBER_ACCESS(ResultIndex1, btManifoldResult, int, m_index1)
 
 ContactAddedCallback gContactAddedCallback = 0;
 CalculateCombinedCallback gCalculateCombinedRestitutionCallback = &btManifoldResult::calculateCombinedRestitution;
@@ -139,31 +146,43 @@ void btManifoldResult::refreshContactPoints()
 	m_manifoldPtr->setContactBreakingThreshold(breakingThreshold);
 }
 
-void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld, btScalar depth)
+namespace
 {
-	if (!m_manifoldPtr || !m_body0Wrap || !m_body1Wrap) return;
+// btManifoldResult::addContactPoint's body, inlined into the two builds below.
+SIMD_FORCE_INLINE void addPoint(btManifoldResult& result, const btVector3& normalOnBInWorld,
+                                const btVector3& pointInWorld, btScalar depth)
+{
+	btPersistentManifold* const manifoldPtr = result.getPersistentManifold();
+	const btCollisionObjectWrapper* const body0Wrap = result.getBody0Wrap();
+	const btCollisionObjectWrapper* const body1Wrap = result.getBody1Wrap();
+	if (!manifoldPtr || !body0Wrap || !body1Wrap) return;
+	const btScalar closestPointDistanceThreshold = result.m_closestPointDistanceThreshold;
+	const int resultPartId0 = result.*memberOf(caliber::ResultPartId0{});
+	const int resultPartId1 = result.*memberOf(caliber::ResultPartId1{});
+	const int resultIndex0 = result.*memberOf(caliber::ResultIndex0{});
+	const int resultIndex1 = result.*memberOf(caliber::ResultIndex1{});
 
 	const bool finiteInput =
 	    caliber::isFinite(normalOnBInWorld) && caliber::isFinite(pointInWorld) && btIsFinite(depth);
 	btAssert(finiteInput && "btManifoldResult::addContactPoint: non-finite contact");
 	if (!finiteInput) return;
 
-	btPersistentManifold& manifold = *m_manifoldPtr;
-	if (depth > manifold.getContactBreakingThreshold() + m_closestPointDistanceThreshold) return;
+	btPersistentManifold& manifold = *manifoldPtr;
+	if (depth > manifold.getContactBreakingThreshold() + closestPointDistanceThreshold) return;
 
 	// Points are stored in the manifold's body order; the algorithm reports in its own (body0Wrap first)
 	// order, which differs when the manifold was created for the swapped pair.
-	const bool isSwapped = manifold.getBody0() != m_body0Wrap->getCollisionObject();
+	const bool isSwapped = manifold.getBody0() != body0Wrap->getCollisionObject();
 	const bool isNewCollision = manifold.getNumContacts() == 0;
-	const btCollisionObjectWrapper* wrapA = isSwapped ? m_body1Wrap : m_body0Wrap;
-	const btCollisionObjectWrapper* wrapB = isSwapped ? m_body0Wrap : m_body1Wrap;
+	const btCollisionObjectWrapper* wrapA = isSwapped ? body1Wrap : body0Wrap;
+	const btCollisionObjectWrapper* wrapB = isSwapped ? body0Wrap : body1Wrap;
 
 	const btVector3 pointA = pointInWorld + normalOnBInWorld * depth;
 	const btVector3 localA = wrapA->getCollisionObject()->getWorldTransform().invXform(pointA);
 	const btVector3 localB = wrapB->getCollisionObject()->getWorldTransform().invXform(pointInWorld);
 
-	const btCollisionObject* body0 = m_body0Wrap->getCollisionObject();
-	const btCollisionObject* body1 = m_body1Wrap->getCollisionObject();
+	const btCollisionObject* body0 = body0Wrap->getCollisionObject();
+	const btCollisionObject* body1 = body1Wrap->getCollisionObject();
 	const PointMaterial material(body0, body1);
 	const int flags0 = body0->getCollisionFlags();
 	const int flags1 = body1->getCollisionFlags();
@@ -173,19 +192,19 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 	    stiffness ? gCalculateCombinedContactStiffnessCallback(body0, body1) : btScalar(0);
 	int pointFlags = stiffness ? int(BT_CONTACT_FLAG_CONTACT_STIFFNESS_DAMPING) : 0;
 	if ((flags0 | flags1) & btCollisionObject::CF_HAS_FRICTION_ANCHOR) pointFlags |= BT_CONTACT_FLAG_FRICTION_ANCHOR;
-	const int partId0 = isSwapped ? m_partId1 : m_partId0;
-	const int partId1 = isSwapped ? m_partId0 : m_partId1;
-	const int index0 = isSwapped ? m_index1 : m_index0;
-	const int index1 = isSwapped ? m_index0 : m_index1;
+	const int partId0 = isSwapped ? resultPartId1 : resultPartId0;
+	const int partId1 = isSwapped ? resultPartId0 : resultPartId1;
+	const int index0 = isSwapped ? resultIndex1 : resultIndex0;
+	const int index1 = isSwapped ? resultIndex0 : resultIndex1;
 
 	// getCacheEntry's search (the stored point whose local point A is closest, strictly within the
 	// breaking threshold), on localA alone.
 	int insertIndex = -1;
+	// The points are one array: indexed from the first, without getContactPoint's clamp per point.
+	const int points = manifold.getNumContacts();
+	btManifoldPoint* const stored = points > 0 ? &manifold.getContactPoint(0) : nullptr;
 	{
 		btScalar closestDistance2 = manifold.getContactBreakingThreshold() * manifold.getContactBreakingThreshold();
-		const int points = manifold.getNumContacts();
-		// The points are one array: indexed from the first, without getContactPoint's clamp per point.
-		const btManifoldPoint* stored = points > 0 ? &manifold.getContactPoint(0) : nullptr;
 		for (int i = 0; i < points; ++i)
 		{
 			const btScalar distance2 = (stored[i].m_localPointA - localA).length2();
@@ -207,7 +226,7 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 		btAssert(finite);
 		if (finite)
 		{
-			btManifoldPoint& point = manifold.getContactPoint(insertIndex);
+			btManifoldPoint& point = stored[insertIndex];
 			point.m_localPointA = localA;
 			point.m_localPointB = localB;
 			point.m_positionWorldOnB = pointInWorld;
@@ -259,7 +278,39 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 		(*gContactAddedCallback)(stored, wrapA, stored.m_partId0, stored.m_index0, wrapB, stored.m_partId1,
 		                         stored.m_index1);
 	}
-	if (gContactStartedCallback && isNewCollision) gContactStartedCallback(m_manifoldPtr);
+	if (gContactStartedCallback && isNewCollision) gContactStartedCallback(manifoldPtr);
+}
+
+// The body compiled a second time for AVX2 (VEX encoding: three operands, no register copy before each
+// two-operand SSE operation), chosen at load; the baseline is a call of its own, so that the choice costs
+// the caller no stack frame. Only AVX2, never FMA: the same operations round the same way in the same order,
+// so the points get the same bits (see LinearMath/btCpuFeatures.h).
+#if CALIBER_AVX2_BUILDS
+__attribute__((target("avx2"))) void addPointAvx2(btManifoldResult& result, const btVector3& normalOnBInWorld,
+                                                   const btVector3& pointInWorld, btScalar depth)
+{
+	addPoint(result, normalOnBInWorld, pointInWorld, depth);
+}
+const bool g_avx2Points = caliber::detectAvx2();
+#endif
+
+__attribute__((noinline)) void addPointBaseline(btManifoldResult& result, const btVector3& normalOnBInWorld,
+                                                const btVector3& pointInWorld, btScalar depth)
+{
+	addPoint(result, normalOnBInWorld, pointInWorld, depth);
+}
+}  // namespace
+
+void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const btVector3& pointInWorld, btScalar depth)
+{
+#if CALIBER_AVX2_BUILDS
+	if (g_avx2Points)
+	{
+		addPointAvx2(*this, normalOnBInWorld, pointInWorld, depth);
+		return;
+	}
+#endif
+	addPointBaseline(*this, normalOnBInWorld, pointInWorld, depth);
 }
 
 void caliber::refreshPointMaterials(btPersistentManifold& manifold, const btCollisionObject* object0,
@@ -275,9 +326,11 @@ void caliber::refreshPointMaterials(btPersistentManifold& manifold, const btColl
 	const bool stiffness = (flags & btCollisionObject::CF_HAS_CONTACT_STIFFNESS_DAMPING) != 0;
 	const btScalar damping = stiffness ? gCalculateCombinedContactDampingCallback(object0, object1) : btScalar(0);
 	const btScalar stiffnessValue = stiffness ? gCalculateCombinedContactStiffnessCallback(object0, object1) : btScalar(0);
+	// The points are one array: indexed from the first, without getContactPoint's clamp per point.
+	btManifoldPoint* const stored = &manifold.getContactPoint(0);
 	for (int i = 0; i < points; ++i)
 	{
-		btManifoldPoint& point = manifold.getContactPoint(i);
+		btManifoldPoint& point = stored[i];
 		point.m_combinedFriction = friction;
 		point.m_combinedRestitution = restitution;
 		point.m_combinedRollingFriction = rolling;
