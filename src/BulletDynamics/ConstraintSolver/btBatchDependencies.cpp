@@ -163,56 +163,74 @@ void caliber::listSweepItems(const btBatchedConstraints& batched, bool reverse, 
 	const int tasks = btMin(btMax(numThreads, 1), int(BT_MAX_THREAD_COUNT));
 	items.resize(0);
 	caliber::resizeScratch(itemOfBatch, 2 * numBatches);
-	long long rowsOfTask[BT_MAX_THREAD_COUNT] = {};
 	auto rowsOf = [&batched](int batch)
 	{ return static_cast<long long>(batched.m_batches[batch].end - batched.m_batches[batch].begin); };
-	auto add = [&](int pass, int begin, int end, int task)
+	// Each batch's task, cut once, for the forward sweep's normal pass; kept meanwhile in the friction pass's
+	// half of itemOfBatch. Both passes and both directions take the same cut, so that a batch, with its rows
+	// and bodies, stays with one thread in every sweep of a solve (cut again for each, the balance carried from
+	// colour to colour moved the cuts by a batch or so between them).
+	int* const taskOfBatch = numBatches > 0 ? &itemOfBatch[numBatches] : nullptr;
+	long long rowsOfTask[BT_MAX_THREAD_COUNT] = {};
+	for (int k = 0; k < numPhases; ++k)
 	{
-		SweepItem item;
-		item.pass = pass;
-		item.batchBegin = begin;
-		item.batchEnd = end;
-		item.run = task;
-		for (int batch = begin; batch < end; ++batch)
+		const btBatchedConstraints::Range& phase = batched.m_phases[batched.m_phaseOrder[k]];
+		if (phase.end - phase.begin < tasks)
 		{
-			itemOfBatch[pass * numBatches + batch] = items.size();
-			rowsOfTask[task] += rowsOf(batch);
+			for (int b = phase.begin; b < phase.end; ++b)
+			{
+				int fewest = 0;
+				for (int t = 1; t < tasks; ++t)
+					if (rowsOfTask[t] < rowsOfTask[fewest]) fewest = t;
+				taskOfBatch[b] = fewest;
+				rowsOfTask[fewest] += rowsOf(b);
+			}
+			continue;
 		}
-		items.push_back(item);
-	};
+		// The tasks' rows after the colour (each task's share of them is total / tasks).
+		long long total = 0;
+		for (int t = 0; t < tasks; ++t) total += rowsOfTask[t];
+		for (int b = phase.begin; b < phase.end; ++b) total += rowsOf(b);
+		int b = phase.begin;
+		for (int t = 0; t < tasks; ++t)
+		{
+			const int first = b;
+			if (t == tasks - 1)
+				b = phase.end;
+			else
+			{
+				long long taken = 0;
+				while (b < phase.end && (2 * (rowsOfTask[t] + taken) + rowsOf(b)) * tasks < 2 * total)
+					taken += rowsOf(b++);
+			}
+			for (int c = first; c < b; ++c)
+			{
+				taskOfBatch[c] = t;
+				rowsOfTask[t] += rowsOf(c);
+			}
+		}
+	}
+	// The items: in each colour, the batches of one task in a row (one item per batch in a colour of fewer
+	// batches than tasks, as they were handed out one by one).
 	for (int pass = 0; pass < 2; ++pass)
 		for (int k = 0; k < numPhases; ++k)
 		{
 			const btBatchedConstraints::Range& phase =
 			    batched.m_phases[batched.m_phaseOrder[reverse ? numPhases - 1 - k : k]];
-			if (phase.end - phase.begin < tasks)
+			const bool single = phase.end - phase.begin < tasks;
+			for (int b = phase.begin; b < phase.end;)
 			{
-				for (int b = phase.begin; b < phase.end; ++b)
-				{
-					int fewest = 0;
-					for (int t = 1; t < tasks; ++t)
-						if (rowsOfTask[t] < rowsOfTask[fewest]) fewest = t;
-					add(pass, b, b + 1, fewest);
-				}
-				continue;
-			}
-			// The tasks' rows after the colour (each task's share of them is total / tasks).
-			long long total = 0;
-			for (int t = 0; t < tasks; ++t) total += rowsOfTask[t];
-			for (int b = phase.begin; b < phase.end; ++b) total += rowsOf(b);
-			int b = phase.begin;
-			for (int t = 0; t < tasks; ++t)
-			{
-				const int first = b;
-				if (t == tasks - 1)
-					b = phase.end;
-				else
-				{
-					long long taken = 0;
-					while (b < phase.end && (2 * (rowsOfTask[t] + taken) + rowsOf(b)) * tasks < 2 * total)
-						taken += rowsOf(b++);
-				}
-				if (b > first) add(pass, first, b, t);
+				// The friction pass reads each batch's task from the normal pass's item (its slot now holds items).
+				auto taskOf = [&](int batch) { return pass == 0 ? taskOfBatch[batch] : items[itemOfBatch[batch]].run; };
+				SweepItem item;
+				item.pass = pass;
+				item.batchBegin = b;
+				item.run = taskOf(b);
+				do
+					++b;
+				while (!single && b < phase.end && taskOf(b) == item.run);
+				item.batchEnd = b;
+				for (int c = item.batchBegin; c < item.batchEnd; ++c) itemOfBatch[pass * numBatches + c] = items.size();
+				items.push_back(item);
 			}
 		}
 }

@@ -26,8 +26,9 @@ struct SweepItem
 /// (a batch's rows: its range). Each colour's batches are cut into at most one run per task, in task order,
 /// each task taking batches while their middle row lies below the share every task would have after the
 /// colour; a colour of fewer batches than tasks gives each batch to the task with the fewest rows so far
-/// (the lowest on a tie). itemOfBatch[pass * numBatches + batch] is the batch's item. The items depend only
-/// on the batches and numThreads.
+/// (the lowest on a tie). The cut is made once, colour by colour in the forward order, and both passes and
+/// both directions take it: a batch has the same task in every sweep of a solve. itemOfBatch[pass *
+/// numBatches + batch] is the batch's item. The items depend only on the batches and numThreads.
 void listSweepItems(const btBatchedConstraints& batched, bool reverse, int numThreads,
                     btAlignedObjectArray<SweepItem>& items, btAlignedObjectArray<int>& itemOfBatch);
 

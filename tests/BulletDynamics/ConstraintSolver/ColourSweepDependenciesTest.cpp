@@ -502,6 +502,29 @@ TEST(SweepItems, ABatchOfAColourOfFewerBatchesThanTasksGoesToTheTaskWithTheFewes
 	EXPECT_EQ(items[4].run, 0);       // 30 < 36: the first task
 }
 
+TEST(SweepItems, ABatchHasTheSameTaskInBothPassesAndBothDirections)
+{
+	// A batch's rows and bodies stay in one thread's cache through a solve only if every sweep gives the batch
+	// to the same task.
+	for (unsigned seed = 1; seed <= 20; ++seed)
+		for (int tasks : {2, 3, 4})
+		{
+			const btBatchedConstraints batched = batchesOf(randomColours(seed, 30));
+			const int numBatches = batched.m_batches.size();
+			btAlignedObjectArray<caliber::SweepItem> forward, backward;
+			btAlignedObjectArray<int> forwardItem, backwardItem;
+			caliber::listSweepItems(batched, false, tasks, forward, forwardItem);
+			caliber::listSweepItems(batched, true, tasks, backward, backwardItem);
+			for (int b = 0; b < numBatches; ++b)
+			{
+				const int task = forward[forwardItem[b]].run;
+				EXPECT_EQ(forward[forwardItem[numBatches + b]].run, task) << "seed " << seed << ", batch " << b;
+				EXPECT_EQ(backward[backwardItem[b]].run, task) << "seed " << seed << ", batch " << b;
+				EXPECT_EQ(backward[backwardItem[numBatches + b]].run, task) << "seed " << seed << ", batch " << b;
+			}
+		}
+}
+
 TEST(SweepItems, AThreadCountOutOfRangeIsClampedAndNoBatchesGiveNoItems)
 {
 	const btBatchedConstraints batched = batchesOf(randomColours(7, 10));
