@@ -48,10 +48,7 @@ namespace
 // The threads a solve spreads over: one when it runs inside a parallel loop's task (the island dispatch
 // solves a whole group of large batches on one thread beside the small ones), whose nested loops run on
 // that thread anyway. The solve's bits are the same at any count.
-int solveThreads()
-{
-	return caliber::insideParallelBody() ? 1 : btMax(1, btGetTaskScheduler()->getNumThreads());
-}
+int solveThreads() { return caliber::insideParallelBody() ? 1 : btMax(1, btGetTaskScheduler()->getNumThreads()); }
 
 // The Mt solver's own per-solve state (beside Bullet's class), reused from solve to solve.
 struct MtSolverScratch

@@ -138,7 +138,8 @@ void InplaceSolverIslandCallback::solveBatches(bool parallel, unsigned int first
 	const int wholeBudget = smallCost / (numThreads - 1);
 	// By cost, cheapest first (insertion sort: a step has a handful of large batches).
 	for (int i = 1; i < m_wholeBatches.size(); ++i)
-		for (int k = i; k > 0 && solveCost(m_batches[m_wholeBatches[k]]) < solveCost(m_batches[m_wholeBatches[k - 1]]); --k)
+		for (int k = i; k > 0 && solveCost(m_batches[m_wholeBatches[k]]) < solveCost(m_batches[m_wholeBatches[k - 1]]);
+		     --k)
 			btSwap(m_wholeBatches[k], m_wholeBatches[k - 1]);
 	int numWhole = 0;
 	for (int wholeCost = 0; numWhole < m_wholeBatches.size(); ++numWhole)

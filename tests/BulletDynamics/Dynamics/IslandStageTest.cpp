@@ -234,8 +234,8 @@ struct TaskRecordingSolver : public btConstraintSolver
 {
 	std::mutex mutex;
 	std::vector<std::pair<const btCollisionObject*, bool>> calls;
-	btScalar solveGroup(btCollisionObject** bodies, int numBodies, btPersistentManifold**, int, btTypedConstraint**, int,
-	                    const btContactSolverInfo&, btIDebugDraw*, btDispatcher*) override
+	btScalar solveGroup(btCollisionObject** bodies, int numBodies, btPersistentManifold**, int, btTypedConstraint**,
+	                    int, const btContactSolverInfo&, btIDebugDraw*, btDispatcher*) override
 	{
 		std::lock_guard<std::mutex> lock(mutex);
 		calls.push_back(std::make_pair(numBodies ? bodies[0] : nullptr, caliber::insideParallelBody()));
@@ -256,7 +256,8 @@ struct LargeAndSmallBatches
 
 	btRigidBody* body()
 	{
-		bodies.emplace_back(new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(1, 0, &shape, btVector3(1, 1, 1))));
+		bodies.emplace_back(
+		    new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(1, 0, &shape, btVector3(1, 1, 1))));
 		return bodies.back().get();
 	}
 	// An island of one body and numManifolds manifolds (with a partner body of its own: the callback only
@@ -361,17 +362,26 @@ TEST(IslandStage, AColouredIslandSolvedBesideTheSmallBatchesEndsTheSameAtAnyThre
 		caliber_test::ScopedTaskScheduler scheduler(threads);
 		caliber_test::TestWorld world(caliber_test::TestWorld::Multithreaded(), BT_MAX_THREAD_COUNT);
 		world.addGround();
+		// Small batches of two columns (8 bodies and manifolds), below the colouring threshold (a batch of
+		// 128 items, 32 columns, would hold 64 manifolds and be coloured too).
+		world.world()->getSolverInfo().m_minimumSolverBatchSize = 8;
 		btBoxShape* box = world.shape<btBoxShape>(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
-		// A block of 4 x 4 x 3 touching boxes (one island of about 40 box-box and 16 ground manifolds), and 160
-		// columns of two boxes well apart (each its own island of two manifolds: batches of small islands).
+		// A block of 4 x 4 x 3 touching boxes (one island: 16 ground manifolds, 32 between layers, 72 between
+		// side neighbours and the pairs whose fat boxes merely overlap, at most 48 x 26 / 2 = 624) and 300
+		// columns of two boxes well apart (each its own island of two manifolds). The small batches cost
+		// 300 x 18 = 5400, more than the block's at most 8 x 624 + 48 = 5040, so at two threads the block is
+		// solved beside them (at three, when it has at most 331 manifolds).
 		for (int y = 0; y < 3; ++y)
 			for (int x = 0; x < 4; ++x)
 				for (int z = 0; z < 4; ++z)
-					world.addBody(box, 1, btVector3(btScalar(x) * btScalar(1.0), btScalar(0.5) + btScalar(y), btScalar(z)));
-		for (int c = 0; c < 160; ++c)
+					world.addBody(box, 1,
+					              btVector3(btScalar(x) * btScalar(1.0), btScalar(0.5) + btScalar(y), btScalar(z)));
+		for (int c = 0; c < 300; ++c)
 			for (int y = 0; y < 2; ++y)
-				world.addBody(box, 1, btVector3(btScalar(10 + 3 * (c % 16)), btScalar(0.5) + btScalar(y), btScalar(10 + 3 * (c / 16))));
-		world.run(30);
+				world.addBody(
+				    box, 1,
+				    btVector3(btScalar(10 + 3 * (c % 20)), btScalar(0.5) + btScalar(y), btScalar(10 + 3 * (c / 20))));
+		world.run(20);
 		results.push_back(caliber_test::bodyStateBits(world.bodies()));
 	}
 	for (size_t r = 1; r < results.size(); ++r)
