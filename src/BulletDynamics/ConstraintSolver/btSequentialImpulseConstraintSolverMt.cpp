@@ -30,6 +30,7 @@
 #include "BulletDynamics/ConstraintSolver/btSolverRowSolvers.h"
 #include "BulletDynamics/ConstraintSolver/btSolverScratch.h"
 #include "BulletDynamics/ConstraintSolver/btWideContactRows.h"
+#include "LinearMath/TaskScheduler/btParallelChunks.h"
 #include "LinearMath/btScratchArray.h"
 #include "LinearMath/btSideTable.h"
 
@@ -44,6 +45,11 @@ btBatchedConstraints::BatchingMethod btSequentialImpulseConstraintSolverMt::s_jo
 
 namespace
 {
+// The threads a solve spreads over: one when it runs inside a parallel loop's task (the island dispatch
+// solves a whole group of large batches on one thread beside the small ones), whose nested loops run on
+// that thread anyway. The solve's bits are the same at any count.
+int solveThreads() { return caliber::insideParallelBody() ? 1 : btMax(1, btGetTaskScheduler()->getNumThreads()); }
+
 // The Mt solver's own per-solve state (beside Bullet's class), reused from solve to solve.
 struct MtSolverScratch
 {
@@ -1235,7 +1241,7 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	fill.pools.rolling = &m_tmpSolverContactRollingFrictionConstraintPool;
 	fill.points = &mt.points[0];
 	fill.info = &infoGlobal;
-	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
+	const int numThreads = solveThreads();
 	mt.dependentSweep = !caliber::colourSweepBarriers();
 	mt.dependenciesListed = mt.dependentSweep && numThreads > 1;
 	planAndFill.numPoints = numPoints;
@@ -1249,8 +1255,7 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	btParallelFor(0, 1 + (numPoints + kPointsPerTask - 1) / kPointsPerTask, 1, planAndFill);
 	if (!(infoGlobal.m_solverMode & SOLVER_USE_WARMSTARTING)) return;
 	// By body on the threads, or point by point on one thread (the same bits either way).
-	btITaskScheduler* scheduler = btGetTaskScheduler();
-	if (scheduler && scheduler->getNumThreads() > 1)
+	if (solveThreads() > 1)
 		applyWarmStartsByBody(mt, fill.pools, frictionRowsPerContact, contactBase, frictionBase, m_fixedBodyId);
 	else
 		for (int i = 0; i < mt.points.size(); ++i)
@@ -1338,7 +1343,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlySetup(
 	// convertContacts may leave ours out, or add rows of its own).
 	if (mt.plannedManifolds != numManifoldsWithRows)
 	{
-		const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
+		const int numThreads = solveThreads();
 		mt.dependentSweep = !caliber::colourSweepBarriers();
 		mt.dependenciesListed = mt.dependentSweep && numThreads > 1;
 		planColourSweep(mt, &m_tmpSolverBodyPool[0], numSolverBodies, m_fixedBodyId, s_minBatchSize, numThreads,
@@ -1433,7 +1438,7 @@ btScalar btSequentialImpulseConstraintSolverMt::solveSingleIteration(int iterati
 	// cache: handing out single batches lets them wander between cores, and each core then runs at half
 	// speed on cache misses. The runs depend on the thread count, the batches do not; each batch's
 	// residual is kept and the sweep's residual summed batch by batch, so the bits do not depend on it.
-	const int numThreads = btMax(1, btGetTaskScheduler()->getNumThreads());
+	const int numThreads = solveThreads();
 	const int numPhases = batched.m_phases.size();
 	MtSolverScratch& mt = mtScratchOf(*this);
 	// (A thread count raised during the solve, after a set-up with one thread: the loop per colour.)

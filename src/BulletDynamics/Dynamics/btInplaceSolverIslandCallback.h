@@ -55,6 +55,8 @@ struct InplaceSolverIslandCallback : public btSimulationIslandManager::IslandCal
 	btAlignedObjectArray<btTypedConstraint*> m_gatheredConstraints;
 	btAlignedObjectArray<Batch> m_batches;
 	btAlignedObjectArray<int> m_parallelBatches;
+	// The large batches of a parallel solve, the whole group's first (see solveBatches).
+	btAlignedObjectArray<int> m_wholeBatches;
 	Batch m_open;
 	// The step's joints grouped by island (see caliber::sortConstraintsByIsland).
 	btTypedConstraint** m_sortedConstraints;

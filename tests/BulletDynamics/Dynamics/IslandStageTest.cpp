@@ -4,6 +4,7 @@
 // that the shortcuts keep the general path's batches and the general path's deactivation timing.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <utility>
@@ -11,6 +12,8 @@
 
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
 #include "DynamicsWorldTestUtil.h"
+#include "LinearMath/TaskScheduler/btParallelChunks.h"
+#include "../ConstraintSolver/MtSolverTestUtil.h"
 #include "TestThreadsUtil.h"
 #include "btBulletDynamicsCommon.h"
 
@@ -221,4 +224,169 @@ TEST(IslandStage, BatchesTouchingAKinematicBodyAreFoundOnTheThreadsAndSolvedAlon
 		}
 	}
 	for (int b = 0; b < numBodies; ++b) EXPECT_EQ(solved[b], 1) << "batch " << b;
+}
+
+namespace
+{
+// Records, per solveGroup call, its first body and whether it ran as a task of a parallel loop (also when
+// the scheduler runs the loop on one thread).
+struct TaskRecordingSolver : public btConstraintSolver
+{
+	std::mutex mutex;
+	std::vector<std::pair<const btCollisionObject*, bool>> calls;
+	btScalar solveGroup(btCollisionObject** bodies, int numBodies, btPersistentManifold**, int, btTypedConstraint**,
+	                    int, const btContactSolverInfo&, btIDebugDraw*, btDispatcher*) override
+	{
+		std::lock_guard<std::mutex> lock(mutex);
+		calls.push_back(std::make_pair(numBodies ? bodies[0] : nullptr, caliber::insideParallelBody()));
+		return 0;
+	}
+	void reset() override {}
+	btConstraintSolverType getSolverType() const override { return BT_SEQUENTIAL_IMPULSE_SOLVER; }
+};
+
+// Islands of one body and some manifolds for the island callback, and the solver that records its calls.
+struct LargeAndSmallBatches
+{
+	std::vector<std::unique_ptr<btRigidBody>> bodies;
+	std::vector<std::unique_ptr<btPersistentManifold>> manifolds;
+	btSphereShape shape{btScalar(0.5)};
+	TaskRecordingSolver solver;
+	btContactSolverInfo info;
+
+	btRigidBody* body()
+	{
+		bodies.emplace_back(
+		    new btRigidBody(btRigidBody::btRigidBodyConstructionInfo(1, 0, &shape, btVector3(1, 1, 1))));
+		return bodies.back().get();
+	}
+	// An island of one body and numManifolds manifolds (with a partner body of its own: the callback only
+	// counts manifolds and reads their bodies' kinds).
+	void addIsland(InplaceSolverIslandCallback& callback, int numManifolds, int islandId)
+	{
+		btCollisionObject* island[1] = {body()};
+		btRigidBody* partner = body();
+		std::vector<btPersistentManifold*> list;
+		for (int m = 0; m < numManifolds; ++m)
+		{
+			manifolds.emplace_back(new btPersistentManifold(island[0], partner, 0, btScalar(0.02), btScalar(0.02)));
+			list.push_back(manifolds.back().get());
+		}
+		callback.processIsland(island, 1, numManifolds ? &list[0] : 0, numManifolds, islandId);
+	}
+	// Where the batch starting with body was solved: its index in the calls (-1 if not solved exactly once)
+	// and whether beside other batches.
+	int callOf(const btCollisionObject* first, bool& besideOthers)
+	{
+		int found = -1;
+		for (size_t c = 0; c < solver.calls.size(); ++c)
+			if (solver.calls[c].first == first)
+			{
+				if (found >= 0) return -1;
+				found = int(c);
+				besideOthers = solver.calls[c].second;
+			}
+		return found;
+	}
+};
+}  // namespace
+
+// In a parallel solve, the large batches (those the Mt solver colours and spreads over the threads itself)
+// that add up, cheapest first, to no more than the small batches' cost (bodies, and 8 per manifold and per
+// joint) are solved whole as one item of the parallel loop, beside the small batches; the others are spread
+// one after another before the loop. Every batch is solved once.
+TEST(IslandStage, CheapLargeBatchesAreSolvedWholeBesideTheSmallBatchesAndTheOthersSpreadBefore)
+{
+	caliber_test::ScopedTaskScheduler threads(2);
+	for (bool withSmall : {true, false})
+	{
+		SCOPED_TRACE(withSmall ? "small batches" : "no small batch");
+		LargeAndSmallBatches scene;
+		scene.info.m_minimumSolverBatchSize = 1;  // every island a batch
+		InplaceSolverIslandCallback callback(&scene.solver, 0);
+		callback.setup(&scene.info, 0);
+		callback.m_largeBatchSolver = &scene.solver;
+		callback.m_largeBatchManifolds = 3;
+		const int noJointStart[1] = {0};
+		callback.setConstraints(0, 0, noJointStart, 0);
+		// Large: 10 manifolds (cost 81), 3 manifolds (cost 25), 4 manifolds (cost 33); small: ten islands of
+		// one manifold (cost 9 each, 90 in all). Cheapest first: 25, then 25 + 33 = 58, then 58 + 81 = 139 > 90.
+		int island = 0;
+		scene.addIsland(callback, 10, island++);
+		const btCollisionObject* expensive = scene.bodies[0].get();
+		scene.addIsland(callback, 3, island++);
+		const btCollisionObject* cheapest = scene.bodies[2].get();
+		if (withSmall)
+			for (int i = 0; i < 10; ++i) scene.addIsland(callback, 1, island++);
+		scene.addIsland(callback, 4, island++);
+		const btCollisionObject* cheap = scene.bodies[scene.bodies.size() - 2].get();
+		callback.solveBatches(true, 1);
+		ASSERT_EQ(callback.numBatches(), island);
+		ASSERT_EQ(scene.solver.calls.size(), size_t(island));
+		bool beside = true;
+		EXPECT_EQ(scene.callOf(expensive, beside), 0) << "spread first";
+		EXPECT_FALSE(beside);
+		if (withSmall)
+		{
+			EXPECT_GT(scene.callOf(cheapest, beside), 0);
+			EXPECT_TRUE(beside) << "the cheapest large batch is solved in the loop";
+			EXPECT_GT(scene.callOf(cheap, beside), 0);
+			EXPECT_TRUE(beside) << "the next cheapest fits too";
+			for (int i = 0; i < 10; ++i)
+			{
+				EXPECT_GT(scene.callOf(scene.bodies[4 + 2 * i].get(), beside), 0) << "small batch " << i;
+				EXPECT_TRUE(beside) << "small batch " << i;
+			}
+		}
+		else
+		{
+			// Nothing to solve beside them: every large batch spread, in batch order.
+			EXPECT_EQ(scene.callOf(cheapest, beside), 1);
+			EXPECT_FALSE(beside);
+			EXPECT_EQ(scene.callOf(cheap, beside), 2);
+			EXPECT_FALSE(beside);
+		}
+	}
+}
+
+// A world with a coloured island (the Mt solver's threshold lowered to 40 manifolds) and many small
+// islands whose cost outweighs it, so that at two and three threads the coloured island is solved whole in a
+// task of the island loop (its own loops then run on that thread) beside the small batches: every body ends
+// with the bits of no scheduler and of one thread.
+TEST(IslandStage, AColouredIslandSolvedBesideTheSmallBatchesEndsTheSameAtAnyThreadCount)
+{
+	caliber_test::ScopedManifoldBatchingThreshold colourFrom(40);
+	std::vector<std::vector<btScalar>> results;
+	for (int threads : {0, 1, 2, 3})
+	{
+		caliber_test::ScopedTaskScheduler scheduler(threads);
+		caliber_test::TestWorld world(caliber_test::TestWorld::Multithreaded(), BT_MAX_THREAD_COUNT);
+		world.addGround();
+		// Small batches of two columns (8 bodies and manifolds), below the colouring threshold (a batch of
+		// 128 items, 32 columns, would hold 64 manifolds and be coloured too).
+		world.world()->getSolverInfo().m_minimumSolverBatchSize = 8;
+		btBoxShape* box = world.shape<btBoxShape>(btVector3(btScalar(0.5), btScalar(0.5), btScalar(0.5)));
+		// A block of 4 x 4 x 3 touching boxes (one island: 16 ground manifolds, 32 between layers, 72 between
+		// side neighbours and the pairs whose fat boxes merely overlap, at most 48 x 26 / 2 = 624) and 300
+		// columns of two boxes well apart (each its own island of two manifolds). The small batches cost
+		// 300 x 18 = 5400, more than the block's at most 8 x 624 + 48 = 5040, so at two threads the block is
+		// solved beside them (at three, when it has at most 331 manifolds).
+		for (int y = 0; y < 3; ++y)
+			for (int x = 0; x < 4; ++x)
+				for (int z = 0; z < 4; ++z)
+					world.addBody(box, 1,
+					              btVector3(btScalar(x) * btScalar(1.0), btScalar(0.5) + btScalar(y), btScalar(z)));
+		for (int c = 0; c < 300; ++c)
+			for (int y = 0; y < 2; ++y)
+				world.addBody(
+				    box, 1,
+				    btVector3(btScalar(10 + 3 * (c % 20)), btScalar(0.5) + btScalar(y), btScalar(10 + 3 * (c / 20))));
+		world.run(20);
+		results.push_back(caliber_test::bodyStateBits(world.bodies()));
+	}
+	for (size_t r = 1; r < results.size(); ++r)
+	{
+		ASSERT_EQ(results[r].size(), results[0].size());
+		EXPECT_EQ(memcmp(&results[r][0], &results[0][0], results[0].size() * sizeof(btScalar)), 0) << "run " << r;
+	}
 }
