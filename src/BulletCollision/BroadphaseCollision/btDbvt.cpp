@@ -118,6 +118,9 @@ void releaseAllNodes(btDbvt& tree)
 	tree.m_lkhd = -1;
 }
 
+/// The alignment of the node blocks: a cache line.
+const int kNodeBlockAlignment = 64;
+
 /// A node off the tree's free list (a new block when the list is empty), unlinked.
 btDbvtNode* allocateNode(btDbvt& tree)
 {
@@ -127,7 +130,9 @@ btDbvtNode* allocateNode(btDbvt& tree)
 		DbvtNodeBlocks& owned = sideTable<DbvtNodeBlocks>().acquire(&tree);
 		const int count = owned.nextBlockSize;
 		owned.nextBlockSize = btMin(owned.nextBlockSize * 2, 4096);
-		btDbvtNode* block = static_cast<btDbvtNode*>(btAlignedAlloc(sizeof(btDbvtNode) * count, 16));
+		// Blocks start on a cache line: a node (64 bytes in float builds) then fills one line instead of
+		// straddling two, so a walk that tests a node's box and then follows its children reads one line.
+		btDbvtNode* block = static_cast<btDbvtNode*>(btAlignedAlloc(sizeof(btDbvtNode) * count, kNodeBlockAlignment));
 		owned.blocks.push_back(block);
 		for (int i = count - 1; i >= 0; --i)
 		{

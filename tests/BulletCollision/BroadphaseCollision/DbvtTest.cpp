@@ -286,6 +286,51 @@ TEST(Dbvt, RemovingEveryLeafEmptiesTheTreeAndReusesNodes)
 	EXPECT_EQ(leaf, freeHead);
 }
 
+// The ray and pair walks read a node's box and then its child links: a node that straddles two cache lines
+// costs them two reads from memory. Every node of a tree of several blocks (in use or free) spans the
+// fewest 64-byte lines its size allows.
+TEST(Dbvt, EveryNodeSpansTheFewestCacheLinesItsSizeAllows)
+{
+	Random rng(23);
+	btDbvt tree;
+	std::vector<RefLeaf> ref;
+	buildRandomTree(tree, ref, rng, 3000);  // blocks of 64, 128, ... nodes: several allocations
+	for (int i = 0; i < 3000; i += 3)
+	{
+		tree.remove(ref[i].node);
+		ref[i].alive = false;
+	}
+	const size_t line = 64;
+	const size_t size = sizeof(btDbvtNode);
+	const size_t fewest = (size + line - 1) / line;
+	auto linesSpanned = [&](const btDbvtNode* node)
+	{
+		const size_t first = reinterpret_cast<size_t>(node) / line;
+		const size_t last = (reinterpret_cast<size_t>(node) + size - 1) / line;
+		return last - first + 1;
+	};
+	int checked = 0;
+	std::vector<const btDbvtNode*> stack(1, tree.m_root);
+	while (!stack.empty())
+	{
+		const btDbvtNode* node = stack.back();
+		stack.pop_back();
+		EXPECT_EQ(linesSpanned(node), fewest) << "node at " << static_cast<const void*>(node);
+		++checked;
+		if (node->isinternal())
+		{
+			stack.push_back(node->childs[0]);
+			stack.push_back(node->childs[1]);
+		}
+	}
+	for (const btDbvtNode* node = tree.m_free; node; node = node->parent)
+	{
+		EXPECT_EQ(linesSpanned(node), fewest) << "free node at " << static_cast<const void*>(node);
+		++checked;
+	}
+	EXPECT_GE(checked, 2 * 3000 - 1);
+}
+
 TEST(Dbvt, RebuildsKeepLeavesInvariantsAndQueries)
 {
 	Random rng(5);
