@@ -18,7 +18,9 @@ bool storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphaseProxy* pr
 /// The second half of setAabb for a proxy that left its fat box (storeAabbOrFatBox returned true): moves
 /// its leaf to the new tree box and queues its pair search; counts one update done. The caller calls it on
 /// one thread, in the order the serial setAabb calls would come, and adds the calls to m_updates_call.
-void moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
+/// Returns true when the leaf was re-inserted (the costly move: a search for its new sibling), false when
+/// its box was refitted in place (the collision world weighs its box loop's sides with it).
+bool moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
                        const btVector3& fatMax);
 
 /// A proxy that left its fat box and its new tree box (storeAabbOrFatBox's result).

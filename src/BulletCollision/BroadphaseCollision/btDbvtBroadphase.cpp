@@ -107,12 +107,14 @@ SIMD_FORCE_INLINE bool storeAabbAndFatBox(const btDbvtBroadphase& broadphase, bt
 
 // Moves the proxy's tree box to `box` and queues its pair search. A moving leaf still next to its sibling is
 // refitted in place (the common case: most of a pile or a ragdoll moves together), others are re-inserted.
-void moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
+// Returns true when the leaf was re-inserted, false when it was refitted in place.
+bool moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& box)
 {
 	const int tree = caliber::dbvtTreeOf(*proxy);
-	if (tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box))
-		broadphase.m_sets[tree].update(proxy->leaf, box);
+	const bool reinserted = tree != btDbvtBroadphase::DYNAMIC_SET || !caliber::refitLeafNearSibling(proxy->leaf, box);
+	if (reinserted) broadphase.m_sets[tree].update(proxy->leaf, box);
 	queueProxy(broadphase, proxy);
+	return reinserted;
 }
 
 // Adds the pairs of one pending proxy with every proxy whose box overlaps its box (stack: the queries'
@@ -586,12 +588,12 @@ bool caliber::storeAabbOrFatBox(const btDbvtBroadphase& broadphase, btBroadphase
 	return true;
 }
 
-void caliber::moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
+bool caliber::moveProxyToFatBox(btDbvtBroadphase& broadphase, btBroadphaseProxy* proxy, const btVector3& fatMin,
                                 const btVector3& fatMax)
 {
 	++broadphase.m_updates_done;
 	btDbvtVolume box = btDbvtVolume::FromMM(fatMin, fatMax);
-	moveLeaf(broadphase, static_cast<btDbvtProxy*>(proxy), box);
+	return moveLeaf(broadphase, static_cast<btDbvtProxy*>(proxy), box);
 }
 
 void caliber::moveProxiesToFatBoxes(btDbvtBroadphase& broadphase, const DbvtProxyMove* moves, int count,

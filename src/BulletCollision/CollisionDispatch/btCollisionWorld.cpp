@@ -8,6 +8,7 @@
 #include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/CollisionDispatch/btAabbChunkPrologue.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
@@ -117,6 +118,10 @@ struct CollisionWorldScratch
 	btAlignedObjectArray<int> subtreeOfObject;
 	btAlignedObjectArray<const btDbvtNode*> walkStack;
 	caliber::DbvtMoveRound moveRound;
+	// The last two pipelined updateAabbs' weighted tree moves ([0] the last; moveWeight) and the last one's
+	// count of boxes stored in proxies: the prologue's hand-over decision (handPrologueToBoxLoop).
+	long long lastMoveWeights[2] = {0, 0};
+	int lastBoxes = 0;
 };
 
 }  // namespace
@@ -264,6 +269,41 @@ void btCollisionWorld::updateSingleAabb(btCollisionObject* colObj)
 
 namespace
 {
+// The prologue set for the next updateAabbs on this thread (caliber::setAabbChunkPrologue), and whether an
+// updateAabbs took it.
+thread_local const btCollisionWorld* t_prologueWorld = 0;
+thread_local const caliber::AabbChunkPrologue* t_prologue = 0;
+thread_local bool t_prologueTaken = false;
+
+// The prologue set for world, now taken (null when none was set for it).
+const caliber::AabbChunkPrologue* takePrologue(const btCollisionWorld* world)
+{
+	if (!t_prologue || t_prologueWorld != world) return 0;
+	const caliber::AabbChunkPrologue* prologue = t_prologue;
+	t_prologue = 0;
+	t_prologueTaken = true;
+	return prologue;
+}
+}  // namespace
+
+void caliber::setAabbChunkPrologue(const btCollisionWorld* world, const AabbChunkPrologue* prologue)
+{
+	t_prologueWorld = prologue ? world : 0;
+	t_prologue = prologue;
+	t_prologueTaken = false;
+}
+
+bool caliber::takeAabbChunkPrologueDone(const btCollisionWorld* world)
+{
+	const bool taken = t_prologueTaken && t_prologueWorld == world;
+	t_prologueWorld = 0;
+	t_prologue = 0;
+	t_prologueTaken = false;
+	return taken;
+}
+
+namespace
+{
 // Objects per task of the parallel box computation.
 const int kObjectsPerTask = 128;
 
@@ -330,10 +370,14 @@ struct AabbPipeline : public btIParallelForBody
 	int numChunks;
 	int firstHelperTask;  // in [1, numChunks]
 	btDbvtBroadphase* dbvt;
+	// The work each chunk's objects need before their boxes (caliber::setAabbChunkPrologue), or null.
+	const caliber::AabbChunkPrologue* prologue;
 	// Written by task 0 only, read after the loop: where it stopped (an object it leaves to the calling
 	// thread, or numObjects) and how many boxes it counted as stored.
 	mutable int appliedEnd;
 	mutable unsigned storedOnThreads;
+	mutable int moved;       // the tree moves task 0 made
+	mutable int reinserted;  // of them, the re-insertions
 
 	bool take(int chunk) const
 	{
@@ -343,8 +387,10 @@ struct AabbPipeline : public btIParallelForBody
 
 	void computeChunk(int chunk) const
 	{
-		compute.forLoop(chunk * kObjectsPerPipelinedChunk,
-		                btMin(numObjects, (chunk + 1) * kObjectsPerPipelinedChunk));
+		const int begin = chunk * kObjectsPerPipelinedChunk;
+		const int end = btMin(numObjects, (chunk + 1) * kObjectsPerPipelinedChunk);
+		if (prologue) prologue->prepareObjects(begin, end);
+		compute.forLoop(begin, end);
 		chunkStates[chunk].store(2, std::memory_order_release);
 	}
 
@@ -387,8 +433,10 @@ struct AabbPipeline : public btIParallelForBody
 					return;
 				}
 				++storedOnThreads;
-				caliber::moveProxyToFatBox(*dbvt, compute.objects[i]->getBroadphaseHandle(), box.aabbMin,
-				                           box.aabbMax);
+				++moved;
+				if (caliber::moveProxyToFatBox(*dbvt, compute.objects[i]->getBroadphaseHandle(), box.aabbMin,
+				                               box.aabbMax))
+					++reinserted;
 			}
 		}
 		appliedEnd = numObjects;
@@ -514,14 +562,42 @@ void findSubtreesOfObjects(const caliber::DbvtMoveRound& round, btCollisionObjec
 		}
 	}
 }
+
+// Instructions, roughly, of a tree re-insertion (moveProxyToFatBox's costly case: removal, a search for the
+// new sibling a few levels up, the growth and rotations), of a leaf refitted in place, and of one object's
+// prediction and box together; callgrind of the mesh scenes, boxes3000 and ragdolls136 (docs/threading.md,
+// "The prediction in the box loop"). Only their ratios matter.
+const long long kReinsertionWeight = 1650;
+const long long kRefitWeight = 200;
+const long long kPredictedBoxWeight = 700;
+
+long long moveWeight(int reinsertions, int refits) { return reinsertions * kReinsertionWeight + refits * kRefitWeight; }
+
+// Whether updateAabbs does its prologue (the prediction) chunk by chunk in the box loop rather than in a
+// loop of its own first: only when the tree moves, on one task, would still be the loop's longer side with
+// the prologue's work added to the boxes on the other tasks (threads - 1 of them). Judged from counts of
+// the last two pipelined steps (boxes, refits, re-insertions), numbers the steps computed, the same at any
+// thread count and scheduler; the choice changes only which thread computes what when, not the bits. The
+// larger of the two steps' moves, because a body moving steadily leaves its fat box (stretched along its
+// motion) every other step: in the mesh scenes the re-insertions go about 990, 2, 990, 2, ... a step, so
+// the last step alone would hand the prediction over exactly in the steps with few moves.
+bool handPrologueToBoxLoop(const long long lastMoveWeights[2], int lastBoxes, int threads)
+{
+	const long long moves = btMax(lastMoveWeights[0], lastMoveWeights[1]);
+	return moves > 0 && moves * (threads - 1) >= lastBoxes * kPredictedBoxWeight;
+}
 }  // namespace
 
 void btCollisionWorld::updateAabbs()
 {
 	BT_PROFILE("updateAabbs");
 	const int numObjects = m_collisionObjects.size();
+	// A prologue is done chunk by chunk in the tree moves' pipeline only, in the steps handPrologueToBoxLoop
+	// picks; every other path and step does it first.
+	const caliber::AabbChunkPrologue* prologue = takePrologue(this);
 	if (btGetTaskScheduler()->getNumThreads() < 2 || numObjects < 2 * kObjectsPerTask)
 	{
+		if (prologue) prologue->prepareAll();
 		for (int i = 0; i < numObjects; i++)
 		{
 			btCollisionObject* colObj = m_collisionObjects[i];
@@ -548,8 +624,17 @@ void btCollisionWorld::updateAabbs()
 	                             : 0;
 	compute.dbvt = dbvt;
 	unsigned storedOnThreads = 0;
+	int moved = 0;       // tree moves (status 4)
+	int reinserted = 0;  // of them, re-insertions
 	int applied = 0;
 	const bool subtreeMoves = dbvt && caliber::subtreeMovesInWorld() && scratch.moveRound.begin(*dbvt);
+	const bool pipelined = dbvt && !subtreeMoves;
+	const int threads = btMax(2, btGetTaskScheduler()->getNumThreads());
+	if (prologue && !(pipelined && handPrologueToBoxLoop(scratch.lastMoveWeights, scratch.lastBoxes, threads)))
+	{
+		prologue->prepareAll();
+		prologue = 0;
+	}
 	if (subtreeMoves)
 	{
 		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;
@@ -566,6 +651,7 @@ void btCollisionWorld::updateAabbs()
 		loop.chunks.chunkStates = scratch.chunkStates.get();
 		loop.chunks.numObjects = numObjects;
 		loop.chunks.numChunks = numChunks;
+		loop.chunks.prologue = 0;
 		loop.round = &scratch.moveRound;
 		loop.subtreeOfObject = &scratch.subtreeOfObject[0];
 		loop.bound = &bound;
@@ -577,7 +663,7 @@ void btCollisionWorld::updateAabbs()
 		for (int i = 0; i < applied; ++i)
 			if (scratch.pending[i].status >= 3) ++storedOnThreads;
 	}
-	else if (dbvt)
+	else if (pipelined)
 	{
 		// The tree moves overlap the box computation of the objects after them (AabbPipeline).
 		const int numChunks = (numObjects + kObjectsPerPipelinedChunk - 1) / kObjectsPerPipelinedChunk;
@@ -592,14 +678,18 @@ void btCollisionWorld::updateAabbs()
 		pipeline.chunkStates = scratch.chunkStates.get();
 		pipeline.numObjects = numObjects;
 		pipeline.numChunks = numChunks;
-		const int threads = btMax(2, btGetTaskScheduler()->getNumThreads());
 		pipeline.firstHelperTask = btMax(1, btMin(numChunks, (numChunks + 1) / threads));
 		pipeline.dbvt = dbvt;
+		pipeline.prologue = prologue;
 		pipeline.appliedEnd = 0;
 		pipeline.storedOnThreads = 0;
+		pipeline.moved = 0;
+		pipeline.reinserted = 0;
 		btParallelFor(0, numChunks + 1, 1, pipeline);
 		applied = pipeline.appliedEnd;
 		storedOnThreads = pipeline.storedOnThreads;
+		moved = pipeline.moved;
+		reinserted = pipeline.reinserted;
 	}
 	else
 	{
@@ -619,7 +709,9 @@ void btCollisionWorld::updateAabbs()
 		{
 			// The tree moves stay here, in object order: each re-insertion depends on the ones before it.
 			++storedOnThreads;
-			caliber::moveProxyToFatBox(*dbvt, colObj->getBroadphaseHandle(), box.aabbMin, box.aabbMax);
+			++moved;
+			if (caliber::moveProxyToFatBox(*dbvt, colObj->getBroadphaseHandle(), box.aabbMin, box.aabbMax))
+				++reinserted;
 			continue;
 		}
 		if (box.status == 1)
@@ -631,6 +723,12 @@ void btCollisionWorld::updateAabbs()
 		updateSingleAabb(colObj);  // the overflow: its warning and quarantine, as without a scheduler
 	}
 	if (dbvt) dbvt->m_updates_call += storedOnThreads;
+	if (pipelined)
+	{
+		scratch.lastMoveWeights[1] = scratch.lastMoveWeights[0];
+		scratch.lastMoveWeights[0] = moveWeight(reinserted, moved - reinserted);
+		scratch.lastBoxes = static_cast<int>(storedOnThreads);
+	}
 }
 
 void btCollisionWorld::computeOverlappingPairs()

@@ -12,6 +12,7 @@
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "BulletDynamics/Dynamics/btActionInterface.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
+#include "BulletDynamics/Dynamics/btPredictionPrologue.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btSpeculativeContactRestitution.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
@@ -194,7 +195,11 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	// replaces this function gets Bullet's pipeline (docs/architecture.md).
 	caliber::WorldStepContext& context = caliber::stepContextOf(*this);
 	caliber::quarantineNonFiniteBodies(*this, m_nonStaticRigidBodies, context);
-	predictUnconstraintMotion(timeStep);
+	// With threads, the world classes themselves predict each chunk of bodies inside the box loop, just
+	// before its boxes, while the broadphase's tree moves run (docs/threading.md): same bits.
+	caliber::PredictionPrologue prediction;
+	const bool predictWithBoxes = prediction.begin(*this, m_nonStaticRigidBodies, timeStep);
+	if (!predictWithBoxes) predictUnconstraintMotion(timeStep);
 	createPredictiveContacts(timeStep);
 	if (m_applySpeculativeContactRestitution) caliber::giveSpeculativeContactsRestitution(m_predictiveManifolds);
 
@@ -202,7 +207,14 @@ void btDiscreteDynamicsWorld::internalSingleStepSimulation(btScalar timeStep)
 	dispatchInfo.m_timeStep = timeStep;
 	dispatchInfo.m_stepCount = 0;
 	dispatchInfo.m_debugDraw = getDebugDrawer();
+	if (predictWithBoxes) caliber::setAabbChunkPrologue(this, &prediction);
 	performDiscreteCollisionDetection();
+	if (predictWithBoxes && !caliber::takeAabbChunkPrologueDone(this))
+	{
+		// Not reached: the world classes' collision step starts with updateAabbs, which takes it.
+		btAssert(!"btDiscreteDynamicsWorld: the prediction was not made with the boxes");
+		prediction.prepareAll();
+	}
 
 	calculateSimulationIslands();
 

@@ -2,6 +2,8 @@
 // The stages of one substep of btDiscreteDynamicsWorld, in the order internalSingleStepSimulation runs
 // them: predict, (collision detection: btCollisionWorld), islands, solve, integrate (with CCD),
 // sleeping. Kinematic state and quarantine of non-finite bodies come first.
+#include <typeinfo>
+
 #include "BulletCollision/BroadphaseCollision/btOverlappingPairCache.h"
 #include "BulletCollision/CollisionDispatch/btSimulationIslandManager.h"
 #include "BulletCollision/CollisionDispatch/btUniteInOrder.h"
@@ -14,6 +16,7 @@
 #include "BulletDynamics/Dynamics/btDiscreteDynamicsWorldMt.h"
 #include "BulletDynamics/Dynamics/btSpinMomentum.h"
 #include "BulletDynamics/Dynamics/btInplaceSolverIslandCallback.h"
+#include "BulletDynamics/Dynamics/btPredictionPrologue.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
 #include "LinearMath/btQuickprof.h"
@@ -296,6 +299,45 @@ void btDiscreteDynamicsWorld::predictUnconstraintMotion(btScalar timeStep)
 	loop.timeStep = timeStep;
 	loop.solverInfo = &getSolverInfo();
 	btParallelFor(0, m_nonStaticRigidBodies.size(), caliber::kBodiesPerTask, loop);
+}
+
+bool caliber::PredictionPrologue::begin(btDiscreteDynamicsWorld& world,
+                                        const btAlignedObjectArray<btRigidBody*>& bodies, btScalar timeStep)
+{
+	if (typeid(world) != typeid(btDiscreteDynamicsWorld) && typeid(world) != typeid(btDiscreteDynamicsWorldMt))
+		return false;
+	if (bodies.size() == 0 || btGetTaskScheduler()->getNumThreads() < 2) return false;
+	// The bodies must be one run of the object array: a pass over two pointer arrays, no body read but the
+	// first's index.
+	const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+	const int first = bodies[0]->getWorldArrayIndex();
+	if (first < 0 || first + bodies.size() > objects.size()) return false;
+	btCollisionObject* const* run = &objects[first];
+	for (int i = 0; i < bodies.size(); ++i)
+		if (run[i] != bodies[i]) return false;
+	m_bodies = &bodies[0];
+	m_numBodies = bodies.size();
+	m_firstObject = first;
+	m_timeStep = timeStep;
+	m_solverInfo = &world.getSolverInfo();
+	return true;
+}
+
+void caliber::PredictionPrologue::prepareObjects(int objectBegin, int objectEnd) const
+{
+	const int begin = btMax(0, objectBegin - m_firstObject);
+	const int end = btMin(m_numBodies, objectEnd - m_firstObject);
+	for (int i = begin; i < end; ++i) predictBody(m_bodies[i], m_timeStep, *m_solverInfo);
+}
+
+void caliber::PredictionPrologue::prepareAll() const
+{
+	BT_PROFILE("predictUnconstraintMotion");
+	PredictBodies loop;
+	loop.bodies = m_bodies;
+	loop.timeStep = m_timeStep;
+	loop.solverInfo = m_solverInfo;
+	btParallelFor(0, m_numBodies, caliber::kBodiesPerTask, loop);
 }
 
 namespace
