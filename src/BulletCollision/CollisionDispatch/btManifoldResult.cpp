@@ -1,5 +1,6 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btManifoldResult.h"
+#include "BulletCollision/CollisionDispatch/btManifoldResultBuilds.h"
 #include "BulletCollision/CollisionDispatch/btPairPoseCache.h"
 
 #include "BulletCollision/CollisionShapes/btShapeGuards.h"
@@ -311,6 +312,29 @@ void btManifoldResult::addContactPoint(const btVector3& normalOnBInWorld, const 
 	}
 #endif
 	addPointBaseline(*this, normalOnBInWorld, pointInWorld, depth);
+}
+
+bool caliber::addContactPointUsesAvx2()
+{
+#if CALIBER_AVX2_BUILDS
+	return g_avx2Points;
+#else
+	return false;
+#endif
+}
+
+void caliber::addContactPointIn(btManifoldResult& result, const btVector3& normalOnBInWorld,
+                                const btVector3& pointInWorld, btScalar depth, bool avx2)
+{
+#if CALIBER_AVX2_BUILDS
+	if (avx2 && g_avx2Points)
+	{
+		addPointAvx2(result, normalOnBInWorld, pointInWorld, depth);
+		return;
+	}
+#endif
+	(void)avx2;
+	addPointBaseline(result, normalOnBInWorld, pointInWorld, depth);
 }
 
 void caliber::refreshPointMaterials(btPersistentManifold& manifold, const btCollisionObject* object0,

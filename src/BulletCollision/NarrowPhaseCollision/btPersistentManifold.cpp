@@ -2,6 +2,7 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 
 #include "BulletCollision/NarrowPhaseCollision/ManifoldPrefetch.h"
+#include "BulletCollision/NarrowPhaseCollision/btPersistentManifoldBuilds.h"
 #include "LinearMath/btCpuFeatures.h"
 #include "LinearMath/btMinMax.h"
 #include "LinearMath/btSimdBatch.h"
@@ -321,6 +322,26 @@ void btPersistentManifold::refreshContactPoints(const btTransform& trA, const bt
 		}
 		if (gContactProcessedCallback) (*gContactProcessedCallback)(m_pointCache[i], (void*)m_body0, (void*)m_body1);
 	}
+}
+
+bool caliber::refreshContactPointsUsesAvx2()
+{
+#if CALIBER_AVX2_BUILDS
+	return g_avx2Refresh;
+#else
+	return false;
+#endif
+}
+
+int caliber::refreshWorldPointsIn(btManifoldPoint* points, int count, const btTransform& trA, const btTransform& trB,
+                                  btScalar threshold, bool avx2)
+{
+	btAssert(count >= 0 && count <= MANIFOLD_CACHE_SIZE);
+#if CALIBER_AVX2_BUILDS
+	if (avx2 && g_avx2Refresh) return refreshWorldPointsAvx2(points, count, trA, trB, threshold);
+#endif
+	(void)avx2;
+	return refreshWorldPoints(points, count, trA, trB, threshold);
 }
 
 void btPersistentManifold::clearManifold()
