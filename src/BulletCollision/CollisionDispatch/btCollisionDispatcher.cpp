@@ -9,6 +9,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletCollision/CollisionDispatch/btManifoldAllocation.h"
+#include "BulletCollision/CollisionShapes/btAngularMotionDisc.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "LinearMath/btAlignedAllocator.h"
 #include "LinearMath/btPoolAllocator.h"
@@ -211,12 +212,13 @@ void btCollisionDispatcher::defaultNearCallback(btBroadphasePair& collisionPair,
 		// being found deep inside it a step later, or past a thin mesh.
 		const btVector3 relative =
 		    colObj0->getInterpolationLinearVelocity() - colObj1->getInterpolationLinearVelocity();
-		// The angular motion disc costs a bounding-sphere computation: only asked of turning bodies.
+		// The angular motion disc costs a bounding-sphere computation: only asked of turning bodies (and
+		// worked out inline for plain boxes, btAngularMotionDisc.h).
 		btScalar angular = btScalar(0);
 		const btScalar spin0 = colObj0->getInterpolationAngularVelocity().length2();
 		const btScalar spin1 = colObj1->getInterpolationAngularVelocity().length2();
-		if (spin0 > btScalar(0)) angular += btSqrt(spin0) * colObj0->getCollisionShape()->getAngularMotionDisc();
-		if (spin1 > btScalar(0)) angular += btSqrt(spin1) * colObj1->getCollisionShape()->getAngularMotionDisc();
+		if (spin0 > btScalar(0)) angular += btSqrt(spin0) * caliber::angularMotionDisc(colObj0->getCollisionShape());
+		if (spin1 > btScalar(0)) angular += btSqrt(spin1) * caliber::angularMotionDisc(colObj1->getCollisionShape());
 		const btScalar closing = (relative.length() + angular) * dispatchInfo.m_timeStep;
 		if (btIsFinite(closing)) result.m_closestPointDistanceThreshold = closing;
 	}
