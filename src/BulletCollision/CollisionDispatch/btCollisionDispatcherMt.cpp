@@ -12,12 +12,12 @@
 // Released manifolds are cleared at once (their contact callbacks run on the worker) but destroyed at
 // the replay, so no memory is reused while chunks run.
 //
-// Affinity: the Mt solver notes, per manifold, the thread that wrote its impulses back (btManifoldOwners.h);
-// the next parallel narrowphase lays its pairs out so that the pool's contiguous block of chunks for a
-// thread holds the pairs whose manifolds that thread wrote, then the pairs with no known owner where room
-// is left. Each chunk's log also notes the pair of each entry, and when the layout is not pair order the
-// logs are replayed sorted by pair, so the array operations are the serial narrowphase's whatever the
-// layout.
+// Affinity (off by default, caliber::setNarrowphaseAffinity; docs/threading.md says why): the Mt solver notes, per
+// manifold, the thread that wrote its impulses back (btManifoldOwners.h); the next parallel narrowphase lays its pairs
+// out so that the pool's contiguous block of chunks for a thread holds the pairs whose manifolds that thread wrote,
+// then the pairs with no known owner where room is left. Each chunk's log also notes the pair of each entry, and when
+// the layout is not pair order the logs are replayed sorted by pair, so the array operations are the serial
+// narrowphase's whatever the layout.
 //
 // A soft body's pairs are not independent: each writes the body's own contact lists. The chunks skip
 // them, and the calling thread runs them after the replay, in pair order. They make no manifolds and
@@ -172,15 +172,16 @@ struct NarrowphaseChunks : public btIParallelForBody
 			const int end = btMin(numPairs, (chunk + 1) * grainSize);
 			for (int k = chunk * grainSize; k < end; ++k)
 			{
-				const int i = order[k];
+				const int i = order ? order[k] : k;
 				if (involvesSoftBody(pairs[i]))
 				{
 					skipped = true;
-					pairHints[i].manifold = -1;
+					if (pairHints) pairHints[i].manifold = -1;
 					continue;
 				}
 				t_chunkPair = i;
 				(*nearCallback)(pairs[i], *dispatcher, *info);
+				if (!pairHints) continue;
 				PairHint& hint = pairHints[i];
 				hint.proxy0 = pairs[i].m_pProxy0;
 				hint.proxy1 = pairs[i].m_pProxy1;
@@ -325,9 +326,16 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 	NarrowphaseAffinity& affinity = affinityTable().acquire(this);
 	if (affinity.pairLogs.size() < numChunks) affinity.pairLogs.resize(numChunks);
 	btBroadphasePair* pairs = pairCache->getOverlappingPairArrayPtr();
-	const bool laidOut = layOutPairs(affinity, pairs, numPairs, chunkPairs, numChunks, threads);
-	const PairHint noHint = {0, 0, -1};
-	affinity.pairHints.resize(numPairs, noHint);
+	const bool affine = caliber::narrowphaseAffinity();
+	bool laidOut = false;
+	if (affine)
+	{
+		laidOut = layOutPairs(affinity, pairs, numPairs, chunkPairs, numChunks, threads);
+		const PairHint noHint = {0, 0, -1};
+		affinity.pairHints.resize(numPairs, noHint);
+	}
+	else
+		affinity.pairHints.resize(0);  // no stale hints when it is turned on again
 
 	NarrowphaseChunks chunks;
 	chunks.dispatcher = this;
@@ -335,8 +343,8 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 	chunks.info = &info;
 	chunks.logs = &m_batchManifoldsPtr;
 	chunks.pairLogs = &affinity.pairLogs;
-	chunks.order = &affinity.order[0];
-	chunks.pairHints = &affinity.pairHints[0];
+	chunks.order = laidOut ? &affinity.order[0] : 0;
+	chunks.pairHints = affine ? &affinity.pairHints[0] : 0;
 	chunks.grainSize = chunkPairs;
 	chunks.numPairs = numPairs;
 	std::atomic<bool> softPairsLeft(false);
@@ -395,10 +403,19 @@ void btCollisionDispatcherMt::dispatchAllCollisionPairs(btOverlappingPairCache* 
 
 namespace caliber
 {
+namespace
+{
+std::atomic<bool> g_narrowphaseAffinity(false);
+}
+
+void setNarrowphaseAffinity(bool on) { g_narrowphaseAffinity.store(on, std::memory_order_relaxed); }
+
+bool narrowphaseAffinity() { return g_narrowphaseAffinity.load(std::memory_order_relaxed); }
+
 ManifoldOwnerWriter manifoldOwnerWriter(btDispatcher* dispatcher)
 {
 	ManifoldOwnerWriter writer;
-	if (!dispatcher) return writer;
+	if (!dispatcher || !narrowphaseAffinity()) return writer;
 	NarrowphaseAffinity* affinity = affinityTable().find(dispatcher);
 	if (!affinity || affinity->owners.size() == 0) return writer;
 	writer.count = btMin(affinity->owners.size(), dispatcher->getNumManifolds());

@@ -16,6 +16,14 @@ class btPersistentManifold;
 
 namespace caliber
 {
+/// Turns the narrowphase's affinity on or off (process-wide; off by default). On: the Mt solver notes the
+/// owners and the parallel narrowphase lays its pairs out by them. Off: the pairs go in pair order and
+/// nothing is noted. Results are the same either way. Off by default because on the shared 2-core host of
+/// the sixteenth session it made stack1000's narrowphase slower at two threads (docs/threading.md,
+/// "Affinity, the narrowphase"). Set it between steps.
+void setNarrowphaseAffinity(bool on);
+bool narrowphaseAffinity();
+
 /// No owner known (a new manifold, one solved outside the Mt solver's batches, or a thread index of 255
 /// or more).
 const unsigned char kNoManifoldOwner = 0xff;
@@ -41,8 +49,9 @@ struct ManifoldOwnerWriter
 	}
 };
 
-/// The writer for dispatcher's owner table; empty (nothing noted) when dispatcher keeps none (it is not
-/// a btCollisionDispatcherMt, or none of its narrowphases ran on threads yet). One look-up per call.
+/// The writer for dispatcher's owner table; empty (nothing noted) when the affinity is off or dispatcher
+/// keeps no table (it is not a btCollisionDispatcherMt, or none of its narrowphases ran on threads yet).
+/// One look-up per call.
 ManifoldOwnerWriter manifoldOwnerWriter(btDispatcher* dispatcher);
 
 /// The thread noted as manifold's owner in dispatcher's table, or -1 when none is known (for tests and
