@@ -224,6 +224,13 @@ CollisionOutcome runCollision(bool multithreaded, int threads, btITaskScheduler*
 	return outcome;
 }
 
+// Whether the library has threads (without CALIBER_THREADSAFE the narrowphase never runs in chunks).
+bool libraryHasThreads()
+{
+	caliber_test::ScopedTaskScheduler scheduler(2);
+	return btGetTaskScheduler()->getNumThreads() >= 2;
+}
+
 bool sameBits(const std::vector<btScalar>& a, const std::vector<btScalar>& b)
 {
 	return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(btScalar)) == 0);
@@ -307,6 +314,7 @@ struct Stacks
 
 TEST(NarrowphaseAffinity, LayoutByOwnerKeepsTheSerialManifoldsAndOwnersFollowRemovals)
 {
+	if (!libraryHasThreads()) GTEST_SKIP() << "a library without threads";
 	InOrderTwoThreads inOrder;
 	caliber_test::LastFirstScheduler lastFirst;
 	caliber_test::UnevenSplitScheduler uneven;
@@ -348,6 +356,7 @@ TEST(NarrowphaseAffinity, LayoutByOwnerKeepsTheSerialManifoldsAndOwnersFollowRem
 
 TEST(NarrowphaseAffinity, SolverNotesOwnersAndTheStateIsTheSameAtOneTwoAndThreeThreads)
 {
+	if (!libraryHasThreads()) GTEST_SKIP() << "a library without threads";
 	caliber_test::ScopedManifoldBatchingThreshold colourAll;
 	ScopedAffinity affinity(true);
 	std::vector<btScalar> reference;
