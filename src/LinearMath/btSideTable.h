@@ -25,6 +25,13 @@ public:
 		if (!state) state.reset(new State());
 		return *state;
 	}
+	/// The state of owner, or null if it has none (nothing is made).
+	State* find(const void* owner)
+	{
+		std::lock_guard<std::mutex> lock(m_mutex);
+		auto it = m_states.find(owner);
+		return it == m_states.end() ? nullptr : it->second.get();
+	}
 	/// Drops owner's state (nothing if it has none).
 	void release(const void* owner)
 	{

@@ -9,6 +9,7 @@
 #include "BulletCollision/CollisionDispatch/btCollisionObject.h"
 #include "BulletCollision/CollisionDispatch/btCollisionObjectWrapper.h"
 #include "BulletCollision/CollisionDispatch/btManifoldAllocation.h"
+#include "BulletCollision/CollisionDispatch/btManifoldOwners.h"
 #include "BulletCollision/CollisionShapes/btAngularMotionDisc.h"
 #include "BulletCollision/CollisionShapes/btCollisionShape.h"
 #include "LinearMath/btAlignedAllocator.h"
@@ -70,6 +71,7 @@ btCollisionDispatcher::~btCollisionDispatcher()
 	// Normally the world has released every manifold through its algorithms already; whatever is left
 	// would otherwise leak (heap manifolds) or keep pool elements busy.
 	while (m_manifoldsPtr.size()) releaseManifold(m_manifoldsPtr[m_manifoldsPtr.size() - 1]);
+	caliber::releaseManifoldOwners(this);  // a btCollisionDispatcherMt's (btManifoldOwners.h)
 }
 
 void btCollisionDispatcher::registerCollisionCreateFunc(int proxyType0, int proxyType1,

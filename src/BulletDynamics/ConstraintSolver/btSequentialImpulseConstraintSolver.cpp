@@ -585,7 +585,7 @@ btScalar btSequentialImpulseConstraintSolver::solveGroup(btCollisionObject** bod
                                                          btIDebugDraw* debugDrawer, btDispatcher* dispatcher)
 {
 	BT_PROFILE("solveGroup");
-	(void)dispatcher;
+	caliber::SolveDispatcherScope dispatcherScope(dispatcher);
 	btAssert(numBodies >= 0 && numManifolds >= 0);
 	if ((numBodies > 0 && !bodies) || (numManifolds > 0 && !manifoldPtr) || numBodies < 0 || numManifolds < 0)
 		return btScalar(0);

@@ -22,6 +22,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "BulletCollision/CollisionDispatch/btManifoldOwners.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
 #include "BulletDynamics/ConstraintSolver/btBatchDependencies.h"
 #include "BulletDynamics/ConstraintSolver/btContactColouring.h"
@@ -86,6 +87,8 @@ struct MtSolverScratch
 		int numPoints;
 	};
 	btAlignedObjectArray<RowManifold> rowManifolds;
+	// Per manifold with rows: its manifold, for the write-back's note of its owner (btManifoldOwners.h).
+	btAlignedObjectArray<const btPersistentManifold*> rowManifoldSource;
 	// Per batch: its first manifold in orderedManifolds (and one past the last batch), and the body its
 	// padding lanes and static contacts use (its own copy of the fixed entry, or a zero body).
 	btAlignedObjectArray<int> batchManifoldBegin;
@@ -309,6 +312,7 @@ struct CountPlaces : public btIParallelForBody
 struct PlacePoints : public btIParallelForBody
 {
 	MtSolverScratch* mt;
+	btPersistentManifold* const* manifolds;
 	int* manifoldFirstRow;  // the solve's first entry for manifolds with rows
 	int numManifolds;
 	int contactBase;
@@ -328,6 +332,7 @@ struct PlacePoints : public btIParallelForBody
 				const int count = mt->plannedCount[i];
 				if (count == 0) continue;
 				manifoldFirstRow[rowManifold] = contactBase + numPoints;
+				mt->rowManifoldSource[rowManifold] = manifolds[i];
 				MtSolverScratch::RowManifold& manifold = mt->rowManifolds[rowManifold++];
 				manifold.bodyA = mt->manifoldBodies[2 * i];
 				manifold.bodyB = mt->manifoldBodies[2 * i + 1];
@@ -1216,6 +1221,7 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	const int firstManifoldRow = scratch.manifoldFirstRow.size();
 	caliber::resizeScratch(scratch.manifoldFirstRow, firstManifoldRow + total.rowManifolds);
 	caliber::resizeScratch(mt.rowManifolds, total.rowManifolds);
+	caliber::resizeScratch(mt.rowManifoldSource, total.rowManifolds);
 	caliber::resizeScratch(mt.points, numPoints);
 	caliber::resizeScratch(m_tmpSolverContactConstraintPool, contactBase + numPoints);
 	caliber::resizeScratch(m_tmpSolverContactFrictionConstraintPool, frictionBase + numPoints * frictionRowsPerContact);
@@ -1223,6 +1229,7 @@ void btSequentialImpulseConstraintSolverMt::convertContacts(btPersistentManifold
 	if (numPoints == 0) return;
 	PlacePoints place;
 	place.mt = &mt;
+	place.manifolds = manifoldPtr;
 	place.manifoldFirstRow = &scratch.manifoldFirstRow[firstManifoldRow];
 	place.numManifolds = numManifolds;
 	place.contactBase = contactBase;
@@ -1505,9 +1512,11 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlyFinish(bt
 		const btContactSolverInfo* info;
 		const MtSolverScratch* mt;
 		const btAlignedObjectArray<int>* manifoldFirstRow;
+		caliber::ManifoldOwnerWriter owners;
 
 		void forLoop(int iBegin, int iEnd) const override
 		{
+			const unsigned int thread = btGetCurrentThreadIndex();
 			for (int k = iBegin; k < iEnd; ++k)
 			{
 				const int b = mt->batchesByRun[k];
@@ -1515,6 +1524,11 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlyFinish(bt
 				{
 					const int m = mt->orderedManifolds[i];
 					solver->writeBackContacts((*manifoldFirstRow)[m], (*manifoldFirstRow)[m + 1], *info);
+					if (owners)
+					{
+						const btPersistentManifold* manifold = mt->rowManifoldSource[m];
+						owners.note(manifold, manifold->m_index1a, thread);
+					}
 				}
 			}
 		}
@@ -1535,6 +1549,9 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlyFinish(bt
 		byBatch.info = &infoGlobal;
 		byBatch.mt = &mt;
 		byBatch.manifoldFirstRow = &caliber::solverScratchOf(*this).manifoldFirstRow;
+		// The next narrowphase gives each manifold's pair to the thread that wrote it here (its sweep's).
+		if (mt.rowManifoldSource.size() == mt.rowManifolds.size())
+			byBatch.owners = caliber::manifoldOwnerWriter(caliber::scopedSolveDispatcher());
 		btParallelFor(0, batched.m_batches.size(), kBatchesPerWideFillTask, byBatch);
 	}
 	else

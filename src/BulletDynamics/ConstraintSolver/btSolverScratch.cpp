@@ -7,6 +7,7 @@ namespace
 {
 thread_local bool t_hasSolveIndex = false;
 thread_local unsigned int t_solveIndex = 0;
+thread_local btDispatcher* t_solveDispatcher = nullptr;
 }  // namespace
 
 namespace caliber
@@ -28,6 +29,15 @@ bool scopedSolveIndex(unsigned int& index)
 	index = t_solveIndex;
 	return t_hasSolveIndex;
 }
+
+SolveDispatcherScope::SolveDispatcherScope(btDispatcher* dispatcher) : m_previous(t_solveDispatcher)
+{
+	t_solveDispatcher = dispatcher;
+}
+
+SolveDispatcherScope::~SolveDispatcherScope() { t_solveDispatcher = m_previous; }
+
+btDispatcher* scopedSolveDispatcher() { return t_solveDispatcher; }
 
 void shareJointWarmStarts(const btSequentialImpulseConstraintSolver& solver, JointWarmStartStore* shared)
 {

@@ -15,6 +15,7 @@
 #include "BulletDynamics/ConstraintSolver/btTypedConstraint.h"
 #include "LinearMath/btAlignedObjectArray.h"
 
+class btDispatcher;
 class btManifoldPoint;
 class btSequentialImpulseConstraintSolver;
 
@@ -100,6 +101,22 @@ private:
 };
 /// The index of the innermost SolveIndexScope of this thread, if there is one.
 bool scopedSolveIndex(unsigned int& index);
+
+/// solveGroup's dispatcher, on the calling thread for the length of the call: the Mt solver's write-back
+/// notes there which thread wrote each manifold (BulletCollision's btManifoldOwners.h).
+class SolveDispatcherScope
+{
+public:
+	explicit SolveDispatcherScope(btDispatcher* dispatcher);
+	~SolveDispatcherScope();
+	SolveDispatcherScope(const SolveDispatcherScope&) = delete;
+	SolveDispatcherScope& operator=(const SolveDispatcherScope&) = delete;
+
+private:
+	btDispatcher* m_previous;
+};
+/// The dispatcher of the innermost SolveDispatcherScope of this thread, or null.
+btDispatcher* scopedSolveDispatcher();
 
 /// Makes solver use shared's joint warm-start store instead of its own (null: its own again), so that
 /// the solvers of a pool warm-start every joint alike whichever of them solves it. shared must outlive
