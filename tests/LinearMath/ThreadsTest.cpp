@@ -8,7 +8,6 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
-#include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -601,7 +600,7 @@ struct UnevenChunks : public btIParallelForBody
 TEST(Threads, ContendedChunksWithUnevenWorkRunExactlyOnce)
 {
 	// Chunks of very different lengths make the takers finish their own blocks at different times and take
-	// from the others' (the owner from a block's front, the others from its back): with 1 to 4 threads, no
+	// from the others' blocks: with 1 to 4 threads, no
 	// chunks, one, a few and many, and ranges and grains that make no sense, every index runs once and a
 	// sum of integers (exact in float below 2^24) comes out exact. CI's tsan stage checks the claims.
 	Schedulers schedulers;
@@ -640,50 +639,4 @@ TEST(Threads, ContendedChunksWithUnevenWorkRunExactlyOnce)
 			    << threads << " threads, " << count << " chunks";
 		}
 	}
-}
-
-TEST(Threads, OwnerRunsAPrefixOfItsBlockWhileOthersStealFromTheBack)
-{
-	// The calling thread owns the first block of a loop's chunks (the first count / takers) and takes its
-	// chunks from the front; a helper that has run out of its own chunks takes the calling thread's from the
-	// back. So the calling thread's chunks in its block are the block's first ones, without a gap: the next
-	// chunk it takes follows the one it ran (what keeps a per-body loop's lines in its core's cache). The
-	// calling thread's chunks are slow and the others' fast, so that the others steal. (When a helper comes
-	// too late to steal, the calling thread runs the whole block: also a prefix.)
-	Schedulers schedulers;
-	if (!schedulers.pool) return;
-	btITaskScheduler* pool = schedulers.pool.get();
-	const std::thread::id caller = std::this_thread::get_id();
-	int stolen = 0;
-	for (int threads = 2; threads <= 4; ++threads)
-	{
-		pool->setNumThreads(threads);
-		const int count = 24 * threads;
-		const int takers = std::min(pool->getNumThreads(), count);
-		const int firstBlockEnd = count / takers;
-		for (int round = 0; round < 5; ++round)
-		{
-			std::vector<std::atomic<int>> visits(count);
-			std::vector<std::thread::id> runBy(count);
-			UnevenChunks body;
-			body.visits = &visits;
-			body.runBy = &runBy;
-			body.offset = 0;
-			body.slowEvery = 0;
-			body.slowBelow = firstBlockEnd;
-			body.micros = 200;
-			pool->parallelFor(0, count, 1, body);
-			int prefix = 0;
-			while (prefix < firstBlockEnd && runBy[prefix] == caller) ++prefix;
-			for (int i = 0; i < count; ++i) ASSERT_EQ(visits[i].load(), 1) << threads << " threads, index " << i;
-			for (int i = prefix; i < firstBlockEnd; ++i)
-				ASSERT_NE(runBy[i], caller)
-				    << threads << " threads, round " << round << ": the calling thread ran chunk " << i
-				    << " after another thread took chunk " << prefix << " of its block";
-			stolen += firstBlockEnd - prefix;
-		}
-	}
-	// Not asserted (a loaded machine may keep every helper away): how many of the calling thread's chunks
-	// the others took.
-	std::printf("chunks stolen from the calling thread's block: %d\n", stolen);
 }

@@ -1,7 +1,6 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 // btCreateDefaultTaskScheduler's scheduler: a persistent pool of std::threads. A loop is posted as one
-// job; its chunks are cut into one contiguous block per taking thread, which each takes from its own
-// block's front and then from the others' backs until none is left.
+// job; the calling thread and the workers take its chunks from a shared counter until none is left.
 // Idle workers spin briefly (loops in a step follow each other closely) and then sleep on a condition
 // variable. Which thread runs a chunk varies from run to run; what a chunk is does not
 // (btParallelChunks.h), and sums are added in chunk order. The posting thread waits only for the workers
@@ -153,15 +152,15 @@ private:
 	{
 		m_plan = plan;
 		const int helpers = (getNumThreads() - 1 < plan.count - 1) ? getNumThreads() - 1 : plan.count - 1;
-		// Each taker owns a contiguous block of the chunks and takes from it first, from its front; then it
-		// helps with the others' blocks from their backs (see runChunks). Blocks depend only on the chunk and
-		// taker counts, so a per-body loop gives each thread the same bodies from stage to stage: they stay
-		// in its core's cache.
+		// Each taker owns a contiguous block of the chunks and takes from it first, then from the others'
+		// (see runChunks). Blocks depend only on the chunk and taker counts, so a per-body loop gives
+		// each thread the same bodies from stage to stage: they stay in its core's cache.
 		m_takers = helpers + 1;
 		for (int t = 0; t < m_takers; ++t)
-			m_blocks[t].range.store(ChunkBlock::pack(int((long long)plan.count * t / m_takers),
-			                                         int((long long)plan.count * (t + 1) / m_takers)),
-			                        std::memory_order_relaxed);
+		{
+			m_blocks[t].next.store(int((long long)plan.count * t / m_takers), std::memory_order_relaxed);
+			m_blocks[t].end = int((long long)plan.count * (t + 1) / m_takers);
+		}
 		m_sleepHint.store(false, std::memory_order_relaxed);
 		caliber::beginThreadsRunning();
 		// Generation and helper count in one word: a worker decides from one load whether the job is its.
@@ -190,52 +189,26 @@ private:
 		caliber::endThreadsRunning();
 	}
 
-	// Taker `taker` runs its own block's chunks from the front, then helps with the others' in turn, from
-	// their backs: a thief takes the chunks their owner would reach last, so the owner's next chunk is
-	// still the one after its last (the lines a loop's chunk touches follow the previous chunk's), and at
-	// two threads the thief of block 0 works at the end next to its own block.
+	// Taker `taker` runs its own block's chunks, then helps with the others' in turn.
 	void runChunks(int taker)
 	{
-		ChunkBlock& own = m_blocks[taker];
-		for (;;)
-		{
-			// A cheap look first: an exhausted block costs no atomic write on its line.
-			const unsigned long long seen = own.range.load(std::memory_order_relaxed);
-			if (ChunkBlock::begin(seen) >= ChunkBlock::end(seen)) break;
-			// The owner alone moves the front, by one with each claim (at most once past the end, the
-			// claim that finds it empty): wait-free, and the front never reaches the end's bits.
-			const unsigned long long before = own.range.fetch_add(1, std::memory_order_relaxed);
-			const int k = ChunkBlock::begin(before);
-			if (k >= ChunkBlock::end(before)) break;
-			runChunk(k);
-		}
-		for (int i = 1; i < m_takers; ++i)
+		for (int i = 0; i < m_takers; ++i)
 		{
 			ChunkBlock& block = m_blocks[(taker + i) % m_takers];
-			unsigned long long seen = block.range.load(std::memory_order_relaxed);
 			for (;;)
 			{
-				const int begin = ChunkBlock::begin(seen), end = ChunkBlock::end(seen);
-				if (begin >= end) break;
-				// The back moves only while the front has not passed it: the claim compares both halves.
-				if (block.range.compare_exchange_weak(seen, ChunkBlock::pack(begin, end - 1), std::memory_order_relaxed,
-				                                      std::memory_order_relaxed))
-				{
-					runChunk(end - 1);
-					seen = block.range.load(std::memory_order_relaxed);
-				}
+				// A cheap look first: an exhausted block costs no atomic write on its line.
+				if (block.next.load(std::memory_order_relaxed) >= block.end) break;
+				const int k = block.next.fetch_add(1, std::memory_order_relaxed);
+				if (k >= block.end) break;
+				int chunkBegin, chunkEnd;
+				m_plan.range(k, chunkBegin, chunkEnd);
+				if (m_forBody)
+					m_forBody->forLoop(chunkBegin, chunkEnd);
+				else
+					m_partials[k] = m_sumBody->sumLoop(chunkBegin, chunkEnd);
 			}
 		}
-	}
-
-	void runChunk(int k)
-	{
-		int chunkBegin, chunkEnd;
-		m_plan.range(k, chunkBegin, chunkEnd);
-		if (m_forBody)
-			m_forBody->forLoop(chunkBegin, chunkEnd);
-		else
-			m_partials[k] = m_sumBody->sumLoop(chunkBegin, chunkEnd);
 	}
 
 	// Waits for a post newer than seen (or for the end); returns it.
@@ -321,18 +294,10 @@ private:
 	unsigned long long m_post = 0;  // the posting thread's copy of m_posted
 	// Each on a cache line of its own: the threads take chunks from the blocks' cursors while idle workers
 	// spin on m_posted, and sharing a line would make each take a cache miss for the other.
-	// A block's chunks not yet taken, [begin, end), in one word: the owner takes the front by adding one
-	// (the low half), the others take the back by compare-and-swap of the whole word, so a front and a back
-	// claim never hand out the same chunk.
 	struct alignas(64) ChunkBlock
 	{
-		std::atomic<unsigned long long> range{0};
-		static unsigned long long pack(int begin, int end)
-		{
-			return (unsigned long long)(unsigned)end << 32 | (unsigned long long)(unsigned)begin;
-		}
-		static int begin(unsigned long long range) { return int(unsigned(range & 0xffffffffu)); }
-		static int end(unsigned long long range) { return int(unsigned(range >> 32)); }
+		std::atomic<int> next{0};
+		int end = 0;
 	};
 	ChunkBlock m_blocks[BT_MAX_THREAD_COUNT];
 	int m_takers = 1;
