@@ -4,6 +4,7 @@
 // indices unique, run nested loops serially, clamp thread counts, and survive misuse.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -559,4 +560,83 @@ TEST(Threads, MoreLiveThreadsThanIndicesShareTheLastIndex)
 	unsigned later = 0;
 	std::thread([&] { later = btGetCurrentThreadIndex(); }).join();
 	EXPECT_LT(later, BT_MAX_THREAD_COUNT - 1);
+}
+
+namespace
+{
+// Spins for about `micros` microseconds (sleeping would let the scheduler hand the core away, and the
+// test wants two threads busy at once).
+void busyFor(int micros)
+{
+	const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(micros);
+	while (std::chrono::steady_clock::now() < until)
+	{
+	}
+}
+
+// Counts each index and records which thread ran it; chunks whose first index is a multiple of
+// `slowEvery` (or below `slowBelow`) spin for `micros` so that the other takers run out of work and steal.
+struct UnevenChunks : public btIParallelForBody
+{
+	std::vector<std::atomic<int>>* visits;
+	std::vector<std::thread::id>* runBy;
+	int offset;
+	int slowEvery;
+	int slowBelow;
+	int micros;
+	void forLoop(int iBegin, int iEnd) const override
+	{
+		const bool slow = (slowEvery > 0 && (iBegin - offset) % slowEvery == 0) || iBegin - offset < slowBelow;
+		if (slow) busyFor(micros);
+		for (int i = iBegin; i < iEnd; ++i)
+		{
+			++(*visits)[i - offset];
+			(*runBy)[i - offset] = std::this_thread::get_id();
+		}
+	}
+};
+}  // namespace
+
+TEST(Threads, ContendedChunksWithUnevenWorkRunExactlyOnce)
+{
+	// Chunks of very different lengths make the takers finish their own blocks at different times and take
+	// from the others' blocks: with 1 to 4 threads, no
+	// chunks, one, a few and many, and ranges and grains that make no sense, every index runs once and a
+	// sum of integers (exact in float below 2^24) comes out exact. CI's tsan stage checks the claims.
+	Schedulers schedulers;
+	if (!schedulers.pool) return;
+	btITaskScheduler* pool = schedulers.pool.get();
+	const int cases[][3] = {{0, 0, 1},   {0, 1, 1},    {0, 2, 1},    {0, 3, 1},    {0, 5, 1},
+	                        {0, 64, 1},  {0, 1000, 1}, {0, 1000, 3}, {7, 2, 1},    {0, 17, 0},
+	                        {0, 17, -4}, {-30, 90, 7}, {0, 9, 1000}, {0, 4099, 64}};
+	for (int threads = 1; threads <= 4; ++threads)
+	{
+		pool->setNumThreads(threads);
+		for (const auto& c : cases)
+			for (int slowEvery : {0, 3, 5})
+			{
+				const int begin = c[0], end = c[1], grain = c[2];
+				const int lo = std::min(begin, end), hi = std::max(begin, end);
+				std::vector<std::atomic<int>> visits(hi - lo + 1);
+				std::vector<std::thread::id> runBy(hi - lo + 1);
+				UnevenChunks body;
+				body.visits = &visits;
+				body.runBy = &runBy;
+				body.offset = lo;
+				body.slowEvery = slowEvery;
+				body.slowBelow = slowEvery == 0 ? (hi - lo) / 3 : 0;
+				body.micros = 20;
+				pool->parallelFor(begin, end, grain, body);
+				for (int i = lo; i <= hi; ++i)
+					ASSERT_EQ(visits[i - lo].load(), (i >= begin && i < end) ? 1 : 0)
+					    << threads << " threads, range [" << begin << ", " << end << ") grain " << grain
+					    << " slowEvery " << slowEvery << " index " << i;
+			}
+		for (int count : {0, 1, 2, 1000, 4000})
+		{
+			const btScalar expected = btScalar(double(count) * (count - 1) / 2);
+			ASSERT_EQ(pool->parallelSum(0, count, 1, IndexSum()), count > 0 ? expected : btScalar(0))
+			    << threads << " threads, " << count << " chunks";
+		}
+	}
 }

@@ -100,7 +100,17 @@ struct MtSolverScratch
 	// sweeps, and their rows and blocks stay in its core's cache from stage to stage (see
 	// listBatchesByRun).
 	btAlignedObjectArray<int> batchesByRun;
-	btAlignedObjectArray<int> batchRunSort;  // listBatchesByRun's scratch
+	btAlignedObjectArray<int> batchRun;  // per batch: its run (listed with batchesByRun)
+	// The solver bodies of the plan grouped the same way (run 0's, then run 1's, ...; in index order within
+	// a run): a body goes with the run that holds most of its manifolds (a one-pass majority vote over the
+	// batches in order); a body in no batch (the fixed entry, a body with joints only) with the run of its
+	// share of the index range. The warm starts and the bodies' write-back take them in this order, one slice of
+	// a run per task (BodySlices), so that a thread warms and writes back the bodies its runs sweep.
+	// bodyRunStart: per run and one past the last, its first entry; empty when not listed (one run).
+	btAlignedObjectArray<int> bodiesByRun;
+	btAlignedObjectArray<int> bodyRunStart;
+	btAlignedObjectArray<int> bodyRun;    // listBodiesByRun's scratch: per solver body, its run
+	btAlignedObjectArray<int> bodyVotes;  // and the run's lead in its vote
 	// The warm starts by body: each moving body's manifolds (index in rowManifolds << 1 | side B), in the
 	// order the serial setup applies them.
 	btAlignedObjectArray<int> warmStartFirst;  // per solver body, and one past the last
@@ -152,6 +162,42 @@ struct MtSolverScratch
 		char padding[64];  // two chunks' array headers, written by two threads, on different cache lines
 	};
 	btAlignedObjectArray<PushChunk> pushChunks;
+};
+
+// A loop over the listed bodies (mt.bodiesByRun) in slicesPerRun slices of every run, run after run: the
+// pool hands taker t the t-th contiguous share of a loop's chunks, here exactly run t's bodies when the
+// loop has as many takers as runs (a near share otherwise, or whole slices to any thread for other
+// schedulers: the same results).
+struct BodySlices
+{
+	const int* bodies;
+	const int* runStart;
+	int runs;
+	int slicesPerRun;
+
+	// From the listing, slices of about bodiesPerSlice bodies; runs == 0 when nothing is listed for
+	// numBodies bodies.
+	static BodySlices of(const MtSolverScratch& mt, int numBodies, int bodiesPerSlice)
+	{
+		BodySlices slices = {0, 0, 0, 1};
+		const int runs = mt.bodyRunStart.size() - 1;
+		if (runs < 2 || mt.bodiesByRun.size() != numBodies || mt.bodyRunStart[runs] != numBodies) return slices;
+		slices.bodies = &mt.bodiesByRun[0];
+		slices.runStart = &mt.bodyRunStart[0];
+		slices.runs = runs;
+		const int perRun = (numBodies + runs - 1) / runs;
+		slices.slicesPerRun = btMax(1, (perRun + bodiesPerSlice - 1) / bodiesPerSlice);
+		return slices;
+	}
+	int count() const { return runs * slicesPerRun; }
+	// Slice c's entries of bodies, [begin, end).
+	void slice(int c, int& begin, int& end) const
+	{
+		const int run = c / slicesPerRun, part = c % slicesPerRun;
+		const int first = runStart[run], size = runStart[run + 1] - first;
+		begin = first + int((long long)size * part / slicesPerRun);
+		end = first + int((long long)size * (part + 1) / slicesPerRun);
+	}
 };
 
 MtSolverScratch& mtScratchOf(const btSequentialImpulseConstraintSolverMt& solver)
@@ -373,46 +419,60 @@ const int kBodiesPerWarmStartTask = 128;
 
 // Each body's warm-start impulses, in the order the serial setup applies them (point by point: the
 // normal row, then the friction rows). A body's velocity changes are sums, and their terms come in the
-// same order, so the bits are the serial loop's; bodies are independent, so they go to the threads.
+// same order, so the bits are the serial loop's; bodies are independent, so they go to the threads: in
+// slices of the runs (BodySlices) when the bodies are listed by run, else by index.
 struct ApplyWarmStarts : public btIParallelForBody
 {
 	const MtSolverScratch* mt;
 	caliber::ContactRowPools pools;
 	int frictionRowsPerContact;
 	int contactBase, frictionBase;  // the rows of point i: contactBase + i, frictionBase + i * frictionRowsPerContact
+	BodySlices slices;
 
 	void forLoop(int iBegin, int iEnd) const override
 	{
+		if (slices.runs == 0)
+		{
+			for (int b = iBegin; b < iEnd; ++b) apply(b);
+			return;
+		}
+		for (int c = iBegin; c < iEnd; ++c)
+		{
+			int begin, end;
+			slices.slice(c, begin, end);
+			for (int k = begin; k < end; ++k) apply(slices.bodies[k]);
+		}
+	}
+
+	void apply(int b) const
+	{
 		const btSolverConstraint* contacts = &(*pools.contacts)[contactBase];
 		const btSolverConstraint* friction = frictionRowsPerContact ? &(*pools.friction)[frictionBase] : 0;
-		for (int b = iBegin; b < iEnd; ++b)
+		btSolverBody& body = (*pools.bodies)[b];
+		for (int k = mt->warmStartFirst[b]; k < mt->warmStartFirst[b + 1]; ++k)
 		{
-			btSolverBody& body = (*pools.bodies)[b];
-			for (int k = mt->warmStartFirst[b]; k < mt->warmStartFirst[b + 1]; ++k)
-			{
-				const int code = mt->warmStarts[k];
-				const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[code >> 1];
-				// The manifold's rows: its points' normal rows, and their friction rows, follow each other.
-				const btSolverConstraint* row = contacts + manifold.firstPoint;
-				const btSolverConstraint* rowEnd = row + manifold.numPoints;
-				const btSolverConstraint* frictionRow = friction + manifold.firstPoint * frictionRowsPerContact;
-				if (code & 1)
-					for (; row != rowEnd; ++row)
-					{
-						body.applyImpulse(row->m_contactNormal2, row->m_angularComponentB, row->m_appliedImpulse);
-						for (int f = 0; f < frictionRowsPerContact; ++f, ++frictionRow)
-							body.applyImpulse(frictionRow->m_contactNormal2, frictionRow->m_angularComponentB,
-							                  frictionRow->m_appliedImpulse);
-					}
-				else
-					for (; row != rowEnd; ++row)
-					{
-						body.applyImpulse(row->m_contactNormal1, row->m_angularComponentA, row->m_appliedImpulse);
-						for (int f = 0; f < frictionRowsPerContact; ++f, ++frictionRow)
-							body.applyImpulse(frictionRow->m_contactNormal1, frictionRow->m_angularComponentA,
-							                  frictionRow->m_appliedImpulse);
-					}
-			}
+			const int code = mt->warmStarts[k];
+			const MtSolverScratch::RowManifold& manifold = mt->rowManifolds[code >> 1];
+			// The manifold's rows: its points' normal rows, and their friction rows, follow each other.
+			const btSolverConstraint* row = contacts + manifold.firstPoint;
+			const btSolverConstraint* rowEnd = row + manifold.numPoints;
+			const btSolverConstraint* frictionRow = friction + manifold.firstPoint * frictionRowsPerContact;
+			if (code & 1)
+				for (; row != rowEnd; ++row)
+				{
+					body.applyImpulse(row->m_contactNormal2, row->m_angularComponentB, row->m_appliedImpulse);
+					for (int f = 0; f < frictionRowsPerContact; ++f, ++frictionRow)
+						body.applyImpulse(frictionRow->m_contactNormal2, frictionRow->m_angularComponentB,
+						                  frictionRow->m_appliedImpulse);
+				}
+			else
+				for (; row != rowEnd; ++row)
+				{
+					body.applyImpulse(row->m_contactNormal1, row->m_angularComponentA, row->m_appliedImpulse);
+					for (int f = 0; f < frictionRowsPerContact; ++f, ++frictionRow)
+						body.applyImpulse(frictionRow->m_contactNormal1, frictionRow->m_angularComponentA,
+						                  frictionRow->m_appliedImpulse);
+				}
 		}
 	}
 };
@@ -507,7 +567,11 @@ void applyWarmStartsByBody(MtSolverScratch& mt, const caliber::ContactRowPools& 
 	apply.frictionRowsPerContact = frictionRowsPerContact;
 	apply.contactBase = contactBase;
 	apply.frictionBase = frictionBase;
-	btParallelFor(0, numBodies, kBodiesPerWarmStartTask, apply);
+	apply.slices = BodySlices::of(mt, numBodies, kBodiesPerWarmStartTask);
+	if (apply.slices.runs)
+		btParallelFor(0, apply.slices.count(), 1, apply);
+	else
+		btParallelFor(0, numBodies, kBodiesPerWarmStartTask, apply);
 }
 
 // Asks for count consecutive rows from first.
@@ -782,19 +846,73 @@ void listBatchesByRun(MtSolverScratch& mt, const btBatchedConstraints& batched, 
 	if (tasks == 1 || (mt.dependentSweep && mt.itemThreads[0] != numThreads))
 	{
 		for (int b = 0; b < numBatches; ++b) mt.batchesByRun[b] = b;
+		mt.batchRun.resize(0);
 		return;
 	}
-	// A counting sort by run; the run of each batch is kept in batchesByRun meanwhile.
+	// A counting sort by run.
+	caliber::resizeScratch(mt.batchRun, numBatches);
 	for (int b = 0; b < numBatches; ++b)
 	{
 		const int run = btMin(runOf(b), tasks - 1);
-		mt.batchesByRun[b] = run;
+		mt.batchRun[b] = run;
 		++runStart[run + 1];
 	}
 	for (int t = 0; t < tasks; ++t) runStart[t + 1] += runStart[t];
-	caliber::resizeScratch(mt.batchRunSort, numBatches);
-	for (int b = 0; b < numBatches; ++b) mt.batchRunSort[runStart[mt.batchesByRun[b]]++] = b;
-	for (int b = 0; b < numBatches; ++b) mt.batchesByRun[b] = mt.batchRunSort[b];
+	for (int b = 0; b < numBatches; ++b) mt.batchesByRun[runStart[mt.batchRun[b]]++] = b;
+}
+
+// mt.bodiesByRun and mt.bodyRunStart for the solver bodies [0, numSolverBodies) (see MtSolverScratch), from
+// the batches' runs (listBatchesByRun); nothing listed when the batches have no runs. Which thread warms
+// or writes back a body changes no result: each body's sums are its own, in its own order.
+void listBodiesByRun(MtSolverScratch& mt, const btBatchedConstraints& batched, int numSolverBodies, int fixedBodyId,
+                     int numThreads)
+{
+	const int numBatches = batched.m_batches.size();
+	const int tasks = btMin(btMax(numThreads, 1), int(BT_MAX_THREAD_COUNT));
+	mt.bodyRunStart.resize(0);
+	if (tasks == 1 || numSolverBodies == 0 || mt.batchRun.size() != numBatches ||
+	    mt.batchManifoldBegin.size() != numBatches + 1)
+		return;
+	caliber::assignScratch(mt.bodyRun, numSolverBodies, -1);
+	caliber::assignScratch(mt.bodyVotes, numSolverBodies, 0);
+	int* bodyRun = &mt.bodyRun[0];
+	int* votes = &mt.bodyVotes[0];
+	// A majority vote in one pass (Boyer and Moore's): a run that holds more than half of a body's
+	// manifolds wins; without one, some run that holds a share.
+	auto vote = [&](int body, int run)
+	{
+		if (body == fixedBodyId) return;
+		if (votes[body] == 0)
+		{
+			bodyRun[body] = run;
+			votes[body] = 1;
+		}
+		else
+			votes[body] += bodyRun[body] == run ? 1 : -1;
+	};
+	for (int b = 0; b < numBatches; ++b)
+	{
+		const int run = mt.batchRun[b];
+		for (int i = mt.batchManifoldBegin[b]; i < mt.batchManifoldBegin[b + 1]; ++i)
+		{
+			const MtSolverScratch::RowManifold& manifold = mt.rowManifolds[mt.orderedManifolds[i]];
+			vote(manifold.bodyA, run);
+			vote(manifold.bodyB, run);
+		}
+	}
+	caliber::assignScratch(mt.bodyRunStart, tasks + 1, 0);
+	int* runStart = &mt.bodyRunStart[0];
+	for (int body = 0; body < numSolverBodies; ++body)
+	{
+		if (bodyRun[body] < 0) bodyRun[body] = int((long long)body * tasks / numSolverBodies);
+		++runStart[bodyRun[body] + 1];
+	}
+	for (int t = 0; t < tasks; ++t) runStart[t + 1] += runStart[t];
+	caliber::resizeScratch(mt.bodiesByRun, numSolverBodies);
+	for (int body = 0; body < numSolverBodies; ++body) mt.bodiesByRun[runStart[bodyRun[body]]++] = body;
+	// The cursors ended at the next run's start: back to each run's own.
+	for (int t = tasks; t > 0; --t) runStart[t] = runStart[t - 1];
+	runStart[0] = 0;
 }
 
 // The sweep of one iteration with DependentSweep; adds the batches' residuals to residual as the loop per
@@ -1083,6 +1201,7 @@ void planColourSweep(MtSolverScratch& mt, const btSolverBody* bodies, int numSol
 		for (int direction = 0; direction < 2; ++direction)
 			listSweepItems(mt, batched, direction == 1, numThreads);
 	listBatchesByRun(mt, batched, numThreads);
+	listBodiesByRun(mt, batched, numSolverBodies, fixedBodyId, numThreads);
 	if (mt.dependenciesListed)
 	{
 		static_assert(offsetof(MtSolverScratch::RowManifold, bodyB) ==
@@ -1557,7 +1676,45 @@ btScalar btSequentialImpulseConstraintSolverMt::solveGroupCacheFriendlyFinish(bt
 	else
 		btParallelFor(0, m_tmpSolverContactConstraintPool.size(), kRowsPerWriteBackTask, writeBack);
 	writeBackJoints(0, caliber::solverScratchOf(*this).joints.size(), infoGlobal);
-	writeBack.contacts = false;
-	btParallelFor(0, m_tmpSolverBodyPool.size(), kBodiesPerWriteBackTask, writeBack);
+	// The bodies by run when the plan listed them (see MtSolverScratch::bodiesByRun), so that a thread
+	// writes back the bodies it swept; the entries made after the plan (the batches' copies of the fixed
+	// entry, the wide sweep's padding bodies) belong to no rigid body and go on this thread.
+	struct WriteBackBySlice : public btIParallelForBody
+	{
+		btSequentialImpulseConstraintSolverMt* solver;
+		const btContactSolverInfo* info;
+		BodySlices slices;
+
+		void forLoop(int iBegin, int iEnd) const override
+		{
+			for (int c = iBegin; c < iEnd; ++c)
+			{
+				int begin, end;
+				slices.slice(c, begin, end);
+				// Consecutive bodies in one call.
+				for (int k = begin, span; k < end; k += span)
+				{
+					span = 1;
+					while (k + span < end && slices.bodies[k + span] == slices.bodies[k] + span) ++span;
+					solver->writeBackBodies(slices.bodies[k], slices.bodies[k] + span, *info);
+				}
+			}
+		}
+	};
+	const int listedBodies = mt.bodiesByRun.size();
+	WriteBackBySlice bySlice;
+	bySlice.slices = BodySlices::of(mt, btMin(listedBodies, m_tmpSolverBodyPool.size()), kBodiesPerWriteBackTask);
+	if (bySlice.slices.runs)
+	{
+		bySlice.solver = this;
+		bySlice.info = &infoGlobal;
+		btParallelFor(0, bySlice.slices.count(), 1, bySlice);
+		writeBackBodies(listedBodies, m_tmpSolverBodyPool.size(), infoGlobal);
+	}
+	else
+	{
+		writeBack.contacts = false;
+		btParallelFor(0, m_tmpSolverBodyPool.size(), kBodiesPerWriteBackTask, writeBack);
+	}
 	return btScalar(0);
 }
