@@ -8,6 +8,7 @@
 #include "BulletCollision/CollisionDispatch/btLoneIslandSink.h"
 #include "BulletCollision/CollisionDispatch/btUniteInOrder.h"
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifold.h"
+#include "LinearMath/btCountingSortOnThreads.h"
 #include "LinearMath/btThreads.h"
 
 #include <atomic>
@@ -66,6 +67,70 @@ struct IslandGroupingScratch
 	bool awakeFresh = false;
 	bool buildingForProcess = false;  // inside buildAndProcessIslands, between its two calls
 	bool inUse = false;
+	// groupManifoldsByIsland's sort on the threads, and buildIslands' manifold filter on the threads.
+	CountingSortScratch manifoldSort;
+	CountingSortScratch manifoldFilter;
+};
+
+/// buildIslands' manifold filter on the threads, as a counting sort with one key: manifold i is kept (key 0)
+/// as the serial loop keeps it (a contact, or empty manifolds not skipped; both bodies; one of them awake; a
+/// response needed), and the kept ones keep their order. A manifold where an awake kinematic body pushes
+/// would wake the other body, which changes what the later manifolds see: it sets wakes, and the serial
+/// loop then runs instead (the filter changes nothing).
+struct IslandManifoldKey
+{
+	btPersistentManifold* const* manifolds;
+	btDispatcher* dispatcher;
+	bool skipEmpty;
+	std::atomic<int>* wakes;
+	int operator()(int i) const
+	{
+		const btPersistentManifold* manifold = manifolds[i];
+		if (!manifold || (skipEmpty && manifold->getNumContacts() == 0)) return -1;
+		const btCollisionObject* body0 = manifold->getBody0();
+		const btCollisionObject* body1 = manifold->getBody1();
+		if (!body0 || !body1) return -1;
+		const bool awake0 = body0->getActivationState() != ISLAND_SLEEPING;
+		const bool awake1 = body1->getActivationState() != ISLAND_SLEEPING;
+		if (!awake0 && !awake1) return -1;
+		if ((body0->isKinematicObject() && awake0 && body0->hasContactResponse()) ||
+		    (body1->isKinematicObject() && awake1 && body1->hasContactResponse()))
+			wakes->store(1, std::memory_order_relaxed);
+		return dispatcher->needsResponse(body0, body1) ? 0 : -1;
+	}
+};
+
+struct PlaceIslandManifold
+{
+	btPersistentManifold* const* manifolds;
+	btPersistentManifold** kept;
+	void operator()(int i, int, int slot) const { kept[slot] = manifolds[i]; }
+};
+
+/// Manifolds worth grouping on the threads (three parallel loops); fewer are grouped on the calling thread.
+const int kMinManifoldsOnThreads = 1024;
+
+/// groupManifoldsByIsland's sort on the threads: manifold i's island (-1 for none: left out), with the manifold
+/// kept aside for the placement, which rewrites the list.
+struct ManifoldIslandKey
+{
+	btPersistentManifold* const* manifolds;
+	btPersistentManifold** ungrouped;
+	int numIslands;
+	int operator()(int i) const
+	{
+		btPersistentManifold* manifold = manifolds[i];
+		ungrouped[i] = manifold;
+		const int islandId = islandIdOf(manifold);
+		return islandId < numIslands ? islandId : -1;
+	}
+};
+
+struct PlaceManifold
+{
+	btPersistentManifold* const* ungrouped;
+	btPersistentManifold** manifolds;
+	void operator()(int i, int, int slot) const { manifolds[slot] = ungrouped[i]; }
 };
 
 /// Sorts manifolds by island with a counting sort: O(n), and stable, so each island sees its manifolds in
@@ -76,6 +141,27 @@ void groupManifoldsByIsland(btAlignedObjectArray<btPersistentManifold*>& manifol
 {
 	btAlignedObjectArray<int>& bounds = scratch.bounds;
 	const int numManifolds = manifolds.size();
+	const int parts = countingSortParts(numManifolds, kMinManifoldsOnThreads);
+	if (parts > 0)
+	{
+		// The same sort on the threads (the islands' ids read there, a cache miss or two per manifold).
+		bounds.resizeNoInitialize(numIslands + 2);
+		scratch.ungrouped.resizeNoInitialize(numManifolds);
+		ManifoldIslandKey keyOf;
+		keyOf.manifolds = &manifolds[0];
+		keyOf.ungrouped = &scratch.ungrouped[0];
+		keyOf.numIslands = numIslands;
+		PlaceManifold place;
+		place.ungrouped = &scratch.ungrouped[0];
+		place.manifolds = &manifolds[0];
+		CountingSortOnThreads<ManifoldIslandKey, PlaceManifold> sort(scratch.manifoldSort, numManifolds, numIslands,
+		                                                             parts);
+		sort.count(keyOf);
+		const int kept = sort.place(place, &bounds[0]);
+		bounds[numIslands + 1] = kept;
+		manifolds.resize(kept);
+		return;
+	}
 	// Counts go two places up, so that after the prefix sum bounds[i + 1] is island i's first slot, and
 	// after the placement, which advances it, the first slot of island i + 1.
 	bounds.resize(0);
@@ -610,6 +696,33 @@ void btSimulationIslandManager::buildIslands(btDispatcher* dispatcher, btCollisi
 	}
 
 	const int numManifolds = dispatcher->getNumManifolds();
+	btPersistentManifold** allManifolds = numManifolds ? dispatcher->getInternalManifoldPointer() : 0;
+	const int parts = ownScratch && m_splitIslands && allManifolds
+	                      ? caliber::countingSortParts(numManifolds, caliber::kMinManifoldsOnThreads)
+	                      : 0;
+	if (parts > 0)
+	{
+		// The filter on the threads (two cache misses or so per manifold, for its bodies); the serial loop
+		// below when a kinematic body wakes another.
+		std::atomic<int> wakes(0);
+		caliber::IslandManifoldKey keyOf;
+		keyOf.manifolds = allManifolds;
+		keyOf.dispatcher = dispatcher;
+		keyOf.skipEmpty = collisionWorld->getDispatchInfo().m_deterministicOverlappingPairs;
+		keyOf.wakes = &wakes;
+		caliber::CountingSortOnThreads<caliber::IslandManifoldKey, caliber::PlaceIslandManifold> filter(
+		    scratch.manifoldFilter, numManifolds, 1, parts);
+		filter.count(keyOf);
+		if (!wakes.load())
+		{
+			m_islandmanifold.resizeNoInitialize(numManifolds);
+			caliber::PlaceIslandManifold place;
+			place.manifolds = allManifolds;
+			place.kept = &m_islandmanifold[0];
+			m_islandmanifold.resizeNoInitialize(filter.place(place, 0));
+			return;
+		}
+	}
 	for (int i = 0; i < numManifolds; ++i)
 	{
 		btPersistentManifold* manifold = dispatcher->getManifoldByIndexInternal(i);

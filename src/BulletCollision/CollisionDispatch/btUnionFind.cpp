@@ -1,7 +1,10 @@
 // Caliber physics SDK. Copyright (c) 2026 the Caliber authors. zlib licence (see LICENSE.txt).
 #include "BulletCollision/CollisionDispatch/btUnionFind.h"
 
+#include <atomic>
 #include <cstring>
+
+#include "LinearMath/btCountingSortOnThreads.h"
 
 namespace
 {
@@ -80,6 +83,9 @@ struct SortScratch
 	btAlignedObjectArray<int> start;         // per island id, where its elements begin
 	btAlignedObjectArray<int> cursor;        // per island id, where its next element goes
 	btAlignedObjectArray<btElement> sorted;  // the sorted elements
+	// The sort on the threads: its working arrays, and each element's m_sz while the elements are rewritten.
+	caliber::CountingSortScratch threads;
+	btAlignedObjectArray<int> sizes;
 };
 SortScratch& sortScratch()
 {
@@ -122,10 +128,74 @@ bool countingSortByIsland(btAlignedObjectArray<btElement>& elements)
 }
 }  // namespace
 
+namespace
+{
+// Elements worth sorting on the threads (three parallel loops); fewer go the serial way.
+const int kMinElementsOnThreads = 1024;
+
+// Loop 1 of the sort on the threads: element i's root, found without changing the elements (other tasks walk
+// the same paths; the serial finds' halving only shortens paths, so the roots are the same), and its m_sz
+// kept aside; notes when m_sz does not grow with the element index (the serial path then sorts instead).
+struct RootOfElement
+{
+	const btElement* elements;
+	int* sizes;
+	std::atomic<int>* notIncreasing;
+	int operator()(int i) const
+	{
+		int x = i;
+		while (elements[x].m_id != x) x = elements[x].m_id;
+		sizes[i] = elements[i].m_sz;
+		if (i > 0 && elements[i].m_sz <= elements[i - 1].m_sz) notIncreasing->store(1, std::memory_order_relaxed);
+		return x;
+	}
+};
+
+// Loop 3: the element to its slot, as the serial sort leaves it (m_id its root, m_sz its own).
+struct PlaceElement
+{
+	btElement* elements;
+	const int* sizes;
+	void operator()(int i, int root, int slot) const
+	{
+		elements[slot].m_id = root;
+		elements[slot].m_sz = sizes[i];
+	}
+};
+
+// The sort on the threads when m_sz grows with the element index (the island manager's use): the elements by
+// root, each island's in element order, which is (root, m_sz) order. False, with the elements unchanged, when
+// the sort is not worth the loops or m_sz does not grow.
+bool sortIslandsOnThreads(btAlignedObjectArray<btElement>& elements)
+{
+	const int count = elements.size();
+	const int parts = caliber::countingSortParts(count, kMinElementsOnThreads);
+	if (parts == 0) return false;
+	SortScratch& scratch = sortScratch();
+	scratch.sizes.resizeNoInitialize(count);
+	std::atomic<int> notIncreasing(0);
+	RootOfElement rootOf;
+	rootOf.elements = &elements[0];
+	rootOf.sizes = &scratch.sizes[0];
+	rootOf.notIncreasing = &notIncreasing;
+	caliber::CountingSortOnThreads<RootOfElement, PlaceElement> sort(scratch.threads, count, count, parts);
+	sort.count(rootOf);
+	if (notIncreasing.load()) return false;
+	PlaceElement place;
+	place.elements = &elements[0];
+	place.sizes = &scratch.sizes[0];
+	const int placed = sort.place(place, 0);
+	btAssert(placed == count);
+	(void)placed;
+	return true;
+}
+}  // namespace
+
 void btUnionFind::sortIslands()
 {
 	const int count = m_elements.size();
 	if (count == 0) return;
+	if (sortIslandsOnThreads(m_elements)) return;
 	// find(i) for every element in order (the same path halving), without a call and range check each;
 	// in the same pass, the counting sort's count of each island (two places up: see below) and whether
 	// m_sz grows with the element index (the island manager's object indices do).

@@ -19,6 +19,7 @@
 #include "BulletDynamics/Dynamics/btPredictionPrologue.h"
 #include "BulletDynamics/Dynamics/btRigidBody.h"
 #include "BulletDynamics/Dynamics/btWorldStepContext.h"
+#include "LinearMath/btCountingSortOnThreads.h"
 #include "LinearMath/btQuickprof.h"
 #include "LinearMath/btThreads.h"
 #include "LinearMath/btWarningHook.h"
@@ -399,6 +400,22 @@ struct JointIslandPass : public btIParallelForBody
 		}
 	}
 };
+
+// sortConstraintsByIsland's sort on the threads: the key of joint i (its island, or -1), and its placement.
+struct JointIslandKey
+{
+	const btCollisionWorld* world;
+	btTypedConstraint* const* constraints;
+	int numIslands;
+	int operator()(int i) const { return jointIsland(*world, *constraints[i], numIslands); }
+};
+
+struct PlaceJoint
+{
+	btTypedConstraint* const* constraints;
+	btTypedConstraint** sorted;
+	void operator()(int i, int, int slot) const { sorted[slot] = constraints[i]; }
+};
 }  // namespace
 
 void btDiscreteDynamicsWorld::calculateSimulationIslands()
@@ -464,6 +481,29 @@ void caliber::sortConstraintsByIsland(btDiscreteDynamicsWorld& world,
 	islandStart.resize(numIslands + 1, 0);
 	const bool splitIslands = world.getSimulationIslandManager()->getSplitIslands();
 	const int numJoints = constraints.size();
+	if (splitIslands)
+	{
+		// Many joints: each joint's island and the counting sort on the threads (the same list: a stable sort).
+		const int parts = caliber::countingSortParts(numJoints, 2 * kJointsPerIslandTask);
+		if (parts > 0)
+		{
+			JointIslandKey keyOf;
+			keyOf.world = &world;
+			keyOf.constraints = &constraints[0];
+			keyOf.numIslands = numIslands;
+			PlaceJoint place;
+			place.constraints = &constraints[0];
+			place.sorted = 0;
+			caliber::CountingSortOnThreads<JointIslandKey, PlaceJoint> sort(context.jointSort, numJoints, numIslands,
+			                                                                parts);
+			sort.count(keyOf);
+			// Sized for every joint; the sort says how many are kept.
+			sorted.resizeNoInitialize(numJoints);
+			place.sorted = &sorted[0];
+			sorted.resizeNoInitialize(sort.place(place, &islandStart[0]));
+			return;
+		}
+	}
 	// Each joint's island, on the threads when there are many joints (in joint order either way).
 	btAlignedObjectArray<int>& islandOf = context.jointIslandTags;
 	islandOf.resizeNoInitialize(numJoints);

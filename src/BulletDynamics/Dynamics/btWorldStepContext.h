@@ -11,6 +11,7 @@
 #include "BulletDynamics/ConstraintSolver/btSolverConstraint.h"
 #include "BulletDynamics/Dynamics/btJointAnchorTree.h"
 #include "LinearMath/btAlignedObjectArray.h"
+#include "LinearMath/btCountingSortOnThreads.h"
 
 class btCollisionWorld;
 class btConstraintSolver;
@@ -55,6 +56,8 @@ struct WorldStepContext
 	/// the counting sort's fill cursor per island.
 	btAlignedObjectArray<int> constraintIslandStart;
 	btAlignedObjectArray<int> islandFill;
+	/// sortConstraintsByIsland's counting sort on the threads.
+	CountingSortScratch jointSort;
 	/// The island stage's per-joint lists (the elements each joint unites, then each joint's island).
 	btAlignedObjectArray<int> jointIslandTags;
 	/// Scratch of the joint position correction.

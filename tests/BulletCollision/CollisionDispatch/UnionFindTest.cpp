@@ -2,10 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 #include <vector>
 
 #include "BulletCollision/CollisionDispatch/btUnionFind.h"
+#include "LinearMath/btThreads.h"
+#include "TestThreadsUtil.h"
 
 namespace
 {
@@ -176,6 +179,71 @@ TEST(UnionFind, SortIslandsGivesTheOrderByIslandIdThenStoredValueWhateverTheStor
 		{
 			ASSERT_EQ(uf.getElement(i).m_id, reference[size_t(i)].first) << "trial " << trial << " element " << i;
 			ASSERT_EQ(uf.getElement(i).m_sz, reference[size_t(i)].second) << "trial " << trial << " element " << i;
+		}
+	}
+}
+
+namespace
+{
+// One random union-find of n elements as the island manager leaves it before sortIslands: shape 0 random
+// unions, 1 one island (a chain of unions), 2 no unions (every element alone), 3 a few large islands;
+// m_sz the index times three (growing: the sort on the threads) or, when increasing is false, random.
+void makeIslands(btUnionFind& uf, int n, int shape, bool increasing, std::mt19937& rng)
+{
+	uf.reset(n);
+	if (shape == 0)
+		for (int e = 0; e < n / 2; ++e) uf.unite(int(rng() % size_t(n)), int(rng() % size_t(n)));
+	if (shape == 1)
+		for (int i = 1; i < n; ++i) uf.unite(int(rng() % size_t(i)), i);
+	if (shape == 3)
+		for (int i = 5; i < n; ++i) uf.unite(i, int(rng() % 5));
+	for (int i = 0; i < n; ++i) uf.getElement(i).m_sz = increasing ? 3 * i : int(rng() % size_t(n));
+}
+}  // namespace
+
+// sortIslands on the threads (at least 1024 elements and a scheduler with two threads or more: the roots found
+// without changing the elements, then a counting sort in parts) must leave exactly the elements the serial
+// sort leaves, for every shape of islands, on the pool and on schedulers that cut or order the loops oddly.
+TEST(UnionFind, SortIslandsOnTheThreadsLeavesTheSerialElements)
+{
+	std::unique_ptr<btITaskScheduler> pool(btCreateDefaultTaskScheduler());
+	caliber_test::UnevenSplitScheduler uneven;
+	caliber_test::LastFirstScheduler lastFirst;
+	std::mt19937 rng(1128u);
+	for (int trial = 0; trial < 40; ++trial)
+	{
+		const int sizes[] = {0, 1, 1023, 1024, 1500, 3000, 7001};
+		const int n = sizes[trial % 7];
+		const int shape = (trial / 7) % 4;
+		const bool increasing = trial % 5 != 4;
+		const unsigned seed = unsigned(rng());
+		btUnionFind serial;
+		std::mt19937 serialRng(seed);
+		makeIslands(serial, n, shape, increasing, serialRng);
+		serial.sortIslands();
+		for (int schedulerIndex = 0; schedulerIndex < 4; ++schedulerIndex)
+		{
+			// The pool at 2 and at 3 threads, the uneven split, the last-first order.
+			btITaskScheduler* scheduler = pool.get();
+			if (schedulerIndex == 1) scheduler = &uneven;
+			if (schedulerIndex == 2) scheduler = &lastFirst;
+			if (!scheduler) continue;
+			btSetTaskScheduler(scheduler);
+			if (schedulerIndex == 0) scheduler->setNumThreads(2);
+			if (schedulerIndex == 3) scheduler->setNumThreads(3);
+			btUnionFind threaded;
+			std::mt19937 threadedRng(seed);
+			makeIslands(threaded, n, shape, increasing, threadedRng);
+			threaded.sortIslands();
+			btSetTaskScheduler(0);
+			ASSERT_EQ(threaded.getNumElements(), n);
+			for (int i = 0; i < n; ++i)
+			{
+				ASSERT_EQ(threaded.getElement(i).m_id, serial.getElement(i).m_id)
+				    << "trial " << trial << " scheduler " << schedulerIndex << " element " << i;
+				ASSERT_EQ(threaded.getElement(i).m_sz, serial.getElement(i).m_sz)
+				    << "trial " << trial << " scheduler " << schedulerIndex << " element " << i;
+			}
 		}
 	}
 }
