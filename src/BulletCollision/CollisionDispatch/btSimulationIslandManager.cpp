@@ -364,10 +364,13 @@ struct StoreIslandTags : public btIParallelForBody
 		{
 			const int end = btMin(numObjects, (c + 1) * kObjectsPerIslandTask);
 			int index = chunkStart[c];
+			// Stale starts (another world's numbering, or objects changed since it) could send two chunks to
+			// the same element: a chunk writes only inside its own range, and one that overruns it is wrong.
+			const int elementEnd = btMin(numElements, chunkStart[c + 1]);
 			for (int i = c * kObjectsPerIslandTask; i < end; ++i)
 			{
 				btCollisionObject* object = objects[i];
-				if (!object->isStaticOrKinematicObject() && index < numElements)
+				if (!object->isStaticOrKinematicObject() && index < elementEnd)
 				{
 					object->setIslandTag(rootOf(elements, index));
 					elements[index].m_sz = i;
