@@ -16,6 +16,7 @@
 #include <typeinfo>
 
 #include "BulletCollision/BroadphaseCollision/btDbvtAabbFastPath.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtBoxWalk.h"
 #include "BulletCollision/BroadphaseCollision/btPairCacheUtil.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtProxyIds.h"
 #include "BulletCollision/BroadphaseCollision/btDbvtRayWalk.h"
@@ -117,9 +118,12 @@ bool moveLeaf(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btDbvtVolume& bo
 	return reinserted;
 }
 
-// Adds the pairs of one pending proxy with every proxy whose box overlaps its box (stack: the queries'
-// scratch).
-void searchPairs(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btNodeStack& stack)
+// The pair search's query stack on the C++ stack: one entry per fork on the walk's path, so trees up to 64
+// levels deep never spill to the heap.
+const int kPairQueryInlineStack = 64;
+
+// Adds the pairs of one pending proxy with every proxy whose box overlaps its box.
+void searchPairs(btDbvtBroadphase& broadphase, btDbvtProxy* proxy)
 {
 	PairSearchPolicy policy;
 	policy.proxy = proxy;
@@ -127,8 +131,8 @@ void searchPairs(btDbvtBroadphase& broadphase, btDbvtProxy* proxy, btNodeStack& 
 	const btDbvtVolume& box = proxy->leaf->volume;
 	btDbvt& dynamicSet = broadphase.m_sets[btDbvtBroadphase::DYNAMIC_SET];
 	btDbvt& fixedSet = broadphase.m_sets[btDbvtBroadphase::FIXED_SET];
-	dynamicSet.collideTVNoStackAlloc(dynamicSet.m_root, box, stack, policy);
-	fixedSet.collideTVNoStackAlloc(fixedSet.m_root, box, stack, policy);
+	caliber::collideTVInTreeOrder<kPairQueryInlineStack>(dynamicSet.m_root, box, policy);
+	caliber::collideTVInTreeOrder<kPairQueryInlineStack>(fixedSet.m_root, box, policy);
 }
 
 // The pair search on the task scheduler's threads: each chunk of pending proxies queries the trees (which
@@ -139,12 +143,11 @@ const int kProxiesPerSearchTask = 32;
 // Fewer pending proxies than this are searched serially (a loop on the threads costs about a microsecond).
 const int kMinProxiesForParallelSearch = 128;
 
-// A chunk's list and query stack, padded so that two chunks' array headers (written at every push by
-// different threads) never share a cache line.
+// A chunk's list, padded so that two chunks' array headers (written at every push by different threads)
+// never share a cache line.
 struct ChunkLists
 {
 	btAlignedObjectArray<btDbvtProxy*> found;  // proxy, other, proxy, other, ...
-	btNodeStack stack;
 	char padding[128];
 };
 
@@ -152,8 +155,8 @@ struct ChunkLists
 struct SubtreeTask
 {
 	caliber::DbvtUndoLog log;
-	btAlignedObjectArray<int> moves;  // the moves it made, in order
-	btAlignedObjectArray<int> marks;  // the log's size before each
+	btAlignedObjectArray<int> moves;                  // the moves it made, in order
+	btAlignedObjectArray<int> marks;                  // the log's size before each
 	btAlignedObjectArray<caliber::DbvtTopStep> tops;  // what each leaves to the nodes above the subtrees
 	btAlignedObjectArray<btDbvtProxy*> proxies;       // DbvtMoveRound: each move's proxy
 	char padding[128];
@@ -167,12 +170,11 @@ struct PairSearchScratch
 	btDbvtProxy* freeProxies = 0;
 	btAlignedObjectArray<btDbvtProxy*> pending;
 	btAlignedObjectArray<ChunkLists> chunks;
-	btNodeStack serialStack;  // the query stack of the search on the calling thread
 	// moveProxiesToFatBoxes: each move's subtree (-1: it runs alone) and each subtree task's undo log and
 	// the moves it made (with the log's size before each).
 	btAlignedObjectArray<int> moveSubtrees;
 	btAlignedObjectArray<SubtreeTask> subtreeTasks;
-	caliber::DbvtUndoLog topLog;  // the replayed steps above the subtrees of the current move
+	caliber::DbvtUndoLog topLog;     // the replayed steps above the subtrees of the current move
 	caliber::DbvtTopView roundView;  // DbvtMoveRound's
 };
 
@@ -213,7 +215,6 @@ struct ListPairs : public btIParallelForBody
 		for (int chunk = chunkBegin; chunk < chunkEnd; ++chunk)
 		{
 			btAlignedObjectArray<btDbvtProxy*>& found = scratch->chunks[chunk].found;
-			btNodeStack& stack = scratch->chunks[chunk].stack;
 			found.resize(0);
 			PairListPolicy policy;
 			policy.found = &found;
@@ -223,8 +224,8 @@ struct ListPairs : public btIParallelForBody
 			{
 				policy.proxy = scratch->pending[i];
 				const btDbvtVolume& box = policy.proxy->leaf->volume;
-				dynamicSet->collideTVNoStackAlloc(dynamicSet->m_root, box, stack, policy);
-				fixedSet->collideTVNoStackAlloc(fixedSet->m_root, box, stack, policy);
+				caliber::collideTVInTreeOrder<kPairQueryInlineStack>(dynamicSet->m_root, box, policy);
+				caliber::collideTVInTreeOrder<kPairQueryInlineStack>(fixedSet->m_root, box, policy);
 			}
 		}
 	}
@@ -867,7 +868,7 @@ void btDbvtBroadphase::collide(btDispatcher* dispatcher)
 		btITaskScheduler* scheduler = btGetTaskScheduler();
 		if (search.pending.size() < kMinProxiesForParallelSearch || !scheduler || scheduler->getNumThreads() < 2)
 		{
-			for (int i = 0; i < search.pending.size(); ++i) searchPairs(*this, search.pending[i], search.serialStack);
+			for (int i = 0; i < search.pending.size(); ++i) searchPairs(*this, search.pending[i]);
 		}
 		else
 		{

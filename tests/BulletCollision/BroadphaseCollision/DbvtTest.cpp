@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "BulletCollision/BroadphaseCollision/btDbvt.h"
+#include "BulletCollision/BroadphaseCollision/btDbvtBoxWalk.h"
 #include "BulletCollision/CollisionShapes/ShapesCoreTestUtil.h"
 
 namespace
@@ -659,6 +660,75 @@ TEST(Dbvt, EnumerationDepthAndLeafExtraction)
 	EXPECT_EQ(btDbvt::maxdepth(single.m_root), 1);
 	EXPECT_EQ(btDbvt::countLeaves(single.m_root), 1);
 	EXPECT_EQ(btDbvt::countLeaves(0), 0);
+}
+
+// The broadphase's pair search adds new pairs in the order its box query finds the leaves, and that order
+// is part of the results (the pair cache's order is the narrowphase's and the solver's). The query is a
+// depth-first walk that prunes by box only, so it finds exactly the leaves whose boxes touch the query, in
+// the tree's own leaf order (childs[1]'s subtree first: enumLeaves' order reversed), whatever was pruned on
+// the way. collideTVNoStackAlloc and caliber::collideTVInTreeOrder (the pair search's walk, which tests the
+// children before it pushes them) must both give that order; the latter also when its stack outgrows its
+// inline array (an inline capacity of 2 here). Checked on trees shaped by insertions, moves and removals.
+TEST(Dbvt, BoxQueryFindsTouchingLeavesInTheTreesLeafOrder)
+{
+	struct Ordered : btDbvt::ICollide
+	{
+		using btDbvt::ICollide::Process;
+		std::vector<int> ids;
+		void Process(const btDbvtNode* n) override { ids.push_back(dataToId(n)); }
+	};
+	for (unsigned seed : {21u, 22u})
+	{
+		Random rng(seed);
+		btDbvt tree;
+		tree.m_lkhd = 4;  // as the broadphase's dynamic tree
+		std::vector<RefLeaf> ref;
+		buildRandomTree(tree, ref, rng, 400);
+		for (int op = 0; op < 300; ++op)
+		{
+			const int victim = randomAlive(ref, rng);
+			if (op % 10 == 9)
+			{
+				tree.remove(ref[victim].node);
+				ref[victim].alive = false;
+				continue;
+			}
+			btDbvtVolume moved =
+			    btDbvtVolume::FromCE(ref[victim].box.Center() + rng.vector(3), ref[victim].box.Extents());
+			tree.update(ref[victim].node, moved);
+			ref[victim].box = moved;
+		}
+		ASSERT_TRUE(treeIsConsistent(tree, ref));
+		Ordered leafOrder;
+		btDbvt::enumLeaves(tree.m_root, leafOrder);
+		std::reverse(leafOrder.ids.begin(), leafOrder.ids.end());
+		btNodeStack stack;
+		int several = 0;
+		for (int q = 0; q < 200; ++q)
+		{
+			// Queries the size of a leaf (the pair search's) and larger ones.
+			const btDbvtVolume query =
+			    q % 2 ? randomBox(rng) : btDbvtVolume::FromCE(rng.vector(45), rng.vector(15).absolute());
+			std::vector<int> expected;
+			for (int id : leafOrder.ids)
+				if (boxesOverlap(ref[id].box, query)) expected.push_back(id);
+			Ordered found, walked, spilled;
+			tree.collideTVNoStackAlloc(tree.m_root, query, stack, found);
+			caliber::collideTVInTreeOrder<64>(tree.m_root, query, walked);
+			caliber::collideTVInTreeOrder<2>(tree.m_root, query, spilled);
+			ASSERT_EQ(found.ids, expected) << "seed " << seed << " query " << q;
+			ASSERT_EQ(walked.ids, expected) << "seed " << seed << " query " << q;
+			ASSERT_EQ(spilled.ids, expected) << "seed " << seed << " query " << q;
+			several += expected.size() > 1 ? 1 : 0;
+		}
+		// The order is tested on queries that find several leaves, not only on empty or single answers.
+		EXPECT_GT(several, 40) << "seed " << seed;
+	}
+	// The empty tree and a query that misses the root.
+	btDbvt empty;
+	Ordered none;
+	caliber::collideTVInTreeOrder<4>(empty.m_root, btDbvtVolume::FromCR(btVector3(0, 0, 0), 1), none);
+	EXPECT_TRUE(none.ids.empty());
 }
 
 TEST(Dbvt, CloneGivesIdenticalQueryResults)
