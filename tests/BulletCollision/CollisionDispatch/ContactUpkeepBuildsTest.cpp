@@ -20,49 +20,12 @@
 #include "BulletCollision/NarrowPhaseCollision/btPersistentManifoldBuilds.h"
 #include "LinearMath/btQuaternion.h"
 
+#include "BulletCollision/CollisionDispatch/ManifoldPointCompare.h"
+
 namespace
 {
-bool sameBits(btScalar a, btScalar b) { return std::memcmp(&a, &b, sizeof(btScalar)) == 0; }
-bool sameBits(const btVector3& a, const btVector3& b)
-{
-	return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
-}
-
-// Every field of two points, bit for bit (w lanes and padding aside).
-void expectSamePoint(const btManifoldPoint& a, const btManifoldPoint& b, int trial)
-{
-	SCOPED_TRACE(trial);
-	EXPECT_TRUE(sameBits(a.m_localPointA, b.m_localPointA));
-	EXPECT_TRUE(sameBits(a.m_localPointB, b.m_localPointB));
-	EXPECT_TRUE(sameBits(a.m_positionWorldOnB, b.m_positionWorldOnB));
-	EXPECT_TRUE(sameBits(a.m_positionWorldOnA, b.m_positionWorldOnA));
-	EXPECT_TRUE(sameBits(a.m_normalWorldOnB, b.m_normalWorldOnB));
-	EXPECT_TRUE(sameBits(a.m_distance1, b.m_distance1));
-	EXPECT_TRUE(sameBits(a.m_combinedFriction, b.m_combinedFriction));
-	EXPECT_TRUE(sameBits(a.m_combinedRollingFriction, b.m_combinedRollingFriction));
-	EXPECT_TRUE(sameBits(a.m_combinedSpinningFriction, b.m_combinedSpinningFriction));
-	EXPECT_TRUE(sameBits(a.m_combinedRestitution, b.m_combinedRestitution));
-	EXPECT_EQ(a.m_partId0, b.m_partId0);
-	EXPECT_EQ(a.m_partId1, b.m_partId1);
-	EXPECT_EQ(a.m_index0, b.m_index0);
-	EXPECT_EQ(a.m_index1, b.m_index1);
-	EXPECT_EQ(a.m_userPersistentData, b.m_userPersistentData);
-	EXPECT_EQ(a.m_contactPointFlags, b.m_contactPointFlags);
-	EXPECT_TRUE(sameBits(a.m_appliedImpulse, b.m_appliedImpulse));
-	EXPECT_TRUE(sameBits(a.m_prevRHS, b.m_prevRHS));
-	EXPECT_TRUE(sameBits(a.m_appliedImpulseLateral1, b.m_appliedImpulseLateral1));
-	EXPECT_TRUE(sameBits(a.m_appliedImpulseLateral2, b.m_appliedImpulseLateral2));
-	EXPECT_TRUE(sameBits(a.m_contactMotion1, b.m_contactMotion1));
-	EXPECT_TRUE(sameBits(a.m_contactMotion2, b.m_contactMotion2));
-	EXPECT_TRUE(sameBits(a.m_contactCFM, b.m_contactCFM));
-	EXPECT_TRUE(sameBits(a.m_combinedContactStiffness1, b.m_combinedContactStiffness1));
-	EXPECT_TRUE(sameBits(a.m_contactERP, b.m_contactERP));
-	EXPECT_TRUE(sameBits(a.m_combinedContactDamping1, b.m_combinedContactDamping1));
-	EXPECT_TRUE(sameBits(a.m_frictionCFM, b.m_frictionCFM));
-	EXPECT_EQ(a.m_lifeTime, b.m_lifeTime);
-	EXPECT_TRUE(sameBits(a.m_lateralFrictionDir1, b.m_lateralFrictionDir1));
-	EXPECT_TRUE(sameBits(a.m_lateralFrictionDir2, b.m_lateralFrictionDir2));
-}
+using caliber_test::expectSamePoint;
+using caliber_test::sameBits;
 
 void expectSameManifold(const btPersistentManifold& a, const btPersistentManifold& b, int trial)
 {
