@@ -105,18 +105,7 @@ TEST(ContactUpkeepBuilds, AddContactPointStoresTheSamePointsInBothBuilds)
 			point.m_prevRHS = btScalar(2 + i);
 			point.m_appliedImpulseLateral1 = btScalar(3 + i) * unit(random);
 			point.m_appliedImpulseLateral2 = btScalar(4 + i) * unit(random);
-			point.m_contactMotion1 = btScalar(0.5);
-			point.m_contactMotion2 = btScalar(0.25);
-			point.m_contactCFM = btScalar(0.125);
-			point.m_contactERP = btScalar(0.75);
-			point.m_frictionCFM = btScalar(0.0625);
-			point.m_combinedContactStiffness1 = btScalar(9);
-			point.m_combinedContactDamping1 = btScalar(8);
-			point.m_contactPointFlags = BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED | BT_CONTACT_FLAG_HAS_CONTACT_CFM;
-			point.m_lifeTime = 10 + i;
-			point.m_userPersistentData = &point;  // only compared, never dereferenced
-			point.m_lateralFrictionDir1 = btVector3(1, 0, 0);
-			point.m_lateralFrictionDir2 = btVector3(0, 0, 1);
+			caliber_test::setDistinctSolverFields(point, i);
 			baseline.addManifoldPoint(point);
 		}
 		btPersistentManifold avx2 = baseline;

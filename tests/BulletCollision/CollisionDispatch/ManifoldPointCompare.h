@@ -1,5 +1,5 @@
-// Bit-for-bit comparison of contact points, shared by the tests that run two builds or two paths of the
-// contact upkeep on the same inputs and require the same points.
+// Stored points with distinct solver fields and their bit-for-bit comparison, shared by the tests that run two
+// builds or two paths of the contact upkeep on the same inputs and require the same points.
 #pragma once
 
 #include <cstring>
@@ -50,5 +50,23 @@ inline void expectSamePoint(const btManifoldPoint& a, const btManifoldPoint& b, 
 	EXPECT_EQ(a.m_lifeTime, b.m_lifeTime);
 	EXPECT_TRUE(sameBits(a.m_lateralFrictionDir1, b.m_lateralFrictionDir1));
 	EXPECT_TRUE(sameBits(a.m_lateralFrictionDir2, b.m_lateralFrictionDir2));
+}
+
+// Gives a stored point's solver fields values that no default has, so a comparison notices any field that a
+// path drops or overwrites (the point's own address as user data: only compared, never dereferenced).
+inline void setDistinctSolverFields(btManifoldPoint& point, int i)
+{
+	point.m_contactMotion1 = btScalar(0.5);
+	point.m_contactMotion2 = btScalar(0.25);
+	point.m_contactCFM = btScalar(0.125);
+	point.m_contactERP = btScalar(0.75);
+	point.m_frictionCFM = btScalar(0.0625);
+	point.m_combinedContactStiffness1 = btScalar(9);
+	point.m_combinedContactDamping1 = btScalar(8);
+	point.m_contactPointFlags = BT_CONTACT_FLAG_LATERAL_FRICTION_INITIALIZED | BT_CONTACT_FLAG_HAS_CONTACT_CFM;
+	point.m_lifeTime = 10 + i;
+	point.m_userPersistentData = &point;
+	point.m_lateralFrictionDir1 = btVector3(1, 0, 0);
+	point.m_lateralFrictionDir2 = btVector3(0, 0, 1);
 }
 } // namespace caliber_test
